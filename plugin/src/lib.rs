@@ -1,0 +1,52 @@
+//! Parallax occlusion mapping for a small Bevy-style ECS on hecs, rendered with wgpu.
+//!
+//! An [`App`] holds a `hecs::World`, a type-keyed [`Resources`] map and a [`Schedule`] of
+//! systems in named [`Stage`]s; [`Plugin`]s add systems and resources. [`RenderPlugin`] draws
+//! every entity with a `Handle<Mesh>` and a [`Transform`] into an offscreen target that
+//! [`capture`] reads back.
+//!
+//! ```no_run
+//! use pom::*;
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let mut app = App::new();
+//! app.add_plugin(RenderPlugin::headless(256, 256));
+//! let cube = app.resources.get_mut::<Assets<Mesh>>().unwrap().add(Mesh::cube(1.0));
+//! app.world.spawn((Camera::perspective(45.0), Transform::from_xyz(2.0, 2.0, 3.0).looking_at(glam::Vec3::ZERO, glam::Vec3::Y)));
+//! app.world.spawn((DirectionalLight::default(), Transform::IDENTITY.looking_at(glam::Vec3::new(-1.0, -2.0, -1.0), glam::Vec3::Y)));
+//! app.world.spawn((cube, LitMaterial::default(), Transform::IDENTITY));
+//! app.update()?;
+//! capture(&app)?.save("cube.png")?;
+//! # Ok(()) }
+//! ```
+#![warn(missing_docs)]
+
+mod app;
+mod assets;
+mod camera;
+mod color;
+mod image;
+mod light;
+mod lit_material;
+pub mod mesh;
+pub mod render;
+mod resources;
+mod transform;
+
+pub use app::{
+    App, AppError, BoxedError, Fallible, Infallible, IntoSystem, Plugin, Schedule, Stage, System,
+};
+pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
+pub use camera::{Camera, Projection};
+pub use color::{Color, linear_to_srgb, srgb_to_linear};
+pub use image::{ColorSpace, Image, ImageError};
+pub use light::{AmbientLight, DirectionalLight, PointLight};
+pub use lit_material::LitMaterial;
+pub use mesh::{Mesh, MeshError};
+pub use render::{GpuContext, RenderError, RenderPlugin, capture};
+pub use resources::Resources;
+pub use transform::{
+    GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
+};
+
+/// Re-exported so users name the same versions the plugin was built with.
+pub use {glam, hecs, wgpu};

@@ -1,0 +1,147 @@
+//! Triangle meshes: vertex attributes, validation, primitives and tangent generation.
+
+mod primitives;
+mod tangents;
+
+pub use tangents::generate_tangents;
+
+/// What is wrong with a mesh's data.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum MeshError {
+    /// An attribute has a different number of entries than there are positions.
+    #[error("mesh attribute {attribute} has {found} entries but there are {expected} positions")]
+    AttributeLength {
+        /// The attribute's name.
+        attribute: &'static str,
+        /// Its entry count.
+        found: usize,
+        /// The position count.
+        expected: usize,
+    },
+    /// The index count is not a multiple of three.
+    #[error("mesh has {0} indices, which is not a whole number of triangles")]
+    PartialTriangle(usize),
+    /// An index refers past the last vertex.
+    #[error("mesh index {index} at position {at} is out of range for {vertices} vertices")]
+    IndexOutOfRange {
+        /// The bad index.
+        index: u32,
+        /// Where it is in the index list.
+        at: usize,
+        /// The vertex count.
+        vertices: usize,
+    },
+    /// A position is NaN or infinite.
+    #[error("mesh position {0} is not finite")]
+    NonFinitePosition(usize),
+    /// The mesh has no triangles.
+    #[error("mesh has no triangles")]
+    Empty,
+}
+
+/// An indexed triangle list with the attributes the lit materials need.
+///
+/// Normals, UVs and tangents are optional when building; [`Mesh::validate`] checks lengths and
+/// indices, and the renderer fills missing normals (flat) and tangents (MikkTSpace) before upload.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Unit vertex normals (empty: computed as flat normals).
+    pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates (empty: all zero).
+    pub uvs: Vec<[f32; 2]>,
+    /// MikkTSpace tangents, `w` = bitangent sign (empty: generated).
+    pub tangents: Vec<[f32; 4]>,
+    /// Three indices per triangle, counter-clockwise seen from the front.
+    pub indices: Vec<u32>,
+}
+
+impl Mesh {
+    /// Checks that every attribute matches the position count and every index is in range.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        let expected = self.positions.len();
+        for (attribute, found) in [
+            ("normals", self.normals.len()),
+            ("uvs", self.uvs.len()),
+            ("tangents", self.tangents.len()),
+        ] {
+            if found != 0 && found != expected {
+                return Err(MeshError::AttributeLength {
+                    attribute,
+                    found,
+                    expected,
+                });
+            }
+        }
+        if self.indices.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if self.indices.len() % 3 != 0 {
+            return Err(MeshError::PartialTriangle(self.indices.len()));
+        }
+        if let Some((at, &index)) = self
+            .indices
+            .iter()
+            .enumerate()
+            .find(|(_, index)| **index as usize >= expected)
+        {
+            return Err(MeshError::IndexOutOfRange {
+                index,
+                at,
+                vertices: expected,
+            });
+        }
+        if let Some(at) = self
+            .positions
+            .iter()
+            .position(|p| p.iter().any(|c| !c.is_finite()))
+        {
+            return Err(MeshError::NonFinitePosition(at));
+        }
+        Ok(())
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// Fills in whatever attributes are missing so the mesh can be drawn with lighting and
+    /// normal maps: flat normals (per-triangle, splitting shared vertices), zero UVs, and
+    /// MikkTSpace tangents. Validates first.
+    pub fn with_generated_attributes(mut self) -> Result<Self, MeshError> {
+        self.validate()?;
+        if self.normals.is_empty() {
+            self = self.unshared_with_flat_normals();
+        }
+        if self.uvs.is_empty() {
+            self.uvs = vec![[0.0; 2]; self.positions.len()];
+        }
+        if self.tangents.is_empty() {
+            self.tangents = generate_tangents(&self);
+        }
+        Ok(self)
+    }
+
+    /// Gives every triangle its own three vertices with the face normal.
+    fn unshared_with_flat_normals(&self) -> Self {
+        let mut flat = Mesh::default();
+        for (triangle_index, triangle) in self.indices.chunks_exact(3).enumerate() {
+            let corners = [0, 1, 2].map(|k| glam::Vec3::from(self.positions[triangle[k] as usize]));
+            let normal = (corners[1] - corners[0])
+                .cross(corners[2] - corners[0])
+                .try_normalize()
+                .unwrap_or(glam::Vec3::Z);
+            for (corner, &index) in triangle.iter().enumerate() {
+                flat.positions.push(self.positions[index as usize]);
+                flat.normals.push(normal.into());
+                if !self.uvs.is_empty() {
+                    flat.uvs.push(self.uvs[index as usize]);
+                }
+                flat.indices.push((triangle_index * 3 + corner) as u32);
+            }
+        }
+        flat
+    }
+}

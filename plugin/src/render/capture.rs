@@ -1,0 +1,106 @@
+//! Reading a texture back from the GPU into CPU memory.
+
+use std::time::Duration;
+
+use image::RgbaImage;
+
+use super::GpuContext;
+
+/// What went wrong reading a texture back.
+#[derive(Debug, thiserror::Error)]
+pub enum CaptureError {
+    /// The texture's format has no fixed texel size this function can copy.
+    #[error("cannot read back a texture of format {0:?}")]
+    UnsupportedFormat(wgpu::TextureFormat),
+    /// The GPU did not finish in time or the device was lost.
+    #[error("waiting for the GPU failed: {0}")]
+    Poll(#[from] wgpu::PollError),
+    /// Mapping the staging buffer failed.
+    #[error("mapping the readback buffer failed: {0}")]
+    Map(String),
+    /// The texture is not RGBA8 and cannot become an `RgbaImage`.
+    #[error("texture format {0:?} is not 8-bit RGBA")]
+    NotRgba8(wgpu::TextureFormat),
+}
+
+/// How long a readback waits for the GPU before giving up (software drivers are slow).
+const READBACK_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// The texels of mip level 0 of a 2D texture, tightly packed row by row (no padding), in the
+/// texture's own format.
+///
+/// The copy pads each row to `COPY_BYTES_PER_ROW_ALIGNMENT` as wgpu requires, so any width works.
+pub fn read_texture(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>, CaptureError> {
+    let format = texture.format();
+    let texel_bytes = format
+        .block_copy_size(None)
+        .filter(|_| format.block_dimensions() == (1, 1))
+        .ok_or(CaptureError::UnsupportedFormat(format))?;
+    let (width, height) = (texture.width(), texture.height());
+    let row_bytes = width * texel_bytes;
+    let padded_row_bytes =
+        row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback staging buffer"),
+        size: u64::from(padded_row_bytes) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("readback encoder"),
+        });
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &staging,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded_row_bytes),
+                rows_per_image: Some(height),
+            },
+        },
+        texture.size(),
+    );
+    let submission = gpu.queue.submit([encoder.finish()]);
+
+    let (sender, receiver) = std::sync::mpsc::channel();
+    staging.map_async(wgpu::MapMode::Read, .., move |result| {
+        let _ = sender.send(result);
+    });
+    gpu.device.poll(wgpu::PollType::Wait {
+        submission_index: Some(submission),
+        timeout: Some(READBACK_TIMEOUT),
+    })?;
+    receiver
+        .recv()
+        .map_err(|_| CaptureError::Map("the map callback never ran".into()))?
+        .map_err(|error| CaptureError::Map(error.to_string()))?;
+
+    let mut texels = Vec::with_capacity((row_bytes * height) as usize);
+    {
+        let mapped = staging
+            .get_mapped_range(..)
+            .map_err(|error| CaptureError::Map(error.to_string()))?;
+        for row in mapped.chunks_exact(padded_row_bytes as usize) {
+            texels.extend_from_slice(&row[..row_bytes as usize]);
+        }
+    }
+    staging.unmap();
+    Ok(texels)
+}
+
+/// Reads an 8-bit RGBA texture (sRGB or not) back into an image, bytes as stored.
+pub fn read_rgba8(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<RgbaImage, CaptureError> {
+    let format = texture.format();
+    if !matches!(
+        format,
+        wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb
+    ) {
+        return Err(CaptureError::NotRgba8(format));
+    }
+    let texels = read_texture(gpu, texture)?;
+    RgbaImage::from_raw(texture.width(), texture.height(), texels)
+        .ok_or_else(|| CaptureError::Map("readback returned the wrong number of bytes".into()))
+}

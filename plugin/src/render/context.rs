@@ -1,0 +1,121 @@
+//! The GPU context: instance, adapter, device and queue, with or without a window surface.
+
+use std::sync::{Arc, Mutex};
+
+/// What went wrong setting up the GPU.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter matched the request.
+    #[error(
+        "no GPU adapter found ({reason}); on a machine without a GPU install Mesa's software \
+         Vulkan driver (Debian/Ubuntu: apt-get install mesa-vulkan-drivers libvulkan1)"
+    )]
+    NoAdapter {
+        /// wgpu's explanation.
+        reason: String,
+    },
+    /// The adapter refused to create a device.
+    #[error("the GPU adapter {adapter} could not create a device: {source}")]
+    RequestDevice {
+        /// The adapter's name.
+        adapter: String,
+        /// wgpu's error.
+        source: wgpu::RequestDeviceError,
+    },
+}
+
+/// Owns the wgpu device and queue every renderer in the app shares.
+///
+/// Errors that no error scope catches are logged and kept (see
+/// [`GpuContext::take_uncaptured_errors`]) instead of panicking, which is wgpu's default.
+#[derive(Clone, Debug)]
+pub struct GpuContext {
+    /// The wgpu instance the adapter came from (needed to create window surfaces).
+    pub instance: wgpu::Instance,
+    /// The physical device.
+    pub adapter: wgpu::Adapter,
+    /// The logical device.
+    pub device: wgpu::Device,
+    /// The submission queue.
+    pub queue: wgpu::Queue,
+    uncaptured: Arc<Mutex<Vec<String>>>,
+}
+
+impl GpuContext {
+    /// A context for offscreen rendering. Honours wgpu's environment variables
+    /// (`WGPU_BACKEND`, `WGPU_ADAPTER_NAME`, `WGPU_POWER_PREF`).
+    pub fn headless() -> Result<Self, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        pollster::block_on(Self::from_instance(instance, None))
+    }
+
+    /// A context whose adapter can present to `surface`, created from the same `instance`.
+    pub fn for_surface(
+        instance: wgpu::Instance,
+        surface: &wgpu::Surface<'_>,
+    ) -> Result<Self, GpuError> {
+        pollster::block_on(Self::from_instance(instance, Some(surface)))
+    }
+
+    async fn from_instance(
+        instance: wgpu::Instance,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<Self, GpuError> {
+        let adapter = wgpu::util::initialize_adapter_from_env_or_default(&instance, surface)
+            .await
+            .map_err(|error| GpuError::NoAdapter {
+                reason: error.to_string(),
+            })?;
+        let info = adapter.get_info();
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("pom device"),
+                required_features: wgpu::Features::empty(),
+                // Ask for what the adapter has, so large textures work where the hardware allows.
+                required_limits: adapter.limits(),
+                ..Default::default()
+            })
+            .await
+            .map_err(|source| GpuError::RequestDevice {
+                adapter: info.name.clone(),
+                source,
+            })?;
+        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&uncaptured);
+        device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
+            log::error!("wgpu error: {error}");
+            if let Ok(mut errors) = sink.lock() {
+                errors.push(error.to_string());
+            }
+        }));
+        log::info!(
+            "GPU: {} ({:?}, {:?}, driver {} {})",
+            info.name,
+            info.device_type,
+            info.backend,
+            info.driver,
+            info.driver_info
+        );
+        Ok(Self {
+            instance,
+            adapter,
+            device,
+            queue,
+            uncaptured,
+        })
+    }
+
+    /// The adapter's name, type, backend and driver.
+    pub fn adapter_info(&self) -> wgpu::AdapterInfo {
+        self.adapter.get_info()
+    }
+
+    /// Returns and clears the errors no error scope caught since the last call.
+    pub fn take_uncaptured_errors(&self) -> Vec<String> {
+        self.uncaptured
+            .lock()
+            .map(|mut errors| std::mem::take(&mut *errors))
+            .unwrap_or_default()
+    }
+}

@@ -1,0 +1,261 @@
+//! GPU copies of meshes and images, uploaded when an asset is new or has changed.
+
+use std::collections::HashMap;
+
+use wgpu::util::DeviceExt;
+
+use super::GpuContext;
+use super::gpu_types::Vertex;
+use crate::{AssetId, Assets, ColorSpace, Image, Mesh};
+
+/// A mesh's vertex and index buffers.
+#[derive(Debug)]
+pub struct GpuMesh {
+    /// Interleaved [`Vertex`] data.
+    pub vertices: wgpu::Buffer,
+    /// `u32` indices.
+    pub indices: wgpu::Buffer,
+    /// Number of indices.
+    pub index_count: u32,
+}
+
+/// An uploaded texture with its full mip chain.
+#[derive(Debug)]
+pub struct GpuImage {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// A view of every mip level.
+    pub view: wgpu::TextureView,
+    /// Distinguishes re-uploads of the same asset, so bind groups that use it are rebuilt.
+    pub upload_serial: u64,
+}
+
+/// The state of one asset on the GPU: uploaded, or rejected at a given version.
+#[derive(Debug)]
+enum Cached<T> {
+    Ready { version: u64, gpu: T },
+    Rejected { version: u64 },
+}
+
+impl<T> Cached<T> {
+    fn version(&self) -> u64 {
+        match self {
+            Cached::Ready { version, .. } | Cached::Rejected { version } => *version,
+        }
+    }
+}
+
+/// Upload counters of the last Prepare stage, for tests and the sandbox's statistics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UploadStats {
+    /// Meshes uploaded (new or changed).
+    pub meshes: u32,
+    /// Images uploaded (new or changed).
+    pub images: u32,
+    /// Bytes written to uniform and storage buffers.
+    pub uniform_bytes: u64,
+}
+
+/// GPU versions of the assets in [`Assets<Mesh>`] and [`Assets<Image>`].
+#[derive(Debug, Default)]
+pub struct GpuAssets {
+    meshes: HashMap<AssetId<Mesh>, Cached<GpuMesh>>,
+    images: HashMap<AssetId<Image>, Cached<GpuImage>>,
+    next_upload_serial: u64,
+}
+
+impl GpuAssets {
+    /// Uploads `id` if it is new or changed since its last upload; returns whether it did.
+    /// A mesh that fails validation is logged once per version and not drawn.
+    pub fn prepare_mesh(
+        &mut self,
+        gpu: &GpuContext,
+        meshes: &Assets<Mesh>,
+        id: AssetId<Mesh>,
+    ) -> bool {
+        let Some(version) = meshes.version(id) else {
+            return false;
+        };
+        if self
+            .meshes
+            .get(&id)
+            .is_some_and(|cached| cached.version() == version)
+        {
+            return false;
+        }
+        let Some(mesh) = meshes.get(id) else {
+            return false;
+        };
+        let cached = match upload_mesh(gpu, mesh, id) {
+            Ok(gpu) => Cached::Ready { version, gpu },
+            Err(error) => {
+                log::error!("mesh {id:?} is not drawn: {error}");
+                Cached::Rejected { version }
+            }
+        };
+        self.meshes.insert(id, cached);
+        true
+    }
+
+    /// Uploads `id` if it is new or changed since its last upload; returns whether it did.
+    /// An image larger than the device allows is logged once per version and not used.
+    pub fn prepare_image(
+        &mut self,
+        gpu: &GpuContext,
+        images: &Assets<Image>,
+        id: AssetId<Image>,
+    ) -> bool {
+        let Some(version) = images.version(id) else {
+            return false;
+        };
+        if self
+            .images
+            .get(&id)
+            .is_some_and(|cached| cached.version() == version)
+        {
+            return false;
+        }
+        let Some(image) = images.get(id) else {
+            return false;
+        };
+        let limit = gpu.device.limits().max_texture_dimension_2d;
+        let (width, height) = image.size();
+        let cached = if width > limit || height > limit {
+            log::error!(
+                "image {id:?} is {width}×{height}, over the device's limit of {limit} texels per side: not used"
+            );
+            Cached::Rejected { version }
+        } else {
+            self.next_upload_serial += 1;
+            Cached::Ready {
+                version,
+                gpu: upload_image(gpu, image, id, self.next_upload_serial),
+            }
+        };
+        self.images.insert(id, cached);
+        true
+    }
+
+    /// The uploaded mesh, if it exists and is valid.
+    pub fn mesh(&self, id: AssetId<Mesh>) -> Option<&GpuMesh> {
+        match self.meshes.get(&id) {
+            Some(Cached::Ready { gpu, .. }) => Some(gpu),
+            _ => None,
+        }
+    }
+
+    /// The uploaded image, if it exists and fits the device.
+    pub fn image(&self, id: AssetId<Image>) -> Option<&GpuImage> {
+        match self.images.get(&id) {
+            Some(Cached::Ready { gpu, .. }) => Some(gpu),
+            _ => None,
+        }
+    }
+
+    /// Drops GPU copies of assets that no longer exist.
+    pub fn release_freed(&mut self, meshes: &Assets<Mesh>, images: &Assets<Image>) {
+        self.meshes.retain(|id, _| meshes.contains(*id));
+        self.images.retain(|id, _| images.contains(*id));
+    }
+}
+
+fn upload_mesh(
+    gpu: &GpuContext,
+    mesh: &Mesh,
+    id: AssetId<Mesh>,
+) -> Result<GpuMesh, crate::MeshError> {
+    let complete;
+    let mesh = if mesh.normals.is_empty() || mesh.uvs.is_empty() || mesh.tangents.is_empty() {
+        complete = mesh.clone().with_generated_attributes()?;
+        &complete
+    } else {
+        mesh.validate()?;
+        mesh
+    };
+    let vertices: Vec<Vertex> = (0..mesh.positions.len())
+        .map(|i| Vertex {
+            position: mesh.positions[i],
+            normal: mesh.normals[i],
+            uv: mesh.uvs[i],
+            tangent: mesh.tangents[i],
+        })
+        .collect();
+    let label = format!("{id:?}");
+    Ok(GpuMesh {
+        vertices: gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label} vertices")),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            }),
+        indices: gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label} indices")),
+                contents: bytemuck::cast_slice(&mesh.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            }),
+        index_count: mesh.indices.len() as u32,
+    })
+}
+
+fn upload_image(
+    gpu: &GpuContext,
+    image: &Image,
+    id: AssetId<Image>,
+    upload_serial: u64,
+) -> GpuImage {
+    let levels = image.mip_chain();
+    let (width, height) = image.size();
+    let format = match image.color_space() {
+        ColorSpace::Srgb => wgpu::TextureFormat::Rgba8UnormSrgb,
+        ColorSpace::Linear => wgpu::TextureFormat::Rgba8Unorm,
+    };
+    let label = format!("{id:?}");
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(&label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (level, pixels) in levels.iter().enumerate() {
+        let (level_width, level_height) = pixels.dimensions();
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: level as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            pixels.as_raw(),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * level_width),
+                rows_per_image: Some(level_height),
+            },
+            wgpu::Extent3d {
+                width: level_width,
+                height: level_height,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(&format!("{label} view")),
+        ..Default::default()
+    });
+    GpuImage {
+        texture,
+        view,
+        upload_serial,
+    }
+}

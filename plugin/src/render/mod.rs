@@ -1,0 +1,200 @@
+//! The renderer: GPU context, offscreen target, extract / prepare / render systems, capture.
+
+mod capture;
+mod context;
+mod extract;
+mod forward;
+mod gpu_assets;
+mod gpu_types;
+mod target;
+
+pub use capture::{CaptureError, read_rgba8, read_texture};
+pub use context::{GpuContext, GpuError};
+pub use extract::{DrawItem, ExtractedFrame, extract_frame};
+pub use forward::{ForwardPass, SHADER_SOURCE as FORWARD_SHADER_SOURCE};
+pub use gpu_assets::{GpuAssets, GpuImage, GpuMesh, UploadStats};
+pub use gpu_types::{
+    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, ObjectUniform,
+    PointLightGpu, Vertex,
+};
+pub use target::{COLOR_FORMAT, DEPTH_FORMAT, RenderTarget};
+
+use image::RgbaImage;
+
+use crate::{
+    AmbientLight, App, AppError, Assets, BoxedError, Image, Mesh, Plugin, Resources, Stage,
+    TransformPlugin, free_unused_assets,
+};
+
+/// Everything that can go wrong when rendering or capturing a frame.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// GPU setup failed.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// Reading the image back failed.
+    #[error(transparent)]
+    Capture(#[from] CaptureError),
+    /// The render plugin's resources are missing.
+    #[error("nothing has been rendered yet: add RenderPlugin and call App::update first")]
+    NotRendered,
+}
+
+/// Renders every mesh entity into an offscreen target of a fixed size.
+///
+/// Adds [`TransformPlugin`] if missing, the `Assets<Mesh>` and `Assets<Image>` stores, an
+/// [`AmbientLight`], and the Extract, Prepare and Render systems. The GPU context is created in
+/// [`Plugin::finish`] unless a [`GpuContext`] resource was inserted before (to share a device
+/// with a window, say).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RenderPlugin {
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+}
+
+impl RenderPlugin {
+    /// A plugin rendering into a `width`×`height` offscreen image.
+    pub fn headless(width: u32, height: u32) -> Self {
+        Self { width, height }
+    }
+}
+
+impl Default for RenderPlugin {
+    fn default() -> Self {
+        Self::headless(1280, 720)
+    }
+}
+
+/// The renderer's GPU state: uploaded assets and the forward pass. A resource.
+#[derive(Debug)]
+pub struct Renderer {
+    /// GPU copies of meshes and images.
+    pub assets: GpuAssets,
+    /// The forward pass.
+    pub forward: ForwardPass,
+    /// What the last Prepare stage uploaded.
+    pub last_upload: UploadStats,
+}
+
+impl Plugin for RenderPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.has_plugin::<TransformPlugin>() {
+            app.add_plugin(TransformPlugin);
+        }
+        app.resources.get_or_default::<Assets<Mesh>>();
+        app.resources.get_or_default::<Assets<Image>>();
+        app.resources.get_or_default::<AmbientLight>();
+        app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
+            .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
+            .add_system(Stage::Extract, extract_frame)
+            .add_system(Stage::Prepare, prepare_frame)
+            .add_system(Stage::Render, render_frame);
+    }
+
+    fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
+        if !app.resources.contains::<GpuContext>() {
+            app.insert_resource(GpuContext::headless()?);
+        }
+        let gpu = app
+            .resources
+            .get::<GpuContext>()
+            .ok_or_else(AppError::missing::<GpuContext>)?;
+        let target = RenderTarget::new(gpu, self.width, self.height);
+        let renderer = Renderer {
+            assets: GpuAssets::default(),
+            forward: ForwardPass::new(gpu),
+            last_upload: UploadStats::default(),
+        };
+        app.insert_resource(target).insert_resource(renderer);
+        Ok(())
+    }
+}
+
+/// The Prepare stage's system: uploads new or changed meshes, images and per-object data.
+pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+    let mut renderer = resources
+        .remove::<Renderer>()
+        .ok_or_else(AppError::missing::<Renderer>)?;
+    let result = prepare_with(&mut renderer, resources);
+    resources.insert(renderer);
+    result
+}
+
+fn prepare_with(renderer: &mut Renderer, resources: &Resources) -> Result<(), AppError> {
+    let gpu = resources
+        .get::<GpuContext>()
+        .ok_or_else(AppError::missing::<GpuContext>)?;
+    let extracted = resources
+        .get::<ExtractedFrame>()
+        .ok_or_else(AppError::missing::<ExtractedFrame>)?;
+    let meshes = resources
+        .get::<Assets<Mesh>>()
+        .ok_or_else(AppError::missing::<Assets<Mesh>>)?;
+    let images = resources
+        .get::<Assets<Image>>()
+        .ok_or_else(AppError::missing::<Assets<Image>>)?;
+    let mut stats = UploadStats::default();
+    renderer.assets.release_freed(meshes, images);
+    for draw in &extracted.draws {
+        stats.meshes += u32::from(renderer.assets.prepare_mesh(gpu, meshes, draw.mesh));
+        for image in [draw.base_color_texture, draw.normal_map]
+            .into_iter()
+            .flatten()
+        {
+            stats.images += u32::from(renderer.assets.prepare_image(gpu, images, image));
+        }
+    }
+    stats.uniform_bytes = renderer.forward.prepare(gpu, extracted, &renderer.assets);
+    renderer.last_upload = stats;
+    Ok(())
+}
+
+/// The Render stage's system: records the forward pass into the target and submits it.
+pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+    let gpu = resources
+        .get::<GpuContext>()
+        .ok_or_else(AppError::missing::<GpuContext>)?;
+    let target = resources
+        .get::<RenderTarget>()
+        .ok_or_else(AppError::missing::<RenderTarget>)?;
+    let renderer = resources
+        .get::<Renderer>()
+        .ok_or_else(AppError::missing::<Renderer>)?;
+    let extracted = resources
+        .get::<ExtractedFrame>()
+        .ok_or_else(AppError::missing::<ExtractedFrame>)?;
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("frame encoder"),
+        });
+    renderer
+        .forward
+        .draw(&mut encoder, target, extracted, &renderer.assets);
+    gpu.queue.submit([encoder.finish()]);
+    Ok(())
+}
+
+/// Reads the last rendered frame back as sRGB-encoded RGBA8 pixels.
+///
+/// # Example
+/// ```no_run
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let mut app = pom::App::new();
+/// app.add_plugin(pom::RenderPlugin::headless(64, 64));
+/// app.update()?;
+/// let image = pom::capture(&app)?;
+/// assert_eq!(image.dimensions(), (64, 64));
+/// # Ok(()) }
+/// ```
+pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
+    let (Some(gpu), Some(target)) = (
+        app.resources.get::<GpuContext>(),
+        app.resources.get::<RenderTarget>(),
+    ) else {
+        return Err(RenderError::NotRendered);
+    };
+    Ok(read_rgba8(gpu, &target.color)?)
+}

@@ -1,0 +1,87 @@
+//! The offscreen colour and depth textures a frame is drawn into.
+
+use super::GpuContext;
+
+/// The colour format of the render target: 8-bit sRGB, so captures hold display-ready pixels.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The depth buffer format.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// An offscreen colour + depth target of a fixed size; a resource of the render plugin.
+#[derive(Debug)]
+pub struct RenderTarget {
+    /// The colour texture (render attachment, copy source, sampleable).
+    pub color: wgpu::Texture,
+    /// A view of [`RenderTarget::color`].
+    pub color_view: wgpu::TextureView,
+    /// The depth texture.
+    pub depth: wgpu::Texture,
+    /// A view of [`RenderTarget::depth`].
+    pub depth_view: wgpu::TextureView,
+}
+
+impl RenderTarget {
+    /// Creates a target of `width`×`height`, each clamped to 1..=the device's 2D texture limit.
+    pub fn new(gpu: &GpuContext, width: u32, height: u32) -> Self {
+        let limit = gpu.device.limits().max_texture_dimension_2d;
+        let size = wgpu::Extent3d {
+            width: width.clamp(1, limit),
+            height: height.clamp(1, limit),
+            depth_or_array_layers: 1,
+        };
+        if (size.width, size.height) != (width, height) {
+            log::warn!(
+                "render target {width}×{height} clamped to {}×{} (device limit {limit})",
+                size.width,
+                size.height
+            );
+        }
+        let color = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("render target colour"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: COLOR_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let depth = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("render target depth"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let color_view = color.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("render target colour view"),
+            ..Default::default()
+        });
+        let depth_view = depth.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("render target depth view"),
+            ..Default::default()
+        });
+        Self {
+            color,
+            color_view,
+            depth,
+            depth_view,
+        }
+    }
+
+    /// Width and height in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.color.width(), self.color.height())
+    }
+
+    /// Width divided by height.
+    pub fn aspect(&self) -> f32 {
+        let (width, height) = self.size();
+        width as f32 / height as f32
+    }
+}

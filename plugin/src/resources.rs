@@ -1,0 +1,115 @@
+//! A type-keyed map of singletons shared by systems.
+
+use std::any::{Any, TypeId, type_name};
+use std::collections::HashMap;
+
+/// A map from a Rust type to the one value of that type the app holds (a "resource").
+///
+/// # Example
+/// ```
+/// let mut resources = pom::Resources::default();
+/// resources.insert(3_u32);
+/// *resources.get_mut::<u32>().unwrap() += 1;
+/// assert_eq!(resources.get::<u32>(), Some(&4));
+/// ```
+#[derive(Default)]
+pub struct Resources {
+    values: HashMap<TypeId, Box<dyn Any>>,
+}
+
+impl Resources {
+    /// Inserts `value`, returning the previous value of the same type if there was one.
+    pub fn insert<T: 'static>(&mut self, value: T) -> Option<T> {
+        self.values
+            .insert(TypeId::of::<T>(), Box::new(value))
+            .and_then(|old| old.downcast::<T>().ok().map(|boxed| *boxed))
+    }
+
+    /// Returns the value of type `T`, if present.
+    pub fn get<T: 'static>(&self) -> Option<&T> {
+        self.values
+            .get(&TypeId::of::<T>())
+            .and_then(|value| value.downcast_ref::<T>())
+    }
+
+    /// Returns the value of type `T` mutably, if present.
+    pub fn get_mut<T: 'static>(&mut self) -> Option<&mut T> {
+        self.values
+            .get_mut(&TypeId::of::<T>())
+            .and_then(|value| value.downcast_mut::<T>())
+    }
+
+    /// Returns the value of type `T`, inserting `T::default()` first if it is missing.
+    pub fn get_or_default<T: Default + 'static>(&mut self) -> &mut T {
+        self.values
+            .entry(TypeId::of::<T>())
+            .or_insert_with(|| Box::new(T::default()))
+            .downcast_mut::<T>()
+            // The entry is keyed by `TypeId::of::<T>()`, so it always holds a `T`.
+            .expect("resource map entry holds a value of its key's type")
+    }
+
+    /// Removes and returns the value of type `T`, if present.
+    pub fn remove<T: 'static>(&mut self) -> Option<T> {
+        self.values
+            .remove(&TypeId::of::<T>())
+            .and_then(|value| value.downcast::<T>().ok().map(|boxed| *boxed))
+    }
+
+    /// Whether a value of type `T` is present.
+    pub fn contains<T: 'static>(&self) -> bool {
+        self.values.contains_key(&TypeId::of::<T>())
+    }
+
+    /// Runs `f` with `T` taken out of the map, so `f` may borrow other resources mutably at the
+    /// same time; `T` is put back afterwards. Returns `None` when `T` is missing.
+    ///
+    /// # Example
+    /// ```
+    /// let mut resources = pom::Resources::default();
+    /// resources.insert(2_u32);
+    /// resources.insert(String::from("x"));
+    /// resources.scope(|resources, count: &mut u32| {
+    ///     resources.get_mut::<String>().unwrap().push_str(&count.to_string());
+    /// });
+    /// assert_eq!(resources.get::<String>().unwrap(), "x2");
+    /// ```
+    pub fn scope<T: 'static, R>(&mut self, f: impl FnOnce(&mut Self, &mut T) -> R) -> Option<R> {
+        let mut value = self.remove::<T>()?;
+        let result = f(self, &mut value);
+        self.insert(value);
+        Some(result)
+    }
+
+    /// The type name of `T`, for error messages about a missing resource.
+    pub(crate) fn name_of<T: 'static>() -> &'static str {
+        type_name::<T>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn insert_replaces_and_returns_previous_value() {
+        let mut resources = Resources::default();
+        assert_eq!(resources.insert(1_i32), None);
+        assert_eq!(resources.insert(2_i32), Some(1));
+        assert_eq!(resources.get::<i32>(), Some(&2));
+        assert!(resources.get::<u8>().is_none());
+    }
+
+    #[test]
+    fn scope_puts_the_value_back() {
+        let mut resources = Resources::default();
+        resources.insert(vec![1_u8]);
+        let length = resources.scope(|_, v: &mut Vec<u8>| {
+            v.push(2);
+            v.len()
+        });
+        assert_eq!(length, Some(2));
+        assert_eq!(resources.get::<Vec<u8>>(), Some(&vec![1, 2]));
+        assert_eq!(resources.scope(|_, _: &mut f32| ()), None);
+    }
+}

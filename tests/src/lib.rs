@@ -1,0 +1,108 @@
+//! Helpers for the integration tests: a headless app whose GPU work runs inside validation
+//! error scopes, reference-image comparison with NVIDIA FLIP, and procedural test textures.
+
+pub mod fixtures;
+mod golden;
+
+pub use golden::{FlipTolerance, GoldenError, check_golden, golden_dir};
+
+use pom::{App, AppError, GpuContext, RenderPlugin};
+
+/// What can fail while driving a test app.
+#[derive(Debug, thiserror::Error)]
+pub enum HarnessError {
+    /// An update returned an error.
+    #[error(transparent)]
+    App(#[from] AppError),
+    /// wgpu reported a validation or out-of-memory error inside the scope.
+    #[error("wgpu error during {during}: {error}")]
+    Gpu {
+        /// What was running.
+        during: &'static str,
+        /// The error.
+        error: String,
+    },
+    /// Capture failed.
+    #[error(transparent)]
+    Render(#[from] pom::RenderError),
+}
+
+/// An app with the render plugin at `width`×`height`, finished (GPU created), with any setup
+/// validation error turned into a failure.
+pub fn headless_app(width: u32, height: u32) -> Result<App, HarnessError> {
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(width, height));
+    app.finish()?;
+    let gpu = app
+        .resources
+        .get::<GpuContext>()
+        .expect("render plugin inserts the GPU context");
+    let info = gpu.adapter_info();
+    if info.device_type != pom::wgpu::DeviceType::Cpu {
+        eprintln!(
+            "note: reference images were made on lavapipe; this run uses {} ({:?}). \
+             Run scripts/test to pin the software driver.",
+            info.name, info.device_type
+        );
+    }
+    check_uncaptured(&app, "setup")?;
+    Ok(app)
+}
+
+fn gpu(app: &App) -> &GpuContext {
+    app.resources
+        .get::<GpuContext>()
+        .expect("render plugin inserts the GPU context")
+}
+
+fn check_uncaptured(app: &App, during: &'static str) -> Result<(), HarnessError> {
+    let errors = gpu(app).take_uncaptured_errors();
+    match errors.first() {
+        Some(error) => Err(HarnessError::Gpu {
+            during,
+            error: error.clone(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Runs `f` with validation and out-of-memory error scopes pushed on the app's device, and fails
+/// if either caught an error.
+pub fn in_error_scopes<T>(
+    app: &mut App,
+    during: &'static str,
+    f: impl FnOnce(&mut App) -> Result<T, HarnessError>,
+) -> Result<T, HarnessError> {
+    let device = gpu(app).device.clone();
+    let out_of_memory = device.push_error_scope(pom::wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(pom::wgpu::ErrorFilter::Validation);
+    let result = f(app);
+    let validation_error = pollster::block_on(validation.pop());
+    let memory_error = pollster::block_on(out_of_memory.pop());
+    if let Some(error) = validation_error.or(memory_error) {
+        return Err(HarnessError::Gpu {
+            during,
+            error: error.to_string(),
+        });
+    }
+    check_uncaptured(app, during)?;
+    result
+}
+
+/// Runs `frames` updates inside error scopes.
+pub fn run_frames(app: &mut App, frames: usize) -> Result<(), HarnessError> {
+    in_error_scopes(app, "update", |app| {
+        for _ in 0..frames {
+            app.update()?;
+        }
+        Ok(())
+    })
+}
+
+/// Runs one update and captures the result, all inside error scopes.
+pub fn render_and_capture(app: &mut App) -> Result<image::RgbaImage, HarnessError> {
+    in_error_scopes(app, "render and capture", |app| {
+        app.update()?;
+        Ok(pom::capture(app)?)
+    })
+}

@@ -1,0 +1,220 @@
+//! Behaviour of the forward renderer that needs no reference image: readback of any size,
+//! upload bookkeeping, tangent generation, bad meshes, and the normal-map convention.
+
+use glam::Vec3;
+use pom::render::Renderer;
+use pom::{
+    Assets, Camera, Color, ColorSpace, DirectionalLight, Image, LitMaterial, Mesh, Transform,
+};
+use pom_tests::{headless_app, render_and_capture, run_frames};
+
+fn top_down_camera() -> (Camera, Transform) {
+    (
+        Camera::orthographic(2.0),
+        Transform::from_xyz(0.0, 3.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
+    )
+}
+
+#[test]
+fn capture_of_any_width_is_unpadded_and_exact() {
+    for (width, height) in [(37, 23), (1, 1), (65, 3), (64, 64)] {
+        let mut app = headless_app(width, height).unwrap();
+        app.world.spawn((
+            Camera {
+                clear_color: Color::srgb_u8(10, 200, 90),
+                ..Camera::perspective(45.0)
+            },
+            Transform::IDENTITY,
+        ));
+        let image = render_and_capture(&mut app).unwrap();
+        assert_eq!(image.dimensions(), (width, height));
+        assert!(
+            image.pixels().all(|p| p.0 == [10, 200, 90, 255]),
+            "{width}×{height}: a pixel differs from the clear colour"
+        );
+    }
+}
+
+#[test]
+fn only_what_changed_is_uploaded() {
+    let mut app = headless_app(32, 32).unwrap();
+    let mesh = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::cube(1.0));
+    let texture = app
+        .resources
+        .get_mut::<Assets<Image>>()
+        .unwrap()
+        .add(Image::solid([200, 10, 10, 255], ColorSpace::Srgb));
+    app.world.spawn(top_down_camera());
+    let moving = app.world.spawn((
+        mesh.clone(),
+        LitMaterial {
+            base_color_texture: Some(texture),
+            ..LitMaterial::default()
+        },
+        Transform::IDENTITY,
+    ));
+    app.world
+        .spawn((mesh.clone(), Transform::from_xyz(2.0, 0.0, 0.0)));
+    let stats = |app: &pom::App| app.resources.get::<Renderer>().unwrap().last_upload;
+
+    run_frames(&mut app, 1).unwrap();
+    let first = stats(&app);
+    assert_eq!((first.meshes, first.images), (1, 1));
+    assert!(first.uniform_bytes > 0);
+
+    run_frames(&mut app, 1).unwrap();
+    assert_eq!(
+        stats(&app),
+        pom::render::UploadStats::default(),
+        "nothing changed"
+    );
+
+    app.world
+        .get::<&mut Transform>(moving)
+        .unwrap()
+        .translation
+        .y = 0.5;
+    run_frames(&mut app, 1).unwrap();
+    let moved = stats(&app);
+    assert_eq!((moved.meshes, moved.images), (0, 0));
+    assert_eq!(
+        moved.uniform_bytes,
+        std::mem::size_of::<pom::render::ObjectUniform>() as u64,
+        "only the moved object's data"
+    );
+
+    app.resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .get_mut(&mesh)
+        .unwrap()
+        .positions[0][0] += 0.1;
+    run_frames(&mut app, 1).unwrap();
+    assert_eq!(stats(&app).meshes, 1, "the edited mesh is uploaded again");
+}
+
+#[test]
+fn meshes_without_normals_uvs_or_tangents_still_render() {
+    let mut app = headless_app(48, 48).unwrap();
+    let bare = Mesh {
+        positions: vec![[-0.8, 0.0, -0.8], [-0.8, 0.0, 0.8], [0.8, 0.0, 0.8]],
+        indices: vec![0, 1, 2],
+        ..Mesh::default()
+    };
+    let mesh = app.resources.get_mut::<Assets<Mesh>>().unwrap().add(bare);
+    app.world.spawn(top_down_camera());
+    app.world.spawn((
+        DirectionalLight::default(),
+        Transform::IDENTITY.looking_at(Vec3::NEG_Y, Vec3::Z),
+    ));
+    app.world.spawn((mesh, Transform::IDENTITY));
+    let image = render_and_capture(&mut app).unwrap();
+    let lit = image.pixels().filter(|p| p.0[0] > 200).count();
+    assert!(
+        lit > 48 * 48 / 4,
+        "the triangle is lit by its generated flat normal ({lit} px)"
+    );
+}
+
+#[test]
+fn an_invalid_mesh_is_skipped_and_the_rest_still_draws() {
+    let mut app = headless_app(32, 32).unwrap();
+    let broken = Mesh {
+        positions: vec![[0.0; 3]; 3],
+        indices: vec![0, 1, 7],
+        ..Mesh::default()
+    };
+    let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
+    let broken = meshes.add(broken);
+    let good = meshes.add(Mesh::plane(2.0));
+    app.world.spawn(top_down_camera());
+    app.world.spawn((broken, Transform::IDENTITY));
+    app.world.spawn((
+        good,
+        LitMaterial::from_color(Color::BLACK),
+        Transform::IDENTITY,
+    ));
+    let image = render_and_capture(&mut app).unwrap();
+    // The good plane covers the view in black; the clear colour would be grey-blue.
+    assert!(image.pixels().all(|p| p.0[..3] == [0, 0, 0]));
+}
+
+#[test]
+fn freed_assets_leave_the_gpu() {
+    let mut app = headless_app(16, 16).unwrap();
+    let mesh = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::cube(1.0));
+    let id = mesh.id();
+    app.world.spawn(top_down_camera());
+    let entity = app.world.spawn((mesh, Transform::IDENTITY));
+    run_frames(&mut app, 1).unwrap();
+    assert!(
+        app.resources
+            .get::<Renderer>()
+            .unwrap()
+            .assets
+            .mesh(id)
+            .is_some()
+    );
+    app.world.despawn(entity).unwrap();
+    run_frames(&mut app, 1).unwrap();
+    assert!(!app.resources.get::<Assets<Mesh>>().unwrap().contains(id));
+    assert!(
+        app.resources
+            .get::<Renderer>()
+            .unwrap()
+            .assets
+            .mesh(id)
+            .is_none()
+    );
+}
+
+/// Brightness at the image centre of a flat plane whose normal map tilts every normal the same
+/// way, lit from `light_from` at 45° elevation.
+fn centre_brightness(normal_rgb: [u8; 3], light_from: Vec3) -> u8 {
+    let mut app = headless_app(16, 16).unwrap();
+    let plane = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::plane(2.0));
+    let [r, g, b] = normal_rgb;
+    let normal_map = app
+        .resources
+        .get_mut::<Assets<Image>>()
+        .unwrap()
+        .add(Image::solid([r, g, b, 255], ColorSpace::Linear));
+    app.world.spawn(top_down_camera());
+    let towards_light = (light_from + Vec3::Y).normalize();
+    app.world.spawn((
+        DirectionalLight::default(),
+        Transform::from_translation(towards_light).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    app.world.spawn((
+        plane,
+        LitMaterial {
+            normal_map: Some(normal_map),
+            specular_strength: 0.0,
+            ..LitMaterial::default()
+        },
+        Transform::IDENTITY,
+    ));
+    render_and_capture(&mut app).unwrap().get_pixel(8, 8).0[0]
+}
+
+#[test]
+fn normal_maps_follow_the_opengl_convention() {
+    // Red tilts the normal towards +u (+X on the plane).
+    let towards_u = [191, 128, 238];
+    assert!(centre_brightness(towards_u, Vec3::X) > centre_brightness(towards_u, Vec3::NEG_X) + 40);
+    // Green tilts it up the image, which is −v (−Z on the plane, since v runs along +Z).
+    let up_image = [128, 191, 238];
+    assert!(centre_brightness(up_image, Vec3::NEG_Z) > centre_brightness(up_image, Vec3::Z) + 40);
+}
