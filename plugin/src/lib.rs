@@ -20,6 +20,11 @@
 //! ```
 #![warn(missing_docs)]
 
+// The README's examples compile as doctests, so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+struct ReadmeDoctests;
+
 mod app;
 mod assets;
 mod camera;
@@ -28,6 +33,7 @@ mod image;
 mod light;
 mod lit_material;
 pub mod mesh;
+mod normal_map;
 pub mod render;
 mod resources;
 mod transform;
@@ -42,6 +48,7 @@ pub use image::{ColorSpace, Image, ImageError};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;
 pub use mesh::{Mesh, MeshError};
+pub use normal_map::normal_map_from_heights;
 pub use render::{GpuContext, RenderError, RenderPlugin, capture};
 pub use resources::Resources;
 pub use transform::{

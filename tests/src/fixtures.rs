@@ -1,6 +1,5 @@
 //! Procedural textures for tests: no files needed, same pixels everywhere.
 
-use glam::Vec3;
 use image::{Rgba, RgbaImage};
 use pom::{ColorSpace, Image};
 
@@ -16,29 +15,24 @@ pub fn bump_height(u: f32, v: f32, cells: f32) -> f32 {
     }
 }
 
-/// A tangent-space normal map (OpenGL convention: green up the image) of [`bump_height`].
+/// A tangent-space normal map of [`bump_height`] made by the plugin's Sobel filter; `strength`
+/// is the bump height in UV units.
 pub fn bump_normal_map(size: u32, cells: f32, strength: f32) -> Image {
     let texel = 1.0 / size as f32;
-    let pixels = RgbaImage::from_fn(size, size, |x, y| {
-        let (u, v) = ((x as f32 + 0.5) * texel, (y as f32 + 0.5) * texel);
-        // Height gradient per unit of UV; `strength` is the bump height in UV units.
-        let du =
-            (bump_height(u + texel, v, cells) - bump_height(u - texel, v, cells)) / (2.0 * texel);
-        let dv =
-            (bump_height(u, v + texel, cells) - bump_height(u, v - texel, cells)) / (2.0 * texel);
-        // +v runs down the image while green points up it, hence the sign on y.
-        let normal = Vec3::new(-du * strength, dv * strength, 1.0).normalize();
-        let encode = |c: f32| ((c * 0.5 + 0.5) * 255.0).round() as u8;
-        Rgba([encode(normal.x), encode(normal.y), encode(normal.z), 255])
-    });
-    Image::new(pixels, ColorSpace::Linear).expect("size is not zero")
+    let heights: Vec<f32> = (0..size * size)
+        .map(|i| {
+            let (x, y) = (i % size, i / size);
+            bump_height((x as f32 + 0.5) * texel, (y as f32 + 0.5) * texel, cells)
+        })
+        .collect();
+    pom::normal_map_from_heights(&heights, size, size, strength).expect("size is not zero")
 }
 
 /// A two-colour checkerboard of `cells`×`cells` squares, sRGB.
 pub fn checker_albedo(size: u32, cells: u32, a: [u8; 3], b: [u8; 3]) -> Image {
     let cell = (size / cells.max(1)).max(1);
     let pixels = RgbaImage::from_fn(size, size, |x, y| {
-        let [r, g, bl] = if (x / cell + y / cell) % 2 == 0 { a } else { b };
+        let [r, g, bl] = if (x / cell + y / cell).is_multiple_of(2) { a } else { b };
         Rgba([r, g, bl, 255])
     });
     Image::new(pixels, ColorSpace::Srgb).expect("size is not zero")

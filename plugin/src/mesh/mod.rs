@@ -77,7 +77,7 @@ impl Mesh {
         if self.indices.is_empty() {
             return Err(MeshError::Empty);
         }
-        if self.indices.len() % 3 != 0 {
+        if !self.indices.len().is_multiple_of(3) {
             return Err(MeshError::PartialTriangle(self.indices.len()));
         }
         if let Some((at, &index)) = self

@@ -150,8 +150,14 @@ mod tests {
     fn plane_tangent_follows_u() {
         // u grows along +X and v along +Z, so the tangent is +X and the bitangent +Z.
         let plane = Mesh::plane(1.0);
-        for tangent in &plane.tangents {
-            assert!((Vec3::new(tangent[0], tangent[1], tangent[2]) - Vec3::X).length() < 1e-4);
+        for (tangent, normal) in plane.tangents.iter().zip(&plane.normals) {
+            let t = Vec3::new(tangent[0], tangent[1], tangent[2]);
+            assert!((t - Vec3::X).length() < 1e-4);
+            let bitangent = Vec3::from(*normal).cross(t) * tangent[3];
+            assert!(
+                (bitangent - Vec3::Z).length() < 1e-4,
+                "cross(n, t) * w must be dP/dv"
+            );
         }
     }
 
