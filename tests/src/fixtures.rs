@@ -32,7 +32,11 @@ pub fn bump_normal_map(size: u32, cells: f32, strength: f32) -> Image {
 pub fn checker_albedo(size: u32, cells: u32, a: [u8; 3], b: [u8; 3]) -> Image {
     let cell = (size / cells.max(1)).max(1);
     let pixels = RgbaImage::from_fn(size, size, |x, y| {
-        let [r, g, bl] = if (x / cell + y / cell).is_multiple_of(2) { a } else { b };
+        let [r, g, bl] = if (x / cell + y / cell).is_multiple_of(2) {
+            a
+        } else {
+            b
+        };
         Rgba([r, g, bl, 255])
     });
     Image::new(pixels, ColorSpace::Srgb).expect("size is not zero")
