@@ -49,7 +49,7 @@ pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;
 pub use mesh::{Mesh, MeshError};
 pub use normal_map::normal_map_from_heights;
-pub use render::{GpuContext, RenderError, RenderPlugin, capture};
+pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
 pub use resources::Resources;
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,

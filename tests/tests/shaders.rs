@@ -1,6 +1,14 @@
-//! Every WGSL file in the plugin parses and validates with naga.
+//! Every WGSL file in the plugin is part of a composed shader, and every composed shader parses
+//! and validates with naga.
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
+
+use pom::render::shaders;
+
+fn src_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src")
+}
 
 fn wgsl_files(dir: &Path, found: &mut Vec<PathBuf>) {
     let entries = std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
@@ -15,22 +23,15 @@ fn wgsl_files(dir: &Path, found: &mut Vec<PathBuf>) {
 }
 
 #[test]
-fn every_wgsl_file_validates() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src");
-    let mut files = Vec::new();
-    wgsl_files(&root, &mut files);
-    assert!(
-        !files.is_empty(),
-        "no WGSL files under {}: did they move?",
-        root.display()
-    );
+fn every_composed_shader_validates() {
+    assert!(!shaders::ALL.is_empty());
     let mut failures = Vec::new();
-    for path in &files {
-        let source = std::fs::read_to_string(path).unwrap();
+    for shader in shaders::ALL {
+        let source = shader.source();
         let module = match naga::front::wgsl::parse_str(&source) {
             Ok(module) => module,
             Err(error) => {
-                failures.push(error.emit_to_string_with_path(&source, &path.display().to_string()));
+                failures.push(error.emit_to_string_with_path(&source, shader.name));
                 continue;
             }
         };
@@ -39,19 +40,40 @@ fn every_wgsl_file_validates() {
             naga::valid::Capabilities::default(),
         );
         if let Err(error) = validator.validate(&module) {
-            failures.push(error.emit_to_string_with_path(&source, &path.display().to_string()));
+            failures.push(error.emit_to_string_with_path(&source, shader.name));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    eprintln!("validated {} WGSL files", files.len());
 }
 
 #[test]
-fn the_renderer_uses_the_validated_source() {
-    // The pipeline compiles the string embedded at build time; make sure it is the file on disk.
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src/render/forward.wgsl");
-    assert_eq!(
-        std::fs::read_to_string(path).unwrap(),
-        pom::render::FORWARD_SHADER_SOURCE
+fn every_wgsl_file_on_disk_is_validated_as_embedded() {
+    let mut on_disk = Vec::new();
+    wgsl_files(&src_dir(), &mut on_disk);
+    assert!(
+        !on_disk.is_empty(),
+        "no WGSL files under {}: did they move?",
+        src_dir().display()
+    );
+    let composed: BTreeSet<(&str, &str)> = shaders::ALL
+        .iter()
+        .flat_map(|shader| shader.files.iter().map(|file| (file.path, file.source)))
+        .collect();
+    for path in &on_disk {
+        let relative = path
+            .strip_prefix(src_dir())
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let text = std::fs::read_to_string(path).unwrap();
+        assert!(
+            composed.contains(&(relative.as_str(), text.as_str())),
+            "{relative} is not part of any shader in pom::render::shaders::ALL (or is stale)"
+        );
+    }
+    eprintln!(
+        "{} WGSL files in {} shaders",
+        on_disk.len(),
+        shaders::ALL.len()
     );
 }

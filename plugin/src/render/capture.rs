@@ -2,7 +2,7 @@
 
 use std::time::Duration;
 
-use image::RgbaImage;
+use image::{Rgba32FImage, RgbaImage};
 
 use super::GpuContext;
 
@@ -18,9 +18,14 @@ pub enum CaptureError {
     /// Mapping the staging buffer failed.
     #[error("mapping the readback buffer failed: {0}")]
     Map(String),
-    /// The texture is not RGBA8 and cannot become an `RgbaImage`.
-    #[error("texture format {0:?} is not 8-bit RGBA")]
-    NotRgba8(wgpu::TextureFormat),
+    /// The texture's format does not match the image type asked for.
+    #[error("texture format {found:?} cannot be read as {wanted}")]
+    WrongFormat {
+        /// The texture's format.
+        found: wgpu::TextureFormat,
+        /// What the caller asked for.
+        wanted: &'static str,
+    },
 }
 
 /// How long a readback waits for the GPU before giving up (software drivers are slow).
@@ -98,9 +103,30 @@ pub fn read_rgba8(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<RgbaImage
         format,
         wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb
     ) {
-        return Err(CaptureError::NotRgba8(format));
+        return Err(CaptureError::WrongFormat {
+            found: format,
+            wanted: "8-bit RGBA",
+        });
     }
     let texels = read_texture(gpu, texture)?;
     RgbaImage::from_raw(texture.width(), texture.height(), texels)
+        .ok_or_else(|| CaptureError::Map("readback returned the wrong number of bytes".into()))
+}
+
+/// Reads an `Rgba32Float` texture back as raw floats.
+pub fn read_rgba32f(
+    gpu: &GpuContext,
+    texture: &wgpu::Texture,
+) -> Result<Rgba32FImage, CaptureError> {
+    let format = texture.format();
+    if format != wgpu::TextureFormat::Rgba32Float {
+        return Err(CaptureError::WrongFormat {
+            found: format,
+            wanted: "32-bit float RGBA",
+        });
+    }
+    let texels = read_texture(gpu, texture)?;
+    let floats: Vec<f32> = bytemuck::pod_collect_to_vec(&texels);
+    Rgba32FImage::from_raw(texture.width(), texture.height(), floats)
         .ok_or_else(|| CaptureError::Map("readback returned the wrong number of bytes".into()))
 }

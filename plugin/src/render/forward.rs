@@ -2,18 +2,15 @@
 
 use std::collections::HashMap;
 
-use bytemuck::Zeroable;
-use wgpu::util::DeviceExt;
-
 use super::GpuContext;
 use super::extract::ExtractedFrame;
+use super::frame_uniform::FrameUniformBuffer;
 use super::gpu_assets::GpuAssets;
-use super::gpu_types::{FrameUniform, ObjectUniform, Vertex};
-use super::target::{COLOR_FORMAT, DEPTH_FORMAT, RenderTarget};
+use super::gpu_types::{ObjectUniform, Vertex};
+use super::object_buffer::ObjectBuffer;
+use super::target::DEPTH_FORMAT;
+use super::{layout, shaders};
 use crate::{AssetId, Image};
-
-/// The WGSL source of the forward pass.
-pub const SHADER_SOURCE: &str = include_str!("forward.wgsl");
 
 type MaterialKey = (Option<AssetId<Image>>, Option<AssetId<Image>>);
 
@@ -29,67 +26,23 @@ pub struct ForwardPass {
     frame_layout: wgpu::BindGroupLayout,
     material_layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
-    white_view: wgpu::TextureView,
-    flat_normal_view: wgpu::TextureView,
-    frame_buffer: wgpu::Buffer,
-    object_buffer: wgpu::Buffer,
+    objects: ObjectBuffer<ObjectUniform>,
     frame_bind_group: wgpu::BindGroup,
     material_bind_groups: HashMap<MaterialKey, MaterialBindGroup>,
-    uploaded_frame: Option<FrameUniform>,
-    uploaded_objects: Vec<ObjectUniform>,
 }
 
 impl std::fmt::Debug for ForwardPass {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ForwardPass")
-            .field("objects", &self.uploaded_objects.len())
+            .field("material_bind_groups", &self.material_bind_groups.len())
             .finish_non_exhaustive()
     }
-}
-
-const OBJECT_SIZE: u64 = std::mem::size_of::<ObjectUniform>() as u64;
-
-fn solid_texture(
-    gpu: &GpuContext,
-    label: &str,
-    rgba: [u8; 4],
-    format: wgpu::TextureFormat,
-) -> wgpu::TextureView {
-    gpu.device
-        .create_texture_with_data(
-            &gpu.queue,
-            &wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d::default(),
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            &rgba,
-        )
-        .create_view(&wgpu::TextureViewDescriptor {
-            label: Some(&format!("{label} view")),
-            ..Default::default()
-        })
-}
-
-fn object_buffer(gpu: &GpuContext, capacity: u64) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("forward object buffer"),
-        size: capacity.max(1) * OBJECT_SIZE,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
 }
 
 fn frame_bind_group(
     gpu: &GpuContext,
     layout: &wgpu::BindGroupLayout,
-    frame_buffer: &wgpu::Buffer,
+    frame: &FrameUniformBuffer,
     object_buffer: &wgpu::Buffer,
 ) -> wgpu::BindGroup {
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -98,7 +51,7 @@ fn frame_bind_group(
         entries: &[
             wgpu::BindGroupEntry {
                 binding: 0,
-                resource: frame_buffer.as_entire_binding(),
+                resource: frame.buffer().as_entire_binding(),
             },
             wgpu::BindGroupEntry {
                 binding: 1,
@@ -110,60 +63,27 @@ fn frame_bind_group(
 
 impl ForwardPass {
     /// Compiles the shader and creates the pipeline and its fixed resources.
-    pub fn new(gpu: &GpuContext) -> Self {
+    /// `color_format` is the format of the target the pass draws into.
+    pub fn new(
+        gpu: &GpuContext,
+        frame: &FrameUniformBuffer,
+        color_format: wgpu::TextureFormat,
+    ) -> Self {
         let device = &gpu.device;
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("forward.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(SHADER_SOURCE.into()),
-        });
+        let shader = shaders::FORWARD.create_module(device);
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("forward frame layout"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(
-                            std::mem::size_of::<FrameUniform>() as u64,
-                        ),
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(OBJECT_SIZE),
-                    },
-                    count: None,
-                },
+                FrameUniformBuffer::layout_entry(),
+                ObjectBuffer::<ObjectUniform>::layout_entry(1),
             ],
         });
-        let texture_entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
         let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("forward material layout"),
             entries: &[
-                texture_entry(0),
-                texture_entry(1),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                layout::texture_2d(0),
+                layout::texture_2d(1),
+                layout::filtering_sampler(2),
             ],
         });
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -196,107 +116,51 @@ impl ForwardPass {
                 module: &shader,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
-                targets: &[Some(COLOR_FORMAT.into())],
+                targets: &[Some(color_format.into())],
             }),
             multiview_mask: None,
             cache: None,
         });
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("forward material sampler"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
-        let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("forward frame uniform"),
-            contents: bytemuck::bytes_of(&FrameUniform::zeroed()),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
-        let object_buffer = object_buffer(gpu, 64);
-        let frame_bind_group = frame_bind_group(gpu, &frame_layout, &frame_buffer, &object_buffer);
+        let sampler = layout::material_sampler(device, "forward material sampler");
+        let objects = ObjectBuffer::new(gpu, "forward object buffer", 64);
+        let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());
         Self {
             pipeline,
-            white_view: solid_texture(
-                gpu,
-                "default base colour",
-                [255; 4],
-                wgpu::TextureFormat::Rgba8UnormSrgb,
-            ),
-            flat_normal_view: solid_texture(
-                gpu,
-                "default flat normal",
-                [128, 128, 255, 255],
-                wgpu::TextureFormat::Rgba8Unorm,
-            ),
             frame_layout,
             material_layout,
             sampler,
-            frame_buffer,
-            object_buffer,
+            objects,
             frame_bind_group,
             material_bind_groups: HashMap::new(),
-            uploaded_frame: None,
-            uploaded_objects: Vec::new(),
         }
     }
 
-    /// Writes the frame uniform and the per-object data that changed since the last frame, and
-    /// makes sure every draw has a material bind group. Returns the bytes written.
+    /// Writes the per-object data that changed since the last frame and makes sure every draw
+    /// has a material bind group. Returns the bytes written.
     pub fn prepare(
         &mut self,
         gpu: &GpuContext,
+        frame: &FrameUniformBuffer,
         extracted: &ExtractedFrame,
         assets: &GpuAssets,
     ) -> u64 {
-        let mut written = 0;
-        if self.uploaded_frame.as_ref() != Some(&extracted.frame) {
-            gpu.queue
-                .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&extracted.frame));
-            self.uploaded_frame = Some(extracted.frame);
-            written += std::mem::size_of::<FrameUniform>() as u64;
-        }
-        written += self.upload_objects(gpu, extracted);
+        let written = self.upload_objects(gpu, frame, extracted);
         self.prepare_material_bind_groups(gpu, extracted, assets);
         written
     }
 
-    fn upload_objects(&mut self, gpu: &GpuContext, extracted: &ExtractedFrame) -> u64 {
+    fn upload_objects(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &FrameUniformBuffer,
+        extracted: &ExtractedFrame,
+    ) -> u64 {
         let objects: Vec<ObjectUniform> = extracted.draws.iter().map(|draw| draw.object).collect();
-        let capacity = self.object_buffer.size() / OBJECT_SIZE;
-        if objects.len() as u64 > capacity {
-            let new_capacity = (objects.len() as u64).next_power_of_two();
-            self.object_buffer = object_buffer(gpu, new_capacity);
-            self.frame_bind_group = frame_bind_group(
-                gpu,
-                &self.frame_layout,
-                &self.frame_buffer,
-                &self.object_buffer,
-            );
-            // The new buffer holds nothing yet.
-            self.uploaded_objects.clear();
+        let (written, grew) = self.objects.upload(gpu, &objects);
+        if grew {
+            self.frame_bind_group =
+                frame_bind_group(gpu, &self.frame_layout, frame, self.objects.buffer());
         }
-        // Write each run of consecutive changed objects with one call.
-        let mut written = 0;
-        let mut index = 0;
-        while index < objects.len() {
-            if self.uploaded_objects.get(index) == Some(&objects[index]) {
-                index += 1;
-                continue;
-            }
-            let start = index;
-            while index < objects.len() && self.uploaded_objects.get(index) != Some(&objects[index])
-            {
-                index += 1;
-            }
-            let bytes: &[u8] = bytemuck::cast_slice(&objects[start..index]);
-            gpu.queue
-                .write_buffer(&self.object_buffer, start as u64 * OBJECT_SIZE, bytes);
-            written += bytes.len() as u64;
-        }
-        self.uploaded_objects = objects;
         written
     }
 
@@ -329,13 +193,14 @@ impl ForwardPass {
                             wgpu::BindGroupEntry {
                                 binding: 0,
                                 resource: wgpu::BindingResource::TextureView(
-                                    base.map_or(&self.white_view, |image| &image.view),
+                                    base.map_or(&assets.defaults.white_srgb, |image| &image.view),
                                 ),
                             },
                             wgpu::BindGroupEntry {
                                 binding: 1,
                                 resource: wgpu::BindingResource::TextureView(
-                                    normal.map_or(&self.flat_normal_view, |image| &image.view),
+                                    normal
+                                        .map_or(&assets.defaults.flat_normal, |image| &image.view),
                                 ),
                             },
                             wgpu::BindGroupEntry {
@@ -350,46 +215,13 @@ impl ForwardPass {
         }
     }
 
-    /// Records the pass: clear, then one draw per extracted mesh that is on the GPU.
+    /// Records one draw per extracted mesh that is on the GPU into the main pass.
     pub fn draw(
         &self,
-        encoder: &mut wgpu::CommandEncoder,
-        target: &RenderTarget,
+        pass: &mut wgpu::RenderPass<'_>,
         extracted: &ExtractedFrame,
         assets: &GpuAssets,
     ) {
-        let clear = extracted.clear_color;
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("forward pass"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &target.color_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: f64::from(clear.r),
-                        g: f64::from(clear.g),
-                        b: f64::from(clear.b),
-                        a: f64::from(clear.a),
-                    }),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &target.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        if !extracted.has_camera {
-            return;
-        }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.frame_bind_group, &[]);
         for (index, draw) in extracted.draws.iter().enumerate() {

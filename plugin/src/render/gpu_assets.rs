@@ -56,15 +56,77 @@ pub struct UploadStats {
     pub uniform_bytes: u64,
 }
 
+/// 1×1 textures bound where a material has no texture of its own.
+#[derive(Debug)]
+pub struct DefaultTextures {
+    /// White, sRGB: a neutral colour texture.
+    pub white_srgb: wgpu::TextureView,
+    /// (0.5, 0.5, 1): a flat tangent-space normal.
+    pub flat_normal: wgpu::TextureView,
+    /// White, linear: a height map at the top everywhere (no displacement).
+    pub white_linear: wgpu::TextureView,
+}
+
+fn solid_texture(
+    gpu: &GpuContext,
+    label: &str,
+    rgba: [u8; 4],
+    format: wgpu::TextureFormat,
+) -> wgpu::TextureView {
+    gpu.device
+        .create_texture_with_data(
+            &gpu.queue,
+            &wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d::default(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            &rgba,
+        )
+        .create_view(&wgpu::TextureViewDescriptor {
+            label: Some(&format!("{label} view")),
+            ..Default::default()
+        })
+}
+
 /// GPU versions of the assets in [`Assets<Mesh>`] and [`Assets<Image>`].
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct GpuAssets {
+    /// Stand-ins for missing textures.
+    pub defaults: DefaultTextures,
     meshes: HashMap<AssetId<Mesh>, Cached<GpuMesh>>,
     images: HashMap<AssetId<Image>, Cached<GpuImage>>,
     next_upload_serial: u64,
 }
 
 impl GpuAssets {
+    /// An empty cache with the default textures uploaded.
+    pub fn new(gpu: &GpuContext) -> Self {
+        let srgb = wgpu::TextureFormat::Rgba8UnormSrgb;
+        let linear = wgpu::TextureFormat::Rgba8Unorm;
+        Self {
+            defaults: DefaultTextures {
+                white_srgb: solid_texture(gpu, "default white", [255; 4], srgb),
+                flat_normal: solid_texture(
+                    gpu,
+                    "default flat normal",
+                    [128, 128, 255, 255],
+                    linear,
+                ),
+                white_linear: solid_texture(gpu, "default height", [255; 4], linear),
+            },
+            meshes: HashMap::new(),
+            images: HashMap::new(),
+            next_upload_serial: 0,
+        }
+    }
+
     /// Uploads `id` if it is new or changed since its last upload; returns whether it did.
     /// A mesh that fails validation is logged once per version and not drawn.
     pub fn prepare_mesh(

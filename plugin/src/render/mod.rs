@@ -4,22 +4,28 @@ mod capture;
 mod context;
 mod extract;
 mod forward;
+mod frame_uniform;
 mod gpu_assets;
 mod gpu_types;
+mod layout;
+mod object_buffer;
+pub mod shaders;
 mod target;
 
-pub use capture::{CaptureError, read_rgba8, read_texture};
+pub use capture::{CaptureError, read_rgba8, read_rgba32f, read_texture};
 pub use context::{GpuContext, GpuError};
 pub use extract::{DrawItem, ExtractedFrame, extract_frame};
-pub use forward::{ForwardPass, SHADER_SOURCE as FORWARD_SHADER_SOURCE};
-pub use gpu_assets::{GpuAssets, GpuImage, GpuMesh, UploadStats};
+pub use forward::ForwardPass;
+pub use frame_uniform::FrameUniformBuffer;
+pub use gpu_assets::{DefaultTextures, GpuAssets, GpuImage, GpuMesh, UploadStats};
 pub use gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, ObjectUniform,
     PointLightGpu, Vertex,
 };
-pub use target::{COLOR_FORMAT, DEPTH_FORMAT, RenderTarget};
+pub use object_buffer::ObjectBuffer;
+pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat};
 
-use image::RgbaImage;
+use image::{Rgba32FImage, RgbaImage};
 
 use crate::{
     AmbientLight, App, AppError, Assets, BoxedError, Image, Mesh, Plugin, Resources, Stage,
@@ -52,12 +58,23 @@ pub struct RenderPlugin {
     pub width: u32,
     /// Target height in pixels.
     pub height: u32,
+    /// What the target stores: display pixels or raw floats.
+    pub format: TargetFormat,
 }
 
 impl RenderPlugin {
-    /// A plugin rendering into a `width`×`height` offscreen image.
+    /// A plugin rendering into a `width`×`height` offscreen sRGB image.
     pub fn headless(width: u32, height: u32) -> Self {
-        Self { width, height }
+        Self {
+            width,
+            height,
+            format: TargetFormat::Srgb8,
+        }
+    }
+
+    /// The same plugin rendering raw floats (for measurements) instead.
+    pub fn with_format(self, format: TargetFormat) -> Self {
+        Self { format, ..self }
     }
 }
 
@@ -67,11 +84,13 @@ impl Default for RenderPlugin {
     }
 }
 
-/// The renderer's GPU state: uploaded assets and the forward pass. A resource.
+/// The renderer's GPU state: uploaded assets, the frame uniform and the forward pass. A resource.
 #[derive(Debug)]
 pub struct Renderer {
     /// GPU copies of meshes and images.
     pub assets: GpuAssets,
+    /// Camera and lights, shared by every main-pass pipeline.
+    pub frame: FrameUniformBuffer,
     /// The forward pass.
     pub forward: ForwardPass,
     /// What the last Prepare stage uploaded.
@@ -86,6 +105,7 @@ impl Plugin for RenderPlugin {
         app.resources.get_or_default::<Assets<Mesh>>();
         app.resources.get_or_default::<Assets<Image>>();
         app.resources.get_or_default::<AmbientLight>();
+        app.resources.get_or_default::<MainPassDraws>();
         app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
             .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
             .add_system(Stage::Extract, extract_frame)
@@ -101,10 +121,12 @@ impl Plugin for RenderPlugin {
             .resources
             .get::<GpuContext>()
             .ok_or_else(AppError::missing::<GpuContext>)?;
-        let target = RenderTarget::new(gpu, self.width, self.height);
+        let target = RenderTarget::new(gpu, self.width, self.height, self.format);
+        let frame = FrameUniformBuffer::new(gpu);
         let renderer = Renderer {
-            assets: GpuAssets::default(),
-            forward: ForwardPass::new(gpu),
+            assets: GpuAssets::new(gpu),
+            forward: ForwardPass::new(gpu, &frame, target.format()),
+            frame,
             last_upload: UploadStats::default(),
         };
         app.insert_resource(target).insert_resource(renderer);
@@ -146,12 +168,24 @@ fn prepare_with(renderer: &mut Renderer, resources: &Resources) -> Result<(), Ap
             stats.images += u32::from(renderer.assets.prepare_image(gpu, images, image));
         }
     }
-    stats.uniform_bytes = renderer.forward.prepare(gpu, extracted, &renderer.assets);
+    stats.uniform_bytes = renderer.frame.upload(gpu, &extracted.frame)
+        + renderer
+            .forward
+            .prepare(gpu, &renderer.frame, extracted, &renderer.assets);
     renderer.last_upload = stats;
     Ok(())
 }
 
-/// The Render stage's system: records the forward pass into the target and submits it.
+/// Draws into the main pass after the forward pass: how other plugins (the POM material) add
+/// their draws. Each function gets the resources and the open pass.
+pub type MainPassDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
+
+/// The extra draws of the main pass, in the order plugins registered them. A resource.
+#[derive(Debug, Default)]
+pub struct MainPassDraws(pub Vec<MainPassDraw>);
+
+/// The Render stage's system: clears the target, records the forward pass and every registered
+/// [`MainPassDraw`], and submits.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     let gpu = resources
         .get::<GpuContext>()
@@ -170,9 +204,47 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("frame encoder"),
         });
-    renderer
-        .forward
-        .draw(&mut encoder, target, extracted, &renderer.assets);
+    {
+        let clear = extracted.clear_color;
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("main pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target.color_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: f64::from(clear.r),
+                        g: f64::from(clear.g),
+                        b: f64::from(clear.b),
+                        a: f64::from(clear.a),
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &target.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if extracted.has_camera {
+            renderer
+                .forward
+                .draw(&mut pass, extracted, &renderer.assets);
+            if let Some(MainPassDraws(draws)) = resources.get::<MainPassDraws>() {
+                for draw in draws {
+                    draw(resources, &mut pass);
+                }
+            }
+        }
+    }
     gpu.queue.submit([encoder.finish()]);
     Ok(())
 }
@@ -197,4 +269,15 @@ pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
         return Err(RenderError::NotRendered);
     };
     Ok(read_rgba8(gpu, &target.color)?)
+}
+
+/// Reads the last rendered frame of a [`TargetFormat::Float32`] target back as raw floats.
+pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
+    let (Some(gpu), Some(target)) = (
+        app.resources.get::<GpuContext>(),
+        app.resources.get::<RenderTarget>(),
+    ) else {
+        return Err(RenderError::NotRendered);
+    };
+    Ok(read_rgba32f(gpu, &target.color)?)
 }

@@ -2,8 +2,26 @@
 
 use super::GpuContext;
 
-/// The colour format of the render target: 8-bit sRGB, so captures hold display-ready pixels.
-pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// What the colour target stores.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TargetFormat {
+    /// 8-bit sRGB: display-ready pixels, what screenshots and reference images use.
+    #[default]
+    Srgb8,
+    /// 32-bit float per channel, no sRGB curve: raw shader output for measurements (debug views,
+    /// NaN checks). Read it back with [`crate::render::capture_f32`].
+    Float32,
+}
+
+impl TargetFormat {
+    /// The wgpu texture format.
+    pub fn texture_format(self) -> wgpu::TextureFormat {
+        match self {
+            TargetFormat::Srgb8 => wgpu::TextureFormat::Rgba8UnormSrgb,
+            TargetFormat::Float32 => wgpu::TextureFormat::Rgba32Float,
+        }
+    }
+}
 /// The depth buffer format.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -22,7 +40,7 @@ pub struct RenderTarget {
 
 impl RenderTarget {
     /// Creates a target of `width`×`height`, each clamped to 1..=the device's 2D texture limit.
-    pub fn new(gpu: &GpuContext, width: u32, height: u32) -> Self {
+    pub fn new(gpu: &GpuContext, width: u32, height: u32, format: TargetFormat) -> Self {
         let limit = gpu.device.limits().max_texture_dimension_2d;
         let size = wgpu::Extent3d {
             width: width.clamp(1, limit),
@@ -42,7 +60,7 @@ impl RenderTarget {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: COLOR_FORMAT,
+            format: format.texture_format(),
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::TEXTURE_BINDING,
@@ -77,6 +95,11 @@ impl RenderTarget {
     /// Width and height in pixels.
     pub fn size(&self) -> (u32, u32) {
         (self.color.width(), self.color.height())
+    }
+
+    /// The colour texture's format.
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.color.format()
     }
 
     /// Width divided by height.

@@ -1,0 +1,67 @@
+// Per-frame camera and lights, shared by every pass that draws into the main target.
+// Mirrors `FrameUniform` in gpu_types.rs; change both together.
+
+const MAX_DIRECTIONAL_LIGHTS: u32 = 4u;
+const MAX_POINT_LIGHTS: u32 = 16u;
+
+struct DirectionalLight {
+    // xyz: unit vector from the surface towards the light.
+    direction_to_light: vec4<f32>,
+    // rgb: colour × intensity.
+    radiance: vec4<f32>,
+}
+
+struct PointLight {
+    // xyz: world position, w: range.
+    position_range: vec4<f32>,
+    // rgb: colour × intensity.
+    radiance: vec4<f32>,
+}
+
+struct Frame {
+    view_projection: mat4x4<f32>,
+    camera_position: vec4<f32>,
+    // rgb: ambient colour × intensity.
+    ambient: vec4<f32>,
+    // x: directional light count, y: point light count.
+    light_counts: vec4<u32>,
+    directional_lights: array<DirectionalLight, MAX_DIRECTIONAL_LIGHTS>,
+    point_lights: array<PointLight, MAX_POINT_LIGHTS>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+
+struct LightSample {
+    // Unit vector from the surface towards the light.
+    to_light: vec3<f32>,
+    // Radiance arriving at the surface (falloff included).
+    radiance: vec3<f32>,
+}
+
+// Directional lights first, then point lights.
+fn light_count() -> u32 {
+    return min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS) + min(frame.light_counts.y, MAX_POINT_LIGHTS);
+}
+
+// Inverse-square falloff with a smooth window that reaches zero at the light's range.
+fn point_light_attenuation(distance: f32, range: f32) -> f32 {
+    let ratio = distance / max(range, 1e-4);
+    let window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+    return window * window / max(distance * distance, 1e-4);
+}
+
+// The light `index` (0..light_count()) as seen from `world_position`.
+fn light_at(index: u32, world_position: vec3<f32>) -> LightSample {
+    let directional_count = min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS);
+    if index < directional_count {
+        let light = frame.directional_lights[index];
+        return LightSample(light.direction_to_light.xyz, light.radiance.rgb);
+    }
+    let light = frame.point_lights[index - directional_count];
+    let offset = light.position_range.xyz - world_position;
+    let distance = length(offset);
+    // At the light's own position any direction will do; the window makes it dark anyway.
+    let to_light = select(vec3<f32>(0.0, 0.0, 1.0), offset / distance, distance > 1e-6);
+    let radiance = light.radiance.rgb * point_light_attenuation(distance, light.position_range.w);
+    return LightSample(to_light, radiance);
+}

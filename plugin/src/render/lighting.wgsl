@@ -1,0 +1,87 @@
+// Reflection models shared by every material. A light of radiance E lights a white Lambertian
+// surface facing it to E, so switching models keeps the overall brightness.
+
+const PI: f32 = 3.14159265;
+
+const LIGHTING_PHONG: u32 = 0u;
+const LIGHTING_BLINN_PHONG: u32 = 1u;
+const LIGHTING_COOK_TORRANCE: u32 = 2u;
+
+struct Surface {
+    albedo: vec3<f32>,
+    // Phong / Blinn-Phong: weight of the highlight.
+    specular_strength: f32,
+    // Phong / Blinn-Phong exponent.
+    shininess: f32,
+    // Cook-Torrance / Oren-Nayar: perceptual roughness in 0..1.
+    roughness: f32,
+    // Cook-Torrance: 0 = dielectric, 1 = metal.
+    metallic: f32,
+    model: u32,
+}
+
+// Phong as in Tatarchuk's Listing 2: Lambert diffuse plus (R·L)^n around the mirrored view ray.
+fn phong(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let reflected = reflect(-to_eye, normal);
+    let specular = surface.specular_strength * pow(max(dot(reflected, to_light), 0.0), surface.shininess);
+    return surface.albedo * n_dot_l + vec3<f32>(specular * step(0.0, n_dot_l));
+}
+
+// Blinn-Phong: the highlight follows N·H, with H halfway between the light and the eye.
+fn blinn_phong(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let half_vector = safe_normalize(to_light + to_eye, normal);
+    let specular = surface.specular_strength * pow(max(dot(normal, half_vector), 0.0), surface.shininess);
+    return (surface.albedo + vec3<f32>(specular)) * n_dot_l;
+}
+
+// Cook-Torrance specular (GGX distribution, Smith-Schlick visibility, Schlick Fresnel) over an
+// Oren-Nayar diffuse term, as in the "Parallax Mapping with Self Shadowing" seed.
+fn cook_torrance_oren_nayar(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let n_dot_v = max(dot(normal, to_eye), 1e-4);
+    let half_vector = safe_normalize(to_light + to_eye, normal);
+    let n_dot_h = max(dot(normal, half_vector), 0.0);
+    let v_dot_h = max(dot(to_eye, half_vector), 0.0);
+    let roughness = clamp(surface.roughness, 0.03, 1.0);
+    let alpha = roughness * roughness;
+    let alpha2 = alpha * alpha;
+    let d_denominator = n_dot_h * n_dot_h * (alpha2 - 1.0) + 1.0;
+    let distribution = alpha2 / (PI * d_denominator * d_denominator);
+    let k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+    let visibility = 1.0 / ((n_dot_l * (1.0 - k) + k) * (n_dot_v * (1.0 - k) + k));
+    let f0 = mix(vec3<f32>(0.04), surface.albedo, surface.metallic);
+    let fresnel = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
+    // π cancels the 1/π of the BRDF so a light of radiance E behaves as in the Phong models.
+    let specular = fresnel * distribution * visibility * 0.25 * PI;
+
+    // Oren-Nayar with σ = roughness: rough surfaces scatter more light back towards the light.
+    let sigma2 = roughness * roughness;
+    let a = 1.0 - 0.5 * sigma2 / (sigma2 + 0.33);
+    let b = 0.45 * sigma2 / (sigma2 + 0.09);
+    let light_in_plane = safe_normalize(to_light - normal * n_dot_l, vec3<f32>(0.0));
+    let eye_in_plane = safe_normalize(to_eye - normal * n_dot_v, vec3<f32>(0.0));
+    let cos_phi = max(dot(light_in_plane, eye_in_plane), 0.0);
+    let sin_alpha = sqrt(max(1.0 - min(n_dot_l, n_dot_v) * min(n_dot_l, n_dot_v), 0.0));
+    let tan_beta = sqrt(max(1.0 - max(n_dot_l, n_dot_v) * max(n_dot_l, n_dot_v), 0.0)) / max(max(n_dot_l, n_dot_v), 1e-4);
+    let oren_nayar = a + b * cos_phi * sin_alpha * tan_beta;
+    let diffuse = surface.albedo * (1.0 - surface.metallic) * (vec3<f32>(1.0) - fresnel) * oren_nayar;
+    return (diffuse + specular) * n_dot_l;
+}
+
+// Reflected light for one light of unit radiance arriving from `to_light`.
+fn direct_lighting(surface: Surface, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let n_dot_l = max(dot(normal, to_light), 0.0);
+    if n_dot_l <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    switch surface.model {
+        case LIGHTING_PHONG: {
+            return phong(surface, n_dot_l, normal, to_light, to_eye);
+        }
+        case LIGHTING_COOK_TORRANCE: {
+            return cook_torrance_oren_nayar(surface, n_dot_l, normal, to_light, to_eye);
+        }
+        default: {
+            return blinn_phong(surface, n_dot_l, normal, to_light, to_eye);
+        }
+    }
+}

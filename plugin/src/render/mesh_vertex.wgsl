@@ -1,0 +1,38 @@
+// Vertex input and the world-space attributes every mesh pass interpolates.
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    // xyz: dP/du, w: sign so that cross(normal, tangent) * w = dP/dv (MikkTSpace).
+    @location(3) tangent: vec4<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip_position: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) world_normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) world_tangent: vec4<f32>,
+    @location(4) @interpolate(flat) object_index: u32,
+}
+
+// `normal_matrix` is the inverse transpose of `model`; `determinant_sign` flips the bitangent of
+// mirrored objects.
+fn transform_vertex(
+    in: VertexIn,
+    model: mat4x4<f32>,
+    normal_matrix: mat4x4<f32>,
+    determinant_sign: f32,
+    object_index: u32,
+) -> VertexOut {
+    let world_position = model * vec4<f32>(in.position, 1.0);
+    var out: VertexOut;
+    out.clip_position = frame.view_projection * world_position;
+    out.world_position = world_position.xyz;
+    out.world_normal = (normal_matrix * vec4<f32>(in.normal, 0.0)).xyz;
+    out.world_tangent = vec4<f32>((model * vec4<f32>(in.tangent.xyz, 0.0)).xyz, in.tangent.w * determinant_sign);
+    out.uv = in.uv;
+    out.object_index = object_index;
+    return out;
+}
