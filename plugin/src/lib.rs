@@ -29,11 +29,14 @@ mod app;
 mod assets;
 mod camera;
 mod color;
+mod height_field;
 mod image;
 mod light;
 mod lit_material;
 pub mod mesh;
 mod normal_map;
+pub mod parallax;
+pub mod preview;
 pub mod render;
 mod resources;
 mod transform;
@@ -44,11 +47,16 @@ pub use app::{
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
+pub use height_field::{HeightField, patterns};
 pub use image::{ColorSpace, Image, ImageError};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;
 pub use mesh::{Mesh, MeshError};
 pub use normal_map::normal_map_from_heights;
+pub use parallax::{
+    DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
+    ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, ShadowMode,
+};
 pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
 pub use resources::Resources;
 pub use transform::{

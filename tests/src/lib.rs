@@ -3,6 +3,7 @@
 
 pub mod fixtures;
 mod golden;
+pub mod pom_scene;
 
 pub use golden::{FlipTolerance, GoldenError, check_golden, golden_dir};
 

@@ -10,7 +10,7 @@ use super::gpu_types::{
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, AssetId, Camera, Color, DirectionalLight, GlobalTransform, Handle,
-    Image, LitMaterial, Mesh, PointLight, Resources,
+    Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, Resources,
 };
 
 /// One mesh to draw with its textures and per-object values.
@@ -126,6 +126,8 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let default_material = LitMaterial::default();
     let mut draws: Vec<DrawItem> = world
         .query::<(&Handle<Mesh>, &GlobalTransform, Option<&LitMaterial>)>()
+        // Parallax-mapped meshes are drawn by the parallax pass.
+        .without::<&ParallaxOcclusionMaterial>()
         .iter()
         .filter_map(|(mesh, transform, material)| {
             let material = material.unwrap_or(&default_material);

@@ -1,40 +1,29 @@
 //! The forward pass: one pipeline drawing every mesh with the lit, normal-mapped material.
 
-use std::collections::HashMap;
-
 use super::GpuContext;
 use super::extract::ExtractedFrame;
 use super::frame_uniform::FrameUniformBuffer;
+use super::gpu_assets::DefaultTexture;
 use super::gpu_assets::GpuAssets;
 use super::gpu_types::{ObjectUniform, Vertex};
 use super::object_buffer::ObjectBuffer;
+use super::shaders;
 use super::target::DEPTH_FORMAT;
-use super::{layout, shaders};
-use crate::{AssetId, Image};
-
-type MaterialKey = (Option<AssetId<Image>>, Option<AssetId<Image>>);
-
-struct MaterialBindGroup {
-    // Upload serials of the textures it was built from (0 = the default texture).
-    serials: (u64, u64),
-    bind_group: wgpu::BindGroup,
-}
+use super::texture_bind_groups::TextureBindGroups;
 
 /// Pipeline, buffers and bind groups of the forward pass.
 pub struct ForwardPass {
     pipeline: wgpu::RenderPipeline,
     frame_layout: wgpu::BindGroupLayout,
-    material_layout: wgpu::BindGroupLayout,
-    sampler: wgpu::Sampler,
     objects: ObjectBuffer<ObjectUniform>,
     frame_bind_group: wgpu::BindGroup,
-    material_bind_groups: HashMap<MaterialKey, MaterialBindGroup>,
+    materials: TextureBindGroups<2>,
 }
 
 impl std::fmt::Debug for ForwardPass {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ForwardPass")
-            .field("material_bind_groups", &self.material_bind_groups.len())
+            .field("materials", &self.materials)
             .finish_non_exhaustive()
     }
 }
@@ -78,17 +67,14 @@ impl ForwardPass {
                 ObjectBuffer::<ObjectUniform>::layout_entry(1),
             ],
         });
-        let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("forward material layout"),
-            entries: &[
-                layout::texture_2d(0),
-                layout::texture_2d(1),
-                layout::filtering_sampler(2),
-            ],
-        });
+        let materials = TextureBindGroups::new(
+            gpu,
+            "forward material",
+            [DefaultTexture::WhiteSrgb, DefaultTexture::FlatNormal],
+        );
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("forward pipeline layout"),
-            bind_group_layouts: &[Some(&frame_layout), Some(&material_layout)],
+            bind_group_layouts: &[Some(&frame_layout), Some(materials.layout())],
             immediate_size: 0,
         });
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -121,17 +107,14 @@ impl ForwardPass {
             multiview_mask: None,
             cache: None,
         });
-        let sampler = layout::material_sampler(device, "forward material sampler");
         let objects = ObjectBuffer::new(gpu, "forward object buffer", 64);
         let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());
         Self {
             pipeline,
             frame_layout,
-            material_layout,
-            sampler,
             objects,
             frame_bind_group,
-            material_bind_groups: HashMap::new(),
+            materials,
         }
     }
 
@@ -145,7 +128,14 @@ impl ForwardPass {
         assets: &GpuAssets,
     ) -> u64 {
         let written = self.upload_objects(gpu, frame, extracted);
-        self.prepare_material_bind_groups(gpu, extracted, assets);
+        self.materials.prepare(
+            gpu,
+            assets,
+            extracted
+                .draws
+                .iter()
+                .map(|draw| [draw.base_color_texture, draw.normal_map]),
+        );
         written
     }
 
@@ -164,57 +154,6 @@ impl ForwardPass {
         written
     }
 
-    fn prepare_material_bind_groups(
-        &mut self,
-        gpu: &GpuContext,
-        extracted: &ExtractedFrame,
-        assets: &GpuAssets,
-    ) {
-        let mut previous = std::mem::take(&mut self.material_bind_groups);
-        for draw in &extracted.draws {
-            let key = (draw.base_color_texture, draw.normal_map);
-            if self.material_bind_groups.contains_key(&key) {
-                continue;
-            }
-            let base = key.0.and_then(|id| assets.image(id));
-            let normal = key.1.and_then(|id| assets.image(id));
-            let serials = (
-                base.map_or(0, |image| image.upload_serial),
-                normal.map_or(0, |image| image.upload_serial),
-            );
-            let entry = match previous.remove(&key) {
-                Some(existing) if existing.serials == serials => existing,
-                _ => MaterialBindGroup {
-                    serials,
-                    bind_group: gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("forward material bind group"),
-                        layout: &self.material_layout,
-                        entries: &[
-                            wgpu::BindGroupEntry {
-                                binding: 0,
-                                resource: wgpu::BindingResource::TextureView(
-                                    base.map_or(&assets.defaults.white_srgb, |image| &image.view),
-                                ),
-                            },
-                            wgpu::BindGroupEntry {
-                                binding: 1,
-                                resource: wgpu::BindingResource::TextureView(
-                                    normal
-                                        .map_or(&assets.defaults.flat_normal, |image| &image.view),
-                                ),
-                            },
-                            wgpu::BindGroupEntry {
-                                binding: 2,
-                                resource: wgpu::BindingResource::Sampler(&self.sampler),
-                            },
-                        ],
-                    }),
-                },
-            };
-            self.material_bind_groups.insert(key, entry);
-        }
-    }
-
     /// Records one draw per extracted mesh that is on the GPU into the main pass.
     pub fn draw(
         &self,
@@ -227,12 +166,12 @@ impl ForwardPass {
         for (index, draw) in extracted.draws.iter().enumerate() {
             let (Some(mesh), Some(material)) = (
                 assets.mesh(draw.mesh),
-                self.material_bind_groups
-                    .get(&(draw.base_color_texture, draw.normal_map)),
+                self.materials
+                    .get(&[draw.base_color_texture, draw.normal_map]),
             ) else {
                 continue;
             };
-            pass.set_bind_group(1, &material.bind_group, &[]);
+            pass.set_bind_group(1, material, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             let instance = index as u32;

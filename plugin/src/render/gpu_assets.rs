@@ -67,6 +67,28 @@ pub struct DefaultTextures {
     pub white_linear: wgpu::TextureView,
 }
 
+/// Names one of the [`DefaultTextures`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DefaultTexture {
+    /// [`DefaultTextures::white_srgb`].
+    WhiteSrgb,
+    /// [`DefaultTextures::flat_normal`].
+    FlatNormal,
+    /// [`DefaultTextures::white_linear`].
+    WhiteLinear,
+}
+
+impl DefaultTextures {
+    /// The view of the named texture.
+    pub fn view(&self, texture: DefaultTexture) -> &wgpu::TextureView {
+        match texture {
+            DefaultTexture::WhiteSrgb => &self.white_srgb,
+            DefaultTexture::FlatNormal => &self.flat_normal,
+            DefaultTexture::WhiteLinear => &self.white_linear,
+        }
+    }
+}
+
 fn solid_texture(
     gpu: &GpuContext,
     label: &str,

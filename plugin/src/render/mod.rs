@@ -11,19 +11,21 @@ mod layout;
 mod object_buffer;
 pub mod shaders;
 mod target;
+mod texture_bind_groups;
 
 pub use capture::{CaptureError, read_rgba8, read_rgba32f, read_texture};
 pub use context::{GpuContext, GpuError};
 pub use extract::{DrawItem, ExtractedFrame, extract_frame};
 pub use forward::ForwardPass;
 pub use frame_uniform::FrameUniformBuffer;
-pub use gpu_assets::{DefaultTextures, GpuAssets, GpuImage, GpuMesh, UploadStats};
+pub use gpu_assets::{DefaultTexture, DefaultTextures, GpuAssets, GpuImage, GpuMesh, UploadStats};
 pub use gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, ObjectUniform,
     PointLightGpu, Vertex,
 };
 pub use object_buffer::ObjectBuffer;
 pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat};
+pub use texture_bind_groups::{TextureBindGroups, TextureKey};
 
 use image::{Rgba32FImage, RgbaImage};
 

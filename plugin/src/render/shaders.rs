@@ -33,6 +33,11 @@ pub const MESH_VERTEX: WgslFile = wgsl_file!("render/mesh_vertex.wgsl");
 /// The lit material's entry points.
 pub const FORWARD_ENTRY: WgslFile = wgsl_file!("render/forward.wgsl");
 
+/// The ray march, LOD and self-shadow functions of the parallax material.
+pub const PARALLAX_MARCH: WgslFile = wgsl_file!("parallax/march.wgsl");
+/// The parallax material's entry points.
+pub const PARALLAX_ENTRY: WgslFile = wgsl_file!("parallax/pom.wgsl");
+
 /// An entry shader: the files it is made of, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ComposedShader {
@@ -71,5 +76,18 @@ pub const FORWARD: ComposedShader = ComposedShader {
     files: &[FRAME, TANGENT_SPACE, LIGHTING, MESH_VERTEX, FORWARD_ENTRY],
 };
 
+/// The pass for [`crate::ParallaxOcclusionMaterial`].
+pub const PARALLAX: ComposedShader = ComposedShader {
+    name: "pom.wgsl",
+    files: &[
+        FRAME,
+        TANGENT_SPACE,
+        LIGHTING,
+        MESH_VERTEX,
+        PARALLAX_MARCH,
+        PARALLAX_ENTRY,
+    ],
+};
+
 /// Every entry shader of the plugin.
-pub const ALL: &[ComposedShader] = &[FORWARD];
+pub const ALL: &[ComposedShader] = &[FORWARD, PARALLAX];

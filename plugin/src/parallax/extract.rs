@@ -1,0 +1,90 @@
+//! Extract stage of the parallax material: one draw per entity, with its material sanitized.
+
+use std::collections::HashMap;
+
+use hecs::{Entity, World};
+
+use super::gpu::PomObject;
+use super::material::{HeightSource, ParallaxOcclusionMaterial};
+use crate::render::TextureKey;
+use crate::{AssetId, Assets, GlobalTransform, Handle, Image, Mesh, Resources};
+
+/// One parallax-mapped mesh to draw.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PomDraw {
+    /// The mesh.
+    pub mesh: AssetId<Mesh>,
+    /// Base colour, normal map, height texture (`None` binds the defaults).
+    pub textures: TextureKey<3>,
+    /// Whether to write the displaced depth.
+    pub depth_offset: bool,
+    /// Transform and parameters.
+    pub object: PomObject,
+}
+
+/// This frame's parallax draws, sorted by pipeline, then textures. A resource.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ExtractedPom {
+    /// The draws.
+    pub draws: Vec<PomDraw>,
+}
+
+/// The last material each entity was warned about, so a bad value is logged once, not per frame.
+#[derive(Debug, Default)]
+pub struct MaterialWarnings(HashMap<Entity, ParallaxOcclusionMaterial>);
+
+fn height_texture(material: &ParallaxOcclusionMaterial) -> Option<AssetId<Image>> {
+    match &material.height_map {
+        Some(HeightSource::Texture(handle)) => Some(handle.id()),
+        Some(HeightSource::NormalMapAlpha) => material.normal_map.as_ref().map(Handle::id),
+        None => None,
+    }
+}
+
+/// The Extract stage's system for [`ParallaxOcclusionMaterial`].
+pub fn extract_pom(world: &mut World, resources: &mut Resources) {
+    let mut warnings = resources.remove::<MaterialWarnings>().unwrap_or_default();
+    let images = resources.get::<Assets<Image>>();
+    let mut draws = Vec::new();
+    for (entity, mesh, transform, material) in world
+        .query::<(
+            Entity,
+            &Handle<Mesh>,
+            &GlobalTransform,
+            &ParallaxOcclusionMaterial,
+        )>()
+        .iter()
+    {
+        let model = transform.to_mat4();
+        if !model.is_finite() {
+            log::warn!("parallax entity {entity:?} has a non-finite transform: not drawn");
+            continue;
+        }
+        let problems = material.problems();
+        if !problems.is_empty() && warnings.0.get(&entity) != Some(material) {
+            for problem in &problems {
+                log::warn!("parallax material of {entity:?}: {problem}; clamped");
+            }
+            warnings.0.insert(entity, material.clone());
+        }
+        let material = material.sanitized();
+        let height = height_texture(&material);
+        let size = height
+            .and_then(|id| images.and_then(|images| images.get(id)))
+            .map_or((1, 1), Image::size);
+        draws.push(PomDraw {
+            mesh: mesh.id(),
+            textures: [
+                material.base_color_texture.as_ref().map(Handle::id),
+                material.normal_map.as_ref().map(Handle::id),
+                height,
+            ],
+            depth_offset: material.depth_offset,
+            object: PomObject::new(&material, model, size),
+        });
+    }
+    draws.sort_by_key(|draw| (draw.depth_offset, draw.textures, draw.mesh));
+    warnings.0.retain(|entity, _| world.contains(*entity));
+    resources.insert(warnings);
+    resources.insert(ExtractedPom { draws });
+}

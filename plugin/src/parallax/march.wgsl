@@ -1,0 +1,253 @@
+// Ray / height-field intersection for every parallax method (Tatarchuk 2006 §5.4).
+//
+// Pure functions: no bindings and no derivative built-ins, so a fragment and a compute entry point
+// can share them. Textures, gradients and parameters come in as arguments. The CPU reference in
+// reference.rs mirrors this file step by step; change both together.
+//
+// Heights are in Tatarchuk's convention after `sample_height`: 1 = the polygon's surface (top),
+// 0 = the deepest point. A ray is described by its height: the view ray enters at 1 and descends.
+
+const METHOD_NORMAL_MAPPING: u32 = 0u;
+const METHOD_PARALLAX_OFFSET: u32 = 1u;
+const METHOD_STEEP: u32 = 2u;
+const METHOD_OCCLUSION: u32 = 3u;
+const METHOD_RELIEF: u32 = 4u;
+
+const SHADOWS_OFF: u32 = 0u;
+const SHADOWS_HARD: u32 = 1u;
+const SHADOWS_SOFT: u32 = 2u;
+
+// Longest sideways travel of a ray per unit of depth: |V.xy| / V.z is capped here, which is
+// reached about 87° from the normal. It keeps grazing rays (V.z → 0, or < 0 on silhouettes of
+// smooth meshes) finite and stops a sliver of pixels from marching across the whole texture.
+const MAX_PARALLAX_RATIO: f32 = 20.0;
+
+// Tatarchuk's fShadowSoftening default. His listing multiplies by it (larger = harder); the
+// material's shadow_softening divides instead, scaled so that 0.58 gives his result.
+const SEED_SHADOW_SOFTENING: f32 = 0.58;
+
+struct HeightField {
+    // Texture channel holding the height: 0 = red, 3 = alpha.
+    channel: u32,
+    // 1 when white means deepest (depth maps).
+    depth_convention: u32,
+    // Screen-space gradients of the texture coordinate, taken once outside every loop
+    // (T's tex2Dgrad, Luna's SampleGrad): nothing in a march uses implicit derivatives.
+    ddx: vec2<f32>,
+    ddy: vec2<f32>,
+}
+
+fn sample_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, uv: vec2<f32>) -> f32 {
+    let texel = textureSampleGrad(height_texture, height_sampler, uv, field.ddx, field.ddy);
+    let value = texel[min(field.channel, 3u)];
+    return select(value, 1.0 - value, field.depth_convention != 0u);
+}
+
+// How far, in texture coordinates, a ray along `direction_ts` (tangent space, pointing away from
+// the surface) travels sideways while rising by the full height range `height_scale`.
+// The view ray descends, so its parallax offset vector P (T's vParallaxOffsetTS) is the negation
+// of this for the direction towards the eye.
+fn ray_offset(direction_ts: vec3<f32>, height_scale: f32) -> vec2<f32> {
+    let sideways = length(direction_ts.xy);
+    if sideways < 1e-7 {
+        return vec2<f32>(0.0);
+    }
+    let ratio = min(sideways / max(direction_ts.z, 1e-7), MAX_PARALLAX_RATIO);
+    return direction_ts.xy / sideways * (ratio * height_scale);
+}
+
+// T eq. 1: n = lerp(n_max, n_min, N·V), more samples at grazing angles; but never more steps than
+// texels the ray crosses at the sampled mip level, where more steps add cost and no accuracy.
+fn march_steps(min_samples: u32, max_samples: u32, n_dot_v: f32, texels_crossed: f32) -> u32 {
+    let wanted = floor(mix(f32(max_samples), f32(min_samples), clamp(n_dot_v, 0.0, 1.0)));
+    let needed = ceil(max(texels_crossed, 0.0));
+    return u32(clamp(min(wanted, needed), 1.0, f32(max(max_samples, 1u))));
+}
+
+// T Listing 2: the mip level from the screen-space derivatives of uv × texture size.
+fn mip_level(ddx_texels: vec2<f32>, ddy_texels: vec2<f32>) -> f32 {
+    let delta = ddx_texels * ddx_texels + ddy_texels * ddy_texels;
+    return max(0.5 * log2(max(delta.x, delta.y)), 0.0);
+}
+
+// 0 = full march (mip at or below threshold − band), 1 = normal mapping only (mip past the
+// threshold), the fraction through the band in between. With band 1 this is T's fractional mip.
+fn lod_fade(mip: f32, threshold: f32, band: f32) -> f32 {
+    return clamp((mip - (threshold - band)) / max(band, 1e-4), 0.0, 1.0);
+}
+
+// Two consecutive samples of a linear search: `above` has the ray over the surface, `below` has
+// the surface at or over the ray (when `found`).
+struct Crossing {
+    above_uv: vec2<f32>,
+    above_ray: f32,
+    above_surface: f32,
+    below_uv: vec2<f32>,
+    below_ray: f32,
+    below_surface: f32,
+    found: bool,
+    samples: u32,
+}
+
+// Linear search with early exit (T §5.4.1): from `start_uv` at ray height `start_ray` (surface
+// height `start_surface` there), take `steps` equal steps spanning `uv_span` and `ray_span`, and
+// stop at the first sample where the surface reaches the ray.
+fn linear_search(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    start_uv: vec2<f32>,
+    start_ray: f32,
+    start_surface: f32,
+    uv_span: vec2<f32>,
+    ray_span: f32,
+    steps: u32,
+) -> Crossing {
+    var crossing = Crossing(start_uv, start_ray, start_surface, start_uv, start_ray, start_surface, false, 0u);
+    for (var i = 1u; i <= steps; i += 1u) {
+        // From the start each time, not accumulated, so the last step lands exactly on the end.
+        let t = f32(i) / f32(steps);
+        let uv = start_uv + uv_span * t;
+        let ray = start_ray + ray_span * t;
+        let surface = sample_height(height_texture, height_sampler, field, uv);
+        crossing.samples += 1u;
+        if surface >= ray {
+            crossing.below_uv = uv;
+            crossing.below_ray = ray;
+            crossing.below_surface = surface;
+            crossing.found = true;
+            break;
+        }
+        crossing.above_uv = uv;
+        crossing.above_ray = ray;
+        crossing.above_surface = surface;
+    }
+    return crossing;
+}
+
+struct RayHit {
+    // Texture coordinate of the visible point.
+    uv: vec2<f32>,
+    // Height of that point (1 = surface, 0 = deepest).
+    height: f32,
+    // Height samples taken.
+    samples: u32,
+}
+
+// T / Luna §4: the ray meets the straight line through the two bracketing samples.
+fn secant_refinement(crossing: Crossing) -> RayHit {
+    let above_gap = crossing.above_ray - crossing.above_surface;
+    let below_gap = crossing.below_ray - crossing.below_surface;
+    let denominator = above_gap - below_gap;
+    let t = select(1.0, clamp(above_gap / denominator, 0.0, 1.0), denominator > 1e-7);
+    return RayHit(
+        mix(crossing.above_uv, crossing.below_uv, t),
+        mix(crossing.above_ray, crossing.below_ray, t),
+        crossing.samples,
+    );
+}
+
+// Relief mapping (Policarpo et al.): halve the bracket `steps` times, keeping the crossing inside.
+fn binary_refinement(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    crossing: Crossing,
+    steps: u32,
+) -> RayHit {
+    var above_uv = crossing.above_uv;
+    var above_ray = crossing.above_ray;
+    var below_uv = crossing.below_uv;
+    var below_ray = crossing.below_ray;
+    for (var i = 0u; i < steps; i += 1u) {
+        let middle_uv = (above_uv + below_uv) * 0.5;
+        let middle_ray = (above_ray + below_ray) * 0.5;
+        if sample_height(height_texture, height_sampler, field, middle_uv) >= middle_ray {
+            below_uv = middle_uv;
+            below_ray = middle_ray;
+        } else {
+            above_uv = middle_uv;
+            above_ray = middle_ray;
+        }
+    }
+    return RayHit((above_uv + below_uv) * 0.5, (above_ray + below_ray) * 0.5, crossing.samples + steps);
+}
+
+// The visible point for the view ray entering at `uv` with parallax offset vector `offset` (P),
+// by `method`. `to_eye_ts` is only used by parallax offset mapping.
+fn march_view(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    method: u32,
+    uv: vec2<f32>,
+    offset: vec2<f32>,
+    to_eye_ts: vec3<f32>,
+    height_scale: f32,
+    steps: u32,
+    binary_steps: u32,
+) -> RayHit {
+    if method == METHOD_NORMAL_MAPPING {
+        return RayHit(uv, 1.0, 0u);
+    }
+    let surface = sample_height(height_texture, height_sampler, field, uv);
+    if method == METHOD_PARALLAX_OFFSET {
+        // Welsh's offset limiting: shift by the depth along V.xy without dividing by V.z.
+        return RayHit(uv - (1.0 - surface) * height_scale * to_eye_ts.xy, surface, 1u);
+    }
+    if surface >= 1.0 {
+        return RayHit(uv, 1.0, 1u);
+    }
+    var crossing = linear_search(height_texture, height_sampler, field, uv, 1.0, surface, offset, -1.0, steps);
+    crossing.samples += 1u;
+    if method == METHOD_STEEP {
+        return RayHit(crossing.below_uv, crossing.below_ray, crossing.samples);
+    }
+    if method == METHOD_RELIEF {
+        return binary_refinement(height_texture, height_sampler, field, crossing, binary_steps);
+    }
+    return secant_refinement(crossing);
+}
+
+// Hard self-shadow (McGuire): march from the visible point towards the light; 0 if any sample
+// of the height field rises above the light ray, else 1. `light_offset` is ray_offset(L_ts, H).
+fn hard_shadow(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    uv: vec2<f32>,
+    light_offset: vec2<f32>,
+    steps: u32,
+) -> f32 {
+    let start = sample_height(height_texture, height_sampler, field, uv);
+    let rise = 1.0 - start;
+    if rise <= 0.0 {
+        return 1.0;
+    }
+    let crossing = linear_search(height_texture, height_sampler, field, uv, start, start, light_offset * rise, rise, steps);
+    return select(1.0, 0.0, crossing.found);
+}
+
+// Tatarchuk's soft self-shadow (§5.4.2, Listing 2): seven height samples along the light ray at
+// 0.22 … 0.88 of the height range above the visible point. Each sample's height over the ray is
+// weighted more the nearer it is (near blockers cast sharp penumbrae), the strongest one wins.
+fn soft_shadow(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    uv: vec2<f32>,
+    light_offset: vec2<f32>,
+    softening: f32,
+) -> f32 {
+    let start = sample_height(height_texture, height_sampler, field, uv);
+    var strongest = 0.0;
+    for (var k = 0u; k < 7u; k += 1u) {
+        // Fractions 0.88, 0.77, …, 0.22 with weights 1, 2, 4, 6, 8, 10, 12, as in the listing.
+        let fraction = 0.88 - 0.11 * f32(k);
+        let weight = max(1.0, 2.0 * f32(k));
+        let blocker = sample_height(height_texture, height_sampler, field, uv + light_offset * fraction);
+        strongest = max(strongest, (blocker - start - fraction) * weight);
+    }
+    let sharpness = SEED_SHADOW_SOFTENING * SEED_SHADOW_SOFTENING / max(softening, 1e-4);
+    return clamp(1.0 - strongest * sharpness, 0.0, 1.0);
+}

@@ -1,0 +1,178 @@
+// Entry points of `ParallaxOcclusionMaterial`. Composed after frame.wgsl, tangent_space.wgsl,
+// lighting.wgsl, mesh_vertex.wgsl and march.wgsl (see render/shaders.rs). Mirrors `PomObject`
+// in gpu.rs.
+
+const DEBUG_NONE: u32 = 0u;
+const DEBUG_LOD: u32 = 1u;
+const DEBUG_MIP: u32 = 2u;
+const DEBUG_SAMPLES: u32 = 3u;
+const DEBUG_UV: u32 = 4u;
+const DEBUG_SHADOW: u32 = 5u;
+const DEBUG_NORMAL: u32 = 6u;
+
+struct PomObject {
+    model: mat4x4<f32>,
+    normal_matrix: mat4x4<f32>,
+    base_color: vec4<f32>,
+    // x: height scale, y: 1 if in world units, z: min samples, w: max samples.
+    height: vec4<f32>,
+    // x: LOD threshold, y: LOD band, z: shadow softening, w: normal strength.
+    lod: vec4<f32>,
+    // x: specular strength, y: shininess, z: roughness, w: metallic.
+    surface: vec4<f32>,
+    // x: method, y: shadow mode, z: lighting model, w: debug view.
+    modes: vec4<u32>,
+    // x: height channel, y: 1 for the depth convention, z: relief binary steps.
+    height_map: vec4<u32>,
+    // xy: height texture size in texels, z: model determinant sign, w: mip level count.
+    texture: vec4<f32>,
+}
+
+@group(0) @binding(1) var<storage, read> objects: array<PomObject>;
+@group(1) @binding(0) var base_color_texture: texture_2d<f32>;
+@group(1) @binding(1) var normal_map: texture_2d<f32>;
+@group(1) @binding(2) var height_texture: texture_2d<f32>;
+@group(1) @binding(3) var material_sampler: sampler;
+
+@vertex
+fn vs_main(in: VertexIn, @builtin(instance_index) object_index: u32) -> VertexOut {
+    let object = objects[object_index];
+    return transform_vertex(in, object.model, object.normal_matrix, object.texture.z, object_index);
+}
+
+struct Shaded {
+    color: vec4<f32>,
+    // Depth of the displaced point in clip space (0..1).
+    depth: f32,
+}
+
+// Black → red → yellow → white as `t` goes 0 → 1.
+fn heat(t: f32) -> vec3<f32> {
+    let x = clamp(t, 0.0, 1.0) * 3.0;
+    return clamp(vec3<f32>(x, x - 1.0, x - 2.0), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn shade(in: VertexOut) -> Shaded {
+    let object = objects[in.object_index];
+    let surface_frame = tangent_frame(in.world_normal, in.world_tangent);
+    let to_eye = safe_normalize(frame.camera_position.xyz - in.world_position, surface_frame.normal);
+    let to_eye_ts = to_tangent_space(surface_frame, to_eye);
+
+    // Everything derived from screen-space derivatives happens here, once, before any branch.
+    let ddx_uv = dpdx(in.uv);
+    let ddy_uv = dpdy(in.uv);
+    let texture_size = object.texture.xy;
+    let mip = mip_level(ddx_uv * texture_size, ddy_uv * texture_size);
+    // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces.
+    let world_area = length(cross(dpdx(in.world_position), dpdy(in.world_position)));
+    let uv_area = abs(ddx_uv.x * ddy_uv.y - ddx_uv.y * ddy_uv.x);
+    let uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
+    let height_scale = select(object.height.x, object.height.x * uv_per_world, object.height.y > 0.5);
+
+    let field = HeightField(object.height_map.x, object.height_map.y, ddx_uv, ddy_uv);
+    let method = object.modes.x;
+    let min_samples = u32(object.height.z);
+    let max_samples = u32(object.height.w);
+    let fade = lod_fade(mip, object.lod.x, object.lod.y);
+    // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
+    let march = fade < 1.0 && method != METHOD_NORMAL_MAPPING && height_scale > 0.0;
+
+    var uv = in.uv;
+    var height = 1.0;
+    var samples = 0u;
+    if march {
+        let offset = -ray_offset(to_eye_ts, height_scale);
+        let texels = length(offset * texture_size) / exp2(mip);
+        let steps = march_steps(min_samples, max_samples, dot(surface_frame.normal, to_eye), texels);
+        let hit = march_view(height_texture, material_sampler, field, method, in.uv, offset, to_eye_ts,
+            height_scale, steps, object.height_map.z);
+        // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
+        uv = mix(hit.uv, in.uv, fade);
+        height = mix(hit.height, 1.0, fade);
+        samples = hit.samples;
+    }
+
+    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * object.base_color;
+    let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, ddx_uv, ddy_uv).xyz;
+    let normal = perturbed_normal(surface_frame, encoded_normal, object.lod.w);
+    let surface = Surface(base.rgb, object.surface.x, max(object.surface.y, 1.0), object.surface.z,
+        object.surface.w, object.modes.z);
+
+    var color = frame.ambient.rgb * base.rgb;
+    var first_visibility = 1.0;
+    for (var i = 0u; i < light_count(); i += 1u) {
+        let light = light_at(i, in.world_position);
+        var visibility = 1.0;
+        // Shadow rays only where the light faces the polygon (T §5.4.2) and the march ran.
+        if march && object.modes.y != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
+            let to_light_ts = to_tangent_space(surface_frame, light.to_light);
+            let light_offset = ray_offset(to_light_ts, height_scale);
+            if object.modes.y == SHADOWS_SOFT {
+                visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, object.lod.z);
+            } else {
+                let texels = length(light_offset * texture_size) / exp2(mip);
+                let steps = march_steps(min_samples, max_samples, dot(surface_frame.normal, light.to_light), texels);
+                visibility = hard_shadow(height_texture, material_sampler, field, uv, light_offset, steps);
+            }
+            visibility = mix(visibility, 1.0, fade);
+        }
+        if i == 0u {
+            first_visibility = visibility;
+        }
+        color += light.radiance * visibility * direct_lighting(surface, normal, light.to_light, to_eye);
+    }
+
+    var out = vec4<f32>(color, base.a);
+    switch object.modes.w {
+        case DEBUG_LOD: {
+            // T's tint: blue grows through the band; deepest blue where only normal mapping runs.
+            let tint = select(max(1.0, 2.0 * fade), 3.0, fade >= 1.0);
+            out = vec4<f32>(color * vec3<f32>(1.0, 1.0, tint), base.a);
+        }
+        case DEBUG_MIP: {
+            out = vec4<f32>(vec3<f32>(mip / max(object.texture.w - 1.0, 1.0)), 1.0);
+        }
+        case DEBUG_SAMPLES: {
+            out = vec4<f32>(heat(f32(samples) / max(f32(max_samples), 1.0)), 1.0);
+        }
+        case DEBUG_UV: {
+            let region = select(select(0.5, 1.0, fade <= 0.0), 0.0, !march);
+            out = vec4<f32>(fract(uv), region, 1.0);
+        }
+        case DEBUG_SHADOW: {
+            out = vec4<f32>(vec3<f32>(first_visibility), 1.0);
+        }
+        case DEBUG_NORMAL: {
+            out = vec4<f32>(to_tangent_space(surface_frame, normal) * 0.5 + 0.5, 1.0);
+        }
+        default: {}
+    }
+
+    // The visible point lies (1 − height) × H below the polygon and offset sideways by the
+    // change of texture coordinate: place it in the world and project it.
+    let du = (uv - in.uv) / max(uv_per_world, 1e-30);
+    let depth_below = (1.0 - height) * height_scale / max(uv_per_world, 1e-30);
+    let displaced = in.world_position + surface_frame.tangent * du.x + surface_frame.bitangent_v * du.y
+        - surface_frame.normal * depth_below;
+    let clip = frame.view_projection * vec4<f32>(select(in.world_position, displaced, uv_per_world > 0.0), 1.0);
+    let depth = clamp(clip.z / max(clip.w, 1e-30), 0.0, 1.0);
+    return Shaded(out, depth);
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    return shade(in).color;
+}
+
+struct ColorAndDepth {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// For `depth_offset`: the depth buffer gets the displaced point, so other geometry meets the
+// relief where it really is.
+@fragment
+fn fs_main_depth_offset(in: VertexOut) -> ColorAndDepth {
+    let shaded = shade(in);
+    return ColorAndDepth(shaded.color, shaded.depth);
+}

@@ -1,0 +1,216 @@
+//! The material preview scene: one square plane under one directional light, framed by a camera
+//! placed by angles. The `render` command and the material tests use it.
+
+use glam::Vec3;
+
+use crate::{
+    App, AppError, Assets, Camera, Color, DirectionalLight, Mesh, ParallaxOcclusionMaterial,
+    Projection, Transform,
+};
+
+/// The largest view angle, in degrees; larger ones are clamped to it.
+pub const MAX_VIEW_ANGLE: f32 = 89.99;
+
+/// Side of the preview plane in world units.
+pub const PLANE_SIZE: f32 = 1.0;
+
+/// How the preview camera projects.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PreviewProjection {
+    /// Parallel rays: every pixel sees the plane at the same angle. The plane fills the image at
+    /// the default distance.
+    #[default]
+    Orthographic,
+    /// A 45° vertical field of view.
+    Perspective,
+}
+
+/// Where the camera and the light are, relative to the plane.
+///
+/// Angles are in degrees. The view angle is between the view direction and the plane's normal
+/// (0 = looking straight down). Azimuth 0 puts the camera on the −u side with its view ray's
+/// in-plane component along +u, so +u runs up the image and +v to the right; the azimuth turns
+/// that towards +v. The light uses the same frame: light angle 0 is straight above, 90 is the
+/// horizon, more is below it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreviewView {
+    /// Degrees between the view direction and the plane normal, 0..<90.
+    pub view_angle: f32,
+    /// Degrees around the normal, from +u towards +v.
+    pub view_azimuth: f32,
+    /// Degrees between the direction to the light and the plane normal.
+    pub light_angle: f32,
+    /// Degrees around the normal, from +u towards +v.
+    pub light_azimuth: f32,
+    /// The projection.
+    pub projection: PreviewProjection,
+    /// Camera distance as a multiple of the default (which frames the plane); < 1 zooms in.
+    pub distance: f32,
+    /// UV repeats across the plane.
+    pub tiling: f32,
+}
+
+impl Default for PreviewView {
+    fn default() -> Self {
+        Self {
+            view_angle: 0.0,
+            view_azimuth: 0.0,
+            light_angle: 45.0,
+            light_azimuth: 0.0,
+            projection: PreviewProjection::Orthographic,
+            distance: 1.0,
+            tiling: 1.0,
+        }
+    }
+}
+
+/// Unit vector in the plane at `azimuth` degrees: +u (world +X) at 0, +v (world +Z) at 90.
+fn in_plane(azimuth: f32) -> Vec3 {
+    let radians = azimuth.to_radians();
+    Vec3::new(radians.cos(), 0.0, radians.sin())
+}
+
+/// Unit vector from the plane towards something at `angle` degrees from the normal and
+/// `azimuth` degrees around it, on the −azimuth side (as the camera at azimuth 0 is on −u).
+fn towards(angle: f32, azimuth: f32) -> Vec3 {
+    let angle = angle.to_radians();
+    -in_plane(azimuth) * angle.sin() + Vec3::Y * angle.cos()
+}
+
+impl PreviewView {
+    /// The camera component and its transform for an image of `aspect` = width / height.
+    pub fn camera(&self, aspect: f32) -> (Camera, Transform) {
+        let angle = self.view_angle.clamp(0.0, MAX_VIEW_ANGLE);
+        let distance_scale = if self.distance.is_finite() && self.distance > 0.0 {
+            self.distance
+        } else {
+            1.0
+        };
+        let forward_in_plane = in_plane(self.view_azimuth);
+        let to_camera = towards(angle, self.view_azimuth);
+        // Perpendicular to the view direction, pointing up the image: +u at azimuth 0.
+        let radians = angle.to_radians();
+        let up = forward_in_plane * radians.cos() + Vec3::Y * radians.sin();
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        let (projection, distance) = match self.projection {
+            PreviewProjection::Orthographic => {
+                // The plane appears cos(angle) as tall as it is wide; fit it in both directions.
+                let fit = (PLANE_SIZE * radians.cos())
+                    .min(PLANE_SIZE / aspect)
+                    .max(1e-3);
+                (
+                    Projection::Orthographic {
+                        height: fit * distance_scale,
+                        near: 0.0,
+                        far: 20.0,
+                    },
+                    5.0,
+                )
+            }
+            PreviewProjection::Perspective => {
+                let fov_y = 45_f32.to_radians();
+                (
+                    Projection::Perspective {
+                        fov_y,
+                        near: 0.01,
+                        far: 100.0,
+                    },
+                    (PLANE_SIZE * 0.5 / (fov_y * 0.5).tan()) * distance_scale,
+                )
+            }
+        };
+        let camera = Camera {
+            projection,
+            clear_color: Color::linear_rgb(0.0, 0.0, 0.0),
+            active: true,
+        };
+        let transform =
+            Transform::from_translation(to_camera * distance).looking_at(Vec3::ZERO, up);
+        (camera, transform)
+    }
+
+    /// The light's transform (its −Z axis points from the light towards the plane).
+    pub fn light_transform(&self) -> Transform {
+        let to_light = towards(self.light_angle, self.light_azimuth);
+        // Any up that is not parallel to the light direction.
+        let up = if to_light.y.abs() > 0.99 {
+            Vec3::X
+        } else {
+            Vec3::Y
+        };
+        Transform::from_translation(to_light).looking_at(Vec3::ZERO, up)
+    }
+}
+
+/// Spawns the preview plane with `material`, the camera and the light. Finishes the app's
+/// plugins first (the render plugin's target gives the aspect ratio).
+pub fn spawn_preview(
+    app: &mut App,
+    material: ParallaxOcclusionMaterial,
+    view: &PreviewView,
+) -> Result<(), AppError> {
+    app.finish()?;
+    let aspect = app
+        .resources
+        .get::<crate::render::RenderTarget>()
+        .ok_or_else(AppError::missing::<crate::render::RenderTarget>)?
+        .aspect();
+    let tiling = if view.tiling.is_finite() && view.tiling > 0.0 {
+        view.tiling
+    } else {
+        1.0
+    };
+    let plane = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .ok_or_else(AppError::missing::<Assets<Mesh>>)?
+        .add(Mesh::plane_tiled(PLANE_SIZE, tiling));
+    app.world.spawn(view.camera(aspect));
+    app.world.spawn((
+        DirectionalLight {
+            color: Color::WHITE,
+            intensity: 1.0,
+        },
+        view.light_transform(),
+    ));
+    app.world.spawn((plane, material, Transform::IDENTITY));
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::GlobalTransform;
+
+    #[test]
+    fn azimuth_zero_puts_the_camera_on_minus_u_with_u_up_and_v_right() {
+        let view = PreviewView {
+            view_angle: 30.0,
+            ..PreviewView::default()
+        };
+        let (_, transform) = view.camera(1.0);
+        assert!(transform.translation.x < 0.0 && transform.translation.y > 0.0);
+        assert!(transform.translation.z.abs() < 1e-5);
+        let global = GlobalTransform(transform.to_affine());
+        let right = Vec3::from(global.0.matrix3.x_axis);
+        let up = Vec3::from(global.0.matrix3.y_axis);
+        assert!((right - Vec3::Z).length() < 1e-5, "right is +v: {right}");
+        assert!(up.x > 0.5, "up the image is towards +u: {up}");
+    }
+
+    #[test]
+    fn the_light_angle_is_measured_from_the_normal() {
+        let view = PreviewView {
+            light_angle: 90.0,
+            light_azimuth: 90.0,
+            ..PreviewView::default()
+        };
+        let forward = GlobalTransform(view.light_transform().to_affine()).forward();
+        // On the −v side at the horizon, shining towards +v.
+        assert!((forward - Vec3::Z).length() < 1e-5, "{forward}");
+    }
+}

@@ -1,0 +1,61 @@
+//! Preview-scene apps with the parallax material, for the material tests.
+
+use pom::preview::{PreviewView, spawn_preview};
+use pom::{
+    App, Assets, ColorSpace, HeightField, HeightSource, Image, ParallaxOcclusionMaterial,
+    PomPlugin, RenderPlugin, TargetFormat,
+};
+
+use crate::HarnessError;
+
+/// Textures of a test material made from one height field.
+pub struct HeightMaterial {
+    /// The height field (its 8-bit quantization is what the GPU samples).
+    pub field: HeightField,
+    /// Height range in texture units, also used for the normal map's slopes.
+    pub height_scale: f32,
+}
+
+impl HeightMaterial {
+    /// Adds the height map, its Sobel normal map and a light grey albedo to `app`, and returns
+    /// a material using them with the seed's defaults otherwise.
+    pub fn material(&self, app: &mut App) -> ParallaxOcclusionMaterial {
+        let images = app
+            .resources
+            .get_mut::<Assets<Image>>()
+            .expect("render plugin added");
+        let height = images.add(self.field.to_image());
+        let normal = images.add(self.field.normal_map(self.height_scale));
+        let albedo = images.add(Image::solid([200, 190, 170, 255], ColorSpace::Srgb));
+        ParallaxOcclusionMaterial {
+            base_color_texture: Some(albedo),
+            normal_map: Some(normal),
+            height_map: Some(HeightSource::Texture(height)),
+            height_scale: self.height_scale,
+            ..ParallaxOcclusionMaterial::default()
+        }
+    }
+}
+
+/// A headless app with the parallax plugin, rendering `format` at `size`×`size`.
+pub fn pom_app(size: u32, format: TargetFormat) -> Result<App, HarnessError> {
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(size, size).with_format(format));
+    app.add_plugin(PomPlugin);
+    app.finish()?;
+    Ok(app)
+}
+
+/// A preview app: the plane with the material `configure` returns, seen from `view`.
+pub fn preview_app(
+    size: u32,
+    format: TargetFormat,
+    textures: &HeightMaterial,
+    view: &PreviewView,
+    configure: impl FnOnce(ParallaxOcclusionMaterial) -> ParallaxOcclusionMaterial,
+) -> Result<App, HarnessError> {
+    let mut app = pom_app(size, format)?;
+    let material = configure(textures.material(&mut app));
+    spawn_preview(&mut app, material, view)?;
+    Ok(app)
+}
