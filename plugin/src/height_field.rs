@@ -91,6 +91,26 @@ impl HeightField {
         top * (1.0 - fy) + bottom * fy
     }
 
+    /// The field stored in `channel` (0 = red … 3 = alpha) of an image; with `depth` set, white
+    /// is deepest and the values are flipped.
+    pub fn from_image(image: &Image, channel: usize, depth: bool) -> Self {
+        let (width, height) = image.size();
+        let channel = channel.min(3);
+        let values = image
+            .pixels()
+            .pixels()
+            .map(|pixel| {
+                let value = f32::from(pixel.0[channel]) / 255.0;
+                if depth { 1.0 - value } else { value }
+            })
+            .collect();
+        Self {
+            width,
+            height,
+            values,
+        }
+    }
+
     /// A grey linear image of the field, 8 bits per channel.
     pub fn to_image(&self) -> Image {
         let pixels = RgbaImage::from_fn(self.width, self.height, |x, y| {

@@ -14,9 +14,17 @@ pub enum ColorSpace {
     Linear,
 }
 
-/// What went wrong building an [`Image`].
-#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+/// What went wrong building or loading an [`Image`].
+#[derive(Debug, thiserror::Error)]
 pub enum ImageError {
+    /// The file could not be read or decoded.
+    #[error("cannot load image {path}: {reason}")]
+    Load {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What the decoder or the file system said.
+        reason: String,
+    },
     /// Width or height is zero.
     #[error("image is {width}×{height}; both sides must be at least 1")]
     Empty {
@@ -75,6 +83,23 @@ impl Image {
             found,
         })?;
         Self::new(pixels, color_space)
+    }
+
+    /// Decodes a PNG or JPEG file (any bit depth; converted to 8-bit RGBA).
+    pub fn load(path: impl AsRef<std::path::Path>, color_space: ColorSpace) -> Result<Self, ImageError> {
+        let path = path.as_ref();
+        let decoded = image::ImageReader::open(path)
+            .and_then(|reader| reader.with_guessed_format())
+            .map_err(|error| ImageError::Load {
+                path: path.to_owned(),
+                reason: error.to_string(),
+            })?
+            .decode()
+            .map_err(|error| ImageError::Load {
+                path: path.to_owned(),
+                reason: error.to_string(),
+            })?;
+        Self::new(decoded.to_rgba8(), color_space)
     }
 
     /// A 1×1 image of one RGBA8 value.
@@ -197,13 +222,13 @@ mod tests {
 
     #[test]
     fn bad_sizes_are_errors() {
-        assert_eq!(
+        assert!(matches!(
             Image::from_rgba8(0, 4, Vec::new(), ColorSpace::Srgb),
             Err(ImageError::Empty {
                 width: 0,
                 height: 4
             })
-        );
+        ));
         assert!(matches!(
             Image::from_rgba8(2, 2, vec![0; 15], ColorSpace::Srgb),
             Err(ImageError::WrongLength {
@@ -212,5 +237,26 @@ mod tests {
                 ..
             })
         ));
+    }
+}
+
+#[cfg(test)]
+mod load_tests {
+    use super::*;
+
+    #[test]
+    fn loading_names_the_file_that_failed() {
+        let missing = Image::load("/nonexistent/height.png", ColorSpace::Linear).unwrap_err();
+        assert!(missing.to_string().contains("/nonexistent/height.png"), "{missing}");
+        let dir = std::env::temp_dir().join(format!("pom-image-load-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let truncated = dir.join("truncated.png");
+        std::fs::write(&truncated, &b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR"[..]).unwrap();
+        let error = Image::load(&truncated, ColorSpace::Linear).unwrap_err();
+        assert!(error.to_string().contains("truncated.png"), "{error}");
+        let good = dir.join("good.png");
+        RgbaImage::from_pixel(3, 2, image::Rgba([1, 2, 3, 4])).save(&good).unwrap();
+        assert_eq!(Image::load(&good, ColorSpace::Srgb).unwrap().size(), (3, 2));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
