@@ -86,7 +86,10 @@ impl Image {
     }
 
     /// Decodes a PNG or JPEG file (any bit depth; converted to 8-bit RGBA).
-    pub fn load(path: impl AsRef<std::path::Path>, color_space: ColorSpace) -> Result<Self, ImageError> {
+    pub fn load(
+        path: impl AsRef<std::path::Path>,
+        color_space: ColorSpace,
+    ) -> Result<Self, ImageError> {
         let path = path.as_ref();
         let decoded = image::ImageReader::open(path)
             .and_then(|reader| reader.with_guessed_format())
@@ -247,7 +250,10 @@ mod load_tests {
     #[test]
     fn loading_names_the_file_that_failed() {
         let missing = Image::load("/nonexistent/height.png", ColorSpace::Linear).unwrap_err();
-        assert!(missing.to_string().contains("/nonexistent/height.png"), "{missing}");
+        assert!(
+            missing.to_string().contains("/nonexistent/height.png"),
+            "{missing}"
+        );
         let dir = std::env::temp_dir().join(format!("pom-image-load-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let truncated = dir.join("truncated.png");
@@ -255,7 +261,9 @@ mod load_tests {
         let error = Image::load(&truncated, ColorSpace::Linear).unwrap_err();
         assert!(error.to_string().contains("truncated.png"), "{error}");
         let good = dir.join("good.png");
-        RgbaImage::from_pixel(3, 2, image::Rgba([1, 2, 3, 4])).save(&good).unwrap();
+        RgbaImage::from_pixel(3, 2, image::Rgba([1, 2, 3, 4]))
+            .save(&good)
+            .unwrap();
         assert_eq!(Image::load(&good, ColorSpace::Srgb).unwrap().size(), (3, 2));
         std::fs::remove_dir_all(&dir).unwrap();
     }

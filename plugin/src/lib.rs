@@ -37,6 +37,7 @@ pub mod mesh;
 mod normal_map;
 pub mod parallax;
 pub mod preview;
+pub mod reference;
 pub mod render;
 mod resources;
 mod transform;

@@ -55,7 +55,7 @@ fn heat(t: f32) -> vec3<f32> {
 fn shade(in: VertexOut) -> Shaded {
     let object = objects[in.object_index];
     let surface_frame = tangent_frame(in.world_normal, in.world_tangent);
-    let to_eye = safe_normalize(frame.camera_position.xyz - in.world_position, surface_frame.normal);
+    let to_eye = direction_to_eye(in.world_position, surface_frame.normal);
     let to_eye_ts = to_tangent_space(surface_frame, to_eye);
 
     // Everything derived from screen-space derivatives happens here, once, before any branch.

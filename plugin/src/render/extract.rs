@@ -10,7 +10,7 @@ use super::gpu_types::{
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, AssetId, Camera, Color, DirectionalLight, GlobalTransform, Handle,
-    Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, Resources,
+    Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, Projection, Resources,
 };
 
 /// One mesh to draw with its textures and per-object values.
@@ -56,21 +56,31 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         .iter()
         .find(|(camera, _)| camera.active)
         .map(|(camera, transform)| (*camera, *transform));
-    let (view_projection, camera_position, clear_color) = match camera {
+    let (view_projection, camera_position, view_direction, clear_color) = match camera {
         Some((camera, transform)) => {
             let view = transform.to_mat4().inverse();
+            let orthographic = matches!(camera.projection, Projection::Orthographic { .. });
             (
                 camera.projection.matrix(aspect) * view,
                 transform.translation(),
+                transform
+                    .forward()
+                    .extend(if orthographic { 1.0 } else { 0.0 }),
                 camera.clear_color,
             )
         }
-        None => (Mat4::IDENTITY, Vec3::ZERO, Color::BLACK),
+        None => (
+            Mat4::IDENTITY,
+            Vec3::ZERO,
+            Vec3::NEG_Z.extend(0.0),
+            Color::BLACK,
+        ),
     };
 
     let mut frame = FrameUniform {
         view_projection: columns(view_projection),
         camera_position: camera_position.extend(1.0).into(),
+        view_direction: view_direction.into(),
         ambient: (Vec3::new(ambient.color.r, ambient.color.g, ambient.color.b) * ambient.intensity)
             .extend(0.0)
             .into(),

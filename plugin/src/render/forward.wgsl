@@ -32,7 +32,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         object.params.x,
     );
     let base = textureSample(base_color_texture, material_sampler, in.uv) * object.base_color;
-    let to_eye = safe_normalize(frame.camera_position.xyz - in.world_position, normal);
+    let to_eye = direction_to_eye(in.world_position, normal);
     let surface = Surface(base.rgb, object.params.y, max(object.params.z, 1.0), 1.0, 0.0, LIGHTING_BLINN_PHONG);
 
     var color = frame.ambient.rgb * base.rgb;

@@ -21,6 +21,8 @@ struct PointLight {
 struct Frame {
     view_projection: mat4x4<f32>,
     camera_position: vec4<f32>,
+    // xyz: the direction the camera looks; w: 1 for orthographic (parallel view rays).
+    view_direction: vec4<f32>,
     // rgb: ambient colour × intensity.
     ambient: vec4<f32>,
     // x: directional light count, y: point light count.
@@ -30,6 +32,17 @@ struct Frame {
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+
+// Unit vector from a surface point towards the eye: along the view ray through that point,
+// which for an orthographic camera is the same everywhere.
+fn direction_to_eye(world_position: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    if frame.view_direction.w > 0.5 {
+        return -frame.view_direction.xyz;
+    }
+    let offset = frame.camera_position.xyz - world_position;
+    let length_squared = dot(offset, offset);
+    return select(fallback, offset * inverseSqrt(length_squared), length_squared > 1e-20);
+}
 
 struct LightSample {
     // Unit vector from the surface towards the light.

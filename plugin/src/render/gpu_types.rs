@@ -35,6 +35,9 @@ pub struct FrameUniform {
     pub view_projection: [[f32; 4]; 4],
     /// xyz: camera position in the world.
     pub camera_position: [f32; 4],
+    /// xyz: the direction the camera looks; w: 1 for an orthographic camera, whose view rays
+    /// are all parallel to it.
+    pub view_direction: [f32; 4],
     /// rgb: ambient colour × intensity.
     pub ambient: [f32; 4],
     /// x: directional light count, y: point light count.
