@@ -102,6 +102,77 @@ fn save(image: &RgbaImage, path: &Path) -> Result<(), GoldenError> {
     })
 }
 
+/// The FLIP error map of two same-sized images, its mean and its value at `percentile`.
+fn flip_error(
+    reference: &RgbaImage,
+    actual: &RgbaImage,
+    percentile: f32,
+) -> (nv_flip::FlipImageFloat, f32, f32) {
+    let (width, height) = actual.dimensions();
+    let rgb = |image: &RgbaImage| -> Vec<u8> {
+        image
+            .pixels()
+            .flat_map(|p| [p.0[0], p.0[1], p.0[2]])
+            .collect()
+    };
+    let error_map = nv_flip::flip(
+        nv_flip::FlipImageRgb8::with_data(width, height, &rgb(reference)),
+        nv_flip::FlipImageRgb8::with_data(width, height, &rgb(actual)),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    );
+    let mut pool = nv_flip::FlipPool::from_image(&error_map);
+    let mean = pool.mean();
+    let at_percentile = pool.get_percentile(percentile, true);
+    (error_map, mean, at_percentile)
+}
+
+/// Why two renders differ more than allowed.
+#[derive(Debug, thiserror::Error)]
+#[error("{what}: FLIP mean {mean:.4}, p{percentile} {at_percentile:.4} (sizes {sizes:?})")]
+pub struct ImagesDiffer {
+    /// What was compared.
+    pub what: String,
+    /// Measured mean.
+    pub mean: f32,
+    /// Percentile (0..=100).
+    pub percentile: f32,
+    /// Measured value at the percentile.
+    pub at_percentile: f32,
+    /// Both sizes.
+    pub sizes: ((u32, u32), (u32, u32)),
+}
+
+/// Compares two renders with FLIP (no reference file involved).
+pub fn compare_images(
+    what: &str,
+    expected: &RgbaImage,
+    actual: &RgbaImage,
+    tolerance: FlipTolerance,
+) -> Result<(), ImagesDiffer> {
+    let sizes = (expected.dimensions(), actual.dimensions());
+    if sizes.0 != sizes.1 {
+        return Err(ImagesDiffer {
+            what: what.to_owned(),
+            mean: 1.0,
+            percentile: tolerance.percentile * 100.0,
+            at_percentile: 1.0,
+            sizes,
+        });
+    }
+    let (_, mean, at_percentile) = flip_error(expected, actual, tolerance.percentile);
+    if mean <= tolerance.mean && at_percentile <= tolerance.percentile_max {
+        Ok(())
+    } else {
+        Err(ImagesDiffer {
+            what: what.to_owned(),
+            mean,
+            percentile: tolerance.percentile * 100.0,
+            at_percentile,
+            sizes,
+        })
+    }
+}
+
 /// Compares `actual` with `tests/golden/NAME.png` using FLIP.
 ///
 /// A missing reference fails unless `UPDATE_GOLDENS=1`, which writes it (and rewrites references

@@ -5,7 +5,9 @@ pub mod fixtures;
 mod golden;
 pub mod pom_scene;
 
-pub use golden::{FlipTolerance, GoldenError, check_golden, golden_dir};
+pub use golden::{
+    FlipTolerance, GoldenError, ImagesDiffer, check_golden, compare_images, golden_dir,
+};
 
 use pom::{App, AppError, GpuContext, RenderPlugin};
 
@@ -105,5 +107,13 @@ pub fn render_and_capture(app: &mut App) -> Result<image::RgbaImage, HarnessErro
     in_error_scopes(app, "render and capture", |app| {
         app.update()?;
         Ok(pom::capture(app)?)
+    })
+}
+
+/// Runs one update and reads a float target back, all inside error scopes.
+pub fn render_and_capture_f32(app: &mut App) -> Result<image::Rgba32FImage, HarnessError> {
+    in_error_scopes(app, "render and capture", |app| {
+        app.update()?;
+        Ok(pom::capture_f32(app)?)
     })
 }

@@ -30,8 +30,21 @@ pub struct ExtractedPom {
 }
 
 /// The last material each entity was warned about, so a bad value is logged once, not per frame.
+/// A resource.
 #[derive(Debug, Default)]
 pub struct MaterialWarnings(HashMap<Entity, ParallaxOcclusionMaterial>);
+
+impl MaterialWarnings {
+    /// Number of entities whose material has been clamped.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether no material needed clamping.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
 
 fn height_texture(material: &ParallaxOcclusionMaterial) -> Option<AssetId<Image>> {
     match &material.height_map {
