@@ -12,6 +12,8 @@ use crate::parallax::ParallaxMethod;
 
 /// Longest sideways travel per unit of depth (`MAX_PARALLAX_RATIO` in WGSL).
 pub const MAX_PARALLAX_RATIO: f32 = 20.0;
+/// Height bias of hard shadow rays (`HARD_SHADOW_BIAS` in WGSL).
+pub const HARD_SHADOW_BIAS: f32 = 0.01;
 /// Tatarchuk's fShadowSoftening default (`SEED_SHADOW_SOFTENING` in WGSL).
 pub const SEED_SHADOW_SOFTENING: f32 = 0.58;
 
@@ -221,7 +223,7 @@ pub fn exact_intersection(
 /// `hard_shadow` of march.wgsl: 0 if the height field blocks the light ray from `uv`, else 1.
 /// `light_offset` is [`ray_offset`]`(to_light_ts, height_scale)`.
 pub fn hard_shadow(field: &HeightField, uv: Vec2, light_offset: Vec2, steps: u32) -> f32 {
-    let start = field.sample(uv.x, uv.y);
+    let start = field.sample(uv.x, uv.y) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {
         return 1.0;

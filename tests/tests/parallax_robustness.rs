@@ -9,6 +9,9 @@ use pom::{
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{render_and_capture, render_and_capture_f32};
 
+/// A named edit of a material.
+type MaterialEdit = (&'static str, fn(&mut ParallaxOcclusionMaterial));
+
 fn bricks() -> HeightMaterial {
     HeightMaterial {
         field: patterns::bricks(64, 4.0, 8.0),
@@ -109,7 +112,7 @@ fn changing_a_field_shows_in_the_next_frame() {
         render_and_capture(&mut app).unwrap() == first,
         "nothing changed, yet the pixels did"
     );
-    let changes: [(&str, fn(&mut ParallaxOcclusionMaterial)); 4] = [
+    let changes: [MaterialEdit; 4] = [
         ("height_scale", |m| m.height_scale = 0.12),
         ("method", |m| m.method = ParallaxMethod::Steep),
         ("shadows", |m| m.shadows = ShadowMode::Off),
@@ -129,7 +132,7 @@ fn changing_a_field_shows_in_the_next_frame() {
 
 #[test]
 fn invalid_parameters_are_clamped_with_a_warning_and_render_cleanly() {
-    let bad_materials: [(&str, fn(&mut ParallaxOcclusionMaterial)); 7] = [
+    let bad_materials: [MaterialEdit; 7] = [
         ("NaN height", |m| m.height_scale = f32::NAN),
         ("infinite height", |m| m.height_scale = f32::INFINITY),
         ("negative height", |m| m.height_scale = -0.3),

@@ -22,6 +22,11 @@ const SHADOWS_SOFT: u32 = 2u;
 // smooth meshes) finite and stops a sliver of pixels from marching across the whole texture.
 const MAX_PARALLAX_RATIO: f32 = 20.0;
 
+// Hard shadow rays start this far (in height units) above the visible point: the height there
+// comes from an 8-bit, bilinearly filtered texture, and without the bias the first steps would
+// find the surface's own rounding above the ray and speckle lit slopes with shadow.
+const HARD_SHADOW_BIAS: f32 = 0.01;
+
 // Tatarchuk's fShadowSoftening default. His listing multiplies by it (larger = harder); the
 // material's shadow_softening divides instead, scaled so that 0.58 gives his result.
 const SEED_SHADOW_SOFTENING: f32 = 0.58;
@@ -219,7 +224,7 @@ fn hard_shadow(
     light_offset: vec2<f32>,
     steps: u32,
 ) -> f32 {
-    let start = sample_height(height_texture, height_sampler, field, uv);
+    let start = sample_height(height_texture, height_sampler, field, uv) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {
         return 1.0;
