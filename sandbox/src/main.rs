@@ -1,68 +1,62 @@
-//! The sandbox: renders the demo scene headless to a PNG (the live egui window comes later).
+//! The sandbox: without a subcommand, the demo scene (rendered headless to a PNG until the live
+//! window lands); `render` previews one parallax material headless.
 
+mod cli_types;
+mod demo_command;
 mod demo_scene;
+mod frame_output;
+mod preview_textures;
+mod render_command;
 
-use std::path::PathBuf;
+use clap::{Parser, Subcommand};
 
-use anyhow::{Context, Result};
-use clap::Parser;
-
-/// Renders the POM demo scene to a PNG file.
+/// The POM sandbox. Without a subcommand it renders the demo scene to a PNG.
 #[derive(Debug, Parser)]
-#[command(name = "sandbox", version, about)]
-struct Args {
-    /// Where to write the PNG.
-    #[arg(long, default_value = "target/sandbox-preview.png")]
-    out: PathBuf,
-    /// Image size as WIDTHxHEIGHT, each 1..=8192.
-    #[arg(long, default_value = "960x540", value_parser = parse_size)]
-    size: (u32, u32),
+#[command(name = "sandbox", version, args_conflicts_with_subcommands = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    #[command(flatten)]
+    demo: demo_command::DemoArgs,
 }
 
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let (width, height) = text
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {text:?}"))?;
-    let side = |value: &str| -> Result<u32, String> {
-        let parsed: u32 = value
-            .trim()
-            .parse()
-            .map_err(|_| format!("{value:?} is not a whole number of pixels"))?;
-        if (1..=8192).contains(&parsed) {
-            Ok(parsed)
-        } else {
-            Err(format!("{parsed} is outside 1..=8192"))
-        }
-    };
-    Ok((side(width)?, side(height)?))
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Renders one parallax material on a square plane, lit by one directional light, to a PNG.
+    Render(render_command::RenderArgs),
 }
 
-fn run(args: &Args) -> Result<()> {
-    let (width, height) = args.size;
-    let mut app = pom::App::new();
-    app.add_plugin(pom::RenderPlugin::headless(width, height));
-    demo_scene::spawn(&mut app)?;
-    app.update().context("rendering the demo scene")?;
-    let image = pom::capture(&app).context("reading the frame back")?;
-    if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("creating {}", parent.display()))?;
-    }
-    image
-        .save(&args.out)
-        .with_context(|| format!("writing {}", args.out.display()))?;
-    let gpu = app
-        .resources
-        .get::<pom::GpuContext>()
-        .map(|gpu| gpu.adapter_info().name)
-        .unwrap_or_default();
-    println!("wrote {} ({width}×{height}, {gpu})", args.out.display());
-    Ok(())
+/// Clap's usage errors add a tip, the usage and a pointer to --help over several lines; the
+/// first paragraph says what is wrong, so print that as one line, like every other error here.
+fn first_paragraph_on_one_line(rendered: &str) -> String {
+    rendered
+        .split("\n\n")
+        .next()
+        .unwrap_or_default()
+        .lines()
+        .map(str::trim)
+        .filter(|line| !line.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 fn main() {
-    let args = Args::parse();
-    if let Err(error) = run(&args) {
+    let cli = Cli::try_parse().unwrap_or_else(|error| {
+        if !error.use_stderr() {
+            // --help and --version: not errors.
+            error.exit();
+        }
+        eprintln!(
+            "{}",
+            first_paragraph_on_one_line(&error.render().to_string())
+        );
+        std::process::exit(error.exit_code());
+    });
+    let result = match &cli.command {
+        None => demo_command::run(&cli.demo),
+        Some(Command::Render(args)) => render_command::run(args),
+    };
+    if let Err(error) = result {
         // One line, no backtrace: the chain of contexts says what failed and why.
         eprintln!("error: {error:#}");
         std::process::exit(1);
@@ -71,20 +65,75 @@ fn main() {
 
 #[cfg(test)]
 mod tests {
+    use clap::CommandFactory;
+
     use super::*;
 
     #[test]
-    fn sizes_parse_and_bad_sizes_are_rejected_with_a_reason() {
-        assert_eq!(parse_size("640x480"), Ok((640, 480)));
-        assert_eq!(parse_size("1X1"), Ok((1, 1)));
-        for bad in ["640", "0x10", "10x0", "axb", "9000x10", "-1x5", ""] {
-            assert!(parse_size(bad).is_err(), "{bad:?} was accepted");
-        }
+    fn the_definitions_are_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn no_subcommand_is_the_demo_with_todays_defaults() {
+        let cli = Cli::try_parse_from(["sandbox"]).unwrap();
+        assert!(cli.command.is_none());
+        assert_eq!(
+            cli.demo.out,
+            std::path::Path::new("target/sandbox-preview.png")
+        );
+        assert_eq!(cli.demo.size, (960, 540));
+        let sized = Cli::try_parse_from(["sandbox", "--size", "64x32"]).unwrap();
+        assert_eq!(sized.demo.size, (64, 32));
     }
 
     #[test]
     fn unknown_flags_are_rejected() {
-        assert!(Args::try_parse_from(["sandbox", "--bogus"]).is_err());
-        assert!(Args::try_parse_from(["sandbox", "--size", "12"]).is_err());
+        assert!(Cli::try_parse_from(["sandbox", "--bogus"]).is_err());
+        assert!(Cli::try_parse_from(["sandbox", "--size", "12"]).is_err());
+        assert!(Cli::try_parse_from(["sandbox", "render", "--out", "a.png", "--bogus"]).is_err());
+        // The demo's options do not leak into `render`, nor the other way round.
+        assert!(Cli::try_parse_from(["sandbox", "--out", "a.png", "render"]).is_err());
+    }
+
+    #[test]
+    fn usage_errors_become_one_line() {
+        let error = Cli::try_parse_from(["sandbox", "render", "--out", "a.png", "--method", "x"])
+            .unwrap_err();
+        let line = first_paragraph_on_one_line(&error.render().to_string());
+        assert!(!line.contains('\n'), "{line}");
+        assert!(
+            line.starts_with("error: invalid value 'x' for '--method"),
+            "{line}"
+        );
+        assert!(line.contains("possible values: normal, offset, steep, pom, relief"));
+    }
+
+    #[test]
+    fn render_help_documents_the_geometry_and_the_defaults() {
+        let mut command = Cli::command();
+        let render = command.find_subcommand_mut("render").unwrap();
+        let help = render.render_long_help().to_string();
+        for expected in [
+            "view angle is between the view direction and the plane's",
+            "the plane fills the image",
+            "Azimuth 0 puts the camera on the −u side",
+            "+u runs up the image and +v to the right",
+            "90 is the horizon",
+            "built-in procedural bricks",
+            "[default: pom]",
+            "[default: 0.05]",
+            "[default: 8]",
+            "[default: 50]",
+            "[default: soft]",
+            "[default: 0.58]",
+            "[default: ortho]",
+            "[default: 45]",
+        ] {
+            assert!(
+                help.contains(expected),
+                "--help lacks {expected:?}:\n{help}"
+            );
+        }
     }
 }

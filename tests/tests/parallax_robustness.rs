@@ -3,8 +3,8 @@
 use pom::parallax::MaterialWarnings;
 use pom::preview::PreviewView;
 use pom::{
-    Camera, DebugView, DirectionalLight, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode,
-    TargetFormat, Transform, patterns,
+    Camera, DebugView, DirectionalLight, LightingModel, ParallaxMethod, ParallaxOcclusionMaterial,
+    ShadowMode, TargetFormat, Transform, patterns,
 };
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{render_and_capture, render_and_capture_f32};
@@ -66,6 +66,13 @@ fn every_method_and_shadow_mode_stays_finite_at_every_angle() {
                     material.method = method;
                     material.shadows = shadows;
                     material.height_scale = height_scale;
+                    material.lighting = [
+                        LightingModel::Phong,
+                        LightingModel::BlinnPhong,
+                        LightingModel::CookTorrance,
+                    ][index % 3];
+                    material.debug_view =
+                        [DebugView::None, DebugView::Lod, DebugView::Samples][index % 3];
                 });
                 set_view(
                     &mut app,
@@ -112,7 +119,15 @@ fn changing_a_field_shows_in_the_next_frame() {
         render_and_capture(&mut app).unwrap() == first,
         "nothing changed, yet the pixels did"
     );
-    let changes: [MaterialEdit; 4] = [
+    let changes: [MaterialEdit; 8] = [
+        ("lighting (Blinn-Phong)", |m| {
+            m.lighting = LightingModel::BlinnPhong
+        }),
+        ("lighting (Cook-Torrance)", |m| {
+            m.lighting = LightingModel::CookTorrance
+        }),
+        ("metallic", |m| m.metallic = 1.0),
+        ("roughness", |m| m.roughness = 0.2),
         ("height_scale", |m| m.height_scale = 0.12),
         ("method", |m| m.method = ParallaxMethod::Steep),
         ("shadows", |m| m.shadows = ShadowMode::Off),

@@ -1,0 +1,36 @@
+//! What `sandbox` does without a subcommand (and so what `cargo run --release` shows): the demo
+//! scene, rendered headless to a PNG. The live window will replace the PNG; it belongs here.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+use crate::cli_types::parse_size;
+use crate::{demo_scene, frame_output};
+
+/// Options of the default command.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// Where to write the PNG.
+    #[arg(
+        long,
+        value_name = "FILE",
+        default_value = "target/sandbox-preview.png"
+    )]
+    pub out: PathBuf,
+    /// Image size as WIDTHxHEIGHT, each 1..=8192.
+    #[arg(long, value_name = "WxH", default_value = "960x540", value_parser = parse_size)]
+    pub size: (u32, u32),
+}
+
+/// Renders the demo scene and writes it to `args.out`.
+pub fn run(args: &DemoArgs) -> Result<()> {
+    let (width, height) = args.size;
+    let mut app = pom::App::new();
+    app.add_plugin(pom::RenderPlugin::headless(width, height));
+    demo_scene::spawn(&mut app)?;
+    app.update().context("rendering the demo scene")?;
+    let image = pom::capture(&app).context("reading the frame back")?;
+    frame_output::write(&app, image.into(), &args.out)
+}

@@ -1,0 +1,223 @@
+//! `sandbox render` run as a user runs it: the built binary, its exit status, its stderr and the
+//! PNG it writes. The tests that render need a Vulkan driver; `tests/run` pins the software one.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicU32, Ordering};
+
+/// A folder of its own under the system temp dir, removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(test: &str) -> Self {
+        static NEXT: AtomicU32 = AtomicU32::new(0);
+        let unique = format!(
+            "sandbox-render-{test}-{}-{}",
+            std::process::id(),
+            NEXT.fetch_add(1, Ordering::Relaxed)
+        );
+        let path = std::env::temp_dir().join(unique);
+        std::fs::create_dir_all(&path).expect("creating a temp dir");
+        Self(path)
+    }
+
+    fn join(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn sandbox(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sandbox"))
+        .args(args)
+        .output()
+        .expect("running the sandbox binary")
+}
+
+fn path_arg(path: &Path) -> &str {
+    path.to_str().expect("temp paths are UTF-8")
+}
+
+/// Asserts a failure with exactly one line on stderr that starts with `error:` and mentions
+/// every one of `expected`; returns the line.
+fn assert_one_line_error(output: &Output, expected: &[&str]) -> String {
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(
+        !output.status.success(),
+        "exited successfully; stderr: {stderr}"
+    );
+    let line = stderr.trim_end();
+    assert_eq!(line.lines().count(), 1, "stderr is not one line:\n{stderr}");
+    assert!(line.starts_with("error: "), "{line}");
+    assert!(!line.contains("panicked"), "{line}");
+    for word in expected {
+        assert!(line.contains(word), "{line:?} does not mention {word:?}");
+    }
+    line.to_owned()
+}
+
+fn assert_success(output: &Output) {
+    assert!(
+        output.status.success(),
+        "exit {:?}\nstdout: {}\nstderr: {}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+#[test]
+fn an_unknown_method_is_rejected_with_the_valid_ones() {
+    let dir = TempDir::new("unknown-method");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--method", "raymarch"]);
+    assert_one_line_error(&output, &["raymarch", "--method", "pom"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_bad_size_is_rejected() {
+    let dir = TempDir::new("bad-size");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--size", "64by48"]);
+    assert_one_line_error(&output, &["--size", "64by48", "WIDTHxHEIGHT"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_missing_height_file_is_named() {
+    let dir = TempDir::new("missing-height");
+    let out = dir.join("out.png");
+    let missing = dir.join("no-such-height.png");
+    let output = sandbox(&[
+        "render",
+        "--out",
+        path_arg(&out),
+        "--height",
+        path_arg(&missing),
+    ]);
+    assert_one_line_error(&output, &["--height", "no-such-height.png"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_truncated_height_png_is_named() {
+    let dir = TempDir::new("truncated-height");
+    let out = dir.join("out.png");
+    let truncated = dir.join("truncated-height.png");
+    // A PNG signature and the start of a header, then nothing.
+    std::fs::write(&truncated, b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR").unwrap();
+    let output = sandbox(&[
+        "render",
+        "--out",
+        path_arg(&out),
+        "--height",
+        path_arg(&truncated),
+    ]);
+    assert_one_line_error(&output, &["--height", "truncated-height.png"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn inverted_sample_bounds_are_rejected() {
+    let dir = TempDir::new("inverted-samples");
+    let out = dir.join("out.png");
+    let output = sandbox(&[
+        "render",
+        "--out",
+        path_arg(&out),
+        "--min-samples",
+        "60",
+        "--max-samples",
+        "10",
+    ]);
+    assert_one_line_error(&output, &["min_samples (60)", "max_samples (10)"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_negative_height_scale_is_rejected() {
+    let dir = TempDir::new("negative-height-scale");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--height-scale", "-1"]);
+    assert_one_line_error(&output, &["height_scale", "-1"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_nan_height_scale_is_rejected() {
+    let dir = TempDir::new("nan-height-scale");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--height-scale", "NaN"]);
+    assert_one_line_error(&output, &["height_scale", "NaN", "finite"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn render_writes_a_png_of_the_asked_size() {
+    let dir = TempDir::new("size");
+    let out = dir.join("nested/preview.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--size", "64x48"]);
+    assert_success(&output);
+    let image = image::open(&out).expect("the preview is a readable image");
+    assert!(matches!(image, image::DynamicImage::ImageRgba8(_)));
+    assert_eq!((image.width(), image.height()), (64, 48));
+}
+
+#[test]
+fn the_uv_view_is_a_raw_16_bit_png_with_a_full_march_in_the_middle() {
+    let dir = TempDir::new("uv");
+    let out = dir.join("uv.png");
+    let output = sandbox(&[
+        "render",
+        "--debug-view",
+        "uv",
+        "--out",
+        path_arg(&out),
+        // 256-texel bricks on 64 pixels: mip level 2, clear of the LOD band starting at 3.
+        "--size",
+        "64x64",
+    ]);
+    assert_success(&output);
+    let image = image::open(&out).expect("the preview is a readable image");
+    let image::DynamicImage::ImageRgb16(pixels) = image else {
+        panic!("expected a 16-bit RGB PNG, got {:?}", image.color());
+    };
+    assert_eq!(pixels.dimensions(), (64, 64));
+    let [_u, _v, region] = pixels.get_pixel(32, 32).0;
+    assert_eq!(region, 65535, "B = 1 where the full march ran");
+}
+
+#[test]
+fn a_depth_map_renders_with_normal_mapping() {
+    let dir = TempDir::new("depth-map");
+    let out = dir.join("depth.png");
+    // A depth map: a white (deep) square in a black (top) tile.
+    let depth = dir.join("depth-map.png");
+    image::GrayImage::from_fn(32, 32, |x, y| {
+        let inside = (8..24).contains(&x) && (8..24).contains(&y);
+        image::Luma([if inside { 255 } else { 0 }])
+    })
+    .save(&depth)
+    .unwrap();
+    let output = sandbox(&[
+        "render",
+        "--method",
+        "normal",
+        "--height",
+        path_arg(&depth),
+        "--depth-map",
+        "--out",
+        path_arg(&out),
+        "--size",
+        "32x32",
+    ]);
+    assert_success(&output);
+    let image = image::open(&out).expect("the preview is a readable image");
+    assert_eq!((image.width(), image.height()), (32, 32));
+}
