@@ -4,8 +4,9 @@ use glam::Vec3;
 use pom::hecs;
 use pom::preview::PreviewView;
 use pom::{
-    Assets, Color, DebugView, DirectionalLight, HeightUnits, LitMaterial, Mesh, ParallaxMethod,
-    ParallaxOcclusionMaterial, PointLight, ShadowMode, TargetFormat, Transform, patterns,
+    Assets, Color, DebugView, DirectionalLight, HeightConvention, HeightSource, HeightUnits,
+    LitMaterial, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, PointLight, ShadowMode,
+    TargetFormat, Transform, patterns,
 };
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{render_and_capture, render_and_capture_f32};
@@ -170,5 +171,89 @@ fn point_lights_cast_self_shadows_too() {
         visibility_at(0.2) > 0.99,
         "in front: {}",
         visibility_at(0.2)
+    );
+}
+
+fn uv_view_of(
+    configure: impl FnOnce(&mut pom::App) -> ParallaxOcclusionMaterial,
+) -> image::Rgba32FImage {
+    let view = PreviewView {
+        view_angle: 55.0,
+        ..PreviewView::default()
+    };
+    let mut app = pom_tests::pom_scene::pom_app(48, TargetFormat::Float32).unwrap();
+    let material = ParallaxOcclusionMaterial {
+        debug_view: DebugView::Uv,
+        ..configure(&mut app)
+    };
+    pom::preview::spawn_preview(&mut app, material, &view).unwrap();
+    render_and_capture_f32(&mut app).unwrap()
+}
+
+#[test]
+fn height_in_the_normal_maps_alpha_or_as_a_depth_map_gives_the_same_surface() {
+    let field = patterns::cobblestones(64, 3);
+    let separate = uv_view_of(|app| {
+        let images = app.resources.get_mut::<Assets<pom::Image>>().unwrap();
+        ParallaxOcclusionMaterial {
+            height_map: Some(HeightSource::Texture(images.add(field.to_image()))),
+            ..ParallaxOcclusionMaterial::default()
+        }
+    });
+    let packed = uv_view_of(|app| {
+        // McGuire's packing: the normal map's alpha holds the height.
+        let mut normal = field.normal_map(HEIGHT_SCALE).pixels().clone();
+        for (pixel, height) in normal.pixels_mut().zip(field.to_image().pixels().pixels()) {
+            pixel.0[3] = height.0[0];
+        }
+        let images = app.resources.get_mut::<Assets<pom::Image>>().unwrap();
+        let normal = pom::Image::new(normal, pom::ColorSpace::Linear).unwrap();
+        ParallaxOcclusionMaterial {
+            normal_map: Some(images.add(normal)),
+            height_map: Some(HeightSource::NormalMapAlpha),
+            ..ParallaxOcclusionMaterial::default()
+        }
+    });
+    let depth = uv_view_of(|app| {
+        // The same relief stored as a depth map: white is deepest.
+        let mut inverted = field.to_image().pixels().clone();
+        for pixel in inverted.pixels_mut() {
+            for channel in &mut pixel.0[..3] {
+                *channel = 255 - *channel;
+            }
+        }
+        let images = app.resources.get_mut::<Assets<pom::Image>>().unwrap();
+        let inverted = pom::Image::new(inverted, pom::ColorSpace::Linear).unwrap();
+        ParallaxOcclusionMaterial {
+            height_map: Some(HeightSource::Texture(images.add(inverted))),
+            height_convention: HeightConvention::Depth,
+            ..ParallaxOcclusionMaterial::default()
+        }
+    });
+    let flat = uv_view_of(|_| ParallaxOcclusionMaterial::default());
+    let mean_difference = |a: &image::Rgba32FImage, b: &image::Rgba32FImage| {
+        let total: f32 = a
+            .pixels()
+            .zip(b.pixels())
+            .map(|(p, q)| (p.0[0] - q.0[0]).abs().max((p.0[1] - q.0[1]).abs()))
+            .sum();
+        total / (a.width() * a.height()) as f32
+    };
+    let packed_difference = mean_difference(&separate, &packed);
+    assert!(
+        packed_difference < 1e-5,
+        "alpha-packed height differs by {packed_difference}"
+    );
+    // Inverting an 8-bit image and its mips rounds ties the other way, which can move a rare
+    // crossing by a step; on average the surfaces agree to a fraction of a texel.
+    let depth_difference = mean_difference(&separate, &depth);
+    assert!(
+        depth_difference < 2e-3,
+        "depth convention differs by {depth_difference}"
+    );
+    let relief = mean_difference(&separate, &flat);
+    assert!(
+        relief > 0.01,
+        "the relief should shift texture coordinates ({relief})"
     );
 }
