@@ -20,7 +20,9 @@ lavapipe_icd() {
 }
 
 has_vulkan_loader() {
-    ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1'
+    # No `grep -q`: it would close the pipe early, and under `pipefail` ldconfig's SIGPIPE
+    # would count as "not found".
+    ldconfig -p 2>/dev/null | grep 'libvulkan\.so\.1' >/dev/null
 }
 
 # Ensures lavapipe is present; exports the variables that pin wgpu to it.

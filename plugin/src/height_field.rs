@@ -1,8 +1,8 @@
 //! Height fields on the CPU: sampling, conversion to and from images, and procedural patterns.
 
-use image::{Rgba, RgbaImage};
+use image::{GrayImage, ImageBuffer, Luma};
 
-use crate::{ColorSpace, Image, ImageError};
+use crate::{Image, ImageError, Pixels, TextureKind};
 
 /// A grid of heights in 0..=1 (1 = top), sampled with wrapping like a repeating texture.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,14 +95,18 @@ impl HeightField {
     /// is deepest and the values are flipped.
     pub fn from_image(image: &Image, channel: usize, depth: bool) -> Self {
         let (width, height) = image.size();
-        let channel = channel.min(3);
-        let values = image
-            .pixels()
-            .pixels()
-            .map(|pixel| {
-                let value = f32::from(pixel.0[channel]) / 255.0;
-                if depth { 1.0 - value } else { value }
-            })
+        let pixels = image.pixels();
+        // Grey images hold the height in their only channel, whichever was asked for.
+        let (stride, offset) = match pixels.channels() {
+            1 => (1, 0),
+            channels => (channels, channel.min(channels - 1)),
+        };
+        let values = pixels
+            .to_unit_floats()
+            .iter()
+            .skip(offset)
+            .step_by(stride)
+            .map(|value| if depth { 1.0 - value } else { *value })
             .collect();
         Self {
             width,
@@ -111,14 +115,23 @@ impl HeightField {
         }
     }
 
-    /// A grey linear image of the field, 8 bits per channel.
+    /// An 8-bit, one-channel height image of the field.
     pub fn to_image(&self) -> Image {
-        let pixels = RgbaImage::from_fn(self.width, self.height, |x, y| {
-            let grey = (self.texel(i64::from(x), i64::from(y)) * 255.0).round() as u8;
-            Rgba([grey, grey, grey, 255])
+        let pixels = GrayImage::from_fn(self.width, self.height, |x, y| {
+            Luma([(self.texel(i64::from(x), i64::from(y)) * 255.0).round() as u8])
         });
         // The size was checked when the field was made.
-        Image::new(pixels, ColorSpace::Linear).expect("height field is not empty")
+        Image::from_pixels(Pixels::Gray8(pixels), TextureKind::Height)
+            .expect("height field is not empty")
+    }
+
+    /// A 16-bit, one-channel height image of the field.
+    pub fn to_image_16(&self) -> Image {
+        let pixels = ImageBuffer::from_fn(self.width, self.height, |x, y| {
+            Luma([(self.texel(i64::from(x), i64::from(y)) * 65535.0).round() as u16])
+        });
+        Image::from_pixels(Pixels::Gray16(pixels), TextureKind::Height)
+            .expect("height field is not empty")
     }
 
     /// The field as an 8-bit image stores it: every value rounded to a multiple of 1/255, as the

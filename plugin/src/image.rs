@@ -1,17 +1,129 @@
-//! Texture images held on the CPU, and their mip chains.
+//! Texture images held on the CPU: colour, normal, height and data maps, their mip chains.
 
-use image::RgbaImage;
+use std::path::Path;
+
+use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
 
 use crate::color::{linear_to_srgb, srgb_to_linear};
 
-/// How an image's 8-bit values map to numbers the shader sees.
+/// What a texture holds: decides its GPU format and how its mip levels are filtered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ColorSpace {
-    /// sRGB-encoded colour (albedo): decoded to linear light when sampled, filtered in linear
-    /// light when mips are built.
-    Srgb,
-    /// Plain data (normal maps, height maps): values are used as they are.
-    Linear,
+pub enum TextureKind {
+    /// sRGB colour (albedo): decoded to linear light when sampled; mips averaged in linear light.
+    Color,
+    /// Tangent-space normal map, xyz × 0.5 + 0.5 in RGB (alpha may carry a height): mips are
+    /// averaged as vectors and renormalised, so distant normals stay unit length.
+    Normal,
+    /// A height (or depth) field, one channel of 8 or 16 bits: mips are plain averages, and a
+    /// max-mip chain is available for exact intersection searches.
+    Height,
+    /// Any other linear data: plain averages.
+    Data,
+}
+
+/// Pixel storage of an [`Image`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Pixels {
+    /// Four 8-bit channels.
+    Rgba8(RgbaImage),
+    /// One 8-bit channel.
+    Gray8(GrayImage),
+    /// One 16-bit channel (16-bit height maps stay 16-bit on the GPU where it allows).
+    Gray16(ImageBuffer<Luma<u16>, Vec<u16>>),
+}
+
+impl Pixels {
+    /// Width and height.
+    pub fn dimensions(&self) -> (u32, u32) {
+        match self {
+            Pixels::Rgba8(pixels) => pixels.dimensions(),
+            Pixels::Gray8(pixels) => pixels.dimensions(),
+            Pixels::Gray16(pixels) => pixels.dimensions(),
+        }
+    }
+
+    /// Channels per pixel.
+    pub fn channels(&self) -> usize {
+        match self {
+            Pixels::Rgba8(_) => 4,
+            Pixels::Gray8(_) | Pixels::Gray16(_) => 1,
+        }
+    }
+
+    /// The raw bytes, row by row (16-bit values little-endian, as GPUs expect).
+    pub fn bytes(&self) -> Vec<u8> {
+        match self {
+            Pixels::Rgba8(pixels) => pixels.as_raw().clone(),
+            Pixels::Gray8(pixels) => pixels.as_raw().clone(),
+            Pixels::Gray16(pixels) => pixels
+                .as_raw()
+                .iter()
+                .flat_map(|v| v.to_le_bytes())
+                .collect(),
+        }
+    }
+
+    /// Every value as 0..=1, row by row, `channels()` per pixel.
+    pub fn to_unit_floats(&self) -> Vec<f32> {
+        match self {
+            Pixels::Rgba8(pixels) => pixels
+                .as_raw()
+                .iter()
+                .map(|v| f32::from(*v) / 255.0)
+                .collect(),
+            Pixels::Gray8(pixels) => pixels
+                .as_raw()
+                .iter()
+                .map(|v| f32::from(*v) / 255.0)
+                .collect(),
+            Pixels::Gray16(pixels) => pixels
+                .as_raw()
+                .iter()
+                .map(|v| f32::from(*v) / 65535.0)
+                .collect(),
+        }
+    }
+
+    fn from_unit_floats(like: &Pixels, width: u32, height: u32, values: &[f32]) -> Pixels {
+        let to_u8 = |v: &f32| (v * 255.0).round().clamp(0.0, 255.0) as u8;
+        let to_u16 = |v: &f32| (v * 65535.0).round().clamp(0.0, 65535.0) as u16;
+        // Lengths follow from width × height × channels, which the callers compute.
+        match like {
+            Pixels::Rgba8(_) => Pixels::Rgba8(
+                RgbaImage::from_raw(width, height, values.iter().map(to_u8).collect())
+                    .expect("four values per pixel"),
+            ),
+            Pixels::Gray8(_) => Pixels::Gray8(
+                GrayImage::from_raw(width, height, values.iter().map(to_u8).collect())
+                    .expect("one value per pixel"),
+            ),
+            Pixels::Gray16(_) => Pixels::Gray16(
+                ImageBuffer::from_raw(width, height, values.iter().map(to_u16).collect())
+                    .expect("one value per pixel"),
+            ),
+        }
+    }
+}
+
+/// Which channel of a colour image holds a height.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Channel {
+    /// Red (and the grey of a grey image).
+    #[default]
+    Red,
+    /// Green.
+    Green,
+    /// Blue.
+    Blue,
+    /// Alpha.
+    Alpha,
+}
+
+impl Channel {
+    /// 0 for red … 3 for alpha.
+    pub fn index(self) -> usize {
+        self as usize
+    }
 }
 
 /// What went wrong building or loading an [`Image`].
@@ -20,7 +132,7 @@ pub enum ImageError {
     /// The file could not be read or decoded.
     #[error("cannot load image {path}: {reason}")]
     Load {
-        /// The file.
+        /// The file (or the name of an embedded image).
         path: std::path::PathBuf,
         /// What the decoder or the file system said.
         reason: String,
@@ -45,26 +157,34 @@ pub enum ImageError {
         /// Bytes given.
         found: usize,
     },
+    /// The image has no alpha channel but its alpha was asked for as a height.
+    #[error("{name} has no alpha channel to read a height from")]
+    NoAlpha {
+        /// The file or image name.
+        name: String,
+    },
 }
 
-/// An RGBA8 texture with its colour space; the renderer uploads it with a full mip chain.
+/// A texture on the CPU, with its kind; the renderer uploads it with a full mip chain.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
-    pixels: RgbaImage,
-    color_space: ColorSpace,
+    pixels: Pixels,
+    kind: TextureKind,
 }
 
 impl Image {
-    /// Wraps decoded pixels. Fails for an empty image.
-    pub fn new(pixels: RgbaImage, color_space: ColorSpace) -> Result<Self, ImageError> {
+    /// Wraps 8-bit RGBA pixels. Fails for an empty image.
+    pub fn new(pixels: RgbaImage, kind: TextureKind) -> Result<Self, ImageError> {
+        Self::from_pixels(Pixels::Rgba8(pixels), kind)
+    }
+
+    /// Wraps pixels of any storage. Fails for an empty image.
+    pub fn from_pixels(pixels: Pixels, kind: TextureKind) -> Result<Self, ImageError> {
         let (width, height) = pixels.dimensions();
         if width == 0 || height == 0 {
             return Err(ImageError::Empty { width, height });
         }
-        Ok(Self {
-            pixels,
-            color_space,
-        })
+        Ok(Self { pixels, kind })
     }
 
     /// Builds an image from raw RGBA8 bytes, row by row.
@@ -72,7 +192,7 @@ impl Image {
         width: u32,
         height: u32,
         bytes: Vec<u8>,
-        color_space: ColorSpace,
+        kind: TextureKind,
     ) -> Result<Self, ImageError> {
         let expected = width as usize * height as usize * 4;
         let found = bytes.len();
@@ -82,35 +202,82 @@ impl Image {
             expected,
             found,
         })?;
-        Self::new(pixels, color_space)
-    }
-
-    /// Decodes a PNG or JPEG file (any bit depth; converted to 8-bit RGBA).
-    pub fn load(
-        path: impl AsRef<std::path::Path>,
-        color_space: ColorSpace,
-    ) -> Result<Self, ImageError> {
-        let path = path.as_ref();
-        let decoded = image::ImageReader::open(path)
-            .and_then(|reader| reader.with_guessed_format())
-            .map_err(|error| ImageError::Load {
-                path: path.to_owned(),
-                reason: error.to_string(),
-            })?
-            .decode()
-            .map_err(|error| ImageError::Load {
-                path: path.to_owned(),
-                reason: error.to_string(),
-            })?;
-        Self::new(decoded.to_rgba8(), color_space)
+        Self::new(pixels, kind)
     }
 
     /// A 1×1 image of one RGBA8 value.
-    pub fn solid(rgba: [u8; 4], color_space: ColorSpace) -> Self {
+    pub fn solid(rgba: [u8; 4], kind: TextureKind) -> Self {
         Self {
-            pixels: RgbaImage::from_pixel(1, 1, image::Rgba(rgba)),
-            color_space,
+            pixels: Pixels::Rgba8(RgbaImage::from_pixel(1, 1, image::Rgba(rgba))),
+            kind,
         }
+    }
+
+    /// Decodes a PNG or JPEG file. Height maps keep one channel (red; see
+    /// [`Image::load_height`]) at their bit depth; everything else becomes 8-bit RGBA.
+    pub fn load(path: impl AsRef<Path>, kind: TextureKind) -> Result<Self, ImageError> {
+        let path = path.as_ref();
+        let decoded = decode_file(path)?;
+        Self::from_decoded(decoded, kind, Channel::Red, &path.display().to_string())
+    }
+
+    /// Decodes a height map from `channel` of a PNG or JPEG file, keeping 16 bits when the file
+    /// has them.
+    pub fn load_height(path: impl AsRef<Path>, channel: Channel) -> Result<Self, ImageError> {
+        let path = path.as_ref();
+        let decoded = decode_file(path)?;
+        Self::from_decoded(
+            decoded,
+            TextureKind::Height,
+            channel,
+            &path.display().to_string(),
+        )
+    }
+
+    /// Decodes an image held in memory (a glTF buffer view, say); `name` appears in errors.
+    pub fn decode(
+        bytes: &[u8],
+        name: &str,
+        kind: TextureKind,
+        channel: Channel,
+    ) -> Result<Self, ImageError> {
+        let decoded = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|error| load_error(name, error))?
+            .decode()
+            .map_err(|error| load_error(name, error))?;
+        Self::from_decoded(decoded, kind, channel, name)
+    }
+
+    /// Converts a decoded image for `kind`: heights keep `channel` at 8 or 16 bits.
+    pub fn from_decoded(
+        decoded: DynamicImage,
+        kind: TextureKind,
+        channel: Channel,
+        name: &str,
+    ) -> Result<Self, ImageError> {
+        if kind != TextureKind::Height {
+            return Self::new(decoded.to_rgba8(), kind);
+        }
+        if channel == Channel::Alpha && !decoded.color().has_alpha() {
+            return Err(ImageError::NoAlpha {
+                name: name.to_owned(),
+            });
+        }
+        let index = channel.index();
+        let sixteen_bit = decoded.color().bytes_per_pixel() / decoded.color().channel_count() >= 2;
+        let pixels = if sixteen_bit {
+            let rgba = decoded.to_rgba16();
+            Pixels::Gray16(ImageBuffer::from_fn(rgba.width(), rgba.height(), |x, y| {
+                Luma([rgba.get_pixel(x, y).0[index]])
+            }))
+        } else {
+            let rgba = decoded.to_rgba8();
+            Pixels::Gray8(GrayImage::from_fn(rgba.width(), rgba.height(), |x, y| {
+                Luma([rgba.get_pixel(x, y).0[index]])
+            }))
+        };
+        Self::from_pixels(pixels, kind)
     }
 
     /// Width and height in pixels.
@@ -118,122 +285,299 @@ impl Image {
         self.pixels.dimensions()
     }
 
-    /// The colour space.
-    pub fn color_space(&self) -> ColorSpace {
-        self.color_space
+    /// What the image holds.
+    pub fn kind(&self) -> TextureKind {
+        self.kind
     }
 
     /// The full-resolution pixels.
-    pub fn pixels(&self) -> &RgbaImage {
+    pub fn pixels(&self) -> &Pixels {
         &self.pixels
     }
 
+    /// The pixels as 8-bit RGBA (grey images repeat their value in R, G and B).
+    pub fn to_rgba8(&self) -> RgbaImage {
+        match &self.pixels {
+            Pixels::Rgba8(pixels) => pixels.clone(),
+            Pixels::Gray8(pixels) => DynamicImage::ImageLuma8(pixels.clone()).to_rgba8(),
+            Pixels::Gray16(pixels) => DynamicImage::ImageLuma16(pixels.clone()).to_rgba8(),
+        }
+    }
+
     /// Every mip level from full size down to 1×1, each half the size of the previous (rounded
-    /// down, at least 1). Each texel of a level is the average of the up to 2×2 texels it covers,
-    /// taken in linear light for sRGB images; odd sizes fold their last row or column in.
-    pub fn mip_chain(&self) -> Vec<RgbaImage> {
+    /// down, at least 1), filtered for the image's kind: each texel averages the up to 2×2 (3 at
+    /// the last row or column of an odd size) texels it covers, in linear light for colour,
+    /// renormalised for normals. Levels are computed from floats, so rounding does not pile up.
+    pub fn mip_chain(&self) -> Vec<Pixels> {
+        self.chain(Reduce::Average)
+    }
+
+    /// For height maps: the chain whose texels hold the *maximum* of the texels they cover, so
+    /// a ray that passes above a coarse texel passes above everything under it. `None` for other
+    /// kinds.
+    pub fn max_mip_chain(&self) -> Option<Vec<Pixels>> {
+        (self.kind == TextureKind::Height).then(|| self.chain(Reduce::Max))
+    }
+
+    /// This image, or its first mip level whose sides fit `limit` texels.
+    pub fn fitted_to(&self, limit: u32) -> Image {
+        let (width, height) = self.size();
+        if width <= limit && height <= limit {
+            return self.clone();
+        }
+        let pixels = self
+            .mip_chain()
+            .into_iter()
+            .find(|level| {
+                let (w, h) = level.dimensions();
+                w <= limit && h <= limit
+            })
+            // The chain ends at 1×1, which fits any limit ≥ 1.
+            .unwrap_or_else(|| self.pixels.clone());
+        Image {
+            pixels,
+            kind: self.kind,
+        }
+    }
+
+    fn chain(&self, reduce: Reduce) -> Vec<Pixels> {
+        let channels = self.pixels.channels();
+        let (mut width, mut height) = self.size();
+        let mut level = decode(self.kind, channels, &self.pixels.to_unit_floats());
         let mut levels = vec![self.pixels.clone()];
-        while let Some(previous) = levels.last() {
-            let (width, height) = previous.dimensions();
-            if width == 1 && height == 1 {
-                break;
+        while width > 1 || height > 1 {
+            let (next_width, next_height, next) =
+                reduce_level(width, height, channels, &level, reduce);
+            let mut next = next;
+            if self.kind == TextureKind::Normal && channels == 4 {
+                renormalize(&mut next);
             }
-            let next = downsample(previous, self.color_space);
-            levels.push(next);
+            levels.push(Pixels::from_unit_floats(
+                &self.pixels,
+                next_width,
+                next_height,
+                &encode(self.kind, channels, &next),
+            ));
+            (width, height, level) = (next_width, next_height, next);
         }
         levels
     }
 }
 
-fn downsample(source: &RgbaImage, color_space: ColorSpace) -> RgbaImage {
-    let (width, height) = source.dimensions();
-    let (next_width, next_height) = ((width / 2).max(1), (height / 2).max(1));
-    let decode = |value: u8| {
-        let unit = f32::from(value) / 255.0;
-        match color_space {
-            ColorSpace::Srgb => srgb_to_linear(unit),
-            ColorSpace::Linear => unit,
-        }
-    };
-    let encode = |value: f32| {
-        let unit = match color_space {
-            ColorSpace::Srgb => linear_to_srgb(value),
-            ColorSpace::Linear => value,
-        };
-        (unit * 255.0).round().clamp(0.0, 255.0) as u8
-    };
-    RgbaImage::from_fn(next_width, next_height, |x, y| {
-        // The source footprint of this texel: 2×2, or 3 wide/high at the last column/row of an
-        // odd-sized level so no source texel is dropped.
-        let x_end = if x + 1 == next_width {
-            width
+fn load_error(name: &str, error: impl std::fmt::Display) -> ImageError {
+    ImageError::Load {
+        path: name.into(),
+        reason: error.to_string(),
+    }
+}
+
+fn decode_file(path: &Path) -> Result<DynamicImage, ImageError> {
+    let name = path.display().to_string();
+    image::ImageReader::open(path)
+        .and_then(|reader| reader.with_guessed_format())
+        .map_err(|error| load_error(&name, error))?
+        .decode()
+        .map_err(|error| load_error(&name, error))
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Reduce {
+    Average,
+    Max,
+}
+
+/// Stored 0..=1 values to the space mips are filtered in: linear light for colour, −1..=1 vectors
+/// for normals (alpha stays as is).
+fn decode(kind: TextureKind, channels: usize, values: &[f32]) -> Vec<f32> {
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| match (kind, i % channels) {
+            (TextureKind::Color, 0..=2) => srgb_to_linear(*v),
+            (TextureKind::Normal, 0..=2) if channels == 4 => v * 2.0 - 1.0,
+            _ => *v,
+        })
+        .collect()
+}
+
+fn encode(kind: TextureKind, channels: usize, values: &[f32]) -> Vec<f32> {
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| match (kind, i % channels) {
+            (TextureKind::Color, 0..=2) => linear_to_srgb(*v),
+            (TextureKind::Normal, 0..=2) if channels == 4 => v * 0.5 + 0.5,
+            _ => *v,
+        })
+        .collect()
+}
+
+fn renormalize(rgba: &mut [f32]) {
+    for texel in rgba.chunks_exact_mut(4) {
+        let length = (texel[0] * texel[0] + texel[1] * texel[1] + texel[2] * texel[2]).sqrt();
+        if length > 1e-6 {
+            for component in &mut texel[..3] {
+                *component /= length;
+            }
         } else {
-            2 * x + 2
-        };
+            texel[..3].copy_from_slice(&[0.0, 0.0, 1.0]);
+        }
+    }
+}
+
+fn reduce_level(
+    width: u32,
+    height: u32,
+    channels: usize,
+    values: &[f32],
+    reduce: Reduce,
+) -> (u32, u32, Vec<f32>) {
+    let (next_width, next_height) = ((width / 2).max(1), (height / 2).max(1));
+    let mut next = Vec::with_capacity(next_width as usize * next_height as usize * channels);
+    for y in 0..next_height {
+        // The source footprint: 2×2, or 3 wide/high at the last column/row of an odd-sized
+        // level so no source texel is dropped.
         let y_end = if y + 1 == next_height {
             height
         } else {
             2 * y + 2
         };
-        let mut sum = [0.0_f32; 4];
-        let mut count = 0.0;
-        for sy in (2 * y).min(height - 1)..y_end {
-            for sx in (2 * x).min(width - 1)..x_end {
-                let texel = source.get_pixel(sx, sy).0;
-                for channel in 0..3 {
-                    sum[channel] += decode(texel[channel]);
+        for x in 0..next_width {
+            let x_end = if x + 1 == next_width {
+                width
+            } else {
+                2 * x + 2
+            };
+            for channel in 0..channels {
+                let mut accumulated = match reduce {
+                    Reduce::Average => 0.0,
+                    Reduce::Max => f32::MIN,
+                };
+                let mut count = 0.0;
+                for sy in (2 * y).min(height - 1)..y_end {
+                    for sx in (2 * x).min(width - 1)..x_end {
+                        let value = values
+                            [(sy as usize * width as usize + sx as usize) * channels + channel];
+                        accumulated = match reduce {
+                            Reduce::Average => accumulated + value,
+                            Reduce::Max => accumulated.max(value),
+                        };
+                        count += 1.0;
+                    }
                 }
-                sum[3] += f32::from(texel[3]) / 255.0;
-                count += 1.0;
+                next.push(match reduce {
+                    Reduce::Average => accumulated / count,
+                    Reduce::Max => accumulated,
+                });
             }
         }
-        let [r, g, b, a] = sum.map(|s| s / count);
-        image::Rgba([
-            encode(r),
-            encode(g),
-            encode(b),
-            (a * 255.0).round().clamp(0.0, 255.0) as u8,
-        ])
-    })
+    }
+    (next_width, next_height, next)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn rgba(image: &Pixels) -> &RgbaImage {
+        match image {
+            Pixels::Rgba8(pixels) => pixels,
+            other => panic!("expected RGBA8, got {other:?}"),
+        }
+    }
+
     #[test]
     fn mip_chain_reaches_one_by_one_for_any_size() {
-        let image = Image::new(RgbaImage::new(37, 5), ColorSpace::Linear).unwrap();
-        let sizes: Vec<_> = image.mip_chain().iter().map(|l| l.dimensions()).collect();
+        let image = Image::new(RgbaImage::new(37, 5), TextureKind::Data).unwrap();
+        let sizes: Vec<_> = image.mip_chain().iter().map(Pixels::dimensions).collect();
         assert_eq!(sizes, [(37, 5), (18, 2), (9, 1), (4, 1), (2, 1), (1, 1)]);
     }
 
     #[test]
-    fn srgb_mips_average_in_linear_light() {
+    fn colour_mips_average_in_linear_light() {
         // Black and white checker: the linear mean is 0.5, which is 188 in sRGB, not 128.
         let checker = RgbaImage::from_fn(2, 2, |x, y| {
             let v = if (x + y) % 2 == 0 { 255 } else { 0 };
             image::Rgba([v, v, v, 255])
         });
-        let srgb = Image::new(checker.clone(), ColorSpace::Srgb)
+        let color = Image::new(checker.clone(), TextureKind::Color)
             .unwrap()
             .mip_chain();
-        assert_eq!(srgb[1].get_pixel(0, 0).0, [188, 188, 188, 255]);
-        let linear = Image::new(checker, ColorSpace::Linear).unwrap().mip_chain();
-        assert_eq!(linear[1].get_pixel(0, 0).0, [128, 128, 128, 255]);
+        assert_eq!(rgba(&color[1]).get_pixel(0, 0).0, [188, 188, 188, 255]);
+        let data = Image::new(checker, TextureKind::Data).unwrap().mip_chain();
+        assert_eq!(rgba(&data[1]).get_pixel(0, 0).0, [128, 128, 128, 255]);
+    }
+
+    #[test]
+    fn normal_mips_stay_unit_length() {
+        // Two normals tilted ±45° about v: their plain average is short; the mip is renormalised.
+        let encode = |c: f32| ((c * 0.5 + 0.5) * 255.0).round() as u8;
+        let s = std::f32::consts::FRAC_1_SQRT_2;
+        let tilted = RgbaImage::from_fn(2, 1, |x, _| {
+            let x_component = if x == 0 { s } else { -s };
+            image::Rgba([encode(x_component), 128, encode(s), 200])
+        });
+        let chain = Image::new(tilted, TextureKind::Normal).unwrap().mip_chain();
+        let top = rgba(&chain[1]).get_pixel(0, 0).0;
+        assert_eq!(top[..3], [128, 128, 255], "straight up and unit length");
+        assert_eq!(
+            top[3], 200,
+            "alpha (a packed height) is averaged, not renormalised"
+        );
+    }
+
+    #[test]
+    fn sixteen_bit_heights_keep_their_precision_through_the_chain() {
+        let ramp = ImageBuffer::from_fn(4, 1, |x, _| Luma([1000 + x as u16]));
+        let chain = Image::from_pixels(Pixels::Gray16(ramp), TextureKind::Height)
+            .unwrap()
+            .mip_chain();
+        let Pixels::Gray16(level) = &chain[1] else {
+            panic!("16-bit heights must stay 16-bit");
+        };
+        // (1000 + 1001) / 2 = 1000.5 rounds to 1001; 8 bits could not tell these apart.
+        assert_eq!(level.as_raw(), &[1001, 1003]);
+    }
+
+    #[test]
+    fn the_max_chain_keeps_peaks() {
+        let spike =
+            GrayImage::from_fn(4, 4, |x, y| Luma([if (x, y) == (3, 0) { 250 } else { 10 }]));
+        let image = Image::from_pixels(Pixels::Gray8(spike), TextureKind::Height).unwrap();
+        let maxima = image.max_mip_chain().unwrap();
+        let Pixels::Gray8(top) = maxima.last().unwrap() else {
+            panic!("8-bit");
+        };
+        assert_eq!(top.get_pixel(0, 0).0, [250]);
+        let Pixels::Gray8(averaged) = image.mip_chain().pop().unwrap() else {
+            panic!("8-bit");
+        };
+        assert!(averaged.get_pixel(0, 0).0[0] < 30);
+        assert!(
+            Image::solid([0; 4], TextureKind::Color)
+                .max_mip_chain()
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn oversized_images_are_fitted_by_halving() {
+        let wide = Image::new(RgbaImage::new(1000, 10), TextureKind::Data).unwrap();
+        assert_eq!(wide.fitted_to(300).size(), (250, 2));
+        assert_eq!(wide.fitted_to(4096).size(), (1000, 10));
     }
 
     #[test]
     fn bad_sizes_are_errors() {
         assert!(matches!(
-            Image::from_rgba8(0, 4, Vec::new(), ColorSpace::Srgb),
+            Image::from_rgba8(0, 4, Vec::new(), TextureKind::Color),
             Err(ImageError::Empty {
                 width: 0,
                 height: 4
             })
         ));
         assert!(matches!(
-            Image::from_rgba8(2, 2, vec![0; 15], ColorSpace::Srgb),
+            Image::from_rgba8(2, 2, vec![0; 15], TextureKind::Color),
             Err(ImageError::WrongLength {
                 expected: 16,
                 found: 15,
@@ -241,15 +585,10 @@ mod tests {
             })
         ));
     }
-}
-
-#[cfg(test)]
-mod load_tests {
-    use super::*;
 
     #[test]
     fn loading_names_the_file_that_failed() {
-        let missing = Image::load("/nonexistent/height.png", ColorSpace::Linear).unwrap_err();
+        let missing = Image::load("/nonexistent/height.png", TextureKind::Height).unwrap_err();
         assert!(
             missing.to_string().contains("/nonexistent/height.png"),
             "{missing}"
@@ -258,13 +597,43 @@ mod load_tests {
         std::fs::create_dir_all(&dir).unwrap();
         let truncated = dir.join("truncated.png");
         std::fs::write(&truncated, &b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR"[..]).unwrap();
-        let error = Image::load(&truncated, ColorSpace::Linear).unwrap_err();
+        let error = Image::load(&truncated, TextureKind::Height).unwrap_err();
         assert!(error.to_string().contains("truncated.png"), "{error}");
-        let good = dir.join("good.png");
+        let empty = dir.join("empty.jpg");
+        std::fs::write(&empty, b"").unwrap();
+        assert!(
+            Image::load(&empty, TextureKind::Color)
+                .unwrap_err()
+                .to_string()
+                .contains("empty.jpg")
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn heights_load_from_the_chosen_channel_at_their_bit_depth() {
+        let dir = std::env::temp_dir().join(format!("pom-height-load-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let colour = dir.join("colour.png");
         RgbaImage::from_pixel(3, 2, image::Rgba([1, 2, 3, 4]))
-            .save(&good)
+            .save(&colour)
             .unwrap();
-        assert_eq!(Image::load(&good, ColorSpace::Srgb).unwrap().size(), (3, 2));
+        let green = Image::load_height(&colour, Channel::Green).unwrap();
+        assert_eq!(
+            green.pixels(),
+            &Pixels::Gray8(GrayImage::from_pixel(3, 2, Luma([2])))
+        );
+        let sixteen = dir.join("sixteen.png");
+        ImageBuffer::<Luma<u16>, _>::from_pixel(5, 3, Luma([40_000]))
+            .save(&sixteen)
+            .unwrap();
+        let deep = Image::load(&sixteen, TextureKind::Height).unwrap();
+        assert!(matches!(deep.pixels(), Pixels::Gray16(p) if p.get_pixel(4, 2).0 == [40_000]));
+        let no_alpha = dir.join("grey.png");
+        GrayImage::new(2, 2).save(&no_alpha).unwrap();
+        let error = Image::load_height(&no_alpha, Channel::Alpha).unwrap_err();
+        assert!(matches!(error, ImageError::NoAlpha { .. }), "{error}");
+        assert!(error.to_string().contains("grey.png"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -2,7 +2,7 @@
 
 use image::{Rgba, RgbaImage};
 
-use crate::{ColorSpace, Image, ImageError};
+use crate::{Image, ImageError, TextureKind};
 
 /// A normal map of a height field by a 3×3 Sobel filter (Tatarchuk 2006 §5.5), wrapping at the
 /// edges so tiling textures stay seamless.
@@ -54,7 +54,7 @@ pub fn normal_map_from_heights(
         let encode = |c: f32| ((c * 0.5 + 0.5) * 255.0).round().clamp(0.0, 255.0) as u8;
         Rgba([encode(normal.x), encode(normal.y), encode(normal.z), 255])
     });
-    Image::new(pixels, ColorSpace::Linear)
+    Image::new(pixels, TextureKind::Normal)
 }
 
 #[cfg(test)]
@@ -70,13 +70,13 @@ mod tests {
             .collect();
         let map = normal_map_from_heights(&heights, width, height, 1.0).unwrap();
         // Slope 1 per UV unit at scale 1: the normal is (−1, 0, 1)/√2.
-        assert_eq!(map.pixels().get_pixel(3, 1).0, [37, 128, 218, 255]);
+        assert_eq!(map.to_rgba8().get_pixel(3, 1).0, [37, 128, 218, 255]);
     }
 
     #[test]
     fn flat_fields_give_flat_normals_and_bad_sizes_are_errors() {
         let map = normal_map_from_heights(&[0.5; 6], 3, 2, 10.0).unwrap();
-        assert!(map.pixels().pixels().all(|p| p.0 == [128, 128, 255, 255]));
+        assert!(map.to_rgba8().pixels().all(|p| p.0 == [128, 128, 255, 255]));
         assert!(normal_map_from_heights(&[0.0; 5], 3, 2, 1.0).is_err());
         assert!(normal_map_from_heights(&[], 0, 2, 1.0).is_err());
     }

@@ -3,8 +3,8 @@
 use anyhow::{Context, Result};
 use glam::{Quat, Vec3};
 use pom::{
-    App, Assets, Camera, Color, ColorSpace, DirectionalLight, Image, LitMaterial, Mesh, PointLight,
-    Transform,
+    App, Assets, Camera, Color, DirectionalLight, Image, LitMaterial, Mesh, PointLight,
+    TextureKind, Transform,
 };
 
 const BRICK_TEXELS: u32 = 256;
@@ -52,7 +52,7 @@ fn brick_textures() -> Result<(Image, Image)> {
         }
     }
     let normal = pom::normal_map_from_heights(&heights, size, size, 0.02)?;
-    let albedo = Image::from_rgba8(size, size, albedo, ColorSpace::Srgb)?;
+    let albedo = Image::from_rgba8(size, size, albedo, TextureKind::Color)?;
     Ok((albedo, normal))
 }
 

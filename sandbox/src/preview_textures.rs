@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use pom::{
-    Assets, ColorSpace, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, patterns,
+    Assets, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, TextureKind, patterns,
 };
 
 /// The stand-in height map: running-bond bricks, texels per side.
@@ -39,8 +39,8 @@ pub struct PreviewTextures {
     pub albedo: Image,
 }
 
-fn load(path: &Path, color_space: ColorSpace, option: &str) -> Result<Image> {
-    Image::load(path, color_space).with_context(|| format!("reading {option}"))
+fn load(path: &Path, kind: TextureKind, option: &str) -> Result<Image> {
+    Image::load(path, kind).with_context(|| format!("reading {option}"))
 }
 
 impl PreviewTextures {
@@ -49,21 +49,21 @@ impl PreviewTextures {
     /// parallax.
     pub fn load(files: &TextureFiles, height_scale: f32) -> Result<Self> {
         let height = match files.height {
-            Some(path) => load(path, ColorSpace::Linear, "--height")?,
+            Some(path) => load(path, TextureKind::Height, "--height")?,
             None => {
                 let (columns, rows) = BRICKS_PER_TILE;
                 patterns::bricks(BRICKS_TEXELS, columns, rows).to_image()
             }
         };
         let normal = match files.normal {
-            Some(path) => load(path, ColorSpace::Linear, "--normal")?,
+            Some(path) => load(path, TextureKind::Normal, "--normal")?,
             // `from_image` flips a depth map into heights, so the Sobel slopes point the way
             // the shader's depth convention will displace the surface.
             None => HeightField::from_image(&height, 0, files.depth_map).normal_map(height_scale),
         };
         let albedo = match files.albedo {
-            Some(path) => load(path, ColorSpace::Srgb, "--albedo")?,
-            None => Image::solid(NEUTRAL_GREY, ColorSpace::Srgb),
+            Some(path) => load(path, TextureKind::Color, "--albedo")?,
+            None => Image::solid(NEUTRAL_GREY, TextureKind::Color),
         };
         Ok(Self {
             height,
@@ -103,10 +103,10 @@ mod tests {
         );
         assert_eq!(
             textures.albedo,
-            Image::solid([180, 180, 180, 255], ColorSpace::Srgb)
+            Image::solid([180, 180, 180, 255], TextureKind::Color)
         );
-        assert_eq!(textures.height.color_space(), ColorSpace::Linear);
-        assert_eq!(textures.normal.color_space(), ColorSpace::Linear);
+        assert_eq!(textures.height.kind(), TextureKind::Height);
+        assert_eq!(textures.normal.kind(), TextureKind::Normal);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Procedural textures for tests: no files needed, same pixels everywhere.
 
 use image::{Rgba, RgbaImage};
-use pom::{ColorSpace, Image};
+use pom::{Image, TextureKind};
 
 /// A height field of round bumps on a `cells`×`cells` grid, 0 (floor) to 1 (bump top).
 pub fn bump_height(u: f32, v: f32, cells: f32) -> f32 {
@@ -39,5 +39,5 @@ pub fn checker_albedo(size: u32, cells: u32, a: [u8; 3], b: [u8; 3]) -> Image {
         };
         Rgba([r, g, bl, 255])
     });
-    Image::new(pixels, ColorSpace::Srgb).expect("size is not zero")
+    Image::new(pixels, TextureKind::Color).expect("size is not zero")
 }

@@ -2,8 +2,8 @@
 
 use pom::preview::{PreviewView, spawn_preview};
 use pom::{
-    App, Assets, ColorSpace, HeightField, HeightSource, Image, ParallaxOcclusionMaterial,
-    PomPlugin, RenderPlugin, TargetFormat,
+    App, Assets, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, PomPlugin,
+    RenderPlugin, TargetFormat, TextureKind,
 };
 
 use crate::HarnessError;
@@ -26,7 +26,7 @@ impl HeightMaterial {
             .expect("render plugin added");
         let height = images.add(self.field.to_image());
         let normal = images.add(self.field.normal_map(self.height_scale));
-        let albedo = images.add(Image::solid([200, 190, 170, 255], ColorSpace::Srgb));
+        let albedo = images.add(Image::solid([200, 190, 170, 255], TextureKind::Color));
         ParallaxOcclusionMaterial {
             base_color_texture: Some(albedo),
             normal_map: Some(normal),

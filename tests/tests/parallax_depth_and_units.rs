@@ -202,12 +202,15 @@ fn height_in_the_normal_maps_alpha_or_as_a_depth_map_gives_the_same_surface() {
     });
     let packed = uv_view_of(|app| {
         // McGuire's packing: the normal map's alpha holds the height.
-        let mut normal = field.normal_map(HEIGHT_SCALE).pixels().clone();
-        for (pixel, height) in normal.pixels_mut().zip(field.to_image().pixels().pixels()) {
+        let mut normal = field.normal_map(HEIGHT_SCALE).to_rgba8();
+        for (pixel, height) in normal
+            .pixels_mut()
+            .zip(field.to_image().to_rgba8().pixels())
+        {
             pixel.0[3] = height.0[0];
         }
         let images = app.resources.get_mut::<Assets<pom::Image>>().unwrap();
-        let normal = pom::Image::new(normal, pom::ColorSpace::Linear).unwrap();
+        let normal = pom::Image::new(normal, pom::TextureKind::Normal).unwrap();
         ParallaxOcclusionMaterial {
             normal_map: Some(images.add(normal)),
             height_map: Some(HeightSource::NormalMapAlpha),
@@ -216,14 +219,14 @@ fn height_in_the_normal_maps_alpha_or_as_a_depth_map_gives_the_same_surface() {
     });
     let depth = uv_view_of(|app| {
         // The same relief stored as a depth map: white is deepest.
-        let mut inverted = field.to_image().pixels().clone();
+        let mut inverted = field.to_image().to_rgba8();
         for pixel in inverted.pixels_mut() {
             for channel in &mut pixel.0[..3] {
                 *channel = 255 - *channel;
             }
         }
         let images = app.resources.get_mut::<Assets<pom::Image>>().unwrap();
-        let inverted = pom::Image::new(inverted, pom::ColorSpace::Linear).unwrap();
+        let inverted = pom::Image::new(inverted, pom::TextureKind::Height).unwrap();
         ParallaxOcclusionMaterial {
             height_map: Some(HeightSource::Texture(images.add(inverted))),
             height_convention: HeightConvention::Depth,

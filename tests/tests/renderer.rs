@@ -4,7 +4,7 @@
 use glam::Vec3;
 use pom::render::Renderer;
 use pom::{
-    Assets, Camera, Color, ColorSpace, DirectionalLight, Image, LitMaterial, Mesh, Transform,
+    Assets, Camera, Color, DirectionalLight, Image, LitMaterial, Mesh, TextureKind, Transform,
 };
 use pom_tests::{headless_app, render_and_capture, run_frames};
 
@@ -47,7 +47,7 @@ fn only_what_changed_is_uploaded() {
         .resources
         .get_mut::<Assets<Image>>()
         .unwrap()
-        .add(Image::solid([200, 10, 10, 255], ColorSpace::Srgb));
+        .add(Image::solid([200, 10, 10, 255], TextureKind::Color));
     app.world.spawn(top_down_camera());
     let moving = app.world.spawn((
         mesh.clone(),
@@ -190,7 +190,7 @@ fn centre_brightness(normal_rgb: [u8; 3], light_from: Vec3) -> u8 {
         .resources
         .get_mut::<Assets<Image>>()
         .unwrap()
-        .add(Image::solid([r, g, b, 255], ColorSpace::Linear));
+        .add(Image::solid([r, g, b, 255], TextureKind::Normal));
     app.world.spawn(top_down_camera());
     let towards_light = (light_from + Vec3::Y).normalize();
     app.world.spawn((
@@ -217,4 +217,90 @@ fn normal_maps_follow_the_opengl_convention() {
     // Green tilts it up the image, which is −v (−Z on the plane, since v runs along +Z).
     let up_image = [128, 191, 238];
     assert!(centre_brightness(up_image, Vec3::NEG_Z) > centre_brightness(up_image, Vec3::Z) + 40);
+}
+
+#[test]
+fn an_image_over_the_device_limit_is_halved_until_it_fits() {
+    let mut app = headless_app(16, 16).unwrap();
+    let limit = app
+        .resources
+        .get::<pom::GpuContext>()
+        .unwrap()
+        .device
+        .limits()
+        .max_texture_dimension_2d;
+    let wide = Image::new(image::RgbaImage::new(limit + 10, 2), TextureKind::Color).unwrap();
+    let texture = app.resources.get_mut::<Assets<Image>>().unwrap().add(wide);
+    let id = texture.id();
+    let plane = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::plane(2.0));
+    app.world.spawn(top_down_camera());
+    app.world.spawn((
+        plane,
+        LitMaterial {
+            base_color_texture: Some(texture),
+            ..LitMaterial::default()
+        },
+        Transform::IDENTITY,
+    ));
+    run_frames(&mut app, 1).unwrap();
+    let renderer = app.resources.get::<Renderer>().unwrap();
+    let uploaded = &renderer.assets.image(id).unwrap().texture;
+    assert_eq!((uploaded.width(), uploaded.height()), ((limit + 10) / 2, 1));
+}
+
+#[test]
+fn sixteen_bit_heights_stay_sixteen_bit_on_the_gpu() {
+    let mut app = headless_app(16, 16).unwrap();
+    app.add_plugin(pom::PomPlugin);
+    app.finish().unwrap();
+    let field = pom::patterns::cones(32, 2.0);
+    let images = app.resources.get_mut::<Assets<Image>>().unwrap();
+    let height = images.add(field.to_image_16());
+    let id = height.id();
+    let plane = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::plane(2.0));
+    app.world.spawn(top_down_camera());
+    app.world.spawn((
+        plane,
+        pom::ParallaxOcclusionMaterial {
+            height_map: Some(pom::HeightSource::Texture(height)),
+            ..pom::ParallaxOcclusionMaterial::default()
+        },
+        Transform::IDENTITY,
+    ));
+    run_frames(&mut app, 1).unwrap();
+    let gpu = app.resources.get::<pom::GpuContext>().unwrap();
+    let format = app
+        .resources
+        .get::<Renderer>()
+        .unwrap()
+        .assets
+        .image(id)
+        .unwrap()
+        .texture
+        .format();
+    let expected = if gpu
+        .device
+        .features()
+        .contains(pom::wgpu::Features::TEXTURE_FORMAT_16BIT_NORM)
+    {
+        pom::wgpu::TextureFormat::R16Unorm
+    } else if gpu
+        .device
+        .features()
+        .contains(pom::wgpu::Features::FLOAT32_FILTERABLE)
+    {
+        pom::wgpu::TextureFormat::R32Float
+    } else {
+        pom::wgpu::TextureFormat::R16Float
+    };
+    eprintln!("16-bit height uploaded as {format:?}");
+    assert_eq!(format, expected);
 }

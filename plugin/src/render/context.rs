@@ -68,10 +68,13 @@ impl GpuContext {
                 reason: error.to_string(),
             })?;
         let info = adapter.get_info();
+        // Optional features the renderer uses when present: 16-bit height maps stay 16-bit
+        // (R16Unorm) or exact (filterable R32Float).
+        let wanted = wgpu::Features::TEXTURE_FORMAT_16BIT_NORM | wgpu::Features::FLOAT32_FILTERABLE;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("pom device"),
-                required_features: wgpu::Features::empty(),
+                required_features: adapter.features() & wanted,
                 // Ask for what the adapter has, so large textures work where the hardware allows.
                 required_limits: adapter.limits(),
                 ..Default::default()

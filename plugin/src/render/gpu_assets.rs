@@ -6,7 +6,7 @@ use wgpu::util::DeviceExt;
 
 use super::GpuContext;
 use super::gpu_types::Vertex;
-use crate::{AssetId, Assets, ColorSpace, Image, Mesh};
+use crate::{AssetId, Assets, Image, Mesh, Pixels, TextureKind};
 
 /// A mesh's vertex and index buffers.
 #[derive(Debug)]
@@ -182,7 +182,7 @@ impl GpuAssets {
     }
 
     /// Uploads `id` if it is new or changed since its last upload; returns whether it did.
-    /// An image larger than the device allows is logged once per version and not used.
+    /// An image larger than the device allows is halved until it fits, with a logged warning.
     pub fn prepare_image(
         &mut self,
         gpu: &GpuContext,
@@ -204,17 +204,22 @@ impl GpuAssets {
         };
         let limit = gpu.device.limits().max_texture_dimension_2d;
         let (width, height) = image.size();
-        let cached = if width > limit || height > limit {
-            log::error!(
-                "image {id:?} is {width}×{height}, over the device's limit of {limit} texels per side: not used"
+        let fitted;
+        let image = if width > limit || height > limit {
+            fitted = image.fitted_to(limit);
+            let (new_width, new_height) = fitted.size();
+            log::warn!(
+                "image {id:?} is {width}×{height}, over the device's limit of {limit} texels per \
+                 side: uploaded at {new_width}×{new_height}"
             );
-            Cached::Rejected { version }
+            &fitted
         } else {
-            self.next_upload_serial += 1;
-            Cached::Ready {
-                version,
-                gpu: upload_image(gpu, image, id, self.next_upload_serial),
-            }
+            image
+        };
+        self.next_upload_serial += 1;
+        let cached = Cached::Ready {
+            version,
+            gpu: upload_image(gpu, image, id, self.next_upload_serial),
         };
         self.images.insert(id, cached);
         true
@@ -284,6 +289,82 @@ fn upload_mesh(
     })
 }
 
+/// How a level of an image becomes texels of its GPU format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Encoding {
+    /// The stored bytes as they are.
+    Raw,
+    /// 16-bit values widened to 32-bit floats.
+    Float32,
+    /// 16-bit values narrowed to half floats.
+    Float16,
+}
+
+/// The texture format an image is uploaded in, and how its bytes are converted. 16-bit heights
+/// stay 16-bit (`R16Unorm`) where the device has the feature, else become floats.
+fn gpu_format(gpu: &GpuContext, image: &Image) -> (wgpu::TextureFormat, Encoding) {
+    let features = gpu.device.features();
+    match (image.pixels(), image.kind()) {
+        (Pixels::Rgba8(_), TextureKind::Color) => {
+            (wgpu::TextureFormat::Rgba8UnormSrgb, Encoding::Raw)
+        }
+        (Pixels::Rgba8(_), _) => (wgpu::TextureFormat::Rgba8Unorm, Encoding::Raw),
+        (Pixels::Gray8(_), _) => (wgpu::TextureFormat::R8Unorm, Encoding::Raw),
+        (Pixels::Gray16(_), _) if features.contains(wgpu::Features::TEXTURE_FORMAT_16BIT_NORM) => {
+            (wgpu::TextureFormat::R16Unorm, Encoding::Raw)
+        }
+        (Pixels::Gray16(_), _) if features.contains(wgpu::Features::FLOAT32_FILTERABLE) => {
+            (wgpu::TextureFormat::R32Float, Encoding::Float32)
+        }
+        (Pixels::Gray16(_), _) => (wgpu::TextureFormat::R16Float, Encoding::Float16),
+    }
+}
+
+/// The nearest half-float of a value in 0..=1 (enough for normalised heights).
+fn f16_bits(value: f32) -> u16 {
+    let value = value.clamp(0.0, 1.0);
+    if value < 6.103_515_6e-5 {
+        // Subnormal halves: steps of 2^-24.
+        return (value * 16_777_216.0).round() as u16;
+    }
+    let bits = value.to_bits();
+    let exponent = ((bits >> 23) & 0xff) as i32 - 127 + 15;
+    let mantissa = bits & 0x7f_ffff;
+    // Round to nearest on the 13 dropped mantissa bits; a carry correctly bumps the exponent.
+    let half = ((exponent as u32) << 10) | (mantissa >> 13);
+    (half + ((mantissa >> 12) & 1)) as u16
+}
+
+fn texel_bytes(pixels: &Pixels, encoding: Encoding) -> (Vec<u8>, u32) {
+    match encoding {
+        Encoding::Raw => (
+            pixels.bytes(),
+            pixels.channels() as u32
+                * if matches!(pixels, Pixels::Gray16(_)) {
+                    2
+                } else {
+                    1
+                },
+        ),
+        Encoding::Float32 => (
+            pixels
+                .to_unit_floats()
+                .iter()
+                .flat_map(|v| v.to_le_bytes())
+                .collect(),
+            4,
+        ),
+        Encoding::Float16 => (
+            pixels
+                .to_unit_floats()
+                .iter()
+                .flat_map(|v| f16_bits(*v).to_le_bytes())
+                .collect(),
+            2,
+        ),
+    }
+}
+
 fn upload_image(
     gpu: &GpuContext,
     image: &Image,
@@ -292,10 +373,7 @@ fn upload_image(
 ) -> GpuImage {
     let levels = image.mip_chain();
     let (width, height) = image.size();
-    let format = match image.color_space() {
-        ColorSpace::Srgb => wgpu::TextureFormat::Rgba8UnormSrgb,
-        ColorSpace::Linear => wgpu::TextureFormat::Rgba8Unorm,
-    };
+    let (format, encoding) = gpu_format(gpu, image);
     let label = format!("{id:?}");
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(&label),
@@ -313,6 +391,7 @@ fn upload_image(
     });
     for (level, pixels) in levels.iter().enumerate() {
         let (level_width, level_height) = pixels.dimensions();
+        let (bytes, bytes_per_texel) = texel_bytes(pixels, encoding);
         gpu.queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
@@ -320,10 +399,10 @@ fn upload_image(
                 origin: wgpu::Origin3d::ZERO,
                 aspect: wgpu::TextureAspect::All,
             },
-            pixels.as_raw(),
+            &bytes,
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
-                bytes_per_row: Some(4 * level_width),
+                bytes_per_row: Some(bytes_per_texel * level_width),
                 rows_per_image: Some(level_height),
             },
             wgpu::Extent3d {
@@ -341,5 +420,20 @@ fn upload_image(
         texture,
         view,
         upload_serial,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::f16_bits;
+
+    #[test]
+    fn half_floats_round_to_nearest() {
+        assert_eq!(f16_bits(0.0), 0);
+        assert_eq!(f16_bits(1.0), 0x3c00);
+        assert_eq!(f16_bits(0.5), 0x3800);
+        assert_eq!(f16_bits(0.333_333_34), 0x3555);
+        assert_eq!(f16_bits(2.0), 0x3c00, "clamped to 1");
+        assert_eq!(f16_bits(1e-5), 168, "subnormal");
     }
 }
