@@ -2,6 +2,7 @@
 //! error scopes, reference-image comparison with NVIDIA FLIP, and procedural test textures.
 
 pub mod fixtures;
+pub mod gltf_fixture;
 mod golden;
 pub mod pom_scene;
 
@@ -76,6 +77,8 @@ pub fn in_error_scopes<T>(
     during: &'static str,
     f: impl FnOnce(&mut App) -> Result<T, HarnessError>,
 ) -> Result<T, HarnessError> {
+    // The device exists once the plugins have finished.
+    app.finish()?;
     let device = gpu(app).device.clone();
     let out_of_memory = device.push_error_scope(pom::wgpu::ErrorFilter::OutOfMemory);
     let validation = device.push_error_scope(pom::wgpu::ErrorFilter::Validation);

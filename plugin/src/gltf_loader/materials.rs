@@ -1,0 +1,344 @@
+//! glTF materials and textures to [`LitMaterial`] and [`ParallaxOcclusionMaterial`].
+
+use std::collections::HashMap;
+
+use glam::{Affine2, Vec2};
+use image::DynamicImage;
+
+use super::extras::{PomExtras, choose};
+use super::{GltfError, Source, describe};
+use crate::{
+    Assets, Channel, Color, Handle, HeightConvention, HeightSource, HeightUnits, Image,
+    LightingModel, LitMaterial, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, TextureKind,
+};
+
+/// A material as loaded: one of the two kinds the renderer draws, plus the texture-coordinate
+/// transform (`KHR_texture_transform`) to bake into the meshes that use it.
+#[derive(Clone, Debug)]
+pub(super) struct LoadedMaterial {
+    pub kind: MaterialComponent,
+    pub uv_transform: Affine2,
+}
+
+#[derive(Clone, Debug)]
+pub(super) enum MaterialComponent {
+    Lit(LitMaterial),
+    Parallax(ParallaxOcclusionMaterial),
+}
+
+/// Materials and decoded images by index, so each is loaded once.
+#[derive(Default)]
+pub(super) struct MaterialCache {
+    materials: HashMap<Option<usize>, LoadedMaterial>,
+    images: HashMap<(usize, TextureKind, Channel), Handle<Image>>,
+}
+
+fn to_dynamic(data: gltf::image::Data) -> Option<DynamicImage> {
+    use gltf::image::Format;
+    let (width, height) = (data.width, data.height);
+    let sixteen = |bytes: &[u8]| -> Vec<u16> {
+        bytes
+            .chunks_exact(2)
+            .map(|pair| u16::from_ne_bytes([pair[0], pair[1]]))
+            .collect()
+    };
+    let float = |bytes: &[u8]| -> Vec<f32> {
+        bytes
+            .chunks_exact(4)
+            .map(|quad| f32::from_ne_bytes([quad[0], quad[1], quad[2], quad[3]]))
+            .collect()
+    };
+    Some(match data.format {
+        Format::R8 => {
+            DynamicImage::ImageLuma8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        }
+        Format::R8G8 => {
+            DynamicImage::ImageLumaA8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        }
+        Format::R8G8B8 => {
+            DynamicImage::ImageRgb8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        }
+        Format::R8G8B8A8 => {
+            DynamicImage::ImageRgba8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        }
+        Format::R16 => DynamicImage::ImageLuma16(image::ImageBuffer::from_raw(
+            width,
+            height,
+            sixteen(&data.pixels),
+        )?),
+        Format::R16G16 => DynamicImage::ImageLumaA16(image::ImageBuffer::from_raw(
+            width,
+            height,
+            sixteen(&data.pixels),
+        )?),
+        Format::R16G16B16 => DynamicImage::ImageRgb16(image::ImageBuffer::from_raw(
+            width,
+            height,
+            sixteen(&data.pixels),
+        )?),
+        Format::R16G16B16A16 => DynamicImage::ImageRgba16(image::ImageBuffer::from_raw(
+            width,
+            height,
+            sixteen(&data.pixels),
+        )?),
+        Format::R32G32B32FLOAT => DynamicImage::ImageRgb32F(image::ImageBuffer::from_raw(
+            width,
+            height,
+            float(&data.pixels),
+        )?),
+        Format::R32G32B32A32FLOAT => DynamicImage::ImageRgba32F(image::ImageBuffer::from_raw(
+            width,
+            height,
+            float(&data.pixels),
+        )?),
+    })
+}
+
+impl MaterialCache {
+    /// The image of `texture`, decoded for `kind` (and `channel` for heights), added to `images`.
+    fn texture(
+        &mut self,
+        source: &Source,
+        images: &mut Assets<Image>,
+        texture: gltf::Texture<'_>,
+        kind: TextureKind,
+        channel: Channel,
+    ) -> Result<Handle<Image>, GltfError> {
+        let image = texture.source();
+        let key = (image.index(), kind, channel);
+        if let Some(handle) = self.images.get(&key) {
+            return Ok(handle.clone());
+        }
+        let name = describe(image.name(), image.index());
+        let image_error = |reason: String| GltfError::Image {
+            path: source.path.clone(),
+            image: name.clone(),
+            reason,
+        };
+        let data =
+            gltf::image::Data::from_source(image.source(), Some(&source.base), &source.buffers)
+                .map_err(|error| image_error(error.to_string()))?;
+        let decoded = to_dynamic(data)
+            .ok_or_else(|| image_error("pixel data is shorter than its size".into()))?;
+        let loaded = Image::from_decoded(decoded, kind, channel, &name)
+            .map_err(|error| image_error(error.to_string()))?;
+        let handle = images.add(loaded);
+        self.images.insert(key, handle.clone());
+        Ok(handle)
+    }
+
+    /// The material of a primitive (`None` = glTF's default material).
+    pub fn material(
+        &mut self,
+        source: &Source,
+        images: &mut Assets<Image>,
+        material: gltf::Material<'_>,
+        warnings: &mut Vec<String>,
+    ) -> Result<LoadedMaterial, GltfError> {
+        let key = material.index();
+        if let Some(loaded) = self.materials.get(&key) {
+            return Ok(loaded.clone());
+        }
+        let name = describe(material.name(), key.unwrap_or(usize::MAX));
+        let material_error = |reason: String| GltfError::Material {
+            path: source.path.clone(),
+            material: name.clone(),
+            reason,
+        };
+        let pbr = material.pbr_metallic_roughness();
+        let [r, g, b, a] = pbr.base_color_factor();
+        let base_color = Color { r, g, b, a };
+        let base_info = pbr.base_color_texture();
+        let base_color_texture = match &base_info {
+            Some(info) => Some(self.texture(
+                source,
+                images,
+                info.texture(),
+                TextureKind::Color,
+                Channel::Red,
+            )?),
+            None => None,
+        };
+        let normal_info = material.normal_texture();
+        let (normal_map, normal_strength) = match &normal_info {
+            Some(info) => (
+                Some(self.texture(
+                    source,
+                    images,
+                    info.texture(),
+                    TextureKind::Normal,
+                    Channel::Red,
+                )?),
+                info.scale(),
+            ),
+            None => (None, 1.0),
+        };
+
+        // The renderer samples every map of a material with the same coordinates, so the base
+        // colour texture's transform (T · R · S, as the extension defines it) applies to all.
+        let uv_transform = base_info
+            .as_ref()
+            .and_then(|info| info.texture_transform())
+            .map_or(Affine2::IDENTITY, |t| {
+                Affine2::from_scale_angle_translation(
+                    Vec2::from(t.scale()),
+                    t.rotation(),
+                    Vec2::from(t.offset()),
+                )
+            });
+
+        let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
+            .map_err(&material_error)?;
+        let roughness = pbr.roughness_factor();
+        let kind = match extras {
+            None => MaterialComponent::Lit(LitMaterial {
+                base_color,
+                base_color_texture,
+                normal_map,
+                normal_strength,
+                specular_strength: 0.5 * (1.0 - roughness),
+                // Blinn-Phong exponent matching a GGX lobe of this roughness.
+                shininess: (2.0 / (roughness.powi(4)).max(1e-4) - 2.0).clamp(1.0, 512.0),
+            }),
+            Some(pom) => {
+                let height_map = match (pom.height_in_normal_alpha, pom.height_texture) {
+                    (true, _) => {
+                        if normal_map.is_none() {
+                            return Err(material_error(
+                                "extras.pom.height_in_normal_alpha needs a normal texture".into(),
+                            ));
+                        }
+                        HeightSource::NormalMapAlpha
+                    }
+                    (false, Some(index)) => {
+                        let texture = source.document.textures().nth(index).ok_or_else(|| {
+                            material_error(format!(
+                                "extras.pom.height_texture is {index} but the file has {} textures",
+                                source.document.textures().len()
+                            ))
+                        })?;
+                        let channel = choose(
+                            "height_channel",
+                            &pom.height_channel,
+                            &[
+                                ("r", Channel::Red),
+                                ("g", Channel::Green),
+                                ("b", Channel::Blue),
+                                ("a", Channel::Alpha),
+                            ],
+                            Channel::Red,
+                        )
+                        .map_err(&material_error)?;
+                        HeightSource::Texture(self.texture(
+                            source,
+                            images,
+                            texture,
+                            TextureKind::Height,
+                            channel,
+                        )?)
+                    }
+                    (false, None) => {
+                        return Err(material_error(
+                            "extras.pom needs height_texture (or height_in_normal_alpha: true)"
+                                .into(),
+                        ));
+                    }
+                };
+                let defaults = ParallaxOcclusionMaterial::default();
+                let method = match choose(
+                    "method",
+                    &pom.method,
+                    &[
+                        ("normal", ParallaxMethod::NormalMapping),
+                        ("offset", ParallaxMethod::ParallaxOffset),
+                        ("steep", ParallaxMethod::Steep),
+                        ("pom", ParallaxMethod::Occlusion),
+                        ("relief", ParallaxMethod::Relief { binary_steps: 6 }),
+                    ],
+                    defaults.method,
+                )
+                .map_err(&material_error)?
+                {
+                    ParallaxMethod::Relief { binary_steps } => ParallaxMethod::Relief {
+                        binary_steps: pom.relief_binary_steps.unwrap_or(binary_steps),
+                    },
+                    other => other,
+                };
+                let material = ParallaxOcclusionMaterial {
+                    base_color,
+                    base_color_texture,
+                    normal_map,
+                    height_map: Some(height_map),
+                    height_convention: choose(
+                        "height_convention",
+                        &pom.height_convention,
+                        &[
+                            ("height", HeightConvention::Height),
+                            ("depth", HeightConvention::Depth),
+                        ],
+                        defaults.height_convention,
+                    )
+                    .map_err(&material_error)?,
+                    height_scale: pom.height_scale.unwrap_or(defaults.height_scale),
+                    height_units: choose(
+                        "height_units",
+                        &pom.height_units,
+                        &[
+                            ("texture", HeightUnits::Texture),
+                            ("world", HeightUnits::World),
+                        ],
+                        defaults.height_units,
+                    )
+                    .map_err(&material_error)?,
+                    min_samples: pom.min_samples.unwrap_or(defaults.min_samples),
+                    max_samples: pom.max_samples.unwrap_or(defaults.max_samples),
+                    lod_threshold: pom.lod_threshold.unwrap_or(defaults.lod_threshold),
+                    lod_band: pom.lod_band.unwrap_or(defaults.lod_band),
+                    shadows: choose(
+                        "shadows",
+                        &pom.shadows,
+                        &[
+                            ("off", ShadowMode::Off),
+                            ("hard", ShadowMode::Hard),
+                            ("soft", ShadowMode::Soft),
+                        ],
+                        defaults.shadows,
+                    )
+                    .map_err(&material_error)?,
+                    shadow_softening: pom.shadow_softening.unwrap_or(defaults.shadow_softening),
+                    method,
+                    depth_offset: pom.depth_offset.unwrap_or(defaults.depth_offset),
+                    lighting: choose(
+                        "lighting",
+                        &pom.lighting,
+                        &[
+                            ("phong", LightingModel::Phong),
+                            ("blinn-phong", LightingModel::BlinnPhong),
+                            ("cook-torrance", LightingModel::CookTorrance),
+                        ],
+                        LightingModel::CookTorrance,
+                    )
+                    .map_err(&material_error)?,
+                    specular_strength: pom.specular_strength.unwrap_or(defaults.specular_strength),
+                    shininess: pom.shininess.unwrap_or(defaults.shininess),
+                    roughness,
+                    metallic: pbr.metallic_factor(),
+                    normal_strength,
+                    debug_view: defaults.debug_view,
+                };
+                material
+                    .validate()
+                    .map_err(|problem| material_error(format!("extras.pom: {problem}")))?;
+                MaterialComponent::Parallax(material)
+            }
+        };
+        if material.alpha_mode() == gltf::material::AlphaMode::Blend {
+            warnings.push(format!(
+                "material {name}: alpha blending is not supported; drawn opaque"
+            ));
+        }
+        let loaded = LoadedMaterial { kind, uv_transform };
+        self.materials.insert(key, loaded.clone());
+        Ok(loaded)
+    }
+}

@@ -1,0 +1,307 @@
+//! Loading glTF 2.0 scenes (`.gltf` with its files, or `.glb`) into entities.
+//!
+//! Nodes become entities with [`Transform`] and [`Parent`]; meshes, cameras,
+//! `KHR_lights_punctual` lights and materials become components. A material whose `extras` hold
+//! a `pom` object (see [`PomExtras`]) becomes a [`crate::ParallaxOcclusionMaterial`]; any other
+//! becomes a [`crate::LitMaterial`] (normal mapping). `KHR_texture_transform` is baked into the
+//! texture coordinates. Features the renderer does not have (skins, morph targets, points and
+//! lines, unknown required extensions) are skipped with one warning each.
+
+mod extras;
+mod materials;
+mod nodes;
+mod primitives;
+
+pub use extras::PomExtras;
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use hecs::Entity;
+
+use crate::App;
+
+/// What a loaded scene added to the world.
+#[derive(Debug, Default)]
+pub struct GltfScene {
+    /// Every entity spawned, parents before their children.
+    pub entities: Vec<Entity>,
+    /// Entities with a [`crate::Camera`], in the order of the file's nodes.
+    pub cameras: Vec<Entity>,
+    /// Entities with a light.
+    pub lights: Vec<Entity>,
+    /// World-space bounding box (min, max) of every mesh, if there are any.
+    pub bounds: Option<(Vec3, Vec3)>,
+    /// One line per unsupported feature that was skipped.
+    pub warnings: Vec<String>,
+}
+
+/// Why a glTF file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum GltfError {
+    /// The file is unreadable, truncated, or not valid glTF.
+    #[error("{path}: {reason}")]
+    Open {
+        /// The file.
+        path: PathBuf,
+        /// What was wrong.
+        reason: String,
+    },
+    /// A buffer is missing or shorter than declared.
+    #[error("{path}: buffer {index}: {reason}")]
+    Buffer {
+        /// The file.
+        path: PathBuf,
+        /// The buffer's index.
+        index: usize,
+        /// What was wrong.
+        reason: String,
+    },
+    /// A texture image could not be read.
+    #[error("{path}: image {image}: {reason}")]
+    Image {
+        /// The file.
+        path: PathBuf,
+        /// The image's name or index.
+        image: String,
+        /// What was wrong.
+        reason: String,
+    },
+    /// A mesh primitive's data is unusable.
+    #[error("{path}: mesh {mesh}, primitive {primitive}: {reason}")]
+    Mesh {
+        /// The file.
+        path: PathBuf,
+        /// The mesh's name or index.
+        mesh: String,
+        /// The primitive's index in the mesh.
+        primitive: usize,
+        /// What was wrong.
+        reason: String,
+    },
+    /// A material (or its POM `extras`) is invalid.
+    #[error("{path}: material {material}: {reason}")]
+    Material {
+        /// The file.
+        path: PathBuf,
+        /// The material's name or index.
+        material: String,
+        /// What was wrong.
+        reason: String,
+    },
+    /// The file has no scene to load.
+    #[error("{path}: the file has no scene")]
+    NoScene {
+        /// The file.
+        path: PathBuf,
+    },
+}
+
+/// `"name" (#3)` or `#3`, for messages.
+fn describe(name: Option<&str>, index: usize) -> String {
+    match name {
+        Some(name) => format!("{name:?} (#{index})"),
+        None => format!("#{index}"),
+    }
+}
+
+/// Everything read from the file before anything is spawned.
+struct Source {
+    path: PathBuf,
+    document: gltf::Document,
+    buffers: Vec<gltf::buffer::Data>,
+    base: PathBuf,
+    /// Extensions the file requires that this loader does not implement.
+    unsupported_required: Vec<String>,
+}
+
+/// The extensions this loader implements.
+const SUPPORTED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_texture_transform"];
+
+fn open(path: &Path) -> Result<Source, GltfError> {
+    let open_error = |reason: String| GltfError::Open {
+        path: path.to_owned(),
+        reason,
+    };
+    let bytes = std::fs::read(path).map_err(|error| open_error(error.to_string()))?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(&bytes)
+        .map_err(|error| open_error(error.to_string()))?;
+    // Validation rejects files that require extensions it does not know; we draw what we can
+    // of those instead, so set the unknown ones aside (with a warning) before validating.
+    let mut json = document.into_json();
+    let (supported, unsupported): (Vec<String>, Vec<String>) = json
+        .extensions_required
+        .drain(..)
+        .partition(|name| SUPPORTED_EXTENSIONS.contains(&name.as_str()));
+    json.extensions_required = supported;
+    let document =
+        gltf::Document::from_json(json).map_err(|error| open_error(error.to_string()))?;
+    let base = path.parent().unwrap_or(Path::new(".")).to_owned();
+    let mut blob = blob;
+    let mut buffers = Vec::new();
+    for buffer in document.buffers() {
+        let index = buffer.index();
+        let buffer_error = |reason: String| GltfError::Buffer {
+            path: path.to_owned(),
+            index,
+            reason,
+        };
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => blob
+                .take()
+                .ok_or_else(|| buffer_error("the GLB has no binary chunk".into()))?,
+            gltf::buffer::Source::Uri(uri) => read_uri(&base, uri).map_err(buffer_error)?,
+        };
+        if data.len() < buffer.length() {
+            return Err(buffer_error(format!(
+                "holds {} bytes but declares {}",
+                data.len(),
+                buffer.length()
+            )));
+        }
+        buffers.push(gltf::buffer::Data(data));
+    }
+    Ok(Source {
+        path: path.to_owned(),
+        document,
+        buffers,
+        base,
+        unsupported_required: unsupported,
+    })
+}
+
+/// Reads a buffer URI: a `data:` URI, or a file relative to the glTF file.
+fn read_uri(base: &Path, uri: &str) -> Result<Vec<u8>, String> {
+    if let Some(data) = uri.strip_prefix("data:") {
+        let (_, encoded) = data
+            .split_once(";base64,")
+            .ok_or("only base64 data URIs are supported")?;
+        return decode_base64(encoded).ok_or_else(|| "the data URI is not valid base64".into());
+    }
+    let decoded = percent_decode(uri);
+    let file = base.join(&decoded);
+    std::fs::read(&file).map_err(|error| format!("{}: {error}", file.display()))
+}
+
+fn percent_decode(uri: &str) -> String {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let escaped = (bytes[i] == b'%')
+            .then(|| bytes.get(i + 1..i + 3))
+            .flatten()
+            .and_then(|hex| std::str::from_utf8(hex).ok())
+            .and_then(|hex| u8::from_str_radix(hex, 16).ok());
+        match escaped {
+            Some(byte) => {
+                out.push(byte);
+                i += 3;
+            }
+            None => {
+                out.push(bytes[i]);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn decode_base64(text: &str) -> Option<Vec<u8>> {
+    let value = |c: u8| -> Option<u32> {
+        Some(match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            _ => return None,
+        } as u32)
+    };
+    let symbols: Vec<u8> = text
+        .bytes()
+        .filter(|c| !c.is_ascii_whitespace() && *c != b'=')
+        .collect();
+    let mut out = Vec::with_capacity(symbols.len() * 3 / 4);
+    for chunk in symbols.chunks(4) {
+        let mut word = 0_u32;
+        for (k, c) in chunk.iter().enumerate() {
+            word |= value(*c)? << (18 - 6 * k);
+        }
+        let bytes = word.to_be_bytes();
+        match chunk.len() {
+            4 => out.extend_from_slice(&bytes[1..4]),
+            3 => out.extend_from_slice(&bytes[1..3]),
+            2 => out.push(bytes[1]),
+            _ => return None,
+        }
+    }
+    Some(out)
+}
+
+/// Loads the default scene (or the first) of a `.gltf` or `.glb` file into `app`'s world and
+/// asset stores. Needs the render plugin (for the mesh and image stores).
+///
+/// # Example
+/// ```no_run
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let mut app = pom::App::new();
+/// app.add_plugin(pom::RenderPlugin::headless(640, 360)).add_plugin(pom::PomPlugin);
+/// let scene = pom::load_gltf(&mut app, "assets/street_corner.gltf")?;
+/// for warning in &scene.warnings {
+///     eprintln!("warning: {warning}");
+/// }
+/// # Ok(()) }
+/// ```
+pub fn load_gltf(app: &mut App, path: impl AsRef<Path>) -> Result<GltfScene, GltfError> {
+    let path = path.as_ref();
+    // gltf's accessor readers check every range, but a panic in a dependency must not take the
+    // game down with a file it was handed: report it as a broken file instead.
+    let source = std::panic::catch_unwind(|| open(path)).unwrap_or_else(|_| {
+        Err(GltfError::Open {
+            path: path.to_owned(),
+            reason: "the file is malformed (the parser gave up)".into(),
+        })
+    })?;
+    let mut scene = GltfScene::default();
+    for extension in &source.unsupported_required {
+        scene.warnings.push(format!(
+            "required extension {extension} is not supported: ignored"
+        ));
+    }
+    let mut built = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        nodes::spawn_scene(app, &source, &mut scene)
+    }))
+    .unwrap_or_else(|_| {
+        Err(GltfError::Open {
+            path: source.path.clone(),
+            reason: "the file is malformed (the parser gave up)".into(),
+        })
+    });
+    if let Err(error) = &mut built {
+        // Leave nothing half-loaded behind.
+        for entity in scene.entities.drain(..) {
+            let _ = app.world.despawn(entity);
+        }
+        log::debug!("glTF load failed: {error}");
+    }
+    built.map(|()| scene)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_round_trips_known_text() {
+        assert_eq!(decode_base64("aGVsbG8=").unwrap(), b"hello");
+        assert_eq!(decode_base64("aGk").unwrap(), b"hi");
+        assert!(decode_base64("a$b=").is_none());
+    }
+
+    #[test]
+    fn percent_escapes_are_decoded() {
+        assert_eq!(percent_decode("my%20file.bin"), "my file.bin");
+        assert_eq!(percent_decode("100%"), "100%");
+    }
+}

@@ -1,0 +1,185 @@
+//! The node hierarchy of a glTF scene to entities: transforms, meshes, cameras and lights.
+
+use glam::{Affine3A, Quat, Vec3};
+use hecs::Entity;
+
+use super::materials::{MaterialCache, MaterialComponent};
+use super::primitives::read_primitive;
+use super::{GltfError, GltfScene, Source, describe};
+use crate::{
+    App, Assets, Camera, Color, DirectionalLight, Image, Mesh, Parent, PointLight, Projection,
+    Transform,
+};
+
+fn transform_of(node: &gltf::Node<'_>) -> Transform {
+    let (translation, rotation, scale) = node.transform().decomposed();
+    Transform {
+        translation: Vec3::from(translation),
+        rotation: Quat::from_array(rotation).normalize(),
+        scale: Vec3::from(scale),
+    }
+}
+
+fn grow_bounds(bounds: &mut Option<(Vec3, Vec3)>, world: Affine3A, mesh: &Mesh) {
+    for position in &mesh.positions {
+        let point = world.transform_point3(Vec3::from(*position));
+        let (min, max) = bounds.get_or_insert((point, point));
+        *min = min.min(point);
+        *max = max.max(point);
+    }
+}
+
+fn camera_of(camera: &gltf::Camera<'_>) -> Camera {
+    let projection = match camera.projection() {
+        gltf::camera::Projection::Perspective(perspective) => Projection::Perspective {
+            fov_y: perspective.yfov(),
+            near: perspective.znear(),
+            far: perspective.zfar().unwrap_or(1000.0),
+        },
+        gltf::camera::Projection::Orthographic(orthographic) => Projection::Orthographic {
+            height: orthographic.ymag() * 2.0,
+            near: orthographic.znear(),
+            far: orthographic.zfar(),
+        },
+    };
+    Camera {
+        projection,
+        ..Camera::default()
+    }
+}
+
+/// Spawns the default (or first) scene's nodes, depth first, parents before children.
+pub(super) fn spawn_scene(
+    app: &mut App,
+    source: &Source,
+    scene: &mut GltfScene,
+) -> Result<(), GltfError> {
+    let root = source
+        .document
+        .default_scene()
+        .or_else(|| source.document.scenes().next())
+        .ok_or_else(|| GltfError::NoScene {
+            path: source.path.clone(),
+        })?;
+    let mut meshes = app.resources.remove::<Assets<Mesh>>().unwrap_or_default();
+    let mut images = app.resources.remove::<Assets<Image>>().unwrap_or_default();
+    let result = spawn_nodes(app, source, scene, root, &mut meshes, &mut images);
+    app.resources.insert(meshes);
+    app.resources.insert(images);
+    result
+}
+
+fn spawn_nodes(
+    app: &mut App,
+    source: &Source,
+    scene: &mut GltfScene,
+    root: gltf::Scene<'_>,
+    meshes: &mut Assets<Mesh>,
+    images: &mut Assets<Image>,
+) -> Result<(), GltfError> {
+    let mut materials = MaterialCache::default();
+    let mut stack: Vec<(gltf::Node<'_>, Option<Entity>, Affine3A)> = root
+        .nodes()
+        .map(|node| (node, None, Affine3A::IDENTITY))
+        .collect();
+    stack.reverse();
+    while let Some((node, parent, parent_world)) = stack.pop() {
+        let transform = transform_of(&node);
+        let world = parent_world * transform.to_affine();
+        let entity = app.world.spawn((transform,));
+        if let Some(parent) = parent {
+            let _ = app.world.insert_one(entity, Parent(parent));
+        }
+        scene.entities.push(entity);
+        let node_name = describe(node.name(), node.index());
+
+        if node.skin().is_some() {
+            scene.warnings.push(format!(
+                "node {node_name}: skinning is not supported; drawn in its bind pose"
+            ));
+        }
+        if let Some(mesh) = node.mesh() {
+            let mut drawable = Vec::new();
+            for primitive in mesh.primitives() {
+                if primitive.mode() != gltf::mesh::Mode::Triangles {
+                    scene.warnings.push(format!(
+                        "mesh {}, primitive {}: mode {:?} is not supported; skipped",
+                        describe(mesh.name(), mesh.index()),
+                        primitive.index(),
+                        primitive.mode()
+                    ));
+                    continue;
+                }
+                if primitive.morph_targets().len() > 0 {
+                    scene.warnings.push(format!(
+                        "mesh {}, primitive {}: morph targets are not supported; drawn unmorphed",
+                        describe(mesh.name(), mesh.index()),
+                        primitive.index()
+                    ));
+                }
+                let material = materials.material(
+                    source,
+                    images,
+                    primitive.material(),
+                    &mut scene.warnings,
+                )?;
+                let data = read_primitive(source, &mesh, &primitive, material.uv_transform)?;
+                grow_bounds(&mut scene.bounds, world, &data);
+                drawable.push((meshes.add(data), material.kind));
+            }
+            // One primitive goes on the node itself; several get a child entity each.
+            let single = drawable.len() == 1;
+            for (handle, material) in drawable {
+                let target = if single {
+                    entity
+                } else {
+                    let child = app.world.spawn((Transform::IDENTITY, Parent(entity)));
+                    scene.entities.push(child);
+                    child
+                };
+                let _ = app.world.insert_one(target, handle);
+                let _ = match material {
+                    MaterialComponent::Lit(lit) => app.world.insert_one(target, lit),
+                    MaterialComponent::Parallax(parallax) => app.world.insert_one(target, parallax),
+                };
+            }
+        }
+        if let Some(camera) = node.camera() {
+            let _ = app.world.insert_one(entity, camera_of(&camera));
+            scene.cameras.push(entity);
+        }
+        if let Some(light) = node.light() {
+            let [r, g, b] = light.color();
+            let color = Color::linear_rgb(r, g, b);
+            let intensity = light.intensity();
+            let inserted = match light.kind() {
+                gltf::khr_lights_punctual::Kind::Directional => app
+                    .world
+                    .insert_one(entity, DirectionalLight { color, intensity }),
+                kind => {
+                    if matches!(kind, gltf::khr_lights_punctual::Kind::Spot { .. }) {
+                        scene.warnings.push(format!(
+                            "node {node_name}: spot lights are drawn as point lights"
+                        ));
+                    }
+                    app.world.insert_one(
+                        entity,
+                        PointLight {
+                            color,
+                            intensity,
+                            range: light.range().unwrap_or(PointLight::default().range),
+                        },
+                    )
+                }
+            };
+            if inserted.is_ok() {
+                scene.lights.push(entity);
+            }
+        }
+        let children: Vec<_> = node.children().collect();
+        for child in children.into_iter().rev() {
+            stack.push((child, Some(entity), world));
+        }
+    }
+    Ok(())
+}
