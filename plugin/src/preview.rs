@@ -214,3 +214,76 @@ mod tests {
         assert!((forward - Vec3::Z).length() < 1e-5, "{forward}");
     }
 }
+
+/// A perspective camera looking at the box `(min, max)` from a three-quarter view (from the
+/// front right, 35° above), far enough that the whole box fits the view for an image of
+/// `aspect` = width / height.
+pub fn three_quarter_view(bounds: (Vec3, Vec3), aspect: f32) -> (Camera, Transform) {
+    let (min, max) = bounds;
+    let centre = (min + max) * 0.5;
+    let radius = ((max - min).length() * 0.5).max(1e-3);
+    let fov_y = 45_f32.to_radians();
+    let aspect = if aspect.is_finite() && aspect > 0.0 {
+        aspect
+    } else {
+        1.0
+    };
+    // The bounding sphere fits when its angular radius is under half of the narrower field.
+    let half_fov = (fov_y * 0.5).min(((fov_y * 0.5).tan() * aspect).atan());
+    let distance = radius / half_fov.sin();
+    let direction = Vec3::new(0.6, 0.55, 0.8).normalize();
+    let camera = Camera {
+        projection: Projection::Perspective {
+            fov_y,
+            near: (distance - radius).max(distance * 1e-3),
+            far: distance + radius * 2.0,
+        },
+        ..Camera::default()
+    };
+    (
+        camera,
+        Transform::from_translation(centre + direction * distance).looking_at(centre, Vec3::Y),
+    )
+}
+
+/// A sun 50° above the horizon from the front left, and a soft ambient term: the lighting a
+/// scene without lights of its own gets.
+pub fn default_lighting() -> (DirectionalLight, Transform, crate::AmbientLight) {
+    (
+        DirectionalLight {
+            color: Color::linear_rgb(1.0, 0.97, 0.92),
+            intensity: 1.6,
+        },
+        Transform::IDENTITY.looking_at(Vec3::new(0.5, -1.2, -0.7), Vec3::Y),
+        crate::AmbientLight {
+            color: Color::linear_rgb(0.6, 0.7, 1.0),
+            intensity: 0.15,
+        },
+    )
+}
+
+#[cfg(test)]
+mod framing_tests {
+    use super::*;
+    use crate::GlobalTransform;
+
+    #[test]
+    fn the_three_quarter_view_sees_every_corner_of_the_box() {
+        let bounds = (Vec3::new(-3.0, 0.0, -1.0), Vec3::new(5.0, 2.0, 1.0));
+        for aspect in [0.5, 1.0, 2.0] {
+            let (camera, transform) = three_quarter_view(bounds, aspect);
+            let view_projection = camera.projection.matrix(aspect)
+                * GlobalTransform(transform.to_affine()).to_mat4().inverse();
+            for x in [bounds.0.x, bounds.1.x] {
+                for y in [bounds.0.y, bounds.1.y] {
+                    for z in [bounds.0.z, bounds.1.z] {
+                        let clip = view_projection * Vec3::new(x, y, z).extend(1.0);
+                        let ndc = clip.truncate() / clip.w;
+                        assert!(ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0, "{aspect}: {ndc}");
+                        assert!((0.0..=1.0).contains(&ndc.z), "{aspect}: depth {}", ndc.z);
+                    }
+                }
+            }
+        }
+    }
+}
