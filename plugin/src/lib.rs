@@ -49,7 +49,7 @@ pub use app::{
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
-pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf};
+pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf, load_gltf_bytes};
 pub use height_field::{HeightField, patterns};
 pub use image::{Channel, Image, ImageError, Pixels, TextureKind};
 pub use light::{AmbientLight, DirectionalLight, PointLight};

@@ -116,7 +116,7 @@ impl MaterialCache {
             reason,
         };
         let data =
-            gltf::image::Data::from_source(image.source(), Some(&source.base), &source.buffers)
+            gltf::image::Data::from_source(image.source(), source.base.as_deref(), &source.buffers)
                 .map_err(|error| image_error(error.to_string()))?;
         let decoded = to_dynamic(data)
             .ok_or_else(|| image_error("pixel data is shorter than its size".into()))?;

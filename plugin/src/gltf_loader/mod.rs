@@ -110,7 +110,8 @@ struct Source {
     path: PathBuf,
     document: gltf::Document,
     buffers: Vec<gltf::buffer::Data>,
-    base: PathBuf,
+    /// Where relative URIs point; `None` for documents loaded from memory.
+    base: Option<PathBuf>,
     /// Extensions the file requires that this loader does not implement.
     unsupported_required: Vec<String>,
 }
@@ -119,11 +120,21 @@ struct Source {
 const SUPPORTED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_texture_transform"];
 
 fn open(path: &Path) -> Result<Source, GltfError> {
+    let bytes = std::fs::read(path).map_err(|error| GltfError::Open {
+        path: path.to_owned(),
+        reason: error.to_string(),
+    })?;
+    let base = path.parent().unwrap_or(Path::new(".")).to_owned();
+    parse(path, &bytes, Some(base))
+}
+
+/// Parses a document held in memory; `base` resolves relative URIs (none: only `data:` URIs and
+/// the GLB binary chunk can be used).
+fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, GltfError> {
     let open_error = |reason: String| GltfError::Open {
         path: path.to_owned(),
         reason,
     };
-    let bytes = std::fs::read(path).map_err(|error| open_error(error.to_string()))?;
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(&bytes)
         .map_err(|error| open_error(error.to_string()))?;
     // Validation rejects files that require extensions it does not know; we draw what we can
@@ -136,7 +147,6 @@ fn open(path: &Path) -> Result<Source, GltfError> {
     json.extensions_required = supported;
     let document =
         gltf::Document::from_json(json).map_err(|error| open_error(error.to_string()))?;
-    let base = path.parent().unwrap_or(Path::new(".")).to_owned();
     let mut blob = blob;
     let mut buffers = Vec::new();
     for buffer in document.buffers() {
@@ -150,7 +160,9 @@ fn open(path: &Path) -> Result<Source, GltfError> {
             gltf::buffer::Source::Bin => blob
                 .take()
                 .ok_or_else(|| buffer_error("the GLB has no binary chunk".into()))?,
-            gltf::buffer::Source::Uri(uri) => read_uri(&base, uri).map_err(buffer_error)?,
+            gltf::buffer::Source::Uri(uri) => {
+                read_uri(base.as_deref(), uri).map_err(buffer_error)?
+            }
         };
         if data.len() < buffer.length() {
             return Err(buffer_error(format!(
@@ -171,13 +183,15 @@ fn open(path: &Path) -> Result<Source, GltfError> {
 }
 
 /// Reads a buffer URI: a `data:` URI, or a file relative to the glTF file.
-fn read_uri(base: &Path, uri: &str) -> Result<Vec<u8>, String> {
+fn read_uri(base: Option<&Path>, uri: &str) -> Result<Vec<u8>, String> {
     if let Some(data) = uri.strip_prefix("data:") {
         let (_, encoded) = data
             .split_once(";base64,")
             .ok_or("only base64 data URIs are supported")?;
         return decode_base64(encoded).ok_or_else(|| "the data URI is not valid base64".into());
     }
+    let base =
+        base.ok_or_else(|| format!("{uri}: a document loaded from memory cannot refer to files"))?;
     let decoded = percent_decode(uri);
     let file = base.join(&decoded);
     std::fs::read(&file).map_err(|error| format!("{}: {error}", file.display()))
@@ -255,9 +269,24 @@ fn decode_base64(text: &str) -> Option<Vec<u8>> {
 /// ```
 pub fn load_gltf(app: &mut App, path: impl AsRef<Path>) -> Result<GltfScene, GltfError> {
     let path = path.as_ref();
+    spawn_source(app, path, || open(path))
+}
+
+/// Loads a `.glb` (or a self-contained `.gltf`) held in memory, such as one embedded in a
+/// binary with `include_bytes!`. `name` stands for the file in messages.
+pub fn load_gltf_bytes(app: &mut App, bytes: &[u8], name: &str) -> Result<GltfScene, GltfError> {
+    let path = Path::new(name);
+    spawn_source(app, path, || parse(path, bytes, None))
+}
+
+fn spawn_source(
+    app: &mut App,
+    path: &Path,
+    read: impl FnOnce() -> Result<Source, GltfError> + std::panic::UnwindSafe,
+) -> Result<GltfScene, GltfError> {
     // gltf's accessor readers check every range, but a panic in a dependency must not take the
     // game down with a file it was handed: report it as a broken file instead.
-    let source = std::panic::catch_unwind(|| open(path)).unwrap_or_else(|_| {
+    let source = std::panic::catch_unwind(read).unwrap_or_else(|_| {
         Err(GltfError::Open {
             path: path.to_owned(),
             reason: "the file is malformed (the parser gave up)".into(),

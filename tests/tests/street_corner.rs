@@ -1,0 +1,19 @@
+//! The shipped street-corner scene, loaded from assets/ and rendered from its own camera.
+
+use std::path::Path;
+
+use pom::{App, PomPlugin, RenderPlugin, load_gltf};
+use pom_tests::{FlipTolerance, check_golden, render_and_capture};
+
+#[test]
+fn the_shipped_street_corner_matches_its_reference() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(384, 216))
+        .add_plugin(PomPlugin);
+    let scene = load_gltf(&mut app, &path).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!((scene.cameras.len(), scene.lights.len()), (1, 1));
+    let image = render_and_capture(&mut app).unwrap();
+    check_golden("street_corner", &image, FlipTolerance::default()).unwrap();
+}
