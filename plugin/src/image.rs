@@ -170,6 +170,7 @@ pub enum ImageError {
 pub struct Image {
     pixels: Pixels,
     kind: TextureKind,
+    gpu_written: bool,
 }
 
 impl Image {
@@ -184,7 +185,11 @@ impl Image {
         if width == 0 || height == 0 {
             return Err(ImageError::Empty { width, height });
         }
-        Ok(Self { pixels, kind })
+        Ok(Self {
+            pixels,
+            kind,
+            gpu_written: false,
+        })
     }
 
     /// Builds an image from raw RGBA8 bytes, row by row.
@@ -210,6 +215,7 @@ impl Image {
         Self {
             pixels: Pixels::Rgba8(RgbaImage::from_pixel(1, 1, image::Rgba(rgba))),
             kind,
+            gpu_written: false,
         }
     }
 
@@ -280,6 +286,27 @@ impl Image {
         Self::from_pixels(pixels, kind)
     }
 
+    /// An RGBA8 image of `width` × `height` that a GPU pass writes (a dynamic height field's
+    /// normal map, say): uploaded once with these pixels as its starting content and a single
+    /// mip level, and bindable as a storage texture.
+    pub fn gpu_written(
+        width: u32,
+        height: u32,
+        kind: TextureKind,
+        fill: [u8; 4],
+    ) -> Result<Self, ImageError> {
+        let pixels = RgbaImage::from_pixel(width, height, image::Rgba(fill));
+        Ok(Self {
+            gpu_written: true,
+            ..Self::new(pixels, kind)?
+        })
+    }
+
+    /// Whether a GPU pass writes this image (see [`Image::gpu_written`]).
+    pub fn is_gpu_written(&self) -> bool {
+        self.gpu_written
+    }
+
     /// Width and height in pixels.
     pub fn size(&self) -> (u32, u32) {
         self.pixels.dimensions()
@@ -337,6 +364,7 @@ impl Image {
         Image {
             pixels,
             kind: self.kind,
+            gpu_written: self.gpu_written,
         }
     }
 

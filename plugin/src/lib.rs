@@ -29,6 +29,7 @@ mod app;
 mod assets;
 mod camera;
 mod color;
+mod dynamic_height;
 mod gltf_loader;
 mod height_field;
 mod image;
@@ -49,6 +50,9 @@ pub use app::{
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
+pub use dynamic_height::{
+    DynamicHeightError, DynamicHeightField, SobelPass, derive_dynamic_normals,
+};
 pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf, load_gltf_bytes};
 pub use height_field::{HeightField, patterns};
 pub use image::{Channel, Image, ImageError, Pixels, TextureKind};

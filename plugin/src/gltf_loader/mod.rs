@@ -135,7 +135,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         path: path.to_owned(),
         reason,
     };
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(&bytes)
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|error| open_error(error.to_string()))?;
     // Validation rejects files that require extensions it does not know; we draw what we can
     // of those instead, so set the unknown ones aside (with a warning) before validating.

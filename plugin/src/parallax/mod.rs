@@ -38,7 +38,8 @@ pub struct MissingRenderPlugin;
 impl Plugin for PomPlugin {
     fn build(&self, app: &mut App) {
         app.add_system(Stage::Extract, extract_pom)
-            .add_system(Stage::Prepare, prepare_pom);
+            .add_system(Stage::Prepare, prepare_pom)
+            .add_system(Stage::Prepare, crate::derive_dynamic_normals);
         app.resources
             .get_or_default::<MainPassDraws>()
             .0
@@ -54,6 +55,8 @@ impl Plugin for PomPlugin {
             return Err(MissingRenderPlugin.into());
         };
         let pass = PomPass::new(gpu, &renderer.frame, target.format());
+        let sobel = crate::SobelPass::new(gpu);
+        app.insert_resource(sobel);
         app.insert_resource(PomRenderer {
             pass,
             last_upload_bytes: 0,

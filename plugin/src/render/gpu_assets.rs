@@ -371,7 +371,12 @@ fn upload_image(
     id: AssetId<Image>,
     upload_serial: u64,
 ) -> GpuImage {
-    let levels = image.mip_chain();
+    // A GPU-written image has one level: the pass that writes it keeps no mips up to date.
+    let levels = if image.is_gpu_written() {
+        vec![image.pixels().clone()]
+    } else {
+        image.mip_chain()
+    };
     let (width, height) = image.size();
     let (format, encoding) = gpu_format(gpu, image);
     let label = format!("{id:?}");
@@ -386,7 +391,15 @@ fn upload_image(
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        usage: if image.is_gpu_written() {
+            // COPY_SRC so what the GPU wrote can be inspected.
+            wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::STORAGE_BINDING
+        } else {
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST
+        },
         view_formats: &[],
     });
     for (level, pixels) in levels.iter().enumerate() {

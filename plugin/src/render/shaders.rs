@@ -38,6 +38,9 @@ pub const PARALLAX_MARCH: WgslFile = wgsl_file!("parallax/march.wgsl");
 /// The parallax material's entry points.
 pub const PARALLAX_ENTRY: WgslFile = wgsl_file!("parallax/pom.wgsl");
 
+/// The Sobel compute pass of dynamic height fields.
+pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
+
 /// An entry shader: the files it is made of, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ComposedShader {
@@ -89,5 +92,11 @@ pub const PARALLAX: ComposedShader = ComposedShader {
     ],
 };
 
+/// Normals of dynamic height fields, derived on the GPU.
+pub const SOBEL: ComposedShader = ComposedShader {
+    name: "sobel.wgsl",
+    files: &[SOBEL_ENTRY],
+};
+
 /// Every entry shader of the plugin.
-pub const ALL: &[ComposedShader] = &[FORWARD, PARALLAX];
+pub const ALL: &[ComposedShader] = &[FORWARD, PARALLAX, SOBEL];
