@@ -643,12 +643,17 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("pom-jpeg-load-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("albedo.jpg");
-        image::RgbImage::from_pixel(9, 7, image::Rgb([200, 100, 50])).save(&path).unwrap();
+        image::RgbImage::from_pixel(9, 7, image::Rgb([200, 100, 50]))
+            .save(&path)
+            .unwrap();
         let albedo = Image::load(&path, TextureKind::Color).unwrap();
         assert_eq!(albedo.size(), (9, 7));
         let texel = albedo.to_rgba8().get_pixel(4, 3).0;
         // JPEG is lossy: close, not exact.
-        assert!(texel[0].abs_diff(200) < 6 && texel[1].abs_diff(100) < 6 && texel[3] == 255, "{texel:?}");
+        assert!(
+            texel[0].abs_diff(200) < 6 && texel[1].abs_diff(100) < 6 && texel[3] == 255,
+            "{texel:?}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

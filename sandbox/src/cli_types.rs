@@ -167,6 +167,26 @@ impl From<DebugView> for DebugViewArg {
     }
 }
 
+/// `--camera`: which camera a scene is rendered from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CameraArg {
+    /// A three-quarter view framing the whole scene (`pom::preview::three_quarter_view`).
+    Auto,
+    /// The file's camera with this index, counting from 0 in the order of its nodes.
+    Index(usize),
+}
+
+/// Parses `--camera`: a camera index (0, 1, …) or `auto`.
+pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
+    let text = text.trim();
+    if text.eq_ignore_ascii_case("auto") {
+        return Ok(CameraArg::Auto);
+    }
+    text.parse()
+        .map(CameraArg::Index)
+        .map_err(|_| format!("expected a camera index (0, 1, …) or auto, got {text:?}"))
+}
+
 /// Parses `WIDTHxHEIGHT`, each side 1..=8192.
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let (width, height) = text
@@ -292,6 +312,17 @@ mod tests {
         assert_eq!(parse_view_angle("89.99"), Ok(89.99));
         for bad in ["-1", "90", "120", "NaN"] {
             assert!(parse_view_angle(bad).is_err(), "{bad:?} was accepted");
+        }
+    }
+
+    #[test]
+    fn cameras_are_an_index_or_auto() {
+        assert_eq!(parse_camera("auto"), Ok(CameraArg::Auto));
+        assert_eq!(parse_camera("AUTO"), Ok(CameraArg::Auto));
+        assert_eq!(parse_camera("0"), Ok(CameraArg::Index(0)));
+        assert_eq!(parse_camera("12"), Ok(CameraArg::Index(12)));
+        for bad in ["-1", "first", "1.5", ""] {
+            assert!(parse_camera(bad).is_err(), "{bad:?} was accepted");
         }
     }
 

@@ -28,7 +28,8 @@ pub struct DemoArgs {
 pub fn run(args: &DemoArgs) -> Result<()> {
     let (width, height) = args.size;
     let mut app = pom::App::new();
-    app.add_plugin(pom::RenderPlugin::headless(width, height));
+    app.add_plugin(pom::RenderPlugin::headless(width, height))
+        .add_plugin(pom::PomPlugin);
     demo_scene::spawn(&mut app)?;
     app.update().context("rendering the demo scene")?;
     let image = pom::capture(&app).context("reading the frame back")?;

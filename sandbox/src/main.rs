@@ -1,12 +1,15 @@
-//! The sandbox: without a subcommand, the demo scene (rendered headless to a PNG until the live
-//! window lands); `render` previews one parallax material headless.
+//! The sandbox: without a subcommand, the street-corner demo scene (rendered headless to a PNG
+//! until the live window lands); `render` previews one parallax material or a glTF scene
+//! headless; `generate-assets` rebuilds the shipped assets.
 
+mod asset_generator;
 mod cli_types;
 mod demo_command;
 mod demo_scene;
 mod frame_output;
 mod preview_textures;
 mod render_command;
+mod scene_preview;
 
 use clap::{Parser, Subcommand};
 
@@ -22,8 +25,15 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Renders one parallax material on a square plane, lit by one directional light, to a PNG.
+    /// Renders one parallax material on a square plane (or, with --scene, a glTF scene) to a PNG.
     Render(render_command::RenderArgs),
+    /// Writes the shipped material set (albedo, normal and height maps) and the street-corner
+    /// scene, from fixed seeds: the result is the same every time.
+    GenerateAssets {
+        /// Folder to write into [default: the repository's assets/ folder].
+        #[arg(long, value_name = "DIR")]
+        out: Option<std::path::PathBuf>,
+    },
 }
 
 /// Clap's usage errors add a tip, the usage and a pointer to --help over several lines; the
@@ -55,6 +65,14 @@ fn main() {
     let result = match &cli.command {
         None => demo_command::run(&cli.demo),
         Some(Command::Render(args)) => render_command::run(args),
+        Some(Command::GenerateAssets { out }) => {
+            let out = out.clone().unwrap_or_else(asset_generator::default_output);
+            asset_generator::generate(&out).map(|files| {
+                for file in files {
+                    println!("wrote {}", file.display());
+                }
+            })
+        }
     };
     if let Err(error) = result {
         // One line, no backtrace: the chain of contexts says what failed and why.
@@ -120,7 +138,7 @@ mod tests {
             "Azimuth 0 puts the camera on the −u side",
             "+u runs up the image and +v to the right",
             "90 is the horizon",
-            "built-in procedural bricks",
+            "the shipped bricks",
             "[default: pom]",
             "[default: 0.05]",
             "[default: 8]",

@@ -5,15 +5,21 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use pom::{
-    Assets, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, TextureKind, patterns,
+    Assets, Channel, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, TextureKind,
 };
 
-/// The stand-in height map: running-bond bricks, texels per side.
-pub const BRICKS_TEXELS: u32 = 256;
-/// Bricks per tile, across (u) and down (v).
-pub const BRICKS_PER_TILE: (f32, f32) = (4.0, 8.0);
-/// The stand-in albedo: a neutral grey, so the relief and the lighting are all one sees.
+/// The stand-in height map: the shipped bricks (assets/bricks), embedded in the binary.
+pub const BRICKS_HEIGHT: &[u8] = include_bytes!("../../assets/bricks/height.png");
+/// The shipped bricks' colour, used when no height map is given either.
+pub const BRICKS_ALBEDO: &[u8] = include_bytes!("../../assets/bricks/albedo.png");
+/// The stand-in albedo for a height map of the user's: a neutral grey, so the relief and the
+/// lighting are all one sees.
 pub const NEUTRAL_GREY: [u8; 4] = [180, 180, 180, 255];
+
+fn embedded(bytes: &[u8], name: &str, kind: TextureKind) -> Result<Image> {
+    Image::decode(bytes, name, kind, Channel::Red)
+        .with_context(|| format!("decoding the embedded {name}"))
+}
 
 /// The texture files the user named; `None` means "use the stand-in".
 #[derive(Clone, Copy, Debug, Default)]
@@ -50,10 +56,11 @@ impl PreviewTextures {
     pub fn load(files: &TextureFiles, height_scale: f32) -> Result<Self> {
         let height = match files.height {
             Some(path) => load(path, TextureKind::Height, "--height")?,
-            None => {
-                let (columns, rows) = BRICKS_PER_TILE;
-                patterns::bricks(BRICKS_TEXELS, columns, rows).to_image()
-            }
+            None => embedded(
+                BRICKS_HEIGHT,
+                "assets/bricks/height.png",
+                TextureKind::Height,
+            )?,
         };
         let normal = match files.normal {
             Some(path) => load(path, TextureKind::Normal, "--normal")?,
@@ -61,9 +68,14 @@ impl PreviewTextures {
             // the shader's depth convention will displace the surface.
             None => HeightField::from_image(&height, 0, files.depth_map).normal_map(height_scale),
         };
-        let albedo = match files.albedo {
-            Some(path) => load(path, TextureKind::Color, "--albedo")?,
-            None => Image::solid(NEUTRAL_GREY, TextureKind::Color),
+        let albedo = match (files.albedo, files.height) {
+            (Some(path), _) => load(path, TextureKind::Color, "--albedo")?,
+            (None, None) => embedded(
+                BRICKS_ALBEDO,
+                "assets/bricks/albedo.png",
+                TextureKind::Color,
+            )?,
+            (None, Some(_)) => Image::solid(NEUTRAL_GREY, TextureKind::Color),
         };
         Ok(Self {
             height,
@@ -92,21 +104,42 @@ mod tests {
     use super::*;
 
     #[test]
-    fn without_files_the_stand_ins_are_bricks_their_normals_and_grey() {
+    fn without_files_the_stand_ins_are_the_shipped_bricks_with_sobel_normals() {
         let textures = PreviewTextures::load(&TextureFiles::default(), 0.05).unwrap();
-        let bricks = patterns::bricks(BRICKS_TEXELS, 4.0, 8.0);
-        assert_eq!(textures.height, bricks.to_image());
+        let shipped = |file: &str, kind| {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../assets/bricks")
+                .join(file);
+            Image::load(path, kind).unwrap()
+        };
+        let height = shipped("height.png", TextureKind::Height);
+        assert_eq!(textures.height, height);
         assert_eq!(
             textures.normal,
-            bricks.quantized().normal_map(0.05),
-            "normals of the height map as the GPU sees it"
+            HeightField::from_image(&height, 0, false).normal_map(0.05),
+            "normals of the height map as the GPU sees it, at the asked height scale"
         );
-        assert_eq!(
-            textures.albedo,
-            Image::solid([180, 180, 180, 255], TextureKind::Color)
-        );
+        assert_eq!(textures.albedo, shipped("albedo.png", TextureKind::Color));
         assert_eq!(textures.height.kind(), TextureKind::Height);
         assert_eq!(textures.normal.kind(), TextureKind::Normal);
+    }
+
+    #[test]
+    fn a_height_map_of_ones_own_gets_a_grey_albedo() {
+        let dir = std::env::temp_dir().join(format!("pom-preview-textures-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("h.png");
+        image::GrayImage::new(4, 4).save(&path).unwrap();
+        let files = TextureFiles {
+            height: Some(&path),
+            ..TextureFiles::default()
+        };
+        let textures = PreviewTextures::load(&files, 0.05).unwrap();
+        assert_eq!(
+            textures.albedo,
+            Image::solid(NEUTRAL_GREY, TextureKind::Color)
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -1,8 +1,9 @@
-//! `sandbox render`: one parallax material on the plugin's preview plane, rendered headless to a
-//! PNG. The plugin does all the rendering and owns the geometry conventions
-//! (`pom::preview::PreviewView`); this module turns options into its inputs and checks them.
+//! `sandbox render`: one parallax material on the plugin's preview plane, or a glTF scene
+//! (`--scene`, see `scene_preview`), rendered headless to a PNG. The plugin does all the
+//! rendering and owns the geometry conventions (`pom::preview::PreviewView`); this module defines
+//! the options, checks them and hands them to the material preview or the scene preview.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
@@ -14,11 +15,12 @@ use pom::{
 };
 
 use crate::cli_types::{
-    DebugViewArg, MethodArg, ProjectionArg, ShadowsArg, parse_finite, parse_png_path,
-    parse_positive, parse_size, parse_view_angle,
+    CameraArg, DebugViewArg, MethodArg, ProjectionArg, ShadowsArg, parse_camera, parse_finite,
+    parse_png_path, parse_positive, parse_size, parse_view_angle,
 };
 use crate::frame_output;
 use crate::preview_textures::{PreviewTextures, TextureFiles};
+use crate::scene_preview::{self, ScenePreview};
 
 /// Shown after the options by `render --help`. The geometry paragraph follows
 /// `PreviewView`'s documentation, which is the authority on it.
@@ -32,17 +34,28 @@ Geometry conventions:
   straight above, 90 is the horizon, more is below it.
 
 Missing textures:
-  Without --height, built-in procedural bricks are used (4 × 8 running-bond bricks per
-  tile, 256×256 texels) so the command shows something useful. Without --normal, the
-  normal map is derived from the height map by the plugin's Sobel filter, using
-  --height-scale. Without --albedo, the surface is a neutral grey.
+  Without --height, the shipped bricks (assets/bricks, embedded in the binary) are used,
+  their colour too, so the command shows something useful. Without --normal, the normal
+  map is derived from the height map by the plugin's Sobel filter, using --height-scale.
+  Without --albedo, a height map of your own gets a neutral grey surface.
 
 Output formats:
   --debug-view uv and --debug-view shadow write a 16-bit RGB PNG of raw values
   (value × 65535, clamped, no sRGB curve). Every other view writes an 8-bit sRGB PNG.
 
-Example:
-  sandbox render --height my_height.png --view-angle 60 --out preview.png";
+Scenes:
+  --scene renders a glTF 2.0 file (.gltf with its files, or .glb) instead of the
+  material preview; the texture, material and view options do not apply to it.
+  --camera N looks through the file's N-th camera (counting from 0); --camera auto
+  frames every mesh from a three-quarter view. Without --camera, the file's first
+  camera is used, or auto when it has none. A scene without lights gets a default
+  light (a sun and a soft ambient light) and a warning saying so. Features the
+  renderer lacks are skipped with one warning each; the rest still renders.
+  --debug-view applies to every parallax material in the scene.
+
+Examples:
+  sandbox render --height my_height.png --view-angle 60 --out preview.png
+  sandbox render --scene street.glb --camera auto --size 1280x720 --out street.png";
 
 fn material_default() -> ParallaxOcclusionMaterial {
     ParallaxOcclusionMaterial::default()
@@ -58,6 +71,8 @@ fn view_default() -> PreviewView {
 pub struct RenderArgs {
     #[command(flatten)]
     pub output: OutputArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
     #[command(flatten)]
     pub textures: TextureArgs,
     #[command(flatten)]
@@ -76,13 +91,60 @@ pub struct OutputArgs {
     /// Image size as WIDTHxHEIGHT, each 1..=8192.
     #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = parse_size)]
     pub size: (u32, u32),
+    /// Output an inspection view instead of the lit colour (in a scene: on every parallax
+    /// material).
+    #[arg(long, value_enum, default_value_t = material_default().debug_view.into())]
+    pub debug_view: DebugViewArg,
+}
+
+/// The options only the material preview uses: every one of `TextureArgs`, `MaterialArgs` and
+/// `ViewArgs`. Each conflicts with `--scene` by name, so the usage error names the one given.
+const MATERIAL_PREVIEW_ONLY: [&str; 19] = [
+    "height",
+    "depth_map",
+    "normal",
+    "albedo",
+    "method",
+    "height_scale",
+    "min_samples",
+    "max_samples",
+    "lod_threshold",
+    "shadows",
+    "shadow_softening",
+    "depth_offset",
+    "view_angle",
+    "view_azimuth",
+    "light_angle",
+    "light_azimuth",
+    "projection",
+    "distance",
+    "tiling",
+];
+
+/// A glTF scene instead of the material preview; the material preview's own options conflict
+/// with it.
+#[derive(Debug, Args)]
+#[command(next_help_heading = "Scene")]
+pub struct SceneArgs {
+    /// glTF 2.0 scene (.gltf or .glb) to render instead of the material preview. A scene
+    /// without lights gets a default light (a sun and a soft ambient light), with a warning.
+    #[arg(
+        long,
+        value_name = "PATH",
+        conflicts_with_all = MATERIAL_PREVIEW_ONLY
+    )]
+    pub scene: Option<PathBuf>,
+    /// The file's camera to look through, counting from 0, or auto for a three-quarter view
+    /// of every mesh [default: 0, or auto when the file has no cameras].
+    #[arg(long, value_name = "INDEX|auto", requires = "scene", value_parser = parse_camera)]
+    pub camera: Option<CameraArg>,
 }
 
 /// The texture files; see `preview_textures` for what stands in for a missing one.
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Textures")]
 pub struct TextureArgs {
-    /// Height map, white = top, red channel read [default: procedural bricks].
+    /// Height map, white = top, red channel read [default: the shipped bricks].
     #[arg(long, value_name = "PATH")]
     pub height: Option<PathBuf>,
     /// The --height file is a depth map: white is the deepest point.
@@ -140,9 +202,6 @@ pub struct MaterialArgs {
     /// Write the depth of the displaced point instead of the polygon's.
     #[arg(long)]
     pub depth_offset: bool,
-    /// Output an inspection view instead of the lit colour.
-    #[arg(long, value_enum, default_value_t = material_default().debug_view.into())]
-    pub debug_view: DebugViewArg,
 }
 
 /// Camera and light placement, in `PreviewView`'s frame. `PreviewView` quietly replaces values
@@ -227,7 +286,7 @@ impl RenderArgs {
             shadow_softening: material.shadow_softening,
             method: material.method.into(),
             depth_offset: material.depth_offset,
-            debug_view: material.debug_view.into(),
+            debug_view: self.output.debug_view.into(),
             ..ParallaxOcclusionMaterial::default()
         }
     }
@@ -257,40 +316,74 @@ impl RenderArgs {
     }
 }
 
-/// Checks the options, loads the textures, renders the preview and writes it to `--out`.
+/// Renders the material preview, or the `--scene` file, and writes it to `--out`.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    match &args.scene.scene {
+        Some(path) => render_scene(args, path),
+        None => render_material(args),
+    }
+}
+
+/// Checks the options, loads the textures, renders the material preview.
+fn render_material(args: &RenderArgs) -> Result<()> {
     // Bad values and bad files are reported before the GPU starts: quicker, and nothing a GPU
     // driver prints on stderr can get mixed into the one-line error.
     let settings = args.material_settings();
     settings.validate().context("invalid material")?;
     let textures = PreviewTextures::load(&args.texture_files(), settings.height_scale)?;
 
-    let raw = args.material.debug_view.writes_raw_values();
-    let format = if raw {
-        TargetFormat::Float32
-    } else {
-        TargetFormat::Srgb8
-    };
-    let (width, height) = args.output.size;
-    let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(width, height).with_format(format));
-    app.add_plugin(PomPlugin);
+    let mut app = headless_app(&args.output);
     let images = app
         .resources
         .get_mut::<Assets<Image>>()
         .context("the render plugin provides no image store")?;
     let material = textures.attach(images, settings);
     spawn_preview(&mut app, material, &args.view()).context("setting up the preview")?;
-    app.update().context("rendering the preview")?;
+    render_and_write(&mut app, &args.output, "rendering the preview")
+}
 
-    let image = if raw {
-        let frame = pom::capture_f32(&app).context("reading the frame back")?;
+/// Loads the `--scene` file, picks its camera and lights, renders it. The GPU starts only once
+/// the file has loaded, for the same reason as above.
+fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
+    let mut app = headless_app(&args.output);
+    let (width, height) = args.output.size;
+    let preview = ScenePreview {
+        path,
+        camera: args.scene.camera,
+        aspect: width as f32 / height as f32,
+        debug_view: args.output.debug_view.into(),
+    };
+    scene_preview::spawn(&mut app, &preview)?;
+    render_and_write(&mut app, &args.output, "rendering the scene")
+}
+
+/// An app with the headless renderer (a float target for the raw debug views) and the parallax
+/// material. The GPU starts on the first update.
+fn headless_app(output: &OutputArgs) -> App {
+    let format = if output.debug_view.writes_raw_values() {
+        TargetFormat::Float32
+    } else {
+        TargetFormat::Srgb8
+    };
+    let (width, height) = output.size;
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(width, height).with_format(format));
+    app.add_plugin(PomPlugin);
+    app
+}
+
+/// Renders one frame and writes it to `--out`: raw 16-bit values for the raw debug views, sRGB
+/// otherwise.
+fn render_and_write(app: &mut App, output: &OutputArgs, what: &'static str) -> Result<()> {
+    app.update().context(what)?;
+    let image = if output.debug_view.writes_raw_values() {
+        let frame = pom::capture_f32(app).context("reading the frame back")?;
         DynamicImage::ImageRgb16(frame_output::raw_rgb16(&frame))
     } else {
-        let frame = pom::capture(&app).context("reading the frame back")?;
+        let frame = pom::capture(app).context("reading the frame back")?;
         DynamicImage::ImageRgba8(frame)
     };
-    frame_output::write(&app, image, &args.output.out)
+    frame_output::write(app, image, &output.out)
 }
 
 #[cfg(test)]
@@ -398,6 +491,86 @@ mod tests {
     #[test]
     fn a_depth_map_needs_a_height_file() {
         assert!(parse(&["--depth-map"]).is_err());
+    }
+
+    #[test]
+    fn a_scene_takes_the_output_options_and_a_camera() {
+        let args = parse(&[
+            "--scene",
+            "city.glb",
+            "--camera",
+            "2",
+            "--size",
+            "64x32",
+            "--debug-view",
+            "uv",
+        ])
+        .unwrap();
+        assert_eq!(args.scene.scene, Some(PathBuf::from("city.glb")));
+        assert_eq!(args.scene.camera, Some(CameraArg::Index(2)));
+        assert_eq!(args.output.size, (64, 32));
+        assert_eq!(args.output.debug_view, DebugViewArg::Uv);
+        let auto = parse(&["--scene", "city.glb", "--camera", "auto"]).unwrap();
+        assert_eq!(auto.scene.camera, Some(CameraArg::Auto));
+        let default = parse(&["--scene", "city.glb"]).unwrap();
+        assert_eq!(default.scene.camera, None, "the file decides");
+    }
+
+    #[test]
+    fn material_preview_options_conflict_with_a_scene() {
+        for option in [
+            &["--height", "h.png"][..],
+            &["--height", "h.png", "--depth-map"],
+            &["--normal", "n.png"],
+            &["--albedo", "a.png"],
+            &["--method", "steep"],
+            &["--height-scale", "0.1"],
+            &["--min-samples", "4"],
+            &["--max-samples", "64"],
+            &["--lod-threshold", "3"],
+            &["--shadows", "off"],
+            &["--shadow-softening", "1"],
+            &["--depth-offset"],
+            &["--view-angle", "30"],
+            &["--view-azimuth", "30"],
+            &["--light-angle", "30"],
+            &["--light-azimuth", "30"],
+            &["--projection", "perspective"],
+            &["--distance", "2"],
+            &["--tiling", "2"],
+        ] {
+            let mut args = vec!["--scene", "city.glb"];
+            args.extend_from_slice(option);
+            let error = parse(&args).expect_err(&format!("{option:?} was accepted"));
+            assert_eq!(error.kind(), clap::error::ErrorKind::ArgumentConflict);
+        }
+    }
+
+    #[test]
+    fn every_material_preview_option_conflicts_with_a_scene() {
+        use clap::CommandFactory;
+        // Clap derives one group per flattened struct, named after it, holding its options.
+        let command = RenderOnly::command();
+        let mut preview_only: Vec<String> = command
+            .get_groups()
+            .filter(|group| {
+                ["TextureArgs", "MaterialArgs", "ViewArgs"].contains(&group.get_id().as_str())
+            })
+            .flat_map(|group| group.get_args().map(|id| id.to_string()))
+            .collect();
+        preview_only.sort();
+        let mut listed: Vec<String> = MATERIAL_PREVIEW_ONLY.map(str::to_owned).to_vec();
+        listed.sort();
+        assert_eq!(preview_only, listed);
+    }
+
+    #[test]
+    fn a_camera_needs_a_scene() {
+        let error = parse(&["--camera", "1"]).unwrap_err();
+        assert_eq!(
+            error.kind(),
+            clap::error::ErrorKind::MissingRequiredArgument
+        );
     }
 
     #[test]

@@ -1,0 +1,84 @@
+//! `sandbox generate-assets`: writes the shipped material set and the street-corner scene.
+//!
+//! Everything is computed from fixed seeds, so running it again reproduces the committed files
+//! byte for byte (a test checks this).
+
+mod glb;
+mod street_corner;
+mod textures;
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+
+pub use street_corner::STREET_CORNER_FILE;
+
+/// Where the generator writes by default: the repository's assets/ folder.
+pub fn default_output() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
+}
+
+/// PNG bytes of an 8-bit image.
+fn png<P: image::PixelWithColorType<Subpixel = u8>>(
+    image: &image::ImageBuffer<P, Vec<u8>>,
+) -> Result<Vec<u8>> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .context("encoding a PNG")?;
+    Ok(bytes.into_inner())
+}
+
+/// The files of one material: albedo.png, normal.png, height.png.
+pub struct EncodedMaterial {
+    /// Folder name.
+    pub name: &'static str,
+    /// sRGB colour.
+    pub albedo: Vec<u8>,
+    /// Tangent-space normal map (OpenGL convention).
+    pub normal: Vec<u8>,
+    /// 8-bit height, white = top.
+    pub height: Vec<u8>,
+    /// Height range the normal map is made for, in texture units.
+    pub height_scale: f32,
+}
+
+fn encode(maps: &textures::MaterialMaps) -> Result<EncodedMaterial> {
+    let height = maps.height.to_image();
+    let pom::Pixels::Gray8(grey) = height.pixels() else {
+        anyhow::bail!("the height image of {} is not 8-bit grey", maps.name);
+    };
+    Ok(EncodedMaterial {
+        name: maps.name,
+        albedo: png(&maps.albedo)?,
+        normal: png(&maps.height.normal_map(maps.height_scale).to_rgba8())?,
+        height: png(grey)?,
+        height_scale: maps.height_scale,
+    })
+}
+
+/// Writes every asset under `out` and returns the files written.
+pub fn generate(out: &Path) -> Result<Vec<PathBuf>> {
+    let materials: Vec<EncodedMaterial> =
+        textures::all().iter().map(encode).collect::<Result<_>>()?;
+    let mut written = Vec::new();
+    for material in &materials {
+        let folder = out.join(material.name);
+        std::fs::create_dir_all(&folder)
+            .with_context(|| format!("creating {}", folder.display()))?;
+        for (file, bytes) in [
+            ("albedo.png", &material.albedo),
+            ("normal.png", &material.normal),
+            ("height.png", &material.height),
+        ] {
+            let path = folder.join(file);
+            std::fs::write(&path, bytes).with_context(|| format!("writing {}", path.display()))?;
+            written.push(path);
+        }
+    }
+    let scene = out.join(STREET_CORNER_FILE);
+    std::fs::write(&scene, street_corner::build(&materials))
+        .with_context(|| format!("writing {}", scene.display()))?;
+    written.push(scene);
+    Ok(written)
+}
