@@ -485,7 +485,11 @@ fn the_shipped_street_corner_renders_like_its_reference() {
         .arg(&out)
         .output()
         .expect("run the sandbox");
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let rendered = image::open(&out).expect("the render").to_rgba8();
     // The same reference the library's golden test uses (tests/golden, compared there with FLIP).
     let reference = image::open(repository.join("tests/golden/street_corner.png"))
@@ -499,6 +503,9 @@ fn the_shipped_street_corner_renders_like_its_reference() {
         .map(|(a, b)| u64::from(a.abs_diff(*b)))
         .sum();
     let mean = total as f64 / rendered.as_raw().len() as f64;
-    assert!(mean < 1.0, "mean difference {mean} levels from the reference");
+    assert!(
+        mean < 1.0,
+        "mean difference {mean} levels from the reference"
+    );
     std::fs::remove_file(&out).expect("clean up");
 }
