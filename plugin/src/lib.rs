@@ -62,7 +62,7 @@ pub use mesh::{Mesh, MeshError};
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, ShadowMode,
+    ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, PomPreset, PresetError, ShadowMode,
 };
 pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
 pub use resources::Resources;

@@ -4,7 +4,7 @@ use crate::{Color, Handle, Image};
 
 /// How the ray/height-field intersection is found. One march serves every method; they differ in
 /// how many samples they take and how they refine the crossing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum ParallaxMethod {
     /// No parallax: the texture coordinate is used as is (normal mapping only).
     NormalMapping,
@@ -25,7 +25,7 @@ pub enum ParallaxMethod {
 }
 
 /// Self-shadowing of the height field.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum ShadowMode {
     /// No self-shadowing.
     Off,
@@ -36,7 +36,7 @@ pub enum ShadowMode {
 }
 
 /// What the height texture's values mean.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum HeightConvention {
     /// White is the top (the polygon's surface), black the deepest point: Tatarchuk's convention.
     Height,
@@ -54,7 +54,7 @@ pub enum HeightSource {
 }
 
 /// The unit of [`ParallaxOcclusionMaterial::height_scale`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum HeightUnits {
     /// Texture-coordinate units, Tatarchuk's fHeightMapRange: the depth changes when the UVs are
     /// tiled differently or the object is scaled.
@@ -65,7 +65,7 @@ pub enum HeightUnits {
 }
 
 /// The lighting model.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum LightingModel {
     /// Phong, as in Tatarchuk's listing: highlight around the mirrored view ray.
     Phong,
@@ -76,7 +76,7 @@ pub enum LightingModel {
 }
 
 /// What the fragment shader outputs instead of the lit colour, for inspection.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum DebugView {
     /// The lit surface.
     None,

@@ -4,6 +4,7 @@ mod extract;
 mod gpu;
 mod material;
 mod pass;
+mod preset;
 
 pub use extract::{ExtractedPom, MaterialWarnings, PomDraw, extract_pom};
 pub use gpu::PomObject;
@@ -12,6 +13,7 @@ pub use material::{
     ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, ShadowMode,
 };
 pub use pass::PomPass;
+pub use preset::{PomPreset, PresetError, write_atomically};
 
 use crate::render::{MainPassDraws, RenderTarget, Renderer};
 use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};

@@ -1,0 +1,330 @@
+//! Material presets: the artist parameters of a [`ParallaxOcclusionMaterial`] without its
+//! textures, saved and loaded as RON, and printed as a Rust struct literal.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::material::{
+    DebugView, HeightConvention, HeightUnits, LightingModel, ParallaxMethod,
+    ParallaxOcclusionMaterial, PomMaterialError, ShadowMode,
+};
+use crate::Color;
+
+/// Every tunable parameter of a [`ParallaxOcclusionMaterial`] except its textures.
+///
+/// In RON every field is optional (missing ones keep the default) and unknown ones are errors:
+///
+/// ```ron
+/// (height_scale: 0.06, max_samples: 64, shadows: Soft, method: Relief(binary_steps: 6))
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PomPreset {
+    /// Linear RGBA multiplied with the colour texture.
+    pub base_color: [f32; 4],
+    /// See [`ParallaxOcclusionMaterial::height_convention`].
+    pub height_convention: HeightConvention,
+    /// See [`ParallaxOcclusionMaterial::height_scale`].
+    pub height_scale: f32,
+    /// See [`ParallaxOcclusionMaterial::height_units`].
+    pub height_units: HeightUnits,
+    /// See [`ParallaxOcclusionMaterial::min_samples`].
+    pub min_samples: u32,
+    /// See [`ParallaxOcclusionMaterial::max_samples`].
+    pub max_samples: u32,
+    /// See [`ParallaxOcclusionMaterial::lod_threshold`].
+    pub lod_threshold: f32,
+    /// See [`ParallaxOcclusionMaterial::lod_band`].
+    pub lod_band: f32,
+    /// See [`ParallaxOcclusionMaterial::shadows`].
+    pub shadows: ShadowMode,
+    /// See [`ParallaxOcclusionMaterial::shadow_softening`].
+    pub shadow_softening: f32,
+    /// See [`ParallaxOcclusionMaterial::method`].
+    pub method: ParallaxMethod,
+    /// See [`ParallaxOcclusionMaterial::depth_offset`].
+    pub depth_offset: bool,
+    /// See [`ParallaxOcclusionMaterial::lighting`].
+    pub lighting: LightingModel,
+    /// See [`ParallaxOcclusionMaterial::specular_strength`].
+    pub specular_strength: f32,
+    /// See [`ParallaxOcclusionMaterial::shininess`].
+    pub shininess: f32,
+    /// See [`ParallaxOcclusionMaterial::roughness`].
+    pub roughness: f32,
+    /// See [`ParallaxOcclusionMaterial::metallic`].
+    pub metallic: f32,
+    /// See [`ParallaxOcclusionMaterial::normal_strength`].
+    pub normal_strength: f32,
+    /// See [`ParallaxOcclusionMaterial::debug_view`].
+    pub debug_view: DebugView,
+}
+
+impl Default for PomPreset {
+    fn default() -> Self {
+        ParallaxOcclusionMaterial::default().preset()
+    }
+}
+
+/// Why a preset could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum PresetError {
+    /// The file could not be read or written.
+    #[error("{path}: {reason}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What the file system said.
+        reason: String,
+    },
+    /// The text is not a valid preset (syntax, wrong type, unknown field).
+    #[error("{name}:{line}:{column}: {reason}")]
+    Syntax {
+        /// The file or source name.
+        name: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What the parser said.
+        reason: String,
+    },
+    /// The values parse but are out of range.
+    #[error("{name}: {source}")]
+    Invalid {
+        /// The file or source name.
+        name: String,
+        /// The first problem.
+        source: PomMaterialError,
+    },
+}
+
+impl ParallaxOcclusionMaterial {
+    /// The material's parameters without its textures.
+    pub fn preset(&self) -> PomPreset {
+        PomPreset {
+            base_color: self.base_color.to_array(),
+            height_convention: self.height_convention,
+            height_scale: self.height_scale,
+            height_units: self.height_units,
+            min_samples: self.min_samples,
+            max_samples: self.max_samples,
+            lod_threshold: self.lod_threshold,
+            lod_band: self.lod_band,
+            shadows: self.shadows,
+            shadow_softening: self.shadow_softening,
+            method: self.method,
+            depth_offset: self.depth_offset,
+            lighting: self.lighting,
+            specular_strength: self.specular_strength,
+            shininess: self.shininess,
+            roughness: self.roughness,
+            metallic: self.metallic,
+            normal_strength: self.normal_strength,
+            debug_view: self.debug_view,
+        }
+    }
+
+    /// Takes every parameter of `preset`, keeping this material's textures.
+    pub fn apply_preset(&mut self, preset: &PomPreset) {
+        let [r, g, b, a] = preset.base_color;
+        self.base_color = Color { r, g, b, a };
+        self.height_convention = preset.height_convention;
+        self.height_scale = preset.height_scale;
+        self.height_units = preset.height_units;
+        self.min_samples = preset.min_samples;
+        self.max_samples = preset.max_samples;
+        self.lod_threshold = preset.lod_threshold;
+        self.lod_band = preset.lod_band;
+        self.shadows = preset.shadows;
+        self.shadow_softening = preset.shadow_softening;
+        self.method = preset.method;
+        self.depth_offset = preset.depth_offset;
+        self.lighting = preset.lighting;
+        self.specular_strength = preset.specular_strength;
+        self.shininess = preset.shininess;
+        self.roughness = preset.roughness;
+        self.metallic = preset.metallic;
+        self.normal_strength = preset.normal_strength;
+        self.debug_view = preset.debug_view;
+    }
+}
+
+impl PomPreset {
+    /// Parses RON text; `name` (a file name) appears in errors with the line and column. The
+    /// values are validated like a material's.
+    pub fn from_ron(text: &str, name: &str) -> Result<Self, PresetError> {
+        let preset: PomPreset = ron::from_str(text).map_err(|error| PresetError::Syntax {
+            name: name.to_owned(),
+            line: error.span.start.line,
+            column: error.span.start.col,
+            reason: error.code.to_string(),
+        })?;
+        let mut material = ParallaxOcclusionMaterial::default();
+        material.apply_preset(&preset);
+        material.validate().map_err(|source| PresetError::Invalid {
+            name: name.to_owned(),
+            source,
+        })?;
+        Ok(preset)
+    }
+
+    /// Reads and parses a RON file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, PresetError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|error| PresetError::Io {
+            path: path.display().to_string(),
+            reason: error.to_string(),
+        })?;
+        Self::from_ron(&text, &path.display().to_string())
+    }
+
+    /// Pretty RON text of every field.
+    pub fn to_ron(&self) -> String {
+        // Serialising plain numbers, booleans and unit enums cannot fail.
+        ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
+            .expect("presets always serialise")
+    }
+
+    /// Writes the preset as RON, atomically: to a temporary file beside `path`, then renamed over
+    /// it, so a crash never leaves half a file.
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), PresetError> {
+        write_atomically(path.as_ref(), self.to_ron().as_bytes())
+    }
+
+    /// The preset as a Rust struct literal to paste into game code.
+    pub fn to_rust(&self) -> String {
+        let [r, g, b, a] = self.base_color;
+        let method = match self.method {
+            ParallaxMethod::Relief { binary_steps } => {
+                format!("ParallaxMethod::Relief {{ binary_steps: {binary_steps} }}")
+            }
+            other => format!("ParallaxMethod::{other:?}"),
+        };
+        format!(
+            "ParallaxOcclusionMaterial {{\n    base_color: Color {{ r: {r:?}, g: {g:?}, b: {b:?}, a: {a:?} }},\n    height_convention: HeightConvention::{:?},\n    height_scale: {:?},\n    height_units: HeightUnits::{:?},\n    min_samples: {},\n    max_samples: {},\n    lod_threshold: {:?},\n    lod_band: {:?},\n    shadows: ShadowMode::{:?},\n    shadow_softening: {:?},\n    method: {method},\n    depth_offset: {},\n    lighting: LightingModel::{:?},\n    specular_strength: {:?},\n    shininess: {:?},\n    roughness: {:?},\n    metallic: {:?},\n    normal_strength: {:?},\n    debug_view: DebugView::{:?},\n    ..ParallaxOcclusionMaterial::default()\n}}",
+            self.height_convention,
+            self.height_scale,
+            self.height_units,
+            self.min_samples,
+            self.max_samples,
+            self.lod_threshold,
+            self.lod_band,
+            self.shadows,
+            self.shadow_softening,
+            self.depth_offset,
+            self.lighting,
+            self.specular_strength,
+            self.shininess,
+            self.roughness,
+            self.metallic,
+            self.normal_strength,
+            self.debug_view,
+        )
+    }
+}
+
+/// Writes `bytes` to a temporary file next to `path` and renames it over `path`.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), PresetError> {
+    let io_error = |error: std::io::Error| PresetError::Io {
+        path: path.display().to_string(),
+        reason: error.to_string(),
+    };
+    let file_name = path
+        .file_name()
+        .map(|name| name.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "preset".into());
+    let temporary = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
+    std::fs::write(&temporary, bytes).map_err(io_error)?;
+    std::fs::rename(&temporary, path).map_err(|error| {
+        let _ = std::fs::remove_file(&temporary);
+        io_error(error)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_round_trip_through_ron() {
+        let mut material = ParallaxOcclusionMaterial::default();
+        material.height_scale = 0.07;
+        material.method = ParallaxMethod::Relief { binary_steps: 4 };
+        material.shadows = ShadowMode::Hard;
+        let preset = material.preset();
+        let parsed = PomPreset::from_ron(&preset.to_ron(), "test.ron").unwrap();
+        assert_eq!(parsed, preset);
+        let mut other = ParallaxOcclusionMaterial::default();
+        other.apply_preset(&parsed);
+        assert_eq!(other.preset(), preset);
+    }
+
+    #[test]
+    fn partial_presets_keep_defaults() {
+        let preset = PomPreset::from_ron("(height_scale: 0.02, method: Steep)", "p.ron").unwrap();
+        assert_eq!(preset.height_scale, 0.02);
+        assert_eq!(preset.method, ParallaxMethod::Steep);
+        assert_eq!(preset.max_samples, 50);
+    }
+
+    #[test]
+    fn bad_presets_name_the_place_and_the_problem() {
+        let syntax =
+            PomPreset::from_ron("(height_scale: 0.02,\n  max_samples: )", "bad.ron").unwrap_err();
+        assert!(syntax.to_string().starts_with("bad.ron:2:"), "{syntax}");
+        let unknown = PomPreset::from_ron("(hieght_scale: 1.0)", "u.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            unknown.contains("u.ron:1:") && unknown.contains("hieght_scale"),
+            "{unknown}"
+        );
+        let wrong_type = PomPreset::from_ron("(max_samples: \"many\")", "t.ron").unwrap_err();
+        assert!(
+            matches!(wrong_type, PresetError::Syntax { .. }),
+            "{wrong_type}"
+        );
+        let invalid = PomPreset::from_ron("(min_samples: 90)", "i.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            invalid.contains("min_samples (90) is greater than max_samples (50)"),
+            "{invalid}"
+        );
+        let missing = PomPreset::load("/nonexistent/preset.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(missing.contains("/nonexistent/preset.ron"), "{missing}");
+    }
+
+    #[test]
+    fn saving_is_atomic_and_reloads() {
+        let dir = std::env::temp_dir().join(format!("pom-preset-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("tuned.ron");
+        let preset = PomPreset {
+            height_scale: 0.03,
+            ..PomPreset::default()
+        };
+        preset.save(&path).unwrap();
+        assert_eq!(PomPreset::load(&path).unwrap(), preset);
+        let leftovers = std::fs::read_dir(&dir).unwrap().count();
+        assert_eq!(leftovers, 1, "no temporary file stays behind");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_rust_literal_names_every_field() {
+        let rust = PomPreset::default().to_rust();
+        for field in [
+            "height_scale: 0.05",
+            "max_samples: 50",
+            "method: ParallaxMethod::Occlusion",
+            "..ParallaxOcclusionMaterial::default()",
+        ] {
+            assert!(rust.contains(field), "{rust}");
+        }
+    }
+}
