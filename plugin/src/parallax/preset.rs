@@ -249,10 +249,12 @@ mod tests {
 
     #[test]
     fn presets_round_trip_through_ron() {
-        let mut material = ParallaxOcclusionMaterial::default();
-        material.height_scale = 0.07;
-        material.method = ParallaxMethod::Relief { binary_steps: 4 };
-        material.shadows = ShadowMode::Hard;
+        let material = ParallaxOcclusionMaterial {
+            height_scale: 0.07,
+            method: ParallaxMethod::Relief { binary_steps: 4 },
+            shadows: ShadowMode::Hard,
+            ..ParallaxOcclusionMaterial::default()
+        };
         let preset = material.preset();
         let parsed = PomPreset::from_ron(&preset.to_ron(), "test.ron").unwrap();
         assert_eq!(parsed, preset);
