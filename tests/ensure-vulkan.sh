@@ -1,4 +1,5 @@
-# Sourced by tests/run and sandbox/run: makes sure a Vulkan driver is installed.
+# Sourced by tests/run and sandbox/run: makes sure a Vulkan driver (and, for tests, Xvfb) is
+# installed.
 # On a machine without one, installs Mesa's software driver (lavapipe) from Debian/Ubuntu packages.
 
 as_root() {
@@ -42,4 +43,13 @@ ensure_any_vulkan() {
     local manifests
     manifests=$(ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json 2>/dev/null | head -n 1)
     if [ -z "$manifests" ] || ! has_vulkan_loader; then install_lavapipe; fi
+}
+
+# Ensures the X virtual framebuffer exists, for the test that starts the real sandbox window.
+ensure_xvfb() {
+    if command -v Xvfb >/dev/null; then return 0; fi
+    echo "installing the X virtual framebuffer (xvfb, xauth)..." >&2
+    as_root apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq --no-install-recommends \
+        xvfb xauth >/dev/null
 }

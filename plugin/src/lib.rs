@@ -33,6 +33,7 @@ mod dynamic_height;
 mod gltf_loader;
 mod height_field;
 mod image;
+mod image_compare;
 mod light;
 mod lit_material;
 pub mod mesh;
@@ -42,6 +43,7 @@ pub mod preview;
 pub mod reference;
 pub mod render;
 mod resources;
+pub mod script;
 mod transform;
 
 pub use app::{
@@ -56,6 +58,7 @@ pub use dynamic_height::{
 pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf, load_gltf_bytes};
 pub use height_field::{HeightField, patterns};
 pub use image::{Channel, Image, ImageError, Pixels, TextureKind};
+pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;
 pub use mesh::{Mesh, MeshError};
@@ -66,6 +69,7 @@ pub use parallax::{
 };
 pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
 pub use resources::Resources;
+pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };

@@ -77,6 +77,16 @@ impl Transform {
         self
     }
 
+    /// The transform of an affine matrix (its shear, if any, is lost).
+    pub fn from_affine(affine: Affine3A) -> Self {
+        let (scale, rotation, translation) = affine.to_scale_rotation_translation();
+        Self {
+            translation,
+            rotation,
+            scale,
+        }
+    }
+
     /// The affine matrix of this transform.
     pub fn to_affine(&self) -> Affine3A {
         Affine3A::from_scale_rotation_translation(self.scale, self.rotation, self.translation)

@@ -1,5 +1,5 @@
-//! What `sandbox` does without a subcommand (and so what `cargo run --release` shows): the demo
-//! scene, rendered headless to a PNG. The live window will replace the PNG; it belongs here.
+//! `sandbox snapshot`: the scene the window opens on, rendered headless to a PNG (what
+//! `sandbox` did without a subcommand before the window existed).
 
 use std::path::PathBuf;
 
@@ -9,7 +9,7 @@ use clap::Args;
 use crate::cli_types::parse_size;
 use crate::{demo_scene, frame_output};
 
-/// Options of the default command.
+/// Options of the `snapshot` command.
 #[derive(Debug, Args)]
 pub struct DemoArgs {
     /// Where to write the PNG.

@@ -1,6 +1,7 @@
-//! The sandbox: without a subcommand, the street-corner demo scene (rendered headless to a PNG
-//! until the live window lands); `render` previews one parallax material or a glTF scene
-//! headless; `generate-assets` rebuilds the shipped assets.
+//! The sandbox: without a subcommand, a window on the street-corner scene where every parameter
+//! of the parallax material can be tuned live; `snapshot` renders that scene headless to a PNG;
+//! `render` previews one parallax material or a glTF scene headless; `generate-assets` rebuilds
+//! the shipped assets.
 
 mod asset_generator;
 mod cli_types;
@@ -10,21 +11,24 @@ mod frame_output;
 mod preview_textures;
 mod render_command;
 mod scene_preview;
+mod window;
 
 use clap::{Parser, Subcommand};
 
-/// The POM sandbox. Without a subcommand it renders the demo scene to a PNG.
+/// The POM sandbox. Without a subcommand it opens a window for tuning parallax materials live.
 #[derive(Debug, Parser)]
 #[command(name = "sandbox", version, args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
     #[command(flatten)]
-    demo: demo_command::DemoArgs,
+    window: window::WindowArgs,
 }
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Renders the street-corner scene (what the window opens on) headless to a PNG.
+    Snapshot(demo_command::DemoArgs),
     /// Renders one parallax material on a square plane (or, with --scene, a glTF scene) to a PNG.
     Render(render_command::RenderArgs),
     /// Writes the shipped material set (albedo, normal and height maps) and the street-corner
@@ -63,7 +67,8 @@ fn main() {
         std::process::exit(error.exit_code());
     });
     let result = match &cli.command {
-        None => demo_command::run(&cli.demo),
+        None => window::run(&cli.window),
+        Some(Command::Snapshot(args)) => demo_command::run(args),
         Some(Command::Render(args)) => render_command::run(args),
         Some(Command::GenerateAssets { out }) => {
             let out = out.clone().unwrap_or_else(asset_generator::default_output);
@@ -93,25 +98,56 @@ mod tests {
     }
 
     #[test]
-    fn no_subcommand_is_the_demo_with_todays_defaults() {
+    fn snapshot_is_the_former_default_with_its_defaults() {
+        let cli = Cli::try_parse_from(["sandbox", "snapshot"]).unwrap();
+        let Some(Command::Snapshot(demo)) = cli.command else {
+            panic!("not the snapshot command: {cli:?}");
+        };
+        assert_eq!(demo.out, std::path::Path::new("target/sandbox-preview.png"));
+        assert_eq!(demo.size, (960, 540));
+        let sized = Cli::try_parse_from(["sandbox", "snapshot", "--size", "64x32"]).unwrap();
+        let Some(Command::Snapshot(demo)) = sized.command else {
+            panic!("not the snapshot command");
+        };
+        assert_eq!(demo.size, (64, 32));
+    }
+
+    #[test]
+    fn no_subcommand_is_the_window_with_its_automation_flags() {
         let cli = Cli::try_parse_from(["sandbox"]).unwrap();
         assert!(cli.command.is_none());
+        assert_eq!(cli.window.exit_after_frames, None);
+        let scripted = Cli::try_parse_from([
+            "sandbox",
+            "--scene",
+            "a.glb",
+            "--exit-after-frames",
+            "5",
+            "--screenshot",
+            "shot.png",
+            "--state",
+            "state.ron",
+        ])
+        .unwrap();
+        assert_eq!(scripted.window.exit_after_frames, Some(5));
         assert_eq!(
-            cli.demo.out,
-            std::path::Path::new("target/sandbox-preview.png")
+            scripted.window.screenshot.as_deref(),
+            Some(std::path::Path::new("shot.png"))
         );
-        assert_eq!(cli.demo.size, (960, 540));
-        let sized = Cli::try_parse_from(["sandbox", "--size", "64x32"]).unwrap();
-        assert_eq!(sized.demo.size, (64, 32));
+        assert_eq!(
+            scripted.window.scene.as_deref(),
+            Some(std::path::Path::new("a.glb"))
+        );
     }
 
     #[test]
     fn unknown_flags_are_rejected() {
         assert!(Cli::try_parse_from(["sandbox", "--bogus"]).is_err());
-        assert!(Cli::try_parse_from(["sandbox", "--size", "12"]).is_err());
+        assert!(Cli::try_parse_from(["sandbox", "snapshot", "--size", "12"]).is_err());
         assert!(Cli::try_parse_from(["sandbox", "render", "--out", "a.png", "--bogus"]).is_err());
-        // The demo's options do not leak into `render`, nor the other way round.
-        assert!(Cli::try_parse_from(["sandbox", "--out", "a.png", "render"]).is_err());
+        // The window's options do not leak into `render`, nor the other way round.
+        assert!(Cli::try_parse_from(["sandbox", "--scene", "a.glb", "render"]).is_err());
+        assert!(Cli::try_parse_from(["sandbox", "--out", "a.png"]).is_err());
     }
 
     #[test]

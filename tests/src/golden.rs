@@ -4,28 +4,7 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 
-/// How different a capture may be from its reference, in FLIP units (0 = identical, 1 = maximal).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FlipTolerance {
-    /// Largest allowed mean FLIP error over the image.
-    pub mean: f32,
-    /// Percentile checked (e.g. 0.99).
-    pub percentile: f32,
-    /// Largest allowed FLIP error at that percentile.
-    pub percentile_max: f32,
-}
-
-impl Default for FlipTolerance {
-    /// Tight enough to catch a moved light or a broken normal map, loose enough for the small
-    /// rounding differences between software drivers.
-    fn default() -> Self {
-        Self {
-            mean: 0.01,
-            percentile: 0.99,
-            percentile_max: 0.1,
-        }
-    }
-}
+pub use pom::FlipTolerance;
 
 /// Why a capture did not match its reference.
 #[derive(Debug, thiserror::Error)]
@@ -102,28 +81,10 @@ fn save(image: &RgbaImage, path: &Path) -> Result<(), GoldenError> {
     })
 }
 
-/// The FLIP error map of two same-sized images, its mean and its value at `percentile`.
-fn flip_error(
-    reference: &RgbaImage,
-    actual: &RgbaImage,
-    percentile: f32,
-) -> (nv_flip::FlipImageFloat, f32, f32) {
-    let (width, height) = actual.dimensions();
-    let rgb = |image: &RgbaImage| -> Vec<u8> {
-        image
-            .pixels()
-            .flat_map(|p| [p.0[0], p.0[1], p.0[2]])
-            .collect()
-    };
-    let error_map = nv_flip::flip(
-        nv_flip::FlipImageRgb8::with_data(width, height, &rgb(reference)),
-        nv_flip::FlipImageRgb8::with_data(width, height, &rgb(actual)),
-        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
-    );
-    let mut pool = nv_flip::FlipPool::from_image(&error_map);
-    let mean = pool.mean();
-    let at_percentile = pool.get_percentile(percentile, true);
-    (error_map, mean, at_percentile)
+/// The FLIP comparison of two same-sized images.
+fn flip_error(reference: &RgbaImage, actual: &RgbaImage, percentile: f32) -> pom::FlipComparison {
+    // Callers check the sizes first.
+    pom::flip_compare(reference, actual, percentile).expect("same sizes")
 }
 
 /// Why two renders differ more than allowed.
@@ -159,15 +120,15 @@ pub fn compare_images(
             sizes,
         });
     }
-    let (_, mean, at_percentile) = flip_error(expected, actual, tolerance.percentile);
-    if mean <= tolerance.mean && at_percentile <= tolerance.percentile_max {
+    let comparison = flip_error(expected, actual, tolerance.percentile);
+    if comparison.within(&tolerance) {
         Ok(())
     } else {
         Err(ImagesDiffer {
             what: what.to_owned(),
-            mean,
+            mean: comparison.mean,
             percentile: tolerance.percentile * 100.0,
-            at_percentile,
+            at_percentile: comparison.at_percentile,
             sizes,
         })
     }
@@ -207,22 +168,8 @@ pub fn check_golden(
             actual: actual.dimensions(),
         });
     }
-    let (width, height) = actual.dimensions();
-    let rgb = |image: &RgbaImage| -> Vec<u8> {
-        image
-            .pixels()
-            .flat_map(|p| [p.0[0], p.0[1], p.0[2]])
-            .collect()
-    };
-    let error_map = nv_flip::flip(
-        nv_flip::FlipImageRgb8::with_data(width, height, &rgb(&reference)),
-        nv_flip::FlipImageRgb8::with_data(width, height, &rgb(actual)),
-        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
-    );
-    let mut pool = nv_flip::FlipPool::from_image(&error_map);
-    let mean = pool.mean();
-    let at_percentile = pool.get_percentile(tolerance.percentile, true);
-    if mean <= tolerance.mean && at_percentile <= tolerance.percentile_max {
+    let comparison = flip_error(&reference, actual, tolerance.percentile);
+    if comparison.within(&tolerance) {
         return Ok(());
     }
     if blessing() {
@@ -231,17 +178,13 @@ pub fn check_golden(
     let actual_path = sibling(&path, "actual");
     let difference_path = sibling(&path, "difference");
     save(actual, &actual_path)?;
-    let colored = error_map.apply_color_lut(&nv_flip::magma_lut());
-    let difference = image::RgbImage::from_raw(width, height, colored.to_vec())
-        .map(|rgb| image::DynamicImage::ImageRgb8(rgb).to_rgba8())
-        .unwrap_or_else(|| RgbaImage::new(width, height));
-    save(&difference, &difference_path)?;
+    save(&comparison.error_map, &difference_path)?;
     Err(GoldenError::TooDifferent {
         path,
-        mean,
+        mean: comparison.mean,
         mean_max: tolerance.mean,
         percentile: tolerance.percentile * 100.0,
-        at_percentile,
+        at_percentile: comparison.at_percentile,
         percentile_max: tolerance.percentile_max,
         actual: actual_path.display().to_string(),
         difference: difference_path.display().to_string(),

@@ -155,7 +155,9 @@ impl PomPreset {
     /// Parses RON text; `name` (a file name) appears in errors with the line and column. The
     /// values are validated like a material's.
     pub fn from_ron(text: &str, name: &str) -> Result<Self, PresetError> {
-        let preset: PomPreset = ron::from_str(text).map_err(|error| PresetError::Syntax {
+        let parser = ron::Options::default()
+            .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+        let preset: PomPreset = parser.from_str(text).map_err(|error| PresetError::Syntax {
             name: name.to_owned(),
             line: error.span.start.line,
             column: error.span.start.col,

@@ -1,0 +1,315 @@
+//! The scene-script file format (RON). Every struct rejects unknown fields.
+
+use serde::Deserialize;
+
+use crate::FlipTolerance;
+use crate::parallax::{
+    DebugView, HeightConvention, HeightUnits, LightingModel, ParallaxMethod, ShadowMode,
+};
+
+/// A whole script: what to build, then what to do with it.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Script {
+    /// Image size in pixels (width, height).
+    #[serde(default = "default_size")]
+    pub size: (u32, u32),
+    /// The camera.
+    pub camera: CameraDesc,
+    /// Lights (none: a glTF file's own, if any).
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    /// Ambient light (colour, intensity).
+    #[serde(default)]
+    pub ambient: Option<([f32; 3], f32)>,
+    /// Things in the scene.
+    #[serde(default)]
+    pub entities: Vec<EntityDesc>,
+    /// What to do, in order, with a fixed frame time.
+    pub steps: Vec<Step>,
+}
+
+fn default_size() -> (u32, u32) {
+    (256, 256)
+}
+
+/// Where the camera is and how it projects.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    /// Eye position.
+    pub position: [f32; 3],
+    /// Point looked at.
+    pub target: [f32; 3],
+    /// Vertical field of view in degrees; absent with `orthographic_height`.
+    #[serde(default)]
+    pub fov_degrees: Option<f32>,
+    /// Height of the view in world units for an orthographic camera.
+    #[serde(default)]
+    pub orthographic_height: Option<f32>,
+}
+
+/// A light.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum LightDesc {
+    /// Sunlight travelling along `direction`.
+    Directional {
+        /// Direction the light travels.
+        direction: [f32; 3],
+        /// Linear colour.
+        #[serde(default = "white")]
+        color: [f32; 3],
+        /// Brightness.
+        #[serde(default = "one")]
+        intensity: f32,
+    },
+    /// A point light.
+    Point {
+        /// Position.
+        position: [f32; 3],
+        /// Linear colour.
+        #[serde(default = "white")]
+        color: [f32; 3],
+        /// Brightness at one unit.
+        #[serde(default = "one")]
+        intensity: f32,
+        /// Distance where it fades out.
+        #[serde(default = "twenty")]
+        range: f32,
+    },
+}
+
+fn white() -> [f32; 3] {
+    [1.0; 3]
+}
+fn one() -> f32 {
+    1.0
+}
+fn twenty() -> f32 {
+    20.0
+}
+
+/// Position, rotation (Euler degrees, applied X then Y then Z) and scale.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TransformDesc {
+    /// Position.
+    pub translation: [f32; 3],
+    /// Rotation in degrees about X, Y, Z.
+    pub rotation_degrees: [f32; 3],
+    /// Scale (default 1, 1, 1).
+    pub scale: Option<[f32; 3]>,
+}
+
+/// A primitive shape.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum ShapeDesc {
+    /// A square in XZ facing +Y, UVs 0..tiling.
+    Plane {
+        /// Side length.
+        size: f32,
+        /// UV repeats.
+        #[serde(default = "one")]
+        tiling: f32,
+    },
+    /// A cube.
+    Cube {
+        /// Side length.
+        size: f32,
+    },
+    /// A UV sphere.
+    Sphere {
+        /// Radius.
+        radius: f32,
+    },
+}
+
+/// What an entity looks like.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum MaterialDesc {
+    /// The normal-mapped default material of one colour.
+    Lit {
+        /// Linear colour.
+        color: [f32; 3],
+    },
+    /// A parallax material from a folder holding albedo.png, normal.png and height.png (as the
+    /// shipped sets under assets/), with parameters from a preset file and/or inline changes.
+    Pom {
+        /// Folder of the maps, relative to the script.
+        maps: String,
+        /// A preset RON file, relative to the script.
+        #[serde(default)]
+        preset: Option<String>,
+        /// Changes on top of the preset.
+        #[serde(default)]
+        set: MaterialPatch,
+    },
+}
+
+/// An entity: a primitive with a material, or a whole glTF file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EntityDesc {
+    /// The name steps refer to.
+    pub name: String,
+    /// A primitive shape (or `gltf`).
+    #[serde(default)]
+    pub shape: Option<ShapeDesc>,
+    /// A glTF file relative to the script (or `shape`).
+    #[serde(default)]
+    pub gltf: Option<String>,
+    /// The material of a shape.
+    #[serde(default)]
+    pub material: Option<MaterialDesc>,
+    /// Placement.
+    #[serde(default)]
+    pub transform: TransformDesc,
+}
+
+/// Parameter changes of a parallax material; absent fields stay as they are.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct MaterialPatch {
+    pub height_convention: Option<HeightConvention>,
+    pub height_scale: Option<f32>,
+    pub height_units: Option<HeightUnits>,
+    pub min_samples: Option<u32>,
+    pub max_samples: Option<u32>,
+    pub lod_threshold: Option<f32>,
+    pub lod_band: Option<f32>,
+    pub shadows: Option<ShadowMode>,
+    pub shadow_softening: Option<f32>,
+    pub method: Option<ParallaxMethod>,
+    pub depth_offset: Option<bool>,
+    pub lighting: Option<LightingModel>,
+    pub specular_strength: Option<f32>,
+    pub shininess: Option<f32>,
+    pub roughness: Option<f32>,
+    pub metallic: Option<f32>,
+    pub normal_strength: Option<f32>,
+    pub debug_view: Option<DebugView>,
+}
+
+/// A rectangle of a capture in pixels: x, y, width, height.
+pub type Rect = (u32, u32, u32, u32);
+
+/// A number measured over a rectangle of a capture.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Statistic {
+    /// Mean Rec. 709 luminance of the linear colour, 0..1.
+    MeanLuminance,
+    /// Fraction of pixels in the LOD transition band (needs a capture with `debug_view: Uv`).
+    LodBandFraction,
+    /// Fraction of pixels where only normal mapping ran (needs `debug_view: Uv`).
+    NormalMappingFraction,
+    /// Fraction of pixels less than half lit (needs `debug_view: Shadow`).
+    ShadowedFraction,
+    /// Mean distance in texture units between this capture's coordinates and `baseline`'s
+    /// (both with `debug_view: Uv`): how far parallax moved the texture.
+    UvShift {
+        /// The capture to measure from.
+        baseline: String,
+    },
+}
+
+/// One step of a script.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Step {
+    /// Runs `frames` updates with the fixed frame time.
+    Advance {
+        /// Number of frames.
+        frames: u32,
+    },
+    /// Changes parameters of the parallax materials of `entity` (its own, or a glTF's).
+    Set {
+        /// Entity name.
+        entity: String,
+        /// The changes.
+        material: MaterialPatch,
+    },
+    /// Moves the camera.
+    Camera {
+        /// Eye position.
+        position: [f32; 3],
+        /// Point looked at.
+        target: [f32; 3],
+    },
+    /// Turns the camera about the vertical axis through its target.
+    OrbitCamera {
+        /// Degrees, counter-clockwise seen from above.
+        degrees: f32,
+    },
+    /// Moves light number `light` (in the script's order).
+    MoveLight {
+        /// Light index.
+        light: usize,
+        /// New direction (directional lights).
+        #[serde(default)]
+        direction: Option<[f32; 3]>,
+        /// New position (point lights).
+        #[serde(default)]
+        position: Option<[f32; 3]>,
+    },
+    /// Spins `entity` about Y by `degrees_per_frame` every following frame (0 stops it).
+    Spin {
+        /// Entity name.
+        entity: String,
+        /// Degrees per frame.
+        degrees_per_frame: f32,
+    },
+    /// Renders a frame and keeps it under `name`; `debug_view` renders every parallax
+    /// material with that view for this capture only.
+    Capture {
+        /// Name of the capture.
+        name: String,
+        /// Temporary debug view.
+        #[serde(default)]
+        debug_view: Option<DebugView>,
+    },
+    /// Compares a capture with a reference PNG (relative to the script) using FLIP.
+    ExpectMatch {
+        /// The capture.
+        capture: String,
+        /// The reference image.
+        reference: String,
+        /// Allowed difference.
+        #[serde(default)]
+        tolerance: FlipTolerance,
+    },
+    /// Checks a statistic of a capture (over `rect`, or the whole image) is within bounds.
+    ExpectStat {
+        /// The capture.
+        capture: String,
+        /// What to measure.
+        stat: Statistic,
+        /// The region, default the whole image.
+        #[serde(default)]
+        rect: Option<Rect>,
+        /// Smallest allowed value.
+        #[serde(default)]
+        min: Option<f32>,
+        /// Largest allowed value.
+        #[serde(default)]
+        max: Option<f32>,
+    },
+    /// Checks a statistic grows (or shrinks) strictly along a list of captures.
+    ExpectMonotonic {
+        /// The captures, in order.
+        captures: Vec<String>,
+        /// What to measure.
+        stat: Statistic,
+        /// Whether it must grow (true) or shrink.
+        #[serde(default = "yes")]
+        increasing: bool,
+    },
+}
+
+fn yes() -> bool {
+    true
+}

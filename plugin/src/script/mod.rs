@@ -1,0 +1,152 @@
+//! Scripted scene tests: a RON file describes a scene and a list of steps (advance frames, change
+//! a material, move the camera or a light, capture, expect), run headless with a fixed frame
+//! time, and checked against reference images and statistics.
+
+mod format;
+mod runner;
+mod stats;
+
+pub use format::{
+    CameraDesc, EntityDesc, LightDesc, MaterialDesc, MaterialPatch, Rect, Script, ShapeDesc,
+    Statistic, Step, TransformDesc,
+};
+pub use runner::{run_script, run_script_with};
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// How a script run treats references and where it writes failure images.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Write missing or changed reference images instead of failing.
+    pub bless: bool,
+    /// Where `NAME-actual.png` and `NAME-difference.png` of failed comparisons go (default:
+    /// next to the reference).
+    pub out_dir: Option<PathBuf>,
+}
+
+/// What became of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    /// An action was carried out.
+    Done,
+    /// An expectation held; the text gives the measured value and the bound.
+    Passed(String),
+    /// An expectation failed; the text says by how much and where the images are.
+    Failed(String),
+    /// A reference image was written (blessing).
+    Blessed(String),
+}
+
+/// One line of a report.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepReport {
+    /// 1-based step number.
+    pub number: usize,
+    /// What the step was.
+    pub description: String,
+    /// What happened.
+    pub outcome: Outcome,
+}
+
+/// The result of running one script.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Report {
+    /// The script.
+    pub script: PathBuf,
+    /// Every step that ran, in order.
+    pub steps: Vec<StepReport>,
+}
+
+impl Report {
+    /// Number of failed expectations.
+    pub fn failures(&self) -> usize {
+        self.steps
+            .iter()
+            .filter(|step| matches!(step.outcome, Outcome::Failed(_)))
+            .count()
+    }
+
+    /// Whether every expectation held.
+    pub fn passed(&self) -> bool {
+        self.failures() == 0
+    }
+}
+
+impl fmt::Display for Report {
+    /// One line per step: `name.ron step 4 ExpectMatch "grazing": pass (…)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let name = self.script.display();
+        for step in &self.steps {
+            let (verdict, detail) = match &step.outcome {
+                Outcome::Done => ("ok", String::new()),
+                Outcome::Passed(detail) => ("pass", format!(" ({detail})")),
+                Outcome::Failed(detail) => ("FAIL", format!(" ({detail})")),
+                Outcome::Blessed(detail) => ("blessed", format!(" ({detail})")),
+            };
+            writeln!(
+                f,
+                "{name} step {} {}: {verdict}{detail}",
+                step.number, step.description
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Why a script could not be run to its end.
+#[derive(Debug, thiserror::Error)]
+pub enum ScriptError {
+    /// The file could not be read.
+    #[error("{path}: {reason}")]
+    Io {
+        /// The script.
+        path: PathBuf,
+        /// What the file system said.
+        reason: String,
+    },
+    /// The text is not a valid script: syntax, an unknown field, a wrong type.
+    #[error("{path}:{line}:{column}: {reason}")]
+    Parse {
+        /// The script.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The script refers to something that does not exist (an entity, a capture, a file).
+    #[error("{path}:{line}:{column}: {reason}")]
+    Reference {
+        /// The script.
+        path: PathBuf,
+        /// 1-based line of the reference.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What is missing.
+        reason: String,
+    },
+    /// The scene could not be built (GPU, textures, glTF).
+    #[error("{path}: {reason}")]
+    Setup {
+        /// The script.
+        path: PathBuf,
+        /// What failed.
+        reason: String,
+    },
+    /// A step could not be carried out; the report holds every step before it.
+    #[error("{path}: step {step}: {reason}")]
+    Step {
+        /// The script.
+        path: PathBuf,
+        /// 1-based step number.
+        step: usize,
+        /// What failed.
+        reason: String,
+        /// The steps that ran.
+        report: Report,
+    },
+}

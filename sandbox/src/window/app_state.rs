@@ -1,0 +1,161 @@
+//! The sandbox's side of the `pom::App`: loading the scene with names for its entities, the
+//! list of parallax materials, the tuned values saved between runs, and spinning an object.
+
+use std::path::Path;
+
+use glam::{Quat, Vec3};
+use pom::hecs::{Entity, World};
+use pom::preview::{default_lighting, three_quarter_view};
+use pom::{App, GltfScene, ParallaxOcclusionMaterial, Transform};
+
+use super::autosave::TunedState;
+use super::scene_names::{EntityNames, name_entities};
+use crate::demo_scene::STREET_CORNER;
+
+/// Name of the embedded scene in the state file and the UI.
+pub const EMBEDDED_SCENE: &str = "street_corner.glb (embedded)";
+/// Radians per second of "spin selected object".
+const SPIN_SPEED: f32 = 0.8;
+/// Aspect the auto camera frames for; the real viewport's aspect is applied when drawing.
+const FRAMING_ASPECT: f32 = 16.0 / 9.0;
+
+/// What was loaded at start.
+#[derive(Debug)]
+pub struct LoadedScene {
+    /// The scene's name (keys its tuned values in the state file).
+    pub label: String,
+    /// Why the requested scene could not be opened (the embedded one was opened instead), and
+    /// the loader's warnings.
+    pub messages: Vec<String>,
+    /// Distance from the camera to the scene's centre, where orbiting pivots.
+    pub focus_distance: f32,
+}
+
+/// Loads `path` (or the embedded street corner, also when `path` fails) into `app`, names its
+/// entities (the `EntityNames` resource) and adds a camera and a light when it has none.
+pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
+    let mut messages = Vec::new();
+    if let Some(path) = path {
+        let loaded = std::fs::read(path)
+            .map_err(|error| format!("{}: {error}", path.display()))
+            .and_then(|bytes| {
+                pom::load_gltf(app, path)
+                    .map(|scene| (scene, bytes))
+                    .map_err(|error| error.to_string())
+            });
+        match loaded {
+            Ok((scene, bytes)) => {
+                let label = path.display().to_string();
+                return finish_loading(app, &scene, &bytes, label, messages);
+            }
+            Err(error) => {
+                messages.push(format!(
+                    "could not open the scene: {error}; showing the street corner"
+                ));
+                // A load that failed half-way may have spawned some nodes: start clean.
+                app.world.clear();
+            }
+        }
+    }
+    match pom::load_gltf_bytes(app, STREET_CORNER, EMBEDDED_SCENE) {
+        Ok(scene) => finish_loading(app, &scene, STREET_CORNER, EMBEDDED_SCENE.into(), messages),
+        Err(error) => {
+            messages.push(format!("could not load the embedded scene: {error}"));
+            let label = EMBEDDED_SCENE.into();
+            finish_loading(app, &GltfScene::default(), &[], label, messages)
+        }
+    }
+}
+
+fn finish_loading(
+    app: &mut App,
+    scene: &GltfScene,
+    bytes: &[u8],
+    label: String,
+    mut messages: Vec<String>,
+) -> LoadedScene {
+    messages.extend(
+        scene
+            .warnings
+            .iter()
+            .map(|warning| format!("{label}: {warning}")),
+    );
+    let bounds = scene
+        .bounds
+        .unwrap_or((Vec3::splat(-0.5), Vec3::splat(0.5)));
+    if scene.cameras.is_empty() {
+        app.world.spawn(three_quarter_view(bounds, FRAMING_ASPECT));
+    }
+    if scene.lights.is_empty() {
+        let (sun, transform, ambient) = default_lighting();
+        app.world.spawn((sun, transform));
+        app.resources.insert(ambient);
+    }
+    app.resources
+        .insert(EntityNames(name_entities(bytes, &scene.entities)));
+    let centre = (bounds.0 + bounds.1) * 0.5;
+    let focus_distance =
+        super::camera_control::active_camera_transform(&app.world).map_or(5.0, |camera| {
+            (centre - camera.translation)
+                .dot(camera.rotation * Vec3::NEG_Z)
+                .max(0.5)
+        });
+    LoadedScene {
+        label,
+        messages,
+        focus_distance,
+    }
+}
+
+/// Every entity with a parallax material and its display name, in a stable order.
+pub fn material_entities(app: &App) -> Vec<(Entity, String)> {
+    let names = app.resources.get::<EntityNames>();
+    let mut entities: Vec<Entity> = app
+        .world
+        .query::<(Entity, &ParallaxOcclusionMaterial)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .collect();
+    entities.sort();
+    entities
+        .into_iter()
+        .map(|entity| {
+            let name = names
+                .and_then(|names| names.0.get(&entity).cloned())
+                .unwrap_or_else(|| format!("entity {}", entity.id()));
+            (entity, name)
+        })
+        .collect()
+}
+
+/// The current parameters of every material of `app`, stored under `scene` in `state`.
+pub fn record_tuned(app: &App, scene: &str, state: &mut TunedState) {
+    let materials = state.scenes.entry(scene.to_owned()).or_default();
+    for (entity, name) in material_entities(app) {
+        if let Ok(material) = app.world.get::<&ParallaxOcclusionMaterial>(entity) {
+            materials.insert(name, material.preset());
+        }
+    }
+}
+
+/// Applies the values `state` holds for `scene` to the materials of the same names.
+pub fn restore_tuned(app: &mut App, scene: &str, state: &TunedState) {
+    let Some(saved) = state.scenes.get(scene) else {
+        return;
+    };
+    for (entity, name) in material_entities(app) {
+        if let (Some(preset), Ok(mut material)) = (
+            saved.get(&name),
+            app.world.get::<&mut ParallaxOcclusionMaterial>(entity),
+        ) {
+            material.apply_preset(preset);
+        }
+    }
+}
+
+/// Turns `entity` about the vertical by `dt` seconds' worth of spin.
+pub fn spin(world: &mut World, entity: Entity, dt: f32) {
+    if let Ok(mut transform) = world.get::<&mut Transform>(entity) {
+        transform.rotation = Quat::from_rotation_y(SPIN_SPEED * dt) * transform.rotation;
+    }
+}

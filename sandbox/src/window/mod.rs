@@ -1,0 +1,60 @@
+//! The live window: winit + egui on the plugin's device. The 3D scene is rendered by the plugin
+//! into its offscreen target and shown as an egui image; the side panel edits the components
+//! and resources of the `pom::App`. This module holds UI and input only.
+
+mod app_state;
+mod autosave;
+mod camera_control;
+mod egui_painter;
+mod light_control;
+mod material_editor;
+mod panels;
+mod presets;
+mod scene_names;
+mod screenshot;
+mod surface;
+mod window_app;
+
+#[cfg(test)]
+mod panel_tests;
+
+use std::path::PathBuf;
+
+use anyhow::{Result, anyhow};
+use clap::Args;
+use winit::event_loop::EventLoop;
+
+/// The window's options (the automation flags let scripts and CI drive the real window).
+#[derive(Debug, Args)]
+pub struct WindowArgs {
+    /// Open this glTF scene (.gltf or .glb) instead of the embedded street corner. A file that
+    /// cannot be loaded shows its error in the window, which falls back to the street corner.
+    #[arg(long, value_name = "PATH")]
+    pub scene: Option<PathBuf>,
+    /// Close the window after this many frames (for scripts and CI).
+    #[arg(long, value_name = "N")]
+    pub exit_after_frames: Option<u64>,
+    /// Write the window's last frame, panels included, to this PNG before exiting.
+    #[arg(long, value_name = "FILE")]
+    pub screenshot: Option<PathBuf>,
+    /// Where tuned material values are saved (atomically, at most once a second) and restored
+    /// from at the next start [default: $XDG_CONFIG_HOME/pom-sandbox/state.ron, else
+    /// ~/.config/pom-sandbox/state.ron, else target/sandbox-state.ron].
+    #[arg(long, value_name = "FILE")]
+    pub state: Option<PathBuf>,
+}
+
+/// Opens the window and runs it until it is closed (or `--exit-after-frames` is reached).
+pub fn run(args: &WindowArgs) -> Result<()> {
+    let event_loop = EventLoop::new().map_err(|error| {
+        anyhow!(
+            "cannot open a window ({error}): no display? Render headless instead with \
+             `sandbox snapshot --out FILE.png` (this scene) or `sandbox render --help`"
+        )
+    })?;
+    let mut app = window_app::WindowApp::new(args, event_loop.owned_display_handle());
+    event_loop
+        .run_app(&mut app)
+        .map_err(|error| anyhow!("the window's event loop failed: {error}"))?;
+    app.finish()
+}

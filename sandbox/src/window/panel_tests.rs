@@ -1,0 +1,187 @@
+//! The side panel driven by egui_kittest, without a window or a GPU: the panel only edits the
+//! `pom::App`'s world, so a bare `App` with one material entity is enough.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use pom::hecs::Entity;
+use pom::{App, ParallaxOcclusionMaterial, ShadowMode};
+
+use super::panels::{PanelState, side_panel_contents};
+
+struct Fixture {
+    app: App,
+    panel: PanelState,
+    material: Entity,
+}
+
+fn harness() -> Harness<'static, Fixture> {
+    let mut app = App::new();
+    let material = app.world.spawn((ParallaxOcclusionMaterial::default(),));
+    let fixture = Fixture {
+        app,
+        panel: PanelState::default(),
+        material,
+    };
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(420.0, 1400.0))
+        .build_ui_state(
+            |ui, fixture: &mut Fixture| {
+                side_panel_contents(ui, &mut fixture.app, &mut fixture.panel)
+            },
+            fixture,
+        );
+    harness.run();
+    harness
+}
+
+fn material(harness: &Harness<'_, Fixture>) -> ParallaxOcclusionMaterial {
+    let fixture = harness.state();
+    fixture
+        .app
+        .world
+        .get::<&ParallaxOcclusionMaterial>(fixture.material)
+        .map(|material| (*material).clone())
+        .unwrap()
+}
+
+fn scratch_file(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("sandbox-panel-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn moving_the_height_scale_slider_changes_the_component() {
+    let mut harness = harness();
+    assert_eq!(material(&harness).height_scale, 0.05);
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "height scale")
+        .set_value_accesskit(0.12);
+    harness.run();
+    assert!((material(&harness).height_scale - 0.12).abs() < 1e-6);
+    // Other parameters stay as they were.
+    assert_eq!(material(&harness).max_samples, 50);
+}
+
+#[test]
+fn the_selected_material_is_listed_and_every_group_of_controls_is_there() {
+    let harness = harness();
+    let entity = harness.state().material;
+    harness.get_by_label(&format!("entity {}", entity.id()));
+    for label in [
+        "method",
+        "height scale",
+        "height units",
+        "height convention",
+        "depth offset",
+        "min samples",
+        "max samples",
+        "LOD threshold",
+        "LOD band",
+        "self-shadows",
+        "shadow softening",
+        "lighting model",
+        "specular strength",
+        "shininess",
+        "roughness",
+        "metallic",
+        "normal strength",
+        "debug view",
+    ] {
+        assert!(
+            harness.query_all_by_label(label).next().is_some(),
+            "no control labelled {label:?}"
+        );
+    }
+}
+
+#[test]
+fn presets_round_trip_through_save_and_load() {
+    let path = scratch_file("round-trip.ron");
+    let mut harness = harness();
+    let material_entity = harness.state().material;
+    {
+        let fixture = harness.state_mut();
+        fixture.panel.presets.path = path.display().to_string();
+        let mut material = fixture
+            .app
+            .world
+            .get::<&mut ParallaxOcclusionMaterial>(material_entity)
+            .unwrap();
+        material.height_scale = 0.08;
+        material.shadows = ShadowMode::Hard;
+    }
+    harness.run();
+    harness.get_by_label("Save preset…").click();
+    harness.run();
+    assert!(path.exists(), "the preset file was written");
+    let saved = material(&harness);
+    {
+        let fixture = harness.state_mut();
+        let mut material = fixture
+            .app
+            .world
+            .get::<&mut ParallaxOcclusionMaterial>(material_entity)
+            .unwrap();
+        *material = ParallaxOcclusionMaterial::default();
+    }
+    harness.run();
+    harness.get_by_label("Load preset…").click();
+    harness.run();
+    assert_eq!(material(&harness).preset(), saved.preset());
+    assert_eq!(material(&harness).shadows, ShadowMode::Hard);
+    let _ = std::fs::remove_file(&path);
+}
+
+#[test]
+fn a_bad_preset_file_shows_an_error_and_leaves_the_material_alone() {
+    let path = scratch_file("bad.ron");
+    std::fs::write(&path, "(height_scale: \"deep\")").unwrap();
+    let mut harness = harness();
+    harness.state_mut().panel.presets.path = path.display().to_string();
+    harness.run();
+    let before = material(&harness);
+    harness.get_by_label("Load preset…").click();
+    harness.run();
+    harness.get_by_label_contains("could not load");
+    assert_eq!(material(&harness), before);
+    let _ = std::fs::remove_file(&path);
+}
+
+#[test]
+fn lights_can_be_added_and_removed() {
+    let mut harness = harness();
+    let lights = |harness: &Harness<'_, Fixture>| {
+        harness
+            .state()
+            .app
+            .world
+            .query::<&pom::DirectionalLight>()
+            .iter()
+            .count()
+    };
+    assert_eq!(lights(&harness), 0);
+    harness.get_by_label("Light").click();
+    harness.run();
+    harness.get_by_label("Add light").click();
+    harness.run();
+    assert_eq!(lights(&harness), 1);
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "light elevation °")
+        .set_value_accesskit(60.0);
+    harness.run();
+    let fixture = harness.state();
+    let (_, transform) = fixture
+        .app
+        .world
+        .query::<(&pom::DirectionalLight, &pom::Transform)>()
+        .iter()
+        .next()
+        .map(|(light, transform)| (*light, *transform))
+        .unwrap();
+    let (_, elevation) = super::light_control::azimuth_elevation(&transform);
+    assert!((elevation - 60.0).abs() < 0.01, "{elevation}");
+    harness.get_by_label("Remove light").click();
+    harness.run();
+    assert_eq!(lights(&harness), 0);
+}

@@ -1,0 +1,128 @@
+//! The side panel: the list of parallax materials, the editor of the selected one, presets,
+//! lights, spin and the screenshot button. It works on a `pom::App` and needs no window or GPU,
+//! so egui_kittest can drive it.
+
+use egui::{Color32, ScrollArea, Ui};
+use pom::hecs::Entity;
+use pom::{App, ParallaxOcclusionMaterial};
+
+use super::app_state::material_entities;
+use super::light_control::LightControls;
+use super::material_editor::edit_material;
+use super::presets::PresetControls;
+
+/// Default file of the screenshot button.
+pub const DEFAULT_SCREENSHOT_PATH: &str = "target/sandbox-screenshot.png";
+
+/// Everything the panel remembers between frames.
+#[derive(Debug)]
+pub struct PanelState {
+    /// The material entity being edited.
+    pub selected: Option<Entity>,
+    /// Preset path and last outcome.
+    pub presets: PresetControls,
+    /// Which light the light controls move.
+    pub lights: LightControls,
+    /// Turn the selected entity a little every frame.
+    pub spin_selected: bool,
+    /// Where the screenshot button writes.
+    pub screenshot_path: String,
+    /// Set by the screenshot button; the window takes the picture and clears it.
+    pub screenshot_requested: bool,
+    /// Problems and results to show at the top (scene errors, autosave, screenshots).
+    pub messages: Vec<String>,
+}
+
+impl Default for PanelState {
+    fn default() -> Self {
+        Self {
+            selected: None,
+            presets: PresetControls::default(),
+            lights: LightControls::default(),
+            spin_selected: false,
+            screenshot_path: DEFAULT_SCREENSHOT_PATH.into(),
+            screenshot_requested: false,
+            messages: Vec::new(),
+        }
+    }
+}
+
+/// Draws the panel's contents into `ui`, editing `app`'s world directly.
+pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
+    ScrollArea::vertical().show(ui, |ui| {
+        ui.heading("POM sandbox");
+        for message in &state.messages {
+            ui.colored_label(Color32::from_rgb(255, 190, 90), message);
+        }
+        material_list(ui, app, state);
+        ui.separator();
+        if let Some(entity) = state.selected {
+            selected_material(ui, app, state, entity);
+        }
+        ui.separator();
+        ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
+        ui.checkbox(&mut state.spin_selected, "spin selected object")
+            .on_hover_text("Turns the selected object slowly, to judge the parallax in motion.");
+        ui.separator();
+        ui.horizontal(|ui| {
+            if ui
+                .button("Screenshot")
+                .on_hover_text(
+                    "Saves the whole window, panels included, as a PNG to the path beside.",
+                )
+                .clicked()
+            {
+                state.screenshot_requested = true;
+            }
+            let label = ui.label("to");
+            ui.text_edit_singleline(&mut state.screenshot_path)
+                .labelled_by(label.id)
+                .on_hover_text("The PNG file the screenshot button writes.");
+        });
+        ui.label("Drag: orbit · right/middle drag: pan · wheel: zoom · arrows / WASD: move")
+            .on_hover_text("Mouse over the 3D view; keys work when no text field is being edited.");
+    });
+}
+
+fn material_list(ui: &mut Ui, app: &App, state: &mut PanelState) {
+    let materials = material_entities(app);
+    if materials.is_empty() {
+        ui.label("This scene has no parallax material.");
+        state.selected = None;
+        return;
+    }
+    if state
+        .selected
+        .is_none_or(|selected| !materials.iter().any(|(e, _)| *e == selected))
+    {
+        state.selected = materials.first().map(|(entity, _)| *entity);
+    }
+    ui.label("Parallax materials")
+        .on_hover_text("Pick the object whose material the controls below edit.");
+    for (entity, name) in materials {
+        ui.selectable_value(&mut state.selected, Some(entity), name);
+    }
+}
+
+fn selected_material(ui: &mut Ui, app: &mut App, state: &mut PanelState, entity: Entity) {
+    let Ok(mut material) = app.world.get::<&mut ParallaxOcclusionMaterial>(entity) else {
+        return;
+    };
+    // Edit a copy and write it back only when something changed, so an untouched panel never
+    // marks the component as modified.
+    let mut edited = material.clone();
+    let mut changed = edit_material(ui, &mut edited);
+    ui.separator();
+    changed |= state.presets.show(ui, &mut edited);
+    if ui
+        .button("Reset to defaults")
+        .on_hover_text("Puts every parameter back to Tatarchuk's defaults (textures stay).")
+        .clicked()
+    {
+        edited.apply_preset(&pom::PomPreset::default());
+        changed = true;
+    }
+    if changed {
+        *material = edited;
+    }
+}

@@ -1,0 +1,378 @@
+//! The winit application: creates the window, the surface and the shared GPU device, builds the
+//! `pom::App` on that device, and each frame runs the UI, updates the app (which renders the
+//! scene into its target) and paints egui to the window.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow};
+use egui::{CentralPanel, Panel, Sense};
+use egui_wgpu::ScreenDescriptor;
+use pom::render::{RenderTarget, TargetFormat};
+use pom::{App, GpuContext, PomPlugin, RenderPlugin};
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, OwnedDisplayHandle};
+use winit::window::{Window, WindowId};
+
+use super::WindowArgs;
+use super::app_state::{load_scene, record_tuned, restore_tuned, spin};
+use super::autosave::{self, Autosave, TunedState};
+use super::camera_control::{CameraInput, OrbitCamera, active_camera_transform, write_to_camera};
+use super::egui_painter::{EguiFrame, EguiPainter};
+use super::panels::{PanelState, side_panel_contents};
+use super::screenshot::{ScreenshotTarget, save_png};
+use super::surface::WindowSurface;
+
+/// The window's size when it opens, in logical pixels.
+const INITIAL_SIZE: (f64, f64) = (1280.0, 720.0);
+/// Width of the side panel when it opens, in points.
+const PANEL_WIDTH: f32 = 380.0;
+
+/// The application handler; [`WindowApp::finish`] reports how it ended.
+pub struct WindowApp {
+    scene: Option<PathBuf>,
+    exit_after_frames: Option<u64>,
+    screenshot: Option<PathBuf>,
+    state_path: PathBuf,
+    display: OwnedDisplayHandle,
+    running: Option<Running>,
+    error: Option<anyhow::Error>,
+    frames: u64,
+}
+
+/// Everything that exists once the window is open.
+struct Running {
+    window: Arc<Window>,
+    gpu: GpuContext,
+    surface: WindowSurface,
+    painter: EguiPainter,
+    egui: egui::Context,
+    egui_input: egui_winit::State,
+    app: App,
+    panel: PanelState,
+    orbit: Option<OrbitCamera>,
+    scene_label: String,
+    autosave: Autosave,
+    tuned: TunedState,
+    last_frame: Instant,
+}
+
+impl WindowApp {
+    /// A handler for `args`, using the event loop's display.
+    pub fn new(args: &WindowArgs, display: OwnedDisplayHandle) -> Self {
+        Self {
+            scene: args.scene.clone(),
+            exit_after_frames: args.exit_after_frames,
+            screenshot: args.screenshot.clone(),
+            state_path: args
+                .state
+                .clone()
+                .unwrap_or_else(autosave::default_state_path),
+            display,
+            running: None,
+            error: None,
+            frames: 0,
+        }
+    }
+
+    /// The error that closed the window, if any; saves the tuned values one last time.
+    pub fn finish(mut self) -> Result<()> {
+        if let Some(running) = &mut self.running
+            && let Err(error) = running.save_tuned(true)
+        {
+            log::warn!("{error:#}");
+        }
+        match self.error {
+            Some(error) => Err(error),
+            None => Ok(()),
+        }
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, error: anyhow::Error) {
+        self.error = Some(error);
+        event_loop.exit();
+    }
+
+    fn open(&self, event_loop: &ActiveEventLoop) -> Result<Running> {
+        let attributes = Window::default_attributes()
+            .with_title("POM sandbox")
+            .with_inner_size(winit::dpi::LogicalSize::new(INITIAL_SIZE.0, INITIAL_SIZE.1));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .context("cannot create the window")?,
+        );
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
+                Box::new(self.display.clone()),
+            ));
+        let surface = instance.create_surface(Arc::clone(&window)).context(
+            "cannot draw into the window: no GPU driver can present to it (without a GPU, \
+                 install Mesa's software Vulkan driver: apt-get install mesa-vulkan-drivers \
+                 libvulkan1; or render headless with `sandbox snapshot`)",
+        )?;
+        // One device for the window and the plugin: RenderPlugin finds this context and uses it.
+        let gpu = GpuContext::for_surface(instance, &surface)?;
+        let surface = WindowSurface::new(surface, &gpu, Arc::clone(&window))?;
+
+        let size = window.inner_size();
+        let mut app = App::new();
+        app.insert_resource(gpu.clone());
+        app.add_plugin(RenderPlugin::headless(
+            size.width.max(1),
+            size.height.max(1),
+        ))
+        .add_plugin(PomPlugin);
+        let loaded = load_scene(&mut app, self.scene.as_deref());
+        let mut panel = PanelState {
+            messages: loaded.messages,
+            ..PanelState::default()
+        };
+        let tuned = match autosave::load(&self.state_path) {
+            Ok(tuned) => tuned,
+            Err(error) => {
+                panel
+                    .messages
+                    .push(format!("tuned values not restored: {error:#}"));
+                TunedState::default()
+            }
+        };
+        restore_tuned(&mut app, &loaded.label, &tuned);
+        app.finish().context("starting the renderer")?;
+        let orbit = active_camera_transform(&app.world)
+            .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
+
+        let target = app
+            .resources
+            .get::<RenderTarget>()
+            .ok_or_else(|| anyhow!("the render plugin made no render target"))?;
+        let painter = EguiPainter::new(&gpu, surface.format(), target);
+        let egui = egui::Context::default();
+        let egui_input = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(gpu.device.limits().max_texture_dimension_2d as usize),
+        );
+        Ok(Running {
+            window,
+            gpu,
+            surface,
+            painter,
+            egui,
+            egui_input,
+            app,
+            panel,
+            orbit,
+            scene_label: loaded.label,
+            autosave: Autosave::new(self.state_path.clone(), tuned.clone()),
+            tuned,
+            last_frame: Instant::now(),
+        })
+    }
+
+    /// Draws one frame; returns whether one was presented.
+    fn redraw(&mut self, force_screenshot: bool) -> Result<bool> {
+        let last_frame = self.exit_after_frames.is_some_and(|n| self.frames + 1 >= n);
+        let flag_screenshot = if last_frame || force_screenshot {
+            self.screenshot.clone()
+        } else {
+            None
+        };
+        let Some(running) = &mut self.running else {
+            return Ok(false);
+        };
+        let Some(frame) = running.surface.acquire(&running.gpu) else {
+            return Ok(false);
+        };
+        let button_screenshot = std::mem::take(&mut running.panel.screenshot_requested)
+            .then(|| PathBuf::from(&running.panel.screenshot_path));
+        let shots: Vec<PathBuf> = flag_screenshot
+            .into_iter()
+            .chain(button_screenshot)
+            .collect();
+        running.draw(frame, &shots)?;
+        self.frames += 1;
+        Ok(true)
+    }
+}
+
+impl Running {
+    /// Runs the UI, updates the app and paints; writes a screenshot to each of `shots`.
+    fn draw(&mut self, frame: wgpu::SurfaceTexture, shots: &[PathBuf]) -> Result<()> {
+        let now = Instant::now();
+        let dt = now.duration_since(self.last_frame).as_secs_f32().min(0.1);
+        self.last_frame = now;
+
+        let raw_input = self.egui_input.take_egui_input(&self.window);
+        let mut viewport_pixels = None;
+        let mut camera_input = CameraInput::default();
+        let scene_texture = self.painter.scene_texture;
+        let (app, panel) = (&mut self.app, &mut self.panel);
+        let output = self.egui.run_ui(raw_input, |ui| {
+            Panel::left("controls")
+                .default_size(PANEL_WIDTH)
+                .resizable(true)
+                .show(ui, |ui| side_panel_contents(ui, app, panel));
+            CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| {
+                    let size = ui.available_size();
+                    let pixels = size * ui.ctx().pixels_per_point();
+                    viewport_pixels = Some((pixels.x.round() as u32, pixels.y.round() as u32));
+                    let image =
+                        egui::Image::new((scene_texture, size)).sense(Sense::click_and_drag());
+                    let response = ui.add(image);
+                    camera_input = CameraInput::from_viewport(ui, &response);
+                });
+        });
+        self.egui_input
+            .handle_platform_output(&self.window, output.platform_output);
+
+        if let Some((width, height)) = viewport_pixels {
+            self.fit_target(width, height);
+        }
+        if let Some(orbit) = &mut self.orbit
+            && !camera_input.is_idle()
+        {
+            orbit.apply(&camera_input);
+            write_to_camera(&mut self.app.world, orbit);
+        }
+        if self.panel.spin_selected
+            && let Some(entity) = self.panel.selected
+        {
+            spin(&mut self.app.world, entity, dt);
+        }
+        self.app.update().context("updating the scene")?;
+        if let Err(error) = self.save_tuned(false) {
+            let message = format!("autosave failed: {error:#}");
+            if !self.panel.messages.contains(&message) {
+                self.panel.messages.push(message);
+            }
+        }
+
+        let paint_jobs = self.egui.tessellate(output.shapes, output.pixels_per_point);
+        let mut textures = output.textures_delta;
+        let (width, height) = (frame.texture.width(), frame.texture.height());
+        let screen = ScreenDescriptor {
+            size_in_pixels: [width, height],
+            pixels_per_point: output.pixels_per_point,
+        };
+        let screenshot = (!shots.is_empty())
+            .then(|| ScreenshotTarget::new(&self.gpu, width, height, self.surface.format()));
+        let view = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let target = self
+            .app
+            .resources
+            .get::<RenderTarget>()
+            .ok_or_else(|| anyhow!("the render target is gone"))?;
+        self.painter.paint(
+            &self.gpu,
+            target,
+            EguiFrame {
+                paint_jobs: &paint_jobs,
+                textures: &mut textures,
+                screen,
+            },
+            &view,
+            screenshot.as_ref(),
+        );
+        self.window.pre_present_notify();
+        self.gpu.queue.present(frame);
+        if let Some(screenshot) = screenshot {
+            let image = screenshot.read(&self.gpu)?;
+            for path in shots {
+                save_png(image.clone(), path)?;
+                self.panel.messages.retain(|m| !m.starts_with("screenshot"));
+                self.panel
+                    .messages
+                    .push(format!("screenshot saved to {}", path.display()));
+            }
+        }
+        Ok(())
+    }
+
+    /// Replaces the render target when the viewport's size in pixels changed (pipelines do not
+    /// depend on the size, so only the target is new).
+    fn fit_target(&mut self, width: u32, height: u32) {
+        if width == 0 || height == 0 {
+            return;
+        }
+        let current = self
+            .app
+            .resources
+            .get::<RenderTarget>()
+            .map(RenderTarget::size);
+        if current != Some((width, height)) {
+            let target = RenderTarget::new(&self.gpu, width, height, TargetFormat::Srgb8);
+            self.app.insert_resource(target);
+        }
+    }
+
+    /// Records the materials' values and writes them if they changed (at most once a second,
+    /// unless `force`).
+    fn save_tuned(&mut self, force: bool) -> Result<()> {
+        record_tuned(&self.app, &self.scene_label, &mut self.tuned);
+        self.autosave
+            .maybe_write(&self.tuned, Instant::now(), force)
+            .with_context(|| format!("writing {}", self.autosave.path().display()))
+    }
+}
+
+impl ApplicationHandler for WindowApp {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_some() {
+            return;
+        }
+        match self.open(event_loop) {
+            Ok(running) => {
+                running.window.request_redraw();
+                self.running = Some(running);
+            }
+            Err(error) => self.fail(event_loop, error),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(running) = &mut self.running else {
+            return;
+        };
+        let _ = running.egui_input.on_window_event(&running.window, &event);
+        match event {
+            WindowEvent::CloseRequested => {
+                if self.screenshot.is_some()
+                    && let Err(error) = self.redraw(true)
+                {
+                    self.error = Some(error);
+                }
+                event_loop.exit();
+            }
+            WindowEvent::Resized(size) => {
+                running
+                    .surface
+                    .resize(&running.gpu, size.width, size.height);
+                running.window.request_redraw();
+            }
+            WindowEvent::RedrawRequested => {
+                match self.redraw(false) {
+                    Ok(_) if self.exit_after_frames.is_some_and(|n| self.frames >= n) => {
+                        event_loop.exit();
+                    }
+                    Ok(_) => {}
+                    Err(error) => return self.fail(event_loop, error),
+                }
+                // Redraw continuously: spinning, camera keys and autosave need frames.
+                if let Some(running) = &self.running {
+                    running.window.request_redraw();
+                }
+            }
+            _ => {}
+        }
+    }
+}

@@ -1,0 +1,149 @@
+//! Every scene script under tests/scenes runs and passes; a wrong expectation fails readably;
+//! the same script gives the same pixels twice. `UPDATE_GOLDENS=1` blesses missing references.
+
+use std::path::{Path, PathBuf};
+
+use pom::script::Outcome;
+use pom::{RunOptions, ScriptError, run_script_with};
+
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")
+}
+
+fn bless() -> bool {
+    std::env::var_os("UPDATE_GOLDENS").is_some_and(|v| v != "0" && !v.is_empty())
+}
+
+#[test]
+fn every_shipped_script_passes() {
+    let mut scripts: Vec<PathBuf> = std::fs::read_dir(scenes())
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "ron"))
+        .collect();
+    scripts.sort();
+    assert!(
+        scripts.len() >= 7,
+        "found only {} scripts in {}",
+        scripts.len(),
+        scenes().display()
+    );
+    let options = RunOptions {
+        bless: bless(),
+        out_dir: None,
+    };
+    let mut failures = Vec::new();
+    for script in &scripts {
+        match run_script_with(script, &options) {
+            Ok(report) => {
+                eprint!("{report}");
+                if !report.passed() {
+                    failures.push(format!(
+                        "{}: {} failed expectations",
+                        script.display(),
+                        report.failures()
+                    ));
+                }
+            }
+            Err(error) => failures.push(error.to_string()),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scene_fixtures")
+        .join(name)
+}
+
+#[test]
+fn a_wrong_expectation_fails_with_a_readable_report() {
+    let report = run_script_with(fixture("wrong_expectation.ron"), &RunOptions::default()).unwrap();
+    assert!(!report.passed());
+    assert_eq!(report.failures(), 1);
+    let text = report.to_string();
+    assert!(
+        text.contains("ExpectStat \"plane\": FAIL (mean luminance = "),
+        "{text}"
+    );
+    assert!(text.contains("bounds 0.9..=1"), "{text}");
+}
+
+#[test]
+fn the_same_script_gives_the_same_pixels() {
+    let dir = std::env::temp_dir().join(format!("pom-determinism-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let script = dir.join("twice.ron");
+    std::fs::copy(fixture("determinism.ron"), &script).unwrap();
+    // The first run writes the reference, the second must match it exactly (FLIP 0).
+    let first = run_script_with(
+        &script,
+        &RunOptions {
+            bless: true,
+            out_dir: None,
+        },
+    )
+    .unwrap();
+    assert!(matches!(
+        first.steps.last().unwrap().outcome,
+        Outcome::Blessed(_)
+    ));
+    let second = run_script_with(&script, &RunOptions::default()).unwrap();
+    assert!(second.passed(), "{second}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn error_of(source: &str) -> String {
+    let dir = std::env::temp_dir().join(format!(
+        "pom-script-errors-{}-{}",
+        std::process::id(),
+        source.len()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.ron");
+    std::fs::write(&path, source).unwrap();
+    let error = run_script_with(&path, &RunOptions::default()).unwrap_err();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(!matches!(error, ScriptError::Step { .. }), "{error}");
+    error.to_string()
+}
+
+const CAMERA: &str = "camera: (position: (0.0, 1.0, 1.0), target: (0.0, 0.0, 0.0))";
+
+#[test]
+fn bad_scripts_name_the_file_line_and_column() {
+    let unknown = error_of(&format!("(\n  {CAMERA},\n  stepz: [],\n)"));
+    assert!(
+        unknown.contains("bad.ron:3:") && unknown.contains("stepz"),
+        "{unknown}"
+    );
+    let wrong_type = error_of(&format!(
+        "(\n  {CAMERA},\n  size: \"big\",\n  steps: [],\n)"
+    ));
+    assert!(wrong_type.contains("bad.ron:3:"), "{wrong_type}");
+    let syntax = error_of(&format!("(\n  {CAMERA},\n  steps: [Advance(frames: 1)\n"));
+    assert!(syntax.contains("bad.ron:"), "{syntax}");
+    let ghost = error_of(&format!(
+        "(\n  {CAMERA},\n  steps: [\n    Set(entity: \"ghost\", material: ()),\n  ],\n)"
+    ));
+    assert!(
+        ghost.contains("bad.ron:4:17") && ghost.contains("no entity is named \"ghost\""),
+        "{ghost}"
+    );
+    let missing_file = error_of(&format!(
+        "(\n  {CAMERA},\n  entities: [(name: \"x\", gltf: Some(\"nowhere.glb\"))],\n  steps: [],\n)"
+    ));
+    assert!(
+        missing_file.contains("bad.ron:3:") && missing_file.contains("nowhere.glb"),
+        "{missing_file}"
+    );
+    let missing_capture = error_of(&format!(
+        "(\n  {CAMERA},\n  steps: [ExpectMatch(capture: \"never\", reference: \"r.png\")],\n)"
+    ));
+    assert!(
+        missing_capture.contains("no capture named \"never\""),
+        "{missing_capture}"
+    );
+}
