@@ -11,6 +11,7 @@ mod frame_output;
 mod preview_textures;
 mod render_command;
 mod scene_preview;
+mod script_command;
 mod window;
 
 use clap::{Parser, Subcommand};
@@ -38,6 +39,9 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<std::path::PathBuf>,
     },
+    /// Runs scene scripts (RON) headless: one line per step, non-zero exit when any
+    /// expectation fails.
+    RunScript(script_command::ScriptArgs),
 }
 
 /// Clap's usage errors add a tip, the usage and a pointer to --help over several lines; the
@@ -70,6 +74,7 @@ fn main() {
         None => window::run(&cli.window),
         Some(Command::Snapshot(args)) => demo_command::run(args),
         Some(Command::Render(args)) => render_command::run(args),
+        Some(Command::RunScript(args)) => script_command::run(args),
         Some(Command::GenerateAssets { out }) => {
             let out = out.clone().unwrap_or_else(asset_generator::default_output);
             asset_generator::generate(&out).map(|files| {

@@ -1,0 +1,50 @@
+//! `sandbox run-script`: runs scene scripts headless and reports each step.
+
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+use clap::Args;
+
+/// Options of `run-script`.
+#[derive(Debug, Args)]
+pub struct ScriptArgs {
+    /// Scene script files (RON).
+    #[arg(required = true, value_name = "FILE")]
+    pub scripts: Vec<PathBuf>,
+    /// Write missing or changed reference images instead of failing (look at them first).
+    #[arg(long)]
+    pub bless: bool,
+    /// Folder for the actual and difference images of failed comparisons [default: next to
+    /// each reference].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// Runs every script, prints one line per step, fails when any expectation or script failed.
+pub fn run(args: &ScriptArgs) -> Result<()> {
+    let options = pom::RunOptions {
+        bless: args.bless,
+        out_dir: args.out.clone(),
+    };
+    let mut failed = 0;
+    for script in &args.scripts {
+        match pom::run_script_with(script, &options) {
+            Ok(report) => {
+                print!("{report}");
+                failed += usize::from(!report.passed());
+            }
+            Err(error) => {
+                // A script that stopped midway still reports the steps it ran.
+                if let pom::ScriptError::Step { report, .. } = &error {
+                    print!("{report}");
+                }
+                eprintln!("error: {error}");
+                failed += 1;
+            }
+        }
+    }
+    if failed > 0 {
+        bail!("{failed} of {} scripts failed", args.scripts.len());
+    }
+    Ok(())
+}
