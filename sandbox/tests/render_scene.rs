@@ -2,75 +2,12 @@
 //! here, its exit status, its stderr and the PNG it writes. The tests that render need a Vulkan
 //! driver; `tests/run` pins the software one.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::process::Output;
 
-/// A folder of its own under the system temp dir, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(test: &str) -> Self {
-        static NEXT: AtomicU32 = AtomicU32::new(0);
-        let unique = format!(
-            "sandbox-scene-{test}-{}-{}",
-            std::process::id(),
-            NEXT.fetch_add(1, Ordering::Relaxed)
-        );
-        let path = std::env::temp_dir().join(unique);
-        std::fs::create_dir_all(&path).expect("creating a temp dir");
-        Self(path)
-    }
-
-    fn join(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn sandbox(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sandbox"))
-        .args(args)
-        .output()
-        .expect("running the sandbox binary")
-}
-
-fn path_arg(path: &Path) -> &str {
-    path.to_str().expect("temp paths are UTF-8")
-}
-
-/// Asserts a failure with exactly one line on stderr that starts with `error:` and mentions
-/// every one of `expected`; returns the line.
-fn assert_one_line_error(output: &Output, expected: &[&str]) -> String {
-    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
-    assert!(
-        !output.status.success(),
-        "exited successfully; stderr: {stderr}"
-    );
-    let line = stderr.trim_end();
-    assert_eq!(line.lines().count(), 1, "stderr is not one line:\n{stderr}");
-    assert!(line.starts_with("error: "), "{line}");
-    assert!(!line.contains("panicked"), "{line}");
-    for word in expected {
-        assert!(line.contains(word), "{line:?} does not mention {word:?}");
-    }
-    line.to_owned()
-}
-
-fn assert_success(output: &Output) {
-    assert!(
-        output.status.success(),
-        "exit {:?}\nstdout: {}\nstderr: {}",
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-}
+use common::*;
 
 /// The `warning:` lines on stderr (a software Vulkan driver may add lines of its own).
 fn warnings(output: &Output) -> Vec<String> {

@@ -3,8 +3,8 @@
 use super::extract::ExtractedPom;
 use super::gpu::PomObject;
 use crate::render::{
-    DEPTH_FORMAT, DefaultTexture, FrameUniformBuffer, GpuAssets, GpuContext, ObjectBuffer,
-    TextureBindGroups, Vertex, shaders,
+    DefaultTexture, FrameUniformBuffer, GpuAssets, GpuContext, ObjectBuffer, TextureBindGroups,
+    mesh_pipeline, shaders,
 };
 
 /// Pipelines (with and without depth offset), the per-draw buffer and the texture bind groups.
@@ -71,36 +71,7 @@ impl PomPass {
             immediate_size: 0,
         });
         let pipeline = |label: &str, entry_point: &str| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(Vertex::LAYOUT)],
-                },
-                primitive: wgpu::PrimitiveState {
-                    cull_mode: Some(wgpu::Face::Back),
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some(entry_point),
-                    compilation_options: Default::default(),
-                    targets: &[Some(color_format.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            mesh_pipeline(device, label, &layout, &shader, entry_point, color_format)
         };
         let objects = ObjectBuffer::new(gpu, "parallax object buffer", 16);
         let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());

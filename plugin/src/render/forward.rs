@@ -5,11 +5,10 @@ use super::extract::ExtractedFrame;
 use super::frame_uniform::FrameUniformBuffer;
 use super::gpu_assets::DefaultTexture;
 use super::gpu_assets::GpuAssets;
-use super::gpu_types::{ObjectUniform, Vertex};
+use super::gpu_types::ObjectUniform;
 use super::object_buffer::ObjectBuffer;
-use super::shaders;
-use super::target::DEPTH_FORMAT;
 use super::texture_bind_groups::TextureBindGroups;
+use super::{layout, shaders};
 
 /// Pipeline, buffers and bind groups of the forward pass.
 pub struct ForwardPass {
@@ -77,36 +76,14 @@ impl ForwardPass {
             bind_group_layouts: &[Some(&frame_layout), Some(materials.layout())],
             immediate_size: 0,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("forward pipeline"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(Vertex::LAYOUT)],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: Some(wgpu::Face::Back),
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(color_format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = layout::mesh_pipeline(
+            device,
+            "forward pipeline",
+            &layout,
+            &shader,
+            "fs_main",
+            color_format,
+        );
         let objects = ObjectBuffer::new(gpu, "forward object buffer", 64);
         let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());
         Self {

@@ -8,6 +8,7 @@ mod frame_uniform;
 mod gpu_assets;
 mod gpu_types;
 mod layout;
+pub use layout::mesh_pipeline;
 mod object_buffer;
 pub mod shaders;
 mod target;

@@ -2,6 +2,7 @@
 //! a material, move the camera or a light, capture, expect), run headless with a fixed frame
 //! time, and checked against reference images and statistics.
 
+mod check;
 mod format;
 mod runner;
 mod stats;
