@@ -39,6 +39,7 @@ mod lit_material;
 pub mod mesh;
 mod normal_map;
 pub mod parallax;
+pub mod picking;
 pub mod preview;
 pub mod reference;
 pub mod render;
@@ -67,6 +68,7 @@ pub use parallax::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
     ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, PomPreset, PresetError, ShadowMode,
 };
+pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
 pub use resources::Resources;
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
