@@ -5,7 +5,10 @@
 mod app_state;
 mod autosave;
 mod camera_control;
+mod device_watch;
 mod egui_painter;
+mod frame_timing;
+mod guarded_update;
 mod light_control;
 mod material_editor;
 mod panels;

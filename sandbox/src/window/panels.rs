@@ -7,6 +7,7 @@ use pom::hecs::Entity;
 use pom::{App, ParallaxOcclusionMaterial};
 
 use super::app_state::material_entities;
+use super::frame_timing::{FrameTimes, gpu_pass_rows};
 use super::light_control::LightControls;
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
@@ -31,6 +32,8 @@ pub struct PanelState {
     pub screenshot_requested: bool,
     /// Problems and results to show at the top (scene errors, autosave, screenshots).
     pub messages: Vec<String>,
+    /// The last frames' CPU times, for the timing graph.
+    pub frame_times: FrameTimes,
 }
 
 impl Default for PanelState {
@@ -43,6 +46,7 @@ impl Default for PanelState {
             screenshot_path: DEFAULT_SCREENSHOT_PATH.into(),
             screenshot_requested: false,
             messages: Vec::new(),
+            frame_times: FrameTimes::default(),
         }
     }
 }
@@ -63,6 +67,10 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
         ui.checkbox(&mut state.spin_selected, "spin selected object")
             .on_hover_text("Turns the selected object slowly, to judge the parallax in motion.");
+        ui.collapsing("Timing", |ui| {
+            state.frame_times.show(ui);
+            gpu_pass_rows(ui);
+        });
         ui.separator();
         ui.horizontal(|ui| {
             if ui

@@ -9,8 +9,9 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow};
 use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
+use pom::glam::Vec2;
 use pom::render::{RenderTarget, TargetFormat};
-use pom::{App, GpuContext, PomPlugin, RenderPlugin};
+use pom::{App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, OwnedDisplayHandle};
@@ -20,7 +21,9 @@ use super::WindowArgs;
 use super::app_state::{load_scene, record_tuned, restore_tuned, spin};
 use super::autosave::{self, Autosave, TunedState};
 use super::camera_control::{CameraInput, OrbitCamera, active_camera_transform, write_to_camera};
+use super::device_watch::DeviceWatch;
 use super::egui_painter::{EguiFrame, EguiPainter};
+use super::guarded_update::update_catching_panics;
 use super::panels::{PanelState, side_panel_contents};
 use super::screenshot::{ScreenshotTarget, save_png};
 use super::surface::WindowSurface;
@@ -57,6 +60,7 @@ struct Running {
     autosave: Autosave,
     tuned: TunedState,
     last_frame: Instant,
+    device: DeviceWatch,
 }
 
 impl WindowApp {
@@ -158,6 +162,7 @@ impl WindowApp {
             None,
             Some(gpu.device.limits().max_texture_dimension_2d as usize),
         );
+        let device = DeviceWatch::new(&gpu.device);
         Ok(Running {
             window,
             gpu,
@@ -172,6 +177,7 @@ impl WindowApp {
             autosave: Autosave::new(self.state_path.clone(), tuned.clone()),
             tuned,
             last_frame: Instant::now(),
+            device,
         })
     }
 
@@ -186,6 +192,18 @@ impl WindowApp {
         let Some(running) = &mut self.running else {
             return Ok(false);
         };
+        if let Some(reason) = running.device.lost() {
+            // Nothing can be drawn on a lost device; save what was tuned and close clearly.
+            let saved = running.save_tuned(true);
+            return Err(anyhow!(
+                "the GPU device was lost ({reason}); the sandbox closed. Tuned values {}; \
+                 start it again to continue",
+                match saved {
+                    Ok(()) => format!("are saved in {}", running.autosave.path().display()),
+                    Err(error) => format!("could not be saved: {error:#}"),
+                }
+            ));
+        }
         let Some(frame) = running.surface.acquire(&running.gpu) else {
             return Ok(false);
         };
@@ -205,12 +223,15 @@ impl Running {
     /// Runs the UI, updates the app and paints; writes a screenshot to each of `shots`.
     fn draw(&mut self, frame: wgpu::SurfaceTexture, shots: &[PathBuf]) -> Result<()> {
         let now = Instant::now();
-        let dt = now.duration_since(self.last_frame).as_secs_f32().min(0.1);
+        let frame_time = now.duration_since(self.last_frame).as_secs_f32();
+        let dt = frame_time.min(0.1);
         self.last_frame = now;
+        self.panel.frame_times.push(frame_time);
 
         let raw_input = self.egui_input.take_egui_input(&self.window);
         let mut viewport_pixels = None;
         let mut camera_input = CameraInput::default();
+        let mut click = None;
         let scene_texture = self.painter.scene_texture;
         let (app, panel) = (&mut self.app, &mut self.panel);
         let output = self.egui.run_ui(raw_input, |ui| {
@@ -228,6 +249,7 @@ impl Running {
                         egui::Image::new((scene_texture, size)).sense(Sense::click_and_drag());
                     let response = ui.add(image);
                     camera_input = CameraInput::from_viewport(ui, &response);
+                    click = clicked_pixel(&response, ui.ctx().pixels_per_point());
                 });
         });
         self.egui_input
@@ -235,6 +257,9 @@ impl Running {
 
         if let Some((width, height)) = viewport_pixels {
             self.fit_target(width, height);
+        }
+        if let Some((viewport, pixel)) = click {
+            select_clicked(&self.app, &mut self.panel, viewport, pixel);
         }
         if let Some(orbit) = &mut self.orbit
             && !camera_input.is_idle()
@@ -247,7 +272,13 @@ impl Running {
         {
             spin(&mut self.app.world, entity, dt);
         }
-        self.app.update().context("updating the scene")?;
+        if let Err(failure) = update_catching_panics(&mut self.app) {
+            // Keep the window (and the tuned values) alive; say what failed once.
+            let message = failure.to_string();
+            if !self.panel.messages.contains(&message) {
+                self.panel.messages.push(message);
+            }
+        }
         if let Err(error) = self.save_tuned(false) {
             let message = format!("autosave failed: {error:#}");
             if !self.panel.messages.contains(&message) {
@@ -322,6 +353,36 @@ impl Running {
         self.autosave
             .maybe_write(&self.tuned, Instant::now(), force)
             .with_context(|| format!("writing {}", self.autosave.path().display()))
+    }
+}
+
+/// The viewport's size and the clicked point in pixels, for a primary click without a drag.
+fn clicked_pixel(response: &egui::Response, pixels_per_point: f32) -> Option<(Vec2, Vec2)> {
+    if !response.clicked() {
+        return None;
+    }
+    let position = response.interact_pointer_pos()?;
+    let rect = response.rect;
+    let to_pixels = |v: egui::Vec2| Vec2::new(v.x, v.y) * pixels_per_point;
+    Some((to_pixels(rect.size()), to_pixels(position - rect.min)))
+}
+
+/// Selects the parallax-material entity under the clicked pixel; a click on anything else
+/// keeps the selection and says why.
+fn select_clicked(app: &App, panel: &mut PanelState, viewport: Vec2, pixel: Vec2) {
+    let Some(hit) = pom::pick_at(&app.world, &app.resources, viewport, pixel) else {
+        return;
+    };
+    panel.messages.retain(|m| !m.starts_with("clicked object"));
+    if app
+        .world
+        .satisfies::<&ParallaxOcclusionMaterial>(hit.entity)
+    {
+        panel.selected = Some(hit.entity);
+    } else {
+        panel
+            .messages
+            .push("clicked object has no parallax material".to_owned());
     }
 }
 

@@ -1,0 +1,91 @@
+//! One frame's `App::update` with panics caught: a panicking user system must not take the
+//! window (and the unsaved tuned values) down; the panel reports it instead.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use pom::{App, AppError};
+
+/// Why a frame's update did not complete.
+#[derive(Debug, thiserror::Error)]
+pub enum UpdateFailure {
+    /// A system returned an error.
+    #[error("updating the scene: {0}")]
+    Failed(#[from] AppError),
+    /// A system panicked; the rest of that frame's systems did not run.
+    #[error("a system panicked while updating the scene: {0}")]
+    Panicked(String),
+}
+
+/// Runs `app.update()`, turning a panic inside it into [`UpdateFailure::Panicked`].
+pub fn update_catching_panics(app: &mut App) -> Result<(), UpdateFailure> {
+    // The world stays consistent across an unwind: hecs releases its borrows on drop, and a
+    // half-run frame only means some systems skipped one frame.
+    match catch_unwind(AssertUnwindSafe(|| app.update())) {
+        Ok(result) => result.map_err(UpdateFailure::from),
+        Err(payload) => Err(UpdateFailure::Panicked(panic_message(payload.as_ref()))),
+    }
+}
+
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(text) = payload.downcast_ref::<&str>() {
+        (*text).to_owned()
+    } else if let Some(text) = payload.downcast_ref::<String>() {
+        text.clone()
+    } else {
+        "(no message)".to_owned()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Instant;
+
+    use pom::hecs::World;
+    use pom::{ParallaxOcclusionMaterial, Resources, Stage};
+
+    use super::super::app_state::record_tuned;
+    use super::super::autosave::{self, Autosave, TunedState};
+    use super::*;
+
+    /// A user system that tunes the material each frame and panics on the third.
+    fn tune_then_panic(world: &mut World, resources: &mut Resources) {
+        let frame = resources.get_or_default::<u32>();
+        *frame += 1;
+        let frame = *frame;
+        for material in world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+            material.height_scale = 0.01 * frame as f32;
+        }
+        if frame == 3 {
+            panic!("user system failed on frame {frame}");
+        }
+    }
+
+    #[test]
+    fn a_panicking_system_is_reported_and_the_state_file_still_parses() {
+        let dir = std::env::temp_dir().join(format!("sandbox-panic-{}", std::process::id()));
+        let path = dir.join("state.ron");
+        let mut app = App::new();
+        app.world.spawn((ParallaxOcclusionMaterial::default(),));
+        app.add_system(Stage::Update, tune_then_panic);
+        let mut autosave = Autosave::new(path.clone(), TunedState::default());
+        let mut tuned = TunedState::default();
+        let mut failures = Vec::new();
+        for _ in 0..5 {
+            if let Err(failure) = update_catching_panics(&mut app) {
+                failures.push(failure.to_string());
+            }
+            // What the window does after every frame, panicking or not.
+            record_tuned(&app, "scene", &mut tuned);
+            autosave.maybe_write(&tuned, Instant::now(), true).unwrap();
+            let on_disk = autosave::load(&path).expect("the state file parses after every frame");
+            assert_eq!(on_disk, tuned);
+        }
+        assert_eq!(
+            failures,
+            ["a system panicked while updating the scene: user system failed on frame 3"]
+        );
+        let saved = &autosave::load(&path).unwrap().scenes["scene"]["entity 0"];
+        assert!((saved.height_scale - 0.05).abs() < 1e-6, "{saved:?}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
