@@ -45,6 +45,7 @@ pub mod reference;
 pub mod render;
 mod resources;
 pub mod script;
+mod shader_reload;
 mod transform;
 
 pub use app::{
@@ -72,6 +73,9 @@ pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
 pub use resources::Resources;
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
+pub use shader_reload::{
+    ShaderHotReload, ShaderReloadError, ShaderReloadStatus, compose_checked, reload_changed_shaders,
+};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };

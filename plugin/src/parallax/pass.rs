@@ -12,6 +12,8 @@ use crate::render::{
 pub struct PomPass {
     pipeline: wgpu::RenderPipeline,
     depth_offset_pipeline: wgpu::RenderPipeline,
+    pipeline_layout: wgpu::PipelineLayout,
+    color_format: wgpu::TextureFormat,
     frame_layout: wgpu::BindGroupLayout,
     objects: ObjectBuffer<PomObject>,
     frame_bind_group: wgpu::BindGroup,
@@ -38,6 +40,22 @@ fn frame_bind_group(
             },
         ],
     })
+}
+
+/// The pass's pipelines: without and with depth offset.
+fn parallax_pipelines(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    shader: &wgpu::ShaderModule,
+    color_format: wgpu::TextureFormat,
+) -> [wgpu::RenderPipeline; 2] {
+    let pipeline = |label: &str, entry_point: &str| {
+        mesh_pipeline(device, label, layout, shader, entry_point, color_format)
+    };
+    [
+        pipeline("parallax pipeline", "fs_main"),
+        pipeline("parallax depth-offset pipeline", "fs_main_depth_offset"),
+    ]
 }
 
 impl PomPass {
@@ -70,22 +88,37 @@ impl PomPass {
             bind_group_layouts: &[Some(&frame_layout), Some(materials.layout())],
             immediate_size: 0,
         });
-        let pipeline = |label: &str, entry_point: &str| {
-            mesh_pipeline(device, label, &layout, &shader, entry_point, color_format)
-        };
+        let [pipeline, depth_offset_pipeline] =
+            parallax_pipelines(device, &layout, &shader, color_format);
         let objects = ObjectBuffer::new(gpu, "parallax object buffer", 16);
         let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());
         Self {
-            pipeline: pipeline("parallax pipeline", "fs_main"),
-            depth_offset_pipeline: pipeline(
-                "parallax depth-offset pipeline",
-                "fs_main_depth_offset",
-            ),
+            pipeline,
+            depth_offset_pipeline,
+            pipeline_layout: layout,
+            color_format,
             frame_layout,
             objects,
             frame_bind_group,
             materials,
         }
+    }
+
+    /// Pipelines like the pass's own (without and with depth offset) from `shader` (a
+    /// recompiled `pom.wgsl`), for shader hot reload: check them in an error scope before
+    /// [`PomPass::set_pipelines`].
+    pub fn build_pipelines(
+        &self,
+        device: &wgpu::Device,
+        shader: &wgpu::ShaderModule,
+    ) -> [wgpu::RenderPipeline; 2] {
+        parallax_pipelines(device, &self.pipeline_layout, shader, self.color_format)
+    }
+
+    /// Replaces both pipelines with those from [`PomPass::build_pipelines`].
+    pub fn set_pipelines(&mut self, [pipeline, depth_offset]: [wgpu::RenderPipeline; 2]) {
+        self.pipeline = pipeline;
+        self.depth_offset_pipeline = depth_offset;
     }
 
     /// Uploads the per-draw data that changed and prepares texture bind groups. Returns the

@@ -13,6 +13,8 @@ use super::{layout, shaders};
 /// Pipeline, buffers and bind groups of the forward pass.
 pub struct ForwardPass {
     pipeline: wgpu::RenderPipeline,
+    pipeline_layout: wgpu::PipelineLayout,
+    color_format: wgpu::TextureFormat,
     frame_layout: wgpu::BindGroupLayout,
     objects: ObjectBuffer<ObjectUniform>,
     frame_bind_group: wgpu::BindGroup,
@@ -88,11 +90,35 @@ impl ForwardPass {
         let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());
         Self {
             pipeline,
+            pipeline_layout: layout,
+            color_format,
             frame_layout,
             objects,
             frame_bind_group,
             materials,
         }
+    }
+
+    /// A pipeline like the pass's own, from `shader` (a recompiled `forward.wgsl`), for shader
+    /// hot reload: check it in an error scope before [`ForwardPass::set_pipeline`].
+    pub fn build_pipeline(
+        &self,
+        device: &wgpu::Device,
+        shader: &wgpu::ShaderModule,
+    ) -> wgpu::RenderPipeline {
+        layout::mesh_pipeline(
+            device,
+            "forward pipeline",
+            &self.pipeline_layout,
+            shader,
+            "fs_main",
+            self.color_format,
+        )
+    }
+
+    /// Replaces the pipeline with one from [`ForwardPass::build_pipeline`].
+    pub fn set_pipeline(&mut self, pipeline: wgpu::RenderPipeline) {
+        self.pipeline = pipeline;
     }
 
     /// Writes the per-object data that changed since the last frame and makes sure every draw
