@@ -15,6 +15,7 @@ mod panels;
 mod presets;
 mod scene_names;
 mod screenshot;
+mod shader_status;
 mod surface;
 mod window_app;
 

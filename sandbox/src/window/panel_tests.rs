@@ -185,3 +185,37 @@ fn lights_can_be_added_and_removed() {
     harness.run();
     assert_eq!(lights(&harness), 0);
 }
+
+#[test]
+fn a_shader_reload_error_shows_in_the_panel() {
+    let mut harness = harness();
+    harness.get_by_label_contains("Shader hot reload: off");
+    harness
+        .state_mut()
+        .app
+        .insert_resource(pom::ShaderReloadStatus {
+            source_dir: "plugin/src".into(),
+            reloads: 2,
+            error: Some(pom::ShaderReloadError::Invalid {
+                file: "parallax/pom.wgsl".into(),
+                line: 12,
+                column: 5,
+                message: "expected ';'".into(),
+            }),
+        });
+    harness.run();
+    harness.get_by_label("Shader hot reload: 2 reloads");
+    harness.get_by_label_contains("parallax/pom.wgsl:12:5: expected ';'");
+}
+
+#[test]
+fn the_timing_panel_shows_the_frame_times_and_gpu_times_as_not_available() {
+    let mut harness = harness();
+    for _ in 0..10 {
+        harness.state_mut().panel.frame_times.push(0.020);
+    }
+    harness.get_by_label("Timing").click();
+    harness.run();
+    harness.get_by_label("CPU frame: 20.0 ms mean, 20.0 ms max over 10 frames");
+    harness.get_by_label("GPU time per pass: n/a");
+}

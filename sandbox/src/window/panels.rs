@@ -11,6 +11,7 @@ use super::frame_timing::{FrameTimes, gpu_pass_rows};
 use super::light_control::LightControls;
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
+use super::shader_status::shader_reload_status;
 
 /// Default file of the screenshot button.
 pub const DEFAULT_SCREENSHOT_PATH: &str = "target/sandbox-screenshot.png";
@@ -71,6 +72,7 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
             state.frame_times.show(ui);
             gpu_pass_rows(ui);
         });
+        shader_reload_status(ui, app);
         ui.separator();
         ui.horizontal(|ui| {
             if ui

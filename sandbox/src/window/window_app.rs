@@ -11,7 +11,9 @@ use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
 use pom::render::{RenderTarget, TargetFormat};
-use pom::{App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin};
+use pom::{
+    App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload,
+};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, OwnedDisplayHandle};
@@ -129,6 +131,9 @@ impl WindowApp {
             size.height.max(1),
         ))
         .add_plugin(PomPlugin);
+        if let Some(hot_reload) = ShaderHotReload::from_repository() {
+            app.add_plugin(hot_reload);
+        }
         let loaded = load_scene(&mut app, self.scene.as_deref());
         let mut panel = PanelState {
             messages: loaded.messages,
