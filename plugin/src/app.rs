@@ -136,6 +136,25 @@ impl Schedule {
         self.stages[stage.index()].len()
     }
 
+    /// Runs the systems of one stage, in order. Stops at the first failing system.
+    pub fn run_stage(
+        &mut self,
+        stage: Stage,
+        world: &mut World,
+        resources: &mut Resources,
+    ) -> Result<(), AppError> {
+        for system in &mut self.stages[stage.index()] {
+            system
+                .run(world, resources)
+                .map_err(|source| AppError::System {
+                    stage,
+                    system: system.name().to_owned(),
+                    source,
+                })?;
+        }
+        Ok(())
+    }
+
     /// Runs every stage once (Startup only the first time). Stops at the first failing system.
     pub fn run(&mut self, world: &mut World, resources: &mut Resources) -> Result<(), AppError> {
         for stage in Stage::ALL {
@@ -146,15 +165,7 @@ impl Schedule {
                 // Mark first so a failing startup system is not re-run every frame.
                 self.startup_done = true;
             }
-            for system in &mut self.stages[stage.index()] {
-                system
-                    .run(world, resources)
-                    .map_err(|source| AppError::System {
-                        stage,
-                        system: system.name().to_owned(),
-                        source,
-                    })?;
-            }
+            self.run_stage(stage, world, resources)?;
         }
         Ok(())
     }
@@ -311,5 +322,16 @@ impl App {
     pub fn update(&mut self) -> Result<(), AppError> {
         self.finish()?;
         self.schedule.run(&mut self.world, &mut self.resources)
+    }
+
+    /// Runs only `stages`, in the given order (after [`App::finish`]): to render the same
+    /// world again, say, with Extract, Prepare and Render.
+    pub fn run_stages(&mut self, stages: &[Stage]) -> Result<(), AppError> {
+        self.finish()?;
+        for stage in stages {
+            self.schedule
+                .run_stage(*stage, &mut self.world, &mut self.resources)?;
+        }
+        Ok(())
     }
 }

@@ -46,6 +46,7 @@ pub mod render;
 mod resources;
 pub mod script;
 mod shader_reload;
+mod split_view;
 mod transform;
 
 pub use app::{
@@ -76,6 +77,7 @@ pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 pub use shader_reload::{
     ShaderHotReload, ShaderReloadError, ShaderReloadStatus, compose_checked, reload_changed_shaders,
 };
+pub use split_view::{SplitView, SplitViewError, render_split_view};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };

@@ -21,6 +21,11 @@ impl TargetFormat {
             TargetFormat::Float32 => wgpu::TextureFormat::Rgba32Float,
         }
     }
+
+    /// The format of [`RenderTarget::display_view`]: the stored bytes without sRGB decoding.
+    pub fn display_view_format(self) -> wgpu::TextureFormat {
+        self.texture_format().remove_srgb_suffix()
+    }
 }
 /// The depth buffer format.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -32,6 +37,9 @@ pub struct RenderTarget {
     pub color: wgpu::Texture,
     /// A view of [`RenderTarget::color`].
     pub color_view: wgpu::TextureView,
+    /// A view of [`RenderTarget::color`] that reads the stored sRGB bytes as plain `Unorm`
+    /// (no decoding), for UIs that sample gamma-encoded textures, such as egui.
+    pub display_view: wgpu::TextureView,
     /// The depth texture.
     pub depth: wgpu::Texture,
     /// A view of [`RenderTarget::depth`].
@@ -54,6 +62,11 @@ impl RenderTarget {
                 size.height
             );
         }
+        // Listed only when it differs: a float target needs no second view format.
+        let display_formats: Vec<wgpu::TextureFormat> = Some(format.display_view_format())
+            .filter(|display| *display != format.texture_format())
+            .into_iter()
+            .collect();
         let color = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("render target colour"),
             size,
@@ -64,7 +77,7 @@ impl RenderTarget {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
+            view_formats: &display_formats,
         });
         let depth = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("render target depth"),
@@ -80,6 +93,11 @@ impl RenderTarget {
             label: Some("render target colour view"),
             ..Default::default()
         });
+        let display_view = color.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("render target display view"),
+            format: Some(format.display_view_format()),
+            ..Default::default()
+        });
         let depth_view = depth.create_view(&wgpu::TextureViewDescriptor {
             label: Some("render target depth view"),
             ..Default::default()
@@ -87,6 +105,7 @@ impl RenderTarget {
         Self {
             color,
             color_view,
+            display_view,
             depth,
             depth_view,
         }

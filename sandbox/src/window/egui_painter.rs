@@ -1,10 +1,9 @@
 //! Paints egui's output with egui-wgpu into the window (and, for a screenshot, into an
-//! offscreen texture), with the plugin's rendered scene registered as an egui texture.
+//! offscreen texture), with the plugin's rendered scene (and the split view's second image)
+//! registered as egui textures.
 //!
-//! egui-wgpu samples user textures as gamma-encoded `Rgba8Unorm`, but the plugin's target is
-//! `Rgba8UnormSrgb` without an `Rgba8Unorm` view format, so the scene is copied each frame into
-//! a same-sized `Rgba8Unorm` texture (a byte copy: sRGB and non-sRGB formats are
-//! copy-compatible) that egui shows.
+//! egui-wgpu samples user textures as gamma-encoded `Rgba8Unorm`; the plugin's targets offer
+//! such a view of their sRGB bytes (`RenderTarget::display_view`), so egui samples them directly.
 
 use egui::TextureId;
 use egui_wgpu::{Renderer, RendererOptions, ScreenDescriptor};
@@ -13,12 +12,13 @@ use pom::render::RenderTarget;
 
 use super::screenshot::ScreenshotTarget;
 
-/// The egui renderer and the texture through which it shows the scene.
+/// The egui renderer and the textures through which it shows the scene.
 pub struct EguiPainter {
     renderer: Renderer,
-    scene_copy: wgpu::Texture,
-    /// The egui texture showing the scene.
+    /// The egui texture showing the main scene image.
     pub scene_texture: TextureId,
+    /// The egui texture showing the split view's second image.
+    pub split_texture: TextureId,
 }
 
 /// One frame of egui output, ready to paint.
@@ -31,69 +31,50 @@ pub struct EguiFrame<'a> {
     pub screen: ScreenDescriptor,
 }
 
-fn scene_copy_texture(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("sandbox viewport texture"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    })
-}
-
 impl EguiPainter {
-    /// A painter for a surface of `format`, showing `target`.
+    /// A painter for a surface of `format`, showing `target` (also as the split image until
+    /// one is given).
     pub fn new(gpu: &GpuContext, format: wgpu::TextureFormat, target: &RenderTarget) -> Self {
         let mut renderer = Renderer::new(&gpu.device, format, RendererOptions::default());
-        let (width, height) = target.size();
-        let scene_copy = scene_copy_texture(gpu, width, height);
-        let scene_texture = renderer.register_native_texture(
-            &gpu.device,
-            &scene_copy.create_view(&wgpu::TextureViewDescriptor::default()),
-            wgpu::FilterMode::Linear,
-        );
+        let mut register = || {
+            renderer.register_native_texture(
+                &gpu.device,
+                &target.display_view,
+                wgpu::FilterMode::Linear,
+            )
+        };
+        let (scene_texture, split_texture) = (register(), register());
         Self {
             renderer,
-            scene_copy,
             scene_texture,
+            split_texture,
         }
     }
 
-    /// Makes the scene texture match `target`'s size (after the target was replaced).
-    fn follow_target_size(&mut self, gpu: &GpuContext, target: &RenderTarget) {
-        if target.size() == (self.scene_copy.width(), self.scene_copy.height()) {
-            return;
+    /// Points the scene and split textures at this frame's targets (either may have been
+    /// replaced since the last frame; a new bind group per frame costs next to nothing).
+    fn show_targets(&mut self, gpu: &GpuContext, scene: &RenderTarget, split: &RenderTarget) {
+        for (texture, target) in [(self.scene_texture, scene), (self.split_texture, split)] {
+            self.renderer.update_egui_texture_from_wgpu_texture(
+                &gpu.device,
+                &target.display_view,
+                wgpu::FilterMode::Linear,
+                texture,
+            );
         }
-        let (width, height) = target.size();
-        self.scene_copy = scene_copy_texture(gpu, width, height);
-        self.renderer.update_egui_texture_from_wgpu_texture(
-            &gpu.device,
-            &self
-                .scene_copy
-                .create_view(&wgpu::TextureViewDescriptor::default()),
-            wgpu::FilterMode::Linear,
-            self.scene_texture,
-        );
     }
 
-    /// Copies the scene from `target`, paints `frame` into `view` and, when given, into
-    /// `screenshot` too, and submits.
+    /// Paints `frame` into `view` and, when given, into `screenshot` too, showing `scene` and
+    /// `split` (the main target again when there is no split view), and submits.
     pub fn paint(
         &mut self,
         gpu: &GpuContext,
-        target: &RenderTarget,
+        (scene, split): (&RenderTarget, &RenderTarget),
         frame: EguiFrame<'_>,
         view: &wgpu::TextureView,
         screenshot: Option<&ScreenshotTarget>,
     ) {
-        self.follow_target_size(gpu, target);
+        self.show_targets(gpu, scene, split);
         for (id, deltas) in frame.textures.set.drain() {
             for delta in &deltas {
                 self.renderer
@@ -105,11 +86,6 @@ impl EguiPainter {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("sandbox egui encoder"),
             });
-        encoder.copy_texture_to_texture(
-            target.color.as_image_copy(),
-            self.scene_copy.as_image_copy(),
-            self.scene_copy.size(),
-        );
         let callbacks = self.renderer.update_buffers(
             &gpu.device,
             &gpu.queue,

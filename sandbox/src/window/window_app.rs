@@ -11,9 +11,7 @@ use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
 use pom::render::{RenderTarget, TargetFormat};
-use pom::{
-    App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload,
-};
+use pom::{App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, OwnedDisplayHandle};
