@@ -1,4 +1,4 @@
-//! One frame's `App::update` with panics caught: a panicking user system must not take the
+//! One frame's `App::update` (and the split view's second image) with panics caught: a panicking user system must not take the
 //! window (and the unsaved tuned values) down; the panel reports it instead.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -11,17 +11,26 @@ pub enum UpdateFailure {
     /// A system returned an error.
     #[error("updating the scene: {0}")]
     Failed(#[from] AppError),
+    /// The split view's second image failed.
+    #[error(transparent)]
+    SplitView(#[from] pom::SplitViewError),
     /// A system panicked; the rest of that frame's systems did not run.
     #[error("a system panicked while updating the scene: {0}")]
     Panicked(String),
 }
 
-/// Runs `app.update()`, turning a panic inside it into [`UpdateFailure::Panicked`].
+/// Runs `app.update()` and then renders the split view's second image (when the app has a
+/// `pom::SplitView`), turning a panic inside either into [`UpdateFailure::Panicked`].
 pub fn update_catching_panics(app: &mut App) -> Result<(), UpdateFailure> {
     // The world stays consistent across an unwind: hecs releases its borrows on drop, and a
     // half-run frame only means some systems skipped one frame.
-    match catch_unwind(AssertUnwindSafe(|| app.update())) {
-        Ok(result) => result.map_err(UpdateFailure::from),
+    let frame = || -> Result<(), UpdateFailure> {
+        app.update()?;
+        pom::render_split_view(app)?;
+        Ok(())
+    };
+    match catch_unwind(AssertUnwindSafe(frame)) {
+        Ok(result) => result,
         Err(payload) => Err(UpdateFailure::Panicked(panic_message(payload.as_ref()))),
     }
 }

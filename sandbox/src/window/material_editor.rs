@@ -43,26 +43,7 @@ pub fn edit_material(ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) -> b
 }
 
 fn depth_rows(ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) {
-    row(
-        ui,
-        "How the surface is displaced: from plain normal mapping (no depth) to parallax occlusion and relief mapping (most accurate, most samples).",
-        |ui| {
-            let mut kind = MethodKind::of(material.method);
-            choose(
-                ui,
-                "method",
-                &mut kind,
-                &[
-                    (MethodKind::NormalMapping, "Normal mapping only"),
-                    (MethodKind::ParallaxOffset, "Parallax offset (cheap)"),
-                    (MethodKind::Steep, "Steep parallax"),
-                    (MethodKind::Occlusion, "Parallax occlusion (POM)"),
-                    (MethodKind::Relief, "Relief mapping"),
-                ],
-            );
-            material.method = kind.with_steps(material.method);
-        },
-    );
+    choose_method(ui, "method", &mut material.method);
     if let ParallaxMethod::Relief { binary_steps } = &mut material.method {
         row(
             ui,
@@ -276,6 +257,30 @@ fn lighting_rows(ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) {
         let [r, g, b, a] = rgba;
         material.base_color = pom::Color { r, g, b, a };
     });
+}
+
+/// The method combo box, labelled `label`; switching to relief keeps or defaults its steps.
+pub fn choose_method(ui: &mut Ui, label: &str, method: &mut ParallaxMethod) {
+    row(
+        ui,
+        "How the surface is displaced: from plain normal mapping (no depth) to parallax occlusion and relief mapping (most accurate, most samples).",
+        |ui| {
+            let mut kind = MethodKind::of(*method);
+            choose(
+                ui,
+                label,
+                &mut kind,
+                &[
+                    (MethodKind::NormalMapping, "Normal mapping only"),
+                    (MethodKind::ParallaxOffset, "Parallax offset (cheap)"),
+                    (MethodKind::Steep, "Steep parallax"),
+                    (MethodKind::Occlusion, "Parallax occlusion (POM)"),
+                    (MethodKind::Relief, "Relief mapping"),
+                ],
+            );
+            *method = kind.with_steps(*method);
+        },
+    );
 }
 
 /// One control (which carries its own label) that shows `tooltip` on hover.

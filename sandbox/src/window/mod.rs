@@ -16,6 +16,7 @@ mod presets;
 mod scene_names;
 mod screenshot;
 mod shader_status;
+mod split_controls;
 mod surface;
 mod window_app;
 

@@ -12,6 +12,7 @@ use super::light_control::LightControls;
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
 use super::shader_status::shader_reload_status;
+use super::split_controls::SplitControls;
 
 /// Default file of the screenshot button.
 pub const DEFAULT_SCREENSHOT_PATH: &str = "target/sandbox-screenshot.png";
@@ -35,6 +36,8 @@ pub struct PanelState {
     pub messages: Vec<String>,
     /// The last frames' CPU times, for the timing graph.
     pub frame_times: FrameTimes,
+    /// The split view's switch, wipe and image B.
+    pub split: SplitControls,
 }
 
 impl Default for PanelState {
@@ -48,6 +51,7 @@ impl Default for PanelState {
             screenshot_requested: false,
             messages: Vec::new(),
             frame_times: FrameTimes::default(),
+            split: SplitControls::default(),
         }
     }
 }
@@ -64,6 +68,8 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         if let Some(entity) = state.selected {
             selected_material(ui, app, state, entity);
         }
+        ui.separator();
+        state.split.show(ui, app, state.selected);
         ui.separator();
         ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
         ui.checkbox(&mut state.spin_selected, "spin selected object")

@@ -235,13 +235,15 @@ impl Running {
         let mut viewport_pixels = None;
         let mut camera_input = CameraInput::default();
         let mut click = None;
-        let scene_texture = self.painter.scene_texture;
+        let (scene_texture, split_texture) =
+            (self.painter.scene_texture, self.painter.split_texture);
         let (app, panel) = (&mut self.app, &mut self.panel);
         let output = self.egui.run_ui(raw_input, |ui| {
             Panel::left("controls")
                 .default_size(PANEL_WIDTH)
                 .resizable(true)
                 .show(ui, |ui| side_panel_contents(ui, app, panel));
+            let wipe = panel.split.enabled.then_some(panel.split.wipe);
             CentralPanel::default()
                 .frame(egui::Frame::NONE)
                 .show(ui, |ui| {
@@ -251,6 +253,9 @@ impl Running {
                     let image =
                         egui::Image::new((scene_texture, size)).sense(Sense::click_and_drag());
                     let response = ui.add(image);
+                    if let Some(wipe) = wipe {
+                        paint_split(ui, response.rect, split_texture, wipe);
+                    }
                     camera_input = CameraInput::from_viewport(ui, &response);
                     click = clicked_pixel(&response, ui.ctx().pixels_per_point());
                 });
@@ -306,9 +311,15 @@ impl Running {
             .resources
             .get::<RenderTarget>()
             .ok_or_else(|| anyhow!("the render target is gone"))?;
+        let split = self
+            .app
+            .resources
+            .get::<SplitView>()
+            .and_then(|split| split.target.as_ref())
+            .unwrap_or(target);
         self.painter.paint(
             &self.gpu,
-            target,
+            (target, split),
             EguiFrame {
                 paint_jobs: &paint_jobs,
                 textures: &mut textures,
@@ -357,6 +368,39 @@ impl Running {
             .maybe_write(&self.tuned, Instant::now(), force)
             .with_context(|| format!("writing {}", self.autosave.path().display()))
     }
+}
+
+/// Draws image B over the viewport `rect` right of the wipe, and the wipe line.
+fn paint_split(ui: &egui::Ui, rect: egui::Rect, texture: egui::TextureId, wipe: f32) {
+    let x = rect.left() + rect.width() * wipe.clamp(0.0, 1.0);
+    let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
+    let full_uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+    let painter = ui.painter().with_clip_rect(right);
+    painter.image(texture, rect, full_uv, egui::Color32::WHITE);
+    painter.vline(
+        x,
+        rect.y_range(),
+        egui::Stroke::new(2.0, egui::Color32::WHITE),
+    );
+    let label = |pos: egui::Pos2, align: egui::Align2, text: &str| {
+        ui.painter().text(
+            pos,
+            align,
+            text,
+            egui::FontId::proportional(16.0),
+            egui::Color32::WHITE,
+        );
+    };
+    label(
+        rect.left_top() + egui::vec2(8.0, 8.0),
+        egui::Align2::LEFT_TOP,
+        "A",
+    );
+    label(
+        rect.right_top() + egui::vec2(-8.0, 8.0),
+        egui::Align2::RIGHT_TOP,
+        "B",
+    );
 }
 
 /// The viewport's size and the clicked point in pixels, for a primary click without a drag.
