@@ -204,3 +204,47 @@ fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
     );
     let _ = std::fs::remove_file(&state);
 }
+
+#[test]
+fn the_split_view_shows_a_wipe_between_two_images() {
+    let xvfb = start_xvfb();
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_xvfb_split");
+    std::fs::create_dir_all(&dir).unwrap();
+    let screenshot = dir.join("split.png");
+    let state = dir.join("state.ron");
+    let _ = std::fs::remove_file(&screenshot);
+    let _ = std::fs::remove_file(&state);
+    let stderr = run_sandbox(
+        xvfb.display,
+        &[
+            "--exit-after-frames".as_ref(),
+            "5".as_ref(),
+            "--screenshot".as_ref(),
+            screenshot.as_os_str(),
+            "--state".as_ref(),
+            state.as_os_str(),
+            "--split-method".as_ref(),
+            "normal".as_ref(),
+        ],
+    );
+    let image = image::open(&screenshot)
+        .unwrap_or_else(|error| panic!("no screenshot ({error}); stderr:\n{stderr}"))
+        .to_rgba8();
+    let (width, height) = image.dimensions();
+    // The wipe is a bright vertical line through the viewport's middle (the panel is on the
+    // left, so the middle of the viewport is right of the window's middle).
+    let rows = 20..height - 20;
+    let bright_rows = |x: u32| {
+        rows.clone()
+            .filter(|y| image.get_pixel(x, *y).0[..3].iter().all(|c| *c > 230))
+            .count()
+    };
+    let wipe_columns: Vec<u32> = (width / 2..width - 100)
+        .filter(|x| bright_rows(*x) * 10 > rows.len() * 9)
+        .collect();
+    assert!(
+        !wipe_columns.is_empty() && wipe_columns.len() <= 4,
+        "expected one wipe line, found bright columns {wipe_columns:?}"
+    );
+    let _ = std::fs::remove_file(&state);
+}

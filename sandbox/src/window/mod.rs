@@ -47,6 +47,10 @@ pub struct WindowArgs {
     /// ~/.config/pom-sandbox/state.ron, else target/sandbox-state.ron].
     #[arg(long, value_name = "FILE")]
     pub state: Option<PathBuf>,
+    /// Open with the split view on: image B (right of the wipe) draws every parallax material
+    /// with this method.
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub split_method: Option<crate::cli_types::MethodArg>,
 }
 
 /// Opens the window and runs it until it is closed (or `--exit-after-frames` is reached).

@@ -11,14 +11,16 @@ use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
 use pom::render::{RenderTarget, TargetFormat};
-use pom::{App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload};
+use pom::{
+    App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload, SplitView,
+};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, OwnedDisplayHandle};
 use winit::window::{Window, WindowId};
 
 use super::WindowArgs;
-use super::app_state::{load_scene, record_tuned, restore_tuned, spin};
+use super::app_state::{load_scene, material_entities, record_tuned, restore_tuned, spin};
 use super::autosave::{self, Autosave, TunedState};
 use super::camera_control::{CameraInput, OrbitCamera, active_camera_transform, write_to_camera};
 use super::device_watch::DeviceWatch;
@@ -36,6 +38,7 @@ const PANEL_WIDTH: f32 = 380.0;
 /// The application handler; [`WindowApp::finish`] reports how it ended.
 pub struct WindowApp {
     scene: Option<PathBuf>,
+    split_method: Option<pom::ParallaxMethod>,
     exit_after_frames: Option<u64>,
     screenshot: Option<PathBuf>,
     state_path: PathBuf,
@@ -68,6 +71,7 @@ impl WindowApp {
     pub fn new(args: &WindowArgs, display: OwnedDisplayHandle) -> Self {
         Self {
             scene: args.scene.clone(),
+            split_method: args.split_method.map(Into::into),
             exit_after_frames: args.exit_after_frames,
             screenshot: args.screenshot.clone(),
             state_path: args
@@ -147,6 +151,26 @@ impl WindowApp {
             }
         };
         restore_tuned(&mut app, &loaded.label, &tuned);
+        if let Some(method) = self.split_method {
+            panel.split.enabled = true;
+            let overrides = material_entities(&app)
+                .into_iter()
+                .filter_map(|(entity, _)| {
+                    let material = app.world.get::<&ParallaxOcclusionMaterial>(entity).ok()?;
+                    Some((
+                        entity,
+                        pom::ParallaxOcclusionMaterial {
+                            method,
+                            ..(*material).clone()
+                        },
+                    ))
+                })
+                .collect();
+            app.insert_resource(SplitView {
+                overrides,
+                target: None,
+            });
+        }
         app.finish().context("starting the renderer")?;
         let orbit = active_camera_transform(&app.world)
             .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
