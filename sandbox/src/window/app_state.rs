@@ -67,7 +67,9 @@ pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
     }
 }
 
-fn finish_loading(
+/// Adds a camera and a light when `scene` has none, names its entities and finds where to
+/// orbit: the end of every load.
+pub fn finish_loading(
     app: &mut App,
     scene: &GltfScene,
     bytes: &[u8],

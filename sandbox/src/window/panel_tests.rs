@@ -219,3 +219,74 @@ fn the_timing_panel_shows_the_frame_times_and_gpu_times_as_not_available() {
     harness.get_by_label("CPU frame: 20.0 ms mean, 20.0 ms max over 10 frames");
     harness.get_by_label("GPU time per pass: n/a");
 }
+
+#[test]
+fn a_bad_scene_file_shows_an_error_and_the_scene_stays() {
+    let path = scratch_file("broken.glb");
+    std::fs::write(&path, b"this is not a glb").unwrap();
+    let mut harness = harness();
+    let material_entity = harness.state().material;
+    harness.get_by_label("Open…").click();
+    harness.run();
+    harness.state_mut().panel.browser.path = path.display().to_string();
+    harness.run();
+    harness.get_by_label("Open scene").click();
+    harness.run();
+    let shown = format!("could not open: {}", path.display());
+    assert!(
+        harness.query_all_by_label_contains(&shown).next().is_some(),
+        "no error naming the file: {:?}",
+        harness.state().panel.messages
+    );
+    let fixture = harness.state();
+    assert!(fixture.app.world.contains(material_entity));
+    assert_eq!(fixture.app.world.len(), 1);
+    assert!(fixture.panel.opened.is_none());
+    let _ = std::fs::remove_file(&path);
+}
+
+/// A file dropped on the window, as the platform integration reports it.
+#[derive(Debug)]
+struct DroppedPath(std::path::PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|error| error.to_string())
+    }
+}
+
+#[test]
+fn dropping_an_image_set_opens_it_on_a_plane() {
+    let dir = scratch_file("dropped-set");
+    std::fs::create_dir_all(&dir).unwrap();
+    let height = dir.join("ridges.png");
+    image::GrayImage::from_fn(16, 16, |x, _| image::Luma([(x * 16) as u8]))
+        .save(&height)
+        .unwrap();
+    let mut harness = harness();
+    harness
+        .input_mut()
+        .dropped_files
+        .push(std::sync::Arc::new(DroppedPath(height.clone())));
+    harness.run();
+    let fixture = harness.state();
+    let opened = fixture.panel.opened.as_ref().expect("the set was opened");
+    assert!(opened.label.contains("ridges.png"), "{}", opened.label);
+    let materials: Vec<_> = fixture
+        .app
+        .world
+        .query::<&ParallaxOcclusionMaterial>()
+        .iter()
+        .map(|material| material.height_map.is_some())
+        .collect();
+    assert_eq!(
+        materials,
+        [true],
+        "one plane with the height map replaced the old entity"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

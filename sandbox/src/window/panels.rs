@@ -6,11 +6,13 @@ use egui::{Color32, ScrollArea, Ui};
 use pom::hecs::Entity;
 use pom::{App, ParallaxOcclusionMaterial};
 
-use super::app_state::material_entities;
+use super::app_state::{LoadedScene, material_entities};
+use super::file_browser::FileBrowser;
 use super::frame_timing::{FrameTimes, gpu_pass_rows};
 use super::light_control::LightControls;
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
+use super::scene_open::{OpenRequest, open_request, request_for_dropped};
 use super::shader_status::shader_reload_status;
 use super::split_controls::SplitControls;
 
@@ -38,6 +40,10 @@ pub struct PanelState {
     pub frame_times: FrameTimes,
     /// The split view's switch, wipe and image B.
     pub split: SplitControls,
+    /// The file browser of "Open…".
+    pub browser: FileBrowser,
+    /// Set when another scene was opened; the window takes it to reset its camera and label.
+    pub opened: Option<LoadedScene>,
 }
 
 impl Default for PanelState {
@@ -52,6 +58,8 @@ impl Default for PanelState {
             messages: Vec::new(),
             frame_times: FrameTimes::default(),
             split: SplitControls::default(),
+            browser: FileBrowser::default(),
+            opened: None,
         }
     }
 }
@@ -62,6 +70,22 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         ui.heading("POM sandbox");
         for message in &state.messages {
             ui.colored_label(Color32::from_rgb(255, 190, 90), message);
+        }
+        let mut request = None;
+        ui.collapsing("Open…", |ui| request = state.browser.show(ui))
+            .header_response
+            .on_hover_text("Open a glTF scene or a height/normal/albedo image set; or drop files on the window.");
+        let dropped: Vec<std::path::PathBuf> = ui.ctx().input(|input| {
+            input.raw.dropped_files.iter().map(|file| file.path().to_path_buf()).collect()
+        });
+        if !dropped.is_empty() {
+            match request_for_dropped(&dropped) {
+                Ok(dropped_request) => request = Some(dropped_request),
+                Err(error) => report_open_error(state, error),
+            }
+        }
+        if let Some(request) = request {
+            open(app, state, &request);
         }
         material_list(ui, app, state);
         ui.separator();
@@ -98,6 +122,29 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         ui.label("Drag: orbit · right/middle drag: pan · wheel: zoom · arrows / WASD: move")
             .on_hover_text("Mouse over the 3D view; keys work when no text field is being edited.");
     });
+}
+
+/// Opens `request` in place of the current scene, or shows why it could not be opened.
+fn open(app: &mut App, state: &mut PanelState, request: &OpenRequest) {
+    match open_request(app, request) {
+        Ok(loaded) => {
+            state.browser.error = None;
+            state.messages.retain(|m| !m.starts_with("could not open"));
+            state.selected = None;
+            if let Some(split) = app.resources.get_mut::<pom::SplitView>() {
+                split.overrides.clear();
+            }
+            state.opened = Some(loaded);
+        }
+        Err(error) => report_open_error(state, error),
+    }
+}
+
+fn report_open_error(state: &mut PanelState, error: String) {
+    let message = format!("could not open: {error}");
+    state.messages.retain(|m| !m.starts_with("could not open"));
+    state.messages.push(message.clone());
+    state.browser.error = Some(message);
 }
 
 fn material_list(ui: &mut Ui, app: &App, state: &mut PanelState) {

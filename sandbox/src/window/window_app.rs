@@ -290,6 +290,9 @@ impl Running {
         if let Some((width, height)) = viewport_pixels {
             self.fit_target(width, height);
         }
+        if let Some(loaded) = self.panel.opened.take() {
+            self.scene_opened(loaded);
+        }
         if let Some((viewport, pixel)) = click {
             select_clicked(&self.app, &mut self.panel, viewport, pixel);
         }
@@ -365,6 +368,16 @@ impl Running {
             }
         }
         Ok(())
+    }
+
+    /// Follows a scene opened from the panel: its label keys the tuned values, and the orbit
+    /// starts from its camera.
+    fn scene_opened(&mut self, loaded: super::app_state::LoadedScene) {
+        self.scene_label = loaded.label;
+        self.panel.messages.extend(loaded.messages);
+        restore_tuned(&mut self.app, &self.scene_label, &self.tuned);
+        self.orbit = active_camera_transform(&self.app.world)
+            .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
     }
 
     /// Replaces the render target when the viewport's size in pixels changed (pipelines do not
