@@ -37,6 +37,7 @@ mod image_compare;
 mod light;
 mod lit_material;
 pub mod mesh;
+mod name;
 mod normal_map;
 pub mod parallax;
 pub mod picking;
@@ -65,6 +66,7 @@ pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;
 pub use mesh::{Mesh, MeshError};
+pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,

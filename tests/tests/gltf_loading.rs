@@ -409,3 +409,24 @@ fn an_alpha_height_from_an_image_without_alpha_is_an_error() {
         json!({"pom": {"height_texture": grey, "height_channel": "a"}});
     load_error(&fixture, "no-alpha", "no alpha channel");
 }
+
+#[test]
+fn entities_keep_their_node_names_and_primitives_get_numbered_children() {
+    let dir = scratch_dir("names");
+    let mut fixture = GltfFixture::quad(1.0);
+    let primitive = fixture.json["meshes"][0]["primitives"][0].clone();
+    fixture.json["meshes"][0]["primitives"] = json!([primitive.clone(), primitive]);
+    fixture.json["scenes"][0]["nodes"] = json!([0, 1]);
+    fixture.json["nodes"] = json!([{"name": "quad", "mesh": 0}, {}]);
+    let mut app = app();
+    let scene = load_gltf(&mut app, fixture.write(&dir, "names")).unwrap();
+    let names: Vec<String> = scene
+        .entities
+        .iter()
+        .map(|entity| app.world.get::<&pom::Name>(*entity).unwrap().to_string())
+        .collect();
+    assert_eq!(
+        names,
+        ["quad", "quad / primitive 0", "quad / primitive 1", "node 1"]
+    );
+}

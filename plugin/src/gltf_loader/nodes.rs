@@ -7,8 +7,8 @@ use super::materials::{MaterialCache, MaterialComponent};
 use super::primitives::read_primitive;
 use super::{GltfError, GltfScene, Source, describe};
 use crate::{
-    App, Assets, Camera, Color, DirectionalLight, Image, Mesh, Parent, PointLight, Projection,
-    Transform,
+    App, Assets, Camera, Color, DirectionalLight, Image, Mesh, Name, Parent, PointLight,
+    Projection, Transform,
 };
 
 fn transform_of(node: &gltf::Node<'_>) -> Transform {
@@ -86,7 +86,11 @@ fn spawn_nodes(
     while let Some((node, parent, parent_world)) = stack.pop() {
         let transform = transform_of(&node);
         let world = parent_world * transform.to_affine();
-        let entity = app.world.spawn((transform,));
+        // The file's node name, or "node N" for an unnamed node.
+        let name = node
+            .name()
+            .map_or_else(|| format!("node {}", node.index()), str::to_owned);
+        let entity = app.world.spawn((transform, Name::new(name.clone())));
         if let Some(parent) = parent {
             let _ = app.world.insert_one(entity, Parent(parent));
         }
@@ -129,11 +133,15 @@ fn spawn_nodes(
             }
             // One primitive goes on the node itself; several get a child entity each.
             let single = drawable.len() == 1;
-            for (handle, material) in drawable {
+            for (primitive, (handle, material)) in drawable.into_iter().enumerate() {
                 let target = if single {
                     entity
                 } else {
-                    let child = app.world.spawn((Transform::IDENTITY, Parent(entity)));
+                    let child = app.world.spawn((
+                        Transform::IDENTITY,
+                        Parent(entity),
+                        Name(format!("{name} / primitive {primitive}")),
+                    ));
                     scene.entities.push(child);
                     child
                 };

@@ -6,10 +6,9 @@ use std::path::Path;
 use glam::{Quat, Vec3};
 use pom::hecs::{Entity, World};
 use pom::preview::{default_lighting, three_quarter_view};
-use pom::{App, GltfScene, ParallaxOcclusionMaterial, Transform};
+use pom::{App, GltfScene, Name, ParallaxOcclusionMaterial, Transform};
 
 use super::autosave::TunedState;
-use super::scene_names::{EntityNames, name_entities};
 use crate::demo_scene::STREET_CORNER;
 
 /// Name of the embedded scene in the state file and the UI.
@@ -32,21 +31,14 @@ pub struct LoadedScene {
 }
 
 /// Loads `path` (or the embedded street corner, also when `path` fails) into `app`, names its
-/// entities (the `EntityNames` resource) and adds a camera and a light when it has none.
+/// entities (the loader's `pom::Name` components) and adds a camera and a light when it has none.
 pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
     let mut messages = Vec::new();
     if let Some(path) = path {
-        let loaded = std::fs::read(path)
-            .map_err(|error| format!("{}: {error}", path.display()))
-            .and_then(|bytes| {
-                pom::load_gltf(app, path)
-                    .map(|scene| (scene, bytes))
-                    .map_err(|error| error.to_string())
-            });
-        match loaded {
-            Ok((scene, bytes)) => {
+        match pom::load_gltf(app, path) {
+            Ok(scene) => {
                 let label = path.display().to_string();
-                return finish_loading(app, &scene, &bytes, label, messages);
+                return finish_loading(app, &scene, label, messages);
             }
             Err(error) => {
                 messages.push(format!(
@@ -58,11 +50,11 @@ pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
         }
     }
     match pom::load_gltf_bytes(app, STREET_CORNER, EMBEDDED_SCENE) {
-        Ok(scene) => finish_loading(app, &scene, STREET_CORNER, EMBEDDED_SCENE.into(), messages),
+        Ok(scene) => finish_loading(app, &scene, EMBEDDED_SCENE.into(), messages),
         Err(error) => {
             messages.push(format!("could not load the embedded scene: {error}"));
             let label = EMBEDDED_SCENE.into();
-            finish_loading(app, &GltfScene::default(), &[], label, messages)
+            finish_loading(app, &GltfScene::default(), label, messages)
         }
     }
 }
@@ -72,7 +64,6 @@ pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
 pub fn finish_loading(
     app: &mut App,
     scene: &GltfScene,
-    bytes: &[u8],
     label: String,
     mut messages: Vec<String>,
 ) -> LoadedScene {
@@ -93,8 +84,6 @@ pub fn finish_loading(
         app.world.spawn((sun, transform));
         app.resources.insert(ambient);
     }
-    app.resources
-        .insert(EntityNames(name_entities(bytes, &scene.entities)));
     let centre = (bounds.0 + bounds.1) * 0.5;
     let focus_distance =
         super::camera_control::active_camera_transform(&app.world).map_or(5.0, |camera| {
@@ -111,7 +100,6 @@ pub fn finish_loading(
 
 /// Every entity with a parallax material and its display name, in a stable order.
 pub fn material_entities(app: &App) -> Vec<(Entity, String)> {
-    let names = app.resources.get::<EntityNames>();
     let mut entities: Vec<Entity> = app
         .world
         .query::<(Entity, &ParallaxOcclusionMaterial)>()
@@ -122,9 +110,10 @@ pub fn material_entities(app: &App) -> Vec<(Entity, String)> {
     entities
         .into_iter()
         .map(|entity| {
-            let name = names
-                .and_then(|names| names.0.get(&entity).cloned())
-                .unwrap_or_else(|| format!("entity {}", entity.id()));
+            let name = app
+                .world
+                .get::<&Name>(entity)
+                .map_or_else(|_| format!("entity {}", entity.id()), |name| name.0.clone());
             (entity, name)
         })
         .collect()
@@ -159,5 +148,23 @@ pub fn restore_tuned(app: &mut App, scene: &str, state: &TunedState) {
 pub fn spin(world: &mut World, entity: Entity, dt: f32) {
     if let Ok(mut transform) = world.get::<&mut Transform>(entity) {
         transform.rotation = Quat::from_rotation_y(SPIN_SPEED * dt) * transform.rotation;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_street_corner_lists_its_materials_by_node_name() {
+        let mut app = App::new();
+        let loaded = load_scene(&mut app, None);
+        assert_eq!(loaded.label, EMBEDDED_SCENE);
+        assert!(loaded.messages.is_empty(), "{:?}", loaded.messages);
+        let names: Vec<String> = material_entities(&app)
+            .into_iter()
+            .map(|(_, name)| name)
+            .collect();
+        assert_eq!(names, ["floor", "wall", "sign", "doormat", "crate"]);
     }
 }

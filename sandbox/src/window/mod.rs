@@ -14,7 +14,6 @@ mod light_control;
 mod material_editor;
 mod panels;
 mod presets;
-mod scene_names;
 mod scene_open;
 mod screenshot;
 mod shader_status;

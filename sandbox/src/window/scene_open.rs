@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use pom::hecs::Entity;
 use pom::{
-    App, Assets, GltfScene, HeightSource, Image, Mesh, ParallaxOcclusionMaterial, TextureKind,
-    Transform,
+    App, Assets, GltfScene, HeightSource, Image, Mesh, Name, ParallaxOcclusionMaterial,
+    TextureKind, Transform,
 };
 
 use super::app_state::{LoadedScene, finish_loading};
@@ -124,16 +124,16 @@ pub fn open_request(app: &mut App, request: &OpenRequest) -> Result<LoadedScene,
     for entity in unwanted {
         let _ = app.world.despawn(entity);
     }
-    let (scene, bytes, label) = opened?;
-    Ok(finish_loading(app, &scene, &bytes, label, Vec::new()))
+    let (scene, label) = opened?;
+    Ok(finish_loading(app, &scene, label, Vec::new()))
 }
 
-type Opened = (GltfScene, Vec<u8>, String);
+/// The loaded scene and its label.
+type Opened = (GltfScene, String);
 
 fn open_scene(app: &mut App, path: &Path) -> Result<Opened, String> {
-    let bytes = std::fs::read(path).map_err(|error| format!("{}: {error}", path.display()))?;
     let scene = pom::load_gltf(app, path).map_err(|error| error.to_string())?;
-    Ok((scene, bytes, path.display().to_string()))
+    Ok((scene, path.display().to_string()))
 }
 
 fn open_image_set(app: &mut App, set: &ImageSet) -> Result<Opened, String> {
@@ -164,14 +164,20 @@ fn open_image_set(app: &mut App, set: &ImageSet) -> Result<Opened, String> {
         .resources
         .get_or_default::<Assets<Mesh>>()
         .add(Mesh::plane_tiled(IMAGE_PLANE_SIZE, IMAGE_PLANE_TILING));
-    let entity = app.world.spawn((plane, material, Transform::IDENTITY));
+    let name = height.file_stem().map_or_else(
+        || "image set".into(),
+        |stem| stem.to_string_lossy().into_owned(),
+    );
+    let entity = app
+        .world
+        .spawn((plane, material, Transform::IDENTITY, Name::new(name)));
     let half = IMAGE_PLANE_SIZE * 0.5;
     let scene = GltfScene {
         entities: vec![entity],
         bounds: Some((Vec3::new(-half, 0.0, -half), Vec3::new(half, 0.0, half))),
         ..GltfScene::default()
     };
-    Ok((scene, Vec::new(), format!("image set {}", height.display())))
+    Ok((scene, format!("image set {}", height.display())))
 }
 
 #[cfg(test)]
