@@ -521,3 +521,47 @@ impl ApplicationHandler for WindowApp {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use pom::{Assets, Camera, Mesh, TransformPlugin};
+
+    use super::*;
+
+    #[test]
+    fn a_click_selects_the_material_under_it_and_a_miss_keeps_the_selection() {
+        let mut app = App::new();
+        app.add_plugin(TransformPlugin);
+        let cube = app
+            .resources
+            .get_or_default::<Assets<Mesh>>()
+            .add(Mesh::cube(1.0));
+        app.world.spawn((
+            Camera::perspective(60.0),
+            pom::Transform::from_xyz(0.0, 0.0, 5.0),
+        ));
+        let left = app.world.spawn((
+            cube.clone(),
+            ParallaxOcclusionMaterial::default(),
+            pom::Transform::from_xyz(-1.5, 0.0, 0.0),
+        ));
+        let right = app.world.spawn((
+            cube,
+            ParallaxOcclusionMaterial::default(),
+            pom::Transform::from_xyz(1.5, 0.0, 0.0),
+        ));
+        app.update().unwrap();
+        let mut panel = PanelState {
+            selected: Some(left),
+            ..PanelState::default()
+        };
+        let viewport = Vec2::new(400.0, 200.0);
+        // The cubes span pixels 238..277 and 123..162 (x = ±1..2 seen from 4.5 away).
+        select_clicked(&app, &mut panel, viewport, Vec2::new(258.0, 100.0));
+        assert_eq!(panel.selected, Some(right));
+        select_clicked(&app, &mut panel, viewport, Vec2::new(2.0, 2.0));
+        assert_eq!(panel.selected, Some(right));
+        select_clicked(&app, &mut panel, viewport, Vec2::new(142.0, 100.0));
+        assert_eq!(panel.selected, Some(left));
+    }
+}
