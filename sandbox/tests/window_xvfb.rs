@@ -14,6 +14,10 @@ const WINDOW_SIZE: (u32, u32) = (1280, 720);
 /// How long the sandbox may take (a debug build drawing on a software GPU).
 const SANDBOX_TIMEOUT: Duration = Duration::from_secs(300);
 
+/// Held by each test while its Xvfb runs: two tests starting at once would both pick the
+/// first free display number.
+static ONE_XVFB_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// Kills the Xvfb server when the test ends, however it ends.
 struct XvfbGuard {
     server: Child,
@@ -144,6 +148,7 @@ fn mean_colour(
 
 #[test]
 fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
+    let _serial = ONE_XVFB_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let xvfb = start_xvfb();
     // Under target/, overwritten by each run, so the last screenshot is there to look at.
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_xvfb");
@@ -207,6 +212,7 @@ fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
 
 #[test]
 fn the_split_view_shows_a_wipe_between_two_images() {
+    let _serial = ONE_XVFB_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let xvfb = start_xvfb();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_xvfb_split");
     std::fs::create_dir_all(&dir).unwrap();
