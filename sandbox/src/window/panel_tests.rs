@@ -290,3 +290,44 @@ fn dropping_an_image_set_opens_it_on_a_plane() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn split_view_b_copies_a_then_takes_its_own_method() {
+    let mut harness = harness();
+    let entity = harness.state().material;
+    harness.get_by_label("split view (A | B)").click();
+    harness.run();
+    harness.get_by_label("Copy A's parameters to B").click();
+    harness.run();
+    let b = |harness: &Harness<'_, Fixture>| {
+        harness
+            .state()
+            .app
+            .resources
+            .get::<pom::SplitView>()
+            .expect("the split view is on")
+            .overrides[&entity]
+            .clone()
+    };
+    assert_eq!(b(&harness), material(&harness));
+    harness.get_by_label("B method").click();
+    harness.run();
+    harness.get_by_label("Normal mapping only").click();
+    harness.run();
+    assert_eq!(b(&harness).method, pom::ParallaxMethod::NormalMapping);
+    assert_eq!(
+        material(&harness).method,
+        pom::ParallaxMethod::Occlusion,
+        "A keeps its method"
+    );
+    harness.get_by_label("split view (A | B)").click();
+    harness.run();
+    assert!(
+        harness
+            .state()
+            .app
+            .resources
+            .get::<pom::SplitView>()
+            .is_none()
+    );
+}
