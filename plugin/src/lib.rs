@@ -67,7 +67,10 @@ pub use parallax::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
     ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, PomPreset, PresetError, ShadowMode,
 };
-pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
+pub use render::{
+    GpuContext, GpuTimings, RenderError, RenderPlugin, TargetFormat, TimingMode, capture,
+    capture_f32,
+};
 pub use resources::Resources;
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 pub use transform::{
