@@ -9,14 +9,25 @@ use common::*;
 fn quick_bench_writes_json_csv_and_a_chart() {
     let dir = TempDir::new("bench-quick");
     let out = dir.join("results");
-    let output = sandbox(&["bench", "--quick", "--entities", "200", "--out", path_arg(&out)]);
+    let output = sandbox(&[
+        "bench",
+        "--quick",
+        "--entities",
+        "200",
+        "--out",
+        path_arg(&out),
+    ]);
     assert_success(&output);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("median"), "no table printed:\n{stdout}");
 
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
-    assert!(json["adapter"]["name"].as_str().is_some_and(|n| !n.is_empty()));
+    assert!(
+        json["adapter"]["name"]
+            .as_str()
+            .is_some_and(|n| !n.is_empty())
+    );
     assert_eq!(json["quick"], true);
     let cases = json["cases"].as_array().unwrap();
     // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, 2 far-field.
@@ -32,7 +43,11 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         assert_eq!(spread["count"], 5);
     }
     let ratios = json["ratios"].as_array().unwrap();
-    assert!(ratios.iter().any(|r| r["what"].as_str().unwrap().contains("far field")));
+    assert!(
+        ratios
+            .iter()
+            .any(|r| r["what"].as_str().unwrap().contains("far field"))
+    );
     assert!(ratios.iter().all(|r| r["ratio"].as_f64().unwrap() > 0.0));
     assert_eq!(json["cpu_side"]["entities"], 200);
     assert!(json["cpu_side"]["total"]["median_ms"].as_f64().unwrap() > 0.0);

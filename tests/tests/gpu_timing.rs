@@ -18,7 +18,9 @@ fn timed_app(mode: TimingMode) -> App {
     app.add_plugin(RenderPlugin::headless(48, 48).with_gpu_timing(Some(mode)));
     app.add_plugin(PomPlugin);
     app.finish().unwrap();
-    let field = HeightField::from_fn(32, 32, |u, v| 0.5 + 0.4 * (u * 12.0).sin() * (v * 9.0).cos());
+    let field = HeightField::from_fn(32, 32, |u, v| {
+        0.5 + 0.4 * (u * 12.0).sin() * (v * 9.0).cos()
+    });
     let images = app.resources.get_mut::<Assets<Image>>().unwrap();
     let dynamic = DynamicHeightField::new(images, &field, HEIGHT_SCALE).unwrap();
     let material = ParallaxOcclusionMaterial {
@@ -75,12 +77,21 @@ fn non_blocking_timings_appear_after_a_few_frames_and_keep_coming() {
     assert_plausible(&first, "main pass");
     assert_plausible(&first, "sobel pass");
     run_frames(&mut app, 8).unwrap();
-    let (GpuTimings::Supported { frame: before, .. }, GpuTimings::Supported { frame: after, rejected, .. }) =
-        (first, app.resources.get::<GpuTimings>().unwrap().clone())
+    let (
+        GpuTimings::Supported { frame: before, .. },
+        GpuTimings::Supported {
+            frame: after,
+            rejected,
+            ..
+        },
+    ) = (first, app.resources.get::<GpuTimings>().unwrap().clone())
     else {
         panic!("timing is on")
     };
-    assert!(after > before, "newer frames are read: {before} then {after}");
+    assert!(
+        after > before,
+        "newer frames are read: {before} then {after}"
+    );
     assert!(after <= 16, "no reading from the future: frame {after}");
     assert_eq!(rejected, 0, "every pass wrote both timestamps");
 }
@@ -104,7 +115,10 @@ fn timing_can_be_turned_off_and_says_so() {
     );
     assert!(app.resources.get::<GpuTimer>().is_none());
     // And back on at run time.
-    assert!(set_gpu_timing(&mut app.resources, Some(TimingMode::Blocking)));
+    assert!(set_gpu_timing(
+        &mut app.resources,
+        Some(TimingMode::Blocking)
+    ));
     run_frames(&mut app, 1).unwrap();
     assert_plausible(app.resources.get::<GpuTimings>().unwrap(), "main pass");
 }

@@ -142,7 +142,11 @@ impl std::fmt::Debug for GpuTimer {
 impl GpuTimer {
     /// A timer, or `None` when the device was created without `TIMESTAMP_QUERY`.
     pub fn new(gpu: &GpuContext, mode: TimingMode) -> Option<Self> {
-        if !gpu.device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
+        if !gpu
+            .device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        {
             return None;
         }
         let device = &gpu.device;

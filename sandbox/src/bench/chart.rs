@@ -19,12 +19,19 @@ const PALETTE: [RGBColor; 4] = [
 
 fn register_font() -> Result<()> {
     // egui's default font, already in the build: no system fonts needed.
-    plotters::style::register_font(
-        FONT,
-        FontStyle::Normal,
-        epaint_default_fonts::UBUNTU_LIGHT,
-    )
-    .map_err(|_| anyhow!("the embedded chart font does not parse"))
+    plotters::style::register_font(FONT, FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT)
+        .map_err(|_| anyhow!("the embedded chart font does not parse"))
+}
+
+// Short enough for 15 groups side by side: "pom S" is POM with soft shadows.
+fn bar_label(case: &CaseResult) -> String {
+    let shadows = match case.shadows.as_str() {
+        "off" => "",
+        "hard" => " H",
+        "soft" => " S",
+        other => other,
+    };
+    format!("{}{shadows}", case.method)
 }
 
 fn sizes(cases: &[CaseResult]) -> Vec<(u32, u32)> {
@@ -63,10 +70,7 @@ fn draw(
 
     let methods: Vec<&CaseResult> = cases.iter().filter(|c| c.group == "methods").collect();
     let labels: Vec<String> = {
-        let mut labels: Vec<String> = methods
-            .iter()
-            .map(|c| format!("{}/{}", c.method, c.shadows))
-            .collect();
+        let mut labels: Vec<String> = methods.iter().map(|c| bar_label(c)).collect();
         labels.dedup();
         let mut seen = Vec::new();
         labels.retain(|l| {
@@ -81,21 +85,14 @@ fn draw(
         .margin(10)
         .x_label_area_size(90)
         .y_label_area_size(60)
-        .caption("every method x shadows", (FONT, 16))
-        .build_cartesian_2d(0.0..labels.len().max(1) as f64, 0.0..top.max(1e-6))?;
+        .caption("every method x shadows (H hard, S soft)", (FONT, 16))
+        .build_cartesian_2d(-0.5..labels.len().max(1) as f64 - 0.5, 0.0..top.max(1e-6))?;
     chart
         .configure_mesh()
         .disable_x_mesh()
         .x_labels(labels.len().max(1))
-        .x_label_formatter(&|x| {
-            labels
-                .get(x.floor() as usize)
-                .cloned()
-                .unwrap_or_default()
-        })
-        .x_label_style(
-            TextStyle::from((FONT, 11).into_font()).transform(FontTransform::Rotate90),
-        )
+        .x_label_formatter(&|x| labels.get(x.floor() as usize).cloned().unwrap_or_default())
+        .x_label_style(TextStyle::from((FONT, 11).into_font()).transform(FontTransform::Rotate90))
         .y_desc("ms")
         .label_style((FONT, 12))
         .draw()?;
@@ -106,9 +103,9 @@ fn draw(
             .iter()
             .filter(|c| (c.width, c.height) == *size)
             .filter_map(|c| {
-                let label = format!("{}/{}", c.method, c.shadows);
+                let label = bar_label(c);
                 let index = labels.iter().position(|l| *l == label)?;
-                Some((index as f64 + 0.1 + width * series as f64, *c))
+                Some((index as f64 - 0.4 + width * series as f64, *c))
             })
             .collect();
         chart

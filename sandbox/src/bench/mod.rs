@@ -196,7 +196,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         .map(|d| d.as_secs())
         .unwrap_or(0);
 
-    let probe = BenchScene::new(sizes[0], &textures, base.clone(), &view, !args.no_timestamps)?;
+    let probe = BenchScene::new(
+        sizes[0],
+        &textures,
+        base.clone(),
+        &view,
+        !args.no_timestamps,
+    )?;
     let adapter: AdapterReport = probe.adapter().context("no adapter")?.into();
     if !probe.timing_supported() {
         println!(
@@ -207,7 +213,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     drop(probe);
     if adapter.software_driver {
-        println!("note: {} is a software driver: timings are not performance", adapter.name);
+        println!(
+            "note: {} is a software driver: timings are not performance",
+            adapter.name
+        );
     }
 
     let mut runner = Runner {
@@ -251,7 +260,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
         let pom_off = median_of(&runner.cases, size, "pom", "off");
         for shadows in ["hard", "soft"] {
-            if let (Some(off), Some(on)) = (pom_off, median_of(&runner.cases, size, "pom", shadows)) {
+            if let (Some(off), Some(on)) = (pom_off, median_of(&runner.cases, size, "pom", shadows))
+            {
                 ratios.push(Ratio {
                     what: format!("POM {shadows} shadows / no shadows"),
                     width: size.0,
@@ -307,7 +317,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let chart_path = args.out.join("bench.png");
     chart::write_chart(&chart_path, &report.adapter.name, &report.cases)?;
     chart::check_written(&chart_path)?;
-    println!("wrote bench.json, bench.csv and bench.png to {}", args.out.display());
+    println!(
+        "wrote bench.json, bench.csv and bench.png to {}",
+        args.out.display()
+    );
     if report.cases.is_empty() {
         bail!("no case was timed");
     }

@@ -167,8 +167,18 @@ impl BenchReport {
         let _ = writeln!(
             out,
             "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}",
-            "group", "method", "shadow", "size", "samples", "lod", "tiling", "median", "min",
-            "p10", "p90", "max"
+            "group",
+            "method",
+            "shadow",
+            "size",
+            "samples",
+            "lod",
+            "tiling",
+            "median",
+            "min",
+            "p10",
+            "p90",
+            "max"
         );
         for c in &self.cases {
             let s = &c.spread;

@@ -4,8 +4,8 @@
 use anyhow::{Context, Result, bail};
 use pom::preview::{PreviewView, spawn_preview};
 use pom::{
-    App, Assets, GpuContext, GpuTimings, Image, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPlugin, TimingMode,
+    App, Assets, GpuContext, GpuTimings, Image, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin,
+    TimingMode,
 };
 
 use crate::preview_textures::PreviewTextures;
@@ -60,11 +60,7 @@ impl BenchScene {
 
     /// Changes the material's parameters, keeping its textures.
     pub fn configure(&mut self, change: impl Fn(&mut ParallaxOcclusionMaterial)) {
-        for material in self
-            .app
-            .world
-            .query_mut::<&mut ParallaxOcclusionMaterial>()
-        {
+        for material in self.app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
             change(material);
         }
     }

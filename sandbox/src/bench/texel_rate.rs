@@ -44,7 +44,10 @@ mod tests {
     fn h100_from_the_table_override_wins_unknown_is_none() {
         let h100 = texel_rate("NVIDIA H100 80GB HBM3", None).unwrap();
         assert!((h100.gtexels_per_s - 1045.44).abs() < 1e-9);
-        assert_eq!(texel_rate("NVIDIA H100", Some(7.0)).unwrap().gtexels_per_s, 7.0);
+        assert_eq!(
+            texel_rate("NVIDIA H100", Some(7.0)).unwrap().gtexels_per_s,
+            7.0
+        );
         assert_eq!(texel_rate("llvmpipe (LLVM 15.0.6, 256 bits)", None), None);
     }
 }
