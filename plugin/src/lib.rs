@@ -73,7 +73,10 @@ pub use parallax::{
     ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, PomPreset, PresetError, ShadowMode,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
-pub use render::{GpuContext, RenderError, RenderPlugin, TargetFormat, capture, capture_f32};
+pub use render::{
+    GpuContext, GpuTimings, RenderError, RenderPlugin, TargetFormat, TimingMode, capture,
+    capture_f32,
+};
 pub use resources::Resources;
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 pub use shader_reload::{

@@ -4,6 +4,7 @@
 //! the shipped assets.
 
 mod asset_generator;
+mod bench;
 mod cli_types;
 mod demo_command;
 mod demo_scene;
@@ -42,6 +43,9 @@ enum Command {
     /// Runs scene scripts (RON) headless: one line per step, non-zero exit when any
     /// expectation fails.
     RunScript(script_command::ScriptArgs),
+    /// Times the material's GPU passes (timestamp queries) and the CPU side; writes JSON, CSV
+    /// and a PNG chart. See sandbox/BENCHMARKS.md.
+    Bench(Box<bench::BenchArgs>),
 }
 
 /// Clap's usage errors add a tip, the usage and a pointer to --help over several lines; the
@@ -75,6 +79,7 @@ fn main() {
         Some(Command::Snapshot(args)) => demo_command::run(args),
         Some(Command::Render(args)) => render_command::run(args),
         Some(Command::RunScript(args)) => script_command::run(args),
+        Some(Command::Bench(args)) => bench::run(args),
         Some(Command::GenerateAssets { out }) => {
             let out = out.clone().unwrap_or_else(asset_generator::default_output);
             asset_generator::generate(&out).map(|files| {

@@ -7,7 +7,7 @@ use bytemuck::{Pod, Zeroable};
 use hecs::{Entity, World};
 use wgpu::util::DeviceExt;
 
-use crate::render::{GpuContext, Renderer, shaders};
+use crate::render::{GpuContext, PassTimestamps, Renderer, shaders, time_pass};
 use crate::{AppError, Assets, Handle, HeightField, Image, ImageError, Resources, TextureKind};
 
 /// A height field that changes while the game runs. User code rewrites the `height` image (through
@@ -167,6 +167,11 @@ fn run(world: &World, resources: &mut Resources, pass: &mut SobelPass) -> Result
     let mut renderer = resources
         .remove::<Renderer>()
         .ok_or_else(AppError::missing::<Renderer>)?;
+    let timestamps: Vec<Option<PassTimestamps>> = world
+        .query::<&DynamicHeightField>()
+        .iter()
+        .map(|_| time_pass(resources, "sobel pass"))
+        .collect();
     let outcome = (|| {
         let gpu = resources
             .get::<GpuContext>()
@@ -189,15 +194,18 @@ fn run(world: &World, resources: &mut Resources, pass: &mut SobelPass) -> Result
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("sobel encoder"),
             });
-        for (entity, field) in &fields {
+        for ((entity, field), timestamps) in fields.iter().zip(&timestamps) {
             renderer
                 .assets
                 .prepare_image(gpu, images, field.height.id());
             renderer
                 .assets
                 .prepare_image(gpu, images, field.normal.id());
-            if let Err(error) = dispatch(gpu, images, &renderer, pass, &mut encoder, *entity, field)
-            {
+            let target = DispatchTarget {
+                encoder: &mut encoder,
+                timestamps: timestamps.as_ref(),
+            };
+            if let Err(error) = dispatch(gpu, images, &renderer, pass, target, *entity, field) {
                 log::error!("{error}");
             }
         }
@@ -208,12 +216,18 @@ fn run(world: &World, resources: &mut Resources, pass: &mut SobelPass) -> Result
     outcome
 }
 
+// Where one field's Sobel pass is recorded, and its timestamp pair if timing is on.
+struct DispatchTarget<'a> {
+    encoder: &'a mut wgpu::CommandEncoder,
+    timestamps: Option<&'a PassTimestamps>,
+}
+
 fn dispatch(
     gpu: &GpuContext,
     images: &Assets<Image>,
     renderer: &Renderer,
     pass: &mut SobelPass,
-    encoder: &mut wgpu::CommandEncoder,
+    target: DispatchTarget<'_>,
     entity: Entity,
     field: &DynamicHeightField,
 ) -> Result<(), DynamicHeightError> {
@@ -295,10 +309,12 @@ fn dispatch(
     gpu.queue
         .write_buffer(&binding.params, 0, bytemuck::bytes_of(&params));
     {
-        let mut compute = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("sobel pass"),
-            timestamp_writes: None,
-        });
+        let mut compute = target
+            .encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("sobel pass"),
+                timestamp_writes: target.timestamps.map(PassTimestamps::compute),
+            });
         compute.set_pipeline(&pass.pipeline);
         compute.set_bind_group(0, &binding.bind_group, &[]);
         compute.dispatch_workgroups(width.div_ceil(8), rows.div_ceil(8), 1);

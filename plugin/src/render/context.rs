@@ -69,8 +69,10 @@ impl GpuContext {
             })?;
         let info = adapter.get_info();
         // Optional features the renderer uses when present: 16-bit height maps stay 16-bit
-        // (R16Unorm) or exact (filterable R32Float).
-        let wanted = wgpu::Features::TEXTURE_FORMAT_16BIT_NORM | wgpu::Features::FLOAT32_FILTERABLE;
+        // (R16Unorm) or exact (filterable R32Float); passes are timed (GpuTimings).
+        let wanted = wgpu::Features::TEXTURE_FORMAT_16BIT_NORM
+            | wgpu::Features::FLOAT32_FILTERABLE
+            | wgpu::Features::TIMESTAMP_QUERY;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("pom device"),

@@ -6,6 +6,7 @@ mod extract;
 mod forward;
 mod frame_uniform;
 mod gpu_assets;
+mod gpu_timing;
 mod gpu_types;
 mod layout;
 pub use layout::mesh_pipeline;
@@ -20,6 +21,10 @@ pub use extract::{DrawItem, ExtractedFrame, extract_frame};
 pub use forward::ForwardPass;
 pub use frame_uniform::FrameUniformBuffer;
 pub use gpu_assets::{DefaultTexture, DefaultTextures, GpuAssets, GpuImage, GpuMesh, UploadStats};
+pub use gpu_timing::{
+    GpuTimer, GpuTimings, MAX_TIMED_PASSES, PassTimestamps, TimingMode, pass_milliseconds,
+    resolve_gpu_timings, set_gpu_timing, time_pass,
+};
 pub use gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, ObjectUniform,
     PointLightGpu, Vertex,
@@ -63,6 +68,8 @@ pub struct RenderPlugin {
     pub height: u32,
     /// What the target stores: display pixels or raw floats.
     pub format: TargetFormat,
+    /// GPU pass timing ([`GpuTimings`]), when the adapter supports it; `None` turns it off.
+    pub gpu_timing: Option<TimingMode>,
 }
 
 impl RenderPlugin {
@@ -72,12 +79,18 @@ impl RenderPlugin {
             width,
             height,
             format: TargetFormat::Srgb8,
+            gpu_timing: Some(TimingMode::NonBlocking),
         }
     }
 
     /// The same plugin rendering raw floats (for measurements) instead.
     pub fn with_format(self, format: TargetFormat) -> Self {
         Self { format, ..self }
+    }
+
+    /// The same plugin with GPU timing in `mode`, or off with `None`.
+    pub fn with_gpu_timing(self, gpu_timing: Option<TimingMode>) -> Self {
+        Self { gpu_timing, ..self }
     }
 }
 
@@ -113,7 +126,8 @@ impl Plugin for RenderPlugin {
             .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
             .add_system(Stage::Extract, extract_frame)
             .add_system(Stage::Prepare, prepare_frame)
-            .add_system(Stage::Render, render_frame);
+            .add_system(Stage::Render, render_frame)
+            .add_system(Stage::Render, resolve_gpu_timings);
     }
 
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
@@ -133,6 +147,7 @@ impl Plugin for RenderPlugin {
             last_upload: UploadStats::default(),
         };
         app.insert_resource(target).insert_resource(renderer);
+        set_gpu_timing(&mut app.resources, self.gpu_timing);
         Ok(())
     }
 }
@@ -190,6 +205,7 @@ pub struct MainPassDraws(pub Vec<MainPassDraw>);
 /// The Render stage's system: clears the target, records the forward pass and every registered
 /// [`MainPassDraw`], and submits.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+    let timestamps = time_pass(resources, "main pass");
     let gpu = resources
         .get::<GpuContext>()
         .ok_or_else(AppError::missing::<GpuContext>)?;
@@ -233,7 +249,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: None,
+            timestamp_writes: timestamps.as_ref().map(PassTimestamps::render),
             occlusion_query_set: None,
             multiview_mask: None,
         });

@@ -1,0 +1,178 @@
+//! The PNG chart: median main-pass time of every method × shadow mode per image size (bars,
+//! with the p10–p90 range as a line), and the sample-count sweep.
+
+use std::path::Path;
+
+use anyhow::{Context, Result, anyhow};
+use plotters::prelude::*;
+
+use super::report::CaseResult;
+
+const SIZE: (u32, u32) = (1400, 600);
+const FONT: &str = "sans-serif";
+const PALETTE: [RGBColor; 4] = [
+    RGBColor(66, 114, 196),
+    RGBColor(237, 125, 49),
+    RGBColor(112, 173, 71),
+    RGBColor(165, 90, 170),
+];
+
+fn register_font() -> Result<()> {
+    // egui's default font, already in the build: no system fonts needed.
+    plotters::style::register_font(FONT, FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT)
+        .map_err(|_| anyhow!("the embedded chart font does not parse"))
+}
+
+// Short enough for 15 groups side by side: "pom S" is POM with soft shadows.
+fn bar_label(case: &CaseResult) -> String {
+    let shadows = match case.shadows.as_str() {
+        "off" => "",
+        "hard" => " H",
+        "soft" => " S",
+        other => other,
+    };
+    format!("{}{shadows}", case.method)
+}
+
+fn sizes(cases: &[CaseResult]) -> Vec<(u32, u32)> {
+    let mut sizes: Vec<(u32, u32)> = cases.iter().map(|c| (c.width, c.height)).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    sizes
+}
+
+/// Draws the chart for `cases` into `path` (PNG), titled with `adapter`.
+pub fn write_chart(path: &Path, adapter: &str, cases: &[CaseResult]) -> Result<()> {
+    register_font()?;
+    let mut pixels = vec![0_u8; (SIZE.0 * SIZE.1 * 3) as usize];
+    draw(&mut pixels, adapter, cases)
+        .map_err(|error| anyhow!("drawing {}: {error}", path.display()))?;
+    // plotters draws into memory; the image crate (already used for every PNG) encodes it.
+    image::RgbImage::from_raw(SIZE.0, SIZE.1, pixels)
+        .context("the chart buffer has the wrong size")?
+        .save(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+fn draw(
+    pixels: &mut [u8],
+    adapter: &str,
+    cases: &[CaseResult],
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let root = BitMapBackend::with_buffer(pixels, SIZE).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        &format!("GPU main pass, median ms (bars) and p10-p90 (lines) on {adapter}"),
+        (FONT, 20),
+    )?;
+    let (left, right) = root.split_horizontally(900);
+    let sizes = sizes(cases);
+
+    let methods: Vec<&CaseResult> = cases.iter().filter(|c| c.group == "methods").collect();
+    let labels: Vec<String> = {
+        let mut labels: Vec<String> = methods.iter().map(|c| bar_label(c)).collect();
+        labels.dedup();
+        let mut seen = Vec::new();
+        labels.retain(|l| {
+            let new = !seen.contains(l);
+            seen.push(l.clone());
+            new
+        });
+        labels
+    };
+    let top = methods.iter().map(|c| c.spread.p90_ms).fold(0.0, f64::max) * 1.1;
+    let mut chart = ChartBuilder::on(&left)
+        .margin(10)
+        .x_label_area_size(90)
+        .y_label_area_size(60)
+        .caption("every method x shadows (H hard, S soft)", (FONT, 16))
+        .build_cartesian_2d(-0.5..labels.len().max(1) as f64 - 0.5, 0.0..top.max(1e-6))?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(labels.len().max(1))
+        .x_label_formatter(&|x| labels.get(x.floor() as usize).cloned().unwrap_or_default())
+        .x_label_style(TextStyle::from((FONT, 11).into_font()).transform(FontTransform::Rotate90))
+        .y_desc("ms")
+        .label_style((FONT, 12))
+        .draw()?;
+    let width = 0.8 / sizes.len().max(1) as f64;
+    for (series, size) in sizes.iter().enumerate() {
+        let color = PALETTE[series % PALETTE.len()];
+        let bars: Vec<(f64, &CaseResult)> = methods
+            .iter()
+            .filter(|c| (c.width, c.height) == *size)
+            .filter_map(|c| {
+                let label = bar_label(c);
+                let index = labels.iter().position(|l| *l == label)?;
+                Some((index as f64 - 0.4 + width * series as f64, *c))
+            })
+            .collect();
+        chart
+            .draw_series(bars.iter().map(|(x, c)| {
+                Rectangle::new(
+                    [(*x, 0.0), (*x + width * 0.9, c.spread.median_ms)],
+                    color.filled(),
+                )
+            }))?
+            .label(format!("{}x{}", size.0, size.1))
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], color.filled()));
+        chart.draw_series(bars.iter().map(|(x, c)| {
+            let middle = *x + width * 0.45;
+            PathElement::new(
+                vec![(middle, c.spread.p10_ms), (middle, c.spread.p90_ms)],
+                BLACK.stroke_width(1),
+            )
+        }))?;
+    }
+    chart
+        .configure_series_labels()
+        .label_font((FONT, 12))
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+
+    let sweep: Vec<&CaseResult> = cases.iter().filter(|c| c.group == "samples").collect();
+    let max_x = sweep.iter().map(|c| c.max_samples).max().unwrap_or(1);
+    let top = sweep.iter().map(|c| c.spread.median_ms).fold(0.0, f64::max) * 1.1;
+    let mut chart = ChartBuilder::on(&right)
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .caption("POM, max_samples sweep", (FONT, 16))
+        .build_cartesian_2d(0u32..max_x + 1, 0.0..top.max(1e-6))?;
+    chart
+        .configure_mesh()
+        .x_desc("max_samples")
+        .y_desc("ms")
+        .label_style((FONT, 12))
+        .draw()?;
+    for (series, size) in sizes.iter().enumerate() {
+        let color = PALETTE[series % PALETTE.len()];
+        let points: Vec<(u32, f64)> = sweep
+            .iter()
+            .filter(|c| (c.width, c.height) == *size)
+            .map(|c| (c.max_samples, c.spread.median_ms))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
+            .label(format!("{}x{}", size.0, size.1))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 12, y)], color));
+        chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled())))?;
+    }
+    chart
+        .configure_series_labels()
+        .label_font((FONT, 12))
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// Checks that `path` exists after drawing (plotters writes on `present`).
+pub fn check_written(path: &Path) -> Result<()> {
+    image::open(path)
+        .map(|_| ())
+        .with_context(|| format!("reading back {}", path.display()))
+}

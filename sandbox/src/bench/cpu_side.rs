@@ -1,0 +1,113 @@
+//! CPU cost of many parallax entities: the Extract, Prepare and Render (command recording and
+//! submission) stages timed separately with the CPU clock, by marker systems added at the end of
+//! PostUpdate, Extract, Prepare and Render.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use pom::glam::Vec3;
+use pom::{
+    App, Assets, Camera, DirectionalLight, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
+    RenderPlugin, Resources, Stage, Transform,
+};
+use serde::Serialize;
+
+use super::stats::Spread;
+use crate::preview_textures::PreviewTextures;
+
+/// Per-stage CPU milliseconds per frame for `entities` parallax entities.
+#[derive(Clone, Debug, Serialize)]
+pub struct CpuSide {
+    /// Entities with a parallax material.
+    pub entities: usize,
+    /// Extract stage.
+    pub extract: Spread,
+    /// Prepare stage (uploads; after the first frame only per-object data changes).
+    pub prepare: Spread,
+    /// Render stage: recording the main pass and submitting (GPU timing off).
+    pub render: Spread,
+    /// The three together.
+    pub total: Spread,
+}
+
+#[derive(Default)]
+struct StageMarks([Option<Instant>; 4]);
+
+fn mark<const INDEX: usize>(_: &mut pom::hecs::World, resources: &mut Resources) {
+    resources.get_or_default::<StageMarks>().0[INDEX] = Some(Instant::now());
+}
+
+/// Spawns `entities` small planes in a grid under one camera and times `frames` frames after
+/// `warmup` ones.
+pub fn measure(
+    entities: usize,
+    textures: &PreviewTextures,
+    warmup: usize,
+    frames: usize,
+) -> Result<CpuSide> {
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(256, 256).with_gpu_timing(None));
+    app.add_plugin(PomPlugin);
+    app.add_system(Stage::PostUpdate, mark::<0>)
+        .add_system(Stage::Extract, mark::<1>)
+        .add_system(Stage::Prepare, mark::<2>)
+        .add_system(Stage::Render, mark::<3>);
+    app.finish().context("starting the GPU")?;
+    let side = (entities as f32).sqrt().ceil().max(1.0) as usize;
+    let plane = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .context("the render plugin provides no mesh store")?
+        .add(Mesh::plane(0.9));
+    let images = app
+        .resources
+        .get_mut::<Assets<Image>>()
+        .context("the render plugin provides no image store")?;
+    let material = textures
+        .clone()
+        .attach(images, ParallaxOcclusionMaterial::default());
+    for index in 0..entities {
+        let (x, z) = ((index % side) as f32, (index / side) as f32);
+        app.world.spawn((
+            plane.clone(),
+            material.clone(),
+            Transform::from_xyz(x - side as f32 / 2.0, 0.0, z - side as f32 / 2.0),
+        ));
+    }
+    let extent = side as f32;
+    app.world.spawn((
+        Camera::perspective(60.0),
+        Transform::from_xyz(0.0, extent, extent).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    app.world.spawn((
+        DirectionalLight::default(),
+        Transform::IDENTITY.looking_at(Vec3::new(-1.0, -2.0, -1.0), Vec3::Y),
+    ));
+    for _ in 0..warmup {
+        app.update().context("rendering a warm-up frame")?;
+    }
+    let mut stages = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+    for _ in 0..frames {
+        app.update().context("rendering a timed frame")?;
+        let marks = app
+            .resources
+            .get::<StageMarks>()
+            .context("the stage markers did not run")?;
+        let [Some(a), Some(b), Some(c), Some(d)] = marks.0 else {
+            anyhow::bail!("a stage marker did not run");
+        };
+        let ms = |from: Instant, to: Instant| to.duration_since(from).as_secs_f64() * 1e3;
+        stages[0].push(ms(a, b));
+        stages[1].push(ms(b, c));
+        stages[2].push(ms(c, d));
+        stages[3].push(ms(a, d));
+    }
+    let spread = |values: &[f64]| Spread::of(values).context("no CPU timings");
+    Ok(CpuSide {
+        entities,
+        extract: spread(&stages[0])?,
+        prepare: spread(&stages[1])?,
+        render: spread(&stages[2])?,
+        total: spread(&stages[3])?,
+    })
+}

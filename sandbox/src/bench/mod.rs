@@ -1,0 +1,359 @@
+//! `sandbox bench`: times the parallax material's main pass with GPU timestamps over standard
+//! scenes (every method × shadow mode, a sample-count sweep, an LOD-threshold sweep, a
+//! far-field scene) and the CPU side of 10,000 parallax entities; prints a table and writes
+//! JSON, CSV and a PNG chart. See sandbox/BENCHMARKS.md.
+
+mod chart;
+mod cpu_side;
+mod report;
+mod scene;
+mod stats;
+mod texel_rate;
+
+use std::path::PathBuf;
+use std::time::{SystemTime, UNIX_EPOCH};
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use pom::ParallaxOcclusionMaterial;
+use pom::preview::PreviewView;
+
+use crate::cli_types::{MethodArg, ShadowsArg, parse_size};
+use crate::preview_textures::{PreviewTextures, TextureFiles};
+use crate::render_command::{MaterialArgs, TextureArgs, ViewArgs};
+use report::{AdapterReport, BenchReport, CaseResult, Ratio};
+use scene::{BenchScene, TIMED_PASS};
+
+/// Exit message when the adapter cannot time passes (exit status 0).
+pub const NO_TIMESTAMPS: &str = "GPU timestamps are not available";
+
+const FULL_SIZES: [(u32, u32); 2] = [(1920, 1080), (3840, 2160)];
+const QUICK_SIZES: [(u32, u32); 2] = [(64, 36), (96, 54)];
+const SAMPLE_SWEEP: [u32; 5] = [8, 16, 32, 64, 128];
+const LOD_SWEEP: [f32; 6] = [0.0, 1.0, 2.0, 4.0, 6.0, 8.0];
+const METHODS: [MethodArg; 5] = [
+    MethodArg::Normal,
+    MethodArg::Offset,
+    MethodArg::Steep,
+    MethodArg::Pom,
+    MethodArg::Relief,
+];
+const SHADOWS: [ShadowsArg; 3] = [ShadowsArg::Off, ShadowsArg::Hard, ShadowsArg::Soft];
+// Far field: so many repeats that every pixel covers 2^(lod_threshold + 3) texels or more.
+const FAR_FIELD_MIP_MARGIN: f32 = 3.0;
+const NOT_MEASURED: [&str; 2] = [
+    "achieved height samples per second for POM and its fraction of the texel-rate limit",
+    "POM on a flat plane vs a displaced mesh of the same height map at equal FLIP error",
+];
+
+/// Options of `sandbox bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Tiny images and few frames: checks the harness, measures nothing useful.
+    #[arg(long)]
+    pub quick: bool,
+    /// Folder for bench.json, bench.csv and bench.png (created).
+    #[arg(long, value_name = "DIR", default_value = "bench-results")]
+    pub out: PathBuf,
+    /// Image size WIDTHxHEIGHT to time, repeatable [default: 1920x1080 and 3840x2160].
+    #[arg(long = "size", value_name = "WxH", value_parser = parse_size)]
+    pub sizes: Vec<(u32, u32)>,
+    /// Timed frames per case, at least 20 (--quick uses 5).
+    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(20..=10_000))]
+    pub frames: u32,
+    /// Untimed frames before each case.
+    #[arg(long, value_name = "N", default_value_t = 5)]
+    pub warmup: u32,
+    /// Bilinear texel rate of the GPU in G texels/s, for an adapter not in the built-in table.
+    #[arg(long, value_name = "GTEXELS", value_parser = crate::cli_types::parse_positive)]
+    pub texel_rate: Option<f32>,
+    /// Entities in the CPU-side measurement.
+    #[arg(long, value_name = "N", default_value_t = 10_000)]
+    pub entities: usize,
+    /// Behave as on an adapter without timestamp queries (tests the message and exit path).
+    #[arg(long)]
+    pub no_timestamps: bool,
+    #[command(flatten)]
+    pub textures: TextureArgs,
+    #[command(flatten)]
+    pub material: MaterialArgs,
+    #[command(flatten)]
+    pub view: ViewArgs,
+}
+
+impl BenchArgs {
+    fn base_material(&self) -> ParallaxOcclusionMaterial {
+        let m = &self.material;
+        ParallaxOcclusionMaterial {
+            height_scale: m.height_scale,
+            min_samples: m.min_samples,
+            max_samples: m.max_samples,
+            lod_threshold: m.lod_threshold,
+            shadows: m.shadows.into(),
+            shadow_softening: m.shadow_softening,
+            method: m.method.into(),
+            depth_offset: m.depth_offset,
+            height_convention: if self.textures.depth_map {
+                pom::HeightConvention::Depth
+            } else {
+                pom::HeightConvention::Height
+            },
+            ..ParallaxOcclusionMaterial::default()
+        }
+    }
+
+    fn view(&self) -> PreviewView {
+        let v = &self.view;
+        PreviewView {
+            view_angle: v.view_angle,
+            view_azimuth: v.view_azimuth,
+            light_angle: v.light_angle,
+            light_azimuth: v.light_azimuth,
+            projection: v.projection.into(),
+            distance: v.distance,
+            tiling: v.tiling,
+        }
+    }
+}
+
+fn name<T: std::fmt::Debug>(value: T) -> String {
+    format!("{value:?}").to_lowercase()
+}
+
+struct Runner<'a> {
+    warmup: usize,
+    frames: usize,
+    textures: &'a PreviewTextures,
+    base: ParallaxOcclusionMaterial,
+    cases: Vec<CaseResult>,
+}
+
+impl Runner<'_> {
+    fn case(
+        &mut self,
+        scene: &mut BenchScene,
+        group: &'static str,
+        size: (u32, u32),
+        tiling: f32,
+        material: ParallaxOcclusionMaterial,
+    ) -> Result<f64> {
+        let settings = material.clone();
+        scene.configure(move |m| {
+            *m = ParallaxOcclusionMaterial {
+                base_color_texture: m.base_color_texture.clone(),
+                normal_map: m.normal_map.clone(),
+                height_map: m.height_map.clone(),
+                ..settings.clone()
+            }
+        });
+        let times = scene.time(self.warmup, self.frames)?;
+        let spread = stats::Spread::of(&times).context("no valid timings")?;
+        self.cases.push(CaseResult {
+            group,
+            method: name(MethodArg::from(material.method)),
+            shadows: name(ShadowsArg::from(material.shadows)),
+            width: size.0,
+            height: size.1,
+            min_samples: material.min_samples,
+            max_samples: material.max_samples,
+            lod_threshold: material.lod_threshold,
+            tiling,
+            pass: TIMED_PASS,
+            spread,
+        });
+        Ok(spread.median_ms)
+    }
+
+    fn scene(&self, size: (u32, u32), view: &PreviewView) -> Result<BenchScene> {
+        BenchScene::new(size, self.textures, self.base.clone(), view, true)
+    }
+}
+
+/// Runs the benchmark.
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let base = args.base_material();
+    base.validate().context("invalid material")?;
+    let files = TextureFiles {
+        height: args.textures.height.as_deref(),
+        depth_map: args.textures.depth_map,
+        normal: args.textures.normal.as_deref(),
+        albedo: args.textures.albedo.as_deref(),
+    };
+    let textures = PreviewTextures::load(&files, base.height_scale)?;
+    let view = args.view();
+    let sizes: Vec<(u32, u32)> = match (args.sizes.is_empty(), args.quick) {
+        (false, _) => args.sizes.clone(),
+        (true, true) => QUICK_SIZES.to_vec(),
+        (true, false) => FULL_SIZES.to_vec(),
+    };
+    let (warmup, frames) = if args.quick {
+        (2, 5)
+    } else {
+        (args.warmup as usize, args.frames as usize)
+    };
+    let started = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+
+    let probe = BenchScene::new(
+        sizes[0],
+        &textures,
+        base.clone(),
+        &view,
+        !args.no_timestamps,
+    )?;
+    let adapter: AdapterReport = probe.adapter().context("no adapter")?.into();
+    if !probe.timing_supported() {
+        println!(
+            "{NO_TIMESTAMPS} on {} ({}): nothing to measure.",
+            adapter.name, adapter.backend
+        );
+        return Ok(());
+    }
+    drop(probe);
+    if adapter.software_driver {
+        println!(
+            "note: {} is a software driver: timings are not performance",
+            adapter.name
+        );
+    }
+
+    let mut runner = Runner {
+        warmup,
+        frames,
+        textures: &textures,
+        base: base.clone(),
+        cases: Vec::new(),
+    };
+    let mut ratios = Vec::new();
+    let tiling = view.tiling;
+    for &size in &sizes {
+        eprintln!("timing {}x{} ...", size.0, size.1);
+        let mut scene = runner.scene(size, &view)?;
+        for method in METHODS {
+            for shadows in SHADOWS {
+                let material = ParallaxOcclusionMaterial {
+                    method: method.into(),
+                    shadows: shadows.into(),
+                    ..base.clone()
+                };
+                runner.case(&mut scene, "methods", size, tiling, material)?;
+            }
+        }
+        for max_samples in SAMPLE_SWEEP {
+            let material = ParallaxOcclusionMaterial {
+                method: MethodArg::Pom.into(),
+                min_samples: base.min_samples.min(max_samples),
+                max_samples,
+                ..base.clone()
+            };
+            runner.case(&mut scene, "samples", size, tiling, material)?;
+        }
+        for lod_threshold in LOD_SWEEP {
+            let material = ParallaxOcclusionMaterial {
+                method: MethodArg::Pom.into(),
+                lod_threshold,
+                ..base.clone()
+            };
+            runner.case(&mut scene, "lod_sweep", size, tiling, material)?;
+        }
+        let pom_off = median_of(&runner.cases, size, "pom", "off");
+        for shadows in ["hard", "soft"] {
+            if let (Some(off), Some(on)) = (pom_off, median_of(&runner.cases, size, "pom", shadows))
+            {
+                ratios.push(Ratio {
+                    what: format!("POM {shadows} shadows / no shadows"),
+                    width: size.0,
+                    height: size.1,
+                    ratio: on / off,
+                });
+            }
+        }
+        drop(scene);
+
+        let far_tiling = far_field_tiling(size, textures.height.size().0, base.lod_threshold);
+        let far_view = PreviewView {
+            tiling: far_tiling,
+            ..view
+        };
+        let mut far = runner.scene(size, &far_view)?;
+        let normal = ParallaxOcclusionMaterial {
+            method: MethodArg::Normal.into(),
+            ..base.clone()
+        };
+        let normal_ms = runner.case(&mut far, "far_field", size, far_tiling, normal)?;
+        let pom = ParallaxOcclusionMaterial {
+            method: MethodArg::Pom.into(),
+            ..base.clone()
+        };
+        let pom_ms = runner.case(&mut far, "far_field", size, far_tiling, pom)?;
+        ratios.push(Ratio {
+            what: "far field POM / normal mapping".to_owned(),
+            width: size.0,
+            height: size.1,
+            ratio: pom_ms / normal_ms,
+        });
+    }
+
+    eprintln!("timing the CPU side with {} entities ...", args.entities);
+    let cpu_side = cpu_side::measure(args.entities, &textures, warmup, frames)?;
+    let report = BenchReport {
+        texel_rate: texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from)),
+        adapter,
+        unix_time: started,
+        quick: args.quick,
+        warmup_frames: warmup,
+        timed_frames: frames,
+        cases: runner.cases,
+        ratios,
+        cpu_side,
+        not_measured: NOT_MEASURED.to_vec(),
+    };
+    print!("{}", report.table());
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    report.write_files(&args.out)?;
+    let chart_path = args.out.join("bench.png");
+    chart::write_chart(&chart_path, &report.adapter.name, &report.cases)?;
+    chart::check_written(&chart_path)?;
+    println!(
+        "wrote bench.json, bench.csv and bench.png to {}",
+        args.out.display()
+    );
+    if report.cases.is_empty() {
+        bail!("no case was timed");
+    }
+    Ok(())
+}
+
+fn median_of(cases: &[CaseResult], size: (u32, u32), method: &str, shadows: &str) -> Option<f64> {
+    cases
+        .iter()
+        .find(|c| {
+            c.group == "methods"
+                && (c.width, c.height) == size
+                && c.method == method
+                && c.shadows == shadows
+        })
+        .map(|c| c.spread.median_ms)
+}
+
+/// Repeats across the plane so that one pixel covers 2^(lod_threshold + margin) texels: every
+/// pixel is past the LOD threshold and its transition band.
+fn far_field_tiling(size: (u32, u32), texture_width: u32, lod_threshold: f32) -> f32 {
+    let texels_per_pixel = (lod_threshold + FAR_FIELD_MIP_MARGIN).exp2();
+    texels_per_pixel * size.0.max(size.1) as f32 / texture_width.max(1) as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::far_field_tiling;
+
+    #[test]
+    fn far_field_puts_every_pixel_past_the_threshold() {
+        // 1920 px across, 1024 texels per repeat, threshold 4: 128 texels per pixel.
+        let tiling = far_field_tiling((1920, 1080), 1024, 4.0);
+        assert!((tiling * 1024.0 / 1920.0 - 128.0).abs() < 1e-3);
+    }
+}

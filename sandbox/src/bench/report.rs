@@ -1,0 +1,237 @@
+//! The benchmark's results: what was run on what, printed as a table and written as JSON and CSV.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+
+use super::cpu_side::CpuSide;
+use super::stats::Spread;
+use super::texel_rate::TexelRate;
+
+/// One timed configuration.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseResult {
+    /// Which measurement it belongs to: "methods", "samples", "lod_sweep" or "far_field".
+    pub group: &'static str,
+    /// Parallax method (the `--method` spelling).
+    pub method: String,
+    /// Shadow mode (the `--shadows` spelling).
+    pub shadows: String,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Material `min_samples`.
+    pub min_samples: u32,
+    /// Material `max_samples`.
+    pub max_samples: u32,
+    /// Material `lod_threshold`.
+    pub lod_threshold: f32,
+    /// UV repeats across the plane.
+    pub tiling: f32,
+    /// The timed pass.
+    pub pass: &'static str,
+    /// Its milliseconds over the timed frames.
+    pub spread: Spread,
+}
+
+/// The adapter, as wgpu reports it.
+#[derive(Clone, Debug, Serialize)]
+pub struct AdapterReport {
+    /// Adapter name.
+    pub name: String,
+    /// Backend (Vulkan, ...).
+    pub backend: String,
+    /// Device type (DiscreteGpu, Cpu, ...).
+    pub device_type: String,
+    /// Driver name.
+    pub driver: String,
+    /// Driver version text.
+    pub driver_info: String,
+    /// True for a software rasterizer: its timings are not performance.
+    pub software_driver: bool,
+}
+
+impl From<pom::wgpu::AdapterInfo> for AdapterReport {
+    fn from(info: pom::wgpu::AdapterInfo) -> Self {
+        Self {
+            software_driver: info.device_type == pom::wgpu::DeviceType::Cpu,
+            name: info.name,
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver: info.driver,
+            driver_info: info.driver_info,
+        }
+    }
+}
+
+/// Ratios read off the cases.
+#[derive(Clone, Debug, Serialize)]
+pub struct Ratio {
+    /// What is divided by what.
+    pub what: String,
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+    /// Median over median.
+    pub ratio: f64,
+}
+
+/// Everything one run produced.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchReport {
+    /// The adapter.
+    pub adapter: AdapterReport,
+    /// Seconds since the Unix epoch when the run started.
+    pub unix_time: u64,
+    /// Whether `--quick` was given.
+    pub quick: bool,
+    /// Untimed frames before each case.
+    pub warmup_frames: usize,
+    /// Timed frames per case.
+    pub timed_frames: usize,
+    /// The texel-rate limit used, or `None` when the adapter is unknown.
+    pub texel_rate: Option<TexelRate>,
+    /// Every case.
+    pub cases: Vec<CaseResult>,
+    /// Far-field POM / normal mapping and the cost of shadows.
+    pub ratios: Vec<Ratio>,
+    /// The CPU side.
+    pub cpu_side: CpuSide,
+    /// Measurements the issue asks for that this harness does not make yet.
+    pub not_measured: Vec<&'static str>,
+}
+
+/// CSV columns, in order.
+pub const CSV_HEADER: &str = "group,method,shadows,width,height,min_samples,max_samples,\
+lod_threshold,tiling,pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms";
+
+impl BenchReport {
+    /// The cases as CSV, one line per case after [`CSV_HEADER`].
+    pub fn csv(&self) -> String {
+        let mut csv = format!("{CSV_HEADER}\n");
+        for c in &self.cases {
+            let s = &c.spread;
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+                c.group,
+                c.method,
+                c.shadows,
+                c.width,
+                c.height,
+                c.min_samples,
+                c.max_samples,
+                c.lod_threshold,
+                c.tiling,
+                c.pass,
+                s.count,
+                s.median_ms,
+                s.min_ms,
+                s.p10_ms,
+                s.p90_ms,
+                s.max_ms
+            );
+        }
+        csv
+    }
+
+    /// The human-readable table.
+    pub fn table(&self) -> String {
+        let a = &self.adapter;
+        let mut out = format!(
+            "adapter: {} ({}, {}, driver {} {})\n",
+            a.name, a.device_type, a.backend, a.driver, a.driver_info
+        );
+        if a.software_driver {
+            out.push_str("SOFTWARE DRIVER: these timings are not performance figures\n");
+        }
+        match &self.texel_rate {
+            Some(rate) => {
+                let _ = writeln!(
+                    out,
+                    "texel-rate limit: {:.1} G texels/s ({})",
+                    rate.gtexels_per_s, rate.source
+                );
+            }
+            None => out.push_str("texel-rate limit: unknown (pass --texel-rate)\n"),
+        }
+        let _ = writeln!(
+            out,
+            "{} warm-up + {} timed frames per case; GPU time of the main pass in ms\n",
+            self.warmup_frames, self.timed_frames
+        );
+        let _ = writeln!(
+            out,
+            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}",
+            "group",
+            "method",
+            "shadow",
+            "size",
+            "samples",
+            "lod",
+            "tiling",
+            "median",
+            "min",
+            "p10",
+            "p90",
+            "max"
+        );
+        for c in &self.cases {
+            let s = &c.spread;
+            let _ = writeln!(
+                out,
+                "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>9.4}",
+                c.group,
+                c.method,
+                c.shadows,
+                format!("{}x{}", c.width, c.height),
+                format!("{}-{}", c.min_samples, c.max_samples),
+                c.lod_threshold,
+                c.tiling,
+                s.median_ms,
+                s.min_ms,
+                s.p10_ms,
+                s.p90_ms,
+                s.max_ms
+            );
+        }
+        out.push('\n');
+        for ratio in &self.ratios {
+            let _ = writeln!(
+                out,
+                "{} at {}x{}: {:.3}",
+                ratio.what, ratio.width, ratio.height, ratio.ratio
+            );
+        }
+        let cpu = &self.cpu_side;
+        let _ = writeln!(
+            out,
+            "\nCPU, {} parallax entities, median ms per frame: extract {:.3}, prepare {:.3}, \
+             render (record + submit) {:.3}, total {:.3}",
+            cpu.entities,
+            cpu.extract.median_ms,
+            cpu.prepare.median_ms,
+            cpu.render.median_ms,
+            cpu.total.median_ms
+        );
+        for missing in &self.not_measured {
+            let _ = writeln!(out, "not measured: {missing}");
+        }
+        out
+    }
+
+    /// Writes `bench.json` and `bench.csv` into `dir`.
+    pub fn write_files(&self, dir: &Path) -> Result<()> {
+        let json = serde_json::to_string_pretty(self).context("encoding the JSON report")?;
+        let json_path = dir.join("bench.json");
+        std::fs::write(&json_path, json)
+            .with_context(|| format!("writing {}", json_path.display()))?;
+        let csv_path = dir.join("bench.csv");
+        std::fs::write(&csv_path, self.csv())
+            .with_context(|| format!("writing {}", csv_path.display()))
+    }
+}

@@ -1,0 +1,99 @@
+//! `sandbox bench --quick` on the software driver: it runs, and its JSON, CSV and PNG parse.
+//! The figures are lavapipe's and mean nothing about speed; nothing here asserts speed.
+
+mod common;
+
+use common::*;
+
+#[test]
+fn quick_bench_writes_json_csv_and_a_chart() {
+    let dir = TempDir::new("bench-quick");
+    let out = dir.join("results");
+    let output = sandbox(&[
+        "bench",
+        "--quick",
+        "--entities",
+        "200",
+        "--out",
+        path_arg(&out),
+    ]);
+    assert_success(&output);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("median"), "no table printed:\n{stdout}");
+
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
+    assert!(
+        json["adapter"]["name"]
+            .as_str()
+            .is_some_and(|n| !n.is_empty())
+    );
+    assert_eq!(json["quick"], true);
+    let cases = json["cases"].as_array().unwrap();
+    // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, 2 far-field.
+    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 2));
+    for case in cases {
+        let spread = &case["spread"];
+        for field in ["median_ms", "min_ms", "p10_ms", "p90_ms", "max_ms"] {
+            let ms = spread[field].as_f64().unwrap();
+            assert!(ms.is_finite() && ms > 0.0, "{field} = {ms} in {case}");
+        }
+        assert!(spread["min_ms"].as_f64() <= spread["median_ms"].as_f64());
+        assert!(spread["median_ms"].as_f64() <= spread["max_ms"].as_f64());
+        assert_eq!(spread["count"], 5);
+    }
+    let ratios = json["ratios"].as_array().unwrap();
+    assert!(
+        ratios
+            .iter()
+            .any(|r| r["what"].as_str().unwrap().contains("far field"))
+    );
+    assert!(ratios.iter().all(|r| r["ratio"].as_f64().unwrap() > 0.0));
+    assert_eq!(json["cpu_side"]["entities"], 200);
+    assert!(json["cpu_side"]["total"]["median_ms"].as_f64().unwrap() > 0.0);
+    assert!(json["adapter"]["software_driver"].is_boolean());
+
+    let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "group,method,shadows,width,height,min_samples,max_samples,lod_threshold,tiling,pass,\
+         frames,median_ms,min_ms,p10_ms,p90_ms,max_ms"
+    );
+    assert_eq!(lines.count(), cases.len());
+
+    let chart = image::open(out.join("bench.png")).unwrap();
+    assert_eq!((chart.width(), chart.height()), (1400, 600));
+}
+
+#[test]
+fn without_timestamps_it_says_so_and_exits_cleanly() {
+    let dir = TempDir::new("bench-no-timestamps");
+    let out = dir.join("results");
+    let output = sandbox(&[
+        "bench",
+        "--quick",
+        "--no-timestamps",
+        "--out",
+        path_arg(&out),
+    ]);
+    assert_success(&output);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("GPU timestamps are not available"),
+        "{stdout}"
+    );
+    assert!(!out.join("bench.json").exists());
+}
+
+#[test]
+fn too_few_frames_are_rejected() {
+    let output = sandbox(&["bench", "--frames", "5"]);
+    assert_one_line_error(&output, &["--frames", "5"]);
+}
+
+#[test]
+fn a_bad_size_is_rejected() {
+    let output = sandbox(&["bench", "--size", "wide"]);
+    assert_one_line_error(&output, &["--size", "wide"]);
+}

@@ -1,0 +1,124 @@
+//! GPU pass timing on the software driver: figures appear, are positive and finite, and the
+//! timestamp work raises no validation error. (lavapipe exposes timestamps; its figures say
+//! nothing about speed.)
+
+use pom::preview::{PreviewView, spawn_preview};
+use pom::render::{GpuTimer, set_gpu_timing};
+use pom::{
+    App, Assets, DynamicHeightField, GpuTimings, HeightField, HeightSource, Image,
+    ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, TimingMode,
+};
+use pom_tests::pom_scene::HeightMaterial;
+use pom_tests::run_frames;
+
+const HEIGHT_SCALE: f32 = 0.04;
+
+fn timed_app(mode: TimingMode) -> App {
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(48, 48).with_gpu_timing(Some(mode)));
+    app.add_plugin(PomPlugin);
+    app.finish().unwrap();
+    let field = HeightField::from_fn(32, 32, |u, v| {
+        0.5 + 0.4 * (u * 12.0).sin() * (v * 9.0).cos()
+    });
+    let images = app.resources.get_mut::<Assets<Image>>().unwrap();
+    let dynamic = DynamicHeightField::new(images, &field, HEIGHT_SCALE).unwrap();
+    let material = ParallaxOcclusionMaterial {
+        normal_map: Some(dynamic.normal.clone()),
+        height_map: Some(HeightSource::Texture(dynamic.height.clone())),
+        height_scale: HEIGHT_SCALE,
+        ..ParallaxOcclusionMaterial::default()
+    };
+    spawn_preview(&mut app, material, &PreviewView::default()).unwrap();
+    let plane = app
+        .world
+        .query::<(pom::hecs::Entity, &ParallaxOcclusionMaterial)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .next()
+        .unwrap();
+    app.world.insert_one(plane, dynamic).unwrap();
+    app
+}
+
+fn supported(app: &App) -> bool {
+    let gpu = app.resources.get::<pom::GpuContext>().unwrap();
+    gpu.device
+        .features()
+        .contains(pom::wgpu::Features::TIMESTAMP_QUERY)
+}
+
+fn assert_plausible(timings: &GpuTimings, pass: &str) {
+    let ms = timings
+        .pass_ms(pass)
+        .unwrap_or_else(|| panic!("no reading for {pass}: {timings:?}"));
+    assert!(ms.is_finite() && ms > 0.0, "{pass}: {ms} ms");
+}
+
+#[test]
+fn blocking_timings_cover_the_main_and_sobel_passes_from_the_first_frame() {
+    let mut app = timed_app(TimingMode::Blocking);
+    assert!(supported(&app), "lavapipe exposes TIMESTAMP_QUERY");
+    run_frames(&mut app, 1).unwrap();
+    let timings = app.resources.get::<GpuTimings>().unwrap().clone();
+    assert_plausible(&timings, "main pass");
+    assert_plausible(&timings, "sobel pass");
+    let GpuTimings::Supported { frame, .. } = timings else {
+        panic!("timing is on")
+    };
+    assert_eq!(frame, 1, "blocking mode reads the frame it just rendered");
+}
+
+#[test]
+fn non_blocking_timings_appear_after_a_few_frames_and_keep_coming() {
+    let mut app = timed_app(TimingMode::NonBlocking);
+    run_frames(&mut app, 8).unwrap();
+    let first = app.resources.get::<GpuTimings>().unwrap().clone();
+    assert_plausible(&first, "main pass");
+    assert_plausible(&first, "sobel pass");
+    run_frames(&mut app, 8).unwrap();
+    let (
+        GpuTimings::Supported { frame: before, .. },
+        GpuTimings::Supported {
+            frame: after,
+            rejected,
+            ..
+        },
+    ) = (first, app.resources.get::<GpuTimings>().unwrap().clone())
+    else {
+        panic!("timing is on")
+    };
+    assert!(
+        after > before,
+        "newer frames are read: {before} then {after}"
+    );
+    assert!(after <= 16, "no reading from the future: frame {after}");
+    assert_eq!(rejected, 0, "every pass wrote both timestamps");
+}
+
+#[test]
+fn timing_can_be_turned_off_and_says_so() {
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(32, 32).with_gpu_timing(None));
+    let textures = HeightMaterial {
+        field: HeightField::from_fn(16, 16, |u, _| u),
+        height_scale: HEIGHT_SCALE,
+    };
+    app.add_plugin(PomPlugin);
+    app.finish().unwrap();
+    let material = textures.material(&mut app);
+    spawn_preview(&mut app, material, &PreviewView::default()).unwrap();
+    run_frames(&mut app, 2).unwrap();
+    assert_eq!(
+        app.resources.get::<GpuTimings>(),
+        Some(&GpuTimings::Unsupported)
+    );
+    assert!(app.resources.get::<GpuTimer>().is_none());
+    // And back on at run time.
+    assert!(set_gpu_timing(
+        &mut app.resources,
+        Some(TimingMode::Blocking)
+    ));
+    run_frames(&mut app, 1).unwrap();
+    assert_plausible(app.resources.get::<GpuTimings>().unwrap(), "main pass");
+}
