@@ -252,7 +252,13 @@ fn numerical_sweep_has_no_nan_and_no_black_where_light_reaches() {
     let view_angles = [0.0, 30.0, 60.0, 80.0, 89.0, pom::preview::MAX_VIEW_ANGLE];
     let sun_angles = [0.0, 45.0, 89.9, 90.0, 100.0, 180.0];
     let reliefs = [(0.0, 0.0), (10.0, 1.0)]; // (height_scale, normal_strength)
-    let samples = [(1, 1), (pom::MAX_SAMPLES_LIMIT, pom::MAX_SAMPLES_LIMIT)];
+    let samples = [
+        (1, 1),
+        (
+            pom::parallax::MAX_SAMPLES_LIMIT,
+            pom::parallax::MAX_SAMPLES_LIMIT,
+        ),
+    ];
     let (mut frames, mut surface_pixels, mut sunlit_checked) = (0, 0_usize, 0_usize);
     for view_angle in view_angles {
         let view = |sun_angle| PreviewView {
@@ -327,7 +333,10 @@ fn numerical_sweep_has_no_nan_and_no_black_where_light_reaches() {
         }
     }
     // The checks must have looked at something at every angle.
-    assert!(surface_pixels > frames * 8, "{surface_pixels} surface pixels in {frames} frames");
+    assert!(
+        surface_pixels > frames * 8,
+        "{surface_pixels} surface pixels in {frames} frames"
+    );
     assert!(sunlit_checked > 0);
     eprintln!(
         "{frames} frames: no NaN or ∞; {surface_pixels} surface pixels lit; \
