@@ -385,7 +385,7 @@ fn gltf_renders(file: &str) -> Vec<String> {
 fn only_mesh(app: &App) -> pom::Mesh {
     let meshes = app.resources.get::<Assets<pom::Mesh>>().unwrap();
     let mut handles = app.world.query::<&pom::Handle<pom::Mesh>>();
-    let handles: Vec<_> = handles.iter().map(|handle| handle.clone()).collect();
+    let handles: Vec<_> = handles.iter().cloned().collect();
     // The preview plane is the first mesh; the file's is the last.
     meshes.get(handles.last().unwrap().id()).unwrap().clone()
 }
