@@ -652,7 +652,7 @@ fn preset_syntax_error() {
 
 #[test]
 fn preset_wrong_type() {
-    assert_preset_syntax("presets/wrong_type.ron", 4, "");
+    assert_preset_syntax("presets/wrong_type.ron", 4, "Expected integer");
 }
 
 #[test]
@@ -667,7 +667,11 @@ fn preset_unknown_variant() {
 
 #[test]
 fn preset_negative_samples() {
-    assert_preset_syntax("presets/negative_samples.ron", 3, "");
+    assert_preset_syntax(
+        "presets/negative_samples.ron",
+        3,
+        "Integer is out of bounds",
+    );
 }
 
 #[test]
@@ -750,7 +754,7 @@ fn script_syntax_error() {
 
 #[test]
 fn script_wrong_type() {
-    assert_script_parse("scripts/wrong_type.ron", 3, "");
+    assert_script_parse("scripts/wrong_type.ron", 3, "Expected opening `(`");
 }
 
 #[test]
