@@ -219,8 +219,9 @@ fn luminance(pixel: &image::Rgba<f32>) -> f32 {
 /// - The scene has a white ambient light of 0.05, which reaches every surface pixel whatever
 ///   the relief, the shadows or the sun: no surface pixel may have zero (or negative) luminance.
 /// - The sun reaches a surface pixel when it is above the horizon (angle < 90°) and nothing can
-///   occlude it. That is exact for a height scale of 0 with the normal map's strength 0: the CPU
-///   reference's shadow ray then starts on the top of the field and meets no occluder, and
+///   occlude it. That is known exactly for a height scale of 0 with the normal map's strength 0:
+///   the relief is a flat plane, so a shadow ray from any point (as the CPU reference
+///   `pom::reference::hard_shadow` marches it) meets no occluder, and
 ///   N·L = cos(sun angle) > 0. Those pixels must be strictly brighter than the same view lit
 ///   by the ambient light alone (rendered first, with the sun's intensity 0).
 ///
