@@ -1,5 +1,6 @@
 //! Texture images held on the CPU: colour, normal, height and data maps, their mip chains.
 
+use std::io::{BufRead, Seek};
 use std::path::Path;
 
 use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
@@ -126,6 +127,15 @@ impl Channel {
     }
 }
 
+/// Longest side, in pixels, of an image file the loader decodes: twice the largest texture
+/// limit of today's GPUs, so any texture a device can hold loads (and larger ones are halved
+/// to fit on upload), while a file declaring an absurd size is refused before it is allocated.
+pub const MAX_IMAGE_SIDE: u32 = 32_768;
+
+/// Most pixels of an image file the loader decodes (a 16384 × 8192 image): the mip chain is
+/// built in floats, so this bounds the memory one file can claim.
+pub const MAX_IMAGE_PIXELS: u64 = 1 << 27;
+
 /// What went wrong building or loading an [`Image`].
 #[derive(Debug, thiserror::Error)]
 pub enum ImageError {
@@ -156,6 +166,24 @@ pub enum ImageError {
         expected: usize,
         /// Bytes given.
         found: usize,
+    },
+    /// The file declares a size over [`MAX_IMAGE_SIDE`] or [`MAX_IMAGE_PIXELS`]; it is refused
+    /// before any pixel memory is allocated.
+    #[error(
+        "image {name} declares {width}×{height} pixels, over the limit of {max_side} per side \
+         and {max_pixels} in all"
+    )]
+    TooLarge {
+        /// The file or image name.
+        name: String,
+        /// Declared width.
+        width: u32,
+        /// Declared height.
+        height: u32,
+        /// [`MAX_IMAGE_SIDE`].
+        max_side: u32,
+        /// [`MAX_IMAGE_PIXELS`].
+        max_pixels: u64,
     },
     /// The image has no alpha channel but its alpha was asked for as a height.
     #[error("{name} has no alpha channel to read a height from")]
@@ -247,11 +275,10 @@ impl Image {
         kind: TextureKind,
         channel: Channel,
     ) -> Result<Self, ImageError> {
-        let decoded = image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|error| load_error(name, error))?
-            .decode()
-            .map_err(|error| load_error(name, error))?;
+        let decoded = decode_limited(
+            || Ok(image::ImageReader::new(std::io::Cursor::new(bytes))),
+            name,
+        )?;
         Self::from_decoded(decoded, kind, channel, name)
     }
 
@@ -400,12 +427,46 @@ fn load_error(name: &str, error: impl std::fmt::Display) -> ImageError {
 }
 
 fn decode_file(path: &Path) -> Result<DynamicImage, ImageError> {
-    let name = path.display().to_string();
-    image::ImageReader::open(path)
-        .and_then(|reader| reader.with_guessed_format())
-        .map_err(|error| load_error(&name, error))?
-        .decode()
-        .map_err(|error| load_error(&name, error))
+    decode_limited(
+        || image::ImageReader::open(path),
+        &path.display().to_string(),
+    )
+}
+
+/// Reads the header first and refuses sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`],
+/// then decodes under the same limits (so a header that lies is caught by the decoder too).
+fn decode_limited<R: BufRead + Seek>(
+    open: impl Fn() -> std::io::Result<image::ImageReader<R>>,
+    name: &str,
+) -> Result<DynamicImage, ImageError> {
+    let guessed = || {
+        open()
+            .and_then(|reader| reader.with_guessed_format())
+            .map_err(|error| load_error(name, error))
+    };
+    let (width, height) = guessed()?
+        .into_dimensions()
+        .map_err(|error| load_error(name, error))?;
+    if width > MAX_IMAGE_SIDE
+        || height > MAX_IMAGE_SIDE
+        || u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS
+    {
+        return Err(ImageError::TooLarge {
+            name: name.to_owned(),
+            width,
+            height,
+            max_side: MAX_IMAGE_SIDE,
+            max_pixels: MAX_IMAGE_PIXELS,
+        });
+    }
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    // Four 32-bit float channels per pixel: the largest decoded form of an allowed image.
+    limits.max_alloc = Some(MAX_IMAGE_PIXELS * 16);
+    let mut reader = guessed()?;
+    reader.limits(limits);
+    reader.decode().map_err(|error| load_error(name, error))
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]

@@ -61,7 +61,9 @@ pub use dynamic_height::{
 };
 pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf, load_gltf_bytes};
 pub use height_field::{HeightField, patterns};
-pub use image::{Channel, Image, ImageError, Pixels, TextureKind};
+pub use image::{
+    Channel, Image, ImageError, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Pixels, TextureKind,
+};
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;

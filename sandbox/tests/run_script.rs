@@ -35,3 +35,22 @@ fn a_missing_script_is_one_clear_error() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("/nonexistent/scene.ron"), "{stderr}");
 }
+
+#[test]
+fn a_script_that_fails_midway_still_prints_the_steps_it_ran() {
+    let script =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/bad_inputs/scripts/fails_midway.ron");
+    let output = run(&[script.as_os_str()]);
+    assert!(!output.status.success());
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(stdout.lines().count(), 3, "{stdout}");
+    assert!(
+        stdout.contains("fails_midway.ron step 3 ExpectStat \"before\": pass"),
+        "{stdout}"
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("fails_midway.ron: step 4: entity \"plane\" has no parallax material"),
+        "{stderr}"
+    );
+}

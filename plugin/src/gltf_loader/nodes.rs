@@ -83,7 +83,19 @@ fn spawn_nodes(
         .map(|node| (node, None, Affine3A::IDENTITY))
         .collect();
     stack.reverse();
+    // glTF nodes form a tree: a node reached twice (its own ancestor, or under two parents)
+    // would make this walk endless, so it is an error.
+    let mut visited = vec![false; source.document.nodes().len()];
     while let Some((node, parent, parent_world)) = stack.pop() {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            return Err(GltfError::Open {
+                path: source.path.clone(),
+                reason: format!(
+                    "node {} is reached twice (a cycle, or two parents): glTF nodes must form a tree",
+                    describe(node.name(), node.index())
+                ),
+            });
+        }
         let transform = transform_of(&node);
         let world = parent_world * transform.to_affine();
         // The file's node name, or "node N" for an unnamed node.
