@@ -196,3 +196,105 @@ fn mutated_seeds_never_panic() {
     }
     assert!(runs >= 4 * 5 * MUTATIONS_PER_SEED, "only {runs} runs");
 }
+
+/// What an outcome says with numbers and quoted names taken out: a new one is a rough sign that
+/// an input reached code the corpus had not (the stable loop has no coverage counters).
+fn signature(outcome: &Result<(), String>) -> String {
+    match outcome {
+        Ok(()) => "ok".into(),
+        Err(message) => message
+            .chars()
+            .filter(|c| !c.is_ascii_digit())
+            .take(120)
+            .collect(),
+    }
+}
+
+/// Fuzzing on the stable toolchain for a while, for machines without cargo-fuzz: mutates the
+/// seeds (keeping mutants with an outcome not seen before as new seeds), and saves any input
+/// that panics or takes over two seconds under `tests/fuzz/artifacts/<target>/`.
+///
+/// `FUZZ_TARGETS=image,gltf FUZZ_SECONDS=600 cargo test -p pom-tests --test fuzz_regressions
+/// mutation_fuzz -- --ignored --nocapture`
+#[test]
+#[ignore = "runs for FUZZ_SECONDS (default 60); start it by hand"]
+fn mutation_fuzz() {
+    let seconds: u64 = std::env::var("FUZZ_SECONDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(60);
+    let wanted =
+        std::env::var("FUZZ_TARGETS").unwrap_or_else(|_| "image,gltf,preset,script".into());
+    let seed = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(1, |time| time.as_nanos() as u64)
+        | 1;
+    let mut failures = Vec::new();
+    for (target, run) in TARGETS {
+        if !wanted.split(',').any(|name| name.trim() == target) {
+            continue;
+        }
+        let artifacts = fuzz_dir().join("artifacts").join(target);
+        let mut rng = Rng(seed);
+        let mut corpus: Vec<Vec<u8>> = files("seeds", target)
+            .iter()
+            .map(|file| std::fs::read(file).unwrap())
+            .collect();
+        assert!(!corpus.is_empty(), "no seeds for {target}");
+        let mut seen = std::collections::HashSet::new();
+        let (mut executions, mut crashes, mut slow) = (0_u64, 0, 0);
+        let start = std::time::Instant::now();
+        while start.elapsed().as_secs() < seconds {
+            let parent = &corpus[rng.below(corpus.len())];
+            let mut input = mutate(parent, &mut rng);
+            if rng.below(8) == 0 {
+                // Splice: the head of this mutant with the tail of another seed.
+                let other = &corpus[rng.below(corpus.len())];
+                let (cut, from) = (rng.below(input.len() + 1), rng.below(other.len() + 1));
+                input.truncate(cut);
+                input.extend_from_slice(&other[from..]);
+            }
+            let began = std::time::Instant::now();
+            let mut outcome = None;
+            let panic = panic_during(std::panic::AssertUnwindSafe(|| outcome = Some(run(&input))));
+            let took = began.elapsed();
+            executions += 1;
+            let save = |kind: &str| {
+                std::fs::create_dir_all(&artifacts).unwrap();
+                let hash = input.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+                    (h ^ u64::from(*b)).wrapping_mul(0x100_0000_01b3)
+                });
+                let file = artifacts.join(format!("{kind}-{hash:016x}"));
+                std::fs::write(&file, &input).unwrap();
+                file
+            };
+            if let Some(message) = panic {
+                crashes += 1;
+                let file = save("crash");
+                eprintln!("{target}: PANIC {message}\n  saved {}", file.display());
+                continue;
+            }
+            if took.as_secs_f32() > 2.0 {
+                slow += 1;
+                let file = save("slow");
+                eprintln!("{target}: {took:?} for {}", file.display());
+            }
+            if let Some(outcome) = outcome
+                && seen.insert(signature(&outcome))
+                && corpus.len() < 4096
+            {
+                corpus.push(input);
+            }
+        }
+        eprintln!(
+            "{target}: {executions} executions in {:.0} s, {crashes} panics, {slow} slow, corpus {} ({} distinct outcomes)",
+            start.elapsed().as_secs_f32(),
+            corpus.len(),
+            seen.len()
+        );
+        if crashes + slow > 0 {
+            failures.push(format!("{target}: {crashes} panics, {slow} slow"));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:?}");
+}
