@@ -8,6 +8,7 @@
 //! lines, unknown required extensions) are skipped with one warning each.
 
 mod extras;
+mod guards;
 mod materials;
 mod nodes;
 mod primitives;
@@ -135,7 +136,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         path: path.to_owned(),
         reason,
     };
-    check_glb_length(bytes).map_err(open_error)?;
+    guards::check_glb_length(bytes).map_err(open_error)?;
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|error| open_error(error.to_string()))?;
     // Validation rejects files that require extensions it does not know; we draw what we can
@@ -146,7 +147,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         .drain(..)
         .partition(|name| SUPPORTED_EXTENSIONS.contains(&name.as_str()));
     json.extensions_required = supported;
-    check_position_accessors(&json).map_err(open_error)?;
+    guards::check_json(&json).map_err(open_error)?;
     let document =
         gltf::Document::from_json(json).map_err(|error| open_error(error.to_string()))?;
     let mut blob = blob;
@@ -182,40 +183,6 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         base,
         unsupported_required: unsupported,
     })
-}
-
-/// A GLB's declared total length must cover its own 12-byte header: gltf 1.4 subtracts the
-/// header's size from it unchecked (found by fuzzing: an overflow panic in debug builds).
-fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
-    if let [b'g', b'l', b'T', b'F', _, _, _, _, l0, l1, l2, l3, ..] = *bytes {
-        let length = u32::from_le_bytes([l0, l1, l2, l3]);
-        if length < 12 {
-            return Err(format!(
-                "the GLB header declares a length of {length} bytes, less than the header's 12"
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Every POSITION attribute must name an existing accessor: gltf-json 1.4's validation indexes
-/// the accessor list with it unchecked (found by fuzzing: an index-out-of-bounds panic).
-fn check_position_accessors(json: &gltf::json::Root) -> Result<(), String> {
-    use gltf::json::{mesh::Semantic, validation::Checked};
-    for (mesh, primitives) in json.meshes.iter().map(|mesh| &mesh.primitives).enumerate() {
-        for (primitive, attributes) in primitives.iter().map(|p| &p.attributes).enumerate() {
-            if let Some(accessor) = attributes.get(&Checked::Valid(Semantic::Positions))
-                && accessor.value() >= json.accessors.len()
-            {
-                return Err(format!(
-                    "mesh {mesh}, primitive {primitive}: POSITION is accessor {} but the file has {} accessors",
-                    accessor.value(),
-                    json.accessors.len()
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Reads a buffer URI: a `data:` URI, or a file relative to the glTF file.
