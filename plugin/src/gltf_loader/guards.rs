@@ -56,19 +56,20 @@ fn check_attribute_types(json: &gltf::json::Root) -> Result<(), String> {
                 .attributes
                 .iter()
                 .filter_map(|(semantic, accessor)| {
-                    let allowed: (Type, &[ComponentType]) = match semantic {
-                        Checked::Valid(Semantic::Positions | Semantic::Normals) => {
-                            (Type::Vec3, &[F32])
+                    let (name, allowed): (&str, (Type, &[ComponentType])) = match semantic {
+                        Checked::Valid(Semantic::Positions) => ("POSITION", (Type::Vec3, &[F32])),
+                        Checked::Valid(Semantic::Normals) => ("NORMAL", (Type::Vec3, &[F32])),
+                        Checked::Valid(Semantic::Tangents) => ("TANGENT", (Type::Vec4, &[F32])),
+                        Checked::Valid(Semantic::TexCoords(0)) => {
+                            ("TEXCOORD_0", (Type::Vec2, &[F32, U8, U16]))
                         }
-                        Checked::Valid(Semantic::Tangents) => (Type::Vec4, &[F32]),
-                        Checked::Valid(Semantic::TexCoords(0)) => (Type::Vec2, &[F32, U8, U16]),
                         _ => return None,
                     };
-                    Some((format!("{semantic:?}"), accessor.value(), allowed))
+                    Some((name, accessor.value(), allowed))
                 });
             let indices = primitive.indices.map(|accessor| {
                 (
-                    "indices".to_owned(),
+                    "indices",
                     accessor.value(),
                     (Type::Scalar, &[U8, U16, U32][..]),
                 )
