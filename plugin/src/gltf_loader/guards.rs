@@ -24,6 +24,7 @@ pub(super) fn check_json(json: &gltf::json::Root) -> Result<(), String> {
     check_position_accessors(json)?;
     check_attribute_types(json)?;
     check_accessors(json)?;
+    check_buffer_views(json)?;
     check_images(json)
 }
 
@@ -122,6 +123,28 @@ fn check_accessors(json: &gltf::json::Root) -> Result<(), String> {
             return Err(format!(
                 "accessor {index}: its buffer view's byteStride {} is less than its {element}-byte elements",
                 stride.0
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A buffer view must lie inside its buffer's declared length (the loader checks the data is at
+/// least that long): gltf slices image data by the view unchecked.
+fn check_buffer_views(json: &gltf::json::Root) -> Result<(), String> {
+    for (index, view) in json.buffer_views.iter().enumerate() {
+        let Some(buffer) = json.buffers.get(view.buffer.value()) else {
+            continue;
+        };
+        let end = view
+            .byte_offset
+            .map_or(0, |offset| offset.0)
+            .checked_add(view.byte_length.0);
+        if end.is_none_or(|end| end > buffer.byte_length.0) {
+            return Err(format!(
+                "buffer view {index} ends past the {} bytes of buffer {}",
+                buffer.byte_length.0,
+                view.buffer.value()
             ));
         }
     }
