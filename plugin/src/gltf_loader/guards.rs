@@ -92,8 +92,12 @@ fn check_attribute_types(json: &gltf::json::Root) -> Result<(), String> {
     Ok(())
 }
 
-/// A buffer view's stride must hold a whole element of each accessor reading it, and a sparse
-/// accessor must replace at least one element: gltf's readers assume both.
+/// Most elements an accessor without a buffer view may declare (its data is generated).
+const MAX_VIRTUAL_ELEMENTS: u64 = 1 << 24;
+
+/// An accessor must have elements, lie inside its buffer view with a stride that holds a whole
+/// element, and a sparse one must replace at least one element: gltf's readers assume all of
+/// it (overflow panics in debug builds).
 fn check_accessors(json: &gltf::json::Root) -> Result<(), String> {
     for (index, accessor) in json.accessors.iter().enumerate() {
         if let Some(sparse) = &accessor.sparse
@@ -113,16 +117,37 @@ fn check_accessors(json: &gltf::json::Root) -> Result<(), String> {
             (Type::Mat3, 2) => 24,
             (kind, size) => kind.multiplicity() * size,
         };
-        let stride = accessor
+        let count = accessor.count.0;
+        if count == 0 {
+            return Err(format!("accessor {index}: count is 0"));
+        }
+        let view = accessor
             .buffer_view
-            .and_then(|view| json.buffer_views.get(view.value()))
-            .and_then(|view| view.byte_stride);
-        if let Some(stride) = stride
-            && stride.0 < element
-        {
+            .and_then(|view| json.buffer_views.get(view.value()));
+        let Some(view) = view else {
+            // Zeros (plus sparse values): each element is produced, so bound how many.
+            if count > MAX_VIRTUAL_ELEMENTS {
+                return Err(format!(
+                    "accessor {index}: count {count} without a buffer view is over {MAX_VIRTUAL_ELEMENTS}"
+                ));
+            }
+            continue;
+        };
+        let element = element as u64;
+        let stride = view.byte_stride.map_or(element, |stride| stride.0 as u64);
+        if stride < element {
             return Err(format!(
-                "accessor {index}: its buffer view's byteStride {} is less than its {element}-byte elements",
-                stride.0
+                "accessor {index}: its buffer view's byteStride {stride} is less than its {element}-byte elements"
+            ));
+        }
+        let end = stride
+            .checked_mul(count - 1)
+            .and_then(|span| span.checked_add(element))
+            .and_then(|span| span.checked_add(accessor.byte_offset.map_or(0, |offset| offset.0)));
+        if end.is_none_or(|end| end > view.byte_length.0) {
+            return Err(format!(
+                "accessor {index}: {count} elements run past the {} bytes of its buffer view",
+                view.byte_length.0
             ));
         }
     }
