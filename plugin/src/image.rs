@@ -247,11 +247,7 @@ impl Image {
         kind: TextureKind,
         channel: Channel,
     ) -> Result<Self, ImageError> {
-        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|error| load_error(name, error))?;
-        reader.limits(decode_limits());
-        let decoded = reader.decode().map_err(|error| decode_error(name, error))?;
+        let decoded = decode_bytes(bytes, name)?;
         Self::from_decoded(decoded, kind, channel, name)
     }
 
@@ -401,11 +397,39 @@ fn load_error(name: &str, error: impl std::fmt::Display) -> ImageError {
 
 fn decode_file(path: &Path) -> Result<DynamicImage, ImageError> {
     let name = path.display().to_string();
-    let mut reader = image::ImageReader::open(path)
-        .and_then(|reader| reader.with_guessed_format())
-        .map_err(|error| load_error(&name, error))?;
+    let bytes = std::fs::read(path).map_err(|error| load_error(&name, error))?;
+    decode_bytes(&bytes, &name)
+}
+
+fn decode_bytes(bytes: &[u8], name: &str) -> Result<DynamicImage, ImageError> {
+    check_png_palette(bytes).map_err(|reason| load_error(name, reason))?;
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|error| load_error(name, error))?;
     reader.limits(decode_limits());
-    reader.decode().map_err(|error| decode_error(&name, error))
+    reader.decode().map_err(|error| decode_error(name, error))
+}
+
+/// A PNG palette (PLTE) must hold whole RGB entries: png 0.18 panics on a partial one (found
+/// by fuzzing).
+fn check_png_palette(bytes: &[u8]) -> Result<(), String> {
+    let Some(mut chunks) = bytes.strip_prefix(b"\x89PNG\r\n\x1a\n") else {
+        return Ok(());
+    };
+    // Each chunk: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
+    while let [l0, l1, l2, l3, t0, t1, t2, t3, rest @ ..] = chunks {
+        let length = u32::from_be_bytes([*l0, *l1, *l2, *l3]) as usize;
+        if [*t0, *t1, *t2, *t3] == *b"PLTE" && length % 3 != 0 {
+            return Err(format!(
+                "the PNG palette (PLTE) has {length} bytes, not a whole number of RGB entries"
+            ));
+        }
+        let Some(next) = rest.get(length.saturating_add(4)..) else {
+            break;
+        };
+        chunks = next;
+    }
+    Ok(())
 }
 
 /// The longest side a file may declare: no GPU takes a larger 2D texture, and refusing it before
