@@ -419,7 +419,7 @@ fn check_png_palette(bytes: &[u8]) -> Result<(), String> {
     // Each chunk: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
     while let [l0, l1, l2, l3, t0, t1, t2, t3, rest @ ..] = chunks {
         let length = u32::from_be_bytes([*l0, *l1, *l2, *l3]) as usize;
-        if [*t0, *t1, *t2, *t3] == *b"PLTE" && length % 3 != 0 {
+        if [*t0, *t1, *t2, *t3] == *b"PLTE" && !length.is_multiple_of(3) {
             return Err(format!(
                 "the PNG palette (PLTE) has {length} bytes, not a whole number of RGB entries"
             ));
