@@ -407,7 +407,17 @@ fn decode_bytes(bytes: &[u8], name: &str) -> Result<DynamicImage, ImageError> {
         .with_guessed_format()
         .map_err(|error| load_error(name, error))?;
     reader.limits(decode_limits());
-    reader.decode().map_err(|error| decode_error(name, error))
+    // zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
+    // builds): a broken file is an error, not a crash.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| reader.decode()))
+        .unwrap_or_else(|_| {
+            Err(image::ImageError::Decoding(
+                image::error::DecodingError::from_format_hint(
+                    image::error::ImageFormatHint::Unknown,
+                ),
+            ))
+        })
+        .map_err(|error| decode_error(name, error))
 }
 
 /// A PNG palette (PLTE) must hold whole RGB entries: png 0.18 panics on a partial one (found

@@ -79,6 +79,23 @@ fn image_regressions_do_not_panic() {
     replay_regressions("image");
 }
 
+/// Inputs that panic inside a dependency (zune-jpeg's overflow checks) where the loader can only
+/// contain the panic: they must come back as errors.
+#[test]
+fn image_dependency_panics_become_errors() {
+    let inputs = files("regressions", "image_dependency_panics");
+    assert!(!inputs.is_empty());
+    for file in inputs {
+        let bytes = std::fs::read(&file).unwrap();
+        let outcome = std::panic::catch_unwind(|| fuzz_entry::image(&bytes));
+        assert!(
+            matches!(outcome, Ok(Err(_))),
+            "{}: {outcome:?}",
+            file.display()
+        );
+    }
+}
+
 #[test]
 fn gltf_regressions_do_not_panic() {
     replay_regressions("gltf");
