@@ -92,8 +92,10 @@ fn check_attribute_types(json: &gltf::json::Root) -> Result<(), String> {
     Ok(())
 }
 
-/// Most elements an accessor without a buffer view may declare (its data is generated).
-const MAX_VIRTUAL_ELEMENTS: u64 = 1 << 24;
+/// Elements an accessor without a buffer view (its data generated: zeros plus sparse values)
+/// may declare beyond one per byte of the file's buffers, so a small file cannot ask for
+/// gigabytes of vertices.
+const SPARE_VIRTUAL_ELEMENTS: u64 = 1 << 16;
 
 /// An accessor must have elements, lie inside its buffer view with a stride that holds a whole
 /// element, and a sparse one must replace at least one element: gltf's readers assume all of
@@ -126,9 +128,11 @@ fn check_accessors(json: &gltf::json::Root) -> Result<(), String> {
             .and_then(|view| json.buffer_views.get(view.value()));
         let Some(view) = view else {
             // Zeros (plus sparse values): each element is produced, so bound how many.
-            if count > MAX_VIRTUAL_ELEMENTS {
+            let buffer_bytes: u64 = json.buffers.iter().map(|buffer| buffer.byte_length.0).sum();
+            let limit = buffer_bytes.saturating_add(SPARE_VIRTUAL_ELEMENTS);
+            if count > limit {
                 return Err(format!(
-                    "accessor {index}: count {count} without a buffer view is over {MAX_VIRTUAL_ELEMENTS}"
+                    "accessor {index}: count {count} without a buffer view is over {limit} (the buffers' bytes + {SPARE_VIRTUAL_ELEMENTS})"
                 ));
             }
             continue;
