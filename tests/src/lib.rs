@@ -2,6 +2,7 @@
 //! error scopes, reference-image comparison with NVIDIA FLIP, and procedural test textures.
 
 pub mod fixtures;
+pub mod fuzz_entry;
 pub mod gltf_fixture;
 mod golden;
 pub mod pom_scene;

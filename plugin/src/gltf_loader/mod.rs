@@ -8,6 +8,7 @@
 //! lines, unknown required extensions) are skipped with one warning each.
 
 mod extras;
+mod guards;
 mod materials;
 mod nodes;
 mod primitives;
@@ -135,6 +136,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         path: path.to_owned(),
         reason,
     };
+    guards::check_glb_length(bytes).map_err(open_error)?;
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|error| open_error(error.to_string()))?;
     // Validation rejects files that require extensions it does not know; we draw what we can
@@ -145,6 +147,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         .drain(..)
         .partition(|name| SUPPORTED_EXTENSIONS.contains(&name.as_str()));
     json.extensions_required = supported;
+    guards::check_json(&json).map_err(open_error)?;
     let document =
         gltf::Document::from_json(json).map_err(|error| open_error(error.to_string()))?;
     let mut blob = blob;

@@ -11,7 +11,7 @@ pub use format::{
     CameraDesc, EntityDesc, LightDesc, MaterialDesc, MaterialPatch, Rect, Script, ShapeDesc,
     Statistic, Step, TransformDesc,
 };
-pub use runner::{run_script, run_script_with};
+pub use runner::{parse_script, run_script, run_script_with};
 
 use std::fmt;
 use std::path::PathBuf;

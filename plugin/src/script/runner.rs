@@ -36,18 +36,32 @@ pub fn run_script_with(
         path: path.to_owned(),
         reason: error.to_string(),
     })?;
+    let script = parse_script(&text, path)?;
+    let dir = path.parent().unwrap_or(Path::new(".")).to_owned();
+    Runner::new(&script, path, &dir, options)?.run(&script)
+}
+
+/// Parses script `text` and checks every name and file it refers to (files relative to `path`'s
+/// folder) without running it; `path` names the script in errors.
+///
+/// # Example
+/// ```
+/// let error = pom::script::parse_script("(steps: [])", "scene.ron".as_ref()).unwrap_err();
+/// assert!(error.to_string().starts_with("scene.ron:1:"), "{error}");
+/// ```
+pub fn parse_script(text: &str, path: &Path) -> Result<Script, ScriptError> {
     // Optional fields may be written as plain values (`min: 0.5`) as well as `Some(0.5)`.
     let parser =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let script: Script = parser.from_str(&text).map_err(|error| ScriptError::Parse {
+    let script: Script = parser.from_str(text).map_err(|error| ScriptError::Parse {
         path: path.to_owned(),
         line: error.span.start.line,
         column: error.span.start.col,
         reason: error.code.to_string(),
     })?;
-    let dir = path.parent().unwrap_or(Path::new(".")).to_owned();
-    check(&script, &text, path, &dir)?;
-    Runner::new(&script, path, &dir, options)?.run(&script)
+    let dir = path.parent().unwrap_or(Path::new("."));
+    check(&script, text, path, dir)?;
+    Ok(script)
 }
 
 struct Capture {

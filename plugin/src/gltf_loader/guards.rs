@@ -1,0 +1,201 @@
+//! Checks of a glTF file's header and JSON for inputs that make gltf 1.4 panic (all found by
+//! fuzzing), so the loader reports them as errors instead.
+
+use gltf::json::accessor::{ComponentType, Type};
+use gltf::json::mesh::Semantic;
+use gltf::json::validation::Checked;
+
+/// A GLB's declared total length must cover its own 12-byte header: gltf subtracts the
+/// header's size from it unchecked (an overflow panic in debug builds).
+pub(super) fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
+    if let [b'g', b'l', b'T', b'F', _, _, _, _, l0, l1, l2, l3, ..] = *bytes {
+        let length = u32::from_le_bytes([l0, l1, l2, l3]);
+        if length < 12 {
+            return Err(format!(
+                "the GLB header declares a length of {length} bytes, less than the header's 12"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks, before gltf validates or reads the document, what it would otherwise panic on.
+pub(super) fn check_json(json: &gltf::json::Root) -> Result<(), String> {
+    check_position_accessors(json)?;
+    check_attribute_types(json)?;
+    check_accessors(json)?;
+    check_buffer_views(json)?;
+    check_images(json)
+}
+
+/// Every POSITION attribute must name an existing accessor: gltf-json's validation indexes the
+/// accessor list with it unchecked.
+fn check_position_accessors(json: &gltf::json::Root) -> Result<(), String> {
+    for (mesh, primitives) in json.meshes.iter().map(|mesh| &mesh.primitives).enumerate() {
+        for (primitive, attributes) in primitives.iter().map(|p| &p.attributes).enumerate() {
+            if let Some(accessor) = attributes.get(&Checked::Valid(Semantic::Positions))
+                && accessor.value() >= json.accessors.len()
+            {
+                return Err(format!(
+                    "mesh {mesh}, primitive {primitive}: POSITION is accessor {} but the file has {} accessors",
+                    accessor.value(),
+                    json.accessors.len()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The attributes the loader reads must have the types glTF prescribes: gltf's readers assume
+/// them (a debug assertion, or `unreachable!` for unknown component types).
+fn check_attribute_types(json: &gltf::json::Root) -> Result<(), String> {
+    use ComponentType::{F32, U8, U16, U32};
+    for (mesh, primitives) in json.meshes.iter().map(|mesh| &mesh.primitives).enumerate() {
+        for (primitive_index, primitive) in primitives.iter().enumerate() {
+            let expected = primitive
+                .attributes
+                .iter()
+                .filter_map(|(semantic, accessor)| {
+                    let (name, allowed): (&str, (Type, &[ComponentType])) = match semantic {
+                        Checked::Valid(Semantic::Positions) => ("POSITION", (Type::Vec3, &[F32])),
+                        Checked::Valid(Semantic::Normals) => ("NORMAL", (Type::Vec3, &[F32])),
+                        Checked::Valid(Semantic::Tangents) => ("TANGENT", (Type::Vec4, &[F32])),
+                        Checked::Valid(Semantic::TexCoords(0)) => {
+                            ("TEXCOORD_0", (Type::Vec2, &[F32, U8, U16]))
+                        }
+                        _ => return None,
+                    };
+                    Some((name, accessor.value(), allowed))
+                });
+            let indices = primitive.indices.map(|accessor| {
+                (
+                    "indices",
+                    accessor.value(),
+                    (Type::Scalar, &[U8, U16, U32][..]),
+                )
+            });
+            for (what, index, (kind, components)) in expected.chain(indices) {
+                let Some(accessor) = json.accessors.get(index) else {
+                    continue;
+                };
+                let fits = matches!(accessor.type_, Checked::Valid(found) if found == kind)
+                    && matches!(&accessor.component_type, Checked::Valid(found) if components.contains(&found.0));
+                if !fits {
+                    return Err(format!(
+                        "mesh {mesh}, primitive {primitive_index}: {what} (accessor {index}) must be {kind:?} of {components:?}"
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Elements an accessor without a buffer view (its data generated: zeros plus sparse values)
+/// may declare beyond one per byte of the file's buffers, so a small file cannot ask for
+/// gigabytes of vertices.
+const SPARE_VIRTUAL_ELEMENTS: u64 = 1 << 16;
+
+/// An accessor must have elements, lie inside its buffer view with a stride that holds a whole
+/// element, and a sparse one must replace at least one element: gltf's readers assume all of
+/// it (overflow panics in debug builds).
+fn check_accessors(json: &gltf::json::Root) -> Result<(), String> {
+    for (index, accessor) in json.accessors.iter().enumerate() {
+        if let Some(sparse) = &accessor.sparse
+            && sparse.count.0 == 0
+        {
+            return Err(format!("accessor {index}: sparse.count is 0"));
+        }
+        let (Checked::Valid(component), Checked::Valid(kind)) =
+            (&accessor.component_type, &accessor.type_)
+        else {
+            continue;
+        };
+        // Matrices pad their columns to four bytes.
+        let element = match (kind, component.0.size()) {
+            (Type::Mat2, 1) => 8,
+            (Type::Mat3, 1) => 12,
+            (Type::Mat3, 2) => 24,
+            (kind, size) => kind.multiplicity() * size,
+        };
+        let count = accessor.count.0;
+        if count == 0 {
+            return Err(format!("accessor {index}: count is 0"));
+        }
+        let view = accessor
+            .buffer_view
+            .and_then(|view| json.buffer_views.get(view.value()));
+        let Some(view) = view else {
+            // Zeros (plus sparse values): each element is produced, so bound how many.
+            let buffer_bytes: u64 = json.buffers.iter().map(|buffer| buffer.byte_length.0).sum();
+            let limit = buffer_bytes.saturating_add(SPARE_VIRTUAL_ELEMENTS);
+            if count > limit {
+                return Err(format!(
+                    "accessor {index}: count {count} without a buffer view is over {limit} (the buffers' bytes + {SPARE_VIRTUAL_ELEMENTS})"
+                ));
+            }
+            continue;
+        };
+        let element = element as u64;
+        let stride = view.byte_stride.map_or(element, |stride| stride.0 as u64);
+        if stride < element {
+            return Err(format!(
+                "accessor {index}: its buffer view's byteStride {stride} is less than its {element}-byte elements"
+            ));
+        }
+        let end = stride
+            .checked_mul(count - 1)
+            .and_then(|span| span.checked_add(element))
+            .and_then(|span| span.checked_add(accessor.byte_offset.map_or(0, |offset| offset.0)));
+        if end.is_none_or(|end| end > view.byte_length.0) {
+            return Err(format!(
+                "accessor {index}: {count} elements run past the {} bytes of its buffer view",
+                view.byte_length.0
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A buffer view must lie inside its buffer's declared length (the loader checks the data is at
+/// least that long): gltf slices image data by the view unchecked.
+fn check_buffer_views(json: &gltf::json::Root) -> Result<(), String> {
+    for (index, view) in json.buffer_views.iter().enumerate() {
+        let Some(buffer) = json.buffers.get(view.buffer.value()) else {
+            continue;
+        };
+        let end = view
+            .byte_offset
+            .map_or(0, |offset| offset.0)
+            .checked_add(view.byte_length.0);
+        if end.is_none_or(|end| end > buffer.byte_length.0) {
+            return Err(format!(
+                "buffer view {index} ends past the {} bytes of buffer {}",
+                buffer.byte_length.0,
+                view.buffer.value()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// An image needs a URI, or a buffer view with a MIME type: gltf unwraps both.
+fn check_images(json: &gltf::json::Root) -> Result<(), String> {
+    for (index, image) in json.images.iter().enumerate() {
+        match (&image.buffer_view, &image.mime_type, &image.uri) {
+            (Some(_), None, _) => {
+                return Err(format!(
+                    "image {index}: a bufferView image needs a mimeType"
+                ));
+            }
+            (None, _, None) => {
+                return Err(format!(
+                    "image {index}: it has neither a uri nor a bufferView"
+                ));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
