@@ -1,6 +1,5 @@
 //! Texture images held on the CPU: colour, normal, height and data maps, their mip chains.
 
-use std::io::{BufRead, Seek};
 use std::path::Path;
 
 use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
@@ -275,10 +274,7 @@ impl Image {
         kind: TextureKind,
         channel: Channel,
     ) -> Result<Self, ImageError> {
-        let decoded = decode_limited(
-            || Ok(image::ImageReader::new(std::io::Cursor::new(bytes))),
-            name,
-        )?;
+        let decoded = decode_bytes(bytes, name, None)?;
         Self::from_decoded(decoded, kind, channel, name)
     }
 
@@ -427,21 +423,27 @@ fn load_error(name: &str, error: impl std::fmt::Display) -> ImageError {
 }
 
 fn decode_file(path: &Path) -> Result<DynamicImage, ImageError> {
-    decode_limited(
-        || image::ImageReader::open(path),
-        &path.display().to_string(),
-    )
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|error| load_error(&name, error))?;
+    // As `ImageReader::open` does: the extension names the format when the content cannot.
+    decode_bytes(&bytes, &name, image::ImageFormat::from_path(path).ok())
 }
 
 /// Reads the header first and refuses sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`],
 /// then decodes under the same limits (so a header that lies is caught by the decoder too).
-fn decode_limited<R: BufRead + Seek>(
-    open: impl Fn() -> std::io::Result<image::ImageReader<R>>,
+fn decode_bytes(
+    bytes: &[u8],
     name: &str,
+    format_hint: Option<image::ImageFormat>,
 ) -> Result<DynamicImage, ImageError> {
+    check_png_palette(bytes).map_err(|reason| load_error(name, reason))?;
     let guessed = || {
-        open()
-            .and_then(|reader| reader.with_guessed_format())
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
+        if let Some(format) = format_hint {
+            reader.set_format(format);
+        }
+        reader
+            .with_guessed_format()
             .map_err(|error| load_error(name, error))
     };
     let (width, height) = guessed()?
@@ -466,7 +468,39 @@ fn decode_limited<R: BufRead + Seek>(
     limits.max_alloc = Some(MAX_IMAGE_PIXELS * 16);
     let mut reader = guessed()?;
     reader.limits(limits);
-    reader.decode().map_err(|error| load_error(name, error))
+    // zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
+    // builds): a broken file is an error, not a crash.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| reader.decode()))
+        .unwrap_or_else(|_| {
+            Err(image::ImageError::Decoding(
+                image::error::DecodingError::from_format_hint(
+                    image::error::ImageFormatHint::Unknown,
+                ),
+            ))
+        })
+        .map_err(|error| load_error(name, error))
+}
+
+/// A PNG palette (PLTE) must hold whole RGB entries: png 0.18 panics on a partial one (found
+/// by fuzzing).
+fn check_png_palette(bytes: &[u8]) -> Result<(), String> {
+    let Some(mut chunks) = bytes.strip_prefix(b"\x89PNG\r\n\x1a\n") else {
+        return Ok(());
+    };
+    // Each chunk: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
+    while let [l0, l1, l2, l3, t0, t1, t2, t3, rest @ ..] = chunks {
+        let length = u32::from_be_bytes([*l0, *l1, *l2, *l3]) as usize;
+        if [*t0, *t1, *t2, *t3] == *b"PLTE" && !length.is_multiple_of(3) {
+            return Err(format!(
+                "the PNG palette (PLTE) has {length} bytes, not a whole number of RGB entries"
+            ));
+        }
+        let Some(next) = rest.get(length.saturating_add(4)..) else {
+            break;
+        };
+        chunks = next;
+    }
+    Ok(())
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
