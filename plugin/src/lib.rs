@@ -67,7 +67,7 @@ pub use image::{
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
 pub use lit_material::LitMaterial;
-pub use mesh::{Mesh, MeshError};
+pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{

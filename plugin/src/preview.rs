@@ -153,22 +153,33 @@ pub fn spawn_preview(
     material: ParallaxOcclusionMaterial,
     view: &PreviewView,
 ) -> Result<(), AppError> {
+    let tiling = if view.tiling.is_finite() && view.tiling > 0.0 {
+        view.tiling
+    } else {
+        1.0
+    };
+    spawn_preview_mesh(app, Mesh::plane_tiled(PLANE_SIZE, tiling), material, view)
+}
+
+/// Like [`spawn_preview`] with `surface` in place of the flat plane: a mesh of about the
+/// plane's size and place, such as [`Mesh::displaced_grid`] of side [`PLANE_SIZE`].
+pub fn spawn_preview_mesh(
+    app: &mut App,
+    surface: Mesh,
+    material: ParallaxOcclusionMaterial,
+    view: &PreviewView,
+) -> Result<(), AppError> {
     app.finish()?;
     let aspect = app
         .resources
         .get::<crate::render::RenderTarget>()
         .ok_or_else(AppError::missing::<crate::render::RenderTarget>)?
         .aspect();
-    let tiling = if view.tiling.is_finite() && view.tiling > 0.0 {
-        view.tiling
-    } else {
-        1.0
-    };
-    let plane = app
+    let surface = app
         .resources
         .get_mut::<Assets<Mesh>>()
         .ok_or_else(AppError::missing::<Assets<Mesh>>)?
-        .add(Mesh::plane_tiled(PLANE_SIZE, tiling));
+        .add(surface);
     app.world.spawn(view.camera(aspect));
     app.world.spawn((
         DirectionalLight {
@@ -177,7 +188,7 @@ pub fn spawn_preview(
         },
         view.light_transform(),
     ));
-    app.world.spawn((plane, material, Transform::IDENTITY));
+    app.world.spawn((surface, material, Transform::IDENTITY));
     Ok(())
 }
 

@@ -49,6 +49,42 @@ fn quick_bench_writes_json_csv_and_a_chart() {
             .any(|r| r["what"].as_str().unwrap().contains("far field"))
     );
     assert!(ratios.iter().all(|r| r["ratio"].as_f64().unwrap() > 0.0));
+    let rates = json["sample_rates"].as_array().unwrap();
+    assert_eq!(rates.len(), 2, "one sample rate per size");
+    for rate in rates {
+        let count = &rate["count"];
+        let (total, marching) = (
+            count["total"].as_u64().unwrap(),
+            count["marching_pixels"].as_u64().unwrap(),
+        );
+        assert!(marching > 0 && marching <= count["surface_pixels"].as_u64().unwrap());
+        // Every marching pixel takes at least one sample.
+        assert!(total >= marching, "{rate}");
+        for field in [
+            "gsamples_per_s",
+            "fragment_path_gtexels_per_s",
+            "one_tap_pass_ms",
+        ] {
+            assert!(rate[field].as_f64().unwrap() > 0.0, "{field} in {rate}");
+        }
+    }
+    let versus = &json["versus_mesh"];
+    let candidates = versus["candidates"].as_array().unwrap();
+    for kind in ["pom", "mesh"] {
+        assert!(
+            candidates.iter().any(|c| c["kind"] == kind),
+            "no {kind} candidate"
+        );
+    }
+    for candidate in candidates {
+        let flip = candidate["flip_mean"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&flip), "{candidate}");
+    }
+    assert!(versus["reference_triangles"].as_u64().unwrap() > 2);
+    for file in ["versus_reference.png", "versus_pom.png"] {
+        let image = image::open(out.join(file)).unwrap();
+        assert!(image.width() > 0 && image.height() > 0);
+    }
     assert_eq!(json["cpu_side"]["entities"], 200);
     assert!(json["cpu_side"]["total"]["median_ms"].as_f64().unwrap() > 0.0);
     assert!(json["adapter"]["software_driver"].is_boolean());

@@ -122,3 +122,32 @@ fn timing_can_be_turned_off_and_says_so() {
     run_frames(&mut app, 1).unwrap();
     assert_plausible(app.resources.get::<GpuTimings>().unwrap(), "main pass");
 }
+
+#[test]
+fn the_texel_rate_probe_samples_its_texture_and_is_timed() {
+    use pom::render::{PROBE_PASS, TexelRateProbe, resolve_gpu_timings};
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(32, 16).with_gpu_timing(Some(TimingMode::Blocking)));
+    app.finish().unwrap();
+    let gpu = app.resources.get::<pom::GpuContext>().unwrap();
+    let format = app
+        .resources
+        .get::<pom::render::RenderTarget>()
+        .unwrap()
+        .color
+        .format();
+    let probe = TexelRateProbe::new(gpu, format, 0);
+    assert_eq!(probe.taps(), 1, "taps are at least one");
+    let probe = TexelRateProbe::new(gpu, format, 16);
+    probe.render(&mut app.resources).unwrap();
+    resolve_gpu_timings(&mut app.world, &mut app.resources).unwrap();
+    let gpu = app.resources.get::<pom::GpuContext>().unwrap();
+    assert!(gpu.take_uncaptured_errors().is_empty());
+    if supported(&app) {
+        assert_plausible(app.resources.get::<GpuTimings>().unwrap(), PROBE_PASS);
+    }
+    // The mean of 16 samples of hashed texels: about 0.5 (188 once sRGB-encoded), not black.
+    let image = pom::render::capture(&app).unwrap();
+    let mean = image.pixels().map(|p| f64::from(p.0[0])).sum::<f64>() / (32.0 * 16.0);
+    assert!((60.0..230.0).contains(&mean), "mean red {mean}");
+}

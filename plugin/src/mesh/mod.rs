@@ -1,8 +1,10 @@
 //! Triangle meshes: vertex attributes, validation, primitives and tangent generation.
 
+mod displaced;
 mod primitives;
 mod tangents;
 
+pub use displaced::MAX_GRID_CELLS;
 pub use tangents::generate_tangents;
 
 /// What is wrong with a mesh's data.
@@ -37,6 +39,14 @@ pub enum MeshError {
     /// The mesh has no triangles.
     #[error("mesh has no triangles")]
     Empty,
+    /// A displaced grid was asked for with too few or too many cells.
+    #[error("displaced grid of {cells} cells per side is outside 1..={limit}")]
+    GridCells {
+        /// Cells asked for along one side.
+        cells: u32,
+        /// [`MAX_GRID_CELLS`].
+        limit: u32,
+    },
 }
 
 /// An indexed triangle list with the attributes the lit materials need.

@@ -13,6 +13,7 @@ pub use layout::mesh_pipeline;
 mod object_buffer;
 pub mod shaders;
 mod target;
+mod texel_rate_probe;
 mod texture_bind_groups;
 
 pub use capture::{CaptureError, read_rgba8, read_rgba32f, read_texture};
@@ -31,6 +32,7 @@ pub use gpu_types::{
 };
 pub use object_buffer::ObjectBuffer;
 pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat};
+pub use texel_rate_probe::{PROBE_PASS, TexelRateProbe};
 pub use texture_bind_groups::{TextureBindGroups, TextureKey};
 
 use image::{Rgba32FImage, RgbaImage};

@@ -6,12 +6,14 @@
 mod chart;
 mod cpu_side;
 mod report;
+mod sample_count;
 mod scene;
 mod stats;
 mod texel_rate;
+mod versus_mesh;
 
 use std::path::PathBuf;
-use std::time::{SystemTime, UNIX_EPOCH};
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -22,13 +24,18 @@ use crate::cli_types::{MethodArg, ShadowsArg, parse_size};
 use crate::preview_textures::{PreviewTextures, TextureFiles};
 use crate::render_command::{MaterialArgs, TextureArgs, ViewArgs};
 use report::{AdapterReport, BenchReport, CaseResult, Ratio};
-use scene::{BenchScene, TIMED_PASS};
+use sample_count::{ProbeResult, SampleRate};
+use scene::{BenchScene, SceneOptions, TIMED_PASS, Warmup};
 
 /// Exit message when the adapter cannot time passes (exit status 0).
 pub const NO_TIMESTAMPS: &str = "GPU timestamps are not available";
 
+/// Least warm-up time per case outside `--quick` (see [`Warmup::least`]).
+const FULL_MIN_WARMUP: Duration = Duration::from_millis(300);
 const FULL_SIZES: [(u32, u32); 2] = [(1920, 1080), (3840, 2160)];
 const QUICK_SIZES: [(u32, u32); 2] = [(64, 36), (96, 54)];
+/// Samples per pixel of the fragment-stage texel-rate probe.
+const PROBE_TAPS: u32 = 64;
 const SAMPLE_SWEEP: [u32; 5] = [8, 16, 32, 64, 128];
 const LOD_SWEEP: [f32; 6] = [0.0, 1.0, 2.0, 4.0, 6.0, 8.0];
 const METHODS: [MethodArg; 5] = [
@@ -41,10 +48,6 @@ const METHODS: [MethodArg; 5] = [
 const SHADOWS: [ShadowsArg; 3] = [ShadowsArg::Off, ShadowsArg::Hard, ShadowsArg::Soft];
 // Far field: so many repeats that every pixel covers 2^(lod_threshold + 3) texels or more.
 const FAR_FIELD_MIP_MARGIN: f32 = 3.0;
-const NOT_MEASURED: [&str; 2] = [
-    "achieved height samples per second for POM and its fraction of the texel-rate limit",
-    "POM on a flat plane vs a displaced mesh of the same height map at equal FLIP error",
-];
 
 /// Options of `sandbox bench`.
 #[derive(Debug, Args)]
@@ -61,7 +64,7 @@ pub struct BenchArgs {
     /// Timed frames per case, at least 20 (--quick uses 5).
     #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(20..=10_000))]
     pub frames: u32,
-    /// Untimed frames before each case.
+    /// Untimed frames before each case (rendering for at least 0.3 s without --quick).
     #[arg(long, value_name = "N", default_value_t = 5)]
     pub warmup: u32,
     /// Bilinear texel rate of the GPU in G texels/s, for an adapter not in the built-in table.
@@ -121,7 +124,7 @@ fn name<T: std::fmt::Debug>(value: T) -> String {
 }
 
 struct Runner<'a> {
-    warmup: usize,
+    warmup: Warmup,
     frames: usize,
     textures: &'a PreviewTextures,
     base: ParallaxOcclusionMaterial,
@@ -165,7 +168,12 @@ impl Runner<'_> {
     }
 
     fn scene(&self, size: (u32, u32), view: &PreviewView) -> Result<BenchScene> {
-        BenchScene::new(size, self.textures, self.base.clone(), view, true)
+        BenchScene::new(
+            SceneOptions::timed_plane(size),
+            self.textures,
+            self.base.clone(),
+            view,
+        )
     }
 }
 
@@ -187,9 +195,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         (true, false) => FULL_SIZES.to_vec(),
     };
     let (warmup, frames) = if args.quick {
-        (2, 5)
+        (
+            Warmup {
+                frames: 2,
+                least: Duration::ZERO,
+            },
+            5,
+        )
     } else {
-        (args.warmup as usize, args.frames as usize)
+        (
+            Warmup {
+                frames: args.warmup as usize,
+                least: FULL_MIN_WARMUP,
+            },
+            args.frames as usize,
+        )
     };
     let started = SystemTime::now()
         .duration_since(UNIX_EPOCH)
@@ -197,11 +217,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         .unwrap_or(0);
 
     let probe = BenchScene::new(
-        sizes[0],
+        SceneOptions {
+            timestamps: !args.no_timestamps,
+            ..SceneOptions::timed_plane(sizes[0])
+        },
         &textures,
         base.clone(),
         &view,
-        !args.no_timestamps,
     )?;
     let adapter: AdapterReport = probe.adapter().context("no adapter")?.into();
     if !probe.timing_supported() {
@@ -226,7 +248,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         base: base.clone(),
         cases: Vec::new(),
     };
+    let texel_rate = texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from));
     let mut ratios = Vec::new();
+    let mut sample_rates = Vec::new();
     let tiling = view.tiling;
     for &size in &sizes {
         eprintln!("timing {}x{} ...", size.0, size.1);
@@ -270,7 +294,28 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 });
             }
         }
+        let mut probe_ms = |taps| -> Result<f64> {
+            let times = scene.time_texel_rate_probe(taps, runner.warmup, frames)?;
+            let spread = stats::Spread::of(&times).context("no valid probe timings")?;
+            Ok(spread.median_ms)
+        };
+        let probe = ProbeResult {
+            taps: PROBE_TAPS,
+            median_ms: probe_ms(PROBE_TAPS)?,
+            one_tap_ms: probe_ms(1)?,
+        };
         drop(scene);
+
+        let pom = ParallaxOcclusionMaterial {
+            method: MethodArg::Pom.into(),
+            shadows: ShadowsArg::Off.into(),
+            ..base.clone()
+        };
+        if let Some(pom_ms) = pom_off {
+            let count = sample_count::count_view_samples(size, &textures, &pom, &view)?;
+            let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);
+            sample_rates.push(SampleRate::new(size, count, pom_ms, probe, chip));
+        }
 
         let far_tiling = far_field_tiling(size, textures.height.size().0, base.lod_threshold);
         let far_view = PreviewView {
@@ -296,29 +341,52 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         });
     }
 
+    eprintln!(
+        "POM against displaced grids at {}x{} ...",
+        sizes[0].0, sizes[0].1
+    );
+    let versus_mesh = versus_mesh::compare(&versus_mesh::Setup {
+        size: sizes[0],
+        textures: &textures,
+        base: &ParallaxOcclusionMaterial {
+            method: MethodArg::Pom.into(),
+            ..base.clone()
+        },
+        view: &view,
+        quick: args.quick,
+        frames: (warmup, frames),
+    })?;
+
     eprintln!("timing the CPU side with {} entities ...", args.entities);
-    let cpu_side = cpu_side::measure(args.entities, &textures, warmup, frames)?;
+    let cpu_side = cpu_side::measure(args.entities, &textures, warmup.frames, frames)?;
     let report = BenchReport {
-        texel_rate: texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from)),
+        texel_rate,
         adapter,
         unix_time: started,
         quick: args.quick,
-        warmup_frames: warmup,
+        warmup_frames: warmup.frames,
         timed_frames: frames,
         cases: runner.cases,
         ratios,
+        sample_rates,
+        versus_mesh,
         cpu_side,
-        not_measured: NOT_MEASURED.to_vec(),
     };
     print!("{}", report.table());
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     report.write_files(&args.out)?;
+    for (file, image) in &report.versus_mesh.images {
+        let path = args.out.join(file);
+        image
+            .save(&path)
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
     let chart_path = args.out.join("bench.png");
     chart::write_chart(&chart_path, &report.adapter.name, &report.cases)?;
     chart::check_written(&chart_path)?;
     println!(
-        "wrote bench.json, bench.csv and bench.png to {}",
+        "wrote bench.json, bench.csv, bench.png and the versus_*.png images to {}",
         args.out.display()
     );
     if report.cases.is_empty() {

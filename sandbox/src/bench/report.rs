@@ -7,8 +7,10 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use super::cpu_side::CpuSide;
+use super::sample_count::SampleRate;
 use super::stats::Spread;
 use super::texel_rate::TexelRate;
+use super::versus_mesh::VersusMesh;
 
 /// One timed configuration.
 #[derive(Clone, Debug, Serialize)]
@@ -99,10 +101,12 @@ pub struct BenchReport {
     pub cases: Vec<CaseResult>,
     /// Far-field POM / normal mapping and the cost of shadows.
     pub ratios: Vec<Ratio>,
+    /// POM's height samples per second at each size.
+    pub sample_rates: Vec<SampleRate>,
+    /// POM on the plane against displaced grids at equal error.
+    pub versus_mesh: VersusMesh,
     /// The CPU side.
     pub cpu_side: CpuSide,
-    /// Measurements the issue asks for that this harness does not make yet.
-    pub not_measured: Vec<&'static str>,
 }
 
 /// CSV columns, in order.
@@ -207,6 +211,29 @@ impl BenchReport {
                 ratio.what, ratio.width, ratio.height, ratio.ratio
             );
         }
+        for rate in &self.sample_rates {
+            let chip = rate
+                .fraction_of_chip
+                .map_or("chip limit unknown".to_owned(), |f| {
+                    format!("{:.2} % of the chip's limit", f * 100.0)
+                });
+            let _ = writeln!(
+                out,
+                "POM height samples at {}x{}: {} per frame ({:.1} per marching pixel) in {:.4} ms \
+                 = {:.3} G samples/s; fragment-stage probe {:.3} G texels/s (one-tap pass \
+                 {:.4} ms); POM at {:.1} % of the fragment path, {chip}",
+                rate.width,
+                rate.height,
+                rate.count.total,
+                rate.count.total as f64 / rate.count.marching_pixels.max(1) as f64,
+                rate.pom_ms,
+                rate.gsamples_per_s,
+                rate.fragment_path_gtexels_per_s,
+                rate.one_tap_pass_ms,
+                rate.fraction_of_fragment_path * 100.0
+            );
+        }
+        out.push_str(&self.versus_mesh_table());
         let cpu = &self.cpu_side;
         let _ = writeln!(
             out,
@@ -218,8 +245,53 @@ impl BenchReport {
             cpu.render.median_ms,
             cpu.total.median_ms
         );
-        for missing in &self.not_measured {
-            let _ = writeln!(out, "not measured: {missing}");
+        out
+    }
+
+    fn versus_mesh_table(&self) -> String {
+        let v = &self.versus_mesh;
+        let mut out = format!(
+            "\nPOM vs displaced grid at {}x{}, FLIP against a {}-triangle grid, shadows off:\n\
+             {:<5} {:>10} {:>8} {:>10} {:>10} {:>10}\n",
+            v.width,
+            v.height,
+            v.reference_triangles,
+            "kind",
+            "triangles",
+            "samples",
+            "FLIP mean",
+            "FLIP p99",
+            "median ms"
+        );
+        for c in &v.candidates {
+            let _ = writeln!(
+                out,
+                "{:<5} {:>10} {:>8} {:>10.4} {:>10.4} {:>10.4}",
+                c.kind,
+                c.triangles,
+                format!("{}-{}", c.samples.0, c.samples.1),
+                c.flip_mean,
+                c.flip_p99,
+                c.spread.median_ms
+            );
+        }
+        match &v.equal_error {
+            Some(e) => {
+                let _ = writeln!(
+                    out,
+                    "equal error: POM {}-{} (FLIP {:.4}, {:.4} ms) vs the cheapest grid no worse, \
+                     {} triangles (FLIP {:.4}, {:.4} ms): POM {:.2}x faster",
+                    e.pom.samples.0,
+                    e.pom.samples.1,
+                    e.pom.flip_mean,
+                    e.pom.spread.median_ms,
+                    e.mesh.triangles,
+                    e.mesh.flip_mean,
+                    e.mesh.spread.median_ms,
+                    e.pom_speedup
+                );
+            }
+            None => out.push_str("equal error: no grid candidate was as accurate as POM\n"),
         }
         out
     }

@@ -1,0 +1,166 @@
+//! A measurement of the bilinear texel rate the fragment stage reaches on the adapter: the
+//! limit of the path the parallax material runs on, which on some GPUs is far below the whole
+//! chip's (on an H100 only a few SMs run pixel shaders).
+
+use wgpu::util::DeviceExt;
+
+use super::gpu_timing::{PassTimestamps, time_pass};
+use super::{GpuContext, RenderTarget};
+use crate::{AppError, Resources};
+
+/// The pass name the probe is timed under in [`super::GpuTimings`].
+pub const PROBE_PASS: &str = "texel-rate probe";
+/// Side of the probe's texture: large enough that it does not all stay in the nearest cache.
+const PROBE_TEXTURE_SIDE: u32 = 1024;
+/// Half a texel per tap, the step of a dense march.
+const STEP_TEXELS: f32 = 0.5;
+
+/// A full-screen pass in which every pixel takes a fixed number of bilinear samples.
+#[derive(Debug)]
+pub struct TexelRateProbe {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+    taps: u32,
+}
+
+impl TexelRateProbe {
+    /// A probe taking `taps` samples per pixel (at least 1), drawing into targets of `format`.
+    pub fn new(gpu: &GpuContext, format: wgpu::TextureFormat, taps: u32) -> Self {
+        let device = &gpu.device;
+        let taps = taps.max(1);
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("texel-rate probe shader"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("texel_rate_probe.wgsl").into()),
+        });
+        let texture = device.create_texture_with_data(
+            &gpu.queue,
+            &wgpu::TextureDescriptor {
+                label: Some("texel-rate probe texture"),
+                size: wgpu::Extent3d {
+                    width: PROBE_TEXTURE_SIDE,
+                    height: PROBE_TEXTURE_SIDE,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba8Unorm,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            &noise_texels(PROBE_TEXTURE_SIDE),
+        );
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("texel-rate probe sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let step = STEP_TEXELS / PROBE_TEXTURE_SIDE as f32;
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("texel-rate probe parameters"),
+            contents: bytemuck::cast_slice(&[taps as f32, step, step * 0.5, 0.0]),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("texel-rate probe"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let view = texture.create_view(&Default::default());
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("texel-rate probe bindings"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: params.as_entire_binding(),
+                },
+            ],
+        });
+        Self {
+            pipeline,
+            bind_group,
+            taps,
+        }
+    }
+
+    /// Samples each pixel takes.
+    pub fn taps(&self) -> u32 {
+        self.taps
+    }
+
+    /// Draws the probe over the app's [`RenderTarget`], timed as [`PROBE_PASS`] when GPU timing
+    /// is on, and submits. Call [`super::resolve_gpu_timings`] afterwards to read the time.
+    pub fn render(&self, resources: &mut Resources) -> Result<(), AppError> {
+        let timestamps = time_pass(resources, PROBE_PASS);
+        let gpu = resources
+            .get::<GpuContext>()
+            .ok_or_else(AppError::missing::<GpuContext>)?;
+        let target = resources
+            .get::<RenderTarget>()
+            .ok_or_else(AppError::missing::<RenderTarget>)?;
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("texel-rate probe encoder"),
+            });
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(PROBE_PASS),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &target.color_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: timestamps.as_ref().map(PassTimestamps::render),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+}
+
+/// Hashed RGBA8 texels: no two neighbours alike, so nothing compresses or repeats.
+fn noise_texels(side: u32) -> Vec<u8> {
+    (0..side * side * 4)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect()
+}
