@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use hecs::Entity;
 
-use crate::render::{RenderTarget, TargetFormat};
+use crate::render::{GpuTimer, RenderTarget, TargetFormat};
 use crate::{App, AppError, GpuContext, ParallaxOcclusionMaterial, Stage};
 
 /// The second image of a split view and what differs in it. A resource: insert it to turn the
@@ -34,7 +34,7 @@ pub enum SplitViewError {
 /// Renders the world again into the [`SplitView`]'s target with its material overrides (runs
 /// the Extract, Prepare and Render stages a second time). Without a `SplitView` resource it
 /// does nothing. The world's materials and the main target are the same afterwards, even when
-/// a system fails.
+/// a system fails. The second image is not timed: [`crate::GpuTimings`] stays the main image's.
 pub fn render_split_view(app: &mut App) -> Result<(), SplitViewError> {
     let Some(mut split) = app.resources.remove::<SplitView>() else {
         return Ok(());
@@ -71,7 +71,12 @@ fn render_with(app: &mut App, split: &mut SplitView) -> Result<(), SplitViewErro
         return Err(SplitViewError::NotRendering);
     };
     swap_materials(app, &mut split.overrides);
+    // The second image goes untimed, so `GpuTimings` keeps describing the main image.
+    let timer = app.resources.remove::<GpuTimer>();
     let result = app.run_stages(&[Stage::Extract, Stage::Prepare, Stage::Render]);
+    if let Some(timer) = timer {
+        app.resources.insert(timer);
+    }
     swap_materials(app, &mut split.overrides);
     split.target = app.resources.insert(main);
     Ok(result?)

@@ -88,3 +88,22 @@ fn an_override_changes_only_the_second_image_and_not_the_world() {
     app.update().unwrap();
     assert!(pom::capture(&app).unwrap() == main);
 }
+
+#[test]
+fn the_second_image_is_not_timed() {
+    let mut app = app();
+    pom::render::set_gpu_timing(&mut app.resources, Some(pom::TimingMode::Blocking));
+    app.insert_resource(SplitView::default());
+    let frame_of = |app: &pom::App| match app.resources.get::<pom::GpuTimings>() {
+        Some(pom::GpuTimings::Supported { frame, .. }) => Some(*frame),
+        _ => None,
+    };
+    render_both(&mut app);
+    let after_first = frame_of(&app);
+    render_both(&mut app);
+    // lavapipe has timestamps; where an adapter has none there is nothing to keep apart.
+    if let (Some(first), Some(second)) = (after_first, frame_of(&app)) {
+        assert_eq!(second, first + 1, "one timed frame per update, none per split image");
+        assert!(app.resources.get::<pom::render::GpuTimer>().is_some());
+    }
+}

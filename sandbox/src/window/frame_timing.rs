@@ -1,9 +1,10 @@
 //! The timing panel: a graph of the last frames' CPU frame times, drawn with egui's painter,
-//! and the place where per-pass GPU times go.
+//! and the plugin's per-pass GPU times.
 
 use std::collections::VecDeque;
 
 use egui::{Color32, Sense, Stroke, Ui, pos2, vec2};
+use pom::GpuTimings;
 
 /// How many frames the graph shows.
 pub const FRAME_HISTORY: usize = 240;
@@ -91,11 +92,45 @@ impl FrameTimes {
     }
 }
 
-/// The GPU time of each render pass. Timestamp queries are the plugin's (its GPU timing
-/// resource); until the window reads that resource, every pass shows "n/a".
-pub fn gpu_pass_rows(ui: &mut Ui) {
-    ui.label("GPU time per pass: n/a")
-        .on_hover_text("Per-pass GPU times (timestamp queries) are not wired into the window yet.");
+/// The GPU timing rows: one line per timed pass from the plugin's [`GpuTimings`], or why there
+/// is none ("n/a" where the adapter has no timestamp queries, as on software drivers).
+pub fn gpu_pass_lines(timings: Option<&GpuTimings>) -> Vec<String> {
+    match timings {
+        None | Some(GpuTimings::Unsupported) => {
+            vec!["GPU time per pass: n/a (no timestamp queries on this adapter)".to_owned()]
+        }
+        Some(GpuTimings::Supported {
+            passes,
+            frame,
+            rejected,
+        }) => {
+            if passes.is_empty() {
+                return vec!["GPU time per pass: waiting for the first reading".to_owned()];
+            }
+            let mut lines = vec![format!("GPU time per pass (frame {frame}):")];
+            lines.extend(
+                passes
+                    .iter()
+                    .map(|(pass, ms)| format!("  {pass}: {ms:.3} ms")),
+            );
+            if *rejected > 0 {
+                lines.push(format!("  {rejected} invalid readings dropped"));
+            }
+            lines
+        }
+    }
+}
+
+/// Shows [`gpu_pass_lines`].
+pub fn gpu_pass_rows(ui: &mut Ui, timings: Option<&GpuTimings>) {
+    let lines = gpu_pass_lines(timings);
+    for line in &lines {
+        ui.label(line).on_hover_text(
+            "GPU time of each render pass of the main image, from timestamp queries, a frame or \
+             two late so the frame never waits for them. The split view's second image is not \
+             timed.",
+        );
+    }
 }
 
 #[cfg(test)]
@@ -116,5 +151,43 @@ mod tests {
         assert!((max - (FRAME_HISTORY + 9) as f32 * 1e-3).abs() < 1e-6);
         // Frames 10..250 remain: their mean is 129.5 ms.
         assert!((mean - 0.1295).abs() < 1e-5, "{mean}");
+    }
+
+    #[test]
+    fn gpu_rows_show_each_pass_or_say_why_there_is_none() {
+        assert_eq!(
+            gpu_pass_lines(Some(&GpuTimings::Unsupported)),
+            ["GPU time per pass: n/a (no timestamp queries on this adapter)"]
+        );
+        assert_eq!(
+            gpu_pass_lines(None),
+            gpu_pass_lines(Some(&GpuTimings::Unsupported))
+        );
+        let mut passes = std::collections::BTreeMap::new();
+        let waiting = GpuTimings::Supported {
+            passes: passes.clone(),
+            frame: 0,
+            rejected: 0,
+        };
+        assert_eq!(
+            gpu_pass_lines(Some(&waiting)),
+            ["GPU time per pass: waiting for the first reading"]
+        );
+        passes.insert("main pass".to_owned(), 1.25);
+        passes.insert("sobel pass".to_owned(), 0.0625);
+        let timed = GpuTimings::Supported {
+            passes,
+            frame: 7,
+            rejected: 2,
+        };
+        assert_eq!(
+            gpu_pass_lines(Some(&timed)),
+            [
+                "GPU time per pass (frame 7):",
+                "  main pass: 1.250 ms",
+                "  sobel pass: 0.062 ms",
+                "  2 invalid readings dropped"
+            ]
+        );
     }
 }

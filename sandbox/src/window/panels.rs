@@ -100,7 +100,7 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
             .on_hover_text("Turns the selected object slowly, to judge the parallax in motion.");
         ui.collapsing("Timing", |ui| {
             state.frame_times.show(ui);
-            gpu_pass_rows(ui);
+            gpu_pass_rows(ui, app.resources.get::<pom::GpuTimings>());
         });
         shader_reload_status(ui, app);
         ui.separator();
