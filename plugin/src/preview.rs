@@ -172,14 +172,9 @@ pub fn spawn_preview_mesh(
     app.finish()?;
     let aspect = app
         .resources
-        .get::<crate::render::RenderTarget>()
-        .ok_or_else(AppError::missing::<crate::render::RenderTarget>)?
+        .require::<crate::render::RenderTarget>()?
         .aspect();
-    let surface = app
-        .resources
-        .get_mut::<Assets<Mesh>>()
-        .ok_or_else(AppError::missing::<Assets<Mesh>>)?
-        .add(surface);
+    let surface = app.resources.require_mut::<Assets<Mesh>>()?.add(surface);
     app.world.spawn(view.camera(aspect));
     app.world.spawn((
         DirectionalLight {

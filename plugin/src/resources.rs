@@ -39,6 +39,18 @@ impl Resources {
             .and_then(|value| value.downcast_mut::<T>())
     }
 
+    /// Returns the value of type `T`, or [`crate::AppError::MissingResource`] naming the type:
+    /// what a system returns when a plugin it needs was not added.
+    pub fn require<T: 'static>(&self) -> Result<&T, crate::AppError> {
+        self.get::<T>().ok_or_else(crate::AppError::missing::<T>)
+    }
+
+    /// Like [`Resources::require`], mutably.
+    pub fn require_mut<T: 'static>(&mut self) -> Result<&mut T, crate::AppError> {
+        self.get_mut::<T>()
+            .ok_or_else(crate::AppError::missing::<T>)
+    }
+
     /// Returns the value of type `T`, inserting `T::default()` first if it is missing.
     pub fn get_or_default<T: Default + 'static>(&mut self) -> &mut T {
         self.values

@@ -103,7 +103,11 @@ fn the_second_image_is_not_timed() {
     render_both(&mut app);
     // lavapipe has timestamps; where an adapter has none there is nothing to keep apart.
     if let (Some(first), Some(second)) = (after_first, frame_of(&app)) {
-        assert_eq!(second, first + 1, "one timed frame per update, none per split image");
+        assert_eq!(
+            second,
+            first + 1,
+            "one timed frame per update, none per split image"
+        );
         assert!(app.resources.get::<pom::render::GpuTimer>().is_some());
     }
 }

@@ -173,12 +173,8 @@ fn run(world: &World, resources: &mut Resources, pass: &mut SobelPass) -> Result
         .map(|_| time_pass(resources, "sobel pass"))
         .collect();
     let outcome = (|| {
-        let gpu = resources
-            .get::<GpuContext>()
-            .ok_or_else(AppError::missing::<GpuContext>)?;
-        let images = resources
-            .get::<Assets<Image>>()
-            .ok_or_else(AppError::missing::<Assets<Image>>)?;
+        let gpu = resources.require::<GpuContext>()?;
+        let images = resources.require::<Assets<Image>>()?;
         let fields: Vec<(Entity, DynamicHeightField)> = world
             .query::<(Entity, &DynamicHeightField)>()
             .iter()

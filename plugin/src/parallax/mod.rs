@@ -82,18 +82,10 @@ fn prepare_with(renderer: &mut Renderer, resources: &mut Resources) -> Result<()
         .remove::<PomRenderer>()
         .ok_or_else(AppError::missing::<PomRenderer>)?;
     let result = (|| {
-        let gpu = resources
-            .get::<GpuContext>()
-            .ok_or_else(AppError::missing::<GpuContext>)?;
-        let extracted = resources
-            .get::<ExtractedPom>()
-            .ok_or_else(AppError::missing::<ExtractedPom>)?;
-        let meshes = resources
-            .get::<Assets<Mesh>>()
-            .ok_or_else(AppError::missing::<Assets<Mesh>>)?;
-        let images = resources
-            .get::<Assets<Image>>()
-            .ok_or_else(AppError::missing::<Assets<Image>>)?;
+        let gpu = resources.require::<GpuContext>()?;
+        let extracted = resources.require::<ExtractedPom>()?;
+        let meshes = resources.require::<Assets<Mesh>>()?;
+        let images = resources.require::<Assets<Image>>()?;
         for draw in &extracted.draws {
             if renderer.assets.prepare_mesh(gpu, meshes, draw.mesh) {
                 renderer.last_upload.meshes += 1;

@@ -45,10 +45,7 @@ fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
 
 /// The Extract stage's system: reads cameras, lights and mesh entities into [`ExtractedFrame`].
 pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(), AppError> {
-    let aspect = resources
-        .get::<RenderTarget>()
-        .ok_or_else(AppError::missing::<RenderTarget>)?
-        .aspect();
+    let aspect = resources.require::<RenderTarget>()?.aspect();
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
 
     let camera = world

@@ -31,7 +31,7 @@ pub use gpu_types::{
     PointLightGpu, Vertex,
 };
 pub use object_buffer::ObjectBuffer;
-pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat};
+pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat, clearing_attachment};
 pub use texel_rate_probe::{PROBE_PASS, TexelRateProbe};
 pub use texture_bind_groups::{TextureBindGroups, TextureKey};
 
@@ -136,10 +136,7 @@ impl Plugin for RenderPlugin {
         if !app.resources.contains::<GpuContext>() {
             app.insert_resource(GpuContext::headless()?);
         }
-        let gpu = app
-            .resources
-            .get::<GpuContext>()
-            .ok_or_else(AppError::missing::<GpuContext>)?;
+        let gpu = app.resources.require::<GpuContext>()?;
         let target = RenderTarget::new(gpu, self.width, self.height, self.format);
         let frame = FrameUniformBuffer::new(gpu);
         let renderer = Renderer {
@@ -165,18 +162,10 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
 }
 
 fn prepare_with(renderer: &mut Renderer, resources: &Resources) -> Result<(), AppError> {
-    let gpu = resources
-        .get::<GpuContext>()
-        .ok_or_else(AppError::missing::<GpuContext>)?;
-    let extracted = resources
-        .get::<ExtractedFrame>()
-        .ok_or_else(AppError::missing::<ExtractedFrame>)?;
-    let meshes = resources
-        .get::<Assets<Mesh>>()
-        .ok_or_else(AppError::missing::<Assets<Mesh>>)?;
-    let images = resources
-        .get::<Assets<Image>>()
-        .ok_or_else(AppError::missing::<Assets<Image>>)?;
+    let gpu = resources.require::<GpuContext>()?;
+    let extracted = resources.require::<ExtractedFrame>()?;
+    let meshes = resources.require::<Assets<Mesh>>()?;
+    let images = resources.require::<Assets<Image>>()?;
     let mut stats = UploadStats::default();
     renderer.assets.release_freed(meshes, images);
     for draw in &extracted.draws {
@@ -208,18 +197,10 @@ pub struct MainPassDraws(pub Vec<MainPassDraw>);
 /// [`MainPassDraw`], and submits.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     let timestamps = time_pass(resources, "main pass");
-    let gpu = resources
-        .get::<GpuContext>()
-        .ok_or_else(AppError::missing::<GpuContext>)?;
-    let target = resources
-        .get::<RenderTarget>()
-        .ok_or_else(AppError::missing::<RenderTarget>)?;
-    let renderer = resources
-        .get::<Renderer>()
-        .ok_or_else(AppError::missing::<Renderer>)?;
-    let extracted = resources
-        .get::<ExtractedFrame>()
-        .ok_or_else(AppError::missing::<ExtractedFrame>)?;
+    let gpu = resources.require::<GpuContext>()?;
+    let target = resources.require::<RenderTarget>()?;
+    let renderer = resources.require::<Renderer>()?;
+    let extracted = resources.require::<ExtractedFrame>()?;
     let mut encoder = gpu
         .device
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -229,20 +210,15 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         let clear = extracted.clear_color;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("main pass"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &target.color_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: f64::from(clear.r),
-                        g: f64::from(clear.g),
-                        b: f64::from(clear.b),
-                        a: f64::from(clear.a),
-                    }),
-                    store: wgpu::StoreOp::Store,
+            color_attachments: &[Some(clearing_attachment(
+                &target.color_view,
+                wgpu::Color {
+                    r: f64::from(clear.r),
+                    g: f64::from(clear.g),
+                    b: f64::from(clear.b),
+                    a: f64::from(clear.a),
                 },
-            })],
+            ))],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &target.depth_view,
                 depth_ops: Some(wgpu::Operations {

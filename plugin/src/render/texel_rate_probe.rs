@@ -5,7 +5,7 @@
 use wgpu::util::DeviceExt;
 
 use super::gpu_timing::{PassTimestamps, time_pass};
-use super::{GpuContext, RenderTarget};
+use super::{GpuContext, RenderTarget, clearing_attachment};
 use crate::{AppError, Resources};
 
 /// The pass name the probe is timed under in [`super::GpuTimings`].
@@ -121,12 +121,8 @@ impl TexelRateProbe {
     /// is on, and submits. Call [`super::resolve_gpu_timings`] afterwards to read the time.
     pub fn render(&self, resources: &mut Resources) -> Result<(), AppError> {
         let timestamps = time_pass(resources, PROBE_PASS);
-        let gpu = resources
-            .get::<GpuContext>()
-            .ok_or_else(AppError::missing::<GpuContext>)?;
-        let target = resources
-            .get::<RenderTarget>()
-            .ok_or_else(AppError::missing::<RenderTarget>)?;
+        let gpu = resources.require::<GpuContext>()?;
+        let target = resources.require::<RenderTarget>()?;
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -135,15 +131,10 @@ impl TexelRateProbe {
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(PROBE_PASS),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target.color_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
+                color_attachments: &[Some(clearing_attachment(
+                    &target.color_view,
+                    wgpu::Color::BLACK,
+                ))],
                 depth_stencil_attachment: None,
                 timestamp_writes: timestamps.as_ref().map(PassTimestamps::render),
                 occlusion_query_set: None,
