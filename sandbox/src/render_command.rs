@@ -271,47 +271,68 @@ pub struct ViewArgs {
 impl RenderArgs {
     /// The material's parameters, without textures.
     pub fn material_settings(&self) -> ParallaxOcclusionMaterial {
-        let material = &self.material;
         ParallaxOcclusionMaterial {
-            height_convention: if self.textures.depth_map {
-                HeightConvention::Depth
-            } else {
-                HeightConvention::Height
-            },
-            height_scale: material.height_scale,
-            min_samples: material.min_samples,
-            max_samples: material.max_samples,
-            lod_threshold: material.lod_threshold,
-            shadows: material.shadows.into(),
-            shadow_softening: material.shadow_softening,
-            method: material.method.into(),
-            depth_offset: material.depth_offset,
             debug_view: self.output.debug_view.into(),
-            ..ParallaxOcclusionMaterial::default()
+            ..self.material.settings(self.textures.depth_map)
         }
     }
 
     /// Where the camera and the light are.
     pub fn view(&self) -> PreviewView {
-        let view = &self.view;
-        PreviewView {
-            view_angle: view.view_angle,
-            view_azimuth: view.view_azimuth,
-            light_angle: view.light_angle,
-            light_azimuth: view.light_azimuth,
-            projection: view.projection.into(),
-            distance: view.distance,
-            tiling: view.tiling,
-        }
+        self.view.preview_view()
     }
 
     fn texture_files(&self) -> TextureFiles<'_> {
-        let textures = &self.textures;
+        self.textures.files()
+    }
+}
+
+impl TextureArgs {
+    /// The files named, for [`PreviewTextures::load`].
+    pub fn files(&self) -> TextureFiles<'_> {
         TextureFiles {
-            height: textures.height.as_deref(),
-            depth_map: textures.depth_map,
-            normal: textures.normal.as_deref(),
-            albedo: textures.albedo.as_deref(),
+            height: self.height.as_deref(),
+            depth_map: self.depth_map,
+            normal: self.normal.as_deref(),
+            albedo: self.albedo.as_deref(),
+        }
+    }
+}
+
+impl MaterialArgs {
+    /// The material these options describe (no textures, no debug view); `depth_map` says
+    /// whether the height map is a depth map.
+    pub fn settings(&self, depth_map: bool) -> ParallaxOcclusionMaterial {
+        ParallaxOcclusionMaterial {
+            height_convention: if depth_map {
+                HeightConvention::Depth
+            } else {
+                HeightConvention::Height
+            },
+            height_scale: self.height_scale,
+            min_samples: self.min_samples,
+            max_samples: self.max_samples,
+            lod_threshold: self.lod_threshold,
+            shadows: self.shadows.into(),
+            shadow_softening: self.shadow_softening,
+            method: self.method.into(),
+            depth_offset: self.depth_offset,
+            ..ParallaxOcclusionMaterial::default()
+        }
+    }
+}
+
+impl ViewArgs {
+    /// The camera and light these options describe.
+    pub fn preview_view(&self) -> PreviewView {
+        PreviewView {
+            view_angle: self.view_angle,
+            view_azimuth: self.view_azimuth,
+            light_angle: self.light_angle,
+            light_azimuth: self.light_azimuth,
+            projection: self.projection.into(),
+            distance: self.distance,
+            tiling: self.tiling,
         }
     }
 }

@@ -146,29 +146,29 @@ fn mean_colour(
     sum.map(|s| s / count)
 }
 
-#[test]
-fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
+/// Runs the sandbox for 5 frames under a fresh Xvfb with `extra` flags and returns its
+/// screenshot, kept under target/`folder`/ (overwritten by each run, so the last one is there
+/// to look at).
+fn window_screenshot(folder: &str, extra: &[&str]) -> image::RgbaImage {
     let _serial = ONE_XVFB_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let xvfb = start_xvfb();
-    // Under target/, overwritten by each run, so the last screenshot is there to look at.
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_xvfb");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(folder);
     std::fs::create_dir_all(&dir).unwrap();
     let screenshot = dir.join("window.png");
     let state = dir.join("state.ron");
     // A stale screenshot or state from an earlier run must not count.
     let _ = std::fs::remove_file(&screenshot);
     let _ = std::fs::remove_file(&state);
-    let stderr = run_sandbox(
-        xvfb.display,
-        &[
-            "--exit-after-frames".as_ref(),
-            "5".as_ref(),
-            "--screenshot".as_ref(),
-            screenshot.as_os_str(),
-            "--state".as_ref(),
-            state.as_os_str(),
-        ],
-    );
+    let mut args: Vec<&std::ffi::OsStr> = vec![
+        "--exit-after-frames".as_ref(),
+        "5".as_ref(),
+        "--screenshot".as_ref(),
+        screenshot.as_os_str(),
+        "--state".as_ref(),
+        state.as_os_str(),
+    ];
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
+    let stderr = run_sandbox(xvfb.display, &args);
     let image = image::open(&screenshot)
         .unwrap_or_else(|error| {
             panic!(
@@ -177,6 +177,13 @@ fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
             )
         })
         .to_rgba8();
+    let _ = std::fs::remove_file(&state);
+    image
+}
+
+#[test]
+fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
+    let image = window_screenshot("window_xvfb", &[]);
     assert_eq!(
         image.dimensions(),
         WINDOW_SIZE,
@@ -207,35 +214,11 @@ fn the_window_shows_the_scene_and_the_panel_in_its_screenshot() {
         difference > 15.0,
         "the panel region ({panel_mean:?}) looks like the viewport ({scene_mean:?})"
     );
-    let _ = std::fs::remove_file(&state);
 }
 
 #[test]
 fn the_split_view_shows_a_wipe_between_two_images() {
-    let _serial = ONE_XVFB_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let xvfb = start_xvfb();
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_xvfb_split");
-    std::fs::create_dir_all(&dir).unwrap();
-    let screenshot = dir.join("split.png");
-    let state = dir.join("state.ron");
-    let _ = std::fs::remove_file(&screenshot);
-    let _ = std::fs::remove_file(&state);
-    let stderr = run_sandbox(
-        xvfb.display,
-        &[
-            "--exit-after-frames".as_ref(),
-            "5".as_ref(),
-            "--screenshot".as_ref(),
-            screenshot.as_os_str(),
-            "--state".as_ref(),
-            state.as_os_str(),
-            "--split-method".as_ref(),
-            "normal".as_ref(),
-        ],
-    );
-    let image = image::open(&screenshot)
-        .unwrap_or_else(|error| panic!("no screenshot ({error}); stderr:\n{stderr}"))
-        .to_rgba8();
+    let image = window_screenshot("window_xvfb_split", &["--split-method", "normal"]);
     let (width, height) = image.dimensions();
     // The wipe is a bright vertical line through the viewport's middle (the panel is on the
     // left, so the middle of the viewport is right of the window's middle).
@@ -252,5 +235,4 @@ fn the_split_view_shows_a_wipe_between_two_images() {
         !wipe_columns.is_empty() && wipe_columns.len() <= 4,
         "expected one wipe line, found bright columns {wipe_columns:?}"
     );
-    let _ = std::fs::remove_file(&state);
 }

@@ -21,7 +21,7 @@ use pom::ParallaxOcclusionMaterial;
 use pom::preview::PreviewView;
 
 use crate::cli_types::{MethodArg, ShadowsArg, parse_size};
-use crate::preview_textures::{PreviewTextures, TextureFiles};
+use crate::preview_textures::PreviewTextures;
 use crate::render_command::{MaterialArgs, TextureArgs, ViewArgs};
 use report::{AdapterReport, BenchReport, CaseResult, Ratio};
 use sample_count::{ProbeResult, SampleRate};
@@ -84,41 +84,6 @@ pub struct BenchArgs {
     pub view: ViewArgs,
 }
 
-impl BenchArgs {
-    fn base_material(&self) -> ParallaxOcclusionMaterial {
-        let m = &self.material;
-        ParallaxOcclusionMaterial {
-            height_scale: m.height_scale,
-            min_samples: m.min_samples,
-            max_samples: m.max_samples,
-            lod_threshold: m.lod_threshold,
-            shadows: m.shadows.into(),
-            shadow_softening: m.shadow_softening,
-            method: m.method.into(),
-            depth_offset: m.depth_offset,
-            height_convention: if self.textures.depth_map {
-                pom::HeightConvention::Depth
-            } else {
-                pom::HeightConvention::Height
-            },
-            ..ParallaxOcclusionMaterial::default()
-        }
-    }
-
-    fn view(&self) -> PreviewView {
-        let v = &self.view;
-        PreviewView {
-            view_angle: v.view_angle,
-            view_azimuth: v.view_azimuth,
-            light_angle: v.light_angle,
-            light_azimuth: v.light_azimuth,
-            projection: v.projection.into(),
-            distance: v.distance,
-            tiling: v.tiling,
-        }
-    }
-}
-
 fn name<T: std::fmt::Debug>(value: T) -> String {
     format!("{value:?}").to_lowercase()
 }
@@ -179,16 +144,10 @@ impl Runner<'_> {
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> Result<()> {
-    let base = args.base_material();
+    let base = args.material.settings(args.textures.depth_map);
     base.validate().context("invalid material")?;
-    let files = TextureFiles {
-        height: args.textures.height.as_deref(),
-        depth_map: args.textures.depth_map,
-        normal: args.textures.normal.as_deref(),
-        albedo: args.textures.albedo.as_deref(),
-    };
-    let textures = PreviewTextures::load(&files, base.height_scale)?;
-    let view = args.view();
+    let textures = PreviewTextures::load(&args.textures.files(), base.height_scale)?;
+    let view = args.view.preview_view();
     let sizes: Vec<(u32, u32)> = match (args.sizes.is_empty(), args.quick) {
         (false, _) => args.sizes.clone(),
         (true, true) => QUICK_SIZES.to_vec(),

@@ -217,7 +217,29 @@ fn the_timing_panel_shows_the_frame_times_and_gpu_times_as_not_available() {
     harness.get_by_label("Timing").click();
     harness.run();
     harness.get_by_label("CPU frame: 20.0 ms mean, 20.0 ms max over 10 frames");
-    harness.get_by_label("GPU time per pass: n/a");
+    harness.get_by_label("GPU time per pass: n/a (no timestamp queries on this adapter)");
+}
+
+#[test]
+fn the_timing_panel_lists_the_plugins_gpu_pass_times() {
+    let mut harness = harness();
+    let passes = [
+        ("main pass".to_owned(), 2.5),
+        ("sobel pass".to_owned(), 0.25),
+    ];
+    harness
+        .state_mut()
+        .app
+        .insert_resource(pom::GpuTimings::Supported {
+            passes: passes.into_iter().collect(),
+            frame: 42,
+            rejected: 0,
+        });
+    harness.get_by_label("Timing").click();
+    harness.run();
+    harness.get_by_label("GPU time per pass (frame 42):");
+    harness.get_by_label("  main pass: 2.500 ms");
+    harness.get_by_label("  sobel pass: 0.250 ms");
 }
 
 #[test]
