@@ -4,7 +4,12 @@ use std::path::Path;
 
 use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
 
-use crate::color::{linear_to_srgb, srgb_to_linear};
+mod decode;
+mod mips;
+
+pub use decode::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
+use decode::{decode_bytes, decode_file};
+use mips::Reduce;
 
 /// What a texture holds: decides its GPU format and how its mip levels are filtered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -125,15 +130,6 @@ impl Channel {
         self as usize
     }
 }
-
-/// Longest side, in pixels, of an image file the loader decodes: twice the largest texture
-/// limit of today's GPUs, so any texture a device can hold loads (and larger ones are halved
-/// to fit on upload), while a file declaring an absurd size is refused before it is allocated.
-pub const MAX_IMAGE_SIDE: u32 = 32_768;
-
-/// Most pixels of an image file the loader decodes (a 16384 × 8192 image): the mip chain is
-/// built in floats, so this bounds the memory one file can claim.
-pub const MAX_IMAGE_PIXELS: u64 = 1 << 27;
 
 /// What went wrong building or loading an [`Image`].
 #[derive(Debug, thiserror::Error)]
@@ -359,14 +355,15 @@ impl Image {
     /// the last row or column of an odd size) texels it covers, in linear light for colour,
     /// renormalised for normals. Levels are computed from floats, so rounding does not pile up.
     pub fn mip_chain(&self) -> Vec<Pixels> {
-        self.chain(Reduce::Average)
+        mips::chain(&self.pixels, self.kind, Reduce::Average)
     }
 
     /// For height maps: the chain whose texels hold the *maximum* of the texels they cover, so
     /// a ray that passes above a coarse texel passes above everything under it. `None` for other
     /// kinds.
     pub fn max_mip_chain(&self) -> Option<Vec<Pixels>> {
-        (self.kind == TextureKind::Height).then(|| self.chain(Reduce::Max))
+        (self.kind == TextureKind::Height)
+            .then(|| mips::chain(&self.pixels, self.kind, Reduce::Max))
     }
 
     /// This image, or its first mip level whose sides fit `limit` texels.
@@ -390,212 +387,6 @@ impl Image {
             gpu_written: self.gpu_written,
         }
     }
-
-    fn chain(&self, reduce: Reduce) -> Vec<Pixels> {
-        let channels = self.pixels.channels();
-        let (mut width, mut height) = self.size();
-        let mut level = decode(self.kind, channels, &self.pixels.to_unit_floats());
-        let mut levels = vec![self.pixels.clone()];
-        while width > 1 || height > 1 {
-            let (next_width, next_height, next) =
-                reduce_level(width, height, channels, &level, reduce);
-            let mut next = next;
-            if self.kind == TextureKind::Normal && channels == 4 {
-                renormalize(&mut next);
-            }
-            levels.push(Pixels::from_unit_floats(
-                &self.pixels,
-                next_width,
-                next_height,
-                &encode(self.kind, channels, &next),
-            ));
-            (width, height, level) = (next_width, next_height, next);
-        }
-        levels
-    }
-}
-
-fn load_error(name: &str, error: impl std::fmt::Display) -> ImageError {
-    ImageError::Load {
-        path: name.into(),
-        reason: error.to_string(),
-    }
-}
-
-fn decode_file(path: &Path) -> Result<DynamicImage, ImageError> {
-    let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|error| load_error(&name, error))?;
-    // As `ImageReader::open` does: the extension names the format when the content cannot.
-    decode_bytes(&bytes, &name, image::ImageFormat::from_path(path).ok())
-}
-
-/// Reads the header first and refuses sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`],
-/// then decodes under the same limits (so a header that lies is caught by the decoder too).
-fn decode_bytes(
-    bytes: &[u8],
-    name: &str,
-    format_hint: Option<image::ImageFormat>,
-) -> Result<DynamicImage, ImageError> {
-    check_png_palette(bytes).map_err(|reason| load_error(name, reason))?;
-    let guessed = || {
-        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
-        if let Some(format) = format_hint {
-            reader.set_format(format);
-        }
-        reader
-            .with_guessed_format()
-            .map_err(|error| load_error(name, error))
-    };
-    let (width, height) = guessed()?
-        .into_dimensions()
-        .map_err(|error| load_error(name, error))?;
-    if width > MAX_IMAGE_SIDE
-        || height > MAX_IMAGE_SIDE
-        || u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS
-    {
-        return Err(ImageError::TooLarge {
-            name: name.to_owned(),
-            width,
-            height,
-            max_side: MAX_IMAGE_SIDE,
-            max_pixels: MAX_IMAGE_PIXELS,
-        });
-    }
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_IMAGE_SIDE);
-    limits.max_image_height = Some(MAX_IMAGE_SIDE);
-    // Four 32-bit float channels per pixel: the largest decoded form of an allowed image.
-    limits.max_alloc = Some(MAX_IMAGE_PIXELS * 16);
-    let mut reader = guessed()?;
-    reader.limits(limits);
-    // zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
-    // builds): a broken file is an error, not a crash.
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| reader.decode()))
-        .unwrap_or_else(|_| {
-            Err(image::ImageError::Decoding(
-                image::error::DecodingError::from_format_hint(
-                    image::error::ImageFormatHint::Unknown,
-                ),
-            ))
-        })
-        .map_err(|error| load_error(name, error))
-}
-
-/// A PNG palette (PLTE) must hold whole RGB entries: png 0.18 panics on a partial one (found
-/// by fuzzing).
-fn check_png_palette(bytes: &[u8]) -> Result<(), String> {
-    let Some(mut chunks) = bytes.strip_prefix(b"\x89PNG\r\n\x1a\n") else {
-        return Ok(());
-    };
-    // Each chunk: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
-    while let [l0, l1, l2, l3, t0, t1, t2, t3, rest @ ..] = chunks {
-        let length = u32::from_be_bytes([*l0, *l1, *l2, *l3]) as usize;
-        if [*t0, *t1, *t2, *t3] == *b"PLTE" && !length.is_multiple_of(3) {
-            return Err(format!(
-                "the PNG palette (PLTE) has {length} bytes, not a whole number of RGB entries"
-            ));
-        }
-        let Some(next) = rest.get(length.saturating_add(4)..) else {
-            break;
-        };
-        chunks = next;
-    }
-    Ok(())
-}
-
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Reduce {
-    Average,
-    Max,
-}
-
-/// Stored 0..=1 values to the space mips are filtered in: linear light for colour, −1..=1 vectors
-/// for normals (alpha stays as is).
-fn decode(kind: TextureKind, channels: usize, values: &[f32]) -> Vec<f32> {
-    values
-        .iter()
-        .enumerate()
-        .map(|(i, v)| match (kind, i % channels) {
-            (TextureKind::Color, 0..=2) => srgb_to_linear(*v),
-            (TextureKind::Normal, 0..=2) if channels == 4 => v * 2.0 - 1.0,
-            _ => *v,
-        })
-        .collect()
-}
-
-fn encode(kind: TextureKind, channels: usize, values: &[f32]) -> Vec<f32> {
-    values
-        .iter()
-        .enumerate()
-        .map(|(i, v)| match (kind, i % channels) {
-            (TextureKind::Color, 0..=2) => linear_to_srgb(*v),
-            (TextureKind::Normal, 0..=2) if channels == 4 => v * 0.5 + 0.5,
-            _ => *v,
-        })
-        .collect()
-}
-
-fn renormalize(rgba: &mut [f32]) {
-    for texel in rgba.chunks_exact_mut(4) {
-        let length = (texel[0] * texel[0] + texel[1] * texel[1] + texel[2] * texel[2]).sqrt();
-        if length > 1e-6 {
-            for component in &mut texel[..3] {
-                *component /= length;
-            }
-        } else {
-            texel[..3].copy_from_slice(&[0.0, 0.0, 1.0]);
-        }
-    }
-}
-
-fn reduce_level(
-    width: u32,
-    height: u32,
-    channels: usize,
-    values: &[f32],
-    reduce: Reduce,
-) -> (u32, u32, Vec<f32>) {
-    let (next_width, next_height) = ((width / 2).max(1), (height / 2).max(1));
-    let mut next = Vec::with_capacity(next_width as usize * next_height as usize * channels);
-    for y in 0..next_height {
-        // The source footprint: 2×2, or 3 wide/high at the last column/row of an odd-sized
-        // level so no source texel is dropped.
-        let y_end = if y + 1 == next_height {
-            height
-        } else {
-            2 * y + 2
-        };
-        for x in 0..next_width {
-            let x_end = if x + 1 == next_width {
-                width
-            } else {
-                2 * x + 2
-            };
-            for channel in 0..channels {
-                let mut accumulated = match reduce {
-                    Reduce::Average => 0.0,
-                    Reduce::Max => f32::MIN,
-                };
-                let mut count = 0.0;
-                for sy in (2 * y).min(height - 1)..y_end {
-                    for sx in (2 * x).min(width - 1)..x_end {
-                        let value = values
-                            [(sy as usize * width as usize + sx as usize) * channels + channel];
-                        accumulated = match reduce {
-                            Reduce::Average => accumulated + value,
-                            Reduce::Max => accumulated.max(value),
-                        };
-                        count += 1.0;
-                    }
-                }
-                next.push(match reduce {
-                    Reduce::Average => accumulated / count,
-                    Reduce::Max => accumulated,
-                });
-            }
-        }
-    }
-    (next_width, next_height, next)
 }
 
 #[cfg(test)]
