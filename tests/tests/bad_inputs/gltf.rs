@@ -1,0 +1,299 @@
+//! glTF files: missing buffers, bad indices and accessors, missing attributes, bad modes and extras.
+
+use super::*;
+
+fn gltf_error(file: &str) -> GltfError {
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    let error = load_gltf(&mut app, corpus(file)).unwrap_err();
+    let name = Path::new(file).file_name().unwrap().to_str().unwrap();
+    assert!(error.to_string().contains(name), "{error}");
+    assert_eq!(app.world.len(), 0, "nothing half-loaded is left behind");
+    error
+}
+
+fn assert_mesh_error(file: &str, reason: &str) {
+    match gltf_error(file) {
+        GltfError::Mesh {
+            mesh,
+            primitive: 0,
+            reason: said,
+            ..
+        } => {
+            assert_eq!(mesh, "\"quad\" (#0)");
+            assert!(said.contains(reason), "{said}");
+        }
+        other => panic!("{file}: expected GltfError::Mesh, got {other:?}"),
+    }
+}
+
+fn assert_open_error(file: &str, reason: &str) {
+    match gltf_error(file) {
+        GltfError::Open { reason: said, .. } => assert!(said.contains(reason), "{said}"),
+        other => panic!("{file}: expected GltfError::Open, got {other:?}"),
+    }
+}
+
+fn assert_material_error(file: &str, reason: &str) {
+    match gltf_error(file) {
+        GltfError::Material {
+            material,
+            reason: said,
+            ..
+        } => {
+            assert_eq!(material, "\"surface\" (#0)");
+            assert!(said.contains(reason), "{said}");
+        }
+        other => panic!("{file}: expected GltfError::Material, got {other:?}"),
+    }
+}
+
+/// Loads `file` next to the preview plane and renders; returns the load's warnings.
+fn gltf_renders(file: &str) -> Vec<String> {
+    let mut app = material_app(|_| ParallaxOcclusionMaterial::default());
+    let scene = load_gltf(&mut app, corpus(file)).unwrap();
+    assert!(!scene.entities.is_empty());
+    renders_cleanly(&mut app);
+    scene.warnings
+}
+
+fn only_mesh(app: &App) -> pom::Mesh {
+    let meshes = app.resources.get::<Assets<pom::Mesh>>().unwrap();
+    let mut handles = app.world.query::<&pom::Handle<pom::Mesh>>();
+    let handles: Vec<_> = handles.iter().cloned().collect();
+    // The preview plane is the first mesh; the file's is the last.
+    meshes.get(handles.last().unwrap().id()).unwrap().clone()
+}
+
+#[test]
+fn gltf_missing_buffer_file() {
+    match gltf_error("gltf/missing_buffer.gltf") {
+        GltfError::Buffer {
+            index: 0, reason, ..
+        } => {
+            assert!(reason.contains("absent.bin"), "{reason}")
+        }
+        other => panic!("expected GltfError::Buffer, got {other:?}"),
+    }
+}
+
+#[test]
+fn gltf_buffer_shorter_than_declared() {
+    match gltf_error("gltf/short_buffer.gltf") {
+        GltfError::Buffer {
+            index: 0, reason, ..
+        } => {
+            assert!(reason.contains("bytes but declares"), "{reason}")
+        }
+        other => panic!("expected GltfError::Buffer, got {other:?}"),
+    }
+}
+
+#[test]
+fn gltf_index_out_of_range() {
+    assert_mesh_error(
+        "gltf/index_out_of_range.gltf",
+        "index 40 at position 5 is out of range for 4 vertices",
+    );
+}
+
+#[test]
+fn gltf_accessor_past_its_buffer() {
+    assert_open_error(
+        "gltf/accessor_past_buffer.gltf",
+        "accessor 0: 400 elements run past the 48 bytes of its buffer view",
+    );
+}
+
+#[test]
+fn gltf_nan_positions() {
+    assert_mesh_error("gltf/nan_positions.gltf", "position 1 is not finite");
+}
+
+#[test]
+fn gltf_infinite_positions() {
+    assert_mesh_error("gltf/infinite_positions.gltf", "position 1 is not finite");
+}
+
+#[test]
+fn gltf_without_positions() {
+    assert_open_error(
+        "gltf/no_positions.gltf",
+        "attributes[\"POSITION\"]: Missing data",
+    );
+}
+
+#[test]
+fn gltf_without_normals_gets_flat_normals() {
+    assert!(gltf_renders("gltf/no_normals.gltf").is_empty());
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    load_gltf(&mut app, corpus("gltf/no_normals.gltf")).unwrap();
+    let mesh = only_mesh(&app);
+    assert!(
+        mesh.normals.iter().all(|n| n[1] > 0.999),
+        "{:?}",
+        mesh.normals
+    );
+}
+
+#[test]
+fn gltf_without_uvs_gets_zero_uvs() {
+    assert!(gltf_renders("gltf/no_uvs.gltf").is_empty());
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    load_gltf(&mut app, corpus("gltf/no_uvs.gltf")).unwrap();
+    assert!(only_mesh(&app).uvs.iter().all(|uv| *uv == [0.0, 0.0]));
+}
+
+#[test]
+fn gltf_without_tangents_gets_generated_ones() {
+    assert!(gltf_renders("gltf/no_tangents.gltf").is_empty());
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    load_gltf(&mut app, corpus("gltf/no_tangents.gltf")).unwrap();
+    let mesh = only_mesh(&app);
+    assert_eq!(mesh.tangents.len(), mesh.positions.len());
+    assert!(mesh.tangents.iter().flatten().all(|c| c.is_finite()));
+}
+
+#[test]
+fn gltf_degenerate_triangles() {
+    assert!(gltf_renders("gltf/degenerate_triangles.gltf").is_empty());
+}
+
+#[test]
+fn gltf_all_vertices_at_one_point() {
+    assert!(gltf_renders("gltf/all_vertices_at_one_point.gltf").is_empty());
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    load_gltf(&mut app, corpus("gltf/all_vertices_at_one_point.gltf")).unwrap();
+    let mesh = only_mesh(&app);
+    assert!(mesh.normals.iter().flatten().all(|c| c.is_finite()));
+    assert!(mesh.tangents.iter().flatten().all(|c| c.is_finite()));
+}
+
+#[test]
+fn gltf_points_mode_is_skipped_with_a_warning() {
+    let warnings = gltf_renders("gltf/points_mode.gltf");
+    assert_eq!(
+        warnings,
+        ["mesh \"quad\" (#0), primitive 0: mode Points is not supported; skipped"]
+    );
+}
+
+#[test]
+fn gltf_lines_mode_is_skipped_with_a_warning() {
+    let warnings = gltf_renders("gltf/lines_mode.gltf");
+    assert_eq!(
+        warnings,
+        ["mesh \"quad\" (#0), primitive 0: mode Lines is not supported; skipped"]
+    );
+}
+
+#[test]
+fn gltf_invalid_primitive_mode() {
+    assert_open_error(
+        "gltf/invalid_mode.gltf",
+        "meshes[0].primitives[0].mode: Invalid value",
+    );
+}
+
+#[test]
+fn gltf_extras_unknown_key() {
+    assert_material_error(
+        "gltf/extras_unknown_key.gltf",
+        "extras.pom: unknown field `hieght_scale`",
+    );
+}
+
+#[test]
+fn gltf_extras_wrong_type() {
+    assert_material_error(
+        "gltf/extras_wrong_type.gltf",
+        "extras.pom: invalid type: string \"many\", expected u32",
+    );
+}
+
+#[test]
+fn gltf_extras_unknown_method() {
+    assert_material_error(
+        "gltf/extras_unknown_method.gltf",
+        "extras.pom.method is \"magic\"; expected one of",
+    );
+}
+
+#[test]
+fn gltf_extras_height_texture_out_of_range() {
+    assert_material_error(
+        "gltf/extras_missing_texture.gltf",
+        "extras.pom.height_texture is 7 but the file has 0 textures",
+    );
+}
+
+#[test]
+fn gltf_extras_without_a_height() {
+    assert_material_error(
+        "gltf/extras_no_height.gltf",
+        "extras.pom needs height_texture (or height_in_normal_alpha: true)",
+    );
+}
+
+#[test]
+fn gltf_extras_negative_height_scale() {
+    assert_material_error("gltf/extras_negative_height.gltf", "height_scale");
+}
+
+#[test]
+fn gltf_extras_min_samples_over_max() {
+    assert_material_error(
+        "gltf/extras_min_over_max.gltf",
+        "min_samples (9) is greater than max_samples (3)",
+    );
+}
+
+#[test]
+fn gltf_missing_image_file() {
+    match gltf_error("gltf/missing_image.gltf") {
+        GltfError::Image { image, reason, .. } => {
+            assert_eq!(image, "#0");
+            assert!(reason.contains("No such file"), "{reason}");
+        }
+        other => panic!("expected GltfError::Image, got {other:?}"),
+    }
+}
+
+#[test]
+fn gltf_without_a_scene() {
+    let error = gltf_error("gltf/no_scene.gltf");
+    assert!(matches!(error, GltfError::NoScene { .. }), "{error:?}");
+}
+
+#[test]
+fn gltf_default_scene_out_of_range() {
+    assert_open_error("gltf/scene_out_of_range.gltf", "scene");
+}
+
+#[test]
+fn gltf_node_that_is_its_own_child() {
+    assert_open_error(
+        "gltf/node_is_its_own_child.gltf",
+        "node \"quad\" (#0) is reached twice",
+    );
+}
+
+#[test]
+fn gltf_zero_byte_file() {
+    assert_open_error("gltf/empty.gltf", "EOF while parsing");
+}
+
+#[test]
+fn gltf_broken_json() {
+    assert_open_error("gltf/not_json.gltf", "EOF while parsing");
+}
+
+#[test]
+fn gltf_truncated_glb() {
+    let error = gltf_error("gltf/truncated.glb");
+    assert!(matches!(error, GltfError::Open { .. }), "{error:?}");
+}
+
+#[test]
+fn gltf_missing_file() {
+    assert_open_error("gltf/no_such_scene.gltf", "No such file");
+}

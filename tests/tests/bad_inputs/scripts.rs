@@ -1,0 +1,133 @@
+//! Scene scripts: syntax errors, wrong types, unknown fields, missing files, failures midway.
+
+use super::*;
+
+fn script_error(file: &str) -> ScriptError {
+    let error = run_script_with(corpus(file), &RunOptions::default()).unwrap_err();
+    let name = Path::new(file).file_name().unwrap().to_str().unwrap();
+    assert!(error.to_string().contains(name), "{error}");
+    error
+}
+
+fn assert_script_parse(file: &str, at_line: usize, reason: &str) {
+    match script_error(file) {
+        ScriptError::Parse {
+            line, reason: said, ..
+        } => {
+            assert_eq!(line, at_line, "{said}");
+            assert!(said.contains(reason), "{said}");
+        }
+        other => panic!("{file}: expected ScriptError::Parse, got {other:?}"),
+    }
+}
+
+fn assert_script_reference(file: &str, at_line: usize, reason: &str) {
+    match script_error(file) {
+        ScriptError::Reference {
+            line, reason: said, ..
+        } => {
+            assert_eq!(line, at_line, "{said}");
+            assert!(said.contains(reason), "{said}");
+        }
+        other => panic!("{file}: expected ScriptError::Reference, got {other:?}"),
+    }
+}
+
+#[test]
+fn script_syntax_error() {
+    assert_script_parse("scripts/syntax_error.ron", 5, "Expected comma");
+}
+
+#[test]
+fn script_wrong_type() {
+    assert_script_parse("scripts/wrong_type.ron", 3, "Expected opening `(`");
+}
+
+#[test]
+fn script_unknown_field() {
+    assert_script_parse("scripts/unknown_field.ron", 4, "stepz");
+}
+
+#[test]
+fn script_missing_steps() {
+    match script_error("scripts/missing_steps.ron") {
+        ScriptError::Parse { reason, .. } => assert!(reason.contains("steps"), "{reason}"),
+        other => panic!("expected ScriptError::Parse, got {other:?}"),
+    }
+}
+
+#[test]
+fn script_missing_map_folder() {
+    assert_script_reference(
+        "scripts/missing_maps.ron",
+        5,
+        "no_such_folder/albedo.png does not exist",
+    );
+}
+
+#[test]
+fn script_missing_preset_file() {
+    assert_script_reference(
+        "scripts/missing_preset.ron",
+        5,
+        "preset file \"no_such_preset.ron\" does not exist",
+    );
+}
+
+#[test]
+fn script_missing_gltf_file() {
+    assert_script_reference("scripts/missing_gltf.ron", 5, "nowhere.glb");
+}
+
+#[test]
+fn script_with_an_invalid_preset() {
+    match script_error("scripts/bad_preset_inside.ron") {
+        ScriptError::Setup { reason, .. } => assert!(
+            reason.contains("min_over_max.ron")
+                && reason.contains("min_samples (60) is greater than max_samples (4)"),
+            "{reason}"
+        ),
+        other => panic!("expected ScriptError::Setup, got {other:?}"),
+    }
+}
+
+#[test]
+fn script_with_a_broken_map_file() {
+    match script_error("scripts/broken_map_file.ron") {
+        ScriptError::Setup { reason, .. } => assert!(
+            reason.contains("broken_maps/height.png") && reason.contains("unexpected end of file"),
+            "{reason}"
+        ),
+        other => panic!("expected ScriptError::Setup, got {other:?}"),
+    }
+}
+
+#[test]
+fn script_that_fails_midway_still_reports_the_steps_it_ran() {
+    match script_error("scripts/fails_midway.ron") {
+        ScriptError::Step {
+            step,
+            reason,
+            report,
+            ..
+        } => {
+            assert_eq!(step, 4);
+            assert!(reason.contains("has no parallax material"), "{reason}");
+            let numbers: Vec<usize> = report.steps.iter().map(|s| s.number).collect();
+            assert_eq!(numbers, [1, 2, 3], "{report}");
+            assert!(report.passed(), "{report}");
+            let text = report.to_string();
+            assert!(
+                text.contains("fails_midway.ron step 3 ExpectStat"),
+                "{text}"
+            );
+        }
+        other => panic!("expected ScriptError::Step, got {other:?}"),
+    }
+}
+
+#[test]
+fn script_missing_file() {
+    let error = script_error("scripts/no_such_script.ron");
+    assert!(matches!(error, ScriptError::Io { .. }), "{error:?}");
+}
