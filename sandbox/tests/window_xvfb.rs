@@ -236,3 +236,26 @@ fn the_split_view_shows_a_wipe_between_two_images() {
         "expected one wipe line, found bright columns {wipe_columns:?}"
     );
 }
+
+#[test]
+fn without_a_display_it_says_so_once_and_points_at_headless_rendering() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_no_display");
+    std::fs::create_dir_all(&dir).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_sandbox"))
+        .args(["--exit-after-frames", "1", "--state"])
+        .arg(dir.join("state.ron"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(
+        stderr.matches("cannot open a window").count(),
+        1,
+        "{stderr}"
+    );
+    assert!(stderr.contains("sandbox render"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
