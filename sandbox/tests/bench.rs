@@ -30,8 +30,9 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     );
     assert_eq!(json["quick"], true);
     let cases = json["cases"].as_array().unwrap();
-    // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, 2 far-field.
-    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 2));
+    // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, POM for the
+    // texel rate, 2 far-field.
+    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 2));
     for case in cases {
         let spread = &case["spread"];
         for field in ["median_ms", "min_ms", "p10_ms", "p90_ms", "max_ms"] {
@@ -132,4 +133,38 @@ fn too_few_frames_are_rejected() {
 fn a_bad_size_is_rejected() {
     let output = sandbox(&["bench", "--size", "wide"]);
     assert_one_line_error(&output, &["--size", "wide"]);
+}
+
+#[test]
+fn only_makes_just_the_measurements_asked_for() {
+    let dir = TempDir::new("bench-only");
+    let out = dir.join("results");
+    let output = sandbox(&[
+        "bench",
+        "--quick",
+        "--only",
+        "far-field",
+        "--only",
+        "cpu-side",
+        "--entities",
+        "20",
+        "--out",
+        path_arg(&out),
+    ]);
+    assert_success(&output);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
+    let cases = json["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 2 * 2, "two far-field cases per size");
+    assert!(cases.iter().all(|c| c["group"] == "far_field"));
+    assert!(json["sample_rates"].as_array().unwrap().is_empty());
+    assert!(json["versus_mesh"].is_null());
+    assert_eq!(json["cpu_side"]["entities"], 20);
+    assert!(!out.join("versus_pom.png").exists());
+}
+
+#[test]
+fn an_unknown_measurement_is_rejected() {
+    let output = sandbox(&["bench", "--only", "everything"]);
+    assert_one_line_error(&output, &["--only", "everything"]);
 }

@@ -15,7 +15,7 @@ mod versus_mesh;
 use std::path::PathBuf;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
 use pom::ParallaxOcclusionMaterial;
 use pom::preview::PreviewView;
@@ -49,6 +49,25 @@ const SHADOWS: [ShadowsArg; 3] = [ShadowsArg::Off, ShadowsArg::Hard, ShadowsArg:
 // Far field: so many repeats that every pixel covers 2^(lod_threshold + 3) texels or more.
 const FAR_FIELD_MIP_MARGIN: f32 = 3.0;
 
+/// One measurement of the bench, for `--only`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Measurement {
+    /// Every method × shadow mode.
+    Methods,
+    /// POM's `max_samples` sweep.
+    Samples,
+    /// POM's `lod_threshold` sweep.
+    LodSweep,
+    /// Normal mapping and POM where every pixel is past the LOD threshold.
+    FarField,
+    /// POM's height samples per second against the texel-rate limits.
+    TexelRate,
+    /// POM against displaced grids at equal FLIP error.
+    VersusMesh,
+    /// Extract, prepare and render times of many entities on the CPU.
+    CpuSide,
+}
+
 /// Options of `sandbox bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -73,6 +92,9 @@ pub struct BenchArgs {
     /// Entities in the CPU-side measurement.
     #[arg(long, value_name = "N", default_value_t = 10_000)]
     pub entities: usize,
+    /// Make only this measurement, repeatable [default: all of them].
+    #[arg(long = "only", value_enum, value_name = "MEASUREMENT")]
+    pub only: Vec<Measurement>,
     /// Behave as on an adapter without timestamp queries (tests the message and exit path).
     #[arg(long)]
     pub no_timestamps: bool,
@@ -93,7 +115,9 @@ struct Runner<'a> {
     frames: usize,
     textures: &'a PreviewTextures,
     base: ParallaxOcclusionMaterial,
+    view: PreviewView,
     cases: Vec<CaseResult>,
+    ratios: Vec<Ratio>,
 }
 
 impl Runner<'_> {
@@ -139,6 +163,113 @@ impl Runner<'_> {
             self.base.clone(),
             view,
         )
+    }
+
+    /// The base material with `method` and `shadows`.
+    fn with_modes(&self, method: MethodArg, shadows: ShadowsArg) -> ParallaxOcclusionMaterial {
+        ParallaxOcclusionMaterial {
+            method: method.into(),
+            shadows: shadows.into(),
+            ..self.base.clone()
+        }
+    }
+
+    /// Every method × shadow mode, and the cost of POM's shadows.
+    fn methods(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
+        let mut pom = [0.0; 3];
+        for method in METHODS {
+            for (index, shadows) in SHADOWS.into_iter().enumerate() {
+                let material = self.with_modes(method, shadows);
+                let ms = self.case(scene, "methods", size, self.view.tiling, material)?;
+                if method == MethodArg::Pom {
+                    pom[index] = ms;
+                }
+            }
+        }
+        for (shadows, on) in [("hard", pom[1]), ("soft", pom[2])] {
+            self.ratios.push(Ratio {
+                what: format!("POM {shadows} shadows / no shadows"),
+                width: size.0,
+                height: size.1,
+                ratio: on / pom[0],
+            });
+        }
+        Ok(())
+    }
+
+    /// POM with `max_samples` from 8 to 128.
+    fn sample_sweep(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
+        for max_samples in SAMPLE_SWEEP {
+            let material = ParallaxOcclusionMaterial {
+                method: MethodArg::Pom.into(),
+                min_samples: self.base.min_samples.min(max_samples),
+                max_samples,
+                ..self.base.clone()
+            };
+            self.case(scene, "samples", size, self.view.tiling, material)?;
+        }
+        Ok(())
+    }
+
+    /// POM with every LOD threshold of [`LOD_SWEEP`].
+    fn lod_sweep(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
+        for lod_threshold in LOD_SWEEP {
+            let material = ParallaxOcclusionMaterial {
+                method: MethodArg::Pom.into(),
+                lod_threshold,
+                ..self.base.clone()
+            };
+            self.case(scene, "lod_sweep", size, self.view.tiling, material)?;
+        }
+        Ok(())
+    }
+
+    /// POM's height samples per second (shadows off) against the fragment-path probe and the
+    /// chip's limit `chip` (G texels/s).
+    fn sample_rate(
+        &mut self,
+        scene: &mut BenchScene,
+        size: (u32, u32),
+        chip: Option<f64>,
+    ) -> Result<SampleRate> {
+        let pom = self.with_modes(MethodArg::Pom, ShadowsArg::Off);
+        let pom_ms = self.case(scene, "texel_rate", size, self.view.tiling, pom.clone())?;
+        let (warmup, frames) = (self.warmup, self.frames);
+        let mut probe_ms = |taps| -> Result<f64> {
+            let times = scene.time_texel_rate_probe(taps, warmup, frames)?;
+            let spread = stats::Spread::of(&times).context("no valid probe timings")?;
+            Ok(spread.median_ms)
+        };
+        let probe = ProbeResult {
+            taps: PROBE_TAPS,
+            median_ms: probe_ms(PROBE_TAPS)?,
+            one_tap_ms: probe_ms(1)?,
+        };
+        let count = sample_count::count_view_samples(size, self.textures, &pom, &self.view)?;
+        Ok(SampleRate::new(size, count, pom_ms, probe, chip))
+    }
+
+    /// Normal mapping and POM where every pixel is past the LOD threshold.
+    fn far_field(&mut self, size: (u32, u32)) -> Result<()> {
+        let texture_width = self.textures.height.size().0;
+        let far_tiling = far_field_tiling(size, texture_width, self.base.lod_threshold);
+        let far_view = PreviewView {
+            tiling: far_tiling,
+            ..self.view
+        };
+        let mut far = self.scene(size, &far_view)?;
+        let base_shadows = ShadowsArg::from(self.base.shadows);
+        let normal = self.with_modes(MethodArg::Normal, base_shadows);
+        let normal_ms = self.case(&mut far, "far_field", size, far_tiling, normal)?;
+        let pom = self.with_modes(MethodArg::Pom, base_shadows);
+        let pom_ms = self.case(&mut far, "far_field", size, far_tiling, pom)?;
+        self.ratios.push(Ratio {
+            what: "far field POM / normal mapping".to_owned(),
+            width: size.0,
+            height: size.1,
+            ratio: pom_ms / normal_ms,
+        });
+        Ok(())
     }
 }
 
@@ -205,119 +336,67 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         frames,
         textures: &textures,
         base: base.clone(),
+        view,
         cases: Vec::new(),
+        ratios: Vec::new(),
     };
+    let wanted =
+        |measurement: Measurement| args.only.is_empty() || args.only.contains(&measurement);
     let texel_rate = texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from));
-    let mut ratios = Vec::new();
     let mut sample_rates = Vec::new();
-    let tiling = view.tiling;
     for &size in &sizes {
         eprintln!("timing {}x{} ...", size.0, size.1);
         let mut scene = runner.scene(size, &view)?;
-        for method in METHODS {
-            for shadows in SHADOWS {
-                let material = ParallaxOcclusionMaterial {
-                    method: method.into(),
-                    shadows: shadows.into(),
-                    ..base.clone()
-                };
-                runner.case(&mut scene, "methods", size, tiling, material)?;
-            }
+        if wanted(Measurement::Methods) {
+            runner.methods(&mut scene, size)?;
         }
-        for max_samples in SAMPLE_SWEEP {
-            let material = ParallaxOcclusionMaterial {
-                method: MethodArg::Pom.into(),
-                min_samples: base.min_samples.min(max_samples),
-                max_samples,
-                ..base.clone()
-            };
-            runner.case(&mut scene, "samples", size, tiling, material)?;
+        if wanted(Measurement::Samples) {
+            runner.sample_sweep(&mut scene, size)?;
         }
-        for lod_threshold in LOD_SWEEP {
-            let material = ParallaxOcclusionMaterial {
-                method: MethodArg::Pom.into(),
-                lod_threshold,
-                ..base.clone()
-            };
-            runner.case(&mut scene, "lod_sweep", size, tiling, material)?;
+        if wanted(Measurement::LodSweep) {
+            runner.lod_sweep(&mut scene, size)?;
         }
-        let pom_off = median_of(&runner.cases, size, "pom", "off");
-        for shadows in ["hard", "soft"] {
-            if let (Some(off), Some(on)) = (pom_off, median_of(&runner.cases, size, "pom", shadows))
-            {
-                ratios.push(Ratio {
-                    what: format!("POM {shadows} shadows / no shadows"),
-                    width: size.0,
-                    height: size.1,
-                    ratio: on / off,
-                });
-            }
-        }
-        let mut probe_ms = |taps| -> Result<f64> {
-            let times = scene.time_texel_rate_probe(taps, runner.warmup, frames)?;
-            let spread = stats::Spread::of(&times).context("no valid probe timings")?;
-            Ok(spread.median_ms)
-        };
-        let probe = ProbeResult {
-            taps: PROBE_TAPS,
-            median_ms: probe_ms(PROBE_TAPS)?,
-            one_tap_ms: probe_ms(1)?,
-        };
-        drop(scene);
-
-        let pom = ParallaxOcclusionMaterial {
-            method: MethodArg::Pom.into(),
-            shadows: ShadowsArg::Off.into(),
-            ..base.clone()
-        };
-        if let Some(pom_ms) = pom_off {
-            let count = sample_count::count_view_samples(size, &textures, &pom, &view)?;
+        if wanted(Measurement::TexelRate) {
             let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);
-            sample_rates.push(SampleRate::new(size, count, pom_ms, probe, chip));
+            sample_rates.push(runner.sample_rate(&mut scene, size, chip)?);
         }
-
-        let far_tiling = far_field_tiling(size, textures.height.size().0, base.lod_threshold);
-        let far_view = PreviewView {
-            tiling: far_tiling,
-            ..view
-        };
-        let mut far = runner.scene(size, &far_view)?;
-        let normal = ParallaxOcclusionMaterial {
-            method: MethodArg::Normal.into(),
-            ..base.clone()
-        };
-        let normal_ms = runner.case(&mut far, "far_field", size, far_tiling, normal)?;
-        let pom = ParallaxOcclusionMaterial {
-            method: MethodArg::Pom.into(),
-            ..base.clone()
-        };
-        let pom_ms = runner.case(&mut far, "far_field", size, far_tiling, pom)?;
-        ratios.push(Ratio {
-            what: "far field POM / normal mapping".to_owned(),
-            width: size.0,
-            height: size.1,
-            ratio: pom_ms / normal_ms,
-        });
+        drop(scene);
+        if wanted(Measurement::FarField) {
+            runner.far_field(size)?;
+        }
     }
 
-    eprintln!(
-        "POM against displaced grids at {}x{} ...",
-        sizes[0].0, sizes[0].1
-    );
-    let versus_mesh = versus_mesh::compare(&versus_mesh::Setup {
-        size: sizes[0],
-        textures: &textures,
-        base: &ParallaxOcclusionMaterial {
-            method: MethodArg::Pom.into(),
-            ..base.clone()
-        },
-        view: &view,
-        quick: args.quick,
-        frames: (warmup, frames),
-    })?;
+    let versus_mesh = if wanted(Measurement::VersusMesh) {
+        eprintln!(
+            "POM against displaced grids at {}x{} ...",
+            sizes[0].0, sizes[0].1
+        );
+        Some(versus_mesh::compare(&versus_mesh::Setup {
+            size: sizes[0],
+            textures: &textures,
+            base: &ParallaxOcclusionMaterial {
+                method: MethodArg::Pom.into(),
+                ..base.clone()
+            },
+            view: &view,
+            quick: args.quick,
+            frames: (warmup, frames),
+        })?)
+    } else {
+        None
+    };
 
-    eprintln!("timing the CPU side with {} entities ...", args.entities);
-    let cpu_side = cpu_side::measure(args.entities, &textures, warmup.frames, frames)?;
+    let cpu_side = if wanted(Measurement::CpuSide) {
+        eprintln!("timing the CPU side with {} entities ...", args.entities);
+        Some(cpu_side::measure(
+            args.entities,
+            &textures,
+            warmup.frames,
+            frames,
+        )?)
+    } else {
+        None
+    };
     let report = BenchReport {
         texel_rate,
         adapter,
@@ -326,7 +405,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         warmup_frames: warmup.frames,
         timed_frames: frames,
         cases: runner.cases,
-        ratios,
+        ratios: runner.ratios,
         sample_rates,
         versus_mesh,
         cpu_side,
@@ -335,7 +414,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     report.write_files(&args.out)?;
-    for (file, image) in &report.versus_mesh.images {
+    let images = report.versus_mesh.iter().flat_map(|v| &v.images);
+    for (file, image) in images {
         let path = args.out.join(file);
         image
             .save(&path)
@@ -344,26 +424,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let chart_path = args.out.join("bench.png");
     chart::write_chart(&chart_path, &report.adapter.name, &report.cases)?;
     chart::check_written(&chart_path)?;
+    let versus = if report.versus_mesh.is_some() {
+        " and the versus_*.png images"
+    } else {
+        ""
+    };
     println!(
-        "wrote bench.json, bench.csv, bench.png and the versus_*.png images to {}",
+        "wrote bench.json, bench.csv, bench.png{versus} to {}",
         args.out.display()
     );
-    if report.cases.is_empty() {
-        bail!("no case was timed");
-    }
     Ok(())
-}
-
-fn median_of(cases: &[CaseResult], size: (u32, u32), method: &str, shadows: &str) -> Option<f64> {
-    cases
-        .iter()
-        .find(|c| {
-            c.group == "methods"
-                && (c.width, c.height) == size
-                && c.method == method
-                && c.shadows == shadows
-        })
-        .map(|c| c.spread.median_ms)
 }
 
 /// Repeats across the plane so that one pixel covers 2^(lod_threshold + margin) texels: every

@@ -103,10 +103,10 @@ pub struct BenchReport {
     pub ratios: Vec<Ratio>,
     /// POM's height samples per second at each size.
     pub sample_rates: Vec<SampleRate>,
-    /// POM on the plane against displaced grids at equal error.
-    pub versus_mesh: VersusMesh,
-    /// The CPU side.
-    pub cpu_side: CpuSide,
+    /// POM on the plane against displaced grids at equal error (unless left out by `--only`).
+    pub versus_mesh: Option<VersusMesh>,
+    /// The CPU side (unless left out by `--only`).
+    pub cpu_side: Option<CpuSide>,
 }
 
 /// CSV columns, in order.
@@ -233,65 +233,20 @@ impl BenchReport {
                 rate.fraction_of_fragment_path * 100.0
             );
         }
-        out.push_str(&self.versus_mesh_table());
-        let cpu = &self.cpu_side;
-        let _ = writeln!(
-            out,
-            "\nCPU, {} parallax entities, median ms per frame: extract {:.3}, prepare {:.3}, \
-             render (record + submit) {:.3}, total {:.3}",
-            cpu.entities,
-            cpu.extract.median_ms,
-            cpu.prepare.median_ms,
-            cpu.render.median_ms,
-            cpu.total.median_ms
-        );
-        out
-    }
-
-    fn versus_mesh_table(&self) -> String {
-        let v = &self.versus_mesh;
-        let mut out = format!(
-            "\nPOM vs displaced grid at {}x{}, FLIP against a {}-triangle grid, shadows off:\n\
-             {:<5} {:>10} {:>8} {:>10} {:>10} {:>10}\n",
-            v.width,
-            v.height,
-            v.reference_triangles,
-            "kind",
-            "triangles",
-            "samples",
-            "FLIP mean",
-            "FLIP p99",
-            "median ms"
-        );
-        for c in &v.candidates {
+        if let Some(versus_mesh) = &self.versus_mesh {
+            out.push_str(&versus_mesh.table());
+        }
+        if let Some(cpu) = &self.cpu_side {
             let _ = writeln!(
                 out,
-                "{:<5} {:>10} {:>8} {:>10.4} {:>10.4} {:>10.4}",
-                c.kind,
-                c.triangles,
-                format!("{}-{}", c.samples.0, c.samples.1),
-                c.flip_mean,
-                c.flip_p99,
-                c.spread.median_ms
+                "\nCPU, {} parallax entities, median ms per frame: extract {:.3}, prepare {:.3}, \
+             render (record + submit) {:.3}, total {:.3}",
+                cpu.entities,
+                cpu.extract.median_ms,
+                cpu.prepare.median_ms,
+                cpu.render.median_ms,
+                cpu.total.median_ms
             );
-        }
-        match &v.equal_error {
-            Some(e) => {
-                let _ = writeln!(
-                    out,
-                    "equal error: POM {}-{} (FLIP {:.4}, {:.4} ms) vs the cheapest grid no worse, \
-                     {} triangles (FLIP {:.4}, {:.4} ms): POM {:.2}x faster",
-                    e.pom.samples.0,
-                    e.pom.samples.1,
-                    e.pom.flip_mean,
-                    e.pom.spread.median_ms,
-                    e.mesh.triangles,
-                    e.mesh.flip_mean,
-                    e.mesh.spread.median_ms,
-                    e.pom_speedup
-                );
-            }
-            None => out.push_str("equal error: no grid candidate was as accurate as POM\n"),
         }
         out
     }

@@ -2,6 +2,8 @@
 //! height map, every candidate scored by FLIP error against a much finer grid and timed; the
 //! speed ratio is read at equal error.
 
+use std::fmt::Write as _;
+
 use anyhow::{Context, Result, bail};
 use image::RgbaImage;
 use pom::preview::{PLANE_SIZE, PreviewView};
@@ -76,6 +78,57 @@ pub struct VersusMesh {
     /// and the equal-error grid, named for their files.
     #[serde(skip)]
     pub images: Vec<(&'static str, RgbaImage)>,
+}
+
+impl VersusMesh {
+    /// The comparison as the lines the bench prints.
+    pub fn table(&self) -> String {
+        let v = self;
+        let mut out = format!(
+            "\nPOM vs displaced grid at {}x{}, FLIP against a {}-triangle grid, shadows off:\n\
+                 {:<5} {:>10} {:>8} {:>10} {:>10} {:>10}\n",
+            v.width,
+            v.height,
+            v.reference_triangles,
+            "kind",
+            "triangles",
+            "samples",
+            "FLIP mean",
+            "FLIP p99",
+            "median ms"
+        );
+        for c in &v.candidates {
+            let _ = writeln!(
+                out,
+                "{:<5} {:>10} {:>8} {:>10.4} {:>10.4} {:>10.4}",
+                c.kind,
+                c.triangles,
+                format!("{}-{}", c.samples.0, c.samples.1),
+                c.flip_mean,
+                c.flip_p99,
+                c.spread.median_ms
+            );
+        }
+        match &v.equal_error {
+            Some(e) => {
+                let _ = writeln!(
+                    out,
+                    "equal error: POM {}-{} (FLIP {:.4}, {:.4} ms) vs the cheapest grid no worse, \
+                         {} triangles (FLIP {:.4}, {:.4} ms): POM {:.2}x faster",
+                    e.pom.samples.0,
+                    e.pom.samples.1,
+                    e.pom.flip_mean,
+                    e.pom.spread.median_ms,
+                    e.mesh.triangles,
+                    e.mesh.flip_mean,
+                    e.mesh.spread.median_ms,
+                    e.pom_speedup
+                );
+            }
+            None => out.push_str("equal error: no grid candidate was as accurate as POM\n"),
+        }
+        out
+    }
 }
 
 /// What the comparison needs from the bench run.
