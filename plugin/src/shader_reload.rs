@@ -178,7 +178,7 @@ fn reload(
         } else {
             parallax = resources
                 .get::<PomRenderer>()
-                .map(|renderer| renderer.pass.build_pipelines(device, &module));
+                .map(|renderer| renderer.pass.build_pipelines(device, module.clone()));
         }
         if let Some(error) = pollster::block_on(validation.pop()) {
             return Err(ShaderReloadError::Device {

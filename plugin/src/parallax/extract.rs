@@ -6,6 +6,7 @@ use hecs::{Entity, World};
 
 use super::gpu::PomObject;
 use super::material::{HeightSource, ParallaxOcclusionMaterial};
+use super::pipelines::PomPipelineKey;
 use crate::render::TextureKey;
 use crate::{AssetId, Assets, GlobalTransform, Handle, Image, Mesh, Resources};
 
@@ -16,8 +17,8 @@ pub struct PomDraw {
     pub mesh: AssetId<Mesh>,
     /// Base colour, normal map, height texture (`None` binds the defaults).
     pub textures: TextureKey<3>,
-    /// Whether to write the displaced depth.
-    pub depth_offset: bool,
+    /// The pipeline it draws with (its modes and depth offset).
+    pub pipeline: PomPipelineKey,
     /// Transform and parameters.
     pub object: PomObject,
 }
@@ -92,11 +93,11 @@ pub fn extract_pom(world: &mut World, resources: &mut Resources) {
                 material.normal_map.as_ref().map(Handle::id),
                 height,
             ],
-            depth_offset: material.depth_offset,
+            pipeline: PomPipelineKey::of(&material),
             object: PomObject::new(&material, model, size),
         });
     }
-    draws.sort_by_key(|draw| (draw.depth_offset, draw.textures, draw.mesh));
+    draws.sort_by_key(|draw| (draw.pipeline, draw.textures, draw.mesh));
     warnings.0.retain(|entity, _| world.contains(*entity));
     resources.insert(warnings);
     resources.insert(ExtractedPom { draws });

@@ -1,4 +1,5 @@
-//! The material as the shader reads it: one `PomObject` per draw, laid out as in `pom.wgsl`.
+//! The material as the shader reads it: one `PomObject` per draw, laid out as in `pom.wgsl`
+//! (the modes that pick code paths are pipeline constants instead: see `pipelines.rs`).
 
 use bytemuck::{Pod, Zeroable};
 use glam::Mat4;
@@ -24,15 +25,13 @@ pub struct PomObject {
     pub lod: [f32; 4],
     /// x: specular strength, y: shininess, z: roughness, w: metallic.
     pub surface: [f32; 4],
-    /// x: method, y: shadow mode, z: lighting model, w: debug view.
-    pub modes: [u32; 4],
     /// x: height channel, y: 1 for the depth convention, z: relief binary steps.
     pub height_map: [u32; 4],
     /// xy: height texture size, z: model determinant sign, w: mip level count.
     pub texture: [f32; 4],
 }
 
-fn method_code(method: ParallaxMethod) -> (u32, u32) {
+pub(super) fn method_code(method: ParallaxMethod) -> (u32, u32) {
     match method {
         ParallaxMethod::NormalMapping => (0, 0),
         ParallaxMethod::ParallaxOffset => (1, 0),
@@ -42,7 +41,7 @@ fn method_code(method: ParallaxMethod) -> (u32, u32) {
     }
 }
 
-fn shadow_code(shadows: ShadowMode) -> u32 {
+pub(super) fn shadow_code(shadows: ShadowMode) -> u32 {
     match shadows {
         ShadowMode::Off => 0,
         ShadowMode::Hard => 1,
@@ -50,7 +49,7 @@ fn shadow_code(shadows: ShadowMode) -> u32 {
     }
 }
 
-fn lighting_code(lighting: LightingModel) -> u32 {
+pub(super) fn lighting_code(lighting: LightingModel) -> u32 {
     match lighting {
         LightingModel::Phong => 0,
         LightingModel::BlinnPhong => 1,
@@ -58,7 +57,7 @@ fn lighting_code(lighting: LightingModel) -> u32 {
     }
 }
 
-fn debug_code(view: DebugView) -> u32 {
+pub(super) fn debug_code(view: DebugView) -> u32 {
     match view {
         DebugView::None => 0,
         DebugView::Lod => 1,
@@ -78,7 +77,7 @@ impl PomObject {
         model: Mat4,
         height_texture_size: (u32, u32),
     ) -> Self {
-        let (method, binary_steps) = method_code(material.method);
+        let (_, binary_steps) = method_code(material.method);
         let determinant = model.determinant();
         let normal_matrix = if determinant.abs() > f32::MIN_POSITIVE {
             model.inverse().transpose()
@@ -116,12 +115,6 @@ impl PomObject {
                 material.shininess,
                 material.roughness,
                 material.metallic,
-            ],
-            modes: [
-                method,
-                shadow_code(material.shadows),
-                lighting_code(material.lighting),
-                debug_code(material.debug_view),
             ],
             height_map: [
                 channel,

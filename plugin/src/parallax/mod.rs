@@ -4,6 +4,7 @@ mod extract;
 mod gpu;
 mod material;
 mod pass;
+mod pipelines;
 mod preset;
 
 pub use extract::{ExtractedPom, MaterialWarnings, PomDraw, extract_pom};
@@ -13,6 +14,7 @@ pub use material::{
     ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, ShadowMode,
 };
 pub use pass::PomPass;
+pub use pipelines::{PomPipelineKey, PomPipelines};
 pub use preset::{PomPreset, PresetError, write_atomically};
 
 use crate::render::{MainPassDraws, RenderTarget, Renderer};

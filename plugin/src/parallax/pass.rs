@@ -2,18 +2,16 @@
 
 use super::extract::ExtractedPom;
 use super::gpu::PomObject;
+use super::pipelines::PomPipelines;
 use crate::render::{
     DefaultTexture, FrameUniformBuffer, GpuAssets, GpuContext, ObjectBuffer, TextureBindGroups,
-    mesh_pipeline, shaders,
+    shaders,
 };
 
-/// Pipelines (with and without depth offset), the per-draw buffer and the texture bind groups.
+/// The specialized pipelines, the per-draw buffer and the texture bind groups.
 #[derive(Debug)]
 pub struct PomPass {
-    pipeline: wgpu::RenderPipeline,
-    depth_offset_pipeline: wgpu::RenderPipeline,
-    pipeline_layout: wgpu::PipelineLayout,
-    color_format: wgpu::TextureFormat,
+    pipelines: PomPipelines,
     frame_layout: wgpu::BindGroupLayout,
     objects: ObjectBuffer<PomObject>,
     frame_bind_group: wgpu::BindGroup,
@@ -42,24 +40,8 @@ fn frame_bind_group(
     })
 }
 
-/// The pass's pipelines: without and with depth offset.
-fn parallax_pipelines(
-    device: &wgpu::Device,
-    layout: &wgpu::PipelineLayout,
-    shader: &wgpu::ShaderModule,
-    color_format: wgpu::TextureFormat,
-) -> [wgpu::RenderPipeline; 2] {
-    let pipeline = |label: &str, entry_point: &str| {
-        mesh_pipeline(device, label, layout, shader, entry_point, color_format)
-    };
-    [
-        pipeline("parallax pipeline", "fs_main"),
-        pipeline("parallax depth-offset pipeline", "fs_main_depth_offset"),
-    ]
-}
-
 impl PomPass {
-    /// Compiles `pom.wgsl` and creates both pipelines for targets of `color_format`.
+    /// Compiles `pom.wgsl` for targets of `color_format`; pipelines follow on first use.
     pub fn new(
         gpu: &GpuContext,
         frame: &FrameUniformBuffer,
@@ -88,15 +70,10 @@ impl PomPass {
             bind_group_layouts: &[Some(&frame_layout), Some(materials.layout())],
             immediate_size: 0,
         });
-        let [pipeline, depth_offset_pipeline] =
-            parallax_pipelines(device, &layout, &shader, color_format);
         let objects = ObjectBuffer::new(gpu, "parallax object buffer", 16);
         let frame_bind_group = frame_bind_group(gpu, &frame_layout, frame, objects.buffer());
         Self {
-            pipeline,
-            depth_offset_pipeline,
-            pipeline_layout: layout,
-            color_format,
+            pipelines: PomPipelines::new(shader, layout, color_format),
             frame_layout,
             objects,
             frame_bind_group,
@@ -104,25 +81,23 @@ impl PomPass {
         }
     }
 
-    /// Pipelines like the pass's own (without and with depth offset) from `shader` (a
-    /// recompiled `pom.wgsl`), for shader hot reload: check them in an error scope before
-    /// [`PomPass::set_pipelines`].
+    /// The pipelines in use rebuilt from `shader` (a recompiled `pom.wgsl`), for shader hot
+    /// reload: check them in an error scope before [`PomPass::set_pipelines`].
     pub fn build_pipelines(
         &self,
         device: &wgpu::Device,
-        shader: &wgpu::ShaderModule,
-    ) -> [wgpu::RenderPipeline; 2] {
-        parallax_pipelines(device, &self.pipeline_layout, shader, self.color_format)
+        shader: wgpu::ShaderModule,
+    ) -> PomPipelines {
+        self.pipelines.rebuilt(device, shader)
     }
 
-    /// Replaces both pipelines with those from [`PomPass::build_pipelines`].
-    pub fn set_pipelines(&mut self, [pipeline, depth_offset]: [wgpu::RenderPipeline; 2]) {
-        self.pipeline = pipeline;
-        self.depth_offset_pipeline = depth_offset;
+    /// Replaces the pipelines with those from [`PomPass::build_pipelines`].
+    pub fn set_pipelines(&mut self, pipelines: PomPipelines) {
+        self.pipelines = pipelines;
     }
 
-    /// Uploads the per-draw data that changed and prepares texture bind groups. Returns the
-    /// bytes written.
+    /// Uploads the per-draw data that changed, prepares texture bind groups and compiles the
+    /// pipelines of modes seen for the first time. Returns the bytes written.
     pub fn prepare(
         &mut self,
         gpu: &GpuContext,
@@ -141,6 +116,9 @@ impl PomPass {
             assets,
             extracted.draws.iter().map(|draw| draw.textures),
         );
+        for draw in &extracted.draws {
+            self.pipelines.ensure(&gpu.device, draw.pipeline);
+        }
         written
     }
 
@@ -152,20 +130,19 @@ impl PomPass {
         assets: &GpuAssets,
     ) {
         pass.set_bind_group(0, &self.frame_bind_group, &[]);
-        let mut depth_offset = None;
+        let mut bound = None;
         for (index, draw) in extracted.draws.iter().enumerate() {
-            let (Some(mesh), Some(material)) =
-                (assets.mesh(draw.mesh), self.materials.get(&draw.textures))
-            else {
+            let (Some(mesh), Some(material), Some(pipeline)) = (
+                assets.mesh(draw.mesh),
+                self.materials.get(&draw.textures),
+                self.pipelines.get(&draw.pipeline),
+            ) else {
                 continue;
             };
-            if depth_offset != Some(draw.depth_offset) {
-                pass.set_pipeline(if draw.depth_offset {
-                    &self.depth_offset_pipeline
-                } else {
-                    &self.pipeline
-                });
-                depth_offset = Some(draw.depth_offset);
+            // Draws come sorted by pipeline: switch only where the key changes.
+            if bound != Some(draw.pipeline) {
+                pass.set_pipeline(pipeline);
+                bound = Some(draw.pipeline);
             }
             pass.set_bind_group(1, material, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));

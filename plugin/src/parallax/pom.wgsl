@@ -10,6 +10,13 @@ const DEBUG_UV: u32 = 4u;
 const DEBUG_SHADOW: u32 = 5u;
 const DEBUG_NORMAL: u32 = 6u;
 
+// Pipeline-overridable constants: every pipeline is compiled for one combination (see
+// parallax/pipelines.rs), so the GPU compiler drops every other path and its registers.
+override METHOD: u32 = METHOD_OCCLUSION;
+override SHADOW_MODE: u32 = SHADOWS_SOFT;
+override LIGHTING_MODEL: u32 = LIGHTING_PHONG;
+override DEBUG_VIEW: u32 = DEBUG_NONE;
+
 struct PomObject {
     model: mat4x4<f32>,
     normal_matrix: mat4x4<f32>,
@@ -20,8 +27,6 @@ struct PomObject {
     lod: vec4<f32>,
     // x: specular strength, y: shininess, z: roughness, w: metallic.
     surface: vec4<f32>,
-    // x: method, y: shadow mode, z: lighting model, w: debug view.
-    modes: vec4<u32>,
     // x: height channel, y: 1 for the depth convention, z: relief binary steps.
     height_map: vec4<u32>,
     // xy: height texture size in texels, z: model determinant sign, w: mip level count.
@@ -70,7 +75,7 @@ fn shade(in: VertexOut) -> Shaded {
     let height_scale = select(object.height.x, object.height.x * uv_per_world, object.height.y > 0.5);
 
     let field = HeightField(object.height_map.x, object.height_map.y, ddx_uv, ddy_uv);
-    let method = object.modes.x;
+    let method = METHOD;
     let min_samples = u32(object.height.z);
     let max_samples = u32(object.height.w);
     let fade = lod_fade(mip, object.lod.x, object.lod.y);
@@ -96,7 +101,7 @@ fn shade(in: VertexOut) -> Shaded {
     let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, ddx_uv, ddy_uv).xyz;
     let normal = perturbed_normal(surface_frame, encoded_normal, object.lod.w);
     let surface = Surface(base.rgb, object.surface.x, max(object.surface.y, 1.0), object.surface.z,
-        object.surface.w, object.modes.z);
+        object.surface.w, LIGHTING_MODEL);
 
     var color = frame.ambient.rgb * base.rgb;
     var first_visibility = 1.0;
@@ -104,10 +109,10 @@ fn shade(in: VertexOut) -> Shaded {
         let light = light_at(i, in.world_position);
         var visibility = 1.0;
         // Shadow rays only where the light faces the polygon (T §5.4.2) and the march ran.
-        if march && object.modes.y != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
+        if march && SHADOW_MODE != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
             let to_light_ts = to_tangent_space(surface_frame, light.to_light);
             let light_offset = ray_offset(to_light_ts, height_scale);
-            if object.modes.y == SHADOWS_SOFT {
+            if SHADOW_MODE == SHADOWS_SOFT {
                 visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, object.lod.z);
             } else {
                 let texels = length(light_offset * texture_size) / exp2(mip);
@@ -123,7 +128,7 @@ fn shade(in: VertexOut) -> Shaded {
     }
 
     var out = vec4<f32>(color, base.a);
-    switch object.modes.w {
+    switch DEBUG_VIEW {
         case DEBUG_LOD: {
             // T's tint: blue grows through the band; deepest blue where only normal mapping runs.
             let tint = select(max(1.0, 2.0 * fade), 3.0, fade >= 1.0);

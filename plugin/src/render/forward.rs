@@ -84,6 +84,7 @@ impl ForwardPass {
             &layout,
             &shader,
             "fs_main",
+            &[],
             color_format,
         );
         let objects = ObjectBuffer::new(gpu, "forward object buffer", 64);
@@ -112,6 +113,7 @@ impl ForwardPass {
             &self.pipeline_layout,
             shader,
             "fs_main",
+            &[],
             self.color_format,
         )
     }

@@ -38,13 +38,15 @@ pub fn material_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
 }
 
 /// The render pipeline every mesh material uses in the main pass: interleaved [`super::Vertex`]
-/// input (`vs_main`), back-face culling, depth test and write, one colour target.
+/// input (`vs_main`), back-face culling, depth test and write, one colour target; `constants`
+/// set the fragment stage's pipeline-overridable constants.
 pub fn mesh_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::PipelineLayout,
     shader: &wgpu::ShaderModule,
     fragment_entry: &str,
+    constants: &[(&str, f64)],
     color_format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -71,7 +73,10 @@ pub fn mesh_pipeline(
         fragment: Some(wgpu::FragmentState {
             module: shader,
             entry_point: Some(fragment_entry),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
             targets: &[Some(color_format.into())],
         }),
         multiview_mask: None,

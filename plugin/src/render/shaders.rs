@@ -41,6 +41,9 @@ pub const PARALLAX_ENTRY: WgslFile = wgsl_file!("parallax/pom.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
 
+/// The texel-rate probe's full-screen pass.
+pub const TEXEL_RATE_PROBE_ENTRY: WgslFile = wgsl_file!("render/texel_rate_probe.wgsl");
+
 /// An entry shader: the files it is made of, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ComposedShader {
@@ -98,5 +101,11 @@ pub const SOBEL: ComposedShader = ComposedShader {
     files: &[SOBEL_ENTRY],
 };
 
+/// The bench's fragment-stage texel-rate probe (`super::TexelRateProbe`).
+pub const TEXEL_RATE_PROBE: ComposedShader = ComposedShader {
+    name: "texel_rate_probe.wgsl",
+    files: &[TEXEL_RATE_PROBE_ENTRY],
+};
+
 /// Every entry shader of the plugin.
-pub const ALL: &[ComposedShader] = &[FORWARD, PARALLAX, SOBEL];
+pub const ALL: &[ComposedShader] = &[FORWARD, PARALLAX, SOBEL, TEXEL_RATE_PROBE];

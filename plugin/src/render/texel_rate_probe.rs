@@ -28,10 +28,7 @@ impl TexelRateProbe {
     pub fn new(gpu: &GpuContext, format: wgpu::TextureFormat, taps: u32) -> Self {
         let device = &gpu.device;
         let taps = taps.max(1);
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("texel-rate probe shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("texel_rate_probe.wgsl").into()),
-        });
+        let shader = super::shaders::TEXEL_RATE_PROBE.create_module(device);
         let texture = device.create_texture_with_data(
             &gpu.queue,
             &wgpu::TextureDescriptor {
