@@ -115,3 +115,78 @@ fn the_lod_band_fades_without_a_seam() {
     eprintln!("with a 0.01-level band: {:.0} %", hard * 100.0);
     assert!(hard > 0.9);
 }
+
+/// A perspective view of the cobblestones at `tiling` repeats, with the `mip` debug view in
+/// floats: whether the draw was switched to the normal-mapping pipeline, and the lowest mip
+/// level any surface pixel computed.
+fn switched_and_lowest_mip(tiling: f32, distance: f32) -> (bool, f32) {
+    let view = PreviewView {
+        view_angle: 60.0,
+        projection: pom::preview::PreviewProjection::Perspective,
+        tiling,
+        distance,
+        ..PreviewView::default()
+    };
+    let mut app = preview_app(
+        64,
+        TargetFormat::Float32,
+        &cobblestones(),
+        &view,
+        |material| ParallaxOcclusionMaterial {
+            lod_threshold: 2.0,
+            debug_view: DebugView::Mip,
+            ..material
+        },
+    )
+    .unwrap();
+    for camera in app.world.query_mut::<&mut pom::Camera>() {
+        // Alpha 0 marks the background.
+        camera.clear_color = pom::Color {
+            a: 0.0,
+            ..pom::Color::BLACK
+        };
+    }
+    let image = pom_tests::render_and_capture_f32(&mut app).unwrap();
+    let draws = &app
+        .resources
+        .get::<pom::parallax::ExtractedPom>()
+        .unwrap()
+        .draws;
+    let normal_mapping = pom::parallax::PomPipelineKey::of(&ParallaxOcclusionMaterial {
+        method: ParallaxMethod::NormalMapping,
+        ..ParallaxOcclusionMaterial::default()
+    })
+    .method;
+    let switched = draws[0].pipeline.method == normal_mapping;
+    // The view shows mip / (levels − 1); a 128² map has 8 levels.
+    let lowest = image
+        .pixels()
+        .filter(|p| p.0[3] > 0.0)
+        .map(|p| p.0[0] * 7.0)
+        .fold(f32::INFINITY, f32::min);
+    (switched, lowest)
+}
+
+#[test]
+fn a_draw_switches_to_normal_mapping_only_where_every_pixel_is_past_the_threshold() {
+    let mut seen = Vec::new();
+    for (tiling, distance) in [
+        (1.0, 1.0),
+        (4.0, 1.0),
+        (16.0, 1.0),
+        (64.0, 2.0),
+        (256.0, 4.0),
+    ] {
+        let (switched, lowest) = switched_and_lowest_mip(tiling, distance);
+        if switched {
+            assert!(
+                lowest >= 2.0 - 1e-3,
+                "tiling {tiling} at distance {distance}: switched, yet a pixel is at mip {lowest}"
+            );
+        }
+        eprintln!("tiling {tiling}, distance {distance}: switched {switched}, lowest mip {lowest}");
+        seen.push(switched);
+    }
+    assert!(!seen[0], "a close plane keeps its march");
+    assert!(seen[4], "a far, densely tiled plane drops it");
+}

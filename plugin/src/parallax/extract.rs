@@ -5,10 +5,11 @@ use std::collections::HashMap;
 use hecs::{Entity, World};
 
 use super::gpu::PomObject;
+use super::lod_switch::{MeshLodCache, PixelFootprint, lowest_mip};
 use super::material::{HeightSource, ParallaxOcclusionMaterial};
 use super::pipelines::PomPipelineKey;
-use crate::render::TextureKey;
-use crate::{AssetId, Assets, GlobalTransform, Handle, Image, Mesh, Resources};
+use crate::render::{RenderTarget, TextureKey};
+use crate::{AssetId, Assets, Camera, GlobalTransform, Handle, Image, Mesh, Resources};
 
 /// One parallax-mapped mesh to draw.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,9 +56,21 @@ fn height_texture(material: &ParallaxOcclusionMaterial) -> Option<AssetId<Image>
     }
 }
 
-/// The Extract stage's system for [`ParallaxOcclusionMaterial`].
+/// The pixel size of the active camera (the first, as the renderer takes it) on the target.
+fn pixel_footprint(world: &World, resources: &Resources) -> Option<PixelFootprint> {
+    let size = resources.get::<RenderTarget>()?.size();
+    let mut cameras = world.query::<(&Camera, &GlobalTransform)>();
+    let (camera, transform) = cameras.iter().find(|(camera, _)| camera.active)?;
+    Some(PixelFootprint::new(camera, transform, size))
+}
+
+/// The Extract stage's system for [`ParallaxOcclusionMaterial`]. A draw whose every pixel is
+/// past its LOD threshold gets the normal-mapping pipeline (see `lod_switch.rs`).
 pub fn extract_pom(world: &mut World, resources: &mut Resources) {
     let mut warnings = resources.remove::<MaterialWarnings>().unwrap_or_default();
+    let mut lod_cache = resources.remove::<MeshLodCache>().unwrap_or_default();
+    let footprint = pixel_footprint(world, resources);
+    let meshes = resources.get::<Assets<Mesh>>();
     let images = resources.get::<Assets<Image>>();
     let mut draws = Vec::new();
     for (entity, mesh, transform, material) in world
@@ -96,9 +109,20 @@ pub fn extract_pom(world: &mut World, resources: &mut Resources) {
             pipeline: PomPipelineKey::of(&material),
             object: PomObject::new(&material, model, size),
         });
+        if let (Some(draw), Some(footprint), Some(meshes)) = (draws.last_mut(), &footprint, meshes)
+            && let Some(bounds) = lod_cache.bounds(meshes, mesh.id())
+            && lowest_mip(&bounds, &model, footprint, size)
+                .is_some_and(|mip| mip >= material.lod_threshold)
+        {
+            draw.pipeline = draw.pipeline.normal_mapping();
+        }
     }
     draws.sort_by_key(|draw| (draw.pipeline, draw.textures, draw.mesh));
     warnings.0.retain(|entity, _| world.contains(*entity));
+    if let Some(meshes) = meshes {
+        lod_cache.retain_existing(meshes);
+    }
+    resources.insert(lod_cache);
     resources.insert(warnings);
     resources.insert(ExtractedPom { draws });
 }

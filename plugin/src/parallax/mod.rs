@@ -2,6 +2,7 @@
 
 mod extract;
 mod gpu;
+mod lod_switch;
 mod material;
 mod pass;
 mod pipelines;
@@ -9,6 +10,7 @@ mod preset;
 
 pub use extract::{ExtractedPom, MaterialWarnings, PomDraw, extract_pom};
 pub use gpu::PomObject;
+pub use lod_switch::{MeshLodBounds, MeshLodCache, PixelFootprint, lowest_mip};
 pub use material::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, MAX_SAMPLES_LIMIT,
     ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, ShadowMode,

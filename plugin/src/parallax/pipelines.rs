@@ -36,6 +36,15 @@ impl PomPipelineKey {
         }
     }
 
+    /// The same pipeline with the march compiled out (method: normal mapping), for draws on
+    /// which every pixel is past the LOD threshold: same image, less work.
+    pub fn normal_mapping(self) -> Self {
+        Self {
+            method: method_code(super::ParallaxMethod::NormalMapping).0,
+            ..self
+        }
+    }
+
     fn constants(&self) -> [(&'static str, f64); 4] {
         [
             ("METHOD", f64::from(self.method)),
