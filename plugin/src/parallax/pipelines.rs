@@ -1,7 +1,8 @@
 //! The parallax material's render pipelines, one per combination of method, shadow mode,
 //! lighting model, debug view and depth offset. `pom.wgsl` reads those as pipeline-overridable
 //! constants, so each pipeline holds only its own code path: on the H100 the single pipeline
-//! that branched on them per pixel ran POM without shadows 21 % slower (BENCHMARKS.md).
+//! that branched on them per pixel took 27 % longer on POM without shadows and 52 % longer on
+//! normal mapping (sandbox/BENCHMARKS.md).
 
 use std::collections::HashMap;
 
