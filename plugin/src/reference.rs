@@ -221,7 +221,8 @@ pub fn exact_intersection(
 }
 
 /// `hard_shadow` of march.wgsl: 0 if the height field blocks the light ray from `uv`, else 1.
-/// `light_offset` is [`ray_offset`]`(to_light_ts, height_scale)`.
+/// `light_offset` is [`ray_offset`]`(to_light_ts, height_scale)`; `steps` span the ray from the
+/// visible point to the top (the shader takes [`march_steps`] with the texels that part crosses).
 pub fn hard_shadow(field: &HeightField, uv: Vec2, light_offset: Vec2, steps: u32) -> f32 {
     let start = field.sample(uv.x, uv.y) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;

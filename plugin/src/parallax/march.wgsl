@@ -215,20 +215,27 @@ fn march_view(
 }
 
 // Hard self-shadow (McGuire): march from the visible point towards the light; 0 if any sample
-// of the height field rises above the light ray, else 1. `light_offset` is ray_offset(L_ts, H).
+// of the height field rises above the light ray, else 1. `light_offset` is ray_offset(L_ts, H);
+// `texels_per_rise` the texels a ray rising the whole height range crosses. The ray only rises
+// from the visible point to the top, so it takes T eq. 1's count for N·L capped by the texels
+// that shorter ray crosses: a point near the top needs few steps.
 fn hard_shadow(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
     uv: vec2<f32>,
     light_offset: vec2<f32>,
-    steps: u32,
+    min_samples: u32,
+    max_samples: u32,
+    n_dot_l: f32,
+    texels_per_rise: f32,
 ) -> f32 {
     let start = sample_height(height_texture, height_sampler, field, uv) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {
         return 1.0;
     }
+    let steps = march_steps(min_samples, max_samples, n_dot_l, texels_per_rise * rise);
     let crossing = linear_search(height_texture, height_sampler, field, uv, start, start, light_offset * rise, rise, steps);
     return select(1.0, 0.0, crossing.found);
 }

@@ -115,9 +115,9 @@ fn shade(in: VertexOut) -> Shaded {
             if SHADOW_MODE == SHADOWS_SOFT {
                 visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, object.lod.z);
             } else {
-                let texels = length(light_offset * texture_size) / exp2(mip);
-                let steps = march_steps(min_samples, max_samples, dot(surface_frame.normal, light.to_light), texels);
-                visibility = hard_shadow(height_texture, material_sampler, field, uv, light_offset, steps);
+                let texels_per_rise = length(light_offset * texture_size) / exp2(mip);
+                visibility = hard_shadow(height_texture, material_sampler, field, uv, light_offset,
+                    min_samples, max_samples, dot(surface_frame.normal, light.to_light), texels_per_rise);
             }
             visibility = mix(visibility, 1.0, fade);
         }
