@@ -92,10 +92,23 @@ impl FrameTimes {
     }
 }
 
-/// The GPU timing rows: one line per timed pass from the plugin's [`GpuTimings`], or why there
-/// is none ("n/a" where the adapter has no timestamp queries, as on software drivers).
-pub fn gpu_pass_lines(timings: Option<&GpuTimings>) -> Vec<String> {
-    match timings {
+/// Where the GPU timing rows come from: the plugin's [`GpuTimings`] and whether the adapter is a
+/// software rasterizer, whose timings say nothing about GPU speed.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GpuTimingSource<'a> {
+    /// The plugin's resource, if the render plugin runs.
+    pub timings: Option<&'a GpuTimings>,
+    /// Whether the adapter is a CPU (software) rasterizer.
+    pub software_driver: bool,
+}
+
+/// The GPU timing rows: one line per timed pass, or why there are none ("n/a" where the adapter
+/// has no timestamp queries or is a software driver).
+pub fn gpu_pass_lines(source: GpuTimingSource<'_>) -> Vec<String> {
+    if source.software_driver {
+        return vec!["GPU time per pass: n/a (software driver: not GPU timings)".to_owned()];
+    }
+    match source.timings {
         None | Some(GpuTimings::Unsupported) => {
             vec!["GPU time per pass: n/a (no timestamp queries on this adapter)".to_owned()]
         }
@@ -122,8 +135,8 @@ pub fn gpu_pass_lines(timings: Option<&GpuTimings>) -> Vec<String> {
 }
 
 /// Shows [`gpu_pass_lines`].
-pub fn gpu_pass_rows(ui: &mut Ui, timings: Option<&GpuTimings>) {
-    let lines = gpu_pass_lines(timings);
+pub fn gpu_pass_rows(ui: &mut Ui, source: GpuTimingSource<'_>) {
+    let lines = gpu_pass_lines(source);
     for line in &lines {
         ui.label(line).on_hover_text(
             "GPU time of each render pass of the main image, from timestamp queries, a frame or \
@@ -155,13 +168,17 @@ mod tests {
 
     #[test]
     fn gpu_rows_show_each_pass_or_say_why_there_is_none() {
+        let of = |timings| GpuTimingSource {
+            timings,
+            software_driver: false,
+        };
         assert_eq!(
-            gpu_pass_lines(Some(&GpuTimings::Unsupported)),
+            gpu_pass_lines(of(Some(&GpuTimings::Unsupported))),
             ["GPU time per pass: n/a (no timestamp queries on this adapter)"]
         );
         assert_eq!(
-            gpu_pass_lines(None),
-            gpu_pass_lines(Some(&GpuTimings::Unsupported))
+            gpu_pass_lines(of(None)),
+            gpu_pass_lines(of(Some(&GpuTimings::Unsupported)))
         );
         let mut passes = std::collections::BTreeMap::new();
         let waiting = GpuTimings::Supported {
@@ -170,7 +187,7 @@ mod tests {
             rejected: 0,
         };
         assert_eq!(
-            gpu_pass_lines(Some(&waiting)),
+            gpu_pass_lines(of(Some(&waiting))),
             ["GPU time per pass: waiting for the first reading"]
         );
         passes.insert("main pass".to_owned(), 1.25);
@@ -181,7 +198,14 @@ mod tests {
             rejected: 2,
         };
         assert_eq!(
-            gpu_pass_lines(Some(&timed)),
+            gpu_pass_lines(GpuTimingSource {
+                timings: Some(&timed),
+                software_driver: true,
+            }),
+            ["GPU time per pass: n/a (software driver: not GPU timings)"]
+        );
+        assert_eq!(
+            gpu_pass_lines(of(Some(&timed))),
             [
                 "GPU time per pass (frame 7):",
                 "  main pass: 1.250 ms",

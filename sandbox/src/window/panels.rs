@@ -8,7 +8,7 @@ use pom::{App, ParallaxOcclusionMaterial};
 
 use super::app_state::{LoadedScene, material_entities};
 use super::file_browser::FileBrowser;
-use super::frame_timing::{FrameTimes, gpu_pass_rows};
+use super::frame_timing::{FrameTimes, GpuTimingSource, gpu_pass_rows};
 use super::light_control::LightControls;
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
@@ -100,7 +100,14 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
             .on_hover_text("Turns the selected object slowly, to judge the parallax in motion.");
         ui.collapsing("Timing", |ui| {
             state.frame_times.show(ui);
-            gpu_pass_rows(ui, app.resources.get::<pom::GpuTimings>());
+            let software_driver = app.resources.get::<pom::GpuContext>().is_some_and(|gpu| {
+                gpu.adapter_info().device_type == pom::wgpu::DeviceType::Cpu
+            });
+            let source = GpuTimingSource {
+                timings: app.resources.get::<pom::GpuTimings>(),
+                software_driver,
+            };
+            gpu_pass_rows(ui, source);
         });
         shader_reload_status(ui, app);
         ui.separator();
