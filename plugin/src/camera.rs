@@ -4,7 +4,7 @@ use glam::Mat4;
 // WebGPU clip space is the DirectX one: depth 0..1, y up.
 use glam::camera::rh::proj::directx::{orthographic, perspective};
 
-use crate::Color;
+use crate::{Color, GlobalTransform};
 
 /// How a camera projects the view volume onto the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,6 +73,15 @@ pub struct Camera {
     pub clear_color: Color,
     /// Whether this camera renders.
     pub active: bool,
+}
+
+/// The camera the renderer draws from: the first with `active` set, with its world transform.
+pub fn active_camera(world: &hecs::World) -> Option<(Camera, GlobalTransform)> {
+    world
+        .query::<(&Camera, &GlobalTransform)>()
+        .iter()
+        .find(|(camera, _)| camera.active)
+        .map(|(camera, transform)| (*camera, *transform))
 }
 
 impl Camera {

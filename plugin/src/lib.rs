@@ -54,7 +54,7 @@ pub use app::{
     App, AppError, BoxedError, Fallible, Infallible, IntoSystem, Plugin, Schedule, Stage, System,
 };
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, Projection, active_camera};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
 pub use dynamic_height::{
     DynamicHeightError, DynamicHeightField, SobelPass, derive_dynamic_normals,

@@ -4,7 +4,7 @@
 use glam::{Mat4, Vec2, Vec3};
 use hecs::{Entity, World};
 
-use crate::{Assets, Camera, GlobalTransform, Handle, Mesh, Resources};
+use crate::{Assets, GlobalTransform, Handle, Mesh, Resources, active_camera};
 
 /// A half-line in world space: points `origin + t * direction` for `t >= 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,8 +33,7 @@ pub fn camera_ray(world: &World, viewport: Vec2, pixel: Vec2) -> Option<Ray> {
     if !(viewport.x > 0.0 && viewport.y > 0.0) {
         return None;
     }
-    let mut cameras = world.query::<(&Camera, &GlobalTransform)>();
-    let (camera, transform) = cameras.iter().find(|(camera, _)| camera.active)?;
+    let (camera, transform) = active_camera(world)?;
     let view_projection =
         camera.projection.matrix(viewport.x / viewport.y) * transform.to_mat4().inverse();
     ray_through(view_projection, viewport, pixel)
@@ -173,7 +172,7 @@ fn triangle_hit(ray: Ray, a: Vec3, b: Vec3, c: Vec3) -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Transform, propagate_transforms};
+    use crate::{Camera, Transform, propagate_transforms};
 
     /// Two unit cubes on the camera's axis, the near one at z = 0 and the far one at z = −5,
     /// plus one off to the side; the camera at z = 5 looks down −Z.

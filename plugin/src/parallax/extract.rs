@@ -9,7 +9,7 @@ use super::lod_switch::{MeshLodCache, PixelFootprint, lowest_mip};
 use super::material::{HeightSource, ParallaxOcclusionMaterial};
 use super::pipelines::PomPipelineKey;
 use crate::render::{RenderTarget, TextureKey};
-use crate::{AssetId, Assets, Camera, GlobalTransform, Handle, Image, Mesh, Resources};
+use crate::{AssetId, Assets, GlobalTransform, Handle, Image, Mesh, Resources, active_camera};
 
 /// One parallax-mapped mesh to draw.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,12 +56,11 @@ fn height_texture(material: &ParallaxOcclusionMaterial) -> Option<AssetId<Image>
     }
 }
 
-/// The pixel size of the active camera (the first, as the renderer takes it) on the target.
+/// The pixel size of the camera the renderer draws from, on the target.
 fn pixel_footprint(world: &World, resources: &Resources) -> Option<PixelFootprint> {
     let size = resources.get::<RenderTarget>()?.size();
-    let mut cameras = world.query::<(&Camera, &GlobalTransform)>();
-    let (camera, transform) = cameras.iter().find(|(camera, _)| camera.active)?;
-    Some(PixelFootprint::new(camera, transform, size))
+    let (camera, transform) = active_camera(world)?;
+    Some(PixelFootprint::new(&camera, &transform, size))
 }
 
 /// The Extract stage's system for [`ParallaxOcclusionMaterial`]. A draw whose every pixel is
@@ -110,6 +109,7 @@ pub fn extract_pom(world: &mut World, resources: &mut Resources) {
             object: PomObject::new(&material, model, size),
         });
         if let (Some(draw), Some(footprint), Some(meshes)) = (draws.last_mut(), &footprint, meshes)
+            && draw.pipeline != draw.pipeline.normal_mapping()
             && let Some(bounds) = lod_cache.bounds(meshes, mesh.id())
             && lowest_mip(&bounds, &model, footprint, size)
                 .is_some_and(|mip| mip >= material.lod_threshold)

@@ -159,10 +159,12 @@ pub fn lowest_mip(
     let texels = texture_size.0 as f32 * texture_size.1 as f32;
     // The shader's level is at least half the log2 of the texel area one pixel covers.
     let texel_area = uv_per_world_area * texels * pixel * pixel;
+    if texel_area == 0.0 {
+        // The shader never goes below level 0.
+        return Some(0.0);
+    }
     let mip = 0.5 * texel_area.log2();
-    mip.is_finite()
-        .then_some(mip.max(0.0))
-        .or((texel_area == 0.0).then_some(0.0))
+    mip.is_finite().then_some(mip.max(0.0))
 }
 
 #[cfg(test)]

@@ -9,8 +9,8 @@ use super::gpu_types::{
 };
 use super::target::RenderTarget;
 use crate::{
-    AmbientLight, AppError, AssetId, Camera, Color, DirectionalLight, GlobalTransform, Handle,
-    Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, Projection, Resources,
+    AmbientLight, AppError, AssetId, Color, DirectionalLight, GlobalTransform, Handle, Image,
+    LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, Projection, Resources, active_camera,
 };
 
 /// One mesh to draw with its textures and per-object values.
@@ -48,11 +48,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let aspect = resources.require::<RenderTarget>()?.aspect();
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
 
-    let camera = world
-        .query::<(&Camera, &GlobalTransform)>()
-        .iter()
-        .find(|(camera, _)| camera.active)
-        .map(|(camera, transform)| (*camera, *transform));
+    let camera = active_camera(world);
     let (view_projection, camera_position, view_direction, clear_color) = match camera {
         Some((camera, transform)) => {
             let view = transform.to_mat4().inverse();

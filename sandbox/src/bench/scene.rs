@@ -154,12 +154,8 @@ impl BenchScene {
         warmup: Warmup,
         frames: usize,
     ) -> Result<Vec<f64>> {
-        let gpu = self.app.resources.get::<GpuContext>().context("no GPU")?;
-        let target = self
-            .app
-            .resources
-            .get::<RenderTarget>()
-            .context("no render target")?;
+        let gpu = self.app.resources.require::<GpuContext>()?;
+        let target = self.app.resources.require::<RenderTarget>()?;
         let probe = TexelRateProbe::new(gpu, target.color.format(), taps);
         self.time_frames(warmup, frames, PROBE_PASS, |app| {
             probe.render(&mut app.resources)?;
