@@ -1,23 +1,27 @@
 # Sourced by tests/run and sandbox/run: makes sure a Vulkan driver (and, for tests, Xvfb) is
-# installed.
-# On a machine without one, installs Mesa's software driver (lavapipe) from Debian/Ubuntu packages.
+# installed. On a machine without one, installs Mesa's software driver (lavapipe) from
+# Debian/Ubuntu packages. Every path that cannot go on says why in one line on stderr and
+# returns non-zero, so the calling script (under `set -euo pipefail`) stops with a message.
+#
+# The folders searched for Vulkan driver manifests can be overridden (space-separated) with
+# POM_VULKAN_ICD_DIRS; tests/tests/ensure_vulkan.rs uses that, with a fake apt-get on PATH.
 
-as_root() {
-    if [ "$(id -u)" = 0 ]; then "$@"; elif command -v sudo >/dev/null; then sudo "$@"; else
-        echo "error: need root (or sudo) to run: $*" >&2; return 1
-    fi
-}
+POM_VULKAN_ICD_DIRS=${POM_VULKAN_ICD_DIRS:-/usr/share/vulkan/icd.d /etc/vulkan/icd.d}
 
-install_lavapipe() {
-    echo "installing Mesa's software Vulkan driver (mesa-vulkan-drivers, libvulkan1)..." >&2
-    as_root apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq --no-install-recommends \
-        mesa-vulkan-drivers libvulkan1 >/dev/null
-}
-
-# The lavapipe ICD manifest, or nothing.
-lavapipe_icd() {
-    ls /usr/share/vulkan/icd.d/lvp_icd.*.json 2>/dev/null | head -n 1
+# Prints the first driver manifest matching the glob $1 in the ICD folders, or nothing.
+# Never fails: no `ls | head`, whose exit status under `pipefail` ended the script silently
+# when the folders were missing.
+first_icd_manifest() {
+    local dir file
+    for dir in $POM_VULKAN_ICD_DIRS; do
+        for file in "$dir"/$1; do
+            if [ -f "$file" ]; then
+                printf '%s\n' "$file"
+                return 0
+            fi
+        done
+    done
+    return 0
 }
 
 has_vulkan_loader() {
@@ -26,12 +30,51 @@ has_vulkan_loader() {
     ldconfig -p 2>/dev/null | grep 'libvulkan\.so\.1' >/dev/null
 }
 
+# Both commands build with cargo: say so when it is missing, before installing anything.
+require_cargo() {
+    if ! command -v cargo >/dev/null; then
+        echo "error: cargo is not on PATH; install a Rust toolchain (1.95 or newer, https://rustup.rs) and run again" >&2
+        return 1
+    fi
+}
+
+as_root() {
+    if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+# install_packages WHAT PACKAGE...: installs Debian packages with apt-get (as root or with sudo),
+# or says in one line which packages to install and returns 1.
+install_packages() {
+    local what=$1
+    shift
+    if ! command -v apt-get >/dev/null; then
+        echo "error: $what is missing and this machine has no apt-get; install the packages $* (or your system's equivalent) and run again" >&2
+        return 1
+    fi
+    if [ "$(id -u)" != 0 ] && ! command -v sudo >/dev/null; then
+        echo "error: $what is missing and installing it needs root or sudo; as root run: apt-get install $*" >&2
+        return 1
+    fi
+    echo "installing $what ($*)..." >&2
+    if ! as_root apt-get update -qq ||
+        ! as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$@" >/dev/null; then
+        echo "error: apt-get could not install $* (its messages are above); install them by hand and run again" >&2
+        return 1
+    fi
+}
+
+install_lavapipe() {
+    install_packages "a Vulkan driver" mesa-vulkan-drivers libvulkan1
+}
+
 # Ensures lavapipe is present; exports the variables that pin wgpu to it.
 use_lavapipe() {
-    if [ -z "$(lavapipe_icd)" ] || ! has_vulkan_loader; then install_lavapipe; fi
-    VK_DRIVER_FILES="$(lavapipe_icd)"
-    if [ -z "$VK_DRIVER_FILES" ]; then
-        echo "error: lavapipe's ICD manifest is still missing after installing mesa-vulkan-drivers" >&2
+    if [ -z "$(first_icd_manifest 'lvp_icd.*.json')" ] || ! has_vulkan_loader; then
+        install_lavapipe || return 1
+    fi
+    VK_DRIVER_FILES=$(first_icd_manifest 'lvp_icd.*.json')
+    if [ -z "$VK_DRIVER_FILES" ] || ! has_vulkan_loader; then
+        echo "error: lavapipe (mesa-vulkan-drivers) or the Vulkan loader (libvulkan1) is still missing after installing them" >&2
         return 1
     fi
     # Without WGPU_BACKEND a missing driver silently falls back to GL.
@@ -40,16 +83,21 @@ use_lavapipe() {
 
 # Ensures some Vulkan driver exists (a GPU's, or lavapipe as a fallback).
 ensure_any_vulkan() {
-    local manifests
-    manifests=$(ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json 2>/dev/null | head -n 1)
-    if [ -z "$manifests" ] || ! has_vulkan_loader; then install_lavapipe; fi
+    if [ -z "$(first_icd_manifest '*.json')" ] || ! has_vulkan_loader; then
+        install_lavapipe || return 1
+        if [ -z "$(first_icd_manifest '*.json')" ] || ! has_vulkan_loader; then
+            echo "error: no Vulkan driver (mesa-vulkan-drivers) or loader (libvulkan1) after installing them" >&2
+            return 1
+        fi
+    fi
 }
 
 # Ensures the X virtual framebuffer exists, for the test that starts the real sandbox window.
 ensure_xvfb() {
     if command -v Xvfb >/dev/null; then return 0; fi
-    echo "installing the X virtual framebuffer (xvfb, xauth)..." >&2
-    as_root apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq --no-install-recommends \
-        xvfb xauth >/dev/null
+    install_packages "the X virtual framebuffer" xvfb xauth || return 1
+    if ! command -v Xvfb >/dev/null; then
+        echo "error: Xvfb is still missing after installing xvfb" >&2
+        return 1
+    fi
 }
