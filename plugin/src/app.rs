@@ -273,8 +273,17 @@ impl App {
         Self::default()
     }
 
-    /// Builds `plugin` into the app now and keeps it for [`App::finish`].
+    /// Builds `plugin` into the app now and keeps it for [`App::finish`]. A plugin of a type
+    /// already added is ignored, with a warning: its systems would otherwise run twice.
     pub fn add_plugin(&mut self, plugin: impl Plugin) -> &mut Self {
+        if self
+            .plugins
+            .iter()
+            .any(|added| added.name() == plugin.name())
+        {
+            log::warn!("plugin {} was already added: ignored", plugin.name());
+            return self;
+        }
         plugin.build(self);
         self.plugins.push(Box::new(plugin));
         self

@@ -13,6 +13,28 @@ pub struct Color {
     pub a: f32,
 }
 
+/// Opaque white: the colour that leaves what it multiplies unchanged.
+impl Default for Color {
+    fn default() -> Self {
+        Self::WHITE
+    }
+}
+
+// A colour reads and writes as the tuple (r, g, b, a), as `[f32; 4]` does: presets and glTF
+// extras stay short.
+impl serde::Serialize for Color {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.to_array().serialize(serializer)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Color {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let [r, g, b, a] = <[f32; 4]>::deserialize(deserializer)?;
+        Ok(Self { r, g, b, a })
+    }
+}
+
 impl Color {
     /// Opaque white.
     pub const WHITE: Self = Self::linear_rgb(1.0, 1.0, 1.0);

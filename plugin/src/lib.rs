@@ -1,7 +1,7 @@
 //! Parallax occlusion mapping for a small Bevy-style ECS on hecs, rendered with wgpu.
 //!
 //! An [`App`] holds a `hecs::World`, a type-keyed [`Resources`] map and a [`Schedule`] of
-//! systems in named [`Stage`]s; [`Plugin`]s add systems and resources. [`RenderPlugin`] draws
+//! systems in named [`Stage`]s; [`Plugin`]s add systems and resources. [`DefaultPlugins`] draws
 //! every entity with a `Handle<Mesh>` and a [`Transform`] into an offscreen target that
 //! [`capture`] reads back.
 //!
@@ -9,7 +9,7 @@
 //! use pom::*;
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! let mut app = App::new();
-//! app.add_plugin(RenderPlugin::headless(256, 256));
+//! app.add_plugin(DefaultPlugins::headless(256, 256));
 //! let cube = app.resources.get_mut::<Assets<Mesh>>().unwrap().add(Mesh::cube(1.0));
 //! app.world.spawn((Camera::perspective(45.0), Transform::from_xyz(2.0, 2.0, 3.0).looking_at(glam::Vec3::ZERO, glam::Vec3::Y)));
 //! app.world.spawn((DirectionalLight::default(), Transform::IDENTITY.looking_at(glam::Vec3::new(-1.0, -2.0, -1.0), glam::Vec3::Y)));
@@ -20,6 +20,9 @@
 //! ```
 #![warn(missing_docs)]
 
+// The crate's macros name `pom::…` paths; this makes them resolve inside the crate too.
+extern crate self as pom;
+
 // The README's examples compile as doctests, so they stay true.
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
@@ -29,24 +32,31 @@ mod app;
 mod assets;
 mod camera;
 mod color;
+mod default_plugins;
 mod dynamic_height;
 mod gltf_loader;
 mod height_field;
 mod image;
+#[cfg(feature = "scene-tests")]
 mod image_compare;
 mod light;
-mod lit_material;
+pub mod lit;
+pub mod material;
 pub mod mesh;
 mod name;
 mod normal_map;
 pub mod parallax;
 pub mod picking;
 pub mod preview;
+#[cfg(feature = "scene-tests")]
 pub mod reference;
 pub mod render;
 mod resources;
+#[cfg(feature = "scene-tests")]
 pub mod script;
+#[cfg(feature = "dev-tools")]
 mod shader_reload;
+#[cfg(feature = "dev-tools")]
 mod split_view;
 mod transform;
 
@@ -56,6 +66,7 @@ pub use app::{
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection, active_camera};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
+pub use default_plugins::DefaultPlugins;
 pub use dynamic_height::{
     DynamicHeightError, DynamicHeightField, SobelPass, derive_dynamic_normals,
 };
@@ -64,15 +75,18 @@ pub use height_field::{HeightField, patterns};
 pub use image::{
     Channel, Image, ImageError, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Pixels, TextureKind,
 };
+#[cfg(feature = "scene-tests")]
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight};
-pub use lit_material::LitMaterial;
+pub use lit::{LitMaterial, LitUniform, lit_plugin};
+pub use material::{Material, MaterialPlugin};
 pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, PomPlugin, PomPreset, PresetError, ShadowMode,
+    ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset, PresetError,
+    ShadowMode,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{
@@ -80,14 +94,31 @@ pub use render::{
     capture_f32,
 };
 pub use resources::Resources;
+#[cfg(feature = "scene-tests")]
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
+#[cfg(feature = "dev-tools")]
 pub use shader_reload::{
     ShaderHotReload, ShaderReloadError, ShaderReloadStatus, compose_checked, reload_changed_shaders,
 };
+#[cfg(feature = "dev-tools")]
 pub use split_view::{SplitView, SplitViewError, render_split_view};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };
 
+/// Every entry shader the crate compiles (with the features it was built with), for
+/// validation tests.
+pub const SHADERS: &[render::shaders::ComposedShader] = &[
+    lit::LIT_SHADER,
+    parallax::PARALLAX_SHADER,
+    render::shaders::SOBEL,
+    #[cfg(feature = "dev-tools")]
+    render::TEXEL_RATE_PROBE,
+];
+
 /// Re-exported so users name the same versions the plugin was built with.
-pub use {glam, hecs, wgpu};
+pub use {bytemuck, glam, hecs, wgpu};
+
+/// Re-exported for the code `material_parameters!` and `choice_enum!` generate.
+#[doc(hidden)]
+pub use serde;

@@ -133,11 +133,34 @@ fn binary_refinement(field: &HeightField, crossing: &Crossing, steps: u32) -> Ra
     }
 }
 
-/// `march_view` of march.wgsl: the visible point for the view ray entering at `uv`.
-/// `offset` is the parallax offset vector P = −[`ray_offset`]`(to_eye_ts, height_scale)`.
+/// `march_view` of march.wgsl: the visible point for the view ray entering at `uv`, relief
+/// mapping taking the material's default bisection steps.
 pub fn march_view(
     field: &HeightField,
     method: ParallaxMethod,
+    uv: Vec2,
+    to_eye_ts: Vec3,
+    height_scale: f32,
+    steps: u32,
+) -> RayHit {
+    let binary_steps = crate::ParallaxOcclusionMaterial::default().relief_binary_steps;
+    march_view_with(
+        field,
+        method,
+        binary_steps,
+        uv,
+        to_eye_ts,
+        height_scale,
+        steps,
+    )
+}
+
+/// [`march_view`] with relief mapping's bisection steps given.
+/// The parallax offset vector is P = −[`ray_offset`]`(to_eye_ts, height_scale)`.
+pub fn march_view_with(
+    field: &HeightField,
+    method: ParallaxMethod,
+    binary_steps: u32,
     uv: Vec2,
     to_eye_ts: Vec3,
     height_scale: f32,
@@ -178,9 +201,7 @@ pub fn march_view(
             height: crossing.below_ray,
             samples: crossing.samples,
         },
-        ParallaxMethod::Relief { binary_steps } => {
-            binary_refinement(field, &crossing, binary_steps)
-        }
+        ParallaxMethod::Relief => binary_refinement(field, &crossing, binary_steps),
         _ => secant_refinement(&crossing),
     }
 }
@@ -286,11 +307,11 @@ mod tests {
         for method in [
             ParallaxMethod::Steep,
             ParallaxMethod::Occlusion,
-            ParallaxMethod::Relief { binary_steps: 6 },
+            ParallaxMethod::Relief,
         ] {
             let hit = march_view(&floor, method, Vec2::splat(0.5), to_eye, 0.1, 8);
             // Bisection narrows the last step (1/8 of the offset) 2^6 times, no further.
-            let tolerance = if matches!(method, ParallaxMethod::Relief { .. }) {
+            let tolerance = if matches!(method, ParallaxMethod::Relief) {
                 1e-3
             } else {
                 1e-5

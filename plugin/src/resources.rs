@@ -86,11 +86,27 @@ impl Resources {
     /// });
     /// assert_eq!(resources.get::<String>().unwrap(), "x2");
     /// ```
+    /// `T` goes back even when `f` panics (the guard's drop puts it back while unwinding).
     pub fn scope<T: 'static, R>(&mut self, f: impl FnOnce(&mut Self, &mut T) -> R) -> Option<R> {
-        let mut value = self.remove::<T>()?;
-        let result = f(self, &mut value);
-        self.insert(value);
-        Some(result)
+        struct PutBack<'a, T: 'static> {
+            resources: &'a mut Resources,
+            value: Option<T>,
+        }
+        impl<T: 'static> Drop for PutBack<'_, T> {
+            fn drop(&mut self) {
+                if let Some(value) = self.value.take() {
+                    self.resources.insert(value);
+                }
+            }
+        }
+        let value = self.remove::<T>()?;
+        let mut guard = PutBack {
+            resources: self,
+            value: Some(value),
+        };
+        let PutBack { resources, value } = &mut guard;
+        let value = value.as_mut()?;
+        Some(f(resources, value))
     }
 
     /// The type name of `T`, for error messages about a missing resource.
@@ -123,5 +139,16 @@ mod tests {
         assert_eq!(length, Some(2));
         assert_eq!(resources.get::<Vec<u8>>(), Some(&vec![1, 2]));
         assert_eq!(resources.scope(|_, _: &mut f32| ()), None);
+    }
+
+    #[test]
+    fn scope_puts_the_value_back_when_the_work_panics() {
+        let mut resources = Resources::default();
+        resources.insert(7_u32);
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            resources.scope(|_, _: &mut u32| panic!("the work failed"))
+        }));
+        assert!(outcome.is_err());
+        assert_eq!(resources.get::<u32>(), Some(&7));
     }
 }

@@ -1,14 +1,14 @@
-//! Shader hot reload: watch the plugin's WGSL files on disk and, when one changes, recompose,
-//! check and recompile the forward and parallax shaders and swap their pipelines in. A broken
-//! edit keeps the last good pipelines and reports the error with the file and line.
+//! Shader hot reload: watch the WGSL files of every registered material on disk and, when one
+//! changes, recompose, check and recompile the materials' shaders and swap their pipelines in. A
+//! broken edit keeps the last good pipelines and reports the error with the file and line.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-use crate::parallax::PomRenderer;
-use crate::render::shaders::{self, ComposedShader};
-use crate::render::{GpuContext, Renderer};
+use crate::material::MaterialRegistry;
+use crate::render::GpuContext;
+use crate::render::shaders::ComposedShader;
 use crate::{App, AppError, Plugin, Resources, Stage};
 
 /// Why a reload did not swap the pipelines in.
@@ -46,7 +46,7 @@ pub enum ShaderReloadError {
 
 /// Watches WGSL files under a source folder and reloads the shaders that use a changed one.
 ///
-/// Add it after [`crate::PomPlugin`]; it polls the files' modification times once a frame in
+/// Add it after the material plugins; it polls the files' modification times once a frame in
 /// [`Stage::PostUpdate`] and keeps its outcome in a [`ShaderReloadStatus`] resource.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ShaderHotReload {
@@ -80,13 +80,22 @@ struct WatchedFiles {
     modified: HashMap<&'static str, Option<SystemTime>>,
 }
 
-/// The shaders that hot reload rebuilds (the Sobel compute pass is not reloaded).
-const RELOADED: [ComposedShader; 2] = [shaders::FORWARD, shaders::PARALLAX];
+/// The shaders hot reload rebuilds: every registered material's (the Sobel compute pass is not
+/// reloaded).
+fn reloaded_shaders(resources: &Resources) -> Vec<ComposedShader> {
+    resources
+        .get::<MaterialRegistry>()
+        .map(|registry| registry.entries.iter().map(|entry| entry.shader).collect())
+        .unwrap_or_default()
+}
 
 impl Plugin for ShaderHotReload {
     fn build(&self, app: &mut App) {
         let mut watched = WatchedFiles::default();
-        for file in RELOADED.iter().flat_map(|shader| shader.files) {
+        for file in reloaded_shaders(&app.resources)
+            .iter()
+            .flat_map(|shader| shader.files)
+        {
             let modified = modified_time(&self.source_dir.join(file.path));
             watched.modified.insert(file.path, modified);
         }
@@ -127,7 +136,7 @@ pub fn reload_changed_shaders(
     if changed_files.is_empty() {
         return Ok(());
     }
-    let changed: Vec<ComposedShader> = RELOADED
+    let changed: Vec<ComposedShader> = reloaded_shaders(resources)
         .into_iter()
         .filter(|shader| shader.files.iter().any(|f| changed_files.contains(&f.path)))
         .collect();
@@ -161,8 +170,7 @@ fn reload(
             message: "no GPU context".into(),
         })?
         .clone();
-    let mut forward = None;
-    let mut parallax = None;
+    let mut rebuilt = Vec::new();
     for shader in changed {
         let source = compose_checked(shader, source_dir)?;
         let device = &gpu.device;
@@ -171,14 +179,14 @@ fn reload(
             label: Some(shader.name),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        if *shader == shaders::FORWARD {
-            forward = resources
-                .get::<Renderer>()
-                .map(|renderer| renderer.forward.build_pipeline(device, &module));
-        } else {
-            parallax = resources
-                .get::<PomRenderer>()
-                .map(|renderer| renderer.pass.build_pipelines(device, module.clone()));
+        if let Some(registry) = resources.get::<MaterialRegistry>() {
+            for entry in &registry.entries {
+                if entry.shader == *shader
+                    && let Some(pipelines) = (entry.rebuild)(resources, device, module.clone())
+                {
+                    rebuilt.push((entry.swap, pipelines));
+                }
+            }
         }
         if let Some(error) = pollster::block_on(validation.pop()) {
             return Err(ShaderReloadError::Device {
@@ -187,11 +195,8 @@ fn reload(
             });
         }
     }
-    if let (Some(pipeline), Some(renderer)) = (forward, resources.get_mut::<Renderer>()) {
-        renderer.forward.set_pipeline(pipeline);
-    }
-    if let (Some(pipelines), Some(renderer)) = (parallax, resources.get_mut::<PomRenderer>()) {
-        renderer.pass.set_pipelines(pipelines);
+    for (swap, pipelines) in rebuilt {
+        swap(resources, pipelines);
     }
     Ok(())
 }
@@ -205,7 +210,7 @@ pub fn compose_checked(
     shader: &ComposedShader,
     source_dir: &Path,
 ) -> Result<String, ShaderReloadError> {
-    let mut source = String::new();
+    let mut source = shader.generated();
     let mut starts: FileLines = Vec::new();
     for file in shader.files {
         let path = source_dir.join(file.path);
@@ -257,7 +262,7 @@ mod tests {
 
     fn copy_sources(name: &str) -> PathBuf {
         let dir = std::env::temp_dir().join(format!("pom-reload-{name}-{}", std::process::id()));
-        for file in shaders::PARALLAX.files {
+        for file in crate::parallax::PARALLAX_SHADER.files {
             let path = dir.join(file.path);
             std::fs::create_dir_all(path.parent().unwrap()).unwrap();
             std::fs::write(path, file.source).unwrap();
@@ -268,8 +273,8 @@ mod tests {
     #[test]
     fn the_shipped_files_compose_to_the_embedded_source() {
         let dir = copy_sources("same");
-        let source = compose_checked(&shaders::PARALLAX, &dir).unwrap();
-        assert_eq!(source, shaders::PARALLAX.source());
+        let source = compose_checked(&crate::parallax::PARALLAX_SHADER, &dir).unwrap();
+        assert_eq!(source, crate::parallax::PARALLAX_SHADER.source());
         std::fs::remove_dir_all(dir).unwrap();
     }
 
@@ -279,7 +284,7 @@ mod tests {
         let path = dir.join("parallax/march.wgsl");
         let text = std::fs::read_to_string(&path).unwrap();
         std::fs::write(&path, format!("// first\nfn broken( {{\n{text}")).unwrap();
-        let error = compose_checked(&shaders::PARALLAX, &dir).unwrap_err();
+        let error = compose_checked(&crate::parallax::PARALLAX_SHADER, &dir).unwrap_err();
         let ShaderReloadError::Invalid { file, line, .. } = &error else {
             panic!("{error}");
         };
@@ -301,12 +306,12 @@ mod tests {
             format!("{text}\nfn wrong() -> f32 {{ return vec2<f32>(1.0); }}\n"),
         )
         .unwrap();
-        let error = compose_checked(&shaders::PARALLAX, &dir).unwrap_err();
+        let error = compose_checked(&crate::parallax::PARALLAX_SHADER, &dir).unwrap_err();
         assert!(
             error.to_string().starts_with("parallax/pom.wgsl:"),
             "{error}"
         );
-        let missing = compose_checked(&shaders::FORWARD, &dir).unwrap_err();
+        let missing = compose_checked(&crate::lit::LIT_SHADER, &dir).unwrap_err();
         assert!(
             matches!(missing, ShaderReloadError::Read { .. }),
             "{missing}"

@@ -1,87 +1,11 @@
-//! Command-line spellings of the plugin's choices, and parsers for values clap cannot check by
-//! type alone. Each value enum maps one-to-one onto a `pom` type, so a new variant in the plugin
-//! is a compile error here rather than an option the command silently lacks.
+//! Command-line spellings of the preview's choices, and parsers for values clap cannot check by
+//! type alone. The material's own choices need none: their spellings are declared with the
+//! material (`material_args.rs`).
 
 use std::path::PathBuf;
 
 use clap::ValueEnum;
 use pom::preview::{MAX_VIEW_ANGLE, PreviewProjection};
-use pom::{DebugView, ParallaxMethod, ShadowMode};
-
-/// Bisection steps `--method relief` takes after its linear search.
-pub const RELIEF_BINARY_STEPS: u32 = 6;
-
-/// `--method`: how the ray meets the height field.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum MethodArg {
-    /// Normal mapping only, no parallax
-    Normal,
-    /// Parallax offset with offset limiting (Welsh 2004): one height sample
-    Offset,
-    /// Steep parallax (McGuire 2005): linear search, shades the first sample below the surface
-    Steep,
-    /// Parallax occlusion mapping (Tatarchuk 2006): linear search, then a line intersection
-    Pom,
-    /// Relief mapping (Policarpo 2005): linear search, then 6 bisection steps
-    Relief,
-}
-
-impl From<MethodArg> for ParallaxMethod {
-    fn from(method: MethodArg) -> Self {
-        match method {
-            MethodArg::Normal => ParallaxMethod::NormalMapping,
-            MethodArg::Offset => ParallaxMethod::ParallaxOffset,
-            MethodArg::Steep => ParallaxMethod::Steep,
-            MethodArg::Pom => ParallaxMethod::Occlusion,
-            MethodArg::Relief => ParallaxMethod::Relief {
-                binary_steps: RELIEF_BINARY_STEPS,
-            },
-        }
-    }
-}
-
-impl From<ParallaxMethod> for MethodArg {
-    fn from(method: ParallaxMethod) -> Self {
-        match method {
-            ParallaxMethod::NormalMapping => MethodArg::Normal,
-            ParallaxMethod::ParallaxOffset => MethodArg::Offset,
-            ParallaxMethod::Steep => MethodArg::Steep,
-            ParallaxMethod::Occlusion => MethodArg::Pom,
-            ParallaxMethod::Relief { .. } => MethodArg::Relief,
-        }
-    }
-}
-
-/// `--shadows`: self-shadowing of the height field.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ShadowsArg {
-    /// No self-shadowing
-    Off,
-    /// Any blocker towards the light makes the point fully dark
-    Hard,
-    /// Tatarchuk's penumbra estimate (see --shadow-softening)
-    Soft,
-}
-
-impl From<ShadowsArg> for ShadowMode {
-    fn from(shadows: ShadowsArg) -> Self {
-        match shadows {
-            ShadowsArg::Off => ShadowMode::Off,
-            ShadowsArg::Hard => ShadowMode::Hard,
-            ShadowsArg::Soft => ShadowMode::Soft,
-        }
-    }
-}
-
-impl From<ShadowMode> for ShadowsArg {
-    fn from(shadows: ShadowMode) -> Self {
-        match shadows {
-            ShadowMode::Off => ShadowsArg::Off,
-            ShadowMode::Hard => ShadowsArg::Hard,
-            ShadowMode::Soft => ShadowsArg::Soft,
-        }
-    }
-}
 
 /// `--projection`: how the preview camera projects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -106,63 +30,6 @@ impl From<PreviewProjection> for ProjectionArg {
         match projection {
             PreviewProjection::Orthographic => ProjectionArg::Ortho,
             PreviewProjection::Perspective => ProjectionArg::Perspective,
-        }
-    }
-}
-
-/// `--debug-view`: what the material outputs instead of the lit colour.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum DebugViewArg {
-    /// The lit surface
-    None,
-    /// Tatarchuk's LOD tint: bluer through the LOD band, deepest blue where only normal
-    /// mapping runs
-    Lod,
-    /// The mip level as grey, black = level 0
-    Mip,
-    /// March samples as a heat map, black (none) to white (--max-samples)
-    Samples,
-    /// Raw 16-bit PNG: R = fract(u), G = fract(v), B = 1 full march / 0.5 LOD band / 0 normal
-    /// mapping only
-    Uv,
-    /// Raw 16-bit PNG: the self-shadowing visibility (1 = lit) in R, G and B
-    Shadow,
-    /// The tangent-space shading normal as n × 0.5 + 0.5
-    Normal,
-}
-
-impl DebugViewArg {
-    /// Whether the view holds measurements rather than colours: those are rendered into a float
-    /// target and written as 16-bit values without the sRGB curve, so the numbers survive.
-    pub fn writes_raw_values(self) -> bool {
-        matches!(self, DebugViewArg::Uv | DebugViewArg::Shadow)
-    }
-}
-
-impl From<DebugViewArg> for DebugView {
-    fn from(view: DebugViewArg) -> Self {
-        match view {
-            DebugViewArg::None => DebugView::None,
-            DebugViewArg::Lod => DebugView::Lod,
-            DebugViewArg::Mip => DebugView::Mip,
-            DebugViewArg::Samples => DebugView::Samples,
-            DebugViewArg::Uv => DebugView::Uv,
-            DebugViewArg::Shadow => DebugView::Shadow,
-            DebugViewArg::Normal => DebugView::Normal,
-        }
-    }
-}
-
-impl From<DebugView> for DebugViewArg {
-    fn from(view: DebugView) -> Self {
-        match view {
-            DebugView::None => DebugViewArg::None,
-            DebugView::Lod => DebugViewArg::Lod,
-            DebugView::Mip => DebugViewArg::Mip,
-            DebugView::Samples => DebugViewArg::Samples,
-            DebugView::Uv => DebugViewArg::Uv,
-            DebugView::Shadow => DebugViewArg::Shadow,
-            DebugView::Normal => DebugViewArg::Normal,
         }
     }
 }
@@ -270,32 +137,10 @@ mod tests {
 
     #[test]
     fn every_value_enum_round_trips_through_its_pom_type() {
-        for method in MethodArg::value_variants() {
-            assert_eq!(MethodArg::from(ParallaxMethod::from(*method)), *method);
-        }
-        for shadows in ShadowsArg::value_variants() {
-            assert_eq!(ShadowsArg::from(ShadowMode::from(*shadows)), *shadows);
-        }
         for projection in ProjectionArg::value_variants() {
             let round_trip = ProjectionArg::from(PreviewProjection::from(*projection));
             assert_eq!(round_trip, *projection);
         }
-        for view in DebugViewArg::value_variants() {
-            assert_eq!(DebugViewArg::from(DebugView::from(*view)), *view);
-        }
-        assert_eq!(
-            ParallaxMethod::from(MethodArg::Relief),
-            ParallaxMethod::Relief { binary_steps: 6 }
-        );
-    }
-
-    #[test]
-    fn only_uv_and_shadow_views_are_written_raw() {
-        let raw: Vec<_> = DebugViewArg::value_variants()
-            .iter()
-            .filter(|view| view.writes_raw_values())
-            .collect();
-        assert_eq!(raw, [&DebugViewArg::Uv, &DebugViewArg::Shadow]);
     }
 
     #[test]

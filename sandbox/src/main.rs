@@ -9,6 +9,7 @@ mod cli_types;
 mod demo_command;
 mod demo_scene;
 mod frame_output;
+mod material_args;
 mod preview_textures;
 mod render_command;
 mod scene_preview;

@@ -10,15 +10,16 @@ use clap::Args;
 use image::DynamicImage;
 use pom::preview::{PreviewView, spawn_preview};
 use pom::{
-    App, Assets, HeightConvention, Image, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin,
-    TargetFormat,
+    App, Assets, DebugView, HeightConvention, Image, ParallaxOcclusionMaterial, PomPlugin,
+    RenderPlugin, TargetFormat,
 };
 
 use crate::cli_types::{
-    CameraArg, DebugViewArg, MethodArg, ProjectionArg, ShadowsArg, parse_camera, parse_finite,
-    parse_png_path, parse_positive, parse_size, parse_view_angle,
+    CameraArg, ProjectionArg, parse_camera, parse_finite, parse_png_path, parse_positive,
+    parse_size, parse_view_angle,
 };
 use crate::frame_output;
+use crate::material_args::{self, MaterialArgs, choice_parser};
 use crate::preview_textures::{PreviewTextures, TextureFiles};
 use crate::scene_preview::{self, ScenePreview};
 
@@ -57,10 +58,6 @@ Examples:
   sandbox render --height my_height.png --view-angle 60 --out preview.png
   sandbox render --scene street.glb --camera auto --size 1280x720 --out street.png";
 
-fn material_default() -> ParallaxOcclusionMaterial {
-    ParallaxOcclusionMaterial::default()
-}
-
 fn view_default() -> PreviewView {
     PreviewView::default()
 }
@@ -93,25 +90,17 @@ pub struct OutputArgs {
     pub size: (u32, u32),
     /// Output an inspection view instead of the lit colour (in a scene: on every parallax
     /// material).
-    #[arg(long, value_enum, default_value_t = material_default().debug_view.into())]
-    pub debug_view: DebugViewArg,
+    #[arg(long, value_name = "NAME", value_parser = choice_parser::<DebugView>(), default_value = "none")]
+    pub debug_view: DebugView,
 }
 
-/// The options only the material preview uses: every one of `TextureArgs`, `MaterialArgs` and
-/// `ViewArgs`. Each conflicts with `--scene` by name, so the usage error names the one given.
-const MATERIAL_PREVIEW_ONLY: [&str; 19] = [
+/// The options only the material preview uses, besides the material's own flags: every one of
+/// `TextureArgs` and `ViewArgs`. Each conflicts with `--scene` by name, so the usage error names
+/// the one given.
+const PREVIEW_ONLY: [&str; 10] = [
     "height",
-    "depth_map",
     "normal",
     "albedo",
-    "method",
-    "height_scale",
-    "min_samples",
-    "max_samples",
-    "lod_threshold",
-    "shadows",
-    "shadow_softening",
-    "depth_offset",
     "view_angle",
     "view_azimuth",
     "light_angle",
@@ -120,6 +109,14 @@ const MATERIAL_PREVIEW_ONLY: [&str; 19] = [
     "distance",
     "tiling",
 ];
+
+/// Every option `--scene` conflicts with: [`PREVIEW_ONLY`] and every material flag.
+fn material_preview_only() -> Vec<&'static str> {
+    PREVIEW_ONLY
+        .into_iter()
+        .chain(material_args::flag_parameters().map(|param| param.name))
+        .collect()
+}
 
 /// A glTF scene instead of the material preview; the material preview's own options conflict
 /// with it.
@@ -131,7 +128,7 @@ pub struct SceneArgs {
     #[arg(
         long,
         value_name = "PATH",
-        conflicts_with_all = MATERIAL_PREVIEW_ONLY
+        conflicts_with_all = material_preview_only()
     )]
     pub scene: Option<PathBuf>,
     /// The file's camera to look through, counting from 0, or auto for a three-quarter view
@@ -144,64 +141,16 @@ pub struct SceneArgs {
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Textures")]
 pub struct TextureArgs {
-    /// Height map, white = top, red channel read [default: the shipped bricks].
+    /// Height map, red channel read, white = top unless --height-convention depth [default:
+    /// the shipped bricks].
     #[arg(long, value_name = "PATH")]
     pub height: Option<PathBuf>,
-    /// The --height file is a depth map: white is the deepest point.
-    #[arg(long, requires = "height")]
-    pub depth_map: bool,
     /// Tangent-space normal map, OpenGL convention [default: Sobel filter of the height map].
     #[arg(long, value_name = "PATH")]
     pub normal: Option<PathBuf>,
     /// sRGB colour texture [default: neutral grey].
     #[arg(long, value_name = "PATH")]
     pub albedo: Option<PathBuf>,
-}
-
-/// The material's parameters. Numbers are checked by `ParallaxOcclusionMaterial::validate`,
-/// not here, so the limits live in one place; NaN and negative numbers must therefore parse.
-#[derive(Debug, Args)]
-#[command(next_help_heading = "Material")]
-pub struct MaterialArgs {
-    /// How the view ray meets the height field.
-    #[arg(long, value_enum, default_value_t = material_default().method.into())]
-    pub method: MethodArg,
-    /// Depth of the relief from white to black, in texture-coordinate units.
-    #[arg(
-        long,
-        value_name = "F",
-        allow_negative_numbers = true,
-        default_value_t = material_default().height_scale
-    )]
-    pub height_scale: f32,
-    /// Height samples when looking straight at the surface.
-    #[arg(long, value_name = "N", default_value_t = material_default().min_samples)]
-    pub min_samples: u32,
-    /// Height samples at grazing angles (at least --min-samples).
-    #[arg(long, value_name = "N", default_value_t = material_default().max_samples)]
-    pub max_samples: u32,
-    /// Mip level past which only normal mapping runs.
-    #[arg(
-        long,
-        value_name = "F",
-        allow_negative_numbers = true,
-        default_value_t = material_default().lod_threshold
-    )]
-    pub lod_threshold: f32,
-    /// Self-shadowing of the relief.
-    #[arg(long, value_enum, default_value_t = material_default().shadows.into())]
-    pub shadows: ShadowsArg,
-    /// Penumbra width of soft shadows: larger is softer.
-    #[arg(
-        long,
-        value_name = "F",
-        allow_negative_numbers = true,
-        default_value_t = material_default().shadow_softening
-    )]
-    pub shadow_softening: f32,
-    /// Write the depth of the displaced point instead of the polygon's.
-    #[arg(long)]
-    pub depth_offset: bool,
 }
 
 /// Camera and light placement, in `PreviewView`'s frame. `PreviewView` quietly replaces values
@@ -272,8 +221,8 @@ impl RenderArgs {
     /// The material's parameters, without textures.
     pub fn material_settings(&self) -> ParallaxOcclusionMaterial {
         ParallaxOcclusionMaterial {
-            debug_view: self.output.debug_view.into(),
-            ..self.material.settings(self.textures.depth_map)
+            debug_view: self.output.debug_view,
+            ..self.material.settings()
         }
     }
 
@@ -283,41 +232,20 @@ impl RenderArgs {
     }
 
     fn texture_files(&self) -> TextureFiles<'_> {
-        self.textures.files()
+        self.textures
+            .files(self.material.settings().height_convention == HeightConvention::Depth)
     }
 }
 
 impl TextureArgs {
-    /// The files named, for [`PreviewTextures::load`].
-    pub fn files(&self) -> TextureFiles<'_> {
+    /// The files named, for [`PreviewTextures::load`]; `depth_map` says whether the height
+    /// file is a depth map.
+    pub fn files(&self, depth_map: bool) -> TextureFiles<'_> {
         TextureFiles {
             height: self.height.as_deref(),
-            depth_map: self.depth_map,
+            depth_map,
             normal: self.normal.as_deref(),
             albedo: self.albedo.as_deref(),
-        }
-    }
-}
-
-impl MaterialArgs {
-    /// The material these options describe (no textures, no debug view); `depth_map` says
-    /// whether the height map is a depth map.
-    pub fn settings(&self, depth_map: bool) -> ParallaxOcclusionMaterial {
-        ParallaxOcclusionMaterial {
-            height_convention: if depth_map {
-                HeightConvention::Depth
-            } else {
-                HeightConvention::Height
-            },
-            height_scale: self.height_scale,
-            min_samples: self.min_samples,
-            max_samples: self.max_samples,
-            lod_threshold: self.lod_threshold,
-            shadows: self.shadows.into(),
-            shadow_softening: self.shadow_softening,
-            method: self.method.into(),
-            depth_offset: self.depth_offset,
-            ..ParallaxOcclusionMaterial::default()
         }
     }
 }
@@ -335,6 +263,11 @@ impl ViewArgs {
             tiling: self.tiling,
         }
     }
+}
+
+/// Whether `view` is written as raw 16-bit values rather than an sRGB image.
+pub fn writes_raw_values(view: DebugView) -> bool {
+    matches!(view, DebugView::Uv | DebugView::Shadow)
 }
 
 /// Renders the material preview, or the `--scene` file, and writes it to `--out`.
@@ -372,7 +305,7 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
         path,
         camera: args.scene.camera,
         aspect: width as f32 / height as f32,
-        debug_view: args.output.debug_view.into(),
+        debug_view: args.output.debug_view,
     };
     scene_preview::spawn(&mut app, &preview)?;
     render_and_write(&mut app, &args.output, "rendering the scene")
@@ -381,7 +314,7 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
 /// An app with the headless renderer (a float target for the raw debug views) and the parallax
 /// material. The GPU starts on the first update.
 fn headless_app(output: &OutputArgs) -> App {
-    let format = if output.debug_view.writes_raw_values() {
+    let format = if writes_raw_values(output.debug_view) {
         TargetFormat::Float32
     } else {
         TargetFormat::Srgb8
@@ -397,7 +330,7 @@ fn headless_app(output: &OutputArgs) -> App {
 /// otherwise.
 fn render_and_write(app: &mut App, output: &OutputArgs, what: &'static str) -> Result<()> {
     app.update().context(what)?;
-    let image = if output.debug_view.writes_raw_values() {
+    let image = if writes_raw_values(output.debug_view) {
         let frame = pom::capture_f32(app).context("reading the frame back")?;
         DynamicImage::ImageRgb16(frame_output::raw_rgb16(&frame))
     } else {
@@ -440,7 +373,8 @@ mod tests {
         let args = parse(&[
             "--height",
             "h.png",
-            "--depth-map",
+            "--height-convention",
+            "depth",
             "--method",
             "relief",
             "--height-scale",
@@ -476,10 +410,7 @@ mod tests {
         .unwrap();
         let material = args.material_settings();
         assert_eq!(material.height_convention, HeightConvention::Depth);
-        assert_eq!(
-            material.method,
-            pom::ParallaxMethod::Relief { binary_steps: 6 }
-        );
+        assert_eq!(material.method, pom::ParallaxMethod::Relief);
         assert_eq!(material.height_scale, 0.1);
         assert_eq!((material.min_samples, material.max_samples), (4, 64));
         assert_eq!(material.lod_threshold, 6.0);
@@ -504,14 +435,9 @@ mod tests {
     #[test]
     fn negative_and_nan_material_numbers_parse_so_validation_can_name_them() {
         let negative = parse(&["--height-scale", "-1"]).unwrap();
-        assert_eq!(negative.material.height_scale, -1.0);
+        assert_eq!(negative.material_settings().height_scale, -1.0);
         let nan = parse(&["--height-scale", "NaN"]).unwrap();
         assert!(nan.material_settings().validate().is_err());
-    }
-
-    #[test]
-    fn a_depth_map_needs_a_height_file() {
-        assert!(parse(&["--depth-map"]).is_err());
     }
 
     #[test]
@@ -530,7 +456,7 @@ mod tests {
         assert_eq!(args.scene.scene, Some(PathBuf::from("city.glb")));
         assert_eq!(args.scene.camera, Some(CameraArg::Index(2)));
         assert_eq!(args.output.size, (64, 32));
-        assert_eq!(args.output.debug_view, DebugViewArg::Uv);
+        assert_eq!(args.output.debug_view, DebugView::Uv);
         let auto = parse(&["--scene", "city.glb", "--camera", "auto"]).unwrap();
         assert_eq!(auto.scene.camera, Some(CameraArg::Auto));
         let default = parse(&["--scene", "city.glb"]).unwrap();
@@ -538,10 +464,20 @@ mod tests {
     }
 
     #[test]
+    fn only_uv_and_shadow_views_are_written_raw() {
+        use pom::material::Choice;
+        let raw: Vec<_> = DebugView::VALUES
+            .iter()
+            .filter(|view| writes_raw_values(**view))
+            .collect();
+        assert_eq!(raw, [&DebugView::Uv, &DebugView::Shadow]);
+    }
+
+    #[test]
     fn material_preview_options_conflict_with_a_scene() {
         for option in [
             &["--height", "h.png"][..],
-            &["--height", "h.png", "--depth-map"],
+            &["--height-convention", "depth"],
             &["--normal", "n.png"],
             &["--albedo", "a.png"],
             &["--method", "steep"],
@@ -580,7 +516,10 @@ mod tests {
             .flat_map(|group| group.get_args().map(|id| id.to_string()))
             .collect();
         preview_only.sort();
-        let mut listed: Vec<String> = MATERIAL_PREVIEW_ONLY.map(str::to_owned).to_vec();
+        let mut listed: Vec<String> = material_preview_only()
+            .into_iter()
+            .map(str::to_owned)
+            .collect();
         listed.sort();
         assert_eq!(preview_only, listed);
     }

@@ -5,6 +5,7 @@ pub mod fixtures;
 pub mod fuzz_entry;
 pub mod gltf_fixture;
 mod golden;
+pub mod parameters;
 pub mod pom_scene;
 
 pub use golden::{
@@ -36,7 +37,8 @@ pub enum HarnessError {
 /// validation error turned into a failure.
 pub fn headless_app(width: u32, height: u32) -> Result<App, HarnessError> {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(width, height));
+    app.add_plugin(RenderPlugin::headless(width, height))
+        .add_plugin(pom::lit_plugin());
     app.finish()?;
     let gpu = app
         .resources
@@ -46,7 +48,7 @@ pub fn headless_app(width: u32, height: u32) -> Result<App, HarnessError> {
     if info.device_type != pom::wgpu::DeviceType::Cpu {
         eprintln!(
             "note: reference images were made on lavapipe; this run uses {} ({:?}). \
-             Run scripts/test to pin the software driver.",
+             Run tests/run to pin the software driver.",
             info.name, info.device_type
         );
     }

@@ -61,7 +61,7 @@ fn pom_extras_with_a_16_bit_npot_height_map() {
     let dir = scratch_dir("pom-extras");
     let fixture = pom_quad(json!({
         "height_texture": "HEIGHT", "height_scale": 0.03, "min_samples": 4, "max_samples": 40,
-        "shadows": "hard", "method": "relief", "relief_binary_steps": 5, "lighting": "blinn-phong"
+        "shadows": "hard", "method": "relief", "relief_binary_steps": 5, "lighting": "blinn_phong"
     }));
     let mut app = app();
     let scene = load_gltf(&mut app, fixture.write(&dir, "pom")).unwrap();
@@ -70,7 +70,8 @@ fn pom_extras_with_a_16_bit_npot_height_map() {
     assert_eq!(material.height_scale, 0.03);
     assert_eq!((material.min_samples, material.max_samples), (4, 40));
     assert_eq!(material.shadows, ShadowMode::Hard);
-    assert_eq!(material.method, ParallaxMethod::Relief { binary_steps: 5 });
+    assert_eq!(material.method, ParallaxMethod::Relief);
+    assert_eq!(material.relief_binary_steps, 5);
     let Some(HeightSource::Texture(height)) = &material.height_map else {
         panic!("height from its own texture");
     };
@@ -429,4 +430,18 @@ fn entities_keep_their_node_names_and_primitives_get_numbered_children() {
         names,
         ["quad", "quad / primitive 0", "quad / primitive 1", "node 1"]
     );
+}
+
+#[test]
+fn every_parameter_survives_gltf_extras() {
+    use pom_tests::parameters::{assert_same_parameters, every_parameter_changed};
+    let material = every_parameter_changed();
+    let mut extras = serde_json::to_value(pom::PomPatch::from_material(&material)).unwrap();
+    extras["height_texture"] = json!("HEIGHT");
+    let dir = scratch_dir("extras-round-trip");
+    let mut app = app();
+    let scene = load_gltf(&mut app, pom_quad(extras).write(&dir, "all")).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let loaded: ParallaxOcclusionMaterial = only(&app);
+    assert_same_parameters(&loaded, &material, "glTF extras");
 }

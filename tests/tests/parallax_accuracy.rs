@@ -56,7 +56,7 @@ fn gpu_march_matches_the_cpu_reference_within_a_quarter_texel() {
         for method in [
             ParallaxMethod::Steep,
             ParallaxMethod::Occlusion,
-            ParallaxMethod::Relief { binary_steps: 6 },
+            ParallaxMethod::Relief,
         ] {
             let gpu = gpu_uv(&textures, method, angle);
             let (mut total, mut count) = (0.0, 0);
@@ -89,7 +89,7 @@ fn error_table(name: &str, field: &HeightField) -> Vec<(u32, f32, f32, f32)> {
             steps,
             error(ParallaxMethod::Steep),
             error(ParallaxMethod::Occlusion),
-            error(ParallaxMethod::Relief { binary_steps: 6 }),
+            error(ParallaxMethod::Relief),
         );
         eprintln!(
             "{name:>12} {:>3} samples: steep {:.3}  POM {:.3}  relief {:.3} texels",

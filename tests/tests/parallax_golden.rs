@@ -22,11 +22,7 @@ fn tiles() -> Vec<(ParallaxMethod, ShadowMode, DebugView)> {
         (ParallaxMethod::ParallaxOffset, soft, DebugView::None),
         (ParallaxMethod::Steep, soft, DebugView::None),
         (pom, soft, DebugView::None),
-        (
-            ParallaxMethod::Relief { binary_steps: 6 },
-            soft,
-            DebugView::None,
-        ),
+        (ParallaxMethod::Relief, soft, DebugView::None),
         (pom, ShadowMode::Hard, DebugView::None),
     ];
     for view in [

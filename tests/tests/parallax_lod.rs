@@ -147,17 +147,13 @@ fn switched_and_lowest_mip(tiling: f32, distance: f32) -> (bool, f32) {
         };
     }
     let image = pom_tests::render_and_capture_f32(&mut app).unwrap();
-    let draws = &app
-        .resources
-        .get::<pom::parallax::ExtractedPom>()
-        .unwrap()
-        .draws;
+    let keys = pom::material::drawn_keys::<ParallaxOcclusionMaterial>(&app.resources);
     let normal_mapping = pom::parallax::PomPipelineKey::of(&ParallaxOcclusionMaterial {
         method: ParallaxMethod::NormalMapping,
         ..ParallaxOcclusionMaterial::default()
     })
     .method;
-    let switched = draws[0].pipeline.method == normal_mapping;
+    let switched = keys[0].method == normal_mapping;
     // The view shows mip / (levels − 1); a 128² map has 8 levels.
     let lowest = image
         .pixels()

@@ -51,7 +51,7 @@ fn every_method_and_shadow_mode_stays_finite_at_every_angle() {
         ParallaxMethod::ParallaxOffset,
         ParallaxMethod::Steep,
         ParallaxMethod::Occlusion,
-        ParallaxMethod::Relief { binary_steps: 6 },
+        ParallaxMethod::Relief,
     ];
     let view_angles = [0.0, 20.0, 45.0, 70.0, 85.0, 89.0, 89.9];
     // Including exactly the horizon (90) and below it.
@@ -248,7 +248,7 @@ fn numerical_sweep_has_no_nan_and_no_black_where_light_reaches() {
         ParallaxMethod::ParallaxOffset,
         ParallaxMethod::Steep,
         ParallaxMethod::Occlusion,
-        ParallaxMethod::Relief { binary_steps: 6 },
+        ParallaxMethod::Relief,
     ];
     let view_angles = [0.0, 30.0, 60.0, 80.0, 89.0, pom::preview::MAX_VIEW_ANGLE];
     let sun_angles = [0.0, 45.0, 89.9, 90.0, 100.0, 180.0];

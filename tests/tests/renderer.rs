@@ -83,7 +83,7 @@ fn only_what_changed_is_uploaded() {
     assert_eq!((moved.meshes, moved.images), (0, 0));
     assert_eq!(
         moved.uniform_bytes,
-        std::mem::size_of::<pom::render::ObjectUniform>() as u64,
+        std::mem::size_of::<pom::render::MeshTransform>() as u64,
         "only the moved object's data"
     );
 

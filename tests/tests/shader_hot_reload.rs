@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
 use pom::preview::PreviewView;
-use pom::render::shaders;
 use pom::{ShaderHotReload, ShaderReloadError, ShaderReloadStatus, TargetFormat, patterns};
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::render_and_capture;
@@ -15,7 +14,7 @@ const SHADED_RETURN: &str = "return shade(in).color;";
 
 fn copy_shader_sources() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pom-hot-reload-{}", std::process::id()));
-    for file in [shaders::FORWARD, shaders::PARALLAX]
+    for file in [pom::lit::LIT_SHADER, pom::parallax::PARALLAX_SHADER]
         .iter()
         .flat_map(|shader| shader.files)
     {
@@ -30,8 +29,8 @@ fn copy_shader_sources() -> PathBuf {
 /// the change is seen whatever the file system's time resolution.
 fn edit_entry(dir: &Path, step: u64, edit: impl Fn(&str) -> String) {
     let path = dir.join(ENTRY);
-    assert!(shaders::PARALLAX_ENTRY.source.contains(SHADED_RETURN));
-    std::fs::write(&path, edit(shaders::PARALLAX_ENTRY.source)).unwrap();
+    assert!(pom::parallax::PARALLAX_ENTRY.source.contains(SHADED_RETURN));
+    std::fs::write(&path, edit(pom::parallax::PARALLAX_ENTRY.source)).unwrap();
     let file = std::fs::File::options().write(true).open(&path).unwrap();
     file.set_modified(SystemTime::now() + Duration::from_secs(10 * step))
         .unwrap();

@@ -4,8 +4,6 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use pom::render::shaders;
-
 fn src_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src")
 }
@@ -24,9 +22,9 @@ fn wgsl_files(dir: &Path, found: &mut Vec<PathBuf>) {
 
 #[test]
 fn every_composed_shader_validates() {
-    assert!(!shaders::ALL.is_empty());
+    assert!(!pom::SHADERS.is_empty());
     let mut failures = Vec::new();
-    for shader in shaders::ALL {
+    for shader in pom::SHADERS {
         let source = shader.source();
         let module = match naga::front::wgsl::parse_str(&source) {
             Ok(module) => module,
@@ -55,7 +53,7 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         "no WGSL files under {}: did they move?",
         src_dir().display()
     );
-    let composed: BTreeSet<(&str, &str)> = shaders::ALL
+    let composed: BTreeSet<(&str, &str)> = pom::SHADERS
         .iter()
         .flat_map(|shader| shader.files.iter().map(|file| (file.path, file.source)))
         .collect();
@@ -68,12 +66,12 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         let text = std::fs::read_to_string(path).unwrap();
         assert!(
             composed.contains(&(relative.as_str(), text.as_str())),
-            "{relative} is not part of any shader in pom::render::shaders::ALL (or is stale)"
+            "{relative} is not part of any shader in pom::SHADERS (or is stale)"
         );
     }
     eprintln!(
         "{} WGSL files in {} shaders",
         on_disk.len(),
-        shaders::ALL.len()
+        pom::SHADERS.len()
     );
 }

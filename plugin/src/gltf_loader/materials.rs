@@ -8,8 +8,8 @@ use image::DynamicImage;
 use super::extras::{PomExtras, choose};
 use super::{GltfError, Source, describe};
 use crate::{
-    Assets, Channel, Color, Handle, HeightConvention, HeightSource, HeightUnits, Image,
-    LightingModel, LitMaterial, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, TextureKind,
+    Assets, Channel, Color, Handle, HeightSource, Image, LightingModel, LitMaterial,
+    ParallaxOcclusionMaterial, TextureKind,
 };
 
 /// A material as loaded: one of the two kinds the renderer draws, plus the texture-coordinate
@@ -244,88 +244,20 @@ impl MaterialCache {
                         ));
                     }
                 };
-                let defaults = ParallaxOcclusionMaterial::default();
-                let method = match choose(
-                    "method",
-                    &pom.method,
-                    &[
-                        ("normal", ParallaxMethod::NormalMapping),
-                        ("offset", ParallaxMethod::ParallaxOffset),
-                        ("steep", ParallaxMethod::Steep),
-                        ("pom", ParallaxMethod::Occlusion),
-                        ("relief", ParallaxMethod::Relief { binary_steps: 6 }),
-                    ],
-                    defaults.method,
-                )
-                .map_err(&material_error)?
-                {
-                    ParallaxMethod::Relief { binary_steps } => ParallaxMethod::Relief {
-                        binary_steps: pom.relief_binary_steps.unwrap_or(binary_steps),
-                    },
-                    other => other,
-                };
-                let material = ParallaxOcclusionMaterial {
+                let mut material = ParallaxOcclusionMaterial {
                     base_color,
                     base_color_texture,
                     normal_map,
                     height_map: Some(height_map),
-                    height_convention: choose(
-                        "height_convention",
-                        &pom.height_convention,
-                        &[
-                            ("height", HeightConvention::Height),
-                            ("depth", HeightConvention::Depth),
-                        ],
-                        defaults.height_convention,
-                    )
-                    .map_err(&material_error)?,
-                    height_scale: pom.height_scale.unwrap_or(defaults.height_scale),
-                    height_units: choose(
-                        "height_units",
-                        &pom.height_units,
-                        &[
-                            ("texture", HeightUnits::Texture),
-                            ("world", HeightUnits::World),
-                        ],
-                        defaults.height_units,
-                    )
-                    .map_err(&material_error)?,
-                    min_samples: pom.min_samples.unwrap_or(defaults.min_samples),
-                    max_samples: pom.max_samples.unwrap_or(defaults.max_samples),
-                    lod_threshold: pom.lod_threshold.unwrap_or(defaults.lod_threshold),
-                    lod_band: pom.lod_band.unwrap_or(defaults.lod_band),
-                    shadows: choose(
-                        "shadows",
-                        &pom.shadows,
-                        &[
-                            ("off", ShadowMode::Off),
-                            ("hard", ShadowMode::Hard),
-                            ("soft", ShadowMode::Soft),
-                        ],
-                        defaults.shadows,
-                    )
-                    .map_err(&material_error)?,
-                    shadow_softening: pom.shadow_softening.unwrap_or(defaults.shadow_softening),
-                    method,
-                    depth_offset: pom.depth_offset.unwrap_or(defaults.depth_offset),
-                    lighting: choose(
-                        "lighting",
-                        &pom.lighting,
-                        &[
-                            ("phong", LightingModel::Phong),
-                            ("blinn-phong", LightingModel::BlinnPhong),
-                            ("cook-torrance", LightingModel::CookTorrance),
-                        ],
-                        LightingModel::CookTorrance,
-                    )
-                    .map_err(&material_error)?,
-                    specular_strength: pom.specular_strength.unwrap_or(defaults.specular_strength),
-                    shininess: pom.shininess.unwrap_or(defaults.shininess),
+                    // glTF materials are physically based: Cook-Torrance, driven by their
+                    // roughness and metallic factors, unless the extras say otherwise.
+                    lighting: LightingModel::CookTorrance,
                     roughness,
                     metallic: pbr.metallic_factor(),
                     normal_strength,
-                    debug_view: defaults.debug_view,
+                    ..ParallaxOcclusionMaterial::default()
                 };
+                pom.apply(&mut material).map_err(&material_error)?;
                 material
                     .validate()
                     .map_err(|problem| material_error(format!("extras.pom: {problem}")))?;

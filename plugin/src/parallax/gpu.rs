@@ -1,133 +1,113 @@
-//! The material as the shader reads it: one `PomObject` per draw, laid out as in `pom.wgsl`
+//! The material as the shader reads it: one `PomUniform` per draw, laid out as in `pom.wgsl`
 //! (the modes that pick code paths are pipeline constants instead: see `pipelines.rs`).
 
 use bytemuck::{Pod, Zeroable};
-use glam::Mat4;
 
-use super::material::{
-    DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
-    ParallaxOcclusionMaterial, ShadowMode,
-};
+use super::material::{HeightConvention, HeightSource, HeightUnits, ParallaxOcclusionMaterial};
+use crate::material::TextureFacts;
 
-/// Per-draw transform and material parameters.
+/// Per-draw parameters of a parallax material.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct PomObject {
-    /// Object to world.
-    pub model: [[f32; 4]; 4],
-    /// Inverse transpose of `model`.
-    pub normal_matrix: [[f32; 4]; 4],
+pub struct PomUniform {
     /// Linear base colour.
     pub base_color: [f32; 4],
-    /// x: height scale, y: 1 if world units, z: min samples, w: max samples.
-    pub height: [f32; 4],
-    /// x: LOD threshold, y: LOD band, z: shadow softening, w: normal strength.
-    pub lod: [f32; 4],
-    /// x: specular strength, y: shininess, z: roughness, w: metallic.
-    pub surface: [f32; 4],
-    /// x: height channel, y: 1 for the depth convention, z: relief binary steps.
-    pub height_map: [u32; 4],
-    /// xy: height texture size, z: model determinant sign, w: mip level count.
-    pub texture: [f32; 4],
+    /// Depth of the relief (0 without a height map).
+    pub height_scale: f32,
+    /// 1 when `height_scale` is in world units.
+    pub world_units: u32,
+    /// Samples looking straight on.
+    pub min_samples: u32,
+    /// Samples at grazing angles.
+    pub max_samples: u32,
+    /// Mip level past which only normal mapping runs.
+    pub lod_threshold: f32,
+    /// Width of the LOD fade band.
+    pub lod_band: f32,
+    /// Penumbra width of soft shadows.
+    pub shadow_softening: f32,
+    /// Scales the normal map's tilt.
+    pub normal_strength: f32,
+    /// Phong / Blinn-Phong highlight weight.
+    pub specular_strength: f32,
+    /// Phong / Blinn-Phong exponent.
+    pub shininess: f32,
+    /// Cook-Torrance roughness.
+    pub roughness: f32,
+    /// Cook-Torrance metalness.
+    pub metallic: f32,
+    /// Channel of the height texture holding the height: 0 = red, 3 = alpha.
+    pub height_channel: u32,
+    /// 1 for the depth convention.
+    pub depth_convention: u32,
+    /// Bisection steps of relief mapping.
+    pub relief_binary_steps: u32,
+    /// Mip levels of the height texture as bound.
+    pub height_mip_levels: f32,
+    /// Size of the height texture as bound, in texels.
+    pub height_texture_size: [f32; 2],
+    /// Keeps the size a multiple of 16 bytes.
+    pub _padding: [f32; 2],
 }
 
-pub(super) fn method_code(method: ParallaxMethod) -> (u32, u32) {
-    match method {
-        ParallaxMethod::NormalMapping => (0, 0),
-        ParallaxMethod::ParallaxOffset => (1, 0),
-        ParallaxMethod::Steep => (2, 0),
-        ParallaxMethod::Occlusion => (3, 0),
-        ParallaxMethod::Relief { binary_steps } => (4, binary_steps),
-    }
-}
+crate::wgsl_layout!(PomUniform {
+    base_color,
+    height_scale,
+    world_units,
+    min_samples,
+    max_samples,
+    lod_threshold,
+    lod_band,
+    shadow_softening,
+    normal_strength,
+    specular_strength,
+    shininess,
+    roughness,
+    metallic,
+    height_channel,
+    depth_convention,
+    relief_binary_steps,
+    height_mip_levels,
+    height_texture_size,
+    _padding
+});
 
-pub(super) fn shadow_code(shadows: ShadowMode) -> u32 {
-    match shadows {
-        ShadowMode::Off => 0,
-        ShadowMode::Hard => 1,
-        ShadowMode::Soft => 2,
-    }
-}
-
-pub(super) fn lighting_code(lighting: LightingModel) -> u32 {
-    match lighting {
-        LightingModel::Phong => 0,
-        LightingModel::BlinnPhong => 1,
-        LightingModel::CookTorrance => 2,
-    }
-}
-
-pub(super) fn debug_code(view: DebugView) -> u32 {
-    match view {
-        DebugView::None => 0,
-        DebugView::Lod => 1,
-        DebugView::Mip => 2,
-        DebugView::Samples => 3,
-        DebugView::Uv => 4,
-        DebugView::Shadow => 5,
-        DebugView::Normal => 6,
-    }
-}
-
-impl PomObject {
-    /// Packs a sanitized material, its world transform and the size of its height texture
-    /// (`(1, 1)` without one).
-    pub fn new(
-        material: &ParallaxOcclusionMaterial,
-        model: Mat4,
-        height_texture_size: (u32, u32),
-    ) -> Self {
-        let (_, binary_steps) = method_code(material.method);
-        let determinant = model.determinant();
-        let normal_matrix = if determinant.abs() > f32::MIN_POSITIVE {
-            model.inverse().transpose()
-        } else {
-            Mat4::IDENTITY
-        };
-        let (width, height) = height_texture_size;
-        let mip_levels = 32 - width.max(height).max(1).leading_zeros();
-        let channel = match material.height_map {
-            Some(HeightSource::NormalMapAlpha) => 3,
-            _ => 0,
-        };
+impl PomUniform {
+    /// Packs a sanitized material with the height texture as bound (`None`: no height texture,
+    /// a 1×1 stand-in).
+    pub fn new(material: &ParallaxOcclusionMaterial, height: Option<TextureFacts>) -> Self {
+        let height = height.unwrap_or(TextureFacts {
+            width: 1,
+            height: 1,
+            mip_levels: 1,
+        });
         Self {
-            model: model.to_cols_array_2d(),
-            normal_matrix: normal_matrix.to_cols_array_2d(),
             base_color: material.base_color.to_array(),
-            height: [
-                if material.height_map.is_some() {
-                    material.height_scale
-                } else {
-                    0.0
-                },
-                f32::from(u8::from(material.height_units == HeightUnits::World)),
-                material.min_samples as f32,
-                material.max_samples as f32,
-            ],
-            lod: [
-                material.lod_threshold,
-                material.lod_band,
-                material.shadow_softening,
-                material.normal_strength,
-            ],
-            surface: [
-                material.specular_strength,
-                material.shininess,
-                material.roughness,
-                material.metallic,
-            ],
-            height_map: [
-                channel,
-                u32::from(material.height_convention == HeightConvention::Depth),
-                binary_steps,
-                0,
-            ],
-            texture: [
-                width as f32,
-                height as f32,
-                if determinant < 0.0 { -1.0 } else { 1.0 },
-                mip_levels as f32,
-            ],
+            height_scale: if material.height_map.is_some() {
+                material.height_scale
+            } else {
+                0.0
+            },
+            world_units: u32::from(material.height_units == HeightUnits::World),
+            min_samples: material.min_samples,
+            max_samples: material.max_samples,
+            lod_threshold: material.lod_threshold,
+            lod_band: material.lod_band,
+            shadow_softening: material.shadow_softening,
+            normal_strength: material.normal_strength,
+            specular_strength: material.specular_strength,
+            shininess: material.shininess,
+            roughness: material.roughness,
+            metallic: material.metallic,
+            height_channel: match material.height_map {
+                Some(HeightSource::NormalMapAlpha) => 3,
+                _ => 0,
+            },
+            depth_convention: u32::from(material.height_convention == HeightConvention::Depth),
+            relief_binary_steps: material.relief_binary_steps,
+            height_mip_levels: height.mip_levels as f32,
+            height_texture_size: [height.width as f32, height.height as f32],
+            _padding: [0.0; 2],
         }
     }
 }

@@ -6,16 +6,9 @@
 //
 // Heights are in Tatarchuk's convention after `sample_height`: 1 = the polygon's surface (top),
 // 0 = the deepest point. A ray is described by its height: the view ray enters at 1 and descends.
-
-const METHOD_NORMAL_MAPPING: u32 = 0u;
-const METHOD_PARALLAX_OFFSET: u32 = 1u;
-const METHOD_STEEP: u32 = 2u;
-const METHOD_OCCLUSION: u32 = 3u;
-const METHOD_RELIEF: u32 = 4u;
-
-const SHADOWS_OFF: u32 = 0u;
-const SHADOWS_HARD: u32 = 1u;
-const SHADOWS_SOFT: u32 = 2u;
+//
+// The METHOD_* and SHADOWS_* codes are generated from `ParallaxMethod` and `ShadowMode` and
+// prepended (see parallax/mod.rs).
 
 // Longest sideways travel of a ray per unit of depth: |V.xy| / V.z is capped here, which is
 // reached about 87° from the normal. It keeps grazing rays (V.z → 0, or < 0 on silhouettes of

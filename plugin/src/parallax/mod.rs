@@ -1,123 +1,165 @@
-//! The parallax occlusion mapping material: component, plugin, render systems.
+//! The parallax occlusion mapping material: its parameters, GPU form and plugin.
 
-mod extract;
 mod gpu;
-mod lod_switch;
 mod material;
-mod pass;
 mod pipelines;
 mod preset;
 
-pub use extract::{ExtractedPom, MaterialWarnings, PomDraw, extract_pom};
-pub use gpu::PomObject;
-pub use lod_switch::{MeshLodBounds, MeshLodCache, PixelFootprint, lowest_mip};
+pub use gpu::PomUniform;
 pub use material::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, MAX_SAMPLES_LIMIT,
-    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, ShadowMode,
+    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPreset, ShadowMode,
 };
-pub use pass::PomPass;
-pub use pipelines::{PomPipelineKey, PomPipelines};
-pub use preset::{PomPreset, PresetError, write_atomically};
+pub use pipelines::PomPipelineKey;
+pub use preset::{PresetError, write_atomically};
 
-use crate::render::{MainPassDraws, RenderTarget, Renderer};
-use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
+use crate::material::{
+    Choice, FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
+    TextureFacts,
+};
+use crate::render::shaders::{self, ComposedShader, WgslFile};
+use crate::render::{DefaultTexture, DrawView};
+use crate::{App, Handle, Plugin};
 
-/// Draws every entity that has a [`ParallaxOcclusionMaterial`], a `Handle<Mesh>` and a
-/// transform. Add it after [`crate::RenderPlugin`].
+/// The ray march, LOD and self-shadow functions of the parallax material.
+pub const PARALLAX_MARCH: WgslFile = crate::wgsl_file!("parallax/march.wgsl");
+/// The parallax material's entry points.
+pub const PARALLAX_ENTRY: WgslFile = crate::wgsl_file!("parallax/pom.wgsl");
+
+/// The parallax material's shader.
+pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
+    name: "pom.wgsl",
+    constants: &[
+        ParallaxMethod::wgsl_constants,
+        ShadowMode::wgsl_constants,
+        LightingModel::wgsl_constants,
+        DebugView::wgsl_constants,
+    ],
+    files: &[
+        shaders::FRAME,
+        shaders::MESH_VERTEX,
+        shaders::TANGENT_SPACE,
+        shaders::LIGHTING,
+        PARALLAX_MARCH,
+        PARALLAX_ENTRY,
+    ],
+};
+
+/// Entities whose parallax material was clamped (each warned about once per change).
+pub type MaterialWarnings = crate::material::MaterialWarnings<ParallaxOcclusionMaterial>;
+
+/// Texture slot of the height map.
+const HEIGHT_SLOT: usize = 2;
+
+impl Material for ParallaxOcclusionMaterial {
+    type Uniform = PomUniform;
+    type Key = PomPipelineKey;
+    const NAME: &'static str = "parallax";
+    const UNIFORM_WGSL_NAME: &'static str = "PomUniform";
+    const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
+        DefaultTexture::WhiteSrgb,
+        DefaultTexture::FlatNormal,
+        DefaultTexture::WhiteLinear,
+    ];
+
+    fn shader() -> ComposedShader {
+        PARALLAX_SHADER
+    }
+
+    fn textures(&self) -> MaterialTextures {
+        let height = match &self.height_map {
+            Some(HeightSource::Texture(handle)) => Some(handle.id()),
+            Some(HeightSource::NormalMapAlpha) => self.normal_map.as_ref().map(Handle::id),
+            None => None,
+        };
+        let mut textures = [None; MAX_MATERIAL_TEXTURES];
+        textures[0] = self.base_color_texture.as_ref().map(Handle::id);
+        textures[1] = self.normal_map.as_ref().map(Handle::id);
+        textures[HEIGHT_SLOT] = height;
+        textures
+    }
+
+    fn key(&self) -> PomPipelineKey {
+        PomPipelineKey::of(self)
+    }
+
+    fn fragment(key: PomPipelineKey) -> FragmentVariant {
+        key.fragment()
+    }
+
+    fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {
+        let height = textures[HEIGHT_SLOT];
+        if self.is_valid() {
+            PomUniform::new(self, height)
+        } else {
+            PomUniform::new(&self.sanitized(), height)
+        }
+    }
+
+    fn problems(&self) -> Vec<String> {
+        if self.is_valid() {
+            return Vec::new();
+        }
+        ParallaxOcclusionMaterial::problems(self)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+
+    /// Per-object LOD: a draw on which every pixel is past the LOD threshold uses the
+    /// normal-mapping pipeline. Per pixel the shader would skip the march there anyway
+    /// (T §5.4.3) and the image is the same, but a pipeline that holds the march is slower even
+    /// where it does not run (more registers per pixel: on the H100 the far-field bench read
+    /// 1.33× normal mapping with the POM pipeline). The mip bound is conservative.
+    fn draw_key(
+        &self,
+        key: PomPipelineKey,
+        textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+        view: &mut DrawView<'_>,
+    ) -> PomPipelineKey {
+        let normal_mapping = key.normal_mapping();
+        if key == normal_mapping {
+            return key;
+        }
+        let height = textures[HEIGHT_SLOT].unwrap_or(TextureFacts {
+            width: 1,
+            height: 1,
+            mip_levels: 1,
+        });
+        let threshold = if self.is_valid() {
+            self.lod_threshold
+        } else {
+            self.sanitized().lod_threshold
+        };
+        if view.lowest_mip(&height).is_some_and(|mip| mip >= threshold) {
+            normal_mapping
+        } else {
+            key
+        }
+    }
+}
+
+/// The product's materials: draws every entity that has a [`ParallaxOcclusionMaterial`], a
+/// `Handle<Mesh>` and a transform, keeps dynamic height fields' normals up to date, and adds
+/// [`crate::lit_plugin`] (which draws every other mesh) unless it is there. Add it after
+/// [`crate::RenderPlugin`] (or use [`crate::DefaultPlugins`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PomPlugin;
 
-/// The parallax pass's GPU state. A resource.
-#[derive(Debug)]
-pub struct PomRenderer {
-    /// Pipelines, buffers and bind groups.
-    pub pass: PomPass,
-    /// Bytes of per-draw data the last Prepare stage wrote.
-    pub last_upload_bytes: u64,
-}
-
-/// Why the plugin could not start.
-#[derive(Debug, thiserror::Error)]
-#[error("PomPlugin needs RenderPlugin: add RenderPlugin before PomPlugin")]
-pub struct MissingRenderPlugin;
-
 impl Plugin for PomPlugin {
     fn build(&self, app: &mut App) {
-        app.add_system(Stage::Extract, extract_pom)
-            .add_system(Stage::Prepare, prepare_pom)
-            .add_system(Stage::Prepare, crate::derive_dynamic_normals);
-        app.resources
-            .get_or_default::<MainPassDraws>()
-            .0
-            .push(draw_pom);
+        app.add_plugin(crate::lit_plugin())
+            .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
+        app.add_system(crate::Stage::Prepare, crate::derive_dynamic_normals);
     }
 
-    fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
-        let (Some(gpu), Some(target), Some(renderer)) = (
-            app.resources.get::<GpuContext>(),
-            app.resources.get::<RenderTarget>(),
-            app.resources.get::<Renderer>(),
-        ) else {
-            return Err(MissingRenderPlugin.into());
-        };
-        let pass = PomPass::new(gpu, &renderer.frame, target.format());
+    fn finish(&self, app: &mut App) -> Result<(), crate::BoxedError> {
+        let gpu = app
+            .resources
+            .get::<crate::GpuContext>()
+            .ok_or(crate::material::MissingRenderPlugin)?;
         let sobel = crate::SobelPass::new(gpu);
         app.insert_resource(sobel);
-        app.insert_resource(PomRenderer {
-            pass,
-            last_upload_bytes: 0,
-        });
         Ok(())
     }
-}
-
-/// The Prepare stage's system: uploads the material textures, meshes and per-draw data.
-pub fn prepare_pom(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    let mut renderer = resources
-        .remove::<Renderer>()
-        .ok_or_else(AppError::missing::<Renderer>)?;
-    let result = prepare_with(&mut renderer, resources);
-    resources.insert(renderer);
-    result
-}
-
-fn prepare_with(renderer: &mut Renderer, resources: &mut Resources) -> Result<(), AppError> {
-    let mut pom = resources
-        .remove::<PomRenderer>()
-        .ok_or_else(AppError::missing::<PomRenderer>)?;
-    let result = (|| {
-        let gpu = resources.require::<GpuContext>()?;
-        let extracted = resources.require::<ExtractedPom>()?;
-        let meshes = resources.require::<Assets<Mesh>>()?;
-        let images = resources.require::<Assets<Image>>()?;
-        for draw in &extracted.draws {
-            if renderer.assets.prepare_mesh(gpu, meshes, draw.mesh) {
-                renderer.last_upload.meshes += 1;
-            }
-            for image in draw.textures.into_iter().flatten() {
-                if renderer.assets.prepare_image(gpu, images, image) {
-                    renderer.last_upload.images += 1;
-                }
-            }
-        }
-        pom.last_upload_bytes = pom
-            .pass
-            .prepare(gpu, &renderer.frame, extracted, &renderer.assets);
-        renderer.last_upload.uniform_bytes += pom.last_upload_bytes;
-        Ok(())
-    })();
-    resources.insert(pom);
-    result
-}
-
-/// The parallax draws of the main pass (registered in [`MainPassDraws`]).
-pub fn draw_pom(resources: &Resources, pass: &mut wgpu::RenderPass<'_>) {
-    let (Some(pom), Some(extracted), Some(renderer)) = (
-        resources.get::<PomRenderer>(),
-        resources.get::<ExtractedPom>(),
-        resources.get::<Renderer>(),
-    ) else {
-        return;
-    };
-    pom.pass.draw(pass, extracted, &renderer.assets);
 }

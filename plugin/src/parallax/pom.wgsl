@@ -1,14 +1,6 @@
-// Entry points of `ParallaxOcclusionMaterial`. Composed after frame.wgsl, tangent_space.wgsl,
-// lighting.wgsl, mesh_vertex.wgsl and march.wgsl (see render/shaders.rs). Mirrors `PomObject`
-// in gpu.rs.
-
-const DEBUG_NONE: u32 = 0u;
-const DEBUG_LOD: u32 = 1u;
-const DEBUG_MIP: u32 = 2u;
-const DEBUG_SAMPLES: u32 = 3u;
-const DEBUG_UV: u32 = 4u;
-const DEBUG_SHADOW: u32 = 5u;
-const DEBUG_NORMAL: u32 = 6u;
+// Entry points of `ParallaxOcclusionMaterial`. Composed after the generated enum codes,
+// frame.wgsl, mesh_vertex.wgsl, tangent_space.wgsl, lighting.wgsl and march.wgsl (see
+// parallax/mod.rs). Mirrors `PomUniform` in gpu.rs (the layout test checks them).
 
 // Pipeline-overridable constants: every pipeline is compiled for one combination (see
 // parallax/pipelines.rs), so the GPU compiler drops every other path and its registers.
@@ -17,33 +9,39 @@ override SHADOW_MODE: u32 = SHADOWS_SOFT;
 override LIGHTING_MODEL: u32 = LIGHTING_PHONG;
 override DEBUG_VIEW: u32 = DEBUG_NONE;
 
-struct PomObject {
-    model: mat4x4<f32>,
-    normal_matrix: mat4x4<f32>,
+struct PomUniform {
     base_color: vec4<f32>,
-    // x: height scale, y: 1 if in world units, z: min samples, w: max samples.
-    height: vec4<f32>,
-    // x: LOD threshold, y: LOD band, z: shadow softening, w: normal strength.
-    lod: vec4<f32>,
-    // x: specular strength, y: shininess, z: roughness, w: metallic.
-    surface: vec4<f32>,
-    // x: height channel, y: 1 for the depth convention, z: relief binary steps.
-    height_map: vec4<u32>,
-    // xy: height texture size in texels, z: model determinant sign, w: mip level count.
-    texture: vec4<f32>,
+    // Height scale in `height_scale`'s units (0 without a height map).
+    height_scale: f32,
+    // 1 when `height_scale` is in world units.
+    world_units: u32,
+    min_samples: u32,
+    max_samples: u32,
+    lod_threshold: f32,
+    lod_band: f32,
+    shadow_softening: f32,
+    normal_strength: f32,
+    specular_strength: f32,
+    shininess: f32,
+    roughness: f32,
+    metallic: f32,
+    // Channel of the height texture holding the height: 0 = red .. 3 = alpha.
+    height_channel: u32,
+    // 1 for the depth convention (white = deepest).
+    depth_convention: u32,
+    relief_binary_steps: u32,
+    // Mip levels of the height texture as bound.
+    height_mip_levels: f32,
+    // Size of the height texture as bound, in texels.
+    height_texture_size: vec2<f32>,
+    _padding: vec2<f32>,
 }
 
-@group(0) @binding(1) var<storage, read> objects: array<PomObject>;
+@group(0) @binding(2) var<storage, read> materials: array<PomUniform>;
 @group(1) @binding(0) var base_color_texture: texture_2d<f32>;
 @group(1) @binding(1) var normal_map: texture_2d<f32>;
 @group(1) @binding(2) var height_texture: texture_2d<f32>;
 @group(1) @binding(3) var material_sampler: sampler;
-
-@vertex
-fn vs_main(in: VertexIn, @builtin(instance_index) object_index: u32) -> VertexOut {
-    let object = objects[object_index];
-    return transform_vertex(in, object.model, object.normal_matrix, object.texture.z, object_index);
-}
 
 struct Shaded {
     color: vec4<f32>,
@@ -58,7 +56,7 @@ fn heat(t: f32) -> vec3<f32> {
 }
 
 fn shade(in: VertexOut) -> Shaded {
-    let object = objects[in.object_index];
+    let material = materials[in.object_index];
     let surface_frame = tangent_frame(in.world_normal, in.world_tangent);
     let to_eye = direction_to_eye(in.world_position, surface_frame.normal);
     let to_eye_ts = to_tangent_space(surface_frame, to_eye);
@@ -66,19 +64,19 @@ fn shade(in: VertexOut) -> Shaded {
     // Everything derived from screen-space derivatives happens here, once, before any branch.
     let ddx_uv = dpdx(in.uv);
     let ddy_uv = dpdy(in.uv);
-    let texture_size = object.texture.xy;
+    let texture_size = material.height_texture_size;
     let mip = mip_level(ddx_uv * texture_size, ddy_uv * texture_size);
     // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces.
     let world_area = length(cross(dpdx(in.world_position), dpdy(in.world_position)));
     let uv_area = abs(ddx_uv.x * ddy_uv.y - ddx_uv.y * ddy_uv.x);
     let uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
-    let height_scale = select(object.height.x, object.height.x * uv_per_world, object.height.y > 0.5);
+    let height_scale = select(material.height_scale, material.height_scale * uv_per_world, material.world_units != 0u);
 
-    let field = HeightField(object.height_map.x, object.height_map.y, ddx_uv, ddy_uv);
+    let field = HeightField(material.height_channel, material.depth_convention, ddx_uv, ddy_uv);
     let method = METHOD;
-    let min_samples = u32(object.height.z);
-    let max_samples = u32(object.height.w);
-    let fade = lod_fade(mip, object.lod.x, object.lod.y);
+    let min_samples = material.min_samples;
+    let max_samples = material.max_samples;
+    let fade = lod_fade(mip, material.lod_threshold, material.lod_band);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
     let march = fade < 1.0 && method != METHOD_NORMAL_MAPPING && height_scale > 0.0;
 
@@ -90,18 +88,18 @@ fn shade(in: VertexOut) -> Shaded {
         let texels = length(offset * texture_size) / exp2(mip);
         let steps = march_steps(min_samples, max_samples, dot(surface_frame.normal, to_eye), texels);
         let hit = march_view(height_texture, material_sampler, field, method, in.uv, offset, to_eye_ts,
-            height_scale, steps, object.height_map.z);
+            height_scale, steps, material.relief_binary_steps);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
         uv = mix(hit.uv, in.uv, fade);
         height = mix(hit.height, 1.0, fade);
         samples = hit.samples;
     }
 
-    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * object.base_color;
+    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * material.base_color;
     let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, ddx_uv, ddy_uv).xyz;
-    let normal = perturbed_normal(surface_frame, encoded_normal, object.lod.w);
-    let surface = Surface(base.rgb, object.surface.x, max(object.surface.y, 1.0), object.surface.z,
-        object.surface.w, LIGHTING_MODEL);
+    let normal = perturbed_normal(surface_frame, encoded_normal, material.normal_strength);
+    let surface = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0), material.roughness,
+        material.metallic, LIGHTING_MODEL);
 
     var color = frame.ambient.rgb * base.rgb;
     var first_visibility = 1.0;
@@ -113,7 +111,7 @@ fn shade(in: VertexOut) -> Shaded {
             let to_light_ts = to_tangent_space(surface_frame, light.to_light);
             let light_offset = ray_offset(to_light_ts, height_scale);
             if SHADOW_MODE == SHADOWS_SOFT {
-                visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, object.lod.z);
+                visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, material.shadow_softening);
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(mip);
                 visibility = hard_shadow(height_texture, material_sampler, field, uv, light_offset,
@@ -135,7 +133,7 @@ fn shade(in: VertexOut) -> Shaded {
             out = vec4<f32>(color * vec3<f32>(1.0, 1.0, tint), base.a);
         }
         case DEBUG_MIP: {
-            out = vec4<f32>(vec3<f32>(mip / max(object.texture.w - 1.0, 1.0)), 1.0);
+            out = vec4<f32>(vec3<f32>(mip / max(material.height_mip_levels - 1.0, 1.0)), 1.0);
         }
         case DEBUG_SAMPLES: {
             out = vec4<f32>(heat(f32(samples) / max(f32(max_samples), 1.0)), 1.0);

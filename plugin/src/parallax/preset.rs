@@ -1,71 +1,14 @@
-//! Material presets: the artist parameters of a [`ParallaxOcclusionMaterial`] without its
-//! textures, saved and loaded as RON, and printed as a Rust struct literal.
+//! Material presets ([`PomPreset`]: every parameter of a [`ParallaxOcclusionMaterial`] without
+//! its textures) saved and loaded as RON, and printed as a Rust struct literal. In RON every field
+//! is optional (missing ones keep the default) and unknown ones are errors:
+//!
+//! ```ron
+//! (height_scale: 0.06, max_samples: 64, shadows: soft, method: relief, relief_binary_steps: 6)
+//! ```
 
 use std::path::Path;
 
-use serde::{Deserialize, Serialize};
-
-use super::material::{
-    DebugView, HeightConvention, HeightUnits, LightingModel, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, ShadowMode,
-};
-use crate::Color;
-
-/// Every tunable parameter of a [`ParallaxOcclusionMaterial`] except its textures.
-///
-/// In RON every field is optional (missing ones keep the default) and unknown ones are errors:
-///
-/// ```ron
-/// (height_scale: 0.06, max_samples: 64, shadows: Soft, method: Relief(binary_steps: 6))
-/// ```
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PomPreset {
-    /// Linear RGBA multiplied with the colour texture.
-    pub base_color: [f32; 4],
-    /// See [`ParallaxOcclusionMaterial::height_convention`].
-    pub height_convention: HeightConvention,
-    /// See [`ParallaxOcclusionMaterial::height_scale`].
-    pub height_scale: f32,
-    /// See [`ParallaxOcclusionMaterial::height_units`].
-    pub height_units: HeightUnits,
-    /// See [`ParallaxOcclusionMaterial::min_samples`].
-    pub min_samples: u32,
-    /// See [`ParallaxOcclusionMaterial::max_samples`].
-    pub max_samples: u32,
-    /// See [`ParallaxOcclusionMaterial::lod_threshold`].
-    pub lod_threshold: f32,
-    /// See [`ParallaxOcclusionMaterial::lod_band`].
-    pub lod_band: f32,
-    /// See [`ParallaxOcclusionMaterial::shadows`].
-    pub shadows: ShadowMode,
-    /// See [`ParallaxOcclusionMaterial::shadow_softening`].
-    pub shadow_softening: f32,
-    /// See [`ParallaxOcclusionMaterial::method`].
-    pub method: ParallaxMethod,
-    /// See [`ParallaxOcclusionMaterial::depth_offset`].
-    pub depth_offset: bool,
-    /// See [`ParallaxOcclusionMaterial::lighting`].
-    pub lighting: LightingModel,
-    /// See [`ParallaxOcclusionMaterial::specular_strength`].
-    pub specular_strength: f32,
-    /// See [`ParallaxOcclusionMaterial::shininess`].
-    pub shininess: f32,
-    /// See [`ParallaxOcclusionMaterial::roughness`].
-    pub roughness: f32,
-    /// See [`ParallaxOcclusionMaterial::metallic`].
-    pub metallic: f32,
-    /// See [`ParallaxOcclusionMaterial::normal_strength`].
-    pub normal_strength: f32,
-    /// See [`ParallaxOcclusionMaterial::debug_view`].
-    pub debug_view: DebugView,
-}
-
-impl Default for PomPreset {
-    fn default() -> Self {
-        ParallaxOcclusionMaterial::default().preset()
-    }
-}
+use super::material::{ParallaxOcclusionMaterial, PomMaterialError, PomPreset};
 
 /// Why a preset could not be read or written.
 #[derive(Debug, thiserror::Error)]
@@ -98,57 +41,6 @@ pub enum PresetError {
         /// The first problem.
         source: PomMaterialError,
     },
-}
-
-impl ParallaxOcclusionMaterial {
-    /// The material's parameters without its textures.
-    pub fn preset(&self) -> PomPreset {
-        PomPreset {
-            base_color: self.base_color.to_array(),
-            height_convention: self.height_convention,
-            height_scale: self.height_scale,
-            height_units: self.height_units,
-            min_samples: self.min_samples,
-            max_samples: self.max_samples,
-            lod_threshold: self.lod_threshold,
-            lod_band: self.lod_band,
-            shadows: self.shadows,
-            shadow_softening: self.shadow_softening,
-            method: self.method,
-            depth_offset: self.depth_offset,
-            lighting: self.lighting,
-            specular_strength: self.specular_strength,
-            shininess: self.shininess,
-            roughness: self.roughness,
-            metallic: self.metallic,
-            normal_strength: self.normal_strength,
-            debug_view: self.debug_view,
-        }
-    }
-
-    /// Takes every parameter of `preset`, keeping this material's textures.
-    pub fn apply_preset(&mut self, preset: &PomPreset) {
-        let [r, g, b, a] = preset.base_color;
-        self.base_color = Color { r, g, b, a };
-        self.height_convention = preset.height_convention;
-        self.height_scale = preset.height_scale;
-        self.height_units = preset.height_units;
-        self.min_samples = preset.min_samples;
-        self.max_samples = preset.max_samples;
-        self.lod_threshold = preset.lod_threshold;
-        self.lod_band = preset.lod_band;
-        self.shadows = preset.shadows;
-        self.shadow_softening = preset.shadow_softening;
-        self.method = preset.method;
-        self.depth_offset = preset.depth_offset;
-        self.lighting = preset.lighting;
-        self.specular_strength = preset.specular_strength;
-        self.shininess = preset.shininess;
-        self.roughness = preset.roughness;
-        self.metallic = preset.metallic;
-        self.normal_strength = preset.normal_strength;
-        self.debug_view = preset.debug_view;
-    }
 }
 
 impl PomPreset {
@@ -197,33 +89,12 @@ impl PomPreset {
 
     /// The preset as a Rust struct literal to paste into game code.
     pub fn to_rust(&self) -> String {
-        let [r, g, b, a] = self.base_color;
-        let method = match self.method {
-            ParallaxMethod::Relief { binary_steps } => {
-                format!("ParallaxMethod::Relief {{ binary_steps: {binary_steps} }}")
-            }
-            other => format!("ParallaxMethod::{other:?}"),
-        };
-        format!(
-            "ParallaxOcclusionMaterial {{\n    base_color: Color {{ r: {r:?}, g: {g:?}, b: {b:?}, a: {a:?} }},\n    height_convention: HeightConvention::{:?},\n    height_scale: {:?},\n    height_units: HeightUnits::{:?},\n    min_samples: {},\n    max_samples: {},\n    lod_threshold: {:?},\n    lod_band: {:?},\n    shadows: ShadowMode::{:?},\n    shadow_softening: {:?},\n    method: {method},\n    depth_offset: {},\n    lighting: LightingModel::{:?},\n    specular_strength: {:?},\n    shininess: {:?},\n    roughness: {:?},\n    metallic: {:?},\n    normal_strength: {:?},\n    debug_view: DebugView::{:?},\n    ..ParallaxOcclusionMaterial::default()\n}}",
-            self.height_convention,
-            self.height_scale,
-            self.height_units,
-            self.min_samples,
-            self.max_samples,
-            self.lod_threshold,
-            self.lod_band,
-            self.shadows,
-            self.shadow_softening,
-            self.depth_offset,
-            self.lighting,
-            self.specular_strength,
-            self.shininess,
-            self.roughness,
-            self.metallic,
-            self.normal_strength,
-            self.debug_view,
-        )
+        let mut rust = String::from("ParallaxOcclusionMaterial {\n");
+        for (name, value) in self.rust_fields() {
+            rust.push_str(&format!("    {name}: {value},\n"));
+        }
+        rust.push_str("    ..ParallaxOcclusionMaterial::default()\n}");
+        rust
     }
 }
 
@@ -247,13 +118,15 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), PresetError> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::material::{ParallaxMethod, ShadowMode};
     use super::*;
 
     #[test]
     fn presets_round_trip_through_ron() {
         let material = ParallaxOcclusionMaterial {
             height_scale: 0.07,
-            method: ParallaxMethod::Relief { binary_steps: 4 },
+            method: ParallaxMethod::Relief,
+            relief_binary_steps: 4,
             shadows: ShadowMode::Hard,
             ..ParallaxOcclusionMaterial::default()
         };
@@ -267,7 +140,7 @@ mod tests {
 
     #[test]
     fn partial_presets_keep_defaults() {
-        let preset = PomPreset::from_ron("(height_scale: 0.02, method: Steep)", "p.ron").unwrap();
+        let preset = PomPreset::from_ron("(height_scale: 0.02, method: steep)", "p.ron").unwrap();
         assert_eq!(preset.height_scale, 0.02);
         assert_eq!(preset.method, ParallaxMethod::Steep);
         assert_eq!(preset.max_samples, 50);

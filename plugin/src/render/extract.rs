@@ -4,27 +4,14 @@ use glam::{Mat4, Vec3};
 use hecs::World;
 
 use super::gpu_types::{
-    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, ObjectUniform,
-    PointLightGpu,
+    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
 };
+use super::lowest_mip::PixelFootprint;
 use super::target::RenderTarget;
 use crate::{
-    AmbientLight, AppError, AssetId, Color, DirectionalLight, GlobalTransform, Handle, Image,
-    LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, Projection, Resources, active_camera,
+    AmbientLight, AppError, Color, DirectionalLight, GlobalTransform, PointLight, Projection,
+    Resources, active_camera,
 };
-
-/// One mesh to draw with its textures and per-object values.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DrawItem {
-    /// The mesh.
-    pub mesh: AssetId<Mesh>,
-    /// The colour texture, if any.
-    pub base_color_texture: Option<AssetId<Image>>,
-    /// The normal map, if any.
-    pub normal_map: Option<AssetId<Image>>,
-    /// Transform and material parameters.
-    pub object: ObjectUniform,
-}
 
 /// Everything the Prepare and Render stages read about the current frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,17 +22,19 @@ pub struct ExtractedFrame {
     pub clear_color: Color,
     /// Whether an active camera was found (without one, the frame is only cleared).
     pub has_camera: bool,
-    /// The meshes to draw, sorted so draws sharing textures are adjacent.
-    pub draws: Vec<DrawItem>,
+    /// How large the active camera's pixels are in the world (for per-object LOD).
+    pub footprint: Option<PixelFootprint>,
 }
 
 fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
     matrix.to_cols_array_2d()
 }
 
-/// The Extract stage's system: reads cameras, lights and mesh entities into [`ExtractedFrame`].
+/// The Extract stage's system: reads the camera and the lights into [`ExtractedFrame`] (each
+/// material's plugin extracts its own draws).
 pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(), AppError> {
-    let aspect = resources.require::<RenderTarget>()?.aspect();
+    let target = resources.require::<RenderTarget>()?;
+    let (aspect, target_size) = (target.aspect(), target.size());
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
 
     let camera = active_camera(world);
@@ -126,51 +115,12 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     }
     frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
 
-    let default_material = LitMaterial::default();
-    let mut draws: Vec<DrawItem> = world
-        .query::<(&Handle<Mesh>, &GlobalTransform, Option<&LitMaterial>)>()
-        // Parallax-mapped meshes are drawn by the parallax pass.
-        .without::<&ParallaxOcclusionMaterial>()
-        .iter()
-        .filter_map(|(mesh, transform, material)| {
-            let material = material.unwrap_or(&default_material);
-            let model = transform.to_mat4();
-            if !model.is_finite() {
-                log::warn!("mesh {:?} has a non-finite transform: not drawn", mesh.id());
-                return None;
-            }
-            let determinant = transform.0.matrix3.determinant();
-            // A zero scale has no inverse; such an object has no area, so any normal will do.
-            let normal_matrix = if determinant.abs() > f32::MIN_POSITIVE {
-                model.inverse().transpose()
-            } else {
-                Mat4::IDENTITY
-            };
-            Some(DrawItem {
-                mesh: mesh.id(),
-                base_color_texture: material.base_color_texture.as_ref().map(Handle::id),
-                normal_map: material.normal_map.as_ref().map(Handle::id),
-                object: ObjectUniform {
-                    model: columns(model),
-                    normal_matrix: columns(normal_matrix),
-                    base_color: material.base_color.to_array(),
-                    params: [
-                        material.normal_strength,
-                        material.specular_strength,
-                        material.shininess,
-                        if determinant < 0.0 { -1.0 } else { 1.0 },
-                    ],
-                },
-            })
-        })
-        .collect();
-    draws.sort_by_key(|draw| (draw.base_color_texture, draw.normal_map, draw.mesh));
-
     resources.insert(ExtractedFrame {
         frame,
         clear_color,
         has_camera: camera.is_some(),
-        draws,
+        footprint: camera
+            .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target_size)),
     });
     Ok(())
 }

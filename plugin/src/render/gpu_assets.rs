@@ -30,6 +30,19 @@ pub struct GpuImage {
     pub upload_serial: u64,
 }
 
+impl GpuImage {
+    /// Size and mip count of the texture as bound (an image over the device's limit was
+    /// downscaled at upload; a GPU-written one has a single level).
+    pub fn facts(&self) -> crate::material::TextureFacts {
+        let size = self.texture.size();
+        crate::material::TextureFacts {
+            width: size.width,
+            height: size.height,
+            mip_levels: self.texture.mip_level_count(),
+        }
+    }
+}
+
 /// The state of one asset on the GPU: uploaded, or rejected at a given version.
 #[derive(Debug)]
 enum Cached<T> {

@@ -1,4 +1,5 @@
-//! Plain-old-data structs laid out exactly as `forward.wgsl` declares them.
+//! Plain-old-data structs laid out exactly as `frame.wgsl` and `mesh_vertex.wgsl` declare them
+//! (checked by the layout tests).
 
 use bytemuck::{Pod, Zeroable};
 
@@ -48,19 +49,55 @@ pub struct FrameUniform {
     pub point_lights: [PointLightGpu; MAX_POINT_LIGHTS],
 }
 
-/// Per-object values: transform and material parameters.
+/// Per-draw transform, shared by every material (`MeshTransform` in `mesh_vertex.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ObjectUniform {
+pub struct MeshTransform {
     /// Object to world.
     pub model: [[f32; 4]; 4],
-    /// Inverse transpose of `model`, for normals.
+    /// Inverse transpose of `model`, for normals (identity when `model` has no inverse).
     pub normal_matrix: [[f32; 4]; 4],
-    /// Linear base colour.
-    pub base_color: [f32; 4],
-    /// x: normal strength, y: specular strength, z: shininess, w: sign of det(model).
-    pub params: [f32; 4],
+    /// Sign of det(model): mirroring flips the bitangent.
+    pub determinant_sign: f32,
+    /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
+    pub _padding: [f32; 3],
 }
+
+crate::wgsl_layout!(MeshTransform {
+    model,
+    normal_matrix,
+    determinant_sign,
+    _padding
+});
+
+impl MeshTransform {
+    /// The transform of an object placed by `model`.
+    pub fn new(model: glam::Mat4) -> Self {
+        let determinant = model.determinant();
+        // A zero scale has no inverse; such an object has no area, so any normal will do.
+        let normal_matrix = if determinant.abs() > f32::MIN_POSITIVE {
+            model.inverse().transpose()
+        } else {
+            glam::Mat4::IDENTITY
+        };
+        Self {
+            model: model.to_cols_array_2d(),
+            normal_matrix: normal_matrix.to_cols_array_2d(),
+            determinant_sign: if determinant < 0.0 { -1.0 } else { 1.0 },
+            _padding: [0.0; 3],
+        }
+    }
+}
+
+crate::wgsl_layout!(FrameUniform {
+    view_projection,
+    camera_position,
+    view_direction,
+    ambient,
+    light_counts,
+    directional_lights,
+    point_lights
+});
 
 /// One vertex of the interleaved vertex buffer.
 #[repr(C)]

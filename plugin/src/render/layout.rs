@@ -1,7 +1,7 @@
 //! Bind group layout entries the material passes share.
 
 /// A filterable float 2D texture visible to the fragment stage.
-pub fn texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -15,7 +15,7 @@ pub fn texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// A filtering sampler visible to the fragment stage.
-pub fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -25,7 +25,7 @@ pub fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// Trilinear, repeating: what every material texture is sampled with.
-pub fn material_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
+pub(crate) fn material_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
     device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some(label),
         address_mode_u: wgpu::AddressMode::Repeat,
@@ -38,15 +38,14 @@ pub fn material_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
 }
 
 /// The render pipeline every mesh material uses in the main pass: interleaved [`super::Vertex`]
-/// input (`vs_main`), back-face culling, depth test and write, one colour target; `constants`
-/// set the fragment stage's pipeline-overridable constants.
-pub fn mesh_pipeline(
+/// input (`vs_main`), back-face culling, depth test and write, one colour target; the variant
+/// names the fragment entry point and its pipeline-overridable constants.
+pub(crate) fn mesh_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::PipelineLayout,
     shader: &wgpu::ShaderModule,
-    fragment_entry: &str,
-    constants: &[(&str, f64)],
+    fragment: &crate::material::FragmentVariant,
     color_format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -72,9 +71,9 @@ pub fn mesh_pipeline(
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: shader,
-            entry_point: Some(fragment_entry),
+            entry_point: Some(fragment.entry_point),
             compilation_options: wgpu::PipelineCompilationOptions {
-                constants,
+                constants: &fragment.constants,
                 ..Default::default()
             },
             targets: &[Some(color_format.into())],

@@ -3,9 +3,7 @@
 
 const PI: f32 = 3.14159265;
 
-const LIGHTING_PHONG: u32 = 0u;
-const LIGHTING_BLINN_PHONG: u32 = 1u;
-const LIGHTING_COOK_TORRANCE: u32 = 2u;
+// The LIGHTING_* model codes are generated from `LightingModel` and prepended (see shaders.rs).
 
 struct Surface {
     albedo: vec3<f32>,

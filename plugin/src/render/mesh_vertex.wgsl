@@ -1,4 +1,16 @@
-// Vertex input and the world-space attributes every mesh pass interpolates.
+// Vertex input, the per-draw transforms and the vertex stage every material shares. Mirrors
+// `MeshTransform` in gpu_types.rs (the layout test checks them against each other).
+
+struct MeshTransform {
+    model: mat4x4<f32>,
+    // Inverse transpose of `model`, for normals under non-uniform scale.
+    normal_matrix: mat4x4<f32>,
+    // Sign of det(model): mirroring flips the bitangent.
+    determinant_sign: f32,
+    _padding: array<f32, 3>,
+}
+
+@group(0) @binding(1) var<storage, read> transforms: array<MeshTransform>;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -35,4 +47,11 @@ fn transform_vertex(
     out.uv = in.uv;
     out.object_index = object_index;
     return out;
+}
+
+// Draw instances index the per-draw arrays (`transforms`, a material's uniforms).
+@vertex
+fn vs_main(in: VertexIn, @builtin(instance_index) object_index: u32) -> VertexOut {
+    let transform = transforms[object_index];
+    return transform_vertex(in, transform.model, transform.normal_matrix, transform.determinant_sign, object_index);
 }

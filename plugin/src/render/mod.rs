@@ -2,24 +2,25 @@
 
 mod capture;
 mod context;
+mod draw_view;
 mod extract;
-mod forward;
 mod frame_uniform;
 mod gpu_assets;
 mod gpu_timing;
 mod gpu_types;
-mod layout;
-pub use layout::mesh_pipeline;
-mod object_buffer;
+pub(crate) mod layout;
+mod lowest_mip;
+pub(crate) mod object_buffer;
 pub mod shaders;
 mod target;
+#[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
-mod texture_bind_groups;
+pub(crate) mod texture_bind_groups;
 
 pub use capture::{CaptureError, read_rgba8, read_rgba32f, read_texture};
 pub use context::{GpuContext, GpuError};
-pub use extract::{DrawItem, ExtractedFrame, extract_frame};
-pub use forward::ForwardPass;
+pub use draw_view::DrawView;
+pub use extract::{ExtractedFrame, extract_frame};
 pub use frame_uniform::FrameUniformBuffer;
 pub use gpu_assets::{DefaultTexture, DefaultTextures, GpuAssets, GpuImage, GpuMesh, UploadStats};
 pub use gpu_timing::{
@@ -27,13 +28,15 @@ pub use gpu_timing::{
     resolve_gpu_timings, set_gpu_timing, time_pass,
 };
 pub use gpu_types::{
-    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, ObjectUniform,
+    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, MeshTransform,
     PointLightGpu, Vertex,
 };
-pub use object_buffer::ObjectBuffer;
+pub use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint, lowest_mip};
 pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat, clearing_attachment};
-pub use texel_rate_probe::{PROBE_PASS, TexelRateProbe};
-pub use texture_bind_groups::{TextureBindGroups, TextureKey};
+#[cfg(feature = "dev-tools")]
+pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
+
+use std::any::TypeId;
 
 use image::{Rgba32FImage, RgbaImage};
 
@@ -102,16 +105,14 @@ impl Default for RenderPlugin {
     }
 }
 
-/// The renderer's GPU state: uploaded assets, the frame uniform and the forward pass. A resource.
+/// The renderer's GPU state: uploaded assets and the frame uniform. A resource.
 #[derive(Debug)]
 pub struct Renderer {
     /// GPU copies of meshes and images.
     pub assets: GpuAssets,
     /// Camera and lights, shared by every main-pass pipeline.
     pub frame: FrameUniformBuffer,
-    /// The forward pass.
-    pub forward: ForwardPass,
-    /// What the last Prepare stage uploaded.
+    /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
 }
 
@@ -124,6 +125,7 @@ impl Plugin for RenderPlugin {
         app.resources.get_or_default::<Assets<Image>>();
         app.resources.get_or_default::<AmbientLight>();
         app.resources.get_or_default::<MainPassDraws>();
+        app.resources.get_or_default::<MeshLodCache>();
         app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
             .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
             .add_system(Stage::Extract, extract_frame)
@@ -141,7 +143,6 @@ impl Plugin for RenderPlugin {
         let frame = FrameUniformBuffer::new(gpu);
         let renderer = Renderer {
             assets: GpuAssets::new(gpu),
-            forward: ForwardPass::new(gpu, &frame, target.format()),
             frame,
             last_upload: UploadStats::default(),
         };
@@ -151,55 +152,60 @@ impl Plugin for RenderPlugin {
     }
 }
 
-/// The Prepare stage's system: uploads new or changed meshes, images and per-object data.
+/// The Prepare stage's system: frees GPU copies of dropped assets and uploads the frame uniform.
+/// It runs before every material's Prepare system (materials need [`RenderPlugin`] first), and
+/// starts this frame's [`Renderer::last_upload`] count.
 pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    let mut renderer = resources
-        .remove::<Renderer>()
-        .ok_or_else(AppError::missing::<Renderer>)?;
-    let result = prepare_with(&mut renderer, resources);
-    resources.insert(renderer);
-    result
+    resources
+        .scope(|resources, renderer: &mut Renderer| {
+            let gpu = resources.require::<GpuContext>()?;
+            let extracted = resources.require::<ExtractedFrame>()?;
+            let meshes = resources.require::<Assets<Mesh>>()?;
+            let images = resources.require::<Assets<Image>>()?;
+            renderer.assets.release_freed(meshes, images);
+            renderer.last_upload = UploadStats {
+                uniform_bytes: renderer.frame.upload(gpu, &extracted.frame),
+                ..UploadStats::default()
+            };
+            Ok(())
+        })
+        .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
 }
 
-fn prepare_with(renderer: &mut Renderer, resources: &Resources) -> Result<(), AppError> {
-    let gpu = resources.require::<GpuContext>()?;
-    let extracted = resources.require::<ExtractedFrame>()?;
-    let meshes = resources.require::<Assets<Mesh>>()?;
-    let images = resources.require::<Assets<Image>>()?;
-    let mut stats = UploadStats::default();
-    renderer.assets.release_freed(meshes, images);
-    for draw in &extracted.draws {
-        stats.meshes += u32::from(renderer.assets.prepare_mesh(gpu, meshes, draw.mesh));
-        for image in [draw.base_color_texture, draw.normal_map]
-            .into_iter()
-            .flatten()
-        {
-            stats.images += u32::from(renderer.assets.prepare_image(gpu, images, image));
-        }
-    }
-    stats.uniform_bytes = renderer.frame.upload(gpu, &extracted.frame)
-        + renderer
-            .forward
-            .prepare(gpu, &renderer.frame, extracted, &renderer.assets);
-    renderer.last_upload = stats;
-    Ok(())
-}
-
-/// Draws into the main pass after the forward pass: how other plugins (the POM material) add
-/// their draws. Each function gets the resources and the open pass.
+/// Records draws into the main pass, given the resources and the open pass.
 pub type MainPassDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 
-/// The extra draws of the main pass, in the order plugins registered them. A resource.
+/// The draws of the main pass, in the order their plugins were added; one per owner type, so a
+/// plugin added twice draws once. A resource.
 #[derive(Debug, Default)]
-pub struct MainPassDraws(pub Vec<MainPassDraw>);
+pub struct MainPassDraws(Vec<(TypeId, MainPassDraw)>);
 
-/// The Render stage's system: clears the target, records the forward pass and every registered
-/// [`MainPassDraw`], and submits.
+impl MainPassDraws {
+    /// Adds `draw` for `Owner` (a material type, say) unless `Owner` has one already.
+    pub fn add<Owner: 'static>(&mut self, draw: MainPassDraw) {
+        let owner = TypeId::of::<Owner>();
+        if !self.0.iter().any(|(id, _)| *id == owner) {
+            self.0.push((owner, draw));
+        }
+    }
+
+    /// How many draws are registered.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether none is.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+/// The Render stage's system: clears the target, records every registered [`MainPassDraw`],
+/// and submits.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     let timestamps = time_pass(resources, "main pass");
     let gpu = resources.require::<GpuContext>()?;
     let target = resources.require::<RenderTarget>()?;
-    let renderer = resources.require::<Renderer>()?;
     let extracted = resources.require::<ExtractedFrame>()?;
     let mut encoder = gpu
         .device
@@ -231,14 +237,11 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        if extracted.has_camera {
-            renderer
-                .forward
-                .draw(&mut pass, extracted, &renderer.assets);
-            if let Some(MainPassDraws(draws)) = resources.get::<MainPassDraws>() {
-                for draw in draws {
-                    draw(resources, &mut pass);
-                }
+        if extracted.has_camera
+            && let Some(MainPassDraws(draws)) = resources.get::<MainPassDraws>()
+        {
+            for (_, draw) in draws {
+                draw(resources, &mut pass);
             }
         }
     }

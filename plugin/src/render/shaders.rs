@@ -13,9 +13,13 @@ pub struct WgslFile {
     pub source: &'static str,
 }
 
+/// A [`WgslFile`] of the plugin's own, embedded from `plugin/src/<path>` (invoked from a module
+/// one folder below `src`).
+#[macro_export]
+#[doc(hidden)]
 macro_rules! wgsl_file {
     ($path:literal) => {
-        WgslFile {
+        $crate::render::shaders::WgslFile {
             path: $path,
             source: include_str!(concat!("../", $path)),
         }
@@ -28,35 +32,42 @@ pub const FRAME: WgslFile = wgsl_file!("render/frame.wgsl");
 pub const TANGENT_SPACE: WgslFile = wgsl_file!("render/tangent_space.wgsl");
 /// Phong, Blinn-Phong and Cook-Torrance + Oren-Nayar.
 pub const LIGHTING: WgslFile = wgsl_file!("render/lighting.wgsl");
-/// Vertex input/output and the world transform.
+/// Vertex input/output, the per-draw transforms and the shared vertex stage `vs_main`.
 pub const MESH_VERTEX: WgslFile = wgsl_file!("render/mesh_vertex.wgsl");
-/// The lit material's entry points.
-pub const FORWARD_ENTRY: WgslFile = wgsl_file!("render/forward.wgsl");
-
-/// The ray march, LOD and self-shadow functions of the parallax material.
-pub const PARALLAX_MARCH: WgslFile = wgsl_file!("parallax/march.wgsl");
-/// The parallax material's entry points.
-pub const PARALLAX_ENTRY: WgslFile = wgsl_file!("parallax/pom.wgsl");
-
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
 
-/// The texel-rate probe's full-screen pass.
-pub const TEXEL_RATE_PROBE_ENTRY: WgslFile = wgsl_file!("render/texel_rate_probe.wgsl");
+/// WGSL generated from Rust (enum codes, say), prepended to a composed shader.
+pub type GeneratedWgsl = fn() -> String;
 
-/// An entry shader: the files it is made of, in order.
+/// An entry shader: generated constants, then the files it is made of, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ComposedShader {
     /// A name for labels and messages.
     pub name: &'static str,
+    /// Declarations generated from Rust types, so WGSL never retypes them.
+    pub constants: &'static [GeneratedWgsl],
     /// Library files first, the entry file last.
     pub files: &'static [WgslFile],
 }
 
+/// The first line of a composed source, before the generated constants.
+pub(crate) const GENERATED_HEADER: &str = "// ---- generated from Rust ----\n";
+
 impl ComposedShader {
-    /// The concatenated source, each file introduced by a comment naming it.
+    /// The generated constants: the text every composed source starts with.
+    pub fn generated(&self) -> String {
+        let mut source = String::from(GENERATED_HEADER);
+        for constants in self.constants {
+            source.push_str(&constants());
+        }
+        source
+    }
+
+    /// The concatenated source: the generated constants, then each file introduced by a
+    /// comment naming it.
     pub fn source(&self) -> String {
-        let mut source = String::new();
+        let mut source = self.generated();
         for file in self.files {
             source.push_str("// ---- ");
             source.push_str(file.path);
@@ -76,36 +87,9 @@ impl ComposedShader {
     }
 }
 
-/// The forward pass for [`crate::LitMaterial`].
-pub const FORWARD: ComposedShader = ComposedShader {
-    name: "forward.wgsl",
-    files: &[FRAME, TANGENT_SPACE, LIGHTING, MESH_VERTEX, FORWARD_ENTRY],
-};
-
-/// The pass for [`crate::ParallaxOcclusionMaterial`].
-pub const PARALLAX: ComposedShader = ComposedShader {
-    name: "pom.wgsl",
-    files: &[
-        FRAME,
-        TANGENT_SPACE,
-        LIGHTING,
-        MESH_VERTEX,
-        PARALLAX_MARCH,
-        PARALLAX_ENTRY,
-    ],
-};
-
 /// Normals of dynamic height fields, derived on the GPU.
 pub const SOBEL: ComposedShader = ComposedShader {
     name: "sobel.wgsl",
+    constants: &[],
     files: &[SOBEL_ENTRY],
 };
-
-/// The bench's fragment-stage texel-rate probe (`super::TexelRateProbe`).
-pub const TEXEL_RATE_PROBE: ComposedShader = ComposedShader {
-    name: "texel_rate_probe.wgsl",
-    files: &[TEXEL_RATE_PROBE_ENTRY],
-};
-
-/// Every entry shader of the plugin.
-pub const ALL: &[ComposedShader] = &[FORWARD, PARALLAX, SOBEL, TEXEL_RATE_PROBE];

@@ -5,6 +5,7 @@
 use wgpu::util::DeviceExt;
 
 use super::gpu_timing::{PassTimestamps, time_pass};
+use super::shaders::{ComposedShader, WgslFile};
 use super::{GpuContext, RenderTarget, clearing_attachment};
 use crate::{AppError, Resources};
 
@@ -14,6 +15,16 @@ pub const PROBE_PASS: &str = "texel-rate probe";
 const PROBE_TEXTURE_SIDE: u32 = 1024;
 /// Half a texel per tap, the step of a dense march.
 const STEP_TEXELS: f32 = 0.5;
+
+/// The probe's full-screen pass.
+pub const TEXEL_RATE_PROBE_ENTRY: WgslFile = crate::wgsl_file!("render/texel_rate_probe.wgsl");
+
+/// The bench's fragment-stage texel-rate probe.
+pub const TEXEL_RATE_PROBE: ComposedShader = ComposedShader {
+    name: "texel_rate_probe.wgsl",
+    constants: &[],
+    files: &[TEXEL_RATE_PROBE_ENTRY],
+};
 
 /// A full-screen pass in which every pixel takes a fixed number of bilinear samples.
 #[derive(Debug)]
@@ -28,7 +39,7 @@ impl TexelRateProbe {
     pub fn new(gpu: &GpuContext, format: wgpu::TextureFormat, taps: u32) -> Self {
         let device = &gpu.device;
         let taps = taps.max(1);
-        let shader = super::shaders::TEXEL_RATE_PROBE.create_module(device);
+        let shader = TEXEL_RATE_PROBE.create_module(device);
         let texture = device.create_texture_with_data(
             &gpu.queue,
             &wgpu::TextureDescriptor {

@@ -1,13 +1,10 @@
-//! Bind groups of N material textures plus a sampler, cached by the images they hold.
+//! Bind groups of a material's textures plus a sampler, cached by the images they hold.
 
 use std::collections::HashMap;
 
 use super::gpu_assets::{DefaultTexture, GpuAssets};
 use super::{GpuContext, layout};
-use crate::{AssetId, Image};
-
-/// Which image goes in each texture slot; `None` binds the slot's default texture.
-pub type TextureKey<const N: usize> = [Option<AssetId<Image>>; N];
+use crate::material::MaterialTextures;
 
 struct Entry {
     // Upload serial of each slot's image when the group was built (0 = default texture), so a
@@ -18,15 +15,15 @@ struct Entry {
 
 /// A layout of N filterable 2D textures (bindings 0..N) and a trilinear repeating sampler
 /// (binding N), and the bind groups built with it.
-pub struct TextureBindGroups<const N: usize> {
+pub(crate) struct TextureBindGroups {
     label: &'static str,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
-    defaults: [DefaultTexture; N],
-    groups: HashMap<TextureKey<N>, Entry>,
+    defaults: &'static [DefaultTexture],
+    groups: HashMap<MaterialTextures, Entry>,
 }
 
-impl<const N: usize> std::fmt::Debug for TextureBindGroups<N> {
+impl std::fmt::Debug for TextureBindGroups {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("TextureBindGroups")
             .field("label", &self.label)
@@ -35,12 +32,18 @@ impl<const N: usize> std::fmt::Debug for TextureBindGroups<N> {
     }
 }
 
-impl<const N: usize> TextureBindGroups<N> {
-    /// Creates the layout; `defaults` names the texture bound for each slot left empty.
-    pub fn new(gpu: &GpuContext, label: &'static str, defaults: [DefaultTexture; N]) -> Self {
+impl TextureBindGroups {
+    /// Creates the layout; `defaults` names the texture bound for each slot left empty (at most
+    /// [`crate::material::MAX_MATERIAL_TEXTURES`]).
+    pub(crate) fn new(
+        gpu: &GpuContext,
+        label: &'static str,
+        defaults: &'static [DefaultTexture],
+    ) -> Self {
+        let n = defaults.len();
         let mut entries: Vec<wgpu::BindGroupLayoutEntry> =
-            (0..N as u32).map(layout::texture_2d).collect();
-        entries.push(layout::filtering_sampler(N as u32));
+            (0..n as u32).map(layout::texture_2d).collect();
+        entries.push(layout::filtering_sampler(n as u32));
         let layout = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -57,23 +60,23 @@ impl<const N: usize> TextureBindGroups<N> {
     }
 
     /// The layout, for pipeline layouts.
-    pub fn layout(&self) -> &wgpu::BindGroupLayout {
+    pub(crate) fn layout(&self) -> &wgpu::BindGroupLayout {
         &self.layout
     }
 
     /// Makes sure every key has an up-to-date bind group, and drops the groups no key uses.
-    pub fn prepare(
+    pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
         assets: &GpuAssets,
-        keys: impl IntoIterator<Item = TextureKey<N>>,
+        keys: impl IntoIterator<Item = MaterialTextures>,
     ) {
         let mut previous = std::mem::take(&mut self.groups);
         for key in keys {
             if self.groups.contains_key(&key) {
                 continue;
             }
-            let images: Vec<_> = key
+            let images: Vec<_> = key[..self.defaults.len()]
                 .iter()
                 .map(|id| id.and_then(|id| assets.image(id)))
                 .collect();
@@ -86,7 +89,7 @@ impl<const N: usize> TextureBindGroups<N> {
                 _ => {
                     let mut entries: Vec<wgpu::BindGroupEntry> = images
                         .iter()
-                        .zip(self.defaults)
+                        .zip(self.defaults.iter().copied())
                         .enumerate()
                         .map(|(slot, (image, default))| wgpu::BindGroupEntry {
                             binding: slot as u32,
@@ -96,7 +99,7 @@ impl<const N: usize> TextureBindGroups<N> {
                         })
                         .collect();
                     entries.push(wgpu::BindGroupEntry {
-                        binding: N as u32,
+                        binding: self.defaults.len() as u32,
                         resource: wgpu::BindingResource::Sampler(&self.sampler),
                     });
                     Entry {
@@ -114,7 +117,7 @@ impl<const N: usize> TextureBindGroups<N> {
     }
 
     /// The bind group prepared for `key`.
-    pub fn get(&self, key: &TextureKey<N>) -> Option<&wgpu::BindGroup> {
+    pub(crate) fn get(&self, key: &MaterialTextures) -> Option<&wgpu::BindGroup> {
         self.groups.get(key).map(|entry| &entry.bind_group)
     }
 }

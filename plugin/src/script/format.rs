@@ -3,9 +3,7 @@
 use serde::Deserialize;
 
 use crate::FlipTolerance;
-use crate::parallax::{
-    DebugView, HeightConvention, HeightUnits, LightingModel, ParallaxMethod, ShadowMode,
-};
+use crate::parallax::DebugView;
 
 /// A whole script: what to build, then what to do with it.
 #[derive(Clone, Debug, Deserialize)]
@@ -169,30 +167,9 @@ pub struct EntityDesc {
     pub transform: TransformDesc,
 }
 
-/// Parameter changes of a parallax material; absent fields stay as they are.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-#[allow(missing_docs)]
-pub struct MaterialPatch {
-    pub height_convention: Option<HeightConvention>,
-    pub height_scale: Option<f32>,
-    pub height_units: Option<HeightUnits>,
-    pub min_samples: Option<u32>,
-    pub max_samples: Option<u32>,
-    pub lod_threshold: Option<f32>,
-    pub lod_band: Option<f32>,
-    pub shadows: Option<ShadowMode>,
-    pub shadow_softening: Option<f32>,
-    pub method: Option<ParallaxMethod>,
-    pub depth_offset: Option<bool>,
-    pub lighting: Option<LightingModel>,
-    pub specular_strength: Option<f32>,
-    pub shininess: Option<f32>,
-    pub roughness: Option<f32>,
-    pub metallic: Option<f32>,
-    pub normal_strength: Option<f32>,
-    pub debug_view: Option<DebugView>,
-}
+/// Parameter changes of a parallax material; absent fields stay as they are. Generated from
+/// the material's parameter declarations: every parameter, by its name.
+pub type MaterialPatch = crate::PomPatch;
 
 /// A rectangle of a capture in pixels: x, y, width, height.
 pub type Rect = (u32, u32, u32, u32);
@@ -203,14 +180,14 @@ pub type Rect = (u32, u32, u32, u32);
 pub enum Statistic {
     /// Mean Rec. 709 luminance of the linear colour, 0..1.
     MeanLuminance,
-    /// Fraction of pixels in the LOD transition band (needs a capture with `debug_view: Uv`).
+    /// Fraction of pixels in the LOD transition band (needs a capture with `debug_view: uv`).
     LodBandFraction,
-    /// Fraction of pixels where only normal mapping ran (needs `debug_view: Uv`).
+    /// Fraction of pixels where only normal mapping ran (needs `debug_view: uv`).
     NormalMappingFraction,
-    /// Fraction of pixels less than half lit (needs `debug_view: Shadow`).
+    /// Fraction of pixels less than half lit (needs `debug_view: shadow`).
     ShadowedFraction,
     /// Mean distance in texture units between this capture's coordinates and `baseline`'s
-    /// (both with `debug_view: Uv`): how far parallax moved the texture.
+    /// (both with `debug_view: uv`): how far parallax moved the texture.
     UvShift {
         /// The capture to measure from.
         baseline: String,

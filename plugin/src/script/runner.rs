@@ -8,9 +8,7 @@ use hecs::Entity;
 use image::RgbaImage;
 
 use super::check::check;
-use super::format::{
-    CameraDesc, LightDesc, MaterialDesc, MaterialPatch, Script, ShapeDesc, Statistic, Step,
-};
+use super::format::{CameraDesc, LightDesc, MaterialDesc, Script, ShapeDesc, Statistic, Step};
 use super::stats::{measure, required_view};
 use super::{Outcome, Report, RunOptions, ScriptError, StepReport};
 use crate::{
@@ -122,34 +120,6 @@ fn light_towards(direction: Vec3) -> Transform {
         Vec3::Y
     };
     Transform::IDENTITY.looking_at(direction, up)
-}
-
-fn apply_patch(material: &mut ParallaxOcclusionMaterial, patch: &MaterialPatch) {
-    macro_rules! take {
-        ($($field:ident),*) => {
-            $(if let Some(value) = patch.$field { material.$field = value; })*
-        };
-    }
-    take!(
-        height_convention,
-        height_scale,
-        height_units,
-        min_samples,
-        max_samples,
-        lod_threshold,
-        lod_band,
-        shadows,
-        shadow_softening,
-        method,
-        depth_offset,
-        lighting,
-        specular_strength,
-        shininess,
-        roughness,
-        metallic,
-        normal_strength,
-        debug_view
-    );
 }
 
 impl<'a> Runner<'a> {
@@ -313,7 +283,7 @@ impl<'a> Runner<'a> {
                         .map_err(|error| error.to_string())?;
                     material.apply_preset(&preset);
                 }
-                apply_patch(&mut material, set);
+                set.apply(&mut material);
                 let _ = self.app.world.insert_one(entity, material);
             }
         }
@@ -402,7 +372,7 @@ impl<'a> Runner<'a> {
                     if let Ok(mut component) =
                         self.app.world.get::<&mut ParallaxOcclusionMaterial>(target)
                     {
-                        apply_patch(&mut component, material);
+                        material.apply(&mut component);
                     }
                 }
                 Ok((format!("Set {entity:?}"), Outcome::Done))

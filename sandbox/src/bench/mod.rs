@@ -17,12 +17,14 @@ use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use pom::ParallaxOcclusionMaterial;
+use pom::material::Choice;
 use pom::preview::PreviewView;
+use pom::{ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode};
 
-use crate::cli_types::{MethodArg, ShadowsArg, parse_size};
+use crate::cli_types::parse_size;
+use crate::material_args::MaterialArgs;
 use crate::preview_textures::PreviewTextures;
-use crate::render_command::{MaterialArgs, TextureArgs, ViewArgs};
+use crate::render_command::{TextureArgs, ViewArgs};
 use report::{AdapterReport, BenchReport, CaseResult, Ratio};
 use sample_count::{ProbeResult, SampleRate};
 use scene::{BenchScene, SceneOptions, TIMED_PASS, Warmup};
@@ -38,14 +40,14 @@ const QUICK_SIZES: [(u32, u32); 2] = [(64, 36), (96, 54)];
 const PROBE_TAPS: u32 = 64;
 const SAMPLE_SWEEP: [u32; 5] = [8, 16, 32, 64, 128];
 const LOD_SWEEP: [f32; 6] = [0.0, 1.0, 2.0, 4.0, 6.0, 8.0];
-const METHODS: [MethodArg; 5] = [
-    MethodArg::Normal,
-    MethodArg::Offset,
-    MethodArg::Steep,
-    MethodArg::Pom,
-    MethodArg::Relief,
+const METHODS: [ParallaxMethod; 5] = [
+    ParallaxMethod::NormalMapping,
+    ParallaxMethod::ParallaxOffset,
+    ParallaxMethod::Steep,
+    ParallaxMethod::Occlusion,
+    ParallaxMethod::Relief,
 ];
-const SHADOWS: [ShadowsArg; 3] = [ShadowsArg::Off, ShadowsArg::Hard, ShadowsArg::Soft];
+const SHADOWS: [ShadowMode; 3] = [ShadowMode::Off, ShadowMode::Hard, ShadowMode::Soft];
 // Far field: so many repeats that every pixel covers 2^(lod_threshold + 3) texels or more.
 const FAR_FIELD_MIP_MARGIN: f32 = 3.0;
 
@@ -106,10 +108,6 @@ pub struct BenchArgs {
     pub view: ViewArgs,
 }
 
-fn name<T: std::fmt::Debug>(value: T) -> String {
-    format!("{value:?}").to_lowercase()
-}
-
 struct Runner<'a> {
     warmup: Warmup,
     frames: usize,
@@ -142,8 +140,8 @@ impl Runner<'_> {
         let spread = stats::Spread::of(&times).context("no valid timings")?;
         self.cases.push(CaseResult {
             group,
-            method: name(MethodArg::from(material.method)),
-            shadows: name(ShadowsArg::from(material.shadows)),
+            method: material.method.name().to_owned(),
+            shadows: material.shadows.name().to_owned(),
             width: size.0,
             height: size.1,
             min_samples: material.min_samples,
@@ -166,10 +164,10 @@ impl Runner<'_> {
     }
 
     /// The base material with `method` and `shadows`.
-    fn with_modes(&self, method: MethodArg, shadows: ShadowsArg) -> ParallaxOcclusionMaterial {
+    fn with_modes(&self, method: ParallaxMethod, shadows: ShadowMode) -> ParallaxOcclusionMaterial {
         ParallaxOcclusionMaterial {
-            method: method.into(),
-            shadows: shadows.into(),
+            method,
+            shadows,
             ..self.base.clone()
         }
     }
@@ -181,7 +179,7 @@ impl Runner<'_> {
             for (index, shadows) in SHADOWS.into_iter().enumerate() {
                 let material = self.with_modes(method, shadows);
                 let ms = self.case(scene, "methods", size, self.view.tiling, material)?;
-                if method == MethodArg::Pom {
+                if method == ParallaxMethod::Occlusion {
                     pom[index] = ms;
                 }
             }
@@ -201,7 +199,7 @@ impl Runner<'_> {
     fn sample_sweep(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
         for max_samples in SAMPLE_SWEEP {
             let material = ParallaxOcclusionMaterial {
-                method: MethodArg::Pom.into(),
+                method: ParallaxMethod::Occlusion,
                 min_samples: self.base.min_samples.min(max_samples),
                 max_samples,
                 ..self.base.clone()
@@ -215,7 +213,7 @@ impl Runner<'_> {
     fn lod_sweep(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
         for lod_threshold in LOD_SWEEP {
             let material = ParallaxOcclusionMaterial {
-                method: MethodArg::Pom.into(),
+                method: ParallaxMethod::Occlusion,
                 lod_threshold,
                 ..self.base.clone()
             };
@@ -232,7 +230,7 @@ impl Runner<'_> {
         size: (u32, u32),
         chip: Option<f64>,
     ) -> Result<SampleRate> {
-        let pom = self.with_modes(MethodArg::Pom, ShadowsArg::Off);
+        let pom = self.with_modes(ParallaxMethod::Occlusion, ShadowMode::Off);
         let pom_ms = self.case(scene, "texel_rate", size, self.view.tiling, pom.clone())?;
         let (warmup, frames) = (self.warmup, self.frames);
         let mut probe_ms = |taps| -> Result<f64> {
@@ -258,10 +256,10 @@ impl Runner<'_> {
             ..self.view
         };
         let mut far = self.scene(size, &far_view)?;
-        let base_shadows = ShadowsArg::from(self.base.shadows);
-        let normal = self.with_modes(MethodArg::Normal, base_shadows);
+        let base_shadows = self.base.shadows;
+        let normal = self.with_modes(ParallaxMethod::NormalMapping, base_shadows);
         let normal_ms = self.case(&mut far, "far_field", size, far_tiling, normal)?;
-        let pom = self.with_modes(MethodArg::Pom, base_shadows);
+        let pom = self.with_modes(ParallaxMethod::Occlusion, base_shadows);
         let pom_ms = self.case(&mut far, "far_field", size, far_tiling, pom)?;
         self.ratios.push(Ratio {
             what: "far field POM / normal mapping".to_owned(),
@@ -275,9 +273,10 @@ impl Runner<'_> {
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> Result<()> {
-    let base = args.material.settings(args.textures.depth_map);
+    let base = args.material.settings();
     base.validate().context("invalid material")?;
-    let textures = PreviewTextures::load(&args.textures.files(), base.height_scale)?;
+    let depth_map = base.height_convention == pom::HeightConvention::Depth;
+    let textures = PreviewTextures::load(&args.textures.files(depth_map), base.height_scale)?;
     let view = args.view.preview_view();
     let sizes: Vec<(u32, u32)> = match (args.sizes.is_empty(), args.quick) {
         (false, _) => args.sizes.clone(),
@@ -375,7 +374,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             size: sizes[0],
             textures: &textures,
             base: &ParallaxOcclusionMaterial {
-                method: MethodArg::Pom.into(),
+                method: ParallaxMethod::Occlusion,
                 ..base.clone()
             },
             view: &view,

@@ -162,7 +162,7 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
     let depth = match base.height_units {
         HeightUnits::World => base.height_scale,
         // One texture repeat spans PLANE_SIZE / tiling world units.
-        HeightUnits::Texture => base.height_scale * PLANE_SIZE / tiling,
+        _ => base.height_scale * PLANE_SIZE / tiling,
     };
     let texels_across = field.size().0 as f32 * tiling;
     let quick_cap = |cap: u32| if setup.quick { QUICK_MAX_CELLS } else { cap };

@@ -50,8 +50,8 @@ pub struct WindowArgs {
     pub state: Option<PathBuf>,
     /// Open with the split view on: image B (right of the wipe) draws every parallax material
     /// with this method.
-    #[arg(long, value_enum, value_name = "METHOD")]
-    pub split_method: Option<crate::cli_types::MethodArg>,
+    #[arg(long, value_name = "METHOD", value_parser = crate::material_args::choice_parser::<pom::ParallaxMethod>())]
+    pub split_method: Option<pom::ParallaxMethod>,
 }
 
 /// Opens the window and runs it until it is closed (or `--exit-after-frames` is reached).

@@ -71,7 +71,7 @@ impl WindowApp {
     pub fn new(args: &WindowArgs, display: OwnedDisplayHandle) -> Self {
         Self {
             scene: args.scene.clone(),
-            split_method: args.split_method.map(Into::into),
+            split_method: args.split_method,
             exit_after_frames: args.exit_after_frames,
             screenshot: args.screenshot.clone(),
             state_path: args

@@ -86,8 +86,9 @@ fn material_negative_lod_threshold() {
 
 #[test]
 fn material_relief_with_zero_binary_steps() {
-    clamped_with_a_warning("method.binary_steps is 0", |m| {
-        m.method = ParallaxMethod::Relief { binary_steps: 0 }
+    clamped_with_a_warning("relief_binary_steps is 0 but must be at least 1", |m| {
+        m.method = ParallaxMethod::Relief;
+        m.relief_binary_steps = 0;
     });
 }
 

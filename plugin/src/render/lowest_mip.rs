@@ -1,12 +1,9 @@
-//! Per-object LOD: a parallax object on which every pixel is past its LOD threshold draws with
-//! the normal-mapping pipeline. Per pixel the shader would skip the march there anyway
-//! (T §5.4.3) and the image is the same, but a pipeline that holds the march is slower even
-//! where the march does not run (more registers per pixel: on the H100 the far-field bench
-//! read 1.33× normal mapping with the POM pipeline).
+//! A bound on the lowest mip level any pixel of an object can sample, for per-object LOD (the
+//! parallax material draws an object whose every pixel is past its LOD threshold with its
+//! normal-mapping pipeline: see `parallax/mod.rs`).
 //!
-//! The test is conservative: it takes the lowest mip level any pixel of the object could use,
-//! from the object's bounding sphere, its least texture density and the camera's pixel size at
-//! the sphere's nearest point, and switches only when even that level is past the threshold.
+//! The bound is conservative: it comes from the object's bounding sphere, its least texture
+//! density and the camera's pixel size at the sphere's nearest point.
 
 use std::collections::HashMap;
 

@@ -1,0 +1,264 @@
+//! One material's draws of a frame on the GPU: per-draw transforms and uniforms in two storage
+//! buffers written by changed ranges, texture bind groups, pipelines, and the draws sorted and
+//! merged into instanced batches (consecutive draws of one pipeline, texture set and mesh are
+//! one `draw_indexed` over an instance range).
+
+use std::ops::Range;
+
+use glam::Mat4;
+
+use super::pipelines::MaterialPipelines;
+use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
+use crate::render::object_buffer::ObjectBuffer;
+use crate::render::texture_bind_groups::TextureBindGroups;
+use crate::render::{
+    DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
+    PixelFootprint, UploadStats,
+};
+use crate::{AssetId, Assets, Image, Mesh};
+
+/// One entity's draw as the Extract stage copied it.
+#[derive(Clone, Debug)]
+pub(crate) struct ExtractedDraw<M> {
+    pub(crate) mesh: AssetId<Mesh>,
+    pub(crate) model: Mat4,
+    pub(crate) material: M,
+}
+
+/// Draws sharing pipeline, textures and mesh, adjacent in the per-draw buffers.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Batch<K> {
+    pub(crate) key: K,
+    pub(crate) textures: MaterialTextures,
+    pub(crate) mesh: AssetId<Mesh>,
+    pub(crate) instances: Range<u32>,
+}
+
+#[derive(Clone, Copy)]
+struct SortEntry<K> {
+    key: K,
+    textures: MaterialTextures,
+    mesh: AssetId<Mesh>,
+    draw: usize,
+}
+
+/// What preparing one material's draws reads besides its own state.
+pub(crate) struct PrepareInputs<'a> {
+    pub(crate) gpu: &'a GpuContext,
+    pub(crate) frame: &'a FrameUniformBuffer,
+    pub(crate) meshes: &'a Assets<Mesh>,
+    pub(crate) images: &'a Assets<Image>,
+    pub(crate) footprint: Option<&'a PixelFootprint>,
+}
+
+/// Material `M`'s GPU state. A resource.
+pub(crate) struct MaterialBatches<M: Material> {
+    pub(crate) pipelines: MaterialPipelines<M>,
+    frame_layout: wgpu::BindGroupLayout,
+    transforms: ObjectBuffer<MeshTransform>,
+    uniforms: ObjectBuffer<M::Uniform>,
+    frame_bind_group: wgpu::BindGroup,
+    textures: TextureBindGroups,
+    pub(crate) batches: Vec<Batch<M::Key>>,
+    order: Vec<SortEntry<M::Key>>,
+    transform_data: Vec<MeshTransform>,
+    // Uniforms in draw order, then in sorted order: both reused from frame to frame.
+    uniform_data: Vec<M::Uniform>,
+    sorted_uniforms: Vec<M::Uniform>,
+}
+
+fn frame_bind_group(
+    gpu: &GpuContext,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    frame: &FrameUniformBuffer,
+    transforms: &wgpu::Buffer,
+    uniforms: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &[
+            entry(0, frame.buffer().as_entire_binding()),
+            entry(1, transforms.as_entire_binding()),
+            entry(2, uniforms.as_entire_binding()),
+        ],
+    })
+}
+
+impl<M: Material> MaterialBatches<M> {
+    /// Compiles `M`'s shader for targets of `color_format`; pipelines follow on first use.
+    pub(crate) fn new(
+        gpu: &GpuContext,
+        frame: &FrameUniformBuffer,
+        color_format: wgpu::TextureFormat,
+    ) -> Self {
+        let device = &gpu.device;
+        let shader = M::shader().create_module(device);
+        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&format!("{} frame layout", M::NAME)),
+            entries: &[
+                FrameUniformBuffer::layout_entry(),
+                ObjectBuffer::<MeshTransform>::layout_entry(1),
+                ObjectBuffer::<M::Uniform>::layout_entry(2),
+            ],
+        });
+        let textures = TextureBindGroups::new(gpu, M::NAME, M::TEXTURE_SLOTS);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&format!("{} pipeline layout", M::NAME)),
+            bind_group_layouts: &[Some(&frame_layout), Some(textures.layout())],
+            immediate_size: 0,
+        });
+        let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
+        let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
+        let frame_bind_group = frame_bind_group(
+            gpu,
+            M::NAME,
+            &frame_layout,
+            frame,
+            transforms.buffer(),
+            uniforms.buffer(),
+        );
+        Self {
+            pipelines: MaterialPipelines::new(shader, layout, color_format),
+            frame_layout,
+            transforms,
+            uniforms,
+            frame_bind_group,
+            textures,
+            batches: Vec::new(),
+            order: Vec::new(),
+            transform_data: Vec::new(),
+            uniform_data: Vec::new(),
+            sorted_uniforms: Vec::new(),
+        }
+    }
+
+    /// Uploads the meshes and textures the draws use, computes each draw's key and uniform from
+    /// the textures as bound, sorts and batches the draws, writes the per-draw data that
+    /// changed, and prepares bind groups and pipelines. Counts what it uploaded in `stats`.
+    pub(crate) fn prepare(
+        &mut self,
+        inputs: &PrepareInputs<'_>,
+        draws: &[ExtractedDraw<M>],
+        assets: &mut GpuAssets,
+        lod_cache: &mut MeshLodCache,
+        stats: &mut UploadStats,
+    ) {
+        let gpu = inputs.gpu;
+        self.order.clear();
+        self.uniform_data.clear();
+        for (index, draw) in draws.iter().enumerate() {
+            stats.meshes += u32::from(assets.prepare_mesh(gpu, inputs.meshes, draw.mesh));
+            let textures = draw.material.textures();
+            let mut facts: [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] = [None; 4];
+            for (slot, image) in textures.iter().enumerate() {
+                if let Some(image) = *image {
+                    stats.images += u32::from(assets.prepare_image(gpu, inputs.images, image));
+                    facts[slot] = assets.image(image).map(|image| image.facts());
+                }
+            }
+            let mut view = DrawView {
+                model: draw.model,
+                mesh: draw.mesh,
+                meshes: inputs.meshes,
+                bounds: lod_cache,
+                footprint: inputs.footprint,
+            };
+            let key = draw
+                .material
+                .draw_key(draw.material.key(), &facts, &mut view);
+            self.uniform_data.push(draw.material.uniform(&facts));
+            self.order.push(SortEntry {
+                key,
+                textures,
+                mesh: draw.mesh,
+                draw: index,
+            });
+        }
+        // Stable: draws that share everything keep the order of the world's query.
+        self.order
+            .sort_by_key(|entry| (entry.key, entry.textures, entry.mesh));
+
+        self.transform_data.clear();
+        self.transform_data.extend(
+            self.order
+                .iter()
+                .map(|entry| MeshTransform::new(draws[entry.draw].model)),
+        );
+        self.sorted_uniforms.clear();
+        self.sorted_uniforms
+            .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));
+        let (transform_bytes, transforms_grew) = self.transforms.upload(gpu, &self.transform_data);
+        let (uniform_bytes, uniforms_grew) = self.uniforms.upload(gpu, &self.sorted_uniforms);
+        stats.uniform_bytes += transform_bytes + uniform_bytes;
+        if transforms_grew || uniforms_grew {
+            self.frame_bind_group = frame_bind_group(
+                gpu,
+                M::NAME,
+                &self.frame_layout,
+                inputs.frame,
+                self.transforms.buffer(),
+                self.uniforms.buffer(),
+            );
+        }
+
+        self.batches.clear();
+        for (index, entry) in self.order.iter().enumerate() {
+            let instance = index as u32;
+            match self.batches.last_mut() {
+                Some(batch)
+                    if batch.key == entry.key
+                        && batch.textures == entry.textures
+                        && batch.mesh == entry.mesh =>
+                {
+                    batch.instances.end = instance + 1;
+                }
+                _ => self.batches.push(Batch {
+                    key: entry.key,
+                    textures: entry.textures,
+                    mesh: entry.mesh,
+                    instances: instance..instance + 1,
+                }),
+            }
+        }
+        self.textures
+            .prepare(gpu, assets, self.batches.iter().map(|batch| batch.textures));
+        for batch in &self.batches {
+            self.pipelines.ensure(&gpu.device, batch.key);
+        }
+    }
+
+    /// Records the batches whose mesh is on the GPU, switching pipeline, textures and buffers
+    /// only where they change.
+    pub(crate) fn draw(&self, pass: &mut wgpu::RenderPass<'_>, assets: &GpuAssets) {
+        pass.set_bind_group(0, &self.frame_bind_group, &[]);
+        let mut bound_key = None;
+        let mut bound_textures = None;
+        let mut bound_mesh = None;
+        for batch in &self.batches {
+            let (Some(mesh), Some(textures), Some(pipeline)) = (
+                assets.mesh(batch.mesh),
+                self.textures.get(&batch.textures),
+                self.pipelines.get(&batch.key),
+            ) else {
+                continue;
+            };
+            if bound_key != Some(batch.key) {
+                pass.set_pipeline(pipeline);
+                bound_key = Some(batch.key);
+            }
+            if bound_textures != Some(batch.textures) {
+                pass.set_bind_group(1, textures, &[]);
+                bound_textures = Some(batch.textures);
+            }
+            if bound_mesh != Some(batch.mesh) {
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                bound_mesh = Some(batch.mesh);
+            }
+            pass.draw_indexed(0..mesh.index_count, 0, batch.instances.clone());
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! Checks that a Rust `#[repr(C)]` struct and the WGSL struct it is uploaded into agree, member
+//! by member, as naga lays the WGSL out: so the two can never drift apart silently.
+
+/// One member of a Rust struct as uploaded: its name, byte offset and size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MemberLayout {
+    /// The field name (the WGSL member must have the same).
+    pub name: &'static str,
+    /// Byte offset in the struct.
+    pub offset: usize,
+    /// Size in bytes.
+    pub size: usize,
+}
+
+/// A Rust struct that has a WGSL twin. Implement it with [`crate::wgsl_layout!`].
+pub trait WgslLayout: Sized {
+    /// The members in declaration order.
+    fn members() -> Vec<MemberLayout>;
+}
+
+/// Implements [`WgslLayout`] for a `#[repr(C)]` struct from its field names.
+///
+/// ```
+/// #[repr(C)]
+/// #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+/// struct Tint { color: [f32; 4], strength: f32, _padding: [f32; 3] }
+/// pom::wgsl_layout!(Tint { color, strength, _padding });
+/// // Not `vec3<f32>`: WGSL aligns it to 16 bytes, which `[f32; 3]` is not.
+/// let wgsl = "struct Tint { color: vec4<f32>, strength: f32, _padding: array<f32, 3> }";
+/// assert!(pom::material::check_wgsl_layout::<Tint>(wgsl, "Tint").is_ok());
+/// ```
+#[macro_export]
+macro_rules! wgsl_layout {
+    ($ty:ty { $($field:ident),* $(,)? }) => {
+        impl $crate::material::WgslLayout for $ty {
+            fn members() -> Vec<$crate::material::MemberLayout> {
+                fn size_of_field<S, T>(_: fn(&S) -> &T) -> usize {
+                    ::std::mem::size_of::<T>()
+                }
+                vec![$(
+                    $crate::material::MemberLayout {
+                        name: stringify!($field),
+                        offset: ::std::mem::offset_of!($ty, $field),
+                        size: size_of_field::<$ty, _>(|value| &value.$field),
+                    }
+                ),*]
+            }
+        }
+    };
+}
+
+/// How a Rust struct and its WGSL twin differ.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LayoutMismatch {
+    /// The WGSL does not parse.
+    #[error("the WGSL does not parse: {0}")]
+    Parse(String),
+    /// No struct of that name in the WGSL.
+    #[error("no WGSL struct named {0}")]
+    NoStruct(String),
+    /// Different member lists, or a member at another offset or of another size.
+    #[error("{structure}: Rust has {rust:?}, WGSL has {wgsl:?}")]
+    Members {
+        /// The struct.
+        structure: String,
+        /// (name, offset, size) of each Rust field.
+        rust: Vec<(String, usize, usize)>,
+        /// (name, offset, size) of each WGSL member.
+        wgsl: Vec<(String, usize, usize)>,
+    },
+    /// Same members, but the WGSL struct has another size (trailing padding).
+    #[error("{structure}: Rust size {rust} bytes, WGSL size {wgsl} bytes")]
+    Size {
+        /// The struct.
+        structure: String,
+        /// `size_of` of the Rust struct.
+        rust: usize,
+        /// naga's span of the WGSL struct.
+        wgsl: usize,
+    },
+}
+
+/// Compares `T`'s layout with the struct `name` in the WGSL `source` (naga's layouter: name,
+/// offset and size of every member, and the struct's size).
+pub fn check_wgsl_layout<T: WgslLayout>(source: &str, name: &str) -> Result<(), LayoutMismatch> {
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|error| LayoutMismatch::Parse(error.emit_to_string(source)))?;
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .map_err(|error| LayoutMismatch::Parse(error.to_string()))?;
+    let (members, span) = module
+        .types
+        .iter()
+        .find_map(|(_, ty)| match (&ty.name, &ty.inner) {
+            (Some(type_name), naga::TypeInner::Struct { members, span }) if type_name == name => {
+                Some((members, *span))
+            }
+            _ => None,
+        })
+        .ok_or_else(|| LayoutMismatch::NoStruct(name.to_owned()))?;
+    let wgsl: Vec<(String, usize, usize)> = members
+        .iter()
+        .map(|member| {
+            (
+                member.name.clone().unwrap_or_default(),
+                member.offset as usize,
+                layouter[member.ty].size as usize,
+            )
+        })
+        .collect();
+    let rust: Vec<(String, usize, usize)> = T::members()
+        .iter()
+        .map(|member| (member.name.to_owned(), member.offset, member.size))
+        .collect();
+    if rust != wgsl {
+        return Err(LayoutMismatch::Members {
+            structure: name.to_owned(),
+            rust,
+            wgsl,
+        });
+    }
+    if span as usize != std::mem::size_of::<T>() {
+        return Err(LayoutMismatch::Size {
+            structure: name.to_owned(),
+            rust: std::mem::size_of::<T>(),
+            wgsl: span as usize,
+        });
+    }
+    Ok(())
+}
+
+/// Checks material `M`'s uniform and the shared per-draw transform against `M`'s composed WGSL.
+/// Call it in a test of every material you write.
+pub fn check_material_layout<M: super::Material>() -> Result<(), LayoutMismatch> {
+    let source = M::shader().source();
+    check_wgsl_layout::<M::Uniform>(&source, M::UNIFORM_WGSL_NAME)?;
+    check_wgsl_layout::<crate::render::MeshTransform>(&source, "MeshTransform")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[repr(C)]
+    #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+    struct Sample {
+        color: [f32; 4],
+        scale: f32,
+        count: u32,
+        _padding: [u32; 2],
+    }
+    crate::wgsl_layout!(Sample {
+        color,
+        scale,
+        count,
+        _padding
+    });
+
+    #[test]
+    fn the_shipped_materials_and_the_frame_match_their_wgsl() {
+        assert_eq!(check_material_layout::<crate::LitMaterial>(), Ok(()));
+        assert_eq!(
+            check_material_layout::<crate::ParallaxOcclusionMaterial>(),
+            Ok(())
+        );
+        let source = crate::lit::LIT_SHADER.source();
+        assert_eq!(
+            check_wgsl_layout::<crate::render::FrameUniform>(&source, "Frame"),
+            Ok(())
+        );
+    }
+
+    #[test]
+    fn moving_a_member_of_a_shipped_uniform_fails() {
+        use crate::Material;
+        let source = crate::ParallaxOcclusionMaterial::shader().source();
+        let moved = source.replacen(
+            "    lod_threshold: f32,\n    lod_band: f32,",
+            "    lod_band: f32,\n    lod_threshold: f32,",
+            1,
+        );
+        assert_ne!(moved, source, "the edit must apply");
+        assert!(matches!(
+            check_wgsl_layout::<crate::parallax::PomUniform>(&moved, "PomUniform"),
+            Err(LayoutMismatch::Members { .. })
+        ));
+    }
+
+    #[test]
+    fn a_matching_struct_passes_and_a_moved_member_fails() {
+        let good =
+            "struct Sample { color: vec4<f32>, scale: f32, count: u32, _padding: vec2<u32> }";
+        assert_eq!(check_wgsl_layout::<Sample>(good, "Sample"), Ok(()));
+        let moved =
+            "struct Sample { scale: f32, color: vec4<f32>, count: u32, _padding: vec2<u32> }";
+        assert!(matches!(
+            check_wgsl_layout::<Sample>(moved, "Sample"),
+            Err(LayoutMismatch::Members { .. })
+        ));
+        let short = "struct Sample { color: vec4<f32>, scale: f32, count: u32 }";
+        assert!(check_wgsl_layout::<Sample>(short, "Sample").is_err());
+        assert_eq!(
+            check_wgsl_layout::<Sample>(good, "Other"),
+            Err(LayoutMismatch::NoStruct("Other".into()))
+        );
+    }
+}

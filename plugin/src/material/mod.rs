@@ -1,0 +1,112 @@
+//! The material seam: a [`Material`] declares its GPU form (uniform, textures, WGSL, pipeline
+//! key) and [`MaterialPlugin`] extracts, prepares and draws it. The core renderer never names a
+//! material; `LitMaterial` and `ParallaxOcclusionMaterial` are two materials like any other.
+
+mod batches;
+mod layout_check;
+mod params;
+mod pipelines;
+mod plugin;
+
+pub use layout_check::{
+    LayoutMismatch, MemberLayout, WgslLayout, check_material_layout, check_wgsl_layout,
+};
+pub use params::{
+    Choice, ChoiceInfo, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType, ParamValue,
+};
+pub use plugin::{MaterialPlugin, MaterialWarnings, MissingRenderPlugin, drawn_keys};
+
+#[cfg(feature = "dev-tools")]
+pub(crate) use plugin::MaterialRegistry;
+
+use std::fmt::Debug;
+use std::hash::Hash;
+
+use crate::render::shaders::ComposedShader;
+use crate::render::{DefaultTexture, DrawView};
+use crate::{AssetId, Image};
+
+/// Most texture slots one material binds.
+pub const MAX_MATERIAL_TEXTURES: usize = 4;
+
+/// The image in each texture slot of a draw; `None` binds the slot's default texture.
+pub type MaterialTextures = [Option<AssetId<Image>>; MAX_MATERIAL_TEXTURES];
+
+/// A texture as it is bound on the GPU (after any downscaling at upload).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureFacts {
+    /// Width of mip level 0 in texels.
+    pub width: u32,
+    /// Height of mip level 0 in texels.
+    pub height: u32,
+    /// Mip levels of the bound texture.
+    pub mip_levels: u32,
+}
+
+/// The fragment entry point and pipeline-overridable constants of one pipeline variant.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FragmentVariant {
+    /// The `@fragment` function.
+    pub entry_point: &'static str,
+    /// Values of the shader's `override` constants.
+    pub constants: Vec<(&'static str, f64)>,
+}
+
+impl FragmentVariant {
+    /// `entry_point` with no constants.
+    pub fn entry(entry_point: &'static str) -> Self {
+        Self {
+            entry_point,
+            constants: Vec::new(),
+        }
+    }
+}
+
+/// A surface type the renderer can draw: put it on an entity with a `Handle<Mesh>` and a
+/// transform, and add [`MaterialPlugin<Self>`].
+///
+/// The shader is composed after the core's camera, light and mesh WGSL, which declare (group 0)
+/// `frame` (binding 0) and the per-draw `transforms` (binding 1), the vertex entry `vs_main` and
+/// its output `VertexOut` (`object_index` indexes per-draw arrays). The material declares its
+/// own per-draw `array<Uniform>` at group 0 binding 2 and its textures at group 1, bindings
+/// `0..TEXTURE_SLOTS.len()`, followed by one trilinear repeating sampler.
+pub trait Material: hecs::Component + Clone + PartialEq + Default {
+    /// The per-draw data the shader reads: a `#[repr(C)]` Pod struct laid out like the WGSL
+    /// struct [`Material::UNIFORM_WGSL_NAME`] (check it with [`check_wgsl_layout`]).
+    type Uniform: bytemuck::Pod + PartialEq + WgslLayout + Send + Sync;
+    /// What selects a pipeline variant: draws with equal keys share one pipeline.
+    type Key: Copy + Eq + Hash + Ord + Debug + Send + Sync + 'static;
+
+    /// A name for labels and messages.
+    const NAME: &'static str;
+    /// The WGSL name of [`Material::Uniform`].
+    const UNIFORM_WGSL_NAME: &'static str;
+    /// The texture bound in each slot when the material has none there.
+    const TEXTURE_SLOTS: &'static [DefaultTexture];
+
+    /// The material's WGSL (entry points and its own library files).
+    fn shader() -> ComposedShader;
+    /// The images in the texture slots.
+    fn textures(&self) -> MaterialTextures;
+    /// The pipeline variant.
+    fn key(&self) -> Self::Key;
+    /// The fragment entry point and constants of `key`'s pipeline.
+    fn fragment(key: Self::Key) -> FragmentVariant;
+    /// The uniform, given the textures as the GPU holds them (`None`: the slot's default).
+    fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> Self::Uniform;
+    /// What is wrong with the parameters, one line each (logged once per change; the uniform
+    /// must still be drawable). Empty by default.
+    fn problems(&self) -> Vec<String> {
+        Vec::new()
+    }
+    /// The key one draw uses, knowing its textures as bound and its place in the view: a
+    /// material may pick a cheaper variant for a far-away object. `key` by default.
+    fn draw_key(
+        &self,
+        key: Self::Key,
+        _textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+        _view: &mut DrawView<'_>,
+    ) -> Self::Key {
+        key
+    }
+}

@@ -1,0 +1,303 @@
+//! [`MaterialPlugin`]: the Extract, Prepare and draw systems of any [`Material`], and the
+//! registry of the materials an app draws.
+
+#[cfg(feature = "dev-tools")]
+use std::any::Any;
+use std::any::TypeId;
+use std::collections::HashMap;
+use std::marker::PhantomData;
+
+use hecs::{Entity, World};
+
+use super::Material;
+use super::batches::{ExtractedDraw, MaterialBatches, PrepareInputs};
+#[cfg(feature = "dev-tools")]
+use crate::render::shaders::ComposedShader;
+use crate::render::{
+    ExtractedFrame, MainPassDraws, MeshLodCache, RenderTarget, Renderer, UploadStats,
+};
+use crate::{
+    App, AppError, Assets, BoxedError, GlobalTransform, GpuContext, Handle, Image, Mesh, Plugin,
+    Resources, Stage,
+};
+
+/// Extracts, prepares and draws every entity that has a material `M`, a `Handle<Mesh>` and a
+/// transform. Add it after [`crate::RenderPlugin`]; adding it twice is harmless.
+pub struct MaterialPlugin<M> {
+    draws_meshes_without_material: bool,
+    _material: PhantomData<fn() -> M>,
+}
+
+impl<M> std::fmt::Debug for MaterialPlugin<M> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MaterialPlugin")
+            .field("material", &std::any::type_name::<M>())
+            .field(
+                "draws_meshes_without_material",
+                &self.draws_meshes_without_material,
+            )
+            .finish()
+    }
+}
+
+impl<M> Default for MaterialPlugin<M> {
+    fn default() -> Self {
+        Self {
+            draws_meshes_without_material: false,
+            _material: PhantomData,
+        }
+    }
+}
+
+impl<M: Material> MaterialPlugin<M> {
+    /// The plugin that also draws, with `M::default()`, every mesh entity that has none of the
+    /// app's registered materials.
+    pub fn for_meshes_without_material() -> Self {
+        Self {
+            draws_meshes_without_material: true,
+            _material: PhantomData,
+        }
+    }
+}
+
+/// Why a material plugin could not start.
+#[derive(Debug, thiserror::Error)]
+#[error("a material plugin needs RenderPlugin: add RenderPlugin before it")]
+pub struct MissingRenderPlugin;
+
+/// Pipelines rebuilt from a recompiled shader, not yet swapped in (hot reload).
+#[cfg(feature = "dev-tools")]
+pub(crate) type RebuiltPipelines = Box<dyn Any>;
+
+/// One registered material type.
+pub(crate) struct MaterialEntry {
+    type_id: TypeId,
+    /// Its shader as compiled.
+    #[cfg(feature = "dev-tools")]
+    pub(crate) shader: ComposedShader,
+    /// Whether an entity has it.
+    has: fn(&hecs::EntityRef<'_>) -> bool,
+    /// Builds every pipeline in use from a recompiled shader module.
+    #[cfg(feature = "dev-tools")]
+    pub(crate) rebuild:
+        fn(&Resources, &wgpu::Device, wgpu::ShaderModule) -> Option<RebuiltPipelines>,
+    /// Swaps pipelines from `rebuild` in.
+    #[cfg(feature = "dev-tools")]
+    pub(crate) swap: fn(&mut Resources, RebuiltPipelines),
+}
+
+/// The material types of the app, in the order their plugins were added. A resource.
+#[derive(Default)]
+pub(crate) struct MaterialRegistry {
+    pub(crate) entries: Vec<MaterialEntry>,
+}
+
+impl MaterialRegistry {
+    fn contains<M: 'static>(&self) -> bool {
+        self.entries
+            .iter()
+            .any(|entry| entry.type_id == TypeId::of::<M>())
+    }
+
+    /// Whether `entity` has any registered material.
+    fn has_any(&self, entity: &hecs::EntityRef<'_>) -> bool {
+        self.entries.iter().any(|entry| (entry.has)(entity))
+    }
+}
+
+/// This frame's draws of `M`, as extracted. A resource.
+pub(crate) struct ExtractedMaterials<M> {
+    pub(crate) draws: Vec<ExtractedDraw<M>>,
+}
+
+/// The last material of type `M` each entity was warned about, so a bad value is logged once
+/// per change, not every frame. A resource.
+#[derive(Debug)]
+pub struct MaterialWarnings<M>(HashMap<Entity, M>);
+
+impl<M> MaterialWarnings<M> {
+    /// Number of entities whose material has been clamped.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether no material needed clamping.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+impl<M: Material> Plugin for MaterialPlugin<M> {
+    fn build(&self, app: &mut App) {
+        let registry = app.resources.get_or_default::<MaterialRegistry>();
+        if registry.contains::<M>() {
+            return;
+        }
+        registry.entries.push(MaterialEntry {
+            type_id: TypeId::of::<M>(),
+            has: |entity| entity.has::<M>(),
+            #[cfg(feature = "dev-tools")]
+            shader: M::shader(),
+            #[cfg(feature = "dev-tools")]
+            rebuild: |resources, device, module| {
+                let batches = resources.get::<MaterialBatches<M>>()?;
+                Some(Box::new(batches.pipelines.rebuilt(device, module)))
+            },
+            #[cfg(feature = "dev-tools")]
+            swap: |resources, rebuilt| {
+                if let (Ok(pipelines), Some(batches)) = (
+                    rebuilt.downcast(),
+                    resources.get_mut::<MaterialBatches<M>>(),
+                ) {
+                    batches.pipelines = *pipelines;
+                }
+            },
+        });
+        let fallback = self.draws_meshes_without_material;
+        app.add_system(
+            Stage::Extract,
+            move |world: &mut World, resources: &mut Resources| {
+                extract_materials::<M>(world, resources, fallback)
+            },
+        )
+        .add_system(Stage::Prepare, prepare_materials::<M>);
+        app.resources
+            .get_or_default::<MainPassDraws>()
+            .add::<M>(draw_materials::<M>);
+    }
+
+    fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
+        if app.resources.contains::<MaterialBatches<M>>() {
+            return Ok(());
+        }
+        let (Some(gpu), Some(target), Some(renderer)) = (
+            app.resources.get::<GpuContext>(),
+            app.resources.get::<RenderTarget>(),
+            app.resources.get::<Renderer>(),
+        ) else {
+            return Err(MissingRenderPlugin.into());
+        };
+        let batches = MaterialBatches::<M>::new(gpu, &renderer.frame, target.format());
+        app.insert_resource(batches);
+        Ok(())
+    }
+}
+
+/// The Extract stage's system of material `M`: copies each drawable entity's mesh, transform
+/// and material, and logs a material's problems once per change.
+fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources, fallback: bool) {
+    let mut extracted = resources
+        .remove::<ExtractedMaterials<M>>()
+        .unwrap_or(ExtractedMaterials { draws: Vec::new() });
+    let mut warnings = resources
+        .remove::<MaterialWarnings<M>>()
+        .unwrap_or(MaterialWarnings(HashMap::new()));
+    extracted.draws.clear();
+    let mut push =
+        |entity: Entity, mesh: &Handle<Mesh>, transform: &GlobalTransform, material: &M| {
+            let model = transform.to_mat4();
+            if !model.is_finite() {
+                log::warn!(
+                    "{} entity {entity:?} has a non-finite transform: not drawn",
+                    M::NAME
+                );
+                return;
+            }
+            let problems = material.problems();
+            if !problems.is_empty() && warnings.0.get(&entity) != Some(material) {
+                for problem in &problems {
+                    log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
+                }
+                warnings.0.insert(entity, material.clone());
+            }
+            extracted.draws.push(ExtractedDraw {
+                mesh: mesh.id(),
+                model,
+                material: material.clone(),
+            });
+        };
+    for (entity, mesh, transform, material) in world
+        .query::<(Entity, &Handle<Mesh>, &GlobalTransform, &M)>()
+        .iter()
+    {
+        push(entity, mesh, transform, material);
+    }
+    if fallback && let Some(registry) = resources.get::<MaterialRegistry>() {
+        let default = M::default();
+        for (entity, mesh, transform) in world
+            .query::<(Entity, &Handle<Mesh>, &GlobalTransform)>()
+            .without::<&M>()
+            .iter()
+        {
+            if world
+                .entity(entity)
+                .is_ok_and(|entity| !registry.has_any(&entity))
+            {
+                push(entity, mesh, transform, &default);
+            }
+        }
+    }
+    warnings.0.retain(|entity, _| world.contains(*entity));
+    resources.insert(warnings);
+    resources.insert(extracted);
+}
+
+/// The Prepare stage's system of material `M`.
+fn prepare_materials<M: Material>(
+    _: &mut World,
+    resources: &mut Resources,
+) -> Result<(), AppError> {
+    resources
+        .scope(|resources, batches: &mut MaterialBatches<M>| {
+            resources
+                .scope(|resources, renderer: &mut Renderer| {
+                    resources
+                        .scope(|resources, lod_cache: &mut MeshLodCache| {
+                            let extracted = resources.require::<ExtractedMaterials<M>>()?;
+                            let frame = resources.require::<ExtractedFrame>()?;
+                            let inputs = PrepareInputs {
+                                gpu: resources.require::<GpuContext>()?,
+                                frame: &renderer.frame,
+                                meshes: resources.require::<Assets<Mesh>>()?,
+                                images: resources.require::<Assets<Image>>()?,
+                                footprint: frame.footprint.as_ref(),
+                            };
+                            let mut stats = UploadStats::default();
+                            batches.prepare(
+                                &inputs,
+                                &extracted.draws,
+                                &mut renderer.assets,
+                                lod_cache,
+                                &mut stats,
+                            );
+                            lod_cache.retain_existing(inputs.meshes);
+                            renderer.last_upload.meshes += stats.meshes;
+                            renderer.last_upload.images += stats.images;
+                            renderer.last_upload.uniform_bytes += stats.uniform_bytes;
+                            Ok(())
+                        })
+                        .unwrap_or_else(|| Err(AppError::missing::<MeshLodCache>()))
+                })
+                .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+        })
+        .unwrap_or_else(|| Err(AppError::missing::<MaterialBatches<M>>()))
+}
+
+/// Material `M`'s draws in the main pass (registered in [`MainPassDraws`]).
+fn draw_materials<M: Material>(resources: &Resources, pass: &mut wgpu::RenderPass<'_>) {
+    if let (Some(batches), Some(renderer)) = (
+        resources.get::<MaterialBatches<M>>(),
+        resources.get::<Renderer>(),
+    ) {
+        batches.draw(pass, &renderer.assets);
+    }
+}
+
+/// The pipeline keys of material `M`'s batches in the last prepared frame, in draw order: which
+/// variant each object drew with (one entry per batch of instances).
+pub fn drawn_keys<M: Material>(resources: &Resources) -> Vec<M::Key> {
+    resources
+        .get::<MaterialBatches<M>>()
+        .map(|batches| batches.batches.iter().map(|batch| batch.key).collect())
+        .unwrap_or_default()
+}

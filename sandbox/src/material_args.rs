@@ -1,0 +1,266 @@
+//! The material's command-line flags, one per declared parameter of
+//! `ParallaxOcclusionMaterial` (`--height-scale`, `--method`, ...): names, help, defaults and
+//! value spellings all come from `ParallaxOcclusionMaterial::PARAMETERS`, so a new parameter is
+//! a new flag without an edit here. Numbers are checked by `ParallaxOcclusionMaterial::validate`,
+//! not by the parser, so the limits live in one place; NaN and negative numbers must parse.
+
+use std::sync::OnceLock;
+
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser, ValueParser};
+use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
+use pom::ParallaxOcclusionMaterial;
+use pom::material::{Choice, Param, ParamKind, ParamValue};
+
+/// Parameters set elsewhere on the command line: the debug view is an output option
+/// (`--debug-view`, which also applies to scenes).
+const NOT_FLAGS: [&str; 1] = ["debug_view"];
+
+/// The id of the group holding every material flag.
+pub const GROUP: &str = "MaterialArgs";
+
+/// The declared parameters that are material flags.
+pub fn flag_parameters() -> impl Iterator<Item = &'static Param<ParallaxOcclusionMaterial>> {
+    ParallaxOcclusionMaterial::PARAMETERS
+        .iter()
+        .filter(|param| !NOT_FLAGS.contains(&param.name))
+}
+
+/// The flag (`name-with-dashes`) and default value text of every declared parameter, made once
+/// (clap keeps `&'static str`s).
+fn flag_texts() -> &'static [(String, String)] {
+    static TEXTS: OnceLock<Vec<(String, String)>> = OnceLock::new();
+    TEXTS.get_or_init(|| {
+        ParallaxOcclusionMaterial::PARAMETERS
+            .iter()
+            .map(|param| (param.flag(), param.default_value().to_string()))
+            .collect()
+    })
+}
+
+fn texts_of(param: &Param<ParallaxOcclusionMaterial>) -> (&'static str, &'static str) {
+    let index = ParallaxOcclusionMaterial::PARAMETERS
+        .iter()
+        .position(|other| other.name == param.name)
+        .unwrap_or(0);
+    let (flag, default) = &flag_texts()[index];
+    (flag, default)
+}
+
+/// The values the command line accepts for a choice, with their help.
+fn possible_values(kind: &ParamKind) -> Option<Vec<PossibleValue>> {
+    match kind {
+        ParamKind::Choice(choices) => Some(
+            choices
+                .iter()
+                .map(|choice| PossibleValue::new(choice.name).help(choice.help))
+                .collect(),
+        ),
+        _ => None,
+    }
+}
+
+/// A clap value parser for a [`Choice`] enum: its spellings, with help, as possible values.
+pub fn choice_parser<T: Choice + Clone + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    let values = T::INFO
+        .iter()
+        .map(|choice| PossibleValue::new(choice.name).help(choice.help));
+    PossibleValuesParser::new(values).try_map(|name: String| {
+        T::from_name(&name).ok_or_else(|| format!("{name:?} is not one of the values"))
+    })
+}
+
+/// The flag of one parameter.
+fn flag(param: &'static Param<ParallaxOcclusionMaterial>) -> Arg {
+    let (long, default) = texts_of(param);
+    let help = if param.spec.unit.is_empty() {
+        param.help.trim().to_owned()
+    } else {
+        format!("{} [unit: {}]", param.help.trim(), param.spec.unit)
+    };
+    let arg = Arg::new(param.name)
+        .long(long)
+        .help(help)
+        .default_value(default)
+        .allow_negative_numbers(true);
+    match (&param.spec.kind, possible_values(&param.spec.kind)) {
+        (_, Some(values)) => arg.value_name("NAME").value_parser(
+            PossibleValuesParser::new(values).try_map(move |text: String| param.parse(&text)),
+        ),
+        (ParamKind::Toggle, None) => arg
+            .num_args(0..=1)
+            .default_missing_value("true")
+            .action(ArgAction::Set)
+            .value_name("BOOL")
+            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
+        (ParamKind::Color, None) => arg
+            .value_name("R,G,B[,A]")
+            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
+        (ParamKind::Integer { .. }, None) => arg
+            .value_name("N")
+            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
+        _ => arg
+            .value_name("F")
+            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
+    }
+}
+
+/// The material's flags, as given (or defaulted) on the command line.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MaterialArgs {
+    values: Vec<(&'static str, ParamValue)>,
+}
+
+impl MaterialArgs {
+    /// The material these flags describe (no textures, default debug view).
+    pub fn settings(&self) -> ParallaxOcclusionMaterial {
+        let mut material = ParallaxOcclusionMaterial::default();
+        for (name, value) in &self.values {
+            if let Some(param) = ParallaxOcclusionMaterial::PARAMETERS
+                .iter()
+                .find(|param| param.name == *name)
+            {
+                // The parser made the value from this parameter's own kind.
+                let _ = (param.set)(&mut material, *value);
+            }
+        }
+        material
+    }
+}
+
+impl FromArgMatches for MaterialArgs {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let values = flag_parameters()
+            .filter_map(|param| {
+                matches
+                    .get_one::<ParamValue>(param.name)
+                    .map(|value| (param.name, *value))
+            })
+            .collect();
+        Ok(Self { values })
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl Args for MaterialArgs {
+    fn augment_args(command: Command) -> Command {
+        let command = command.next_help_heading("Material");
+        let command = flag_parameters().fold(command, |command, param| command.arg(flag(param)));
+        command.group(
+            ArgGroup::new(GROUP)
+                .multiple(true)
+                .required(false)
+                .args(flag_parameters().map(|param| param.name)),
+        )
+    }
+
+    fn augment_args_for_update(command: Command) -> Command {
+        Self::augment_args(command)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+    use pom::{Color, DebugView, HeightConvention, HeightUnits, LightingModel, ParallaxMethod};
+
+    #[derive(Debug, Parser)]
+    struct Flags {
+        #[command(flatten)]
+        material: MaterialArgs,
+    }
+
+    fn parse(args: &[String]) -> Result<ParallaxOcclusionMaterial, clap::Error> {
+        let all = std::iter::once("test".to_owned()).chain(args.iter().cloned());
+        Flags::try_parse_from(all).map(|flags| flags.material.settings())
+    }
+
+    /// A material whose every parameter differs from the default.
+    fn everything_changed() -> ParallaxOcclusionMaterial {
+        ParallaxOcclusionMaterial {
+            method: ParallaxMethod::Relief,
+            relief_binary_steps: 3,
+            height_scale: 0.0725,
+            height_units: HeightUnits::World,
+            height_convention: HeightConvention::Depth,
+            depth_offset: true,
+            min_samples: 5,
+            max_samples: 77,
+            lod_threshold: 3.25,
+            lod_band: 0.5,
+            shadows: pom::ShadowMode::Hard,
+            shadow_softening: 1.5,
+            lighting: LightingModel::CookTorrance,
+            base_color: Color {
+                r: 0.25,
+                g: 0.5,
+                b: 0.75,
+                a: 0.875,
+            },
+            specular_strength: 0.9,
+            shininess: 64.5,
+            roughness: 0.35,
+            metallic: 0.6,
+            normal_strength: 1.75,
+            debug_view: DebugView::None,
+            ..ParallaxOcclusionMaterial::default()
+        }
+    }
+
+    #[test]
+    fn no_flags_give_the_default_material() {
+        assert_eq!(parse(&[]).unwrap(), ParallaxOcclusionMaterial::default());
+    }
+
+    #[test]
+    fn every_parameter_round_trips_through_its_flag() {
+        let material = everything_changed();
+        let default = ParallaxOcclusionMaterial::default();
+        let mut args = Vec::new();
+        for param in flag_parameters() {
+            let value = (param.get)(&material);
+            assert_ne!(
+                value,
+                (param.get)(&default),
+                "{} should differ from its default in this test",
+                param.name
+            );
+            args.push(format!("--{}", param.flag()));
+            args.push(value.to_string());
+        }
+        let parsed = parse(&args).unwrap();
+        for param in ParallaxOcclusionMaterial::PARAMETERS {
+            assert_eq!(
+                (param.get)(&parsed),
+                (param.get)(&material),
+                "--{}",
+                param.flag()
+            );
+        }
+        assert_eq!(parsed, material);
+    }
+
+    #[test]
+    fn a_bad_choice_is_a_usage_error_listing_the_spellings() {
+        let error = parse(&["--method".into(), "magic".into()]).unwrap_err();
+        assert_eq!(error.kind(), clap::error::ErrorKind::InvalidValue);
+        let text = error.to_string();
+        assert!(text.contains("pom") && text.contains("relief"), "{text}");
+        let error = parse(&["--min-samples".into(), "many".into()]).unwrap_err();
+        assert!(error.to_string().contains("min_samples"), "{error}");
+    }
+
+    #[test]
+    fn a_toggle_is_a_flag_or_takes_a_value() {
+        assert!(parse(&["--depth-offset".into()]).unwrap().depth_offset);
+        assert!(
+            !parse(&["--depth-offset".into(), "false".into()])
+                .unwrap()
+                .depth_offset
+        );
+    }
+}
