@@ -198,6 +198,7 @@ impl<F: Fn(&mut App) + 'static> Plugin for F {
 
 /// What can go wrong while finishing plugins or running an update.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum AppError {
     /// A plugin's GPU-dependent setup failed.
     #[error("plugin {plugin} failed to finish its setup: {source}")]

@@ -8,6 +8,7 @@ use crate::{Color, GlobalTransform};
 
 /// How a camera projects the view volume onto the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Projection {
     /// Perspective: distant things look smaller.
     Perspective {

@@ -13,6 +13,7 @@ use crate::{App, AppError, Plugin, Resources, Stage};
 
 /// Why a reload did not swap the pipelines in.
 #[derive(Clone, Debug, thiserror::Error, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ShaderReloadError {
     /// A WGSL file could not be read.
     #[error("cannot read {path}: {reason}")]

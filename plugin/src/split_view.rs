@@ -22,6 +22,7 @@ pub struct SplitView {
 
 /// Why the second image could not be rendered.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SplitViewError {
     /// The app has no render target or GPU context (RenderPlugin missing or not finished).
     #[error("split view needs RenderPlugin's target and GPU context: add RenderPlugin first")]

@@ -138,6 +138,7 @@ impl SobelPass {
 
 /// Why a dynamic field could not be processed this frame.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum DynamicHeightError {
     /// The normal image was not made with [`Image::gpu_written`], or its size differs.
     #[error("dynamic height field of {entity:?}: {problem}")]

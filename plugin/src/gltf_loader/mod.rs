@@ -39,6 +39,7 @@ pub struct GltfScene {
 
 /// Why a glTF file could not be loaded.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum GltfError {
     /// The file is unreadable, truncated, or not valid glTF.
     #[error("{path}: {reason}")]

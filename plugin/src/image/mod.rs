@@ -13,6 +13,7 @@ use mips::Reduce;
 
 /// What a texture holds: decides its GPU format and how its mip levels are filtered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum TextureKind {
     /// sRGB colour (albedo): decoded to linear light when sampled; mips averaged in linear light.
     Color,
@@ -28,6 +29,7 @@ pub enum TextureKind {
 
 /// Pixel storage of an [`Image`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Pixels {
     /// Four 8-bit channels.
     Rgba8(RgbaImage),
@@ -133,6 +135,7 @@ impl Channel {
 
 /// What went wrong building or loading an [`Image`].
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum ImageError {
     /// The file could not be read or decoded.
     #[error("cannot load image {path}: {reason}")]

@@ -61,6 +61,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     textures: TextureBindGroups,
     pub(crate) batches: Vec<Batch<M::Key>>,
     order: Vec<SortEntry<M::Key>>,
+    // The model matrix and transform of each sorted slot, kept from frame to frame.
+    models: Vec<Mat4>,
     transform_data: Vec<MeshTransform>,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
     uniform_data: Vec<M::Uniform>,
@@ -129,6 +131,7 @@ impl<M: Material> MaterialBatches<M> {
             textures,
             batches: Vec::new(),
             order: Vec::new(),
+            models: Vec::new(),
             transform_data: Vec::new(),
             uniform_data: Vec::new(),
             sorted_uniforms: Vec::new(),
@@ -149,27 +152,37 @@ impl<M: Material> MaterialBatches<M> {
         let gpu = inputs.gpu;
         self.order.clear();
         self.uniform_data.clear();
+        // Neighbouring draws mostly share mesh and textures: look each up once per run.
+        let mut last_mesh = None;
+        let mut bounds = None;
+        let mut last_textures = None;
+        let mut facts: [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] = [None; 4];
         for (index, draw) in draws.iter().enumerate() {
-            stats.meshes += u32::from(assets.prepare_mesh(gpu, inputs.meshes, draw.mesh));
+            if last_mesh != Some(draw.mesh) {
+                stats.meshes += u32::from(assets.prepare_mesh(gpu, inputs.meshes, draw.mesh));
+                bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
+                last_mesh = Some(draw.mesh);
+            }
             let textures = draw.material.textures();
-            let mut facts: [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] = [None; 4];
-            for (slot, image) in textures.iter().enumerate() {
-                if let Some(image) = *image {
-                    stats.images += u32::from(assets.prepare_image(gpu, inputs.images, image));
-                    facts[slot] = assets.image(image).map(|image| image.facts());
+            if last_textures != Some(textures) {
+                for (slot, image) in textures.iter().enumerate() {
+                    facts[slot] = image.and_then(|image| {
+                        stats.images += u32::from(assets.prepare_image(gpu, inputs.images, image));
+                        assets.image(image).map(|image| image.facts())
+                    });
                 }
+                last_textures = Some(textures);
             }
             let mut view = DrawView {
                 model: draw.model,
-                mesh: draw.mesh,
-                meshes: inputs.meshes,
-                bounds: lod_cache,
+                bounds,
                 footprint: inputs.footprint,
             };
+            let uniform = draw.material.uniform(&facts);
             let key = draw
                 .material
-                .draw_key(draw.material.key(), &facts, &mut view);
-            self.uniform_data.push(draw.material.uniform(&facts));
+                .draw_key(draw.material.key(), &uniform, &mut view);
+            self.uniform_data.push(uniform);
             self.order.push(SortEntry {
                 key,
                 textures,
@@ -177,16 +190,30 @@ impl<M: Material> MaterialBatches<M> {
                 draw: index,
             });
         }
-        // Stable: draws that share everything keep the order of the world's query.
-        self.order
-            .sort_by_key(|entry| (entry.key, entry.textures, entry.mesh));
+        // Stable: draws that share everything keep the order of the world's query. Most frames
+        // come in the order the last one was sorted into, which the check finds in one pass.
+        let sort_key = |entry: &SortEntry<M::Key>| (entry.key, entry.textures, entry.mesh);
+        if !self.order.is_sorted_by_key(sort_key) {
+            self.order.sort_by_key(sort_key);
+        }
 
-        self.transform_data.clear();
-        self.transform_data.extend(
-            self.order
-                .iter()
-                .map(|entry| MeshTransform::new(draws[entry.draw].model)),
-        );
+        // A transform (and its inverse) is recomputed only where the slot's model changed.
+        self.models.truncate(self.order.len());
+        self.transform_data.truncate(self.order.len());
+        for (slot, entry) in self.order.iter().enumerate() {
+            let model = draws[entry.draw].model;
+            if self.models.get(slot) == Some(&model) {
+                continue;
+            }
+            let transform = MeshTransform::new(model);
+            if slot < self.models.len() {
+                self.models[slot] = model;
+                self.transform_data[slot] = transform;
+            } else {
+                self.models.push(model);
+                self.transform_data.push(transform);
+            }
+        }
         self.sorted_uniforms.clear();
         self.sorted_uniforms
             .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));

@@ -99,12 +99,13 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn problems(&self) -> Vec<String> {
         Vec::new()
     }
-    /// The key one draw uses, knowing its textures as bound and its place in the view: a
-    /// material may pick a cheaper variant for a far-away object. `key` by default.
+    /// The key one draw uses, knowing its uniform (as [`Material::uniform`] packed it) and its
+    /// place in the view: a material may pick a cheaper variant for a far-away object. `key` by
+    /// default.
     fn draw_key(
         &self,
         key: Self::Key,
-        _textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+        _uniform: &Self::Uniform,
         _view: &mut DrawView<'_>,
     ) -> Self::Key {
         key

@@ -75,8 +75,8 @@ pub(crate) struct MaterialEntry {
     /// Its shader as compiled.
     #[cfg(feature = "dev-tools")]
     pub(crate) shader: ComposedShader,
-    /// Whether an entity has it.
-    has: fn(&hecs::EntityRef<'_>) -> bool,
+    /// Whether entities of an archetype have it.
+    has: fn(&hecs::Archetype) -> bool,
     /// Builds every pipeline in use from a recompiled shader module.
     #[cfg(feature = "dev-tools")]
     pub(crate) rebuild:
@@ -99,9 +99,9 @@ impl MaterialRegistry {
             .any(|entry| entry.type_id == TypeId::of::<M>())
     }
 
-    /// Whether `entity` has any registered material.
-    fn has_any(&self, entity: &hecs::EntityRef<'_>) -> bool {
-        self.entries.iter().any(|entry| (entry.has)(entity))
+    /// Whether entities of `archetype` have any registered material.
+    fn has_any(&self, archetype: &hecs::Archetype) -> bool {
+        self.entries.iter().any(|entry| (entry.has)(archetype))
     }
 }
 
@@ -135,7 +135,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
         }
         registry.entries.push(MaterialEntry {
             type_id: TypeId::of::<M>(),
-            has: |entity| entity.has::<M>(),
+            has: |archetype| archetype.has::<M>(),
             #[cfg(feature = "dev-tools")]
             shader: M::shader(),
             #[cfg(feature = "dev-tools")]
@@ -192,51 +192,72 @@ fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources, 
     let mut warnings = resources
         .remove::<MaterialWarnings<M>>()
         .unwrap_or(MaterialWarnings(HashMap::new()));
-    extracted.draws.clear();
+    // Draws are rewritten in place: a material equal to the one in the same slot last frame is
+    // not cloned again (a clone bumps every texture handle's reference count, and dropping the
+    // old one lowers it: tens of thousands of atomic operations a frame for nothing).
+    let mut count = 0;
+    // `entity` is `None` for meshes drawn with the default material (found by archetype).
     let mut push =
-        |entity: Entity, mesh: &Handle<Mesh>, transform: &GlobalTransform, material: &M| {
+        |entity: Option<Entity>, mesh: &Handle<Mesh>, transform: &GlobalTransform, material: &M| {
             let model = transform.to_mat4();
             if !model.is_finite() {
                 log::warn!(
-                    "{} entity {entity:?} has a non-finite transform: not drawn",
-                    M::NAME
+                    "{} mesh {:?} has a non-finite transform: not drawn",
+                    M::NAME,
+                    mesh.id()
                 );
                 return;
             }
-            let problems = material.problems();
-            if !problems.is_empty() && warnings.0.get(&entity) != Some(material) {
-                for problem in &problems {
-                    log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
+            if let Some(entity) = entity {
+                let problems = material.problems();
+                if !problems.is_empty() && warnings.0.get(&entity) != Some(material) {
+                    for problem in &problems {
+                        log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
+                    }
+                    warnings.0.insert(entity, material.clone());
                 }
-                warnings.0.insert(entity, material.clone());
             }
-            extracted.draws.push(ExtractedDraw {
-                mesh: mesh.id(),
-                model,
-                material: material.clone(),
-            });
+            match extracted.draws.get_mut(count) {
+                Some(draw) => {
+                    draw.mesh = mesh.id();
+                    draw.model = model;
+                    if draw.material != *material {
+                        draw.material = material.clone();
+                    }
+                }
+                None => extracted.draws.push(ExtractedDraw {
+                    mesh: mesh.id(),
+                    model,
+                    material: material.clone(),
+                }),
+            }
+            count += 1;
         };
     for (entity, mesh, transform, material) in world
         .query::<(Entity, &Handle<Mesh>, &GlobalTransform, &M)>()
         .iter()
     {
-        push(entity, mesh, transform, material);
+        push(Some(entity), mesh, transform, material);
     }
     if fallback && let Some(registry) = resources.get::<MaterialRegistry>() {
         let default = M::default();
-        for (entity, mesh, transform) in world
-            .query::<(Entity, &Handle<Mesh>, &GlobalTransform)>()
-            .without::<&M>()
-            .iter()
-        {
-            if world
-                .entity(entity)
-                .is_ok_and(|entity| !registry.has_any(&entity))
-            {
-                push(entity, mesh, transform, &default);
+        // Whole archetypes at a time: an entity with any registered material is skipped
+        // without looking it up.
+        for archetype in world.archetypes() {
+            if registry.has_any(archetype) {
+                continue;
+            }
+            if let (Some(meshes), Some(transforms)) = (
+                archetype.get::<&Handle<Mesh>>(),
+                archetype.get::<&GlobalTransform>(),
+            ) {
+                for (mesh, transform) in meshes.iter().zip(transforms.iter()) {
+                    push(None, mesh, transform, &default);
+                }
             }
         }
     }
+    extracted.draws.truncate(count);
     warnings.0.retain(|entity, _| world.contains(*entity));
     resources.insert(warnings);
     resources.insert(extracted);

@@ -9,6 +9,7 @@ pub use tangents::generate_tangents;
 
 /// What is wrong with a mesh's data.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum MeshError {
     /// An attribute has a different number of entries than there are positions.
     #[error("mesh attribute {attribute} has {found} entries but there are {expected} positions")]

@@ -87,6 +87,7 @@ crate::choice_enum! {
 
 /// Where the height comes from.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum HeightSource {
     /// A texture of its own; the red channel is read (grey images have it in every channel).
     Texture(Handle<Image>),

@@ -114,24 +114,24 @@ impl Material for ParallaxOcclusionMaterial {
     fn draw_key(
         &self,
         key: PomPipelineKey,
-        textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+        uniform: &PomUniform,
         view: &mut DrawView<'_>,
     ) -> PomPipelineKey {
         let normal_mapping = key.normal_mapping();
         if key == normal_mapping {
             return key;
         }
-        let height = textures[HEIGHT_SLOT].unwrap_or(TextureFacts {
-            width: 1,
-            height: 1,
-            mip_levels: 1,
-        });
-        let threshold = if self.is_valid() {
-            self.lod_threshold
-        } else {
-            self.sanitized().lod_threshold
+        // The uniform holds the sanitized threshold and the height texture as bound.
+        let [width, height] = uniform.height_texture_size;
+        let texture = TextureFacts {
+            width: width as u32,
+            height: height as u32,
+            mip_levels: uniform.height_mip_levels as u32,
         };
-        if view.lowest_mip(&height).is_some_and(|mip| mip >= threshold) {
+        if view
+            .lowest_mip(&texture)
+            .is_some_and(|mip| mip >= uniform.lod_threshold)
+        {
             normal_mapping
         } else {
             key

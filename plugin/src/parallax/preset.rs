@@ -12,6 +12,7 @@ use super::material::{ParallaxOcclusionMaterial, PomMaterialError, PomPreset};
 
 /// Why a preset could not be read or written.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum PresetError {
     /// The file could not be read or written.
     #[error("{path}: {reason}")]

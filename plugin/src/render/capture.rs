@@ -8,6 +8,7 @@ use super::GpuContext;
 
 /// What went wrong reading a texture back.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CaptureError {
     /// The texture's format has no fixed texel size this function can copy.
     #[error("cannot read back a texture of format {0:?}")]

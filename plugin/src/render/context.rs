@@ -4,6 +4,7 @@ use std::sync::{Arc, Mutex};
 
 /// What went wrong setting up the GPU.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum GpuError {
     /// No adapter matched the request.
     #[error(

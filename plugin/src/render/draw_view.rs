@@ -3,16 +3,13 @@
 
 use glam::Mat4;
 
-use super::lowest_mip::{MeshLodCache, PixelFootprint, lowest_mip};
+use super::lowest_mip::{MeshLodBounds, PixelFootprint, lowest_mip};
 use crate::material::TextureFacts;
-use crate::{AssetId, Assets, Mesh};
 
-/// One draw as the view sees it: its mesh, its transform and the camera's pixel size.
+/// One draw as the view sees it: its mesh's bounds, its transform and the camera's pixel size.
 pub struct DrawView<'a> {
     pub(crate) model: Mat4,
-    pub(crate) mesh: AssetId<Mesh>,
-    pub(crate) meshes: &'a Assets<Mesh>,
-    pub(crate) bounds: &'a mut MeshLodCache,
+    pub(crate) bounds: Option<MeshLodBounds>,
     pub(crate) footprint: Option<&'a PixelFootprint>,
 }
 
@@ -22,7 +19,7 @@ impl DrawView<'_> {
     /// area). Conservative: the true level of every pixel is at least this.
     pub fn lowest_mip(&mut self, texture: &TextureFacts) -> Option<f32> {
         let footprint = self.footprint?;
-        let bounds = self.bounds.bounds(self.meshes, self.mesh)?;
+        let bounds = self.bounds?;
         lowest_mip(
             &bounds,
             &self.model,

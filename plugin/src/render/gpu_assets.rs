@@ -82,6 +82,7 @@ pub struct DefaultTextures {
 
 /// Names one of the [`DefaultTextures`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum DefaultTexture {
     /// [`DefaultTextures::white_srgb`].
     WhiteSrgb,

@@ -22,6 +22,7 @@ const BLOCKING_TIMEOUT: Duration = Duration::from_secs(60);
 
 /// How the timer waits for the GPU's answers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum TimingMode {
     /// Never stall: read a frame or more late from a ring of readback buffers; a frame whose
     /// buffers are all still busy is simply not timed. For live windows.

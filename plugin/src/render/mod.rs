@@ -47,6 +47,7 @@ use crate::{
 
 /// Everything that can go wrong when rendering or capturing a frame.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RenderError {
     /// GPU setup failed.
     #[error(transparent)]

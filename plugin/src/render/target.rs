@@ -4,6 +4,7 @@ use super::GpuContext;
 
 /// What the colour target stores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum TargetFormat {
     /// 8-bit sRGB: display-ready pixels, what screenshots and reference images use.
     #[default]

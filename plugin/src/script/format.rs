@@ -50,6 +50,7 @@ pub struct CameraDesc {
 /// A light.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[non_exhaustive]
 pub enum LightDesc {
     /// Sunlight travelling along `direction`.
     Directional {
@@ -103,6 +104,7 @@ pub struct TransformDesc {
 /// A primitive shape.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[non_exhaustive]
 pub enum ShapeDesc {
     /// A square in XZ facing +Y, UVs 0..tiling.
     Plane {
@@ -127,6 +129,7 @@ pub enum ShapeDesc {
 /// What an entity looks like.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[non_exhaustive]
 pub enum MaterialDesc {
     /// The normal-mapped default material of one colour.
     Lit {
@@ -177,6 +180,7 @@ pub type Rect = (u32, u32, u32, u32);
 /// A number measured over a rectangle of a capture.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[non_exhaustive]
 pub enum Statistic {
     /// Mean Rec. 709 luminance of the linear colour, 0..1.
     MeanLuminance,
@@ -197,6 +201,7 @@ pub enum Statistic {
 /// One step of a script.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[non_exhaustive]
 pub enum Step {
     /// Runs `frames` updates with the fixed frame time.
     Advance {

@@ -28,6 +28,7 @@ pub struct RunOptions {
 
 /// What became of one step.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Outcome {
     /// An action was carried out.
     Done,
@@ -97,6 +98,7 @@ impl fmt::Display for Report {
 
 /// Why a script could not be run to its end.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum ScriptError {
     /// The file could not be read.
     #[error("{path}: {reason}")]
