@@ -166,7 +166,6 @@ impl Args for MaterialArgs {
 mod tests {
     use super::*;
     use clap::Parser;
-    use pom::{Color, DebugView, HeightConvention, HeightUnits, LightingModel, ParallaxMethod};
 
     #[derive(Debug, Parser)]
     struct Flags {
@@ -179,36 +178,9 @@ mod tests {
         Flags::try_parse_from(all).map(|flags| flags.material.settings())
     }
 
-    /// A material whose every parameter differs from the default.
+    /// A material whose every parameter differs from the default, found from the declarations.
     fn everything_changed() -> ParallaxOcclusionMaterial {
-        ParallaxOcclusionMaterial {
-            method: ParallaxMethod::Relief,
-            relief_binary_steps: 3,
-            height_scale: 0.0725,
-            height_units: HeightUnits::World,
-            height_convention: HeightConvention::Depth,
-            depth_offset: true,
-            min_samples: 5,
-            max_samples: 77,
-            lod_threshold: 3.25,
-            lod_band: 0.5,
-            shadows: pom::ShadowMode::Hard,
-            shadow_softening: 1.5,
-            lighting: LightingModel::CookTorrance,
-            base_color: Color {
-                r: 0.25,
-                g: 0.5,
-                b: 0.75,
-                a: 0.875,
-            },
-            specular_strength: 0.9,
-            shininess: 64.5,
-            roughness: 0.35,
-            metallic: 0.6,
-            normal_strength: 1.75,
-            debug_view: DebugView::None,
-            ..ParallaxOcclusionMaterial::default()
-        }
+        pom::material::every_parameter_changed(ParallaxOcclusionMaterial::PARAMETERS)
     }
 
     #[test]
@@ -233,7 +205,7 @@ mod tests {
             args.push(value.to_string());
         }
         let parsed = parse(&args).unwrap();
-        for param in ParallaxOcclusionMaterial::PARAMETERS {
+        for param in flag_parameters() {
             assert_eq!(
                 (param.get)(&parsed),
                 (param.get)(&material),
@@ -241,7 +213,14 @@ mod tests {
                 param.flag()
             );
         }
-        assert_eq!(parsed, material);
+        // The debug view is an output option (`--debug-view`), not a material flag.
+        assert_eq!(
+            ParallaxOcclusionMaterial {
+                debug_view: material.debug_view,
+                ..parsed
+            },
+            material
+        );
     }
 
     #[test]

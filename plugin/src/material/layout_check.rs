@@ -177,8 +177,8 @@ mod tests {
         use crate::Material;
         let source = crate::ParallaxOcclusionMaterial::shader().source();
         let moved = source.replacen(
-            "    lod_threshold: f32,\n    lod_band: f32,",
-            "    lod_band: f32,\n    lod_threshold: f32,",
+            "    height_texture_width: f32,\n    height_texture_height: f32,",
+            "    height_texture_height: f32,\n    height_texture_width: f32,",
             1,
         );
         assert_ne!(moved, source, "the edit must apply");
@@ -186,6 +186,11 @@ mod tests {
             check_wgsl_layout::<crate::parallax::PomUniform>(&moved, "PomUniform"),
             Err(LayoutMismatch::Members { .. })
         ));
+        // The generated parameter struct is checked as well.
+        assert_eq!(
+            check_wgsl_layout::<crate::parallax::PomParams>(&source, "PomParams"),
+            Ok(())
+        );
     }
 
     #[test]

@@ -12,7 +12,8 @@ pub use layout_check::{
     LayoutMismatch, MemberLayout, WgslLayout, check_material_layout, check_wgsl_layout,
 };
 pub use params::{
-    Choice, ChoiceInfo, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType, ParamValue,
+    Choice, ChoiceInfo, GpuParam, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType,
+    ParamValue, every_parameter_changed,
 };
 pub use plugin::{MaterialPlugin, MaterialWarnings, MissingRenderPlugin, drawn_keys};
 

@@ -256,6 +256,36 @@ impl<M> Param<M> {
     }
 }
 
+/// A material whose every parameter in `params` is valid by its limits and differs from the
+/// default, found from the declarations alone: for round-trip tests that must cover parameters
+/// added later. Numbers are multiples of 1/64, exact in text.
+pub fn every_parameter_changed<M: Default>(params: &[Param<M>]) -> M {
+    let mut material = M::default();
+    for param in params {
+        let value = match (param.spec.kind, param.default_value()) {
+            (ParamKind::Float { min, editor, .. }, ParamValue::Float(default)) => {
+                let pick = |t: f32| (((min + (editor.1 - min) * t) * 64.0).round() / 64.0).max(min);
+                let first = pick(0.375);
+                ParamValue::Float(if first == default { pick(0.625) } else { first })
+            }
+            (ParamKind::Integer { min, max, .. }, ParamValue::Integer(default)) => {
+                let first = min + (max - min) / 3;
+                ParamValue::Integer(if first == default { first + 1 } else { first })
+            }
+            (ParamKind::Toggle, ParamValue::Toggle(on)) => ParamValue::Toggle(!on),
+            (ParamKind::Choice(choices), ParamValue::Choice(name)) => {
+                let index = choices.iter().position(|c| c.name == name).unwrap_or(0);
+                ParamValue::Choice(choices[(index + 1) % choices.len()].name)
+            }
+            (ParamKind::Color, _) => ParamValue::Color([0.25, 0.5, 0.75, 0.875]),
+            (_, default) => default,
+        };
+        // The value was made for this parameter's own kind.
+        let _ = (param.set)(&mut material, value);
+    }
+    material
+}
+
 fn choice_names(choices: &[ChoiceInfo]) -> String {
     choices
         .iter()
@@ -490,6 +520,58 @@ impl ParamType for crate::Color {
     }
 }
 
+/// How a parameter is uploaded in the GPU struct [`crate::material_parameters!`] generates:
+/// 4-byte aligned types only, so the struct has no padding and WGSL lays it out as Rust does.
+pub trait GpuParam: Copy {
+    /// The uploaded value.
+    type Gpu: bytemuck::Pod + std::fmt::Debug + PartialEq;
+    /// Its WGSL type.
+    const WGSL: &'static str;
+    /// The value as uploaded.
+    fn to_gpu(self) -> Self::Gpu;
+}
+
+impl GpuParam for f32 {
+    type Gpu = f32;
+    const WGSL: &'static str = "f32";
+    fn to_gpu(self) -> f32 {
+        self
+    }
+}
+
+impl GpuParam for u32 {
+    type Gpu = u32;
+    const WGSL: &'static str = "u32";
+    fn to_gpu(self) -> u32 {
+        self
+    }
+}
+
+impl GpuParam for bool {
+    type Gpu = u32;
+    const WGSL: &'static str = "u32";
+    fn to_gpu(self) -> u32 {
+        u32::from(self)
+    }
+}
+
+impl GpuParam for crate::Color {
+    type Gpu = [f32; 4];
+    // Not `vec4<f32>`, which WGSL aligns to 16 bytes.
+    const WGSL: &'static str = "array<f32, 4>";
+    fn to_gpu(self) -> [f32; 4] {
+        self.to_array()
+    }
+}
+
+impl<T: Choice> GpuParam for T {
+    type Gpu = u32;
+    const WGSL: &'static str = "u32";
+    fn to_gpu(self) -> u32 {
+        self.code()
+    }
+}
+
 /// An enum whose values a parameter chooses between, declared with [`crate::choice_enum!`]: each
 /// value has one spelling, used by serde (RON, glTF), the command line and the editor, and a
 /// WGSL constant `PREFIX_VALUE` with its code.
@@ -628,7 +710,8 @@ macro_rules! choice_enum {
 /// help), name, type, default and [`ParamSpec`]. Generates the struct (inputs such as texture
 /// handles first, then the parameters), `Default`, the [`Param`] table `PARAMETERS`, a full
 /// preset struct and an all-optional patch struct (both serde, unknown fields rejected), and
-/// the limit checks and clamps of every parameter.
+/// the limit checks and clamps of every parameter, and the GPU struct of the parameters with its
+/// generated WGSL declaration.
 #[macro_export]
 macro_rules! material_parameters {
     (
@@ -650,6 +733,7 @@ macro_rules! material_parameters {
         }
         preset $preset:ident;
         patch $patch:ident;
+        gpu $gpu:ident;
     ) => {
         $(#[$attr])*
         pub struct $material {
@@ -758,6 +842,45 @@ macro_rules! material_parameters {
             /// Takes every parameter of `preset`, keeping this material's inputs.
             pub fn apply_preset(&mut self, preset: &$preset) {
                 $(self.$field = preset.$field;)*
+            }
+        }
+
+        #[doc = concat!("Every parameter of [`", stringify!($material), "`] as the shader reads \
+            it, in declaration order (choices as their codes, toggles as 0 or 1). Its WGSL twin \
+            is [`", stringify!($gpu), "::wgsl`].")]
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+        pub struct $gpu {
+            $(
+                #[doc = $help]
+                pub $field: <$ty as $crate::material::GpuParam>::Gpu,
+            )*
+        }
+
+        $crate::wgsl_layout!($gpu { $($field),* });
+
+        impl $gpu {
+            /// The WGSL declaration of this struct, generated from the same declarations.
+            pub fn wgsl() -> String {
+                let mut wgsl = format!("struct {} {{\n", stringify!($gpu));
+                $(
+                    wgsl.push_str(&format!(
+                        "    {}: {},\n",
+                        stringify!($field),
+                        <$ty as $crate::material::GpuParam>::WGSL
+                    ));
+                )*
+                wgsl.push_str("}\n");
+                wgsl
+            }
+        }
+
+        impl $material {
+            /// The parameters as the shader reads them (sanitize the material first).
+            pub fn gpu_params(&self) -> $gpu {
+                $gpu {
+                    $($field: $crate::material::GpuParam::to_gpu(self.$field),)*
+                }
             }
         }
 

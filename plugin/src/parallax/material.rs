@@ -175,6 +175,7 @@ crate::material_parameters! {
     }
     preset PomPreset;
     patch PomPatch;
+    gpu PomParams;
 }
 
 /// A parameter of [`ParallaxOcclusionMaterial`] that is out of range.

@@ -8,7 +8,8 @@ mod preset;
 pub use gpu::PomUniform;
 pub use material::{
     DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, MAX_SAMPLES_LIMIT,
-    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPreset, ShadowMode,
+    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset,
+    ShadowMode,
 };
 pub use pipelines::PomPipelineKey;
 pub use preset::{PresetError, write_atomically};
@@ -32,8 +33,11 @@ pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
     constants: &[
         ParallaxMethod::wgsl_constants,
         ShadowMode::wgsl_constants,
+        HeightConvention::wgsl_constants,
+        HeightUnits::wgsl_constants,
         LightingModel::wgsl_constants,
         DebugView::wgsl_constants,
+        PomParams::wgsl,
     ],
     files: &[
         shaders::FRAME,
@@ -122,15 +126,14 @@ impl Material for ParallaxOcclusionMaterial {
             return key;
         }
         // The uniform holds the sanitized threshold and the height texture as bound.
-        let [width, height] = uniform.height_texture_size;
         let texture = TextureFacts {
-            width: width as u32,
-            height: height as u32,
+            width: uniform.height_texture_width as u32,
+            height: uniform.height_texture_height as u32,
             mip_levels: uniform.height_mip_levels as u32,
         };
         if view
             .lowest_mip(&texture)
-            .is_some_and(|mip| mip >= uniform.lod_threshold)
+            .is_some_and(|mip| mip >= uniform.params.lod_threshold)
         {
             normal_mapping
         } else {

@@ -9,32 +9,18 @@ override SHADOW_MODE: u32 = SHADOWS_SOFT;
 override LIGHTING_MODEL: u32 = LIGHTING_PHONG;
 override DEBUG_VIEW: u32 = DEBUG_NONE;
 
+// `PomParams` (every declared parameter, in declaration order) is generated from the Rust
+// declarations and prepended, like the enum codes.
 struct PomUniform {
-    base_color: vec4<f32>,
-    // Height scale in `height_scale`'s units (0 without a height map).
-    height_scale: f32,
-    // 1 when `height_scale` is in world units.
-    world_units: u32,
-    min_samples: u32,
-    max_samples: u32,
-    lod_threshold: f32,
-    lod_band: f32,
-    shadow_softening: f32,
-    normal_strength: f32,
-    specular_strength: f32,
-    shininess: f32,
-    roughness: f32,
-    metallic: f32,
+    params: PomParams,
+    // The height texture as bound, in texels (1 × 1 without one), and its mip levels.
+    height_texture_width: f32,
+    height_texture_height: f32,
+    height_mip_levels: f32,
+    // 1 when the material has a height map.
+    has_height_map: u32,
     // Channel of the height texture holding the height: 0 = red .. 3 = alpha.
     height_channel: u32,
-    // 1 for the depth convention (white = deepest).
-    depth_convention: u32,
-    relief_binary_steps: u32,
-    // Mip levels of the height texture as bound.
-    height_mip_levels: f32,
-    // Size of the height texture as bound, in texels.
-    height_texture_size: vec2<f32>,
-    _padding: vec2<f32>,
 }
 
 @group(0) @binding(2) var<storage, read> materials: array<PomUniform>;
@@ -49,6 +35,10 @@ struct Shaded {
     depth: f32,
 }
 
+fn base_color(params: PomParams) -> vec4<f32> {
+    return vec4<f32>(params.base_color[0], params.base_color[1], params.base_color[2], params.base_color[3]);
+}
+
 // Black → red → yellow → white as `t` goes 0 → 1.
 fn heat(t: f32) -> vec3<f32> {
     let x = clamp(t, 0.0, 1.0) * 3.0;
@@ -57,6 +47,7 @@ fn heat(t: f32) -> vec3<f32> {
 
 fn shade(in: VertexOut) -> Shaded {
     let material = materials[in.object_index];
+    let params = material.params;
     let surface_frame = tangent_frame(in.world_normal, in.world_tangent);
     let to_eye = direction_to_eye(in.world_position, surface_frame.normal);
     let to_eye_ts = to_tangent_space(surface_frame, to_eye);
@@ -64,19 +55,20 @@ fn shade(in: VertexOut) -> Shaded {
     // Everything derived from screen-space derivatives happens here, once, before any branch.
     let ddx_uv = dpdx(in.uv);
     let ddy_uv = dpdy(in.uv);
-    let texture_size = material.height_texture_size;
+    let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
     let mip = mip_level(ddx_uv * texture_size, ddy_uv * texture_size);
     // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces.
     let world_area = length(cross(dpdx(in.world_position), dpdy(in.world_position)));
     let uv_area = abs(ddx_uv.x * ddy_uv.y - ddx_uv.y * ddy_uv.x);
     let uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
-    let height_scale = select(material.height_scale, material.height_scale * uv_per_world, material.world_units != 0u);
+    let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
+    let height_scale = select(scale, scale * uv_per_world, params.height_units == UNITS_WORLD);
 
-    let field = HeightField(material.height_channel, material.depth_convention, ddx_uv, ddy_uv);
+    let field = HeightField(material.height_channel, u32(params.height_convention == CONVENTION_DEPTH), ddx_uv, ddy_uv);
     let method = METHOD;
-    let min_samples = material.min_samples;
-    let max_samples = material.max_samples;
-    let fade = lod_fade(mip, material.lod_threshold, material.lod_band);
+    let min_samples = params.min_samples;
+    let max_samples = params.max_samples;
+    let fade = lod_fade(mip, params.lod_threshold, params.lod_band);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
     let march = fade < 1.0 && method != METHOD_NORMAL_MAPPING && height_scale > 0.0;
 
@@ -88,18 +80,18 @@ fn shade(in: VertexOut) -> Shaded {
         let texels = length(offset * texture_size) / exp2(mip);
         let steps = march_steps(min_samples, max_samples, dot(surface_frame.normal, to_eye), texels);
         let hit = march_view(height_texture, material_sampler, field, method, in.uv, offset, to_eye_ts,
-            height_scale, steps, material.relief_binary_steps);
+            height_scale, steps, params.relief_binary_steps);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
         uv = mix(hit.uv, in.uv, fade);
         height = mix(hit.height, 1.0, fade);
         samples = hit.samples;
     }
 
-    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * material.base_color;
+    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * base_color(params);
     let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, ddx_uv, ddy_uv).xyz;
-    let normal = perturbed_normal(surface_frame, encoded_normal, material.normal_strength);
-    let surface = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0), material.roughness,
-        material.metallic, LIGHTING_MODEL);
+    let normal = perturbed_normal(surface_frame, encoded_normal, params.normal_strength);
+    let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,
+        params.metallic, LIGHTING_MODEL);
 
     var color = frame.ambient.rgb * base.rgb;
     var first_visibility = 1.0;
@@ -111,7 +103,7 @@ fn shade(in: VertexOut) -> Shaded {
             let to_light_ts = to_tangent_space(surface_frame, light.to_light);
             let light_offset = ray_offset(to_light_ts, height_scale);
             if SHADOW_MODE == SHADOWS_SOFT {
-                visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, material.shadow_softening);
+                visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, params.shadow_softening);
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(mip);
                 visibility = hard_shadow(height_texture, material_sampler, field, uv, light_offset,
