@@ -53,11 +53,7 @@ fn setup() -> (pom::App, DynamicHeightField) {
 fn gpu_normals(app: &pom::App, field: &DynamicHeightField) -> image::RgbaImage {
     let gpu = app.resources.get::<GpuContext>().unwrap();
     let renderer = app.resources.get::<Renderer>().unwrap();
-    read_rgba8(
-        gpu,
-        &renderer.assets.image(field.normal.id()).unwrap().texture,
-    )
-    .unwrap()
+    read_rgba8(gpu, renderer.gpu_texture(field.normal.id()).unwrap()).unwrap()
 }
 
 #[test]

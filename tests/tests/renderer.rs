@@ -155,25 +155,11 @@ fn freed_assets_leave_the_gpu() {
     app.world.spawn(top_down_camera());
     let entity = app.world.spawn((mesh, Transform::IDENTITY));
     run_frames(&mut app, 1).unwrap();
-    assert!(
-        app.resources
-            .get::<Renderer>()
-            .unwrap()
-            .assets
-            .mesh(id)
-            .is_some()
-    );
+    assert!(app.resources.get::<Renderer>().unwrap().has_gpu_mesh(id));
     app.world.despawn(entity).unwrap();
     run_frames(&mut app, 1).unwrap();
     assert!(!app.resources.get::<Assets<Mesh>>().unwrap().contains(id));
-    assert!(
-        app.resources
-            .get::<Renderer>()
-            .unwrap()
-            .assets
-            .mesh(id)
-            .is_none()
-    );
+    assert!(!app.resources.get::<Renderer>().unwrap().has_gpu_mesh(id));
 }
 
 /// Brightness at the image centre of a flat plane whose normal map tilts every normal the same
@@ -248,7 +234,7 @@ fn an_image_over_the_device_limit_is_halved_until_it_fits() {
     ));
     run_frames(&mut app, 1).unwrap();
     let renderer = app.resources.get::<Renderer>().unwrap();
-    let uploaded = &renderer.assets.image(id).unwrap().texture;
+    let uploaded = renderer.gpu_texture(id).unwrap();
     assert_eq!((uploaded.width(), uploaded.height()), ((limit + 10) / 2, 1));
 }
 
@@ -281,10 +267,8 @@ fn sixteen_bit_heights_stay_sixteen_bit_on_the_gpu() {
         .resources
         .get::<Renderer>()
         .unwrap()
-        .assets
-        .image(id)
+        .gpu_texture(id)
         .unwrap()
-        .texture
         .format();
     let expected = if gpu
         .device

@@ -182,34 +182,9 @@ crate::material_parameters! {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum PomMaterialError {
-    /// A number is NaN or infinite.
-    #[error("{field} is {value}, which is not a finite number")]
-    NotFinite {
-        /// The field.
-        field: &'static str,
-        /// Its value.
-        value: f32,
-    },
-    /// A number is below its minimum.
-    #[error("{field} is {value} but must be at least {min}")]
-    TooSmall {
-        /// The field.
-        field: &'static str,
-        /// Its value.
-        value: f32,
-        /// The smallest allowed value.
-        min: f32,
-    },
-    /// A number is above its maximum.
-    #[error("{field} is {value} but must be at most {max}")]
-    TooLarge {
-        /// The field.
-        field: &'static str,
-        /// Its value.
-        value: f32,
-        /// The largest allowed value.
-        max: f32,
-    },
+    /// A parameter outside its declared limits (NaN, too small, too large).
+    #[error(transparent)]
+    Limit(#[from] LimitError),
     /// The sample bounds are inverted.
     #[error("min_samples ({min}) is greater than max_samples ({max})")]
     SamplesInverted {
@@ -218,16 +193,6 @@ pub enum PomMaterialError {
         /// max_samples.
         max: u32,
     },
-}
-
-impl From<LimitError> for PomMaterialError {
-    fn from(error: LimitError) -> Self {
-        match error {
-            LimitError::NotFinite { field, value } => Self::NotFinite { field, value },
-            LimitError::TooSmall { field, value, min } => Self::TooSmall { field, value, min },
-            LimitError::TooLarge { field, value, max } => Self::TooLarge { field, value, max },
-        }
-    }
 }
 
 impl ParallaxOcclusionMaterial {
@@ -354,10 +319,10 @@ mod tests {
         };
         assert!(matches!(
             material.validate(),
-            Err(PomMaterialError::TooSmall {
+            Err(PomMaterialError::Limit(LimitError::TooSmall {
                 field: "height_scale",
                 ..
-            })
+            }))
         ));
         assert_eq!(material.sanitized().height_scale, 0.0);
     }

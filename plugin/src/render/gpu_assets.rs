@@ -80,15 +80,15 @@ pub struct DefaultTextures {
     pub white_linear: wgpu::TextureView,
 }
 
-/// Names one of the [`DefaultTextures`].
+/// A 1×1 texture bound in a material's texture slot where the material has no image.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum DefaultTexture {
-    /// [`DefaultTextures::white_srgb`].
+    /// White, sRGB: a neutral colour texture.
     WhiteSrgb,
-    /// [`DefaultTextures::flat_normal`].
+    /// (0.5, 0.5, 1): a flat tangent-space normal.
     FlatNormal,
-    /// [`DefaultTextures::white_linear`].
+    /// White, linear: a height map at the top everywhere (no displacement).
     WhiteLinear,
 }
 

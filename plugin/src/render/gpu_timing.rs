@@ -197,7 +197,7 @@ impl GpuTimer {
     }
 
     /// Reserves a timestamp pair for a pass named `name` in this frame; `None` when the frame
-    /// already times [`MAX_TIMED_PASSES`] passes (the pass then runs untimed).
+    /// already times `MAX_TIMED_PASSES` passes (the pass then runs untimed).
     pub fn pass(&mut self, name: &str) -> Option<PassTimestamps> {
         let index = u32::try_from(self.names.len()).ok()?;
         if index >= MAX_TIMED_PASSES {

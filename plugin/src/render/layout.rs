@@ -55,14 +55,14 @@ pub(crate) fn mesh_pipeline(
             module: shader,
             entry_point: Some("vs_main"),
             compilation_options: Default::default(),
-            buffers: &[Some(super::Vertex::LAYOUT)],
+            buffers: &[Some(super::gpu_types::Vertex::LAYOUT)],
         },
         primitive: wgpu::PrimitiveState {
             cull_mode: Some(wgpu::Face::Back),
             ..Default::default()
         },
         depth_stencil: Some(wgpu::DepthStencilState {
-            format: super::DEPTH_FORMAT,
+            format: super::target::DEPTH_FORMAT,
             depth_write_enabled: Some(true),
             depth_compare: Some(wgpu::CompareFunction::Less),
             stencil: Default::default(),

@@ -17,22 +17,21 @@ mod target;
 mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
 
-pub use capture::{CaptureError, read_rgba8, read_rgba32f, read_texture};
+pub(crate) use capture::read_rgba32f;
+pub use capture::{CaptureError, read_rgba8, read_texture};
 pub use context::{GpuContext, GpuError};
 pub use draw_view::DrawView;
-pub use extract::{ExtractedFrame, extract_frame};
-pub use frame_uniform::FrameUniformBuffer;
-pub use gpu_assets::{DefaultTexture, DefaultTextures, GpuAssets, GpuImage, GpuMesh, UploadStats};
-pub use gpu_timing::{
-    GpuTimer, GpuTimings, MAX_TIMED_PASSES, PassTimestamps, TimingMode, pass_milliseconds,
-    resolve_gpu_timings, set_gpu_timing, time_pass,
-};
-pub use gpu_types::{
-    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, MeshTransform,
-    PointLightGpu, Vertex,
-};
-pub use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint, lowest_mip};
-pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat, clearing_attachment};
+pub(crate) use extract::{ExtractedFrame, extract_frame};
+pub(crate) use frame_uniform::FrameUniformBuffer;
+pub(crate) use gpu_assets::GpuAssets;
+pub use gpu_assets::{DefaultTexture, UploadStats};
+pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_gpu_timing};
+pub(crate) use gpu_timing::{PassTimestamps, time_pass};
+#[cfg(test)]
+pub(crate) use gpu_types::FrameUniform;
+pub use gpu_types::MeshTransform;
+pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
+pub use target::{RenderTarget, TargetFormat, clearing_attachment};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 
@@ -110,11 +109,24 @@ impl Default for RenderPlugin {
 #[derive(Debug)]
 pub struct Renderer {
     /// GPU copies of meshes and images.
-    pub assets: GpuAssets,
+    pub(crate) assets: GpuAssets,
     /// Camera and lights, shared by every main-pass pipeline.
-    pub frame: FrameUniformBuffer,
+    pub(crate) frame: FrameUniformBuffer,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
+}
+
+impl Renderer {
+    /// The texture an image was uploaded to, for reading it back ([`read_rgba8`]); `None`
+    /// until the Prepare stage has uploaded it.
+    pub fn gpu_texture(&self, image: crate::AssetId<Image>) -> Option<&wgpu::Texture> {
+        self.assets.image(image).map(|image| &image.texture)
+    }
+
+    /// Whether a mesh is uploaded and valid (an invalid mesh is logged once and not drawn).
+    pub fn has_gpu_mesh(&self, mesh: crate::AssetId<Mesh>) -> bool {
+        self.assets.mesh(mesh).is_some()
+    }
 }
 
 impl Plugin for RenderPlugin {

@@ -74,7 +74,7 @@ fn preset_min_samples_over_max() {
 fn preset_nan_height() {
     match preset_error("presets/nan_height.ron") {
         PresetError::Invalid {
-            source: PomMaterialError::NotFinite { field, value },
+            source: PomMaterialError::Limit(pom::material::LimitError::NotFinite { field, value }),
             ..
         } => {
             assert_eq!(field, "height_scale");
