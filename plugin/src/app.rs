@@ -308,6 +308,34 @@ impl App {
         self
     }
 
+    /// Runs `f` with the resource `T` taken out of the app, so `f` may use the whole app (run
+    /// stages, say) while holding it; `T` is put back afterwards, also when `f` fails or panics.
+    /// Returns `None` when `T` is missing. The app's version of [`Resources::scope`].
+    pub fn resource_scope<T: 'static, R>(
+        &mut self,
+        f: impl FnOnce(&mut App, &mut T) -> R,
+    ) -> Option<R> {
+        struct PutBack<'a, T: 'static> {
+            app: &'a mut App,
+            value: Option<T>,
+        }
+        impl<T: 'static> Drop for PutBack<'_, T> {
+            fn drop(&mut self) {
+                if let Some(value) = self.value.take() {
+                    self.app.resources.insert(value);
+                }
+            }
+        }
+        let value = self.resources.remove::<T>()?;
+        let mut guard = PutBack {
+            app: self,
+            value: Some(value),
+        };
+        let PutBack { app, value } = &mut guard;
+        let value = value.as_mut()?;
+        Some(f(app, value))
+    }
+
     /// Runs [`Plugin::finish`] for every plugin that has not been finished yet, in the order
     /// they were added. Called by [`App::update`]; call it yourself to see setup errors early.
     pub fn finish(&mut self) -> Result<(), AppError> {
@@ -343,5 +371,38 @@ impl App {
                 .run_stage(*stage, &mut self.world, &mut self.resources)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resource_scope_puts_the_value_back_even_when_the_work_panics() {
+        let mut app = App::new();
+        app.insert_resource(5_u32);
+        let seen = app.resource_scope(|app, value: &mut u32| {
+            assert!(app.resources.get::<u32>().is_none(), "taken out meanwhile");
+            *value += 1;
+            *value
+        });
+        assert_eq!(seen, Some(6));
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            app.resource_scope(|_, _: &mut u32| panic!("the work failed"))
+        }));
+        assert!(outcome.is_err());
+        assert_eq!(app.resources.get::<u32>(), Some(&6));
+        assert_eq!(app.resource_scope(|_, _: &mut f32| ()), None);
+    }
+
+    #[test]
+    fn a_plugin_added_twice_is_built_once() {
+        fn count(app: &mut App) {
+            *app.resources.get_or_default::<u32>() += 1;
+        }
+        let mut app = App::new();
+        app.add_plugin(count).add_plugin(count);
+        assert_eq!(app.resources.get::<u32>(), Some(&1));
     }
 }

@@ -37,12 +37,7 @@ pub enum SplitViewError {
 /// does nothing. The world's materials and the main target are the same afterwards, even when
 /// a system fails. The second image is not timed: [`crate::GpuTimings`] stays the main image's.
 pub fn render_split_view(app: &mut App) -> Result<(), SplitViewError> {
-    let Some(mut split) = app.resources.remove::<SplitView>() else {
-        return Ok(());
-    };
-    let result = render_with(app, &mut split);
-    app.resources.insert(split);
-    result
+    app.resource_scope(render_with).unwrap_or(Ok(()))
 }
 
 fn render_with(app: &mut App, split: &mut SplitView) -> Result<(), SplitViewError> {
@@ -73,11 +68,10 @@ fn render_with(app: &mut App, split: &mut SplitView) -> Result<(), SplitViewErro
     };
     swap_materials(app, &mut split.overrides);
     // The second image goes untimed, so `GpuTimings` keeps describing the main image.
-    let timer = app.resources.remove::<GpuTimer>();
-    let result = app.run_stages(&[Stage::Extract, Stage::Prepare, Stage::Render]);
-    if let Some(timer) = timer {
-        app.resources.insert(timer);
-    }
+    let stages = [Stage::Extract, Stage::Prepare, Stage::Render];
+    let result = app
+        .resource_scope(|app, _: &mut GpuTimer| app.run_stages(&stages))
+        .unwrap_or_else(|| app.run_stages(&stages));
     swap_materials(app, &mut split.overrides);
     split.target = app.resources.insert(main);
     Ok(result?)

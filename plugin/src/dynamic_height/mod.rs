@@ -156,24 +156,27 @@ pub fn derive_dynamic_normals(
     world: &mut World,
     resources: &mut Resources,
 ) -> Result<(), AppError> {
-    let Some(mut pass) = resources.remove::<SobelPass>() else {
-        return Err(AppError::missing::<SobelPass>());
-    };
-    let result = run(world, resources, &mut pass);
-    resources.insert(pass);
-    result
+    resources
+        .scope(|resources, pass: &mut SobelPass| {
+            resources
+                .scope(|resources, renderer: &mut Renderer| run(world, resources, pass, renderer))
+                .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+        })
+        .unwrap_or_else(|| Err(AppError::missing::<SobelPass>()))
 }
 
-fn run(world: &World, resources: &mut Resources, pass: &mut SobelPass) -> Result<(), AppError> {
-    let mut renderer = resources
-        .remove::<Renderer>()
-        .ok_or_else(AppError::missing::<Renderer>)?;
+fn run(
+    world: &World,
+    resources: &mut Resources,
+    pass: &mut SobelPass,
+    renderer: &mut Renderer,
+) -> Result<(), AppError> {
     let timestamps: Vec<Option<PassTimestamps>> = world
         .query::<&DynamicHeightField>()
         .iter()
         .map(|_| time_pass(resources, "sobel pass"))
         .collect();
-    let outcome = (|| {
+    {
         let gpu = resources.require::<GpuContext>()?;
         let images = resources.require::<Assets<Image>>()?;
         let fields: Vec<(Entity, DynamicHeightField)> = world
@@ -202,15 +205,13 @@ fn run(world: &World, resources: &mut Resources, pass: &mut SobelPass) -> Result
                 encoder: &mut encoder,
                 timestamps: timestamps.as_ref(),
             };
-            if let Err(error) = dispatch(gpu, images, &renderer, pass, target, *entity, field) {
+            if let Err(error) = dispatch(gpu, images, renderer, pass, target, *entity, field) {
                 log::error!("{error}");
             }
         }
         gpu.queue.submit([encoder.finish()]);
         Ok(())
-    })();
-    resources.insert(renderer);
-    outcome
+    }
 }
 
 // Where one field's Sobel pass is recorded, and its timestamp pair if timing is on.

@@ -61,12 +61,15 @@ pub(super) fn spawn_scene(
         .ok_or_else(|| GltfError::NoScene {
             path: source.path.clone(),
         })?;
-    let mut meshes = app.resources.remove::<Assets<Mesh>>().unwrap_or_default();
-    let mut images = app.resources.remove::<Assets<Image>>().unwrap_or_default();
-    let result = spawn_nodes(app, source, scene, root, &mut meshes, &mut images);
-    app.resources.insert(meshes);
-    app.resources.insert(images);
-    result
+    app.resources.get_or_default::<Assets<Mesh>>();
+    app.resources.get_or_default::<Assets<Image>>();
+    app.resource_scope(|app, meshes: &mut Assets<Mesh>| {
+        app.resource_scope(|app, images: &mut Assets<Image>| {
+            spawn_nodes(app, source, scene, root, meshes, images)
+        })
+    })
+    .flatten()
+    .unwrap_or(Ok(()))
 }
 
 fn spawn_nodes(

@@ -186,12 +186,26 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
 /// The Extract stage's system of material `M`: copies each drawable entity's mesh, transform
 /// and material, and logs a material's problems once per change.
 fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources, fallback: bool) {
-    let mut extracted = resources
-        .remove::<ExtractedMaterials<M>>()
-        .unwrap_or(ExtractedMaterials { draws: Vec::new() });
-    let mut warnings = resources
-        .remove::<MaterialWarnings<M>>()
-        .unwrap_or(MaterialWarnings(HashMap::new()));
+    if !resources.contains::<ExtractedMaterials<M>>() {
+        resources.insert(ExtractedMaterials::<M> { draws: Vec::new() });
+    }
+    if !resources.contains::<MaterialWarnings<M>>() {
+        resources.insert(MaterialWarnings::<M>(HashMap::new()));
+    }
+    resources.scope(|resources, extracted: &mut ExtractedMaterials<M>| {
+        resources.scope(|resources, warnings: &mut MaterialWarnings<M>| {
+            extract_into(world, resources, fallback, extracted, warnings);
+        })
+    });
+}
+
+fn extract_into<M: Material>(
+    world: &World,
+    resources: &Resources,
+    fallback: bool,
+    extracted: &mut ExtractedMaterials<M>,
+    warnings: &mut MaterialWarnings<M>,
+) {
     // Draws are rewritten in place: a material equal to the one in the same slot last frame is
     // not cloned again (a clone bumps every texture handle's reference count, and dropping the
     // old one lowers it: tens of thousands of atomic operations a frame for nothing).
@@ -259,8 +273,6 @@ fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources, 
     }
     extracted.draws.truncate(count);
     warnings.0.retain(|entity, _| world.contains(*entity));
-    resources.insert(warnings);
-    resources.insert(extracted);
 }
 
 /// The Prepare stage's system of material `M`.
@@ -321,4 +333,30 @@ pub fn drawn_keys<M: Material>(resources: &Resources) -> Vec<M::Key> {
         .get::<MaterialBatches<M>>()
         .map(|batches| batches.batches.iter().map(|batch| batch.key).collect())
         .unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{ParallaxOcclusionMaterial, PomPlugin, RenderPlugin};
+
+    #[test]
+    fn adding_the_material_plugins_twice_registers_each_draw_once() {
+        let mut app = App::new();
+        app.add_plugin(RenderPlugin::headless(8, 8))
+            .add_plugin(PomPlugin)
+            .add_plugin(PomPlugin)
+            .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
+        // The lit material (brought by PomPlugin) and the parallax material.
+        assert_eq!(app.resources.get::<MainPassDraws>().unwrap().len(), 2);
+        assert_eq!(
+            app.resources
+                .get::<MaterialRegistry>()
+                .unwrap()
+                .entries
+                .len(),
+            2
+        );
+        assert_eq!(app.schedule.len(Stage::Extract), 3, "core + two materials");
+    }
 }

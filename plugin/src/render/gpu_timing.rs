@@ -342,21 +342,23 @@ pub fn time_pass(resources: &mut Resources, name: &str) -> Option<PassTimestamps
 /// The Render stage's last system: resolves this frame's timestamps in their own submission
 /// and updates [`GpuTimings`]. Does nothing when timing is off.
 pub fn resolve_gpu_timings(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    let Some(mut timer) = resources.remove::<GpuTimer>() else {
+    if !resources.contains::<GpuTimer>() {
         return Ok(());
-    };
-    let mut timings = resources
-        .remove::<GpuTimings>()
-        .unwrap_or(GpuTimings::Supported {
+    }
+    if !resources.contains::<GpuTimings>() {
+        resources.insert(GpuTimings::Supported {
             passes: BTreeMap::new(),
             frame: 0,
             rejected: 0,
         });
-    if let Some(gpu) = resources.get::<GpuContext>() {
-        timer.end_frame(gpu, &mut timings);
     }
-    resources.insert(timings);
-    resources.insert(timer);
+    resources.scope(|resources, timer: &mut GpuTimer| {
+        resources.scope(|resources, timings: &mut GpuTimings| {
+            if let Some(gpu) = resources.get::<GpuContext>() {
+                timer.end_frame(gpu, timings);
+            }
+        })
+    });
     Ok(())
 }
 
