@@ -230,6 +230,12 @@ impl AppError {
     }
 }
 
+impl crate::resources::ResourceHolder for App {
+    fn resources_mut(&mut self) -> &mut Resources {
+        &mut self.resources
+    }
+}
+
 /// The container of everything: the ECS world, the resources, the schedule and the plugins.
 ///
 /// # Example
@@ -315,25 +321,7 @@ impl App {
         &mut self,
         f: impl FnOnce(&mut App, &mut T) -> R,
     ) -> Option<R> {
-        struct PutBack<'a, T: 'static> {
-            app: &'a mut App,
-            value: Option<T>,
-        }
-        impl<T: 'static> Drop for PutBack<'_, T> {
-            fn drop(&mut self) {
-                if let Some(value) = self.value.take() {
-                    self.app.resources.insert(value);
-                }
-            }
-        }
-        let value = self.resources.remove::<T>()?;
-        let mut guard = PutBack {
-            app: self,
-            value: Some(value),
-        };
-        let PutBack { app, value } = &mut guard;
-        let value = value.as_mut()?;
-        Some(f(app, value))
+        crate::resources::scoped(self, f)
     }
 
     /// Runs [`Plugin::finish`] for every plugin that has not been finished yet, in the order

@@ -88,31 +88,53 @@ impl Resources {
     /// ```
     /// `T` goes back even when `f` panics (the guard's drop puts it back while unwinding).
     pub fn scope<T: 'static, R>(&mut self, f: impl FnOnce(&mut Self, &mut T) -> R) -> Option<R> {
-        struct PutBack<'a, T: 'static> {
-            resources: &'a mut Resources,
-            value: Option<T>,
-        }
-        impl<T: 'static> Drop for PutBack<'_, T> {
-            fn drop(&mut self) {
-                if let Some(value) = self.value.take() {
-                    self.resources.insert(value);
-                }
-            }
-        }
-        let value = self.remove::<T>()?;
-        let mut guard = PutBack {
-            resources: self,
-            value: Some(value),
-        };
-        let PutBack { resources, value } = &mut guard;
-        let value = value.as_mut()?;
-        Some(f(resources, value))
+        scoped(self, f)
     }
 
     /// The type name of `T`, for error messages about a missing resource.
     pub(crate) fn name_of<T: 'static>() -> &'static str {
         type_name::<T>()
     }
+}
+
+/// Whatever holds the resources a scope borrows from: [`Resources`] itself, or the app.
+pub(crate) trait ResourceHolder {
+    /// The resources.
+    fn resources_mut(&mut self) -> &mut Resources;
+}
+
+impl ResourceHolder for Resources {
+    fn resources_mut(&mut self) -> &mut Resources {
+        self
+    }
+}
+
+/// Takes `T` out of `holder`'s resources for `f` and puts it back when `f` returns, fails or
+/// panics (the guard's drop runs while unwinding): [`Resources::scope`] and
+/// [`crate::App::resource_scope`].
+pub(crate) fn scoped<H: ResourceHolder, T: 'static, R>(
+    holder: &mut H,
+    f: impl FnOnce(&mut H, &mut T) -> R,
+) -> Option<R> {
+    struct PutBack<'a, H: ResourceHolder, T: 'static> {
+        holder: &'a mut H,
+        value: Option<T>,
+    }
+    impl<H: ResourceHolder, T: 'static> Drop for PutBack<'_, H, T> {
+        fn drop(&mut self) {
+            if let Some(value) = self.value.take() {
+                self.holder.resources_mut().insert(value);
+            }
+        }
+    }
+    let value = holder.resources_mut().remove::<T>()?;
+    let mut guard = PutBack {
+        holder,
+        value: Some(value),
+    };
+    let PutBack { holder, value } = &mut guard;
+    let value = value.as_mut()?;
+    Some(f(holder, value))
 }
 
 #[cfg(test)]

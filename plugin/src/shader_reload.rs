@@ -51,7 +51,7 @@ pub enum ShaderReloadError {
 /// [`Stage::PostUpdate`] and keeps its outcome in a [`ShaderReloadStatus`] resource.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ShaderHotReload {
-    /// The folder the [`shaders::WgslFile`] paths are relative to (the plugin's `src`).
+    /// The folder the [`crate::render::shaders::WgslFile`] paths are relative to (the plugin's `src`).
     pub source_dir: PathBuf,
 }
 
