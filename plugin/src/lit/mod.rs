@@ -1,48 +1,43 @@
 //! `LitMaterial`: the lit, normal-mapped material, a [`Material`] like any other. With
 //! [`MaterialPlugin::for_meshes_without_material`] it also draws meshes that have no material.
 
-use bytemuck::{Pod, Zeroable};
-
 use crate::material::{
     Choice, FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
-    TextureFacts,
+    ParamSpec, TextureFacts,
 };
 use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{Color, Handle, Image, LightingModel};
 
-/// A Blinn-Phong material with an optional colour texture and normal map.
-///
-/// Put it on an entity with a `Handle<Mesh>` and a [`crate::Transform`]; with
-/// [`crate::DefaultPlugins`] a mesh entity without any material is drawn with
-/// `LitMaterial::default()`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LitMaterial {
-    /// Colour multiplied with the texture, linear.
-    pub base_color: Color,
-    /// sRGB colour texture (white when absent).
-    pub base_color_texture: Option<Handle<Image>>,
-    /// Tangent-space normal map, OpenGL convention (green up the image); flat when absent.
-    pub normal_map: Option<Handle<Image>>,
-    /// Scales the normal map's XY tilt: 0 = flat, 1 = as authored.
-    pub normal_strength: f32,
-    /// Weight of the specular highlight.
-    pub specular_strength: f32,
-    /// Blinn-Phong exponent: higher = smaller, sharper highlight (clamped to ≥ 1).
-    pub shininess: f32,
-}
-
-impl Default for LitMaterial {
-    fn default() -> Self {
-        Self {
-            base_color: Color::WHITE,
-            base_color_texture: None,
-            normal_map: None,
-            normal_strength: 1.0,
-            specular_strength: 0.25,
-            shininess: 32.0,
+crate::material_parameters! {
+    /// A Blinn-Phong material with an optional colour texture and normal map.
+    ///
+    /// Put it on an entity with a `Handle<Mesh>` and a [`crate::Transform`]; with
+    /// [`crate::DefaultPlugins`] a mesh entity without any material is drawn with
+    /// `LitMaterial::default()`.
+    #[derive(Clone, Debug, PartialEq)]
+    pub struct LitMaterial {
+        inputs {
+            /// sRGB colour texture (white when absent).
+            base_color_texture: Option<Handle<Image>> = None,
+            /// Tangent-space normal map, OpenGL convention (green up the image); flat when absent.
+            normal_map: Option<Handle<Image>> = None,
+        }
+        parameters {
+            /// Colour multiplied with the texture, linear.
+            base_color: Color = Color::WHITE, ParamSpec::color();
+            /// Scales the normal map's XY tilt: 0 = flat, 1 = as authored.
+            normal_strength: f32 = 1.0, ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
+            /// Weight of the specular highlight.
+            specular_strength: f32 = 0.25, ParamSpec::float(0.0, 100.0).editor(0.0, 2.0);
+            /// Blinn-Phong exponent: higher = smaller, sharper highlight.
+            shininess: f32 = 32.0, ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
+                .logarithmic();
         }
     }
+    preset LitPreset;
+    patch LitPatch;
+    gpu LitParams;
 }
 
 impl LitMaterial {
@@ -55,39 +50,16 @@ impl LitMaterial {
     }
 }
 
-/// [`LitMaterial`] as `lit.wgsl` reads it.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct LitUniform {
-    /// Linear base colour.
-    pub base_color: [f32; 4],
-    /// Scales the normal map's tilt.
-    pub normal_strength: f32,
-    /// Weight of the highlight.
-    pub specular_strength: f32,
-    /// Blinn-Phong exponent.
-    pub shininess: f32,
-    /// Keeps the size a multiple of 16 bytes.
-    pub _padding: f32,
-}
-
-crate::wgsl_layout!(LitUniform {
-    base_color,
-    normal_strength,
-    specular_strength,
-    shininess,
-    _padding
-});
-
 /// The lit material's entry point.
 pub const LIT_ENTRY: WgslFile = crate::wgsl_file!("lit/lit.wgsl");
 
 /// The lit material's shader.
 pub const LIT_SHADER: ComposedShader = ComposedShader {
     name: "lit.wgsl",
-    constants: &[LightingModel::wgsl_constants],
+    constants: &[LightingModel::wgsl_constants, LitParams::wgsl],
     files: &[
         shaders::FRAME,
+        shaders::PARAMS,
         shaders::MESH_VERTEX,
         shaders::TANGENT_SPACE,
         shaders::LIGHTING,
@@ -96,10 +68,10 @@ pub const LIT_SHADER: ComposedShader = ComposedShader {
 };
 
 impl Material for LitMaterial {
-    type Uniform = LitUniform;
+    type Uniform = LitParams;
     type Key = ();
     const NAME: &'static str = "lit";
-    const UNIFORM_WGSL_NAME: &'static str = "LitUniform";
+    const UNIFORM_WGSL_NAME: &'static str = "LitParams";
     const TEXTURE_SLOTS: &'static [DefaultTexture] =
         &[DefaultTexture::WhiteSrgb, DefaultTexture::FlatNormal];
 
@@ -122,14 +94,24 @@ impl Material for LitMaterial {
         FragmentVariant::entry("fs_main")
     }
 
-    fn uniform(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitUniform {
-        LitUniform {
-            base_color: self.base_color.to_array(),
-            normal_strength: self.normal_strength,
-            specular_strength: self.specular_strength,
-            shininess: self.shininess,
-            _padding: 0.0,
+    fn uniform(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitParams {
+        if self.first_limit_problem().is_none() {
+            self.gpu_params()
+        } else {
+            let mut clean = self.clone();
+            clean.clamp_to_limits();
+            clean.gpu_params()
         }
+    }
+
+    fn problems(&self) -> Vec<String> {
+        if self.first_limit_problem().is_none() {
+            return Vec::new();
+        }
+        self.limit_problems()
+            .iter()
+            .map(ToString::to_string)
+            .collect()
     }
 }
 

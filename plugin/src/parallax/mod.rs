@@ -41,6 +41,7 @@ pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
     ],
     files: &[
         shaders::FRAME,
+        shaders::PARAMS,
         shaders::MESH_VERTEX,
         shaders::TANGENT_SPACE,
         shaders::LIGHTING,

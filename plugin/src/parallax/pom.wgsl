@@ -35,10 +35,6 @@ struct Shaded {
     depth: f32,
 }
 
-fn base_color(params: PomParams) -> vec4<f32> {
-    return vec4<f32>(params.base_color[0], params.base_color[1], params.base_color[2], params.base_color[3]);
-}
-
 // Black → red → yellow → white as `t` goes 0 → 1.
 fn heat(t: f32) -> vec3<f32> {
     let x = clamp(t, 0.0, 1.0) * 3.0;
@@ -87,7 +83,7 @@ fn shade(in: VertexOut) -> Shaded {
         samples = hit.samples;
     }
 
-    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * base_color(params);
+    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * rgba(params.base_color);
     let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, ddx_uv, ddy_uv).xyz;
     let normal = perturbed_normal(surface_frame, encoded_normal, params.normal_strength);
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,

@@ -32,6 +32,8 @@ pub const FRAME: WgslFile = wgsl_file!("render/frame.wgsl");
 pub const TANGENT_SPACE: WgslFile = wgsl_file!("render/tangent_space.wgsl");
 /// Phong, Blinn-Phong and Cook-Torrance + Oren-Nayar.
 pub const LIGHTING: WgslFile = wgsl_file!("render/lighting.wgsl");
+/// Helpers for generated parameter structs (colours as `array<f32, 4>`).
+pub const PARAMS: WgslFile = wgsl_file!("render/params.wgsl");
 /// Vertex input/output, the per-draw transforms and the shared vertex stage `vs_main`.
 pub const MESH_VERTEX: WgslFile = wgsl_file!("render/mesh_vertex.wgsl");
 /// The Sobel compute pass of dynamic height fields.
