@@ -24,10 +24,17 @@ first_icd_manifest() {
     return 0
 }
 
+# ldconfig lives in /sbin, which is not on a normal user's PATH on Debian.
+POM_LDCONFIG_FALLBACK=${POM_LDCONFIG_FALLBACK:-/sbin/ldconfig}
+
 has_vulkan_loader() {
+    local ldconfig
+    ldconfig=$(command -v ldconfig || true)
+    if [ -z "$ldconfig" ] && [ -x "$POM_LDCONFIG_FALLBACK" ]; then ldconfig=$POM_LDCONFIG_FALLBACK; fi
+    if [ -z "$ldconfig" ]; then return 1; fi
     # No `grep -q`: it would close the pipe early, and under `pipefail` ldconfig's SIGPIPE
     # would count as "not found".
-    ldconfig -p 2>/dev/null | grep 'libvulkan\.so\.1' >/dev/null
+    "$ldconfig" -p 2>/dev/null | grep 'libvulkan\.so\.1' >/dev/null
 }
 
 # Both commands build with cargo: say so when it is missing, before installing anything.

@@ -26,6 +26,8 @@ struct Setup {
     root_user: bool,
     sudo: bool,
     no_cargo: bool,
+    /// ldconfig only outside PATH (in /sbin, as a normal Debian user sees it).
+    ldconfig_outside_path: bool,
 }
 
 impl Setup {
@@ -80,8 +82,15 @@ impl FakeMachine {
         let icd = machine.root.join("icd_usr");
         // `ls` and `head` too: the script once failed silently through them. Inside the fakes only
         // bash builtins and absolute paths: PATH is the fake bin folder.
+        let sbin = machine.root.join("sbin");
+        fs::create_dir_all(&sbin).unwrap();
+        let ldconfig_dir = if setup.ldconfig_outside_path {
+            &sbin
+        } else {
+            &bin
+        };
         write_executable(
-            &bin.join("ldconfig"),
+            &ldconfig_dir.join("ldconfig"),
             &format!(
                 "#!/bin/bash\nif [ -e {state}/loader ]; then\n  echo '\tlibvulkan.so.1 (libc6,x86-64) => /usr/lib/x86_64-linux-gnu/libvulkan.so.1'\nfi\necho '\tlibc.so.6 (libc6,x86-64) => /usr/lib/x86_64-linux-gnu/libc.so.6'\n",
                 state = state.display()
@@ -158,6 +167,7 @@ impl FakeMachine {
             .env("PATH", self.root.join("bin"))
             .env("HOME", &self.root)
             .env("POM_VULKAN_ICD_DIRS", icd_dirs)
+            .env("POM_LDCONFIG_FALLBACK", self.root.join("sbin/ldconfig"))
             .output()
             .unwrap();
         Outcome {
@@ -418,4 +428,25 @@ fn both_commands_say_when_cargo_is_missing() {
     machine
         .run("tests/run", &[])
         .assert_stopped_naming("tests/run, no cargo", "Rust toolchain");
+}
+
+#[test]
+fn ldconfig_outside_path_still_finds_the_loader() {
+    let setup = Setup {
+        manifest: Some("lvp_icd.x86_64.json"),
+        loader: true,
+        xvfb: true,
+        ldconfig_outside_path: true,
+        ..Setup::bare()
+    };
+    let machine = FakeMachine::new("ldconfig_in_sbin", setup);
+    let outcome = machine.run("tests/run", &[]);
+    outcome.assert_went_on("ldconfig in sbin");
+    assert_eq!(
+        outcome.apt_calls, "",
+        "the loader was found: nothing to install"
+    );
+    machine
+        .run("sandbox/run", &[])
+        .assert_went_on("ldconfig in sbin");
 }

@@ -105,20 +105,20 @@ fn parameter(name: &str, value: &Value) -> Result<(&'static str, ParamValue), St
         ParamKind::Float { .. } => value
             .as_f64()
             .map(|number| ParamValue::Float(number as f32))
-            .ok_or_else(|| invalid_type(value, "f32"))?,
+            .ok_or_else(|| invalid_type_of(name, value, "f32"))?,
         ParamKind::Integer { .. } => value
             .as_u64()
             .and_then(|number| u32::try_from(number).ok())
             .map(ParamValue::Integer)
-            .ok_or_else(|| invalid_type(value, "u32"))?,
+            .ok_or_else(|| invalid_type_of(name, value, "u32"))?,
         ParamKind::Toggle => value
             .as_bool()
             .map(ParamValue::Toggle)
-            .ok_or_else(|| invalid_type(value, "a boolean"))?,
+            .ok_or_else(|| invalid_type_of(name, value, "a boolean"))?,
         ParamKind::Choice(choices) => {
             let text = value
                 .as_str()
-                .ok_or_else(|| invalid_type(value, "a string"))?;
+                .ok_or_else(|| invalid_type_of(name, value, "a string"))?;
             let names: Vec<&str> = choices.iter().map(|choice| choice.name).collect();
             choices
                 .iter()
@@ -132,20 +132,29 @@ fn parameter(name: &str, value: &Value) -> Result<(&'static str, ParamValue), St
                 })?
         }
         ParamKind::Color => {
-            let components: Option<Vec<f32>> = value.as_array().map(|items| {
+            // Every item must be a number: none is dropped silently.
+            let components: Option<Vec<f32>> = value.as_array().and_then(|items| {
                 items
                     .iter()
-                    .filter_map(|item| item.as_f64().map(|c| c as f32))
+                    .map(|item| item.as_f64().map(|c| c as f32))
                     .collect()
             });
             match components.as_deref() {
                 Some([r, g, b]) => ParamValue::Color([*r, *g, *b, 1.0]),
                 Some([r, g, b, a]) => ParamValue::Color([*r, *g, *b, *a]),
-                _ => return Err(invalid_type(value, "[r, g, b] or [r, g, b, a]")),
+                _ => return Err(invalid_type_of(name, value, "[r, g, b] or [r, g, b, a]")),
             }
         }
     };
     Ok((param.name, parsed))
+}
+
+/// A type error of the parameter `name`.
+fn invalid_type_of(name: &str, value: &Value, expected: &str) -> String {
+    format!(
+        "extras.pom.{name}: invalid type: {}, expected {expected}",
+        describe(value)
+    )
 }
 
 fn invalid_type(value: &Value, expected: &str) -> String {
@@ -215,7 +224,7 @@ mod tests {
             PomExtras::from_extras(Some(r#"{"pom": {"min_samples": "many"}}"#)).unwrap_err();
         assert_eq!(
             wrong_type,
-            "extras.pom: invalid type: string \"many\", expected u32"
+            "extras.pom.min_samples: invalid type: string \"many\", expected u32"
         );
     }
 

@@ -156,7 +156,8 @@ impl<M: Material> MaterialBatches<M> {
         let mut last_mesh = None;
         let mut bounds = None;
         let mut last_textures = None;
-        let mut facts: [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] = [None; 4];
+        let mut facts: [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] =
+            [None; MAX_MATERIAL_TEXTURES];
         for (index, draw) in draws.iter().enumerate() {
             if last_mesh != Some(draw.mesh) {
                 stats.meshes += u32::from(assets.prepare_mesh(gpu, inputs.meshes, draw.mesh));

@@ -1,5 +1,7 @@
 //! Checks that a Rust `#[repr(C)]` struct and the WGSL struct it is uploaded into agree, member
-//! by member, as naga lays the WGSL out: so the two can never drift apart silently.
+//! by member (name, offset, size) and in total size, as naga lays the WGSL out: a moved, added,
+//! removed, resized or renamed member fails. (A member of the same size but another scalar type,
+//! `f32` for `u32`, is not caught.)
 
 /// One member of a Rust struct as uploaded: its name, byte offset and size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -15,7 +15,10 @@ pub use params::{
     Choice, ChoiceInfo, GpuParam, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType,
     ParamValue, every_parameter_changed,
 };
-pub use plugin::{MaterialPlugin, MaterialWarnings, MissingRenderPlugin, drawn_keys};
+pub use plugin::{
+    MaterialPlugin, MaterialWarnings, MissingRenderPlugin, TooManyTextureSlots,
+    draw_meshes_without_material, drawn_keys,
+};
 
 #[cfg(feature = "dev-tools")]
 pub(crate) use plugin::MaterialRegistry;
@@ -66,9 +69,10 @@ impl FragmentVariant {
 /// A surface type the renderer can draw: put it on an entity with a `Handle<Mesh>` and a
 /// transform, and add [`MaterialPlugin<Self>`].
 ///
-/// The shader is composed after the core's camera, light and mesh WGSL, which declare (group 0)
-/// `frame` (binding 0) and the per-draw `transforms` (binding 1), the vertex entry `vs_main` and
-/// its output `VertexOut` (`object_index` indexes per-draw arrays). The material declares its
+/// The shader lists the core's `FRAME` and `MESH_VERTEX` files first (see
+/// [`crate::render::shaders`]): they declare (group 0) `frame` (binding 0) and the per-draw
+/// `transforms` (binding 1), the vertex entry `vs_main` and its output `VertexOut`
+/// (`object_index` indexes per-draw arrays). The material declares its
 /// own per-draw `array<Uniform>` at group 0 binding 2 and its textures at group 1, bindings
 /// `0..TEXTURE_SLOTS.len()`, followed by one trilinear repeating sampler.
 pub trait Material: hecs::Component + Clone + PartialEq + Default {
@@ -82,7 +86,8 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     const NAME: &'static str;
     /// The WGSL name of [`Material::Uniform`].
     const UNIFORM_WGSL_NAME: &'static str;
-    /// The texture bound in each slot when the material has none there.
+    /// The texture bound in each slot when the material has none there (at most
+    /// [`MAX_MATERIAL_TEXTURES`]; more is an error when the plugin starts).
     const TEXTURE_SLOTS: &'static [DefaultTexture];
 
     /// The material's WGSL (entry points and its own library files).

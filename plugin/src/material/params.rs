@@ -849,7 +849,8 @@ macro_rules! material_parameters {
             it, in declaration order (choices as their codes, toggles as 0 or 1). Its WGSL twin \
             is [`", stringify!($gpu), "::wgsl`].")]
         #[repr(C)]
-        #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+        #[derive(Clone, Copy, Debug, PartialEq, $crate::bytemuck::Pod, $crate::bytemuck::Zeroable)]
+        #[bytemuck(crate = "pom::bytemuck")]
         pub struct $gpu {
             $(
                 #[doc = $help]

@@ -65,6 +65,29 @@ impl<M: Material> MaterialPlugin<M> {
 #[error("a material plugin needs RenderPlugin: add RenderPlugin before it")]
 pub struct MissingRenderPlugin;
 
+/// A material declares more texture slots than a material can bind.
+#[derive(Debug, thiserror::Error)]
+#[error("material {material} declares {slots} texture slots; at most {max} are bound", max = super::MAX_MATERIAL_TEXTURES)]
+pub struct TooManyTextureSlots {
+    /// The material's name.
+    pub material: &'static str,
+    /// Its slot count.
+    pub slots: usize,
+}
+
+/// Makes material `M`'s plugin (added already) also draw meshes that have no registered
+/// material, with `M::default()`. Plugin groups call it, since adding the same plugin type twice
+/// is ignored.
+pub fn draw_meshes_without_material<M: Material>(app: &mut App) {
+    if let Some(entry) = app
+        .resources
+        .get_or_default::<MaterialRegistry>()
+        .entry_mut::<M>()
+    {
+        entry.draws_meshes_without_material = true;
+    }
+}
+
 /// Pipelines rebuilt from a recompiled shader, not yet swapped in (hot reload).
 #[cfg(feature = "dev-tools")]
 pub(crate) type RebuiltPipelines = Box<dyn Any>;
@@ -77,6 +100,8 @@ pub(crate) struct MaterialEntry {
     pub(crate) shader: ComposedShader,
     /// Whether entities of an archetype have it.
     has: fn(&hecs::Archetype) -> bool,
+    /// Whether it also draws, with its default, meshes that have no registered material.
+    draws_meshes_without_material: bool,
     /// Builds every pipeline in use from a recompiled shader module.
     #[cfg(feature = "dev-tools")]
     pub(crate) rebuild:
@@ -93,10 +118,16 @@ pub(crate) struct MaterialRegistry {
 }
 
 impl MaterialRegistry {
-    fn contains<M: 'static>(&self) -> bool {
+    fn entry_mut<M: 'static>(&mut self) -> Option<&mut MaterialEntry> {
+        self.entries
+            .iter_mut()
+            .find(|entry| entry.type_id == TypeId::of::<M>())
+    }
+
+    fn draws_meshes_without_material<M: 'static>(&self) -> bool {
         self.entries
             .iter()
-            .any(|entry| entry.type_id == TypeId::of::<M>())
+            .any(|entry| entry.type_id == TypeId::of::<M>() && entry.draws_meshes_without_material)
     }
 
     /// Whether entities of `archetype` have any registered material.
@@ -110,13 +141,14 @@ pub(crate) struct ExtractedMaterials<M> {
     pub(crate) draws: Vec<ExtractedDraw<M>>,
 }
 
-/// The last material of type `M` each entity was warned about, so a bad value is logged once
-/// per change, not every frame. A resource.
+/// The problems last logged for each entity whose material of type `M` is being clamped, so a
+/// bad value is logged once per change, not every frame. Problems are compared as text: a NaN
+/// never equals itself, a material holding one would be "changed" every frame. A resource.
 #[derive(Debug)]
-pub struct MaterialWarnings<M>(HashMap<Entity, M>);
+pub struct MaterialWarnings<M>(HashMap<Entity, Vec<String>>, PhantomData<fn() -> M>);
 
 impl<M> MaterialWarnings<M> {
-    /// Number of entities whose material has been clamped.
+    /// Number of entities whose material is being clamped.
     pub fn len(&self) -> usize {
         self.0.len()
     }
@@ -130,12 +162,14 @@ impl<M> MaterialWarnings<M> {
 impl<M: Material> Plugin for MaterialPlugin<M> {
     fn build(&self, app: &mut App) {
         let registry = app.resources.get_or_default::<MaterialRegistry>();
-        if registry.contains::<M>() {
+        if let Some(entry) = registry.entry_mut::<M>() {
+            entry.draws_meshes_without_material |= self.draws_meshes_without_material;
             return;
         }
         registry.entries.push(MaterialEntry {
             type_id: TypeId::of::<M>(),
             has: |archetype| archetype.has::<M>(),
+            draws_meshes_without_material: self.draws_meshes_without_material,
             #[cfg(feature = "dev-tools")]
             shader: M::shader(),
             #[cfg(feature = "dev-tools")]
@@ -153,14 +187,8 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                 }
             },
         });
-        let fallback = self.draws_meshes_without_material;
-        app.add_system(
-            Stage::Extract,
-            move |world: &mut World, resources: &mut Resources| {
-                extract_materials::<M>(world, resources, fallback)
-            },
-        )
-        .add_system(Stage::Prepare, prepare_materials::<M>);
+        app.add_system(Stage::Extract, extract_materials::<M>)
+            .add_system(Stage::Prepare, prepare_materials::<M>);
         app.resources
             .get_or_default::<MainPassDraws>()
             .add::<M>(draw_materials::<M>);
@@ -169,6 +197,13 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
         if app.resources.contains::<MaterialBatches<M>>() {
             return Ok(());
+        }
+        if M::TEXTURE_SLOTS.len() > super::MAX_MATERIAL_TEXTURES {
+            return Err(TooManyTextureSlots {
+                material: M::NAME,
+                slots: M::TEXTURE_SLOTS.len(),
+            }
+            .into());
         }
         let (Some(gpu), Some(target), Some(renderer)) = (
             app.resources.get::<GpuContext>(),
@@ -185,12 +220,15 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
 
 /// The Extract stage's system of material `M`: copies each drawable entity's mesh, transform
 /// and material, and logs a material's problems once per change.
-fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources, fallback: bool) {
+fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources) {
+    let fallback = resources
+        .get::<MaterialRegistry>()
+        .is_some_and(MaterialRegistry::draws_meshes_without_material::<M>);
     if !resources.contains::<ExtractedMaterials<M>>() {
         resources.insert(ExtractedMaterials::<M> { draws: Vec::new() });
     }
     if !resources.contains::<MaterialWarnings<M>>() {
-        resources.insert(MaterialWarnings::<M>(HashMap::new()));
+        resources.insert(MaterialWarnings::<M>(HashMap::new(), PhantomData));
     }
     resources.scope(|resources, extracted: &mut ExtractedMaterials<M>| {
         resources.scope(|resources, warnings: &mut MaterialWarnings<M>| {
@@ -224,11 +262,16 @@ fn extract_into<M: Material>(
             }
             if let Some(entity) = entity {
                 let problems = material.problems();
-                if !problems.is_empty() && warnings.0.get(&entity) != Some(material) {
+                if problems.is_empty() {
+                    // Valid again: forget it, so a later bad value is logged anew.
+                    if !warnings.0.is_empty() {
+                        warnings.0.remove(&entity);
+                    }
+                } else if warnings.0.get(&entity) != Some(&problems) {
                     for problem in &problems {
                         log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
                     }
-                    warnings.0.insert(entity, material.clone());
+                    warnings.0.insert(entity, problems);
                 }
             }
             match extracted.draws.get_mut(count) {
@@ -358,5 +401,45 @@ mod tests {
             2
         );
         assert_eq!(app.schedule.len(Stage::Extract), 3, "core + two materials");
+    }
+
+    /// A material that asks for one texture slot too many.
+    #[derive(Clone, Debug, Default, PartialEq)]
+    struct FiveTextures;
+
+    impl Material for FiveTextures {
+        type Uniform = crate::LitParams;
+        type Key = ();
+        const NAME: &'static str = "five textures";
+        const UNIFORM_WGSL_NAME: &'static str = "LitParams";
+        const TEXTURE_SLOTS: &'static [crate::render::DefaultTexture] =
+            &[crate::render::DefaultTexture::WhiteSrgb; 5];
+        fn shader() -> crate::render::shaders::ComposedShader {
+            crate::lit::LIT_SHADER
+        }
+        fn textures(&self) -> super::super::MaterialTextures {
+            [None; super::super::MAX_MATERIAL_TEXTURES]
+        }
+        fn key(&self) {}
+        fn fragment(_: ()) -> super::super::FragmentVariant {
+            super::super::FragmentVariant::entry("fs_main")
+        }
+        fn uniform(
+            &self,
+            _: &[Option<super::super::TextureFacts>; super::super::MAX_MATERIAL_TEXTURES],
+        ) -> crate::LitParams {
+            crate::LitMaterial::default().gpu_params()
+        }
+    }
+
+    #[test]
+    fn too_many_texture_slots_is_an_error_naming_the_material() {
+        let mut app = App::new();
+        app.add_plugin(MaterialPlugin::<FiveTextures>::default());
+        let error = app.finish().unwrap_err().to_string();
+        assert!(
+            error.contains("material five textures declares 5 texture slots; at most 4"),
+            "{error}"
+        );
     }
 }

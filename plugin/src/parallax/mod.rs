@@ -154,6 +154,8 @@ impl Plugin for PomPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugin(crate::lit_plugin())
             .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
+        // A lit plugin added before without that setting still draws the other meshes.
+        crate::material::draw_meshes_without_material::<crate::LitMaterial>(app);
         app.add_system(crate::Stage::Prepare, crate::derive_dynamic_normals);
     }
 

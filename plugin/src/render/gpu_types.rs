@@ -75,11 +75,10 @@ impl MeshTransform {
     pub fn new(model: glam::Mat4) -> Self {
         let determinant = model.determinant();
         // A zero scale has no inverse; such an object has no area, so any normal will do.
-        let normal_matrix = if determinant.abs() > f32::MIN_POSITIVE {
-            model.inverse().transpose()
-        } else {
-            glam::Mat4::IDENTITY
-        };
+        // A huge but finite scale can overflow the inverse: any normal will do there too.
+        let normal_matrix = Some(model.inverse().transpose())
+            .filter(|inverse| determinant.abs() > f32::MIN_POSITIVE && inverse.is_finite())
+            .unwrap_or(glam::Mat4::IDENTITY);
         Self {
             model: model.to_cols_array_2d(),
             normal_matrix: normal_matrix.to_cols_array_2d(),

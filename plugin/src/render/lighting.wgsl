@@ -3,7 +3,8 @@
 
 const PI: f32 = 3.14159265;
 
-// The LIGHTING_* model codes are generated from `LightingModel` and prepended (see shaders.rs).
+// The LIGHTING_* model codes are generated from `LightingModel`: a shader that includes this file
+// lists `LightingModel::wgsl_constants` among its constants (see lit/mod.rs, parallax/mod.rs).
 
 struct Surface {
     albedo: vec3<f32>,

@@ -1,6 +1,6 @@
 //! The editor rows of a material: one per declared parameter, made from its declaration (label,
 //! range, unit, tooltip), so a new parameter shows up here without an edit. Sliders span the
-//! range artists use; a value typed past it is kept as long as the material accepts it.
+//! range artists use; a value typed past it is kept within the parameter's declared limits.
 
 use egui::{ComboBox, Slider, SliderClamping, Ui};
 use pom::material::{Param, ParamKind, ParamValue};
@@ -90,6 +90,16 @@ pub fn parameter_row<M>(ui: &mut Ui, param: &Param<M>, material: &mut M) {
         })
         .response;
     response.on_hover_text(tooltip(param));
+    if let (ParamKind::Float { min, max, .. }, ParamValue::Float(number)) =
+        (param.spec.kind, &mut value)
+    {
+        // Typed values may leave the slider's range, never the declared limits.
+        *number = if number.is_finite() {
+            number.clamp(min, max)
+        } else {
+            min
+        };
+    }
     if value != before {
         // The value came from this parameter's own kind.
         let _ = (param.set)(material, value);

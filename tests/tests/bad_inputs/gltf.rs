@@ -206,7 +206,7 @@ fn gltf_extras_unknown_key() {
 fn gltf_extras_wrong_type() {
     assert_material_error(
         "gltf/extras_wrong_type.gltf",
-        "extras.pom: invalid type: string \"many\", expected u32",
+        "extras.pom.min_samples: invalid type: string \"many\", expected u32",
     );
 }
 

@@ -21,6 +21,16 @@ fn clamped_with_a_warning(field: &str, spoil: impl FnOnce(&mut ParallaxOcclusion
     renders_cleanly(&mut app);
     let warned = app.resources.get::<MaterialWarnings>().unwrap();
     assert_eq!(warned.len(), 1, "the clamp was not recorded for a warning");
+    // Made valid again, the entity is forgotten, so a later bad value is logged anew.
+    for material in app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+        material.apply_preset(&pom::PomPreset::default());
+    }
+    renders_cleanly(&mut app);
+    let warned = app.resources.get::<MaterialWarnings>().unwrap();
+    assert!(
+        warned.is_empty(),
+        "a valid material is still listed as clamped"
+    );
 }
 
 #[test]
