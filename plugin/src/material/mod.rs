@@ -3,7 +3,9 @@
 //! material; `LitMaterial` and `ParallaxOcclusionMaterial` are two materials like any other.
 
 mod batches;
+mod declare;
 mod layout_check;
+mod param_types;
 mod params;
 mod pipelines;
 mod plugin;
@@ -11,9 +13,10 @@ mod plugin;
 pub use layout_check::{
     LayoutMismatch, MemberLayout, WgslLayout, check_material_layout, check_wgsl_layout,
 };
+pub use param_types::{Choice, GpuParam, ParamType};
 pub use params::{
-    Choice, ChoiceInfo, GpuParam, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType,
-    ParamValue, every_parameter_changed,
+    ChoiceInfo, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamValue,
+    every_parameter_changed,
 };
 pub use plugin::{
     MaterialPlugin, MaterialWarnings, MissingRenderPlugin, TooManyTextureSlots,

@@ -1,0 +1,318 @@
+//! The Rust types a declared parameter can have ([`ParamType`]: numbers, `bool`, colours and
+//! [`Choice`] enums), how each is uploaded ([`GpuParam`]), and the codes and WGSL constants of
+//! choice enums.
+
+use super::params::{ChoiceInfo, LimitError, ParamKind, ParamValue};
+
+/// A Rust type a parameter can have: numbers, `bool`, and [`Choice`] enums.
+pub trait ParamType: Copy + Sized {
+    /// As a table value.
+    fn to_value(self) -> ParamValue;
+    /// From a table value of the right kind.
+    fn from_value(value: ParamValue) -> Option<Self>;
+    /// Whether it lies within `kind`'s limits; the error names `field`.
+    fn check(self, field: &'static str, kind: &ParamKind) -> Result<(), LimitError> {
+        let _ = (field, kind);
+        Ok(())
+    }
+    /// Brought within `kind`'s limits; `fallback` replaces a value that has no nearest valid one
+    /// (NaN).
+    fn clamped(self, kind: &ParamKind, fallback: Self) -> Self {
+        let _ = (kind, fallback);
+        self
+    }
+    /// The value as a Rust expression, for "copy as Rust".
+    fn rust_literal(self) -> String;
+}
+
+impl ParamType for f32 {
+    fn to_value(self) -> ParamValue {
+        ParamValue::Float(self)
+    }
+
+    fn rust_literal(self) -> String {
+        format!("{self:?}")
+    }
+
+    fn from_value(value: ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Float(value) => Some(value),
+            ParamValue::Integer(value) => Some(value as f32),
+            _ => None,
+        }
+    }
+
+    fn check(self, field: &'static str, kind: &ParamKind) -> Result<(), LimitError> {
+        let ParamKind::Float { min, max, .. } = *kind else {
+            return Ok(());
+        };
+        if !self.is_finite() {
+            Err(LimitError::NotFinite { field, value: self })
+        } else if self < min {
+            Err(LimitError::TooSmall {
+                field,
+                value: self,
+                min,
+            })
+        } else if self > max {
+            Err(LimitError::TooLarge {
+                field,
+                value: self,
+                max,
+            })
+        } else {
+            Ok(())
+        }
+    }
+
+    fn clamped(self, kind: &ParamKind, fallback: Self) -> Self {
+        match *kind {
+            ParamKind::Float { min, max, .. } if self.is_finite() => self.clamp(min, max),
+            ParamKind::Float { .. } => fallback,
+            _ => self,
+        }
+    }
+}
+
+impl ParamType for u32 {
+    fn to_value(self) -> ParamValue {
+        ParamValue::Integer(self)
+    }
+
+    fn rust_literal(self) -> String {
+        self.to_string()
+    }
+
+    fn from_value(value: ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Integer(value) => Some(value),
+            _ => None,
+        }
+    }
+
+    fn check(self, field: &'static str, kind: &ParamKind) -> Result<(), LimitError> {
+        let ParamKind::Integer { min, max, .. } = *kind else {
+            return Ok(());
+        };
+        if self < min {
+            Err(LimitError::TooSmall {
+                field,
+                value: self as f32,
+                min: min as f32,
+            })
+        } else if self > max {
+            Err(LimitError::TooLarge {
+                field,
+                value: self as f32,
+                max: max as f32,
+            })
+        } else {
+            Ok(())
+        }
+    }
+
+    fn clamped(self, kind: &ParamKind, _: Self) -> Self {
+        match *kind {
+            ParamKind::Integer { min, max, .. } => self.clamp(min, max),
+            _ => self,
+        }
+    }
+}
+
+impl ParamType for bool {
+    fn to_value(self) -> ParamValue {
+        ParamValue::Toggle(self)
+    }
+
+    fn rust_literal(self) -> String {
+        self.to_string()
+    }
+
+    fn from_value(value: ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Toggle(value) => Some(value),
+            _ => None,
+        }
+    }
+}
+
+impl ParamType for crate::Color {
+    fn to_value(self) -> ParamValue {
+        ParamValue::Color(self.to_array())
+    }
+
+    fn rust_literal(self) -> String {
+        let Self { r, g, b, a } = self;
+        format!("Color {{ r: {r:?}, g: {g:?}, b: {b:?}, a: {a:?} }}")
+    }
+
+    fn from_value(value: ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Color([r, g, b, a]) => Some(Self { r, g, b, a }),
+            _ => None,
+        }
+    }
+
+    fn check(self, field: &'static str, _: &ParamKind) -> Result<(), LimitError> {
+        match self.to_array().into_iter().find(|c| !c.is_finite()) {
+            Some(value) => Err(LimitError::NotFinite { field, value }),
+            None => Ok(()),
+        }
+    }
+
+    fn clamped(self, _: &ParamKind, fallback: Self) -> Self {
+        let finite_or =
+            |value: f32, fallback: f32| if value.is_finite() { value } else { fallback };
+        Self {
+            r: finite_or(self.r, fallback.r),
+            g: finite_or(self.g, fallback.g),
+            b: finite_or(self.b, fallback.b),
+            a: finite_or(self.a, fallback.a),
+        }
+    }
+}
+
+/// How a parameter is uploaded in the GPU struct [`crate::material_parameters!`] generates:
+/// 4-byte aligned types only, so the struct has no padding and WGSL lays it out as Rust does.
+pub trait GpuParam: Copy {
+    /// The uploaded value.
+    type Gpu: bytemuck::Pod + std::fmt::Debug + PartialEq;
+    /// Its WGSL type.
+    const WGSL: &'static str;
+    /// The value as uploaded.
+    fn to_gpu(self) -> Self::Gpu;
+}
+
+impl GpuParam for f32 {
+    type Gpu = f32;
+    const WGSL: &'static str = "f32";
+    fn to_gpu(self) -> f32 {
+        self
+    }
+}
+
+impl GpuParam for u32 {
+    type Gpu = u32;
+    const WGSL: &'static str = "u32";
+    fn to_gpu(self) -> u32 {
+        self
+    }
+}
+
+impl GpuParam for bool {
+    type Gpu = u32;
+    const WGSL: &'static str = "u32";
+    fn to_gpu(self) -> u32 {
+        u32::from(self)
+    }
+}
+
+impl GpuParam for crate::Color {
+    type Gpu = [f32; 4];
+    // Not `vec4<f32>`, which WGSL aligns to 16 bytes.
+    const WGSL: &'static str = "array<f32, 4>";
+    fn to_gpu(self) -> [f32; 4] {
+        self.to_array()
+    }
+}
+
+impl<T: Choice> GpuParam for T {
+    type Gpu = u32;
+    const WGSL: &'static str = "u32";
+    fn to_gpu(self) -> u32 {
+        self.code()
+    }
+}
+
+/// An enum whose values a parameter chooses between, declared with [`crate::choice_enum!`]: each
+/// value has one spelling, used by serde (RON, glTF), the command line and the editor, and a
+/// WGSL constant `PREFIX_VALUE` with its code.
+pub trait Choice: Copy + PartialEq + 'static {
+    /// Every value, in declaration order (its index is its code).
+    const VALUES: &'static [Self];
+    /// Spelling and help of each value, in the same order.
+    const INFO: &'static [ChoiceInfo];
+    /// The prefix of the WGSL constants (`METHOD` gives `METHOD_OCCLUSION`).
+    const WGSL_PREFIX: &'static str;
+    /// The Rust names of the values, for WGSL constant names.
+    const RUST_NAMES: &'static [&'static str];
+
+    /// The position of `self` in [`Choice::VALUES`]: the value shaders see.
+    fn code(self) -> u32 {
+        Self::VALUES
+            .iter()
+            .position(|value| *value == self)
+            .unwrap_or(0) as u32
+    }
+
+    /// The one spelling of `self`.
+    fn name(self) -> &'static str {
+        Self::INFO[self.code() as usize].name
+    }
+
+    /// The value spelled `name`.
+    fn from_name(name: &str) -> Option<Self> {
+        Self::INFO
+            .iter()
+            .position(|info| info.name == name)
+            .map(|index| Self::VALUES[index])
+    }
+
+    /// WGSL declarations of one `const PREFIX_VALUE: u32` per value, generated so shaders never
+    /// retype the codes.
+    fn wgsl_constants() -> String {
+        Self::RUST_NAMES
+            .iter()
+            .enumerate()
+            .map(|(code, rust_name)| {
+                format!(
+                    "const {}_{}: u32 = {code}u;\n",
+                    Self::WGSL_PREFIX,
+                    screaming_snake_case(rust_name)
+                )
+            })
+            .collect()
+    }
+}
+
+impl<T: Choice> ParamType for T {
+    fn to_value(self) -> ParamValue {
+        ParamValue::Choice(self.name())
+    }
+
+    fn rust_literal(self) -> String {
+        let type_name = std::any::type_name::<T>();
+        let short = type_name.rsplit("::").next().unwrap_or(type_name);
+        format!("{short}::{}", T::RUST_NAMES[self.code() as usize])
+    }
+
+    fn from_value(value: ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Choice(name) => Self::from_name(name),
+            _ => None,
+        }
+    }
+}
+
+/// `CookTorrance` → `COOK_TORRANCE`.
+fn screaming_snake_case(name: &str) -> String {
+    let mut out = String::new();
+    for (index, character) in name.chars().enumerate() {
+        if character.is_uppercase() && index > 0 {
+            out.push('_');
+        }
+        out.push(character.to_ascii_uppercase());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn screaming_snake_case_splits_words() {
+        assert_eq!(screaming_snake_case("CookTorrance"), "COOK_TORRANCE");
+        assert_eq!(screaming_snake_case("Occlusion"), "OCCLUSION");
+    }
+}
