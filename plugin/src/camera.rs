@@ -70,7 +70,7 @@ impl Projection {
 pub struct Camera {
     /// The projection.
     pub projection: Projection,
-    /// The colour the image is cleared to.
+    /// The colour the image is cleared to: a display colour, shown as set (neither exposed nor tonemapped).
     pub clear_color: Color,
     /// Whether this camera renders.
     pub active: bool,

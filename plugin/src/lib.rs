@@ -58,6 +58,7 @@ pub mod script;
 mod shader_reload;
 #[cfg(feature = "dev-tools")]
 mod split_view;
+mod tonemapping;
 mod transform;
 
 pub use app::{
@@ -90,8 +91,8 @@ pub use parallax::{
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{
-    GpuContext, GpuTimings, RenderError, RenderPlugin, TargetFormat, TimingMode, capture,
-    capture_f32,
+    GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPhase, RenderPlugin, TargetFormat,
+    TimingMode, capture, capture_f32, capture_scene,
 };
 pub use resources::Resources;
 #[cfg(feature = "scene-tests")]
@@ -102,6 +103,7 @@ pub use shader_reload::{
 };
 #[cfg(feature = "dev-tools")]
 pub use split_view::{SplitView, SplitViewError, render_split_view};
+pub use tonemapping::{Exposure, Tonemapping};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };
@@ -112,6 +114,9 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     lit::LIT_SHADER,
     parallax::PARALLAX_SHADER,
     render::shaders::SOBEL,
+    render::POST_SHADERS[0],
+    render::POST_SHADERS[1],
+    render::POST_SHADERS[2],
     #[cfg(feature = "dev-tools")]
     render::TEXEL_RATE_PROBE,
 ];

@@ -176,10 +176,7 @@ fn reload(
         let source = compose_checked(shader, source_dir)?;
         let device = &gpu.device;
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(shader.name),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        let module = crate::render::shaders::create_module(device, shader.name, source);
         if let Some(registry) = resources.get::<MaterialRegistry>() {
             for entry in &registry.entries {
                 if entry.shader == *shader

@@ -31,8 +31,16 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(json["quick"], true);
     let cases = json["cases"].as_array().unwrap();
     // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, POM for the
-    // texel rate, 2 far-field.
-    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 2));
+    // texel rate, 3 phases, 2 far-field, 4 overdraw (1 and 4 planes, with and without
+    // depth offset).
+    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 4));
+    for phase in ["prepass", "opaque", "post"] {
+        assert!(
+            cases
+                .iter()
+                .any(|c| c["group"] == "phases" && c["pass"] == phase)
+        );
+    }
     for case in cases {
         let spread = &case["spread"];
         for field in ["median_ms", "min_ms", "p10_ms", "p90_ms", "max_ms"] {
@@ -50,6 +58,11 @@ fn quick_bench_writes_json_csv_and_a_chart() {
             .any(|r| r["what"].as_str().unwrap().contains("far field"))
     );
     assert!(ratios.iter().all(|r| r["ratio"].as_f64().unwrap() > 0.0));
+    assert!(
+        ratios
+            .iter()
+            .any(|r| r["what"].as_str().unwrap().starts_with("overdraw"))
+    );
     let rates = json["sample_rates"].as_array().unwrap();
     assert_eq!(rates.len(), 2, "one sample rate per size");
     for rate in rates {
@@ -95,7 +108,7 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(
         lines.next().unwrap(),
         "group,method,shadows,width,height,min_samples,max_samples,lod_threshold,tiling,pass,\
-         frames,median_ms,min_ms,p10_ms,p90_ms,max_ms"
+         frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant"
     );
     assert_eq!(lines.count(), cases.len());
 

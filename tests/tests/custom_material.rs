@@ -19,8 +19,10 @@ fn a_material_written_outside_the_crate_renders() {
     let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
     let cube = meshes.add(Mesh::cube(0.8));
     let floor = meshes.add(Mesh::plane(3.0));
+    // Tonemapping off: an unlit colour reaches the image exactly.
     app.world.spawn((
         pom::Camera::perspective(45.0),
+        pom::Tonemapping::None,
         Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
     ));
     app.world.spawn((

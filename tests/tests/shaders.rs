@@ -24,8 +24,13 @@ fn wgsl_files(dir: &Path, found: &mut Vec<PathBuf>) {
 fn every_composed_shader_validates() {
     assert!(!pom::SHADERS.is_empty());
     let mut failures = Vec::new();
-    for shader in pom::SHADERS {
-        let source = shader.source();
+    // Each shader as games compile it, and as FragmentInvocationCounter compiles it for tests.
+    let sources = pom::SHADERS.iter().flat_map(|shader| {
+        [shader.source(), shader.counting_source()]
+            .map(|source| (shader, source))
+            .into_iter()
+    });
+    for (shader, source) in sources {
         let module = match naga::front::wgsl::parse_str(&source) {
             Ok(module) => module,
             Err(error) => {
@@ -35,7 +40,7 @@ fn every_composed_shader_validates() {
         };
         let mut validator = naga::valid::Validator::new(
             naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
+            naga::valid::Capabilities::default() | naga::valid::Capabilities::EARLY_DEPTH_TEST,
         );
         if let Err(error) = validator.validate(&module) {
             failures.push(error.emit_to_string_with_path(&source, shader.name));
@@ -53,9 +58,11 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         "no WGSL files under {}: did they move?",
         src_dir().display()
     );
+    let counting = pom::render::shaders::FRAGMENT_COUNTER_COUNTING;
     let composed: BTreeSet<(&str, &str)> = pom::SHADERS
         .iter()
         .flat_map(|shader| shader.files.iter().map(|file| (file.path, file.source)))
+        .chain([(counting.path, counting.source)])
         .collect();
     for path in &on_disk {
         let relative = path

@@ -9,6 +9,7 @@ use glam::Mat4;
 
 use super::pipelines::MaterialPipelines;
 use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
+use crate::render::layout::MeshPass;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::texture_bind_groups::TextureBindGroups;
 use crate::render::{
@@ -46,9 +47,21 @@ struct SortEntry<K> {
 pub(crate) struct PrepareInputs<'a> {
     pub(crate) gpu: &'a GpuContext,
     pub(crate) frame: &'a FrameUniformBuffer,
+    pub(crate) depth: &'a DepthBindings<'a>,
     pub(crate) meshes: &'a Assets<Mesh>,
     pub(crate) images: &'a Assets<Image>,
     pub(crate) footprint: Option<&'a PixelFootprint>,
+}
+
+/// The depth textures a material's group 0 binds at binding 3: the prepass depth in the
+/// opaque phase after a prepass, a dummy wherever the depth buffer is being written.
+pub(crate) struct DepthBindings<'a> {
+    /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
+    pub(crate) opaque: &'a wgpu::TextureView,
+    /// The 1 × 1 dummy.
+    pub(crate) dummy: &'a wgpu::TextureView,
+    /// The target the views belong to ([`crate::render::RenderTarget::id`]).
+    pub(crate) target_id: u64,
 }
 
 /// Material `M`'s GPU state. A resource.
@@ -57,7 +70,12 @@ pub(crate) struct MaterialBatches<M: Material> {
     frame_layout: wgpu::BindGroupLayout,
     transforms: ObjectBuffer<MeshTransform>,
     uniforms: ObjectBuffer<M::Uniform>,
+    // Group 0 of the prepass and of the opaque phase, and the target they were made for.
+    prepass_bind_group: wgpu::BindGroup,
     frame_bind_group: wgpu::BindGroup,
+    bound_target: u64,
+    // The fragment invocation counter (tests), bound at binding 4 when present.
+    counter: Option<wgpu::Buffer>,
     textures: TextureBindGroups,
     pub(crate) batches: Vec<Batch<M::Key>>,
     order: Vec<SortEntry<M::Key>>,
@@ -69,42 +87,96 @@ pub(crate) struct MaterialBatches<M: Material> {
     sorted_uniforms: Vec<M::Uniform>,
 }
 
+/// The buffers and textures group 0 binds.
+struct FrameBindings<'a> {
+    frame: &'a FrameUniformBuffer,
+    transforms: &'a wgpu::Buffer,
+    uniforms: &'a wgpu::Buffer,
+    counter: Option<&'a wgpu::Buffer>,
+}
+
 fn frame_bind_group(
     gpu: &GpuContext,
     label: &str,
     layout: &wgpu::BindGroupLayout,
-    frame: &FrameUniformBuffer,
-    transforms: &wgpu::Buffer,
-    uniforms: &wgpu::Buffer,
+    bindings: &FrameBindings<'_>,
+    depth: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
     let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+    let mut entries = vec![
+        entry(0, bindings.frame.buffer().as_entire_binding()),
+        entry(1, bindings.transforms.as_entire_binding()),
+        entry(2, bindings.uniforms.as_entire_binding()),
+        entry(3, wgpu::BindingResource::TextureView(depth)),
+    ];
+    if let Some(counter) = bindings.counter {
+        entries.push(entry(4, counter.as_entire_binding()));
+    }
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
-        entries: &[
-            entry(0, frame.buffer().as_entire_binding()),
-            entry(1, transforms.as_entire_binding()),
-            entry(2, uniforms.as_entire_binding()),
-        ],
+        entries: &entries,
     })
 }
 
+/// Binding 3 of group 0: the prepass depth, read by materials that test their own depth.
+fn prepass_depth_entry() -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 3,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Depth,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// Binding 4 of group 0: the fragment invocation counter.
+fn counter_entry() -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 4,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(4),
+        },
+        count: None,
+    }
+}
+
 impl<M: Material> MaterialBatches<M> {
-    /// Compiles `M`'s shader for targets of `color_format`; pipelines follow on first use.
+    /// Compiles `M`'s shader for scene targets of `color_format`, in frames with or without
+    /// a depth `prepass`; pipelines follow on first use. With a `counter` the shader counts
+    /// its fragment invocations into it.
     pub(crate) fn new(
         gpu: &GpuContext,
         frame: &FrameUniformBuffer,
         color_format: wgpu::TextureFormat,
+        prepass: bool,
+        depth: &DepthBindings<'_>,
+        counter: Option<wgpu::Buffer>,
     ) -> Self {
         let device = &gpu.device;
-        let shader = M::shader().create_module(device);
+        let source = match counter {
+            Some(_) => M::shader().counting_source(),
+            None => M::shader().source(),
+        };
+        let shader = crate::render::shaders::create_module(device, M::shader().name, source);
+        let mut layout_entries = vec![
+            FrameUniformBuffer::layout_entry(),
+            ObjectBuffer::<MeshTransform>::layout_entry(1),
+            ObjectBuffer::<M::Uniform>::layout_entry(2),
+            prepass_depth_entry(),
+        ];
+        if counter.is_some() {
+            layout_entries.push(counter_entry());
+        }
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&format!("{} frame layout", M::NAME)),
-            entries: &[
-                FrameUniformBuffer::layout_entry(),
-                ObjectBuffer::<MeshTransform>::layout_entry(1),
-                ObjectBuffer::<M::Uniform>::layout_entry(2),
-            ],
+            entries: &layout_entries,
         });
         let textures = TextureBindGroups::new(gpu, M::NAME, M::TEXTURE_SLOTS);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -114,20 +186,30 @@ impl<M: Material> MaterialBatches<M> {
         });
         let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
         let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
-        let frame_bind_group = frame_bind_group(
-            gpu,
-            M::NAME,
-            &frame_layout,
+        let bindings = FrameBindings {
             frame,
-            transforms.buffer(),
-            uniforms.buffer(),
+            transforms: transforms.buffer(),
+            uniforms: uniforms.buffer(),
+            counter: counter.as_ref(),
+        };
+        let prepass_bind_group = frame_bind_group(
+            gpu,
+            &format!("{} prepass", M::NAME),
+            &frame_layout,
+            &bindings,
+            depth.dummy,
         );
+        let frame_bind_group =
+            frame_bind_group(gpu, M::NAME, &frame_layout, &bindings, depth.opaque);
         Self {
-            pipelines: MaterialPipelines::new(shader, layout, color_format),
+            pipelines: MaterialPipelines::new(shader, layout, color_format, prepass),
             frame_layout,
             transforms,
             uniforms,
+            prepass_bind_group,
             frame_bind_group,
+            bound_target: depth.target_id,
+            counter,
             textures,
             batches: Vec::new(),
             order: Vec::new(),
@@ -221,15 +303,28 @@ impl<M: Material> MaterialBatches<M> {
         let (transform_bytes, transforms_grew) = self.transforms.upload(gpu, &self.transform_data);
         let (uniform_bytes, uniforms_grew) = self.uniforms.upload(gpu, &self.sorted_uniforms);
         stats.uniform_bytes += transform_bytes + uniform_bytes;
-        if transforms_grew || uniforms_grew {
+        if transforms_grew || uniforms_grew || self.bound_target != inputs.depth.target_id {
+            let bindings = FrameBindings {
+                frame: inputs.frame,
+                transforms: self.transforms.buffer(),
+                uniforms: self.uniforms.buffer(),
+                counter: self.counter.as_ref(),
+            };
+            self.prepass_bind_group = frame_bind_group(
+                gpu,
+                &format!("{} prepass", M::NAME),
+                &self.frame_layout,
+                &bindings,
+                inputs.depth.dummy,
+            );
             self.frame_bind_group = frame_bind_group(
                 gpu,
                 M::NAME,
                 &self.frame_layout,
-                inputs.frame,
-                self.transforms.buffer(),
-                self.uniforms.buffer(),
+                &bindings,
+                inputs.depth.opaque,
             );
+            self.bound_target = inputs.depth.target_id;
         }
 
         self.batches.clear();
@@ -258,10 +353,35 @@ impl<M: Material> MaterialBatches<M> {
         }
     }
 
-    /// Records the batches whose mesh is on the GPU, switching pipeline, textures and buffers
-    /// only where they change.
-    pub(crate) fn draw(&self, pass: &mut wgpu::RenderPass<'_>, assets: &GpuAssets) {
-        pass.set_bind_group(0, &self.frame_bind_group, &[]);
+    /// The mesh pass this material draws in during `phase`'s render pass: the prepass, or the
+    /// opaque phase with or without one.
+    pub(crate) fn mesh_pass(&self, prepass_phase: bool) -> MeshPass {
+        if prepass_phase {
+            MeshPass::Prepass
+        } else {
+            // The opaque pass is the last one a draw takes part in.
+            self.pipelines
+                .passes()
+                .last()
+                .copied()
+                .unwrap_or(MeshPass::Opaque)
+        }
+    }
+
+    /// Records the batches whose mesh is on the GPU into `pass` (a [`MeshPass`] this material
+    /// takes part in), switching pipeline, textures and buffers only where they change.
+    pub(crate) fn draw(
+        &self,
+        mesh_pass: MeshPass,
+        pass: &mut wgpu::RenderPass<'_>,
+        assets: &GpuAssets,
+    ) {
+        let frame_bind_group = if mesh_pass == MeshPass::Prepass {
+            &self.prepass_bind_group
+        } else {
+            &self.frame_bind_group
+        };
+        pass.set_bind_group(0, frame_bind_group, &[]);
         let mut bound_key = None;
         let mut bound_textures = None;
         let mut bound_mesh = None;
@@ -269,7 +389,7 @@ impl<M: Material> MaterialBatches<M> {
             let (Some(mesh), Some(textures), Some(pipeline)) = (
                 assets.mesh(batch.mesh),
                 self.textures.get(&batch.textures),
-                self.pipelines.get(&batch.key),
+                self.pipelines.get(mesh_pass, &batch.key),
             ) else {
                 continue;
             };

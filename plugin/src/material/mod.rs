@@ -24,6 +24,7 @@ pub use plugin::{
 };
 
 #[cfg(feature = "dev-tools")]
+pub(crate) use batches::DepthBindings;
 pub(crate) use plugin::MaterialRegistry;
 
 use std::fmt::Debug;
@@ -99,8 +100,20 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn textures(&self) -> MaterialTextures;
     /// The pipeline variant.
     fn key(&self) -> Self::Key;
-    /// The fragment entry point and constants of `key`'s pipeline.
+    /// The fragment entry point and constants of `key`'s pipeline in the opaque phase when
+    /// the frame has no depth prepass (it tests and writes depth itself).
     fn fragment(key: Self::Key) -> FragmentVariant;
+    /// The fragment stage of `key` in the depth prepass: `None` (the default) writes the
+    /// rasterized depth with no fragment shader at all; a material whose fragments move their
+    /// depth (parallax depth offset) names the entry point that writes it.
+    fn prepass_fragment(_key: Self::Key) -> Option<FragmentVariant> {
+        None
+    }
+    /// The fragment stage of `key` in the opaque phase after a depth prepass (depth tested
+    /// `LessEqual`, never written): [`Material::fragment`] by default.
+    fn fragment_after_prepass(key: Self::Key) -> FragmentVariant {
+        Self::fragment(key)
+    }
     /// The uniform, given the textures as the GPU holds them (`None`: the slot's default).
     fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> Self::Uniform;
     /// What is wrong with the parameters, one line each (logged once per change; the uniform

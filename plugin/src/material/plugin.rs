@@ -10,11 +10,12 @@ use std::marker::PhantomData;
 use hecs::{Entity, World};
 
 use super::Material;
-use super::batches::{ExtractedDraw, MaterialBatches, PrepareInputs};
+use super::batches::{DepthBindings, ExtractedDraw, MaterialBatches, PrepareInputs};
 #[cfg(feature = "dev-tools")]
 use crate::render::shaders::ComposedShader;
 use crate::render::{
-    ExtractedFrame, MainPassDraws, MeshLodCache, RenderTarget, Renderer, UploadStats,
+    DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, RenderPhases, RenderTarget,
+    Renderer, UploadStats, depth_bindings,
 };
 use crate::{
     App, AppError, Assets, BoxedError, GlobalTransform, GpuContext, Handle, Image, Mesh, Plugin,
@@ -189,9 +190,13 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
         });
         app.add_system(Stage::Extract, extract_materials::<M>)
             .add_system(Stage::Prepare, prepare_materials::<M>);
-        app.resources
-            .get_or_default::<MainPassDraws>()
-            .add::<M>(draw_materials::<M>);
+        let phases = app.resources.get_or_default::<RenderPhases>();
+        phases.add_draw::<M>(DrawPhase::Prepass, |resources, pass| {
+            draw_materials::<M>(resources, pass, true);
+        });
+        phases.add_draw::<M>(DrawPhase::Opaque, |resources, pass| {
+            draw_materials::<M>(resources, pass, false);
+        });
     }
 
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
@@ -212,7 +217,18 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
         ) else {
             return Err(MissingRenderPlugin.into());
         };
-        let batches = MaterialBatches::<M>::new(gpu, &renderer.frame, target.format());
+        let counter = app
+            .resources
+            .get::<FragmentInvocationCounter>()
+            .map(|counter| counter.buffer().clone());
+        let batches = MaterialBatches::<M>::new(
+            gpu,
+            &renderer.frame,
+            target.scene_format(),
+            renderer.depth_prepass,
+            &renderer.depth_bindings(target),
+            counter,
+        );
         app.insert_resource(batches);
         Ok(())
     }
@@ -331,9 +347,16 @@ fn prepare_materials<M: Material>(
                         .scope(|resources, lod_cache: &mut MeshLodCache| {
                             let extracted = resources.require::<ExtractedMaterials<M>>()?;
                             let frame = resources.require::<ExtractedFrame>()?;
+                            let target = resources.require::<RenderTarget>()?;
+                            let depth: DepthBindings<'_> = depth_bindings(
+                                renderer.depth_prepass,
+                                &renderer.dummy_depth,
+                                target,
+                            );
                             let inputs = PrepareInputs {
                                 gpu: resources.require::<GpuContext>()?,
                                 frame: &renderer.frame,
+                                depth: &depth,
                                 meshes: resources.require::<Assets<Mesh>>()?,
                                 images: resources.require::<Assets<Image>>()?,
                                 footprint: frame.footprint.as_ref(),
@@ -359,13 +382,17 @@ fn prepare_materials<M: Material>(
         .unwrap_or_else(|| Err(AppError::missing::<MaterialBatches<M>>()))
 }
 
-/// Material `M`'s draws in the main pass (registered in [`MainPassDraws`]).
-fn draw_materials<M: Material>(resources: &Resources, pass: &mut wgpu::RenderPass<'_>) {
+/// Material `M`'s draws in the prepass or the opaque phase (registered in [`RenderPhases`]).
+fn draw_materials<M: Material>(
+    resources: &Resources,
+    pass: &mut wgpu::RenderPass<'_>,
+    prepass_phase: bool,
+) {
     if let (Some(batches), Some(renderer)) = (
         resources.get::<MaterialBatches<M>>(),
         resources.get::<Renderer>(),
     ) {
-        batches.draw(pass, &renderer.assets);
+        batches.draw(batches.mesh_pass(prepass_phase), pass, &renderer.assets);
     }
 }
 
@@ -391,7 +418,9 @@ mod tests {
             .add_plugin(PomPlugin)
             .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
         // The lit material (brought by PomPlugin) and the parallax material.
-        assert_eq!(app.resources.get::<MainPassDraws>().unwrap().len(), 2);
+        let phases = app.resources.get::<RenderPhases>().unwrap();
+        assert_eq!(phases.draw_count(DrawPhase::Opaque), 2);
+        assert_eq!(phases.draw_count(DrawPhase::Prepass), 2);
         assert_eq!(
             app.resources
                 .get::<MaterialRegistry>()

@@ -43,6 +43,8 @@ pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
         shaders::FRAME,
         shaders::PARAMS,
         shaders::MESH_VERTEX,
+        shaders::PREPASS_DEPTH,
+        shaders::FRAGMENT_COUNTER,
         shaders::TANGENT_SPACE,
         shaders::LIGHTING,
         PARALLAX_MARCH,
@@ -90,6 +92,14 @@ impl Material for ParallaxOcclusionMaterial {
 
     fn fragment(key: PomPipelineKey) -> FragmentVariant {
         key.fragment()
+    }
+
+    fn prepass_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
+        key.prepass_fragment()
+    }
+
+    fn fragment_after_prepass(key: PomPipelineKey) -> FragmentVariant {
+        key.fragment_after_prepass()
     }
 
     fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {

@@ -45,14 +45,34 @@ impl PomPipelineKey {
         }
     }
 
-    /// The fragment entry point and constants of this pipeline.
+    /// The fragment entry point and constants of this pipeline in a frame without prepass.
     pub fn fragment(self) -> FragmentVariant {
+        self.variant(if self.depth_offset {
+            "fs_main_depth_offset"
+        } else {
+            "fs_main"
+        })
+    }
+
+    /// The prepass's fragment stage: only a depth-offset material needs one (it writes the
+    /// displaced depth); the others write the rasterized depth without a fragment shader.
+    pub fn prepass_fragment(self) -> Option<FragmentVariant> {
+        self.depth_offset
+            .then(|| self.variant("fs_prepass_depth_offset"))
+    }
+
+    /// The opaque phase's fragment stage after a prepass.
+    pub fn fragment_after_prepass(self) -> FragmentVariant {
+        self.variant(if self.depth_offset {
+            "fs_main_after_depth_prepass"
+        } else {
+            "fs_main"
+        })
+    }
+
+    fn variant(self, entry_point: &'static str) -> FragmentVariant {
         FragmentVariant {
-            entry_point: if self.depth_offset {
-                "fs_main_depth_offset"
-            } else {
-                "fs_main"
-            },
+            entry_point,
             constants: vec![
                 ("METHOD", f64::from(self.method.code())),
                 ("SHADOW_MODE", f64::from(self.shadows.code())),

@@ -29,10 +29,23 @@ struct PomUniform {
 @group(1) @binding(2) var height_texture: texture_2d<f32>;
 @group(1) @binding(3) var material_sampler: sampler;
 
-struct Shaded {
-    color: vec4<f32>,
-    // Depth of the displaced point in clip space (0..1).
-    depth: f32,
+// Where the view ray meets the height field, with what shading and depth need of the surface.
+struct SurfacePoint {
+    surface_frame: TangentFrame,
+    to_eye: vec3<f32>,
+    ddx_uv: vec2<f32>,
+    ddy_uv: vec2<f32>,
+    mip: f32,
+    // Texture units per world unit (Luna §3).
+    uv_per_world: f32,
+    height_scale: f32,
+    field: HeightField,
+    // 1 past the LOD threshold, 0 before its band.
+    fade: f32,
+    marched: bool,
+    uv: vec2<f32>,
+    height: f32,
+    samples: u32,
 }
 
 // Black → red → yellow → white as `t` goes 0 → 1.
@@ -41,50 +54,76 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3<f32>(x, x - 1.0, x - 2.0), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
-fn shade(in: VertexOut) -> Shaded {
+// The march: the same code for the prepass, which only needs the depth, and the shading.
+fn find_surface(in: VertexOut) -> SurfacePoint {
     let material = materials[in.object_index];
     let params = material.params;
-    let surface_frame = tangent_frame(in.world_normal, in.world_tangent);
-    let to_eye = direction_to_eye(in.world_position, surface_frame.normal);
-    let to_eye_ts = to_tangent_space(surface_frame, to_eye);
+    var point: SurfacePoint;
+    point.surface_frame = tangent_frame(in.world_normal, in.world_tangent);
+    point.to_eye = direction_to_eye(in.world_position, point.surface_frame.normal);
+    let to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
 
     // Everything derived from screen-space derivatives happens here, once, before any branch.
-    let ddx_uv = dpdx(in.uv);
-    let ddy_uv = dpdy(in.uv);
+    point.ddx_uv = dpdx(in.uv);
+    point.ddy_uv = dpdy(in.uv);
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
-    let mip = mip_level(ddx_uv * texture_size, ddy_uv * texture_size);
+    point.mip = mip_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size);
     // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces.
     let world_area = length(cross(dpdx(in.world_position), dpdy(in.world_position)));
-    let uv_area = abs(ddx_uv.x * ddy_uv.y - ddx_uv.y * ddy_uv.x);
-    let uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
+    let uv_area = abs(point.ddx_uv.x * point.ddy_uv.y - point.ddx_uv.y * point.ddy_uv.x);
+    point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
-    let height_scale = select(scale, scale * uv_per_world, params.height_units == UNITS_WORLD);
+    point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 
-    let field = HeightField(material.height_channel, u32(params.height_convention == CONVENTION_DEPTH), ddx_uv, ddy_uv);
+    point.field = HeightField(material.height_channel, u32(params.height_convention == CONVENTION_DEPTH), point.ddx_uv, point.ddy_uv);
     let method = METHOD;
-    let min_samples = params.min_samples;
-    let max_samples = params.max_samples;
-    let fade = lod_fade(mip, params.lod_threshold, params.lod_band);
+    point.fade = lod_fade(point.mip, params.lod_threshold, params.lod_band);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
-    let march = fade < 1.0 && method != METHOD_NORMAL_MAPPING && height_scale > 0.0;
+    point.marched = point.fade < 1.0 && method != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;
 
-    var uv = in.uv;
-    var height = 1.0;
-    var samples = 0u;
-    if march {
-        let offset = -ray_offset(to_eye_ts, height_scale);
-        let texels = length(offset * texture_size) / exp2(mip);
-        let steps = march_steps(min_samples, max_samples, dot(surface_frame.normal, to_eye), texels);
-        let hit = march_view(height_texture, material_sampler, field, method, in.uv, offset, to_eye_ts,
-            height_scale, steps, params.relief_binary_steps);
+    point.uv = in.uv;
+    point.height = 1.0;
+    point.samples = 0u;
+    if point.marched {
+        let offset = -ray_offset(to_eye_ts, point.height_scale);
+        let texels = length(offset * texture_size) / exp2(point.mip);
+        let steps = march_steps(params.min_samples, params.max_samples, dot(point.surface_frame.normal, point.to_eye), texels);
+        let hit = march_view(height_texture, material_sampler, point.field, method, in.uv, offset, to_eye_ts,
+            point.height_scale, steps, params.relief_binary_steps);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
-        uv = mix(hit.uv, in.uv, fade);
-        height = mix(hit.height, 1.0, fade);
-        samples = hit.samples;
+        point.uv = mix(hit.uv, in.uv, point.fade);
+        point.height = mix(hit.height, 1.0, point.fade);
+        point.samples = hit.samples;
     }
+    return point;
+}
 
-    let base = textureSampleGrad(base_color_texture, material_sampler, uv, ddx_uv, ddy_uv) * rgba(params.base_color);
-    let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, ddx_uv, ddy_uv).xyz;
+// The depth (clip space, 0..1) of the visible point: it lies (1 − height) × H below the polygon,
+// offset sideways by the change of texture coordinate.
+fn displaced_depth(in: VertexOut, point: SurfacePoint) -> f32 {
+    let frame_ts = point.surface_frame;
+    let du = (point.uv - in.uv) / max(point.uv_per_world, 1e-30);
+    let depth_below = (1.0 - point.height) * point.height_scale / max(point.uv_per_world, 1e-30);
+    let displaced = in.world_position + frame_ts.tangent * du.x + frame_ts.bitangent_v * du.y
+        - frame_ts.normal * depth_below;
+    let clip = frame.view_projection * vec4<f32>(select(in.world_position, displaced, point.uv_per_world > 0.0), 1.0);
+    // Never in front of the polygon: the relief lies below it. Where the march found the top
+    // (or did not run) the point is the polygon's own, and projecting the interpolated world
+    // position can come out a rounding error nearer than the rasterized depth; the opaque
+    // phase's early test (rasterized depth ≤ prepass depth) would then drop the pixel.
+    return max(clamp(clip.z / max(clip.w, 1e-30), 0.0, 1.0), in.clip_position.z);
+}
+
+fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
+    let material = materials[in.object_index];
+    let params = material.params;
+    let surface_frame = point.surface_frame;
+    let uv = point.uv;
+    let fade = point.fade;
+    let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
+
+    let base = textureSampleGrad(base_color_texture, material_sampler, uv, point.ddx_uv, point.ddy_uv) * rgba(params.base_color);
+    let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, point.ddx_uv, point.ddy_uv).xyz;
     let normal = perturbed_normal(surface_frame, encoded_normal, params.normal_strength);
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,
         params.metallic, LIGHTING_MODEL);
@@ -95,64 +134,60 @@ fn shade(in: VertexOut) -> Shaded {
         let light = light_at(i, in.world_position);
         var visibility = 1.0;
         // Shadow rays only where the light faces the polygon (T §5.4.2) and the march ran.
-        if march && SHADOW_MODE != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
+        if point.marched && SHADOW_MODE != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
             let to_light_ts = to_tangent_space(surface_frame, light.to_light);
-            let light_offset = ray_offset(to_light_ts, height_scale);
+            let light_offset = ray_offset(to_light_ts, point.height_scale);
             if SHADOW_MODE == SHADOWS_SOFT {
-                visibility = soft_shadow(height_texture, material_sampler, field, uv, light_offset, params.shadow_softening);
+                visibility = soft_shadow(height_texture, material_sampler, point.field, uv, light_offset, params.shadow_softening);
             } else {
-                let texels_per_rise = length(light_offset * texture_size) / exp2(mip);
-                visibility = hard_shadow(height_texture, material_sampler, field, uv, light_offset,
-                    min_samples, max_samples, dot(surface_frame.normal, light.to_light), texels_per_rise);
+                let texels_per_rise = length(light_offset * texture_size) / exp2(point.mip);
+                visibility = hard_shadow(height_texture, material_sampler, point.field, uv, light_offset,
+                    params.min_samples, params.max_samples, dot(surface_frame.normal, light.to_light), texels_per_rise);
             }
             visibility = mix(visibility, 1.0, fade);
         }
         if i == 0u {
             first_visibility = visibility;
         }
-        color += light.radiance * visibility * direct_lighting(surface, normal, light.to_light, to_eye);
+        color += light.radiance * visibility * direct_lighting(surface, normal, light.to_light, point.to_eye);
     }
 
-    var out = vec4<f32>(color, base.a);
+    // Data views carry DEBUG_VIEW_ALPHA: post-processing writes them as they are.
     switch DEBUG_VIEW {
         case DEBUG_LOD: {
             // T's tint: blue grows through the band; deepest blue where only normal mapping runs.
             let tint = select(max(1.0, 2.0 * fade), 3.0, fade >= 1.0);
-            out = vec4<f32>(color * vec3<f32>(1.0, 1.0, tint), base.a);
+            return vec4<f32>(color * vec3<f32>(1.0, 1.0, tint), base.a);
         }
         case DEBUG_MIP: {
-            out = vec4<f32>(vec3<f32>(mip / max(material.height_mip_levels - 1.0, 1.0)), 1.0);
+            return vec4<f32>(vec3<f32>(point.mip / max(material.height_mip_levels - 1.0, 1.0)), DEBUG_VIEW_ALPHA);
         }
         case DEBUG_SAMPLES: {
-            out = vec4<f32>(heat(f32(samples) / max(f32(max_samples), 1.0)), 1.0);
+            return vec4<f32>(heat(f32(point.samples) / max(f32(params.max_samples), 1.0)), DEBUG_VIEW_ALPHA);
         }
         case DEBUG_UV: {
-            let region = select(select(0.5, 1.0, fade <= 0.0), 0.0, !march);
-            out = vec4<f32>(fract(uv), region, 1.0);
+            let region = select(select(0.5, 1.0, fade <= 0.0), 0.0, !point.marched);
+            return vec4<f32>(fract(uv), region, DEBUG_VIEW_ALPHA);
         }
         case DEBUG_SHADOW: {
-            out = vec4<f32>(vec3<f32>(first_visibility), 1.0);
+            return vec4<f32>(vec3<f32>(first_visibility), DEBUG_VIEW_ALPHA);
         }
         case DEBUG_NORMAL: {
-            out = vec4<f32>(to_tangent_space(surface_frame, normal) * 0.5 + 0.5, 1.0);
+            return vec4<f32>(to_tangent_space(surface_frame, normal) * 0.5 + 0.5, DEBUG_VIEW_ALPHA);
         }
-        default: {}
+        default: {
+            return vec4<f32>(color, base.a);
+        }
     }
-
-    // The visible point lies (1 − height) × H below the polygon and offset sideways by the
-    // change of texture coordinate: place it in the world and project it.
-    let du = (uv - in.uv) / max(uv_per_world, 1e-30);
-    let depth_below = (1.0 - height) * height_scale / max(uv_per_world, 1e-30);
-    let displaced = in.world_position + surface_frame.tangent * du.x + surface_frame.bitangent_v * du.y
-        - surface_frame.normal * depth_below;
-    let clip = frame.view_projection * vec4<f32>(select(in.world_position, displaced, uv_per_world > 0.0), 1.0);
-    let depth = clamp(clip.z / max(clip.w, 1e-30), 0.0, 1.0);
-    return Shaded(out, depth);
 }
 
-@fragment
+// Without depth offset, in both the opaque phase and a frame without prepass. The early test is
+// forced: the shader writes no depth and never discards, so this is what drivers do anyway,
+// and it stays so when a test counts invocations (an atomic is a side effect).
+@fragment @early_depth_test(force)
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    return shade(in).color;
+    count_fragment_invocation();
+    return shade(in, find_surface(in));
 }
 
 struct ColorAndDepth {
@@ -160,10 +195,34 @@ struct ColorAndDepth {
     @builtin(frag_depth) depth: f32,
 }
 
-// For `depth_offset`: the depth buffer gets the displaced point, so other geometry meets the
-// relief where it really is.
+// `depth_offset` without a prepass: the depth buffer gets the displaced point, so other geometry
+// meets the relief where it really is.
 @fragment
 fn fs_main_depth_offset(in: VertexOut) -> ColorAndDepth {
-    let shaded = shade(in);
-    return ColorAndDepth(shaded.color, shaded.depth);
+    count_fragment_invocation();
+    let point = find_surface(in);
+    return ColorAndDepth(shade(in, point), displaced_depth(in, point));
+}
+
+// `depth_offset` in the prepass: only the march and the depth.
+@fragment
+fn fs_prepass_depth_offset(in: VertexOut) -> @builtin(frag_depth) f32 {
+    return displaced_depth(in, find_surface(in));
+}
+
+// `depth_offset` in the opaque phase after the prepass. The hardware test (rasterized depth
+// ≤ prepass depth, forced early) drops fragments hidden behind nearer geometry before they
+// march; the point then recomputes its displaced depth with the same code as the prepass and
+// shades only where that is the depth the prepass kept (bit for bit: see the closing note
+// of issue 16 and tests/tests/render_phases.rs).
+@fragment @early_depth_test(force)
+fn fs_main_after_depth_prepass(in: VertexOut) -> @location(0) vec4<f32> {
+    count_fragment_invocation();
+    let point = find_surface(in);
+    let depth = displaced_depth(in, point);
+    let kept = textureLoad(prepass_depth, vec2<i32>(in.clip_position.xy), 0);
+    if depth > kept {
+        discard;
+    }
+    return shade(in, point);
 }

@@ -9,8 +9,8 @@ use super::gpu_types::{
 use super::lowest_mip::PixelFootprint;
 use super::target::RenderTarget;
 use crate::{
-    AmbientLight, AppError, Color, DirectionalLight, GlobalTransform, PointLight, Projection,
-    Resources, active_camera,
+    AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform, PointLight,
+    Projection, Resources, Tonemapping, active_camera,
 };
 
 /// Everything the Prepare and Render stages read about the current frame.
@@ -24,6 +24,26 @@ pub struct ExtractedFrame {
     pub has_camera: bool,
     /// How large the active camera's pixels are in the world (for per-object LOD).
     pub footprint: Option<PixelFootprint>,
+    /// The active camera's exposure (the default without a camera or component).
+    pub exposure: Exposure,
+    /// The active camera's tonemapping operator.
+    pub tonemapping: Tonemapping,
+}
+
+/// The [`Exposure`] and [`Tonemapping`] components of the active camera's entity, or their
+/// defaults.
+fn camera_display_mapping(world: &World) -> (Exposure, Tonemapping) {
+    world
+        .query::<(&Camera, Option<&Exposure>, Option<&Tonemapping>)>()
+        .iter()
+        .find(|(camera, _, _)| camera.active)
+        .map(|(_, exposure, tonemapping)| {
+            (
+                exposure.copied().unwrap_or_default(),
+                tonemapping.copied().unwrap_or_default(),
+            )
+        })
+        .unwrap_or_default()
 }
 
 fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
@@ -115,9 +135,12 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     }
     frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
 
+    let (exposure, tonemapping) = camera_display_mapping(world);
     resources.insert(ExtractedFrame {
         frame,
         clear_color,
+        exposure,
+        tonemapping,
         has_camera: camera.is_some(),
         footprint: camera
             .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target_size)),

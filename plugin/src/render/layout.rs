@@ -37,17 +37,40 @@ pub(crate) fn material_sampler(device: &wgpu::Device, label: &str) -> wgpu::Samp
     })
 }
 
-/// The render pipeline every mesh material uses in the main pass: interleaved [`super::Vertex`]
-/// input (`vs_main`), back-face culling, depth test and write, one colour target; the variant
-/// names the fragment entry point and its pipeline-overridable constants.
+/// Which pass a mesh pipeline draws in, which sets its depth state and colour target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub(crate) enum MeshPass {
+    /// The depth prepass: depth tested `Less` and written, no colour.
+    Prepass,
+    /// The opaque phase after a prepass: depth tested `LessEqual` against it, never written.
+    OpaqueAfterPrepass,
+    /// The opaque phase of a frame without prepass: depth tested `Less` and written.
+    Opaque,
+}
+
+/// The render pipeline every mesh material uses: interleaved [`super::Vertex`] input
+/// (`vs_main`), back-face culling, the depth state of `pass`, one colour target of
+/// `color_format` (none in the prepass); `fragment` names the entry point and its
+/// pipeline-overridable constants (`None`: no fragment stage, prepass only).
 pub(crate) fn mesh_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::PipelineLayout,
     shader: &wgpu::ShaderModule,
-    fragment: &crate::material::FragmentVariant,
+    pass: MeshPass,
+    fragment: Option<&crate::material::FragmentVariant>,
     color_format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
+    let (depth_write, depth_compare) = match pass {
+        MeshPass::Prepass | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
+        MeshPass::OpaqueAfterPrepass => (false, wgpu::CompareFunction::LessEqual),
+    };
+    let color_targets = [Some(color_format.into())];
+    let targets: &[Option<wgpu::ColorTargetState>] = if pass == MeshPass::Prepass {
+        &[]
+    } else {
+        &color_targets
+    };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: Some(layout),
@@ -63,20 +86,20 @@ pub(crate) fn mesh_pipeline(
         },
         depth_stencil: Some(wgpu::DepthStencilState {
             format: super::target::DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_write_enabled: Some(depth_write),
+            depth_compare: Some(depth_compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),
         multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
+        fragment: fragment.map(|fragment| wgpu::FragmentState {
             module: shader,
             entry_point: Some(fragment.entry_point),
             compilation_options: wgpu::PipelineCompilationOptions {
                 constants: &fragment.constants,
                 ..Default::default()
             },
-            targets: &[Some(color_format.into())],
+            targets,
         }),
         multiview_mask: None,
         cache: None,

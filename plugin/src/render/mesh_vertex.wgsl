@@ -21,7 +21,9 @@ struct VertexIn {
 }
 
 struct VertexOut {
-    @builtin(position) clip_position: vec4<f32>,
+    // Invariant: the prepass and the opaque phase compile this vertex stage into different
+    // pipelines, and their depths must agree bit for bit.
+    @builtin(position) @invariant clip_position: vec4<f32>,
     @location(0) world_position: vec3<f32>,
     @location(1) world_normal: vec3<f32>,
     @location(2) uv: vec2<f32>,

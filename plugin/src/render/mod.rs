@@ -1,9 +1,11 @@
 //! The renderer: GPU context, offscreen target, extract / prepare / render systems, capture.
+//! A frame runs the [`RenderPhase`]s in their documented order (see `phases.rs`).
 
 mod capture;
 mod context;
 mod draw_view;
 mod extract;
+mod fragment_counter;
 mod frame_uniform;
 mod gpu_assets;
 mod gpu_timing;
@@ -11,6 +13,8 @@ mod gpu_types;
 pub(crate) mod layout;
 mod lowest_mip;
 pub(crate) mod object_buffer;
+mod phases;
+mod post_process;
 pub mod shaders;
 mod target;
 #[cfg(feature = "dev-tools")]
@@ -22,6 +26,7 @@ pub use capture::{CaptureError, read_rgba8, read_texture};
 pub use context::{GpuContext, GpuError};
 pub use draw_view::DrawView;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
+pub use fragment_counter::FragmentInvocationCounter;
 pub(crate) use frame_uniform::FrameUniformBuffer;
 pub(crate) use gpu_assets::GpuAssets;
 pub use gpu_assets::{DefaultTexture, UploadStats};
@@ -31,11 +36,12 @@ pub(crate) use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
+pub use phases::{DrawPhase, PhaseDraw, PhaseWork, RenderPhase, RenderPhases};
+pub(crate) use post_process::POST_SHADERS;
+pub use post_process::{PostProcess, PostSettings};
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
-
-use std::any::TypeId;
 
 use image::{Rgba32FImage, RgbaImage};
 
@@ -75,6 +81,23 @@ pub struct RenderPlugin {
     pub format: TargetFormat,
     /// GPU pass timing ([`GpuTimings`]), when the adapter supports it; `None` turns it off.
     pub gpu_timing: Option<TimingMode>,
+    /// Whether opaque geometry is drawn into a depth prepass first, so the opaque phase
+    /// shades each pixel once (on by default; off draws and shades in one pass).
+    pub depth_prepass: bool,
+    /// Where post-processing runs.
+    pub post_process: PostProcessPath,
+}
+
+/// Where the post-processing phase runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum PostProcessPath {
+    /// Compute where the adapter can write the display format from compute, else a
+    /// full-screen triangle.
+    #[default]
+    Fastest,
+    /// Always the full-screen triangle (to compare the two, or to work around a driver).
+    Fragment,
 }
 
 impl RenderPlugin {
@@ -85,6 +108,24 @@ impl RenderPlugin {
             height,
             format: TargetFormat::Srgb8,
             gpu_timing: Some(TimingMode::NonBlocking),
+            depth_prepass: true,
+            post_process: PostProcessPath::Fastest,
+        }
+    }
+
+    /// The same plugin with the depth prepass on or off.
+    pub fn with_depth_prepass(self, depth_prepass: bool) -> Self {
+        Self {
+            depth_prepass,
+            ..self
+        }
+    }
+
+    /// The same plugin with post-processing on `path`.
+    pub fn with_post_process(self, post_process: PostProcessPath) -> Self {
+        Self {
+            post_process,
+            ..self
         }
     }
 
@@ -105,15 +146,59 @@ impl Default for RenderPlugin {
     }
 }
 
-/// The renderer's GPU state: uploaded assets and the frame uniform. A resource.
+/// The renderer's GPU state: uploaded assets, the frame uniform, post-processing. A resource.
 #[derive(Debug)]
 pub struct Renderer {
     /// GPU copies of meshes and images.
     pub(crate) assets: GpuAssets,
-    /// Camera and lights, shared by every main-pass pipeline.
+    /// Camera and lights, shared by every material pipeline.
     pub(crate) frame: FrameUniformBuffer,
+    /// Whether frames run the depth prepass.
+    pub(crate) depth_prepass: bool,
+    /// A 1 × 1 depth texture bound where the real one is being written.
+    pub(crate) dummy_depth: wgpu::TextureView,
+    /// Exposure and tonemapping.
+    post: PostProcess,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
+}
+
+impl Renderer {
+    /// Whether frames run the depth prepass.
+    pub fn depth_prepass(&self) -> bool {
+        self.depth_prepass
+    }
+
+    /// Whether post-processing runs as a compute pass (else as a full-screen triangle).
+    pub fn post_process_is_compute(&self) -> bool {
+        self.post.is_compute()
+    }
+
+    /// What materials bind as the prepass depth for `target`.
+    pub(crate) fn depth_bindings<'a>(
+        &'a self,
+        target: &'a RenderTarget,
+    ) -> crate::material::DepthBindings<'a> {
+        depth_bindings(self.depth_prepass, &self.dummy_depth, target)
+    }
+}
+
+/// What materials bind as the prepass depth for `target`: its depth after a prepass, else the
+/// dummy (fields apart, so the renderer's assets stay borrowable).
+pub(crate) fn depth_bindings<'a>(
+    depth_prepass: bool,
+    dummy: &'a wgpu::TextureView,
+    target: &'a RenderTarget,
+) -> crate::material::DepthBindings<'a> {
+    crate::material::DepthBindings {
+        opaque: if depth_prepass {
+            &target.depth_view
+        } else {
+            dummy
+        },
+        dummy,
+        target_id: target.id(),
+    }
 }
 
 impl Renderer {
@@ -137,7 +222,7 @@ impl Plugin for RenderPlugin {
         app.resources.get_or_default::<Assets<Mesh>>();
         app.resources.get_or_default::<Assets<Image>>();
         app.resources.get_or_default::<AmbientLight>();
-        app.resources.get_or_default::<MainPassDraws>();
+        app.resources.get_or_default::<RenderPhases>();
         app.resources.get_or_default::<MeshLodCache>();
         app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
             .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
@@ -154,9 +239,29 @@ impl Plugin for RenderPlugin {
         let gpu = app.resources.require::<GpuContext>()?;
         let target = RenderTarget::new(gpu, self.width, self.height, self.format);
         let frame = FrameUniformBuffer::new(gpu);
+        let dummy_depth = gpu
+            .device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("dummy depth"),
+                size: wgpu::Extent3d::default(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: target::DEPTH_FORMAT,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+            .create_view(&wgpu::TextureViewDescriptor::default());
         let renderer = Renderer {
             assets: GpuAssets::new(gpu),
             frame,
+            depth_prepass: self.depth_prepass,
+            dummy_depth,
+            post: PostProcess::new(
+                gpu,
+                self.format,
+                self.post_process == PostProcessPath::Fragment,
+            ),
             last_upload: UploadStats::default(),
         };
         app.insert_resource(target).insert_resource(renderer);
@@ -175,9 +280,16 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let extracted = resources.require::<ExtractedFrame>()?;
             let meshes = resources.require::<Assets<Mesh>>()?;
             let images = resources.require::<Assets<Image>>()?;
+            let target = resources.require::<RenderTarget>()?;
             renderer.assets.release_freed(meshes, images);
+            let settings = PostSettings::new(
+                extracted.exposure,
+                extracted.tonemapping,
+                target.target_format(),
+            );
             renderer.last_upload = UploadStats {
-                uniform_bytes: renderer.frame.upload(gpu, &extracted.frame),
+                uniform_bytes: renderer.frame.upload(gpu, &extracted.frame)
+                    + renderer.post.upload(gpu, settings),
                 ..UploadStats::default()
             };
             Ok(())
@@ -185,81 +297,153 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
         .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
 }
 
-/// Records draws into the main pass, given the resources and the open pass.
-pub type MainPassDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
-
-/// The draws of the main pass, in the order their plugins were added; one per owner type, so a
-/// plugin added twice draws once. A resource.
-#[derive(Debug, Default)]
-pub struct MainPassDraws(Vec<(TypeId, MainPassDraw)>);
-
-impl MainPassDraws {
-    /// Adds `draw` for `Owner` (a material type, say) unless `Owner` has one already.
-    pub fn add<Owner: 'static>(&mut self, draw: MainPassDraw) {
-        let owner = TypeId::of::<Owner>();
-        if !self.0.iter().any(|(id, _)| *id == owner) {
-            self.0.push((owner, draw));
-        }
-    }
-
-    /// How many draws are registered.
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    /// Whether none is.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-}
-
-/// The Render stage's system: clears the target, records every registered [`MainPassDraw`],
-/// and submits.
+/// The Render stage's system: runs the phases in order (prepass, shadows, opaque,
+/// transparent, post-processing; the overlay belongs to the application) in one submission,
+/// each timed under its name.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    let timestamps = time_pass(resources, "main pass");
+    let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
+    let prepass = resources.require::<Renderer>()?.depth_prepass;
+    let phases = resources.get::<RenderPhases>();
+    let has = |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.draw_count(phase) > 0);
+    let has_work =
+        |phase: RenderPhase| has_camera && phases.is_some_and(|p| p.work(phase).next().is_some());
+    let (run_prepass, run_shadows, run_transparent) = (
+        prepass && has(DrawPhase::Prepass),
+        has_work(RenderPhase::Shadows),
+        has(DrawPhase::Transparent),
+    );
+    // Reserve the timestamps first: the timer is borrowed mutably.
+    let mut time = |run: bool, phase: RenderPhase| {
+        if run {
+            time_pass(resources, phase.name())
+        } else {
+            None
+        }
+    };
+    let prepass_time = time(run_prepass, RenderPhase::Prepass);
+    let opaque_time = time(true, RenderPhase::Opaque);
+    let transparent_time = time(run_transparent, RenderPhase::Transparent);
+    let post_time = time(true, RenderPhase::PostProcess);
+
     let gpu = resources.require::<GpuContext>()?;
     let target = resources.require::<RenderTarget>()?;
     let extracted = resources.require::<ExtractedFrame>()?;
+    let phases = resources.get::<RenderPhases>();
     let mut encoder = gpu
         .device
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("frame encoder"),
         });
+    let draw_phase = |phase: DrawPhase, pass: &mut wgpu::RenderPass<'_>| {
+        if let (true, Some(phases)) = (has_camera, phases) {
+            for draw in phases.draws(phase) {
+                draw(resources, pass);
+            }
+        }
+    };
+    let depth_attachment = |ops: Option<wgpu::Operations<f32>>| {
+        Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &target.depth_view,
+            depth_ops: ops,
+            stencil_ops: None,
+        })
+    };
+    if run_prepass {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("prepass"),
+            color_attachments: &[],
+            depth_stencil_attachment: depth_attachment(Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            })),
+            timestamp_writes: prepass_time.as_ref().map(PassTimestamps::render),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        draw_phase(DrawPhase::Prepass, &mut pass);
+    }
+    if run_shadows && let Some(phases) = phases {
+        for work in phases.work(RenderPhase::Shadows) {
+            work(resources, &mut encoder);
+        }
+    }
     {
         let clear = extracted.clear_color;
+        // The clear colour is shown as set: its negative alpha marks it display-referred
+        // (post_process.wgsl), so neither exposure nor tonemapping changes the background.
+        // After a prepass the depth is read-only: materials test against it, and may sample it.
+        let depth_ops = if run_prepass {
+            None
+        } else {
+            Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: if run_transparent {
+                    wgpu::StoreOp::Store
+                } else {
+                    wgpu::StoreOp::Discard
+                },
+            })
+        };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("main pass"),
+            label: Some("opaque"),
             color_attachments: &[Some(clearing_attachment(
-                &target.color_view,
+                &target.scene_view,
                 wgpu::Color {
                     r: f64::from(clear.r),
                     g: f64::from(clear.g),
                     b: f64::from(clear.b),
-                    a: f64::from(clear.a),
+                    a: -1.0 - f64::from(clear.a.clamp(0.0, 1.0)),
                 },
             ))],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &target.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: timestamps.as_ref().map(PassTimestamps::render),
+            depth_stencil_attachment: depth_attachment(depth_ops),
+            timestamp_writes: opaque_time.as_ref().map(PassTimestamps::render),
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        if extracted.has_camera
-            && let Some(MainPassDraws(draws)) = resources.get::<MainPassDraws>()
-        {
-            for (_, draw) in draws {
-                draw(resources, &mut pass);
-            }
-        }
+        draw_phase(DrawPhase::Opaque, &mut pass);
     }
+    if run_transparent {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("transparent"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target.scene_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: depth_attachment(None),
+            timestamp_writes: transparent_time.as_ref().map(PassTimestamps::render),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        draw_phase(DrawPhase::Transparent, &mut pass);
+    }
+    // Post-processing borrows the renderer mutably (its bind group follows the target).
     gpu.queue.submit([encoder.finish()]);
-    Ok(())
+    resources
+        .scope(|resources, renderer: &mut Renderer| {
+            let gpu = resources.require::<GpuContext>()?;
+            let target = resources.require::<RenderTarget>()?;
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("post-process encoder"),
+                });
+            renderer
+                .post
+                .record(gpu, target, &mut encoder, post_time.as_ref());
+            if let Some(phases) = resources.get::<RenderPhases>() {
+                for work in phases.work(RenderPhase::PostProcess) {
+                    work(resources, &mut encoder);
+                }
+            }
+            gpu.queue.submit([encoder.finish()]);
+            Ok(())
+        })
+        .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
 }
 
 /// Reads the last rendered frame back as sRGB-encoded RGBA8 pixels.
@@ -284,7 +468,8 @@ pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
     Ok(read_rgba8(gpu, &target.color)?)
 }
 
-/// Reads the last rendered frame of a [`TargetFormat::Float32`] target back as raw floats.
+/// Reads the last rendered frame of a [`TargetFormat::Float32`] target back as floats: linear
+/// display values after exposure and tonemapping (debug views' data as the shader wrote it).
 pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
     let (Some(gpu), Some(target)) = (
         app.resources.get::<GpuContext>(),
@@ -293,4 +478,16 @@ pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
         return Err(RenderError::NotRendered);
     };
     Ok(read_rgba32f(gpu, &target.color)?)
+}
+
+/// Reads the HDR scene of the last frame of a [`TargetFormat::Float32`] target back: the light
+/// the materials computed, before exposure and tonemapping.
+pub fn capture_scene(app: &App) -> Result<Rgba32FImage, RenderError> {
+    let (Some(gpu), Some(target)) = (
+        app.resources.get::<GpuContext>(),
+        app.resources.get::<RenderTarget>(),
+    ) else {
+        return Err(RenderError::NotRendered);
+    };
+    Ok(read_rgba32f(gpu, &target.scene)?)
 }

@@ -36,6 +36,13 @@ pub const LIGHTING: WgslFile = wgsl_file!("render/lighting.wgsl");
 pub const PARAMS: WgslFile = wgsl_file!("render/params.wgsl");
 /// Vertex input/output, the per-draw transforms and the shared vertex stage `vs_main`.
 pub const MESH_VERTEX: WgslFile = wgsl_file!("render/mesh_vertex.wgsl");
+/// The depth prepass's result, bound for materials that test a depth of their own against it.
+pub const PREPASS_DEPTH: WgslFile = wgsl_file!("render/prepass_depth.wgsl");
+/// `count_fragment_invocation()`: does nothing, unless a [`super::FragmentInvocationCounter`]
+/// swaps in [`FRAGMENT_COUNTER_COUNTING`].
+pub const FRAGMENT_COUNTER: WgslFile = wgsl_file!("render/fragment_counter.wgsl");
+/// `count_fragment_invocation()` that counts, into group 0, binding 4.
+pub const FRAGMENT_COUNTER_COUNTING: WgslFile = wgsl_file!("render/fragment_counter_counting.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
 
@@ -69,8 +76,23 @@ impl ComposedShader {
     /// The concatenated source: the generated constants, then each file introduced by a
     /// comment naming it.
     pub fn source(&self) -> String {
+        self.source_with(|file| file)
+    }
+
+    /// The source with [`FRAGMENT_COUNTER`] replaced by [`FRAGMENT_COUNTER_COUNTING`].
+    pub fn counting_source(&self) -> String {
+        self.source_with(|file| {
+            if file == FRAGMENT_COUNTER {
+                FRAGMENT_COUNTER_COUNTING
+            } else {
+                file
+            }
+        })
+    }
+
+    fn source_with(&self, substitute: impl Fn(WgslFile) -> WgslFile) -> String {
         let mut source = self.generated();
-        for file in self.files {
+        for file in self.files.iter().map(|file| substitute(*file)) {
             source.push_str("// ---- ");
             source.push_str(file.path);
             source.push_str(" ----\n");
@@ -82,12 +104,36 @@ impl ComposedShader {
 
     /// Compiles the composed source on `device`, labelled with the shader's name.
     pub fn create_module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
-        device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(self.name),
-            source: wgpu::ShaderSource::Wgsl(self.source().into()),
-        })
+        create_module(device, self.name, self.source())
     }
 }
+
+/// Compiles `source` on `device`. Without `SHADER_EARLY_DEPTH_TEST` (adapters other than
+/// Vulkan and GLES) the `@early_depth_test(force)` attributes are dropped: they only ask for what
+/// drivers do anyway for shaders that neither write depth nor have side effects.
+pub(crate) fn create_module(
+    device: &wgpu::Device,
+    name: &str,
+    source: String,
+) -> wgpu::ShaderModule {
+    let source = if device
+        .features()
+        .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
+    {
+        source
+    } else {
+        source.replace(EARLY_DEPTH_TEST_FORCE, "")
+    };
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(name),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}
+
+/// The attribute that forces depth testing before a fragment shader runs.
+pub(crate) const EARLY_DEPTH_TEST_FORCE: &str = "@early_depth_test(force)";
+
+impl ComposedShader {}
 
 /// Normals of dynamic height fields, derived on the GPU.
 pub const SOBEL: ComposedShader = ComposedShader {

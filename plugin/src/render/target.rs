@@ -1,4 +1,7 @@
-//! The offscreen colour and depth textures a frame is drawn into.
+//! The offscreen textures a frame is drawn into: the HDR scene colour and depth the material
+//! phases draw into, and the display colour post-processing writes.
+
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::GpuContext;
 
@@ -6,26 +9,34 @@ use super::GpuContext;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum TargetFormat {
-    /// 8-bit sRGB: display-ready pixels, what screenshots and reference images use.
+    /// 8-bit sRGB-encoded display pixels (scene in `Rgba16Float`): what screenshots and
+    /// reference images use.
     #[default]
     Srgb8,
-    /// 32-bit float per channel, no sRGB curve: raw shader output for measurements (debug views,
-    /// NaN checks). Read it back with [`crate::render::capture_f32`].
+    /// 32-bit float per channel, no sRGB curve (scene in `Rgba32Float` too): linear display
+    /// values and exact debug-view data for measurements. Read it back with
+    /// [`crate::render::capture_f32`], the scene before exposure with
+    /// [`crate::render::capture_scene`].
     Float32,
 }
 
 impl TargetFormat {
-    /// The wgpu texture format.
+    /// The display texture's format. 8-bit pixels are stored as plain `Unorm` holding
+    /// sRGB-encoded bytes: compute shaders cannot write sRGB formats, so post-processing
+    /// encodes them itself.
     pub fn texture_format(self) -> wgpu::TextureFormat {
         match self {
-            TargetFormat::Srgb8 => wgpu::TextureFormat::Rgba8UnormSrgb,
+            TargetFormat::Srgb8 => wgpu::TextureFormat::Rgba8Unorm,
             TargetFormat::Float32 => wgpu::TextureFormat::Rgba32Float,
         }
     }
 
-    /// The format of [`RenderTarget::display_view`]: the stored bytes without sRGB decoding.
-    pub fn display_view_format(self) -> wgpu::TextureFormat {
-        self.texture_format().remove_srgb_suffix()
+    /// The HDR scene texture's format: what materials draw into.
+    pub fn scene_format(self) -> wgpu::TextureFormat {
+        match self {
+            TargetFormat::Srgb8 => wgpu::TextureFormat::Rgba16Float,
+            TargetFormat::Float32 => wgpu::TextureFormat::Rgba32Float,
+        }
     }
 }
 /// A colour attachment that clears `view` to `clear` and stores what the pass draws.
@@ -47,20 +58,29 @@ pub fn clearing_attachment(
 /// The depth buffer format.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// An offscreen colour + depth target of a fixed size; a resource of the render plugin.
+/// Gives every target its own id, so passes can tell when a bind group is for another one.
+static NEXT_TARGET_ID: AtomicU64 = AtomicU64::new(1);
+
+/// An offscreen target of a fixed size: HDR scene colour, depth, and the display colour.
+/// A resource of the render plugin.
 #[derive(Debug)]
 pub struct RenderTarget {
-    /// The colour texture (render attachment, copy source, sampleable).
+    /// The display texture post-processing writes (copy source, sampleable).
     pub color: wgpu::Texture,
     /// A view of [`RenderTarget::color`].
     pub color_view: wgpu::TextureView,
-    /// A view of [`RenderTarget::color`] that reads the stored sRGB bytes as plain `Unorm`
-    /// (no decoding), for UIs that sample gamma-encoded textures, such as egui.
+    /// The same view: the display texture holds gamma-encoded bytes as plain `Unorm`, what
+    /// UIs that sample such textures (egui) expect.
     pub display_view: wgpu::TextureView,
-    /// The depth texture.
+    /// The HDR scene texture the material phases draw into.
+    pub scene: wgpu::Texture,
+    /// A view of [`RenderTarget::scene`].
+    pub scene_view: wgpu::TextureView,
+    /// The depth texture (the prepass writes it, the opaque phase reads it).
     pub depth: wgpu::Texture,
     /// A view of [`RenderTarget::depth`].
     pub depth_view: wgpu::TextureView,
+    id: u64,
 }
 
 impl RenderTarget {
@@ -79,52 +99,84 @@ impl RenderTarget {
                 size.height
             );
         }
-        // Listed only when it differs: a float target needs no second view format.
-        let display_formats: Vec<wgpu::TextureFormat> = Some(format.display_view_format())
-            .filter(|display| *display != format.texture_format())
-            .into_iter()
-            .collect();
-        let color = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("render target colour"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: format.texture_format(),
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+        let texture = |label, format, usage| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let display = format.texture_format();
+        // Post-processing writes it from compute where the adapter allows, else as an attachment.
+        let storage = if gpu
+            .adapter
+            .get_texture_format_features(display)
+            .allowed_usages
+            .contains(wgpu::TextureUsages::STORAGE_BINDING)
+        {
+            wgpu::TextureUsages::STORAGE_BINDING
+        } else {
+            wgpu::TextureUsages::empty()
+        };
+        let color = texture(
+            "render target display colour",
+            display,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | storage,
+        );
+        let scene = texture(
+            "render target scene colour",
+            format.scene_format(),
+            wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &display_formats,
-        });
-        let depth = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("render target depth"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        });
-        let color_view = color.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("render target colour view"),
-            ..Default::default()
-        });
-        let display_view = color.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("render target display view"),
-            format: Some(format.display_view_format()),
-            ..Default::default()
-        });
-        let depth_view = depth.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("render target depth view"),
-            ..Default::default()
-        });
+        );
+        let depth = texture(
+            "render target depth",
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let view = |texture: &wgpu::Texture, label| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                label: Some(label),
+                ..Default::default()
+            })
+        };
         Self {
+            color_view: view(&color, "render target display view"),
+            display_view: view(&color, "render target display view (UI)"),
+            scene_view: view(&scene, "render target scene view"),
+            depth_view: view(&depth, "render target depth view"),
             color,
-            color_view,
-            display_view,
+            scene,
             depth,
-            depth_view,
+            id: NEXT_TARGET_ID.fetch_add(1, Ordering::Relaxed),
+        }
+    }
+
+    /// An id no other target of this process has: passes keep bind groups per target id.
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// The HDR scene texture's format.
+    pub fn scene_format(&self) -> wgpu::TextureFormat {
+        self.scene.format()
+    }
+
+    /// What the display texture stores.
+    pub fn target_format(&self) -> TargetFormat {
+        if self.color.format() == TargetFormat::Float32.texture_format() {
+            TargetFormat::Float32
+        } else {
+            TargetFormat::Srgb8
         }
     }
 
@@ -133,7 +185,7 @@ impl RenderTarget {
         (self.color.width(), self.color.height())
     }
 
-    /// The colour texture's format.
+    /// The display texture's format.
     pub fn format(&self) -> wgpu::TextureFormat {
         self.color.format()
     }

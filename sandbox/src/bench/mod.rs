@@ -1,7 +1,8 @@
-//! `sandbox bench`: times the parallax material's main pass with GPU timestamps over standard
-//! scenes (every method × shadow mode, a sample-count sweep, an LOD-threshold sweep, a
-//! far-field scene) and the CPU side of 10,000 parallax entities; prints a table and writes
-//! JSON, CSV and a PNG chart. See sandbox/BENCHMARKS.md.
+//! `sandbox bench`: times the parallax material's phases (depth prepass + opaque) with GPU
+//! timestamps over standard scenes (every method × shadow mode, a sample-count sweep, an
+//! LOD-threshold sweep, a far-field scene, the frame phase by phase, stacked planes for
+//! overdraw) and the CPU side of 10,000 parallax entities; prints a table and writes JSON, CSV
+//! and a PNG chart. See sandbox/BENCHMARKS.md.
 
 mod chart;
 mod cpu_side;
@@ -68,7 +69,16 @@ pub enum Measurement {
     VersusMesh,
     /// Extract, prepare and render times of many entities on the CPU.
     CpuSide,
+    /// The base material's frame phase by phase: prepass, opaque, post-processing.
+    Phases,
+    /// Four planes stacked along the view (drawn back to front) against one.
+    Overdraw,
 }
+
+/// Planes stacked by the overdraw measurement, and how far apart (in plane sizes: several
+/// times any relief's depth, so each plane hides the next).
+const OVERDRAW_PLANES: usize = 4;
+const OVERDRAW_SPACING: f32 = 0.1 * pom::preview::PLANE_SIZE;
 
 /// Options of `sandbox bench`.
 #[derive(Debug, Args)]
@@ -127,6 +137,11 @@ impl Runner<'_> {
         tiling: f32,
         material: ParallaxOcclusionMaterial,
     ) -> Result<f64> {
+        self.case_variant(scene, group, (size, tiling), material, String::new())
+    }
+
+    /// Puts `material`'s settings (keeping the textures) on every parallax entity of `scene`.
+    fn configure(scene: &mut BenchScene, material: &ParallaxOcclusionMaterial) {
         let settings = material.clone();
         scene.configure(move |m| {
             *m = ParallaxOcclusionMaterial {
@@ -136,8 +151,17 @@ impl Runner<'_> {
                 ..settings.clone()
             }
         });
-        let times = scene.time(self.warmup, self.frames)?;
-        let spread = stats::Spread::of(&times).context("no valid timings")?;
+    }
+
+    fn record(
+        &mut self,
+        group: &'static str,
+        (size, tiling): ((u32, u32), f32),
+        material: &ParallaxOcclusionMaterial,
+        (pass, variant): (&'static str, String),
+        times: &[f64],
+    ) -> Result<f64> {
+        let spread = stats::Spread::of(times).context("no valid timings")?;
         self.cases.push(CaseResult {
             group,
             method: material.method.name().to_owned(),
@@ -148,10 +172,68 @@ impl Runner<'_> {
             max_samples: material.max_samples,
             lod_threshold: material.lod_threshold,
             tiling,
-            pass: TIMED_PASS,
+            pass,
+            variant,
             spread,
         });
         Ok(spread.median_ms)
+    }
+
+    fn case_variant(
+        &mut self,
+        scene: &mut BenchScene,
+        group: &'static str,
+        place: ((u32, u32), f32),
+        material: ParallaxOcclusionMaterial,
+        variant: String,
+    ) -> Result<f64> {
+        Self::configure(scene, &material);
+        let times = scene.time(self.warmup, self.frames)?;
+        self.record(group, place, &material, (TIMED_PASS, variant), &times)
+    }
+
+    /// The base material's frame phase by phase.
+    fn phases(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
+        let material = self.base.clone();
+        Self::configure(scene, &material);
+        let phases = ["prepass", "opaque", "post"];
+        let times = scene.time_phases(self.warmup, self.frames, &phases)?;
+        for (phase, times) in phases.into_iter().zip(&times) {
+            let place = (size, self.view.tiling);
+            self.record("phases", place, &material, (phase, String::new()), times)?;
+        }
+        Ok(())
+    }
+
+    /// One plane against [`OVERDRAW_PLANES`] stacked along the view, drawn back to front, POM
+    /// with and without depth offset.
+    fn overdraw(&mut self, size: (u32, u32)) -> Result<()> {
+        for depth_offset in [false, true] {
+            let material = ParallaxOcclusionMaterial {
+                method: ParallaxMethod::Occlusion,
+                depth_offset,
+                ..self.base.clone()
+            };
+            let offset = if depth_offset { ", depth offset" } else { "" };
+            let place = (size, self.view.tiling);
+            let mut one = self.scene(size, &self.view.clone())?;
+            let variant = format!("1 plane{offset}");
+            let one_ms =
+                self.case_variant(&mut one, "overdraw", place, material.clone(), variant)?;
+            drop(one);
+            let mut stacked = self.scene(size, &self.view.clone())?;
+            stacked.stack_planes(OVERDRAW_PLANES, OVERDRAW_SPACING)?;
+            let variant = format!("{OVERDRAW_PLANES} planes{offset}");
+            let stacked_ms =
+                self.case_variant(&mut stacked, "overdraw", place, material, variant)?;
+            self.ratios.push(Ratio {
+                what: format!("overdraw: {OVERDRAW_PLANES} stacked planes / 1{offset}"),
+                width: size.0,
+                height: size.1,
+                ratio: stacked_ms / one_ms,
+            });
+        }
+        Ok(())
     }
 
     fn scene(&self, size: (u32, u32), view: &PreviewView) -> Result<BenchScene> {
@@ -359,9 +441,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);
             sample_rates.push(runner.sample_rate(&mut scene, size, chip)?);
         }
+        if wanted(Measurement::Phases) {
+            runner.phases(&mut scene, size)?;
+        }
         drop(scene);
         if wanted(Measurement::FarField) {
             runner.far_field(size)?;
+        }
+        if wanted(Measurement::Overdraw) {
+            runner.overdraw(size)?;
         }
     }
 

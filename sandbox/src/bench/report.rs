@@ -33,8 +33,10 @@ pub struct CaseResult {
     pub lod_threshold: f32,
     /// UV repeats across the plane.
     pub tiling: f32,
-    /// The timed pass.
+    /// The timed pass or phases.
     pub pass: &'static str,
+    /// What else sets the case apart ("4 planes, depth offset"); empty for most.
+    pub variant: String,
     /// Its milliseconds over the timed frames.
     pub spread: Spread,
 }
@@ -111,7 +113,7 @@ pub struct BenchReport {
 
 /// CSV columns, in order.
 pub const CSV_HEADER: &str = "group,method,shadows,width,height,min_samples,max_samples,\
-lod_threshold,tiling,pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms";
+lod_threshold,tiling,pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant";
 
 impl BenchReport {
     /// The cases as CSV, one line per case after [`CSV_HEADER`].
@@ -121,7 +123,7 @@ impl BenchReport {
             let s = &c.spread;
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+                "{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{}",
                 c.group,
                 c.method,
                 c.shadows,
@@ -137,7 +139,8 @@ impl BenchReport {
                 s.min_ms,
                 s.p10_ms,
                 s.p90_ms,
-                s.max_ms
+                s.max_ms,
+                c.variant
             );
         }
         csv
@@ -165,12 +168,13 @@ impl BenchReport {
         }
         let _ = writeln!(
             out,
-            "{} warm-up + {} timed frames per case; GPU time of the main pass in ms\n",
+            "{} warm-up + {} timed frames per case; GPU ms of the pass named (prepass+opaque: \
+             the material's phases)\n",
             self.warmup_frames, self.timed_frames
         );
         let _ = writeln!(
             out,
-            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}",
+            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}  {}",
             "group",
             "method",
             "shadow",
@@ -182,13 +186,14 @@ impl BenchReport {
             "min",
             "p10",
             "p90",
-            "max"
+            "max",
+            "pass"
         );
         for c in &self.cases {
             let s = &c.spread;
             let _ = writeln!(
                 out,
-                "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>9.4}",
+                "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>9.4}  {} {}",
                 c.group,
                 c.method,
                 c.shadows,
@@ -200,7 +205,9 @@ impl BenchReport {
                 s.min_ms,
                 s.p10_ms,
                 s.p90_ms,
-                s.max_ms
+                s.max_ms,
+                c.pass,
+                c.variant
             );
         }
         out.push('\n');

@@ -24,8 +24,11 @@ pub struct Warmup {
     pub least: Duration,
 }
 
-/// The pass every case times: the main render pass, where the material's shader runs.
-pub const TIMED_PASS: &str = "main pass";
+/// What every case times: the material's phases (depth prepass + opaque), where its shaders
+/// run. Post-processing is the same for every material and is reported on its own (`phases`).
+pub const TIMED_PASS: &str = "prepass+opaque";
+/// The phases [`TIMED_PASS`] adds up.
+const MATERIAL_PHASES: [&str; 2] = ["prepass", "opaque"];
 
 /// How a [`BenchScene`] is set up.
 pub struct SceneOptions {
@@ -37,6 +40,8 @@ pub struct SceneOptions {
     pub format: TargetFormat,
     /// A mesh to draw in place of the flat preview plane (a displaced grid).
     pub surface: Option<Mesh>,
+    /// Whether frames run the depth prepass.
+    pub depth_prepass: bool,
 }
 
 impl SceneOptions {
@@ -47,6 +52,7 @@ impl SceneOptions {
             timestamps: true,
             format: TargetFormat::Srgb8,
             surface: None,
+            depth_prepass: true,
         }
     }
 }
@@ -70,7 +76,8 @@ impl BenchScene {
         app.add_plugin(
             RenderPlugin::headless(width, height)
                 .with_format(options.format)
-                .with_gpu_timing(timing),
+                .with_gpu_timing(timing)
+                .with_depth_prepass(options.depth_prepass),
         );
         app.add_plugin(PomPlugin);
         app.finish().context("starting the GPU")?;
@@ -133,6 +140,41 @@ impl BenchScene {
         )
     }
 
+    /// Replaces the plane with `count` copies stacked along its normal `spacing` apart, the
+    /// deepest drawn first (back to front: the worst order for overdraw).
+    pub fn stack_planes(&mut self, count: usize, spacing: f32) -> Result<()> {
+        let (entity, mesh, material, transform) = self
+            .app
+            .world
+            .query_mut::<(
+                pom::hecs::Entity,
+                &pom::Handle<Mesh>,
+                &ParallaxOcclusionMaterial,
+                &pom::Transform,
+            )>()
+            .into_iter()
+            .map(|(entity, mesh, material, transform)| {
+                (entity, mesh.clone(), material.clone(), *transform)
+            })
+            .next()
+            .context("the scene has no parallax plane")?;
+        self.app.world.despawn(entity)?;
+        let normal = transform.rotation * glam::Vec3::Y;
+        for index in (0..count).rev() {
+            let mut behind = transform;
+            behind.translation -= normal * spacing * index as f32;
+            // With the global transform: adding it later would move entities between
+            // archetypes and reorder them, and the order is the draw order.
+            self.app.world.spawn((
+                mesh.clone(),
+                material.clone(),
+                behind,
+                pom::GlobalTransform(behind.to_affine()),
+            ));
+        }
+        Ok(())
+    }
+
     /// Changes the material's parameters, keeping its textures.
     pub fn configure(&mut self, change: impl Fn(&mut ParallaxOcclusionMaterial)) {
         for material in self.app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
@@ -141,9 +183,22 @@ impl BenchScene {
     }
 
     /// Renders `warmup.frames` untimed frames (and more until `warmup.least` has passed), then
-    /// `frames` timed ones; returns the main pass's milliseconds per timed frame.
+    /// `frames` timed ones; returns the material phases' milliseconds per timed frame.
     pub fn time(&mut self, warmup: Warmup, frames: usize) -> Result<Vec<f64>> {
-        self.time_frames(warmup, frames, TIMED_PASS, |app| Ok(app.update()?))
+        let phases = self.time_phases(warmup, frames, &MATERIAL_PHASES)?;
+        Ok((0..frames)
+            .map(|frame| phases.iter().map(|times| times[frame]).sum())
+            .collect())
+    }
+
+    /// Like [`BenchScene::time`], the milliseconds of each of `phases` per timed frame.
+    pub fn time_phases(
+        &mut self,
+        warmup: Warmup,
+        frames: usize,
+        phases: &[&str],
+    ) -> Result<Vec<Vec<f64>>> {
+        self.time_frames(warmup, frames, phases, |app| Ok(app.update()?))
     }
 
     /// Times the plugin's [`TexelRateProbe`] taking `taps` samples per pixel over the whole
@@ -157,37 +212,43 @@ impl BenchScene {
         let gpu = self.app.resources.require::<GpuContext>()?;
         let target = self.app.resources.require::<RenderTarget>()?;
         let probe = TexelRateProbe::new(gpu, target.color.format(), taps);
-        self.time_frames(warmup, frames, PROBE_PASS, |app| {
+        let mut times = self.time_frames(warmup, frames, &[PROBE_PASS], |app| {
             probe.render(&mut app.resources)?;
             resolve_gpu_timings(&mut app.world, &mut app.resources)?;
             Ok(())
-        })
+        })?;
+        Ok(times.pop().unwrap_or_default())
     }
 
+    /// Per pass of `passes`, its milliseconds in each timed frame.
     fn time_frames(
         &mut self,
         warmup: Warmup,
         frames: usize,
-        pass: &str,
+        passes: &[&str],
         mut render: impl FnMut(&mut App) -> Result<()>,
-    ) -> Result<Vec<f64>> {
+    ) -> Result<Vec<Vec<f64>>> {
         let started = Instant::now();
         let mut warmed = 0;
         while warmed < warmup.frames || started.elapsed() < warmup.least {
             render(&mut self.app).context("rendering a warm-up frame")?;
             warmed += 1;
         }
-        let mut times = Vec::with_capacity(frames);
+        let mut times = vec![Vec::with_capacity(frames); passes.len()];
         for frame in 0..frames {
             render(&mut self.app).context("rendering a timed frame")?;
-            let ms = self
-                .app
-                .resources
-                .get::<GpuTimings>()
-                .and_then(|timings| timings.pass_ms(pass));
-            match ms {
-                Some(ms) => times.push(ms),
-                None => bail!("timed frame {frame}: the GPU gave no valid timestamps for {pass}"),
+            for (pass, times) in passes.iter().zip(&mut times) {
+                let ms = self
+                    .app
+                    .resources
+                    .get::<GpuTimings>()
+                    .and_then(|timings| timings.pass_ms(pass));
+                match ms {
+                    Some(ms) => times.push(ms),
+                    None => {
+                        bail!("timed frame {frame}: the GPU gave no valid timestamps for {pass}")
+                    }
+                }
             }
         }
         self.check_errors().context("while timing")?;

@@ -1,0 +1,141 @@
+//! The phases of a frame, in the one order they run, and the work plugins add to them.
+//!
+//! ```text
+//! prepass      depth of opaque geometry (depth-offset materials write their displaced depth)
+//! shadows      shadow maps (encoder work; empty until a plugin adds some)
+//! opaque       materials test the prepass depth without writing it: a pixel shades once
+//! transparent  blended draws, sorted back to front by their plugin; depth read-only
+//! post         exposure and tonemapping, HDR scene → display target (compute where allowed)
+//! overlay      UI drawn over the result by the application (the sandbox's egui)
+//! ```
+//! Each phase that has work is timed in [`super::GpuTimings`] under [`RenderPhase::name`].
+
+use std::any::TypeId;
+
+use crate::Resources;
+
+/// One phase of a frame. `ALL` lists them in the order they run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum RenderPhase {
+    /// Depth of opaque geometry, so the opaque phase shades only visible pixels.
+    Prepass,
+    /// Shadow maps per light.
+    Shadows,
+    /// Opaque materials, into the HDR scene target.
+    Opaque,
+    /// Blended materials, back to front.
+    Transparent,
+    /// Exposure and tonemapping into the display target.
+    PostProcess,
+    /// The application's UI over the finished image.
+    Overlay,
+}
+
+impl RenderPhase {
+    /// Every phase, in the order a frame runs them.
+    pub const ALL: [RenderPhase; 6] = [
+        RenderPhase::Prepass,
+        RenderPhase::Shadows,
+        RenderPhase::Opaque,
+        RenderPhase::Transparent,
+        RenderPhase::PostProcess,
+        RenderPhase::Overlay,
+    ];
+
+    /// The name the phase is timed under in [`super::GpuTimings`].
+    pub fn name(self) -> &'static str {
+        match self {
+            RenderPhase::Prepass => "prepass",
+            RenderPhase::Shadows => "shadows",
+            RenderPhase::Opaque => "opaque",
+            RenderPhase::Transparent => "transparent",
+            RenderPhase::PostProcess => "post",
+            RenderPhase::Overlay => "overlay",
+        }
+    }
+}
+
+/// The phases that are one render pass the core opens, into which plugins record draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum DrawPhase {
+    /// Depth only; skipped when [`super::RenderPlugin::depth_prepass`] is off.
+    Prepass,
+    /// Colour into the HDR scene target; depth tested (and written only without a prepass).
+    Opaque,
+    /// Colour blended over the opaque result; depth tested, never written.
+    Transparent,
+}
+
+impl From<DrawPhase> for RenderPhase {
+    fn from(phase: DrawPhase) -> Self {
+        match phase {
+            DrawPhase::Prepass => RenderPhase::Prepass,
+            DrawPhase::Opaque => RenderPhase::Opaque,
+            DrawPhase::Transparent => RenderPhase::Transparent,
+        }
+    }
+}
+
+/// Records draws into a phase's open render pass, given the resources.
+pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
+
+/// Records whole passes of its own (shadow maps, say) into the frame's encoder.
+pub type PhaseWork = fn(&Resources, &mut wgpu::CommandEncoder);
+
+/// The work of every phase, in the order plugins added it; one entry per owner type and phase,
+/// so a plugin added twice draws once. A resource.
+#[derive(Debug, Default)]
+pub struct RenderPhases {
+    draws: Vec<(DrawPhase, TypeId, PhaseDraw)>,
+    work: Vec<(RenderPhase, TypeId, PhaseWork)>,
+}
+
+impl RenderPhases {
+    /// Adds `draw` to `phase` for `Owner` (a material type, say) unless `Owner` has one there.
+    pub fn add_draw<Owner: 'static>(&mut self, phase: DrawPhase, draw: PhaseDraw) {
+        let owner = TypeId::of::<Owner>();
+        if !self
+            .draws
+            .iter()
+            .any(|(p, id, _)| *p == phase && *id == owner)
+        {
+            self.draws.push((phase, owner, draw));
+        }
+    }
+
+    /// Adds encoder `work` to `phase` for `Owner` unless `Owner` has some there; it runs after
+    /// the phase's own pass (shadow maps: before the opaque phase).
+    pub fn add_work<Owner: 'static>(&mut self, phase: RenderPhase, work: PhaseWork) {
+        let owner = TypeId::of::<Owner>();
+        if !self
+            .work
+            .iter()
+            .any(|(p, id, _)| *p == phase && *id == owner)
+        {
+            self.work.push((phase, owner, work));
+        }
+    }
+
+    /// The draws of `phase`, in the order they were added.
+    pub fn draws(&self, phase: DrawPhase) -> impl Iterator<Item = PhaseDraw> + '_ {
+        self.draws
+            .iter()
+            .filter(move |(p, _, _)| *p == phase)
+            .map(|(_, _, draw)| *draw)
+    }
+
+    /// The encoder work of `phase`, in the order it was added.
+    pub fn work(&self, phase: RenderPhase) -> impl Iterator<Item = PhaseWork> + '_ {
+        self.work
+            .iter()
+            .filter(move |(p, _, _)| *p == phase)
+            .map(|(_, _, work)| *work)
+    }
+
+    /// How many draws `phase` has.
+    pub fn draw_count(&self, phase: DrawPhase) -> usize {
+        self.draws(phase).count()
+    }
+}

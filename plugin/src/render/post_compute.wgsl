@@ -1,0 +1,11 @@
+// Post-processing as a compute pass, one invocation per pixel. `output` is declared by the
+// generated prelude with the display target's storage format.
+
+@compute @workgroup_size(8, 8, 1)
+fn post_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(scene);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    textureStore(output, id.xy, post_process(id.xy));
+}

@@ -1,0 +1,321 @@
+//! The post-processing phase: exposure and tonemapping from the HDR scene target into the
+//! display target, as a compute pass where the adapter can write the display format from
+//! compute, else as a full-screen triangle.
+//!
+//! Why compute first: on the benchmark H200 a full-screen fragment pass that only writes a
+//! colour costs 1.18 ms at 4K, the same pass in compute 0.082 ms (2026-11-29, DESIGN.md).
+
+use bytemuck::{Pod, Zeroable};
+
+use super::shaders::{ComposedShader, WgslFile};
+use super::{GpuContext, RenderTarget, TargetFormat};
+use crate::material::Choice;
+use crate::{Exposure, Tonemapping};
+
+/// Shared post-processing functions (settings, exposure, tonemapping, sRGB encoding).
+pub const POST_PROCESS: WgslFile = crate::wgsl_file!("render/post_process.wgsl");
+/// The tonemapping operators.
+pub const TONEMAPPING: WgslFile = crate::wgsl_file!("render/tonemapping.wgsl");
+/// The compute entry point.
+pub const POST_COMPUTE_ENTRY: WgslFile = crate::wgsl_file!("render/post_compute.wgsl");
+/// The full-screen triangle fallback.
+pub const POST_FRAGMENT_ENTRY: WgslFile = crate::wgsl_file!("render/post_fragment.wgsl");
+
+fn rgba8_output() -> String {
+    "@group(0) @binding(2) var output: texture_storage_2d<rgba8unorm, write>;\n".to_owned()
+}
+
+fn rgba32f_output() -> String {
+    "@group(0) @binding(2) var output: texture_storage_2d<rgba32float, write>;\n".to_owned()
+}
+
+/// Post-processing in compute, writing an 8-bit display target.
+pub const POST_COMPUTE_RGBA8: ComposedShader = ComposedShader {
+    name: "post_compute.wgsl (rgba8unorm)",
+    constants: &[Tonemapping::wgsl_constants, rgba8_output],
+    files: &[TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
+};
+
+/// Post-processing in compute, writing a float display target.
+pub const POST_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
+    name: "post_compute.wgsl (rgba32float)",
+    constants: &[Tonemapping::wgsl_constants, rgba32f_output],
+    files: &[TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
+};
+
+/// Post-processing as a full-screen triangle.
+pub const POST_FRAGMENT: ComposedShader = ComposedShader {
+    name: "post_fragment.wgsl",
+    constants: &[Tonemapping::wgsl_constants],
+    files: &[TONEMAPPING, POST_PROCESS, POST_FRAGMENT_ENTRY],
+};
+
+/// The post-processing uniform; mirrors `PostSettings` in post_process.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct PostSettings {
+    /// Multiplier from scene values to the tonemapper's input.
+    pub exposure: f32,
+    /// `TONEMAP_*` code of the operator.
+    pub tonemapping: u32,
+    /// 1: encode with the sRGB curve; 0: write linear floats.
+    pub encode_srgb: u32,
+    /// Padding to 16 bytes.
+    pub _padding: u32,
+}
+
+crate::wgsl_layout!(PostSettings {
+    exposure,
+    tonemapping,
+    encode_srgb,
+    _padding
+});
+
+impl PostSettings {
+    /// The settings for a camera's exposure and operator, writing `format`.
+    pub fn new(exposure: Exposure, tonemapping: Tonemapping, format: TargetFormat) -> Self {
+        Self {
+            exposure: exposure.multiplier(),
+            tonemapping: tonemapping.code(),
+            encode_srgb: u32::from(format == TargetFormat::Srgb8),
+            _padding: 0,
+        }
+    }
+}
+
+/// How post-processing runs on this adapter.
+#[derive(Debug)]
+enum PostPipeline {
+    Compute(wgpu::ComputePipeline),
+    Fragment(wgpu::RenderPipeline),
+}
+
+/// The post-processing pass: pipeline, settings buffer, and the bind group of the current
+/// target. A resource of the render plugin.
+#[derive(Debug)]
+pub struct PostProcess {
+    pipeline: PostPipeline,
+    layout: wgpu::BindGroupLayout,
+    settings: wgpu::Buffer,
+    uploaded: Option<PostSettings>,
+    // The bind group and the id of the target it was made for.
+    bind_group: Option<(u64, wgpu::BindGroup)>,
+}
+
+/// Whether the adapter can write `format` from a compute shader.
+fn can_store(gpu: &GpuContext, format: wgpu::TextureFormat) -> bool {
+    gpu.adapter
+        .get_texture_format_features(format)
+        .allowed_usages
+        .contains(wgpu::TextureUsages::STORAGE_BINDING)
+}
+
+impl PostProcess {
+    /// The pass for display targets of `format`: compute when the adapter can store that
+    /// format, else the fragment fallback (`force_fragment` picks the fallback anyway, for
+    /// tests and benchmarks).
+    pub fn new(gpu: &GpuContext, format: TargetFormat, force_fragment: bool) -> Self {
+        let device = &gpu.device;
+        let display = format.texture_format();
+        let compute = !force_fragment && can_store(gpu, display);
+        let mut entries = vec![
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(
+                        std::mem::size_of::<PostSettings>() as u64
+                    ),
+                },
+                count: None,
+            },
+        ];
+        if compute {
+            entries.push(wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::StorageTexture {
+                    access: wgpu::StorageTextureAccess::WriteOnly,
+                    format: display,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                },
+                count: None,
+            });
+        }
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("post-process layout"),
+            entries: &entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("post-process pipeline layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = if compute {
+            let shader = match format {
+                TargetFormat::Float32 => POST_COMPUTE_RGBA32F,
+                _ => POST_COMPUTE_RGBA8,
+            }
+            .create_module(device);
+            PostPipeline::Compute(device.create_compute_pipeline(
+                &wgpu::ComputePipelineDescriptor {
+                    label: Some("post-process compute pipeline"),
+                    layout: Some(&pipeline_layout),
+                    module: &shader,
+                    entry_point: Some("post_main"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                },
+            ))
+        } else {
+            let shader = POST_FRAGMENT.create_module(device);
+            PostPipeline::Fragment(
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("post-process fragment pipeline"),
+                    layout: Some(&pipeline_layout),
+                    vertex: wgpu::VertexState {
+                        module: &shader,
+                        entry_point: Some("post_vertex"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: Default::default(),
+                    depth_stencil: None,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &shader,
+                        entry_point: Some("post_fragment"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(display.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                }),
+            )
+        };
+        let settings = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("post-process settings"),
+            size: std::mem::size_of::<PostSettings>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self {
+            pipeline,
+            layout,
+            settings,
+            uploaded: None,
+            bind_group: None,
+        }
+    }
+
+    /// Whether the pass runs as compute (else as a full-screen triangle).
+    pub fn is_compute(&self) -> bool {
+        matches!(self.pipeline, PostPipeline::Compute(_))
+    }
+
+    /// Writes `settings` if they changed; returns the bytes written.
+    pub(crate) fn upload(&mut self, gpu: &GpuContext, settings: PostSettings) -> u64 {
+        if self.uploaded == Some(settings) {
+            return 0;
+        }
+        gpu.queue
+            .write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
+        self.uploaded = Some(settings);
+        std::mem::size_of::<PostSettings>() as u64
+    }
+
+    /// Makes the bind group for `target` unless the current one is for it.
+    fn bind_target(&mut self, gpu: &GpuContext, target: &RenderTarget) {
+        let stale = self
+            .bind_group
+            .as_ref()
+            .is_none_or(|(id, _)| *id != target.id());
+        if stale {
+            let mut entries = vec![
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&target.scene_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.settings.as_entire_binding(),
+                },
+            ];
+            if self.is_compute() {
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&target.color_view),
+                });
+            }
+            let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("post-process bind group"),
+                layout: &self.layout,
+                entries: &entries,
+            });
+            self.bind_group = Some((target.id(), group));
+        }
+    }
+
+    /// Records the pass: the scene target of `target` into its display target.
+    pub(crate) fn record(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<&super::PassTimestamps>,
+    ) {
+        let (width, height) = target.size();
+        self.bind_target(gpu, target);
+        let Some((_, bind_group)) = &self.bind_group else {
+            return;
+        };
+        match &self.pipeline {
+            PostPipeline::Compute(pipeline) => {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("post-process pass"),
+                    timestamp_writes: timestamps.map(super::PassTimestamps::compute),
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, bind_group, &[]);
+                pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+            }
+            PostPipeline::Fragment(pipeline) => {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("post-process pass"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &target.color_view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: timestamps.map(super::PassTimestamps::render),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, bind_group, &[]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+    }
+}
+
+/// Every post-processing shader, for validation.
+pub(crate) const POST_SHADERS: [ComposedShader; 3] =
+    [POST_COMPUTE_RGBA8, POST_COMPUTE_RGBA32F, POST_FRAGMENT];

@@ -1,0 +1,39 @@
+// Post-processing, shared by the compute pass and its fragment fallback: exposure and
+// tonemapping from the HDR scene target to the display target. Mirrors `PostSettings` in
+// post_process.rs (the layout test checks them).
+
+struct PostSettings {
+    // Multiplier from scene values to the tonemapper's input (Exposure::multiplier).
+    exposure: f32,
+    // TONEMAP_* code.
+    tonemapping: u32,
+    // 1: encode with the sRGB curve (8-bit display target); 0: write linear floats.
+    encode_srgb: u32,
+    _padding: u32,
+}
+
+@group(0) @binding(0) var scene: texture_2d<f32>;
+@group(0) @binding(1) var<uniform> settings: PostSettings;
+
+// The sRGB transfer function (IEC 61966-2-1), exact: the storage target is plain Unorm.
+fn encode_srgb(linear: vec3<f32>) -> vec3<f32> {
+    let c = clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0));
+    return select(1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055, c * 12.92, c <= vec3<f32>(0.0031308));
+}
+
+// The display value of one pixel. A negative alpha `a` marks a display-referred pixel (the
+// clear colour, a debug view's data: `DEBUG_VIEW_ALPHA` in frame.wgsl): its colour is written
+// as it is, with alpha −1 − a.
+fn post_process(pixel: vec2<u32>) -> vec4<f32> {
+    let hdr = textureLoad(scene, pixel, 0);
+    var display: vec4<f32>;
+    if hdr.a < 0.0 {
+        display = vec4<f32>(hdr.rgb, clamp(-1.0 - hdr.a, 0.0, 1.0));
+    } else {
+        display = vec4<f32>(tonemap(hdr.rgb * settings.exposure, settings.tonemapping), clamp(hdr.a, 0.0, 1.0));
+    }
+    if settings.encode_srgb != 0u {
+        display = vec4<f32>(encode_srgb(display.rgb), display.a);
+    }
+    return display;
+}

@@ -1,0 +1,89 @@
+//! How a camera maps scene light to display values: [`Exposure`] and [`Tonemapping`],
+//! components of the camera entity (the defaults apply where they are missing).
+
+use serde::{Deserialize, Serialize};
+
+crate::choice_enum! {
+    /// The curve that maps exposed scene values (0..∞) to display values (0..1).
+    pub enum Tonemapping: "TONEMAP" {
+        /// Clamp to 1: values above white clip, and bright colours shift towards their brightest channels.
+        None = "none",
+        /// ACES filmic, Hill's fit of the RRT + ODT: contrasty, shifts bright hues towards yellow.
+        Aces = "aces",
+        /// AgX (Sobotka), the minimal fit: bright colours desaturate along the path to white.
+        Agx = "agx",
+        /// Khronos PBR Neutral: base colours up to 0.76 unchanged in hue and value, highlights rolled off.
+        Neutral = "neutral",
+    }
+}
+
+impl Default for Tonemapping {
+    /// Khronos PBR Neutral: this is a tool for tuning materials, and Neutral shows a base
+    /// colour as authored (same hue, same value up to 0.76; only its 0.04 Fresnel floor is
+    /// taken off) while rolling off highlights instead of clipping them. ACES and AgX change
+    /// mid-tone contrast and hue, which would hide what the material itself does.
+    fn default() -> Self {
+        Tonemapping::Neutral
+    }
+}
+
+/// The camera's exposure in EV100: the exposure value at ISO 100 a physical camera would be
+/// set to. The scene value `L` reaches the tonemapper as `L / (1.2 · 2^EV100)` (the saturation
+/// based calibration of Lagarde & de Rousiers, "Moving Frostbite to PBR", §4.5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Exposure {
+    /// EV100; higher is darker, +1 halves the light.
+    pub ev100: f32,
+}
+
+impl Exposure {
+    /// −0.263 EV100, the exposure at which a scene value of 1 maps to 1 (`1.2 · 2^EV100 = 1`):
+    /// our lights are in display-relative units (a sun of intensity 1 lights a white surface
+    /// facing it to white), so this keeps scenes as bright as they were authored.
+    pub const DEFAULT_EV100: f32 = -0.263_034_4;
+    /// The range the command line, scripts and the sandbox accept.
+    pub const RANGE: std::ops::RangeInclusive<f32> = -16.0..=24.0;
+
+    /// The factor scene values are multiplied by before tonemapping.
+    pub fn multiplier(self) -> f32 {
+        let ev100 = if self.ev100.is_finite() {
+            self.ev100.clamp(*Self::RANGE.start(), *Self::RANGE.end())
+        } else {
+            Self::DEFAULT_EV100
+        };
+        1.0 / (1.2 * ev100.exp2())
+    }
+}
+
+impl Default for Exposure {
+    fn default() -> Self {
+        Self {
+            ev100: Self::DEFAULT_EV100,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_exposure_maps_one_to_one() {
+        assert!((Exposure::default().multiplier() - 1.0).abs() < 1e-6);
+        assert!(
+            (Exposure {
+                ev100: 1.0 + Exposure::DEFAULT_EV100
+            }
+            .multiplier()
+                - 0.5)
+                .abs()
+                < 1e-6
+        );
+        // Out-of-range and non-finite values never reach the GPU as such.
+        assert_eq!(
+            Exposure { ev100: f32::NAN }.multiplier(),
+            Exposure::default().multiplier()
+        );
+        assert!(Exposure { ev100: 1e9 }.multiplier() > 0.0);
+    }
+}
