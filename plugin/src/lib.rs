@@ -103,7 +103,7 @@ pub use shader_reload::{
 };
 #[cfg(feature = "dev-tools")]
 pub use split_view::{SplitView, SplitViewError, render_split_view};
-pub use tonemapping::{Exposure, Tonemapping};
+pub use tonemapping::{Exposure, Tonemapping, set_camera_display_mapping};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };

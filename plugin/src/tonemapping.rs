@@ -63,6 +63,26 @@ impl Default for Exposure {
     }
 }
 
+/// Puts `exposure` and `tonemapping` on every active camera of `world` (replacing what they
+/// had); returns how many cameras that was.
+pub fn set_camera_display_mapping(
+    world: &mut hecs::World,
+    exposure: Exposure,
+    tonemapping: Tonemapping,
+) -> usize {
+    let cameras: Vec<hecs::Entity> = world
+        .query::<(hecs::Entity, &crate::Camera)>()
+        .iter()
+        .filter(|(_, camera)| camera.active)
+        .map(|(entity, _)| entity)
+        .collect();
+    for camera in &cameras {
+        // The entity was just found, so inserting cannot fail.
+        let _ = world.insert(*camera, (exposure, tonemapping));
+    }
+    cameras.len()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

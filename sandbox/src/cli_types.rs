@@ -97,6 +97,44 @@ pub fn parse_positive(text: &str) -> Result<f32, String> {
     }
 }
 
+/// An exposure in EV100 within [`pom::Exposure::RANGE`].
+pub fn parse_exposure(text: &str) -> Result<f32, String> {
+    let value = parse_finite(text)?;
+    let range = pom::Exposure::RANGE;
+    if range.contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{value} EV100 is outside {}..={}",
+            range.start(),
+            range.end()
+        ))
+    }
+}
+
+/// How the camera maps scene light to the display: `--exposure` and `--tonemap`.
+#[derive(Clone, Copy, Debug, clap::Args)]
+#[command(next_help_heading = "Display")]
+pub struct DisplayArgs {
+    /// Camera exposure in EV100, -16..=24; +1 halves the light [default: -0.263, where a scene
+    /// value of 1 shows as 1].
+    #[arg(long, value_name = "EV", allow_negative_numbers = true, value_parser = parse_exposure)]
+    pub exposure: Option<f32>,
+    /// Tonemapping operator: none (clamp), aces, agx or neutral (Khronos PBR Neutral).
+    #[arg(long, value_name = "NAME", value_parser = crate::material_args::choice_parser::<pom::Tonemapping>(), default_value = "neutral")]
+    pub tonemap: pom::Tonemapping,
+}
+
+impl DisplayArgs {
+    /// Puts the exposure and operator on the app's active cameras.
+    pub fn apply(&self, app: &mut pom::App) {
+        let exposure = self
+            .exposure
+            .map_or_else(pom::Exposure::default, |ev100| pom::Exposure { ev100 });
+        pom::set_camera_display_mapping(&mut app.world, exposure, self.tonemap);
+    }
+}
+
 /// A view angle in degrees, 0 (straight down) up to the preview's steepest angle; the preview
 /// would clamp anything else, and an angle the user did not ask for is worse than an error.
 pub fn parse_view_angle(text: &str) -> Result<f32, String> {

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use crate::cli_types::parse_size;
+use crate::cli_types::{DisplayArgs, parse_size};
 use crate::{demo_scene, frame_output};
 
 /// Options of the `snapshot` command.
@@ -22,6 +22,8 @@ pub struct DemoArgs {
     /// Image size as WIDTHxHEIGHT, each 1..=8192.
     #[arg(long, value_name = "WxH", default_value = "960x540", value_parser = parse_size)]
     pub size: (u32, u32),
+    #[command(flatten)]
+    pub display: DisplayArgs,
 }
 
 /// Renders the demo scene and writes it to `args.out`.
@@ -31,6 +33,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     app.add_plugin(pom::RenderPlugin::headless(width, height))
         .add_plugin(pom::PomPlugin);
     demo_scene::spawn(&mut app)?;
+    args.display.apply(&mut app);
     app.update().context("rendering the demo scene")?;
     let image = pom::capture(&app).context("reading the frame back")?;
     frame_output::write(&app, image.into(), &args.out)

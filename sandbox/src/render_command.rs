@@ -15,8 +15,8 @@ use pom::{
 };
 
 use crate::cli_types::{
-    CameraArg, ProjectionArg, parse_camera, parse_finite, parse_png_path, parse_positive,
-    parse_size, parse_view_angle,
+    CameraArg, DisplayArgs, ProjectionArg, parse_camera, parse_finite, parse_png_path,
+    parse_positive, parse_size, parse_view_angle,
 };
 use crate::frame_output;
 use crate::material_args::{self, MaterialArgs, choice_parser};
@@ -76,6 +76,8 @@ pub struct RenderArgs {
     pub material: MaterialArgs,
     #[command(flatten)]
     pub view: ViewArgs,
+    #[command(flatten)]
+    pub display: DisplayArgs,
 }
 
 /// Where the picture goes.
@@ -293,6 +295,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
         .context("the render plugin provides no image store")?;
     let material = textures.attach(images, settings);
     spawn_preview(&mut app, material, &args.view()).context("setting up the preview")?;
+    args.display.apply(&mut app);
     render_and_write(&mut app, &args.output, "rendering the preview")
 }
 
@@ -308,6 +311,7 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
         debug_view: args.output.debug_view,
     };
     scene_preview::spawn(&mut app, &preview)?;
+    args.display.apply(&mut app);
     render_and_write(&mut app, &args.output, "rendering the scene")
 }
 

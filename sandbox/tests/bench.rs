@@ -31,9 +31,9 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(json["quick"], true);
     let cases = json["cases"].as_array().unwrap();
     // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, POM for the
-    // texel rate, 3 phases, 2 far-field, 4 overdraw (1 and 4 planes, with and without
-    // depth offset).
-    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 4));
+    // texel rate, 3 phases, 2 far-field, 6 overdraw (1 plane, 4 back to front, 4 copies of one
+    // mesh; with and without depth offset).
+    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 6));
     for phase in ["prepass", "opaque", "post"] {
         assert!(
             cases

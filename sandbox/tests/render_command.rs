@@ -93,6 +93,44 @@ fn a_nan_height_scale_is_rejected() {
 }
 
 #[test]
+fn a_bad_exposure_is_rejected() {
+    let dir = TempDir::new("bad-exposure");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--exposure", "NaN"]);
+    assert_one_line_error(&output, &["--exposure", "NaN"]);
+    let output = sandbox(&["render", "--out", path_arg(&out), "--exposure", "99"]);
+    assert_one_line_error(&output, &["--exposure", "99", "-16..=24"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn an_unknown_tonemap_is_rejected_with_the_valid_ones() {
+    let dir = TempDir::new("unknown-tonemap");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--tonemap", "filmic"]);
+    assert_one_line_error(&output, &["filmic", "--tonemap", "agx", "neutral"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn exposure_darkens_the_render_and_tonemap_none_clips() {
+    let dir = TempDir::new("exposure");
+    let render = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec!["render", "--out", path_arg(&out), "--size", "32x32"];
+        args.extend_from_slice(extra);
+        assert_success(&sandbox(&args));
+        let image = image::open(&out).unwrap().to_rgba8();
+        image.pixels().map(|p| u64::from(p.0[1])).sum::<u64>()
+    };
+    let base = render("base.png", &[]);
+    let darker = render("darker.png", &["--exposure", "1.737"]);
+    let clamped = render("clamped.png", &["--tonemap", "none"]);
+    assert!(darker < base * 9 / 10, "{darker} vs {base}");
+    assert_ne!(clamped, base, "the operator changes the image");
+}
+
+#[test]
 fn render_writes_a_png_of_the_asked_size() {
     let dir = TempDir::new("size");
     let out = dir.join("nested/preview.png");

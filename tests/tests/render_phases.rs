@@ -36,28 +36,41 @@ fn counting_app(plugin: RenderPlugin) -> App {
     app
 }
 
+/// How the stacked planes reach the GPU.
+#[derive(Clone, Copy, PartialEq)]
+enum Stack {
+    /// One mesh each, made deepest first: separate batches in mesh order, drawn back to front
+    /// (the worst case).
+    BackToFront,
+    /// One shared mesh: one batch, whose instances the renderer sorts nearest first.
+    Shared,
+}
+
 /// Fragment-shader invocations of the parallax material's opaque pipeline for `planes` full
-/// screen planes stacked along the view, drawn back to front.
-fn parallax_invocations(planes: usize, depth_offset: bool, prepass: bool) -> u32 {
+/// screen planes stacked along the view.
+fn parallax_invocations(planes: usize, depth_offset: bool, prepass: bool, stack: Stack) -> u32 {
     let mut app = counting_app(RenderPlugin::headless(SIZE, SIZE).with_depth_prepass(prepass));
     let material = ParallaxOcclusionMaterial {
         depth_offset,
         ..cobbles().material(&mut app)
     };
-    let plane = app
-        .resources
-        .get_mut::<Assets<Mesh>>()
-        .unwrap()
-        .add(Mesh::plane(40.0));
-    // Deepest first: the world's order is the draw order of equal batches (the control without
-    // prepass below shows it is back to front). The planes are 0.5 apart, ten times the
-    // relief's depth.
-    for index in (0..planes).rev() {
-        let transform = Transform::from_xyz(0.0, -0.5 * index as f32, 0.0);
-        // Spawned with their global transform: adding it later moves entities between
-        // archetypes, which reorders them.
+    let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
+    let shared = meshes.add(Mesh::plane(40.0));
+    // Deepest first (the control without prepass below shows the order holds). The planes are
+    // 0.5 apart, ten times the relief's depth.
+    let stacked: Vec<_> = (0..planes)
+        .rev()
+        .map(|index| {
+            let mesh = match stack {
+                Stack::BackToFront => meshes.add(Mesh::plane(40.0)),
+                Stack::Shared => shared.clone(),
+            };
+            (mesh, Transform::from_xyz(0.0, -0.5 * index as f32, 0.0))
+        })
+        .collect();
+    for (mesh, transform) in stacked {
         app.world.spawn((
-            plane.clone(),
+            mesh,
             material.clone(),
             transform,
             GlobalTransform(transform.to_affine()),
@@ -90,12 +103,12 @@ fn parallax_invocations(planes: usize, depth_offset: bool, prepass: bool) -> u32
 #[test]
 fn hidden_pixels_do_not_march() {
     for depth_offset in [false, true] {
-        let one = parallax_invocations(1, depth_offset, true);
-        let four = parallax_invocations(4, depth_offset, true);
-        let four_without_prepass = parallax_invocations(4, depth_offset, false);
+        let one = parallax_invocations(1, depth_offset, true, Stack::BackToFront);
+        let four = parallax_invocations(4, depth_offset, true, Stack::BackToFront);
+        let four_without_prepass = parallax_invocations(4, depth_offset, false, Stack::BackToFront);
         eprintln!(
-            "depth offset {depth_offset}: one plane {one}, four planes {four} with the prepass, \
-             {four_without_prepass} without"
+            "depth offset {depth_offset}: one plane {one}, four planes drawn back to front {four} \
+             with the prepass, {four_without_prepass} without"
         );
         // The planes fill the image: every pixel of the nearest one runs once.
         assert!(one as f32 >= 0.9 * (SIZE * SIZE) as f32, "{one}");
@@ -106,6 +119,19 @@ fn hidden_pixels_do_not_march() {
         // Without the prepass each nearer plane drawn later shades again: the counter sees it.
         assert!(four_without_prepass as f32 >= 3.5 * one as f32);
     }
+}
+
+#[test]
+fn copies_of_one_mesh_are_drawn_nearest_first() {
+    // Without a prepass only the order saves work: nearest first, the hidden copies fail the
+    // depth test before their fragments run.
+    let one = parallax_invocations(1, false, false, Stack::Shared);
+    let four = parallax_invocations(4, false, false, Stack::Shared);
+    eprintln!("one plane {one}, four copies of one mesh {four}, no prepass");
+    assert!(
+        (four as f32 - one as f32).abs() <= 0.01 * one as f32,
+        "{four} vs {one}"
+    );
 }
 
 /// The red plane half way down the relief of the depth-offset test, with or without prepass.

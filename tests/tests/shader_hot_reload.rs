@@ -58,6 +58,12 @@ fn a_broken_edit_keeps_the_last_good_pipeline_and_a_good_edit_swaps_in() {
     app.add_plugin(ShaderHotReload {
         source_dir: dir.clone(),
     });
+    // Tonemapping off, so the edit's magenta reaches the image exactly.
+    pom::set_camera_display_mapping(
+        &mut app.world,
+        pom::Exposure::default(),
+        pom::Tonemapping::None,
+    );
     let original = render_and_capture(&mut app).unwrap();
     assert_eq!(status(&app).reloads, 0);
     assert_eq!(status(&app).error, None);

@@ -40,7 +40,15 @@ struct SortEntry<K> {
     key: K,
     textures: MaterialTextures,
     mesh: AssetId<Mesh>,
+    /// Distance from the eye to the object's origin along the view, as ordered bits: the
+    /// instances of one batch are drawn nearest first.
+    view_depth: u32,
     draw: usize,
+}
+
+/// `depth` as bits that order like the number (depths behind the eye count as 0).
+fn depth_order_bits(depth: f32) -> u32 {
+    if depth > 0.0 { depth.to_bits() } else { 0 }
 }
 
 /// What preparing one material's draws reads besides its own state.
@@ -51,6 +59,8 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) meshes: &'a Assets<Mesh>,
     pub(crate) images: &'a Assets<Image>,
     pub(crate) footprint: Option<&'a PixelFootprint>,
+    /// The eye and the direction it looks, for drawing nearest first.
+    pub(crate) eye: (glam::Vec3, glam::Vec3),
 }
 
 /// The depth textures a material's group 0 binds at binding 3: the prepass depth in the
@@ -266,16 +276,23 @@ impl<M: Material> MaterialBatches<M> {
                 .material
                 .draw_key(draw.material.key(), &uniform, &mut view);
             self.uniform_data.push(uniform);
+            let (eye, forward) = inputs.eye;
+            let view_depth = (draw.model.w_axis.truncate() - eye).dot(forward);
             self.order.push(SortEntry {
                 key,
                 textures,
                 mesh: draw.mesh,
+                view_depth: depth_order_bits(view_depth),
                 draw: index,
             });
         }
-        // Stable: draws that share everything keep the order of the world's query. Most frames
-        // come in the order the last one was sorted into, which the check finds in one pass.
-        let sort_key = |entry: &SortEntry<M::Key>| (entry.key, entry.textures, entry.mesh);
+        // Batches first (pipeline, textures, mesh), then nearest first within a batch: the
+        // prepass then rejects hidden copies early (measured in sandbox/BENCHMARKS.md,
+        // "overdraw"). Stable: draws that share everything keep the order of the world's
+        // query. Most frames come in the order the last one was sorted into (a still camera),
+        // which the check finds in one pass.
+        let sort_key =
+            |entry: &SortEntry<M::Key>| (entry.key, entry.textures, entry.mesh, entry.view_depth);
         if !self.order.is_sorted_by_key(sort_key) {
             self.order.sort_by_key(sort_key);
         }

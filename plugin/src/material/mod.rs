@@ -23,8 +23,8 @@ pub use plugin::{
     draw_meshes_without_material, drawn_keys,
 };
 
-#[cfg(feature = "dev-tools")]
 pub(crate) use batches::DepthBindings;
+#[cfg(feature = "dev-tools")]
 pub(crate) use plugin::MaterialRegistry;
 
 use std::fmt::Debug;

@@ -360,6 +360,10 @@ fn prepare_materials<M: Material>(
                                 meshes: resources.require::<Assets<Mesh>>()?,
                                 images: resources.require::<Assets<Image>>()?,
                                 footprint: frame.footprint.as_ref(),
+                                eye: (
+                                    glam::Vec4::from(frame.frame.camera_position).truncate(),
+                                    glam::Vec4::from(frame.frame.view_direction).truncate(),
+                                ),
                             };
                             let mut stats = UploadStats::default();
                             batches.prepare(

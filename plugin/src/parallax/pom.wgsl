@@ -196,16 +196,19 @@ struct ColorAndDepth {
 }
 
 // `depth_offset` without a prepass: the depth buffer gets the displaced point, so other geometry
-// meets the relief where it really is.
-@fragment
+// meets the relief where it really is. The depth only ever moves away from the eye
+// (`displaced_depth`), which lets the GPU reject fragments behind nearer geometry before they
+// march.
+@fragment @early_depth_test(greater_equal)
 fn fs_main_depth_offset(in: VertexOut) -> ColorAndDepth {
     count_fragment_invocation();
     let point = find_surface(in);
     return ColorAndDepth(shade(in, point), displaced_depth(in, point));
 }
 
-// `depth_offset` in the prepass: only the march and the depth.
-@fragment
+// `depth_offset` in the prepass: only the march and the depth (pushed away from the eye only,
+// as above).
+@fragment @early_depth_test(greater_equal)
 fn fs_prepass_depth_offset(in: VertexOut) -> @builtin(frag_depth) f32 {
     return displaced_depth(in, find_surface(in));
 }

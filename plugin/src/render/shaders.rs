@@ -109,8 +109,9 @@ impl ComposedShader {
 }
 
 /// Compiles `source` on `device`. Without `SHADER_EARLY_DEPTH_TEST` (adapters other than
-/// Vulkan and GLES) the `@early_depth_test(force)` attributes are dropped: they only ask for what
-/// drivers do anyway for shaders that neither write depth nor have side effects.
+/// Vulkan and GLES) the `@early_depth_test(...)` attributes are dropped: they only promise what
+/// the shader does anyway (forced early tests where it writes no depth and has no side
+/// effects; depth only ever pushed further away), so dropping them costs speed, not pixels.
 pub(crate) fn create_module(
     device: &wgpu::Device,
     name: &str,
@@ -122,7 +123,7 @@ pub(crate) fn create_module(
     {
         source
     } else {
-        source.replace(EARLY_DEPTH_TEST_FORCE, "")
+        without_early_depth_tests(&source)
     };
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(name),
@@ -130,10 +131,19 @@ pub(crate) fn create_module(
     })
 }
 
-/// The attribute that forces depth testing before a fragment shader runs.
-pub(crate) const EARLY_DEPTH_TEST_FORCE: &str = "@early_depth_test(force)";
-
-impl ComposedShader {}
+/// `source` without its `@early_depth_test(...)` attributes.
+pub(crate) fn without_early_depth_tests(source: &str) -> String {
+    const ATTRIBUTE: &str = "@early_depth_test(";
+    let mut out = String::with_capacity(source.len());
+    let mut rest = source;
+    while let Some(start) = rest.find(ATTRIBUTE) {
+        out.push_str(&rest[..start]);
+        let after = &rest[start + ATTRIBUTE.len()..];
+        rest = after.find(')').map_or("", |close| &after[close + 1..]);
+    }
+    out.push_str(rest);
+    out
+}
 
 /// Normals of dynamic height fields, derived on the GPU.
 pub const SOBEL: ComposedShader = ComposedShader {
@@ -141,3 +151,18 @@ pub const SOBEL: ComposedShader = ComposedShader {
     constants: &[],
     files: &[SOBEL_ENTRY],
 };
+
+#[cfg(test)]
+mod tests {
+    use super::without_early_depth_tests;
+
+    #[test]
+    fn early_depth_attributes_are_dropped_and_nothing_else() {
+        let source = "@fragment @early_depth_test(force)\nfn a() {}\n@fragment @early_depth_test(greater_equal)\nfn b() -> @builtin(frag_depth) f32 { return 1.0; }";
+        assert_eq!(
+            without_early_depth_tests(source),
+            "@fragment \nfn a() {}\n@fragment \nfn b() -> @builtin(frag_depth) f32 { return 1.0; }"
+        );
+        assert_eq!(without_early_depth_tests("fn c() {}"), "fn c() {}");
+    }
+}

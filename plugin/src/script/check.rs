@@ -33,6 +33,21 @@ pub(super) fn check(
             reason,
         }
     };
+    if let Some(ev100) = script.camera.exposure
+        && !crate::Exposure::RANGE.contains(&ev100)
+    {
+        let (line, column) = locate(text, "exposure", "camera");
+        return Err(ScriptError::Parse {
+            path: path.to_owned(),
+            line,
+            column,
+            reason: format!(
+                "camera exposure {ev100} EV100 is outside {}..={}",
+                crate::Exposure::RANGE.start(),
+                crate::Exposure::RANGE.end()
+            ),
+        });
+    }
     let mut names = Vec::new();
     for entity in &script.entities {
         if names.contains(&entity.name) {

@@ -45,6 +45,12 @@ pub struct CameraDesc {
     /// Height of the view in world units for an orthographic camera.
     #[serde(default)]
     pub orthographic_height: Option<f32>,
+    /// Exposure in EV100 (`Exposure::RANGE`) [default: `Exposure::DEFAULT_EV100`].
+    #[serde(default)]
+    pub exposure: Option<f32>,
+    /// Tonemapping operator: none, aces, agx or neutral [default: neutral].
+    #[serde(default)]
+    pub tonemap: Option<crate::Tonemapping>,
 }
 
 /// A light.

@@ -12,7 +12,7 @@ use super::format::{CameraDesc, LightDesc, MaterialDesc, Script, ShapeDesc, Stat
 use super::stats::{measure, required_view};
 use super::{Outcome, Report, RunOptions, ScriptError, StepReport};
 use crate::{
-    AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, GpuContext,
+    AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, Exposure, GpuContext,
     HeightSource, Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
     PomPreset, Projection, RenderPlugin, TextureKind, Transform, flip_compare, load_gltf,
 };
@@ -144,6 +144,11 @@ impl<'a> Runner<'a> {
         let camera = app.world.spawn((
             camera_component(&script.camera),
             look(vec3(script.camera.position), vec3(script.camera.target)),
+            script
+                .camera
+                .exposure
+                .map_or_else(Exposure::default, |ev100| Exposure { ev100 }),
+            script.camera.tonemap.unwrap_or_default(),
         ));
         let lights = script
             .lights

@@ -205,8 +205,9 @@ impl Runner<'_> {
         Ok(())
     }
 
-    /// One plane against [`OVERDRAW_PLANES`] stacked along the view, drawn back to front, POM
-    /// with and without depth offset.
+    /// One plane against [`OVERDRAW_PLANES`] stacked along the view, POM with and without
+    /// depth offset: drawn back to front (each plane its own mesh) and as copies of one mesh
+    /// (which the renderer draws nearest first).
     fn overdraw(&mut self, size: (u32, u32)) -> Result<()> {
         for depth_offset in [false, true] {
             let material = ParallaxOcclusionMaterial {
@@ -216,22 +217,25 @@ impl Runner<'_> {
             };
             let offset = if depth_offset { ", depth offset" } else { "" };
             let place = (size, self.view.tiling);
-            let mut one = self.scene(size, &self.view.clone())?;
+            let view = self.view;
+            let mut one = self.scene(size, &view)?;
             let variant = format!("1 plane{offset}");
             let one_ms =
                 self.case_variant(&mut one, "overdraw", place, material.clone(), variant)?;
             drop(one);
-            let mut stacked = self.scene(size, &self.view.clone())?;
-            stacked.stack_planes(OVERDRAW_PLANES, OVERDRAW_SPACING)?;
-            let variant = format!("{OVERDRAW_PLANES} planes{offset}");
-            let stacked_ms =
-                self.case_variant(&mut stacked, "overdraw", place, material, variant)?;
-            self.ratios.push(Ratio {
-                what: format!("overdraw: {OVERDRAW_PLANES} stacked planes / 1{offset}"),
-                width: size.0,
-                height: size.1,
-                ratio: stacked_ms / one_ms,
-            });
+            for (own_meshes, order) in [(true, "back to front"), (false, "one mesh")] {
+                let mut stacked = self.scene(size, &view)?;
+                stacked.stack_planes(OVERDRAW_PLANES, OVERDRAW_SPACING, own_meshes)?;
+                let variant = format!("{OVERDRAW_PLANES} planes, {order}{offset}");
+                let stacked_ms =
+                    self.case_variant(&mut stacked, "overdraw", place, material.clone(), variant)?;
+                self.ratios.push(Ratio {
+                    what: format!("overdraw: {OVERDRAW_PLANES} planes {order} / 1{offset}"),
+                    width: size.0,
+                    height: size.1,
+                    ratio: stacked_ms / one_ms,
+                });
+            }
         }
         Ok(())
     }

@@ -174,7 +174,7 @@ impl BenchReport {
         );
         let _ = writeln!(
             out,
-            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}  {}",
+            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}  pass",
             "group",
             "method",
             "shadow",
@@ -186,8 +186,7 @@ impl BenchReport {
             "min",
             "p10",
             "p90",
-            "max",
-            "pass"
+            "max"
         );
         for c in &self.cases {
             let s = &c.spread;

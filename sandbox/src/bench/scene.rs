@@ -140,9 +140,11 @@ impl BenchScene {
         )
     }
 
-    /// Replaces the plane with `count` copies stacked along its normal `spacing` apart, the
-    /// deepest drawn first (back to front: the worst order for overdraw).
-    pub fn stack_planes(&mut self, count: usize, spacing: f32) -> Result<()> {
+    /// Replaces the plane with `count` copies stacked along its normal `spacing` apart, spawned
+    /// deepest first. With `own_meshes` each copy gets its own mesh, made deepest first: separate
+    /// batches in mesh order, drawn back to front (the worst order); else they share one, and
+    /// the renderer draws the instances nearest first.
+    pub fn stack_planes(&mut self, count: usize, spacing: f32, own_meshes: bool) -> Result<()> {
         let (entity, mesh, material, transform) = self
             .app
             .world
@@ -160,7 +162,20 @@ impl BenchScene {
             .context("the scene has no parallax plane")?;
         self.app.world.despawn(entity)?;
         let normal = transform.rotation * glam::Vec3::Y;
+        let meshes = self.app.resources.require_mut::<Assets<Mesh>>()?;
+        let plane = meshes
+            .get(mesh.id())
+            .cloned()
+            .context("the plane's mesh is not loaded")?;
         for index in (0..count).rev() {
+            let mesh = if own_meshes {
+                self.app
+                    .resources
+                    .require_mut::<Assets<Mesh>>()?
+                    .add(plane.clone())
+            } else {
+                mesh.clone()
+            };
             let mut behind = transform;
             behind.translation -= normal * spacing * index as f32;
             // With the global transform: adding it later would move entities between

@@ -119,8 +119,12 @@ pub fn material_entities(app: &App) -> Vec<(Entity, String)> {
         .collect()
 }
 
-/// The current parameters of every material of `app`, stored under `scene` in `state`.
+/// The current parameters of every material of `app`, stored under `scene` in `state`, and
+/// the camera's display controls.
 pub fn record_tuned(app: &App, scene: &str, state: &mut TunedState) {
+    if let Some(display) = super::display_control::active_display(&app.world) {
+        state.display = Some(display);
+    }
     let materials = state.scenes.entry(scene.to_owned()).or_default();
     for (entity, name) in material_entities(app) {
         if let Ok(material) = app.world.get::<&ParallaxOcclusionMaterial>(entity) {
@@ -129,8 +133,12 @@ pub fn record_tuned(app: &App, scene: &str, state: &mut TunedState) {
     }
 }
 
-/// Applies the values `state` holds for `scene` to the materials of the same names.
+/// Applies the values `state` holds for `scene` to the materials of the same names, and the
+/// saved display controls to the camera.
 pub fn restore_tuned(app: &mut App, scene: &str, state: &TunedState) {
+    if let Some(display) = state.display {
+        super::display_control::apply_display(&mut app.world, display);
+    }
     let Some(saved) = state.scenes.get(scene) else {
         return;
     };

@@ -12,12 +12,15 @@ use serde::{Deserialize, Serialize};
 /// The shortest time between two writes of the state file.
 const MIN_INTERVAL: Duration = Duration::from_secs(1);
 
-/// What the state file holds: per scene, per material entity name, its parameters.
+/// What the state file holds: per scene, per material entity name, its parameters; and the
+/// display controls (exposure, tonemapping), the same for every scene.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct TunedState {
     /// Scene name → entity name → preset.
     pub scenes: BTreeMap<String, BTreeMap<String, PomPreset>>,
+    /// The camera's exposure and operator, once set.
+    pub display: Option<super::display_control::DisplayState>,
 }
 
 /// The default state file: under the user's configuration folder, or `target/` without one.

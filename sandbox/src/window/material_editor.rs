@@ -108,12 +108,17 @@ pub fn parameter_row<M>(ui: &mut Ui, param: &Param<M>, material: &mut M) {
 
 /// The method combo box, labelled `label`, with each method's help on hover.
 pub fn choose_method(ui: &mut Ui, label: &str, method: &mut ParallaxMethod) {
-    use pom::material::Choice;
+    choose(ui, label, method);
+}
+
+/// A combo box over every value of a [`pom::material::Choice`] enum, labelled `label`, with each
+/// value's help on hover.
+pub fn choose<C: pom::material::Choice>(ui: &mut Ui, label: &str, choice: &mut C) {
     ComboBox::from_label(label)
-        .selected_text(method.name())
+        .selected_text(choice.name())
         .show_ui(ui, |ui| {
-            for (value, info) in ParallaxMethod::VALUES.iter().zip(ParallaxMethod::INFO) {
-                ui.selectable_value(method, *value, info.name)
+            for (value, info) in C::VALUES.iter().zip(C::INFO) {
+                ui.selectable_value(choice, *value, info.name)
                     .on_hover_text(info.help);
             }
         });

@@ -336,3 +336,36 @@ fn split_view_b_copies_a_then_takes_its_own_method() {
             .is_none()
     );
 }
+
+#[test]
+fn the_display_controls_set_the_cameras_exposure_and_tonemapping() {
+    let mut harness = harness();
+    let camera = harness
+        .state_mut()
+        .app
+        .world
+        .spawn((pom::Camera::perspective(45.0), pom::Transform::IDENTITY));
+    harness.run();
+    harness.get_by_label("Display").click();
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "exposure (EV100)")
+        .set_value_accesskit(2.5);
+    harness.run();
+    let exposure = *harness
+        .state()
+        .app
+        .world
+        .get::<&pom::Exposure>(camera)
+        .unwrap();
+    assert!((exposure.ev100 - 2.5).abs() < 1e-6, "{exposure:?}");
+    // The operator's choice is there, and the camera holds the default, Neutral.
+    harness.get_by_label("tonemapping");
+    let tonemapping = *harness
+        .state()
+        .app
+        .world
+        .get::<&pom::Tonemapping>(camera)
+        .unwrap();
+    assert_eq!(tonemapping, pom::Tonemapping::Neutral);
+}

@@ -7,6 +7,7 @@ use pom::hecs::Entity;
 use pom::{App, ParallaxOcclusionMaterial};
 
 use super::app_state::{LoadedScene, material_entities};
+use super::display_control::display_controls;
 use super::file_browser::FileBrowser;
 use super::frame_timing::{FrameTimes, GpuTimingSource, gpu_pass_rows};
 use super::light_control::LightControls;
@@ -96,6 +97,9 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         state.split.show(ui, app, state.selected);
         ui.separator();
         ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
+        ui.collapsing("Display", |ui| display_controls(ui, &mut app.world))
+            .header_response
+            .on_hover_text("Exposure and tonemapping: how scene light maps to the screen.");
         ui.checkbox(&mut state.spin_selected, "spin selected object")
             .on_hover_text("Turns the selected object slowly, to judge the parallax in motion.");
         ui.collapsing("Timing", |ui| {

@@ -57,6 +57,29 @@ fn script_missing_steps() {
 }
 
 #[test]
+fn script_camera_exposure_nan() {
+    assert_script_parse(
+        "scripts/exposure_nan.ron",
+        5,
+        "exposure NaN EV100 is outside -16..=24",
+    );
+}
+
+#[test]
+fn script_camera_exposure_out_of_range() {
+    assert_script_parse(
+        "scripts/exposure_out_of_range.ron",
+        5,
+        "exposure 1000000 EV100 is outside -16..=24",
+    );
+}
+
+#[test]
+fn script_unknown_tonemap() {
+    assert_script_parse("scripts/unknown_tonemap.ron", 5, "filmic");
+}
+
+#[test]
 fn script_missing_map_folder() {
     assert_script_reference(
         "scripts/missing_maps.ron",
