@@ -455,3 +455,124 @@ fn debug_views_bypass_exposure_and_tonemapping() {
         "{centre:?}"
     );
 }
+
+/// A translucent full-screen triangle, drawn by a test plugin in the transparent phase.
+struct TranslucentOverlay(pom::wgpu::RenderPipeline);
+
+fn draw_translucent_overlay(resources: &pom::Resources, pass: &mut pom::wgpu::RenderPass<'_>) {
+    if let Some(TranslucentOverlay(pipeline)) = resources.get::<TranslucentOverlay>() {
+        pass.set_pipeline(pipeline);
+        pass.draw(0..3, 0..1);
+    }
+}
+
+#[test]
+fn the_transparent_phase_blends_over_the_opaque_result_and_keeps_its_depth() {
+    use pom::wgpu;
+    // `overlay_depth`: where the translucent triangle lies (0 = at the near plane), if drawn.
+    let render = |overlay_depth: Option<f32>| {
+        let mut app = App::new();
+        // The 8-bit target: its Rgba16Float scene blends everywhere (Rgba32Float needs
+        // FLOAT32_BLENDABLE).
+        app.add_plugin(RenderPlugin::headless(16, 16))
+            .add_plugin(PomPlugin);
+        app.finish().unwrap();
+        let plane = app
+            .resources
+            .get_mut::<Assets<Mesh>>()
+            .unwrap()
+            .add(Mesh::plane(4.0));
+        app.world.spawn((
+            plane,
+            LitMaterial::from_color(Color::linear_rgb(0.0, 0.0, 0.5)),
+            Transform::IDENTITY,
+        ));
+        app.world.spawn((
+            Camera::orthographic(2.0),
+            Tonemapping::None,
+            Transform::from_xyz(0.0, 2.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
+        ));
+        if let Some(depth) = overlay_depth {
+            let gpu = app.resources.get::<GpuContext>().unwrap();
+            let shader = gpu
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("translucent overlay"),
+                    source: wgpu::ShaderSource::Wgsl(
+                        format!(
+                            "@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {{
+                                 let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+                                 return vec4<f32>(uv * 2.0 - 1.0, {depth:?}, 1.0);
+                             }}
+                             @fragment fn fs() -> @location(0) vec4<f32> {{ return vec4<f32>(1.0, 0.0, 0.0, 0.5); }}"
+                        )
+                        .into(),
+                    ),
+                });
+            let pipeline = gpu
+                .device
+                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("translucent overlay"),
+                    layout: None,
+                    vertex: wgpu::VertexState {
+                        module: &shader,
+                        entry_point: Some("vs"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: Default::default(),
+                    // The transparent phase's depth is read-only: test, never write.
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: wgpu::TextureFormat::Depth32Float,
+                        depth_write_enabled: Some(false),
+                        depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &shader,
+                        entry_point: Some("fs"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState {
+                            format: TargetFormat::Srgb8.scene_format(),
+                            blend: Some(wgpu::BlendState {
+                                color: wgpu::BlendComponent {
+                                    src_factor: wgpu::BlendFactor::SrcAlpha,
+                                    dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                                    operation: wgpu::BlendOperation::Add,
+                                },
+                                alpha: wgpu::BlendComponent::REPLACE,
+                            }),
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                });
+            app.insert_resource(TranslucentOverlay(pipeline));
+            app.resources
+                .get_or_default::<pom::render::RenderPhases>()
+                .add_draw::<TranslucentOverlay>(
+                    pom::render::DrawPhase::Transparent,
+                    draw_translucent_overlay,
+                );
+        }
+        render_and_capture(&mut app).unwrap()
+    };
+    let linear = |byte: u8| pom::srgb_to_linear(f32::from(byte) / 255.0);
+    let opaque = render(None);
+    let blended = render(Some(0.0));
+    // The plane lies at depth 0.01: a triangle behind it is hidden by the opaque phase's depth.
+    let behind = render(Some(0.9));
+    assert_eq!(behind.as_raw(), opaque.as_raw(), "drawn behind the plane");
+    let (below, over) = (opaque.get_pixel(8, 8).0, blended.get_pixel(8, 8).0);
+    eprintln!("opaque {below:?}, with a half-transparent red over it {over:?}");
+    // Half red over the plane's colour: the opaque result was kept and blended over.
+    assert!((linear(over[0]) - 0.5).abs() < 0.01, "{over:?}");
+    assert!(linear(below[2]) > 0.01, "{below:?}");
+    assert!(
+        (linear(over[2]) - 0.5 * linear(below[2])).abs() < 0.01,
+        "{over:?} over {below:?}"
+    );
+}

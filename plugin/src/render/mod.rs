@@ -31,7 +31,7 @@ pub(crate) use frame_uniform::FrameUniformBuffer;
 pub(crate) use gpu_assets::GpuAssets;
 pub use gpu_assets::{DefaultTexture, UploadStats};
 pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_gpu_timing};
-pub(crate) use gpu_timing::{PassTimestamps, time_pass};
+pub use gpu_timing::{PassTimestamps, time_pass};
 #[cfg(test)]
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;

@@ -65,7 +65,8 @@ impl EguiPainter {
     }
 
     /// Paints `frame` into `view` and, when given, into `screenshot` too, showing `scene` and
-    /// `split` (the main target again when there is no split view), and submits.
+    /// `split` (the main target again when there is no split view), and submits. The pass into
+    /// `view` writes `overlay_time`'s timestamps.
     pub fn paint(
         &mut self,
         gpu: &GpuContext,
@@ -73,6 +74,7 @@ impl EguiPainter {
         frame: EguiFrame<'_>,
         view: &wgpu::TextureView,
         screenshot: Option<&ScreenshotTarget>,
+        overlay_time: Option<&pom::render::PassTimestamps>,
     ) {
         self.show_targets(gpu, scene, split);
         for (id, deltas) in frame.textures.set.drain() {
@@ -107,7 +109,9 @@ impl EguiPainter {
                         wgpu::Color::BLACK,
                     ))],
                     depth_stencil_attachment: None,
-                    timestamp_writes: None,
+                    timestamp_writes: overlay_time
+                        .filter(|_| index == 0)
+                        .map(pom::render::PassTimestamps::render),
                     occlusion_query_set: None,
                     multiview_mask: None,
                 })

@@ -333,6 +333,9 @@ impl Running {
         let view = frame
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
+        // The overlay phase, timed like the others; its figure arrives with the next frame's.
+        let overlay_time =
+            pom::render::time_pass(&mut self.app.resources, pom::RenderPhase::Overlay.name());
         let target = self
             .app
             .resources
@@ -354,6 +357,7 @@ impl Running {
             },
             &view,
             screenshot.as_ref(),
+            overlay_time.as_ref(),
         );
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
