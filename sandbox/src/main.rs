@@ -63,7 +63,23 @@ fn first_paragraph_on_one_line(rendered: &str) -> String {
         .join(" ")
 }
 
+/// Turns Mesa's Vulkan device-select layer off for a headless command, unless the user set
+/// `NODEVICE_SELECT` themselves. The layer connects to a Wayland display to rank GPUs and, on a
+/// machine without a desktop session, prints `XDG_RUNTIME_DIR is invalid or not set` twice,
+/// although nothing is wrong; wgpu picks the adapter itself (`WGPU_ADAPTER_NAME`,
+/// `WGPU_POWER_PREF`).
+fn quiet_device_select_layer() {
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        // SAFETY: called first thing in `main`, before any other thread exists.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
+}
+
 fn main() {
+    // Every command but the window (no subcommand) is headless.
+    if std::env::args_os().nth(1).is_some() {
+        quiet_device_select_layer();
+    }
     let cli = Cli::try_parse().unwrap_or_else(|error| {
         if !error.use_stderr() {
             // --help and --version: not errors.

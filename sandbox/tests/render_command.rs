@@ -131,6 +131,25 @@ fn exposure_darkens_the_render_and_tonemap_none_clips() {
 }
 
 #[test]
+fn a_headless_run_prints_only_what_it_means_to_say() {
+    // As on a machine without a desktop session: no runtime folder, no display, and no variable
+    // that quiets Mesa's device-select layer (which tests/run sets for the other tests).
+    let dir = TempDir::new("quiet");
+    let out = dir.join("quiet.png");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_sandbox"))
+        .args(["snapshot", "--size", "32x16", "--out", path_arg(&out)])
+        .env_remove("NODEVICE_SELECT")
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("DISPLAY")
+        .output()
+        .unwrap();
+    assert_success(&output);
+    assert_eq!(String::from_utf8_lossy(&output.stderr), "", "stderr");
+    assert!(out.exists());
+}
+
+#[test]
 fn render_writes_a_png_of_the_asked_size() {
     let dir = TempDir::new("size");
     let out = dir.join("nested/preview.png");

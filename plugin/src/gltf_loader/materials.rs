@@ -115,9 +115,26 @@ impl MaterialCache {
             image: name.clone(),
             reason,
         };
+        // A file the image names is reported by its URI and the path looked at.
+        let location = match image.source() {
+            gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+                let tried = source
+                    .base
+                    .as_deref()
+                    .map(|base| base.join(super::percent_decode(uri)));
+                Some(match tried {
+                    Some(tried) => format!("{uri} (looked for {})", tried.display()),
+                    None => uri.to_owned(),
+                })
+            }
+            _ => None,
+        };
         let data =
             gltf::image::Data::from_source(image.source(), source.base.as_deref(), &source.buffers)
-                .map_err(|error| image_error(error.to_string()))?;
+                .map_err(|error| match &location {
+                    Some(location) => image_error(format!("{location}: {error}")),
+                    None => image_error(error.to_string()),
+                })?;
         let decoded = to_dynamic(data)
             .ok_or_else(|| image_error("pixel data is shorter than its size".into()))?;
         let loaded = Image::from_decoded(decoded, kind, channel, &name)

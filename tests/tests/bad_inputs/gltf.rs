@@ -253,6 +253,10 @@ fn gltf_missing_image_file() {
         GltfError::Image { image, reason, .. } => {
             assert_eq!(image, "#0");
             assert!(reason.contains("No such file"), "{reason}");
+            // The URI as written and the path it was looked for at.
+            let tried = corpus("gltf/absent.png");
+            assert!(reason.contains("absent.png (looked for "), "{reason}");
+            assert!(reason.contains(&tried.display().to_string()), "{reason}");
         }
         other => panic!("expected GltfError::Image, got {other:?}"),
     }
