@@ -10,7 +10,7 @@ use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::render_and_capture;
 
 const ENTRY: &str = "parallax/pom.wgsl";
-const SHADED_RETURN: &str = "return shade(in, find_surface(in));";
+const SHADED_RETURN: &str = "return shade(in, find_surface(in, front_facing));";
 
 fn copy_shader_sources() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pom-hot-reload-{}", std::process::id()));
@@ -69,7 +69,10 @@ fn a_broken_edit_keeps_the_last_good_pipeline_and_a_good_edit_swaps_in() {
     assert_eq!(status(&app).error, None);
 
     edit_entry(&dir, 1, |text| {
-        text.replace(SHADED_RETURN, "return shade(in, find_surface(in)).colour;")
+        text.replace(
+            SHADED_RETURN,
+            "return shade(in, find_surface(in, front_facing)).colour;",
+        )
     });
     let after_broken_edit = render_and_capture(&mut app).unwrap();
     let error = status(&app).error.expect("the broken edit is reported");

@@ -216,6 +216,7 @@ impl MaterialCache {
                 specular_strength: 0.5 * (1.0 - roughness),
                 // Blinn-Phong exponent matching a GGX lobe of this roughness.
                 shininess: (2.0 / (roughness.powi(4)).max(1e-4) - 2.0).clamp(1.0, 512.0),
+                double_sided: material.double_sided(),
             }),
             Some(pom) => {
                 let height_map = match (pom.height_in_normal_alpha, pom.height_texture) {
@@ -272,6 +273,7 @@ impl MaterialCache {
                     roughness,
                     metallic: pbr.metallic_factor(),
                     normal_strength,
+                    double_sided: material.double_sided(),
                     ..ParallaxOcclusionMaterial::default()
                 };
                 pom.apply(&mut material).map_err(&material_error)?;

@@ -8,9 +8,9 @@
 @group(1) @binding(2) var material_sampler: sampler;
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let material = materials[in.object_index];
-    let surface_frame = tangent_frame(in.world_normal, in.world_tangent);
+    let surface_frame = facing_tangent_frame(in.world_normal, in.world_tangent, front_facing);
     let normal = perturbed_normal(
         surface_frame,
         textureSample(normal_map, material_sampler, in.uv).xyz,

@@ -33,6 +33,8 @@ crate::material_parameters! {
             /// Blinn-Phong exponent: higher = smaller, sharper highlight.
             shininess: f32 = 32.0, ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
                 .logarithmic();
+            /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
+            double_sided: bool = false, ParamSpec::toggle();
         }
     }
     preset LitPreset;
@@ -67,9 +69,16 @@ pub const LIT_SHADER: ComposedShader = ComposedShader {
     ],
 };
 
+/// What one lit pipeline is compiled for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct LitPipelineKey {
+    /// Both sides drawn (no culling).
+    pub double_sided: bool,
+}
+
 impl Material for LitMaterial {
     type Uniform = LitParams;
-    type Key = ();
+    type Key = LitPipelineKey;
     const NAME: &'static str = "lit";
     const UNIFORM_WGSL_NAME: &'static str = "LitParams";
     const TEXTURE_SLOTS: &'static [DefaultTexture] =
@@ -88,7 +97,15 @@ impl Material for LitMaterial {
         ]
     }
 
-    fn key(&self) -> Self::Key {}
+    fn key(&self) -> Self::Key {
+        LitPipelineKey {
+            double_sided: self.double_sided,
+        }
+    }
+
+    fn cull_mode(key: Self::Key) -> Option<wgpu::Face> {
+        (!key.double_sided).then_some(wgpu::Face::Back)
+    }
 
     fn fragment(_: Self::Key) -> FragmentVariant {
         FragmentVariant::entry("fs_main")

@@ -103,6 +103,11 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// The fragment entry point and constants of `key`'s pipeline in the opaque phase when
     /// the frame has no depth prepass (it tests and writes depth itself).
     fn fragment(key: Self::Key) -> FragmentVariant;
+    /// Which faces `key`'s pipelines cull: back faces by default; `None` draws both sides
+    /// (double-sided surfaces, whose shaders then see `front_facing` false on the back).
+    fn cull_mode(_key: Self::Key) -> Option<wgpu::Face> {
+        Some(wgpu::Face::Back)
+    }
     /// The fragment stage of `key` in the depth prepass: `None` (the default) writes the
     /// rasterized depth with no fragment shader at all; a material whose fragments move their
     /// depth (parallax depth offset) names the entry point that writes it.

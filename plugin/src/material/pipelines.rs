@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 
 use super::Material;
-use crate::render::layout::{MeshPass, mesh_pipeline};
+use crate::render::layout::{MeshPass, MeshPipelineDescriptor, mesh_pipeline};
 
 /// The compiled shader of material `M` and every pipeline made from it so far.
 pub(crate) struct MaterialPipelines<M: Material> {
@@ -56,12 +56,15 @@ impl<M: Material> MaterialPipelines<M> {
             };
             let pipeline = mesh_pipeline(
                 device,
-                &format!("{} {pass:?} pipeline {key:?}", M::NAME),
-                &self.layout,
-                &self.shader,
-                pass,
-                fragment.as_ref(),
-                self.color_format,
+                &MeshPipelineDescriptor {
+                    label: &format!("{} {pass:?} pipeline {key:?}", M::NAME),
+                    layout: &self.layout,
+                    shader: &self.shader,
+                    pass,
+                    fragment: fragment.as_ref(),
+                    color_format: self.color_format,
+                    cull_mode: M::cull_mode(key),
+                },
             );
             self.pipelines.insert((pass, key), pipeline);
         }

@@ -133,6 +133,8 @@ crate::material_parameters! {
                 ParamSpec::choice::<HeightConvention>();
             /// Write the displaced depth, so other geometry meets the relief where it is (slower).
             depth_offset: bool = false, ParamSpec::toggle();
+            /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
+            double_sided: bool = false, ParamSpec::toggle();
             /// Height samples looking straight at the surface (T eq. 1's n_min): fewer is faster.
             min_samples: u32 = 8, ParamSpec::integer(1, MAX_SAMPLES_LIMIT).logarithmic();
             /// Height samples at grazing angles (T eq. 1's n_max): raise it if layers show.

@@ -94,6 +94,10 @@ impl Material for ParallaxOcclusionMaterial {
         key.fragment()
     }
 
+    fn cull_mode(key: PomPipelineKey) -> Option<wgpu::Face> {
+        (!key.double_sided).then_some(wgpu::Face::Back)
+    }
+
     fn prepass_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
         key.prepass_fragment()
     }

@@ -22,6 +22,8 @@ pub struct PomPipelineKey {
     pub debug_view: DebugView,
     /// Whether the fragment shader writes the displaced depth (`fs_main_depth_offset`).
     pub depth_offset: bool,
+    /// Both sides drawn (no culling).
+    pub double_sided: bool,
 }
 
 impl PomPipelineKey {
@@ -33,6 +35,7 @@ impl PomPipelineKey {
             lighting: material.lighting,
             debug_view: material.debug_view,
             depth_offset: material.depth_offset,
+            double_sided: material.double_sided,
         }
     }
 
@@ -112,12 +115,16 @@ mod tests {
                 depth_offset: true,
                 ..base.clone()
             },
+            ParallaxOcclusionMaterial {
+                double_sided: true,
+                ..base.clone()
+            },
         ];
         let mut keys: Vec<PomPipelineKey> = variants.iter().map(PomPipelineKey::of).collect();
         keys.push(key);
         keys.sort();
         keys.dedup();
-        assert_eq!(keys.len(), 6, "{keys:?}");
+        assert_eq!(keys.len(), 7, "{keys:?}");
         // Parameters that are not modes share a pipeline.
         let tuned = ParallaxOcclusionMaterial {
             height_scale: 0.2,

@@ -55,11 +55,11 @@ fn heat(t: f32) -> vec3<f32> {
 }
 
 // The march: the same code for the prepass, which only needs the depth, and the shading.
-fn find_surface(in: VertexOut) -> SurfacePoint {
+fn find_surface(in: VertexOut, front_facing: bool) -> SurfacePoint {
     let material = materials[in.object_index];
     let params = material.params;
     var point: SurfacePoint;
-    point.surface_frame = tangent_frame(in.world_normal, in.world_tangent);
+    point.surface_frame = facing_tangent_frame(in.world_normal, in.world_tangent, front_facing);
     point.to_eye = direction_to_eye(in.world_position, point.surface_frame.normal);
     let to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
 
@@ -185,9 +185,9 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
 // forced: the shader writes no depth and never discards, so this is what drivers do anyway,
 // and it stays so when a test counts invocations (an atomic is a side effect).
 @fragment @early_depth_test(force)
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     count_fragment_invocation();
-    return shade(in, find_surface(in));
+    return shade(in, find_surface(in, front_facing));
 }
 
 struct ColorAndDepth {
@@ -200,17 +200,17 @@ struct ColorAndDepth {
 // (`displaced_depth`), which lets the GPU reject fragments behind nearer geometry before they
 // march.
 @fragment @early_depth_test(greater_equal)
-fn fs_main_depth_offset(in: VertexOut) -> ColorAndDepth {
+fn fs_main_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> ColorAndDepth {
     count_fragment_invocation();
-    let point = find_surface(in);
+    let point = find_surface(in, front_facing);
     return ColorAndDepth(shade(in, point), displaced_depth(in, point));
 }
 
 // `depth_offset` in the prepass: only the march and the depth (pushed away from the eye only,
 // as above).
 @fragment @early_depth_test(greater_equal)
-fn fs_prepass_depth_offset(in: VertexOut) -> @builtin(frag_depth) f32 {
-    return displaced_depth(in, find_surface(in));
+fn fs_prepass_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @builtin(frag_depth) f32 {
+    return displaced_depth(in, find_surface(in, front_facing));
 }
 
 // `depth_offset` in the opaque phase after the prepass. The hardware test (rasterized depth
@@ -219,9 +219,9 @@ fn fs_prepass_depth_offset(in: VertexOut) -> @builtin(frag_depth) f32 {
 // shades only where that is the depth the prepass kept (bit for bit: see the closing note
 // of issue 16 and tests/tests/render_phases.rs).
 @fragment @early_depth_test(force)
-fn fs_main_after_depth_prepass(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main_after_depth_prepass(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     count_fragment_invocation();
-    let point = find_surface(in);
+    let point = find_surface(in, front_facing);
     let depth = displaced_depth(in, point);
     let kept = textureLoad(prepass_depth, vec2<i32>(in.clip_position.xy), 0);
     if depth > kept {

@@ -48,19 +48,40 @@ pub(crate) enum MeshPass {
     Opaque,
 }
 
+/// What varies between the render pipelines of mesh materials.
+#[derive(Clone, Copy)]
+pub(crate) struct MeshPipelineDescriptor<'a> {
+    /// The pipeline's label.
+    pub(crate) label: &'a str,
+    /// The material's pipeline layout.
+    pub(crate) layout: &'a wgpu::PipelineLayout,
+    /// The material's shader.
+    pub(crate) shader: &'a wgpu::ShaderModule,
+    /// Which pass it draws in: sets the depth state and whether there is a colour target.
+    pub(crate) pass: MeshPass,
+    /// The entry point and its constants; `None`: no fragment stage (prepass only).
+    pub(crate) fragment: Option<&'a crate::material::FragmentVariant>,
+    /// The scene target's format.
+    pub(crate) color_format: wgpu::TextureFormat,
+    /// The material's: back faces, or none when double-sided.
+    pub(crate) cull_mode: Option<wgpu::Face>,
+}
+
 /// The render pipeline every mesh material uses: interleaved [`super::Vertex`] input
-/// (`vs_main`), back-face culling, the depth state of `pass`, one colour target of
-/// `color_format` (none in the prepass); `fragment` names the entry point and its
-/// pipeline-overridable constants (`None`: no fragment stage, prepass only).
+/// (`vs_main`) and what `descriptor` says.
 pub(crate) fn mesh_pipeline(
     device: &wgpu::Device,
-    label: &str,
-    layout: &wgpu::PipelineLayout,
-    shader: &wgpu::ShaderModule,
-    pass: MeshPass,
-    fragment: Option<&crate::material::FragmentVariant>,
-    color_format: wgpu::TextureFormat,
+    descriptor: &MeshPipelineDescriptor<'_>,
 ) -> wgpu::RenderPipeline {
+    let MeshPipelineDescriptor {
+        label,
+        layout,
+        shader,
+        pass,
+        fragment,
+        color_format,
+        cull_mode,
+    } = *descriptor;
     let (depth_write, depth_compare) = match pass {
         MeshPass::Prepass | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
         MeshPass::OpaqueAfterPrepass => (false, wgpu::CompareFunction::LessEqual),
@@ -81,7 +102,7 @@ pub(crate) fn mesh_pipeline(
             buffers: &[Some(super::gpu_types::Vertex::LAYOUT)],
         },
         primitive: wgpu::PrimitiveState {
-            cull_mode: Some(wgpu::Face::Back),
+            cull_mode,
             ..Default::default()
         },
         depth_stencil: Some(wgpu::DepthStencilState {

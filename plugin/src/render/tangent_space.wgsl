@@ -30,6 +30,17 @@ fn tangent_frame(world_normal: vec3<f32>, world_tangent: vec4<f32>) -> TangentFr
     return TangentFrame(normal, tangent, cross(normal, tangent) * sign);
 }
 
+// The frame of the side a fragment shows. A back face (drawn only for double-sided materials)
+// gets the reversed normal, as glTF asks before lighting, with dP/dv kept (the MikkTSpace sign
+// flips with the normal), so texture space and the normal map keep their orientation and a
+// parallax march sees the back as a surface of its own.
+fn facing_tangent_frame(world_normal: vec3<f32>, world_tangent: vec4<f32>, front_facing: bool) -> TangentFrame {
+    if front_facing {
+        return tangent_frame(world_normal, world_tangent);
+    }
+    return tangent_frame(-world_normal, vec4<f32>(world_tangent.xyz, -world_tangent.w));
+}
+
 // A world-space vector in the frame's (u, v, normal) coordinates.
 fn to_tangent_space(frame: TangentFrame, v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(dot(v, frame.tangent), dot(v, frame.bitangent_v), dot(v, frame.normal));
