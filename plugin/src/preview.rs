@@ -221,10 +221,60 @@ mod tests {
     }
 }
 
+/// Where a camera framing a box looks from. Angles are in degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FramingView {
+    /// Between the view direction and straight down (0 = from above, 90 = level).
+    pub view_angle: f32,
+    /// Around the vertical: 0 looks from +Z (the front), 90 from +X (the right).
+    pub view_azimuth: f32,
+    /// Distance as a multiple of the one at which the box just fits; < 1 zooms in.
+    pub distance: f32,
+}
+
+/// The three-quarter view's direction: from the front right, 35° above.
+const THREE_QUARTER: Vec3 = Vec3::new(0.6, 0.55, 0.8);
+
+impl Default for FramingView {
+    /// The three-quarter view: from the front right (36.9° around), 28.8° above the horizon.
+    fn default() -> Self {
+        let direction = THREE_QUARTER.normalize();
+        Self {
+            view_angle: direction.y.acos().to_degrees(),
+            view_azimuth: direction.x.atan2(direction.z).to_degrees(),
+            distance: 1.0,
+        }
+    }
+}
+
+impl FramingView {
+    /// Unit vector from the box's centre towards the camera.
+    fn direction(&self) -> Vec3 {
+        if *self == Self::default() {
+            // Exactly the historical vector, so reference images framed with it stay put.
+            return THREE_QUARTER.normalize();
+        }
+        let angle = self.view_angle.clamp(0.0, 179.0).to_radians();
+        let azimuth = self.view_azimuth.to_radians();
+        Vec3::new(
+            angle.sin() * azimuth.sin(),
+            angle.cos(),
+            angle.sin() * azimuth.cos(),
+        )
+        .normalize_or(Vec3::Y)
+    }
+}
+
 /// A perspective camera looking at the box `(min, max)` from a three-quarter view (from the
 /// front right, 35° above), far enough that the whole box fits the view for an image of
 /// `aspect` = width / height.
 pub fn three_quarter_view(bounds: (Vec3, Vec3), aspect: f32) -> (Camera, Transform) {
+    framing_camera(bounds, aspect, FramingView::default())
+}
+
+/// A perspective camera looking at the box `(min, max)` from `view`, at `view.distance` times
+/// the distance at which the whole box fits an image of `aspect` = width / height.
+pub fn framing_camera(bounds: (Vec3, Vec3), aspect: f32, view: FramingView) -> (Camera, Transform) {
     let (min, max) = bounds;
     let centre = (min + max) * 0.5;
     let radius = ((max - min).length() * 0.5).max(1e-3);
@@ -236,8 +286,13 @@ pub fn three_quarter_view(bounds: (Vec3, Vec3), aspect: f32) -> (Camera, Transfo
     };
     // The bounding sphere fits when its angular radius is under half of the narrower field.
     let half_fov = (fov_y * 0.5).min(((fov_y * 0.5).tan() * aspect).atan());
-    let distance = radius / half_fov.sin();
-    let direction = Vec3::new(0.6, 0.55, 0.8).normalize();
+    let factor = if view.distance.is_finite() && view.distance > 0.0 {
+        view.distance
+    } else {
+        1.0
+    };
+    let distance = radius / half_fov.sin() * factor;
+    let direction = view.direction();
     let camera = Camera {
         projection: Projection::Perspective {
             fov_y,
@@ -246,9 +301,15 @@ pub fn three_quarter_view(bounds: (Vec3, Vec3), aspect: f32) -> (Camera, Transfo
         },
         ..Camera::default()
     };
+    // Straight down (or up) needs another up vector than the view direction.
+    let up = if direction.y.abs() > 0.999 {
+        Vec3::NEG_Z
+    } else {
+        Vec3::Y
+    };
     (
         camera,
-        Transform::from_translation(centre + direction * distance).looking_at(centre, Vec3::Y),
+        Transform::from_translation(centre + direction * distance).looking_at(centre, up),
     )
 }
 

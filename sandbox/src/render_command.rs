@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use clap::Args;
 use image::DynamicImage;
-use pom::preview::{PreviewView, spawn_preview};
+use pom::preview::{FramingView, PreviewView, spawn_preview};
 use pom::{
     App, Assets, DebugView, HeightConvention, Image, ParallaxOcclusionMaterial, PomPlugin,
     RenderPlugin, TargetFormat,
@@ -46,10 +46,14 @@ Output formats:
 
 Scenes:
   --scene renders a glTF 2.0 file (.gltf with its files, or .glb) instead of the
-  material preview; the texture, material and view options do not apply to it.
-  --camera N looks through the file's N-th camera (counting from 0); --camera auto
-  frames every mesh from a three-quarter view. Without --camera, the file's first
-  camera is used, or auto when it has none. A scene without lights gets a default
+  material preview; the texture and material options do not apply to it.
+  --camera N looks through the file's N-th camera node (counting from 0, in a walk of
+  the scene's nodes depth first, parents before children, siblings in file order);
+  --camera auto frames the scene's meshes from a three-quarter view (a flat mesh more
+  than four times wider than the rest, such as a ground plane, does not decide the
+  framing). Without --camera, the file's first camera is used, or auto when it has
+  none. --view-angle, --view-azimuth and --distance move the automatic camera (and
+  imply it when --camera is not given). A scene without lights gets a default
   light (a sun and a soft ambient light) and a warning saying so. Features the
   renderer lacks are skipped with one warning each; the rest still renders.
   --debug-view applies to every parallax material in the scene.
@@ -99,16 +103,13 @@ pub struct OutputArgs {
 /// The options only the material preview uses, besides the material's own flags: every one of
 /// `TextureArgs` and `ViewArgs`. Each conflicts with `--scene` by name, so the usage error names
 /// the one given.
-const PREVIEW_ONLY: [&str; 10] = [
+const PREVIEW_ONLY: [&str; 7] = [
     "height",
     "normal",
     "albedo",
-    "view_angle",
-    "view_azimuth",
     "light_angle",
     "light_azimuth",
     "projection",
-    "distance",
     "tiling",
 ];
 
@@ -160,24 +161,24 @@ pub struct TextureArgs {
 #[derive(Debug, Args)]
 #[command(next_help_heading = "View")]
 pub struct ViewArgs {
-    /// Degrees between the view direction and the plane normal (0 = straight down, < 90).
+    /// Degrees between the view direction and the plane normal (0 = straight down, < 90); in a
+    /// scene, from straight down, for the automatic camera [default: 0; in a scene 61.2].
     #[arg(
         long,
         value_name = "DEG",
         allow_negative_numbers = true,
-        value_parser = parse_view_angle,
-        default_value_t = view_default().view_angle
+        value_parser = parse_view_angle
     )]
-    pub view_angle: f32,
-    /// Degrees around the normal, from +u towards +v.
+    pub view_angle: Option<f32>,
+    /// Degrees around the normal, from +u towards +v; in a scene, around the vertical from +Z
+    /// (the front) towards +X [default: 0; in a scene 36.9].
     #[arg(
         long,
         value_name = "DEG",
         allow_negative_numbers = true,
-        value_parser = parse_finite,
-        default_value_t = view_default().view_azimuth
+        value_parser = parse_finite
     )]
-    pub view_azimuth: f32,
+    pub view_azimuth: Option<f32>,
     /// Degrees between the direction to the light and the plane normal (90 = horizon).
     #[arg(
         long,
@@ -199,15 +200,15 @@ pub struct ViewArgs {
     /// How the camera projects.
     #[arg(long, value_enum, default_value_t = view_default().projection.into())]
     pub projection: ProjectionArg,
-    /// Camera distance as a multiple of the default framing distance; < 1 zooms in.
+    /// Camera distance as a multiple of the default framing distance; < 1 zooms in (in a
+    /// scene, for the automatic camera) [default: 1].
     #[arg(
         long,
         value_name = "F",
         allow_negative_numbers = true,
-        value_parser = parse_positive,
-        default_value_t = view_default().distance
+        value_parser = parse_positive
     )]
-    pub distance: f32,
+    pub distance: Option<f32>,
     /// UV repeats across the plane (UVs run 0..N).
     #[arg(
         long,
@@ -255,15 +256,29 @@ impl TextureArgs {
 impl ViewArgs {
     /// The camera and light these options describe.
     pub fn preview_view(&self) -> PreviewView {
+        let default = view_default();
         PreviewView {
-            view_angle: self.view_angle,
-            view_azimuth: self.view_azimuth,
+            view_angle: self.view_angle.unwrap_or(default.view_angle),
+            view_azimuth: self.view_azimuth.unwrap_or(default.view_azimuth),
             light_angle: self.light_angle,
             light_azimuth: self.light_azimuth,
             projection: self.projection.into(),
-            distance: self.distance,
+            distance: self.distance.unwrap_or(default.distance),
             tiling: self.tiling,
         }
+    }
+
+    /// The automatic camera of a scene, when any of its options was given.
+    pub fn framing_view(&self) -> Option<FramingView> {
+        if self.view_angle.is_none() && self.view_azimuth.is_none() && self.distance.is_none() {
+            return None;
+        }
+        let default = FramingView::default();
+        Some(FramingView {
+            view_angle: self.view_angle.unwrap_or(default.view_angle),
+            view_azimuth: self.view_azimuth.unwrap_or(default.view_azimuth),
+            distance: self.distance.unwrap_or(default.distance),
+        })
     }
 }
 
@@ -307,6 +322,7 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
     let preview = ScenePreview {
         path,
         camera: args.scene.camera,
+        framing: args.view.framing_view(),
         aspect: width as f32 / height as f32,
         debug_view: args.output.debug_view,
     };

@@ -7,9 +7,9 @@ use std::path::Path;
 
 use anyhow::{Result, anyhow, bail};
 use glam::Vec3;
-use pom::hecs::{Entity, World};
-use pom::preview::{default_lighting, three_quarter_view};
-use pom::{App, Camera, DebugView, GltfScene, ParallaxOcclusionMaterial};
+use pom::hecs::World;
+use pom::preview::{FramingView, default_lighting, framing_camera};
+use pom::{App, DebugView, GltfScene, ParallaxOcclusionMaterial};
 
 use crate::cli_types::CameraArg;
 
@@ -23,6 +23,8 @@ pub struct ScenePreview<'a> {
     pub path: &'a Path,
     /// `--camera`; `None` lets the file decide (its first camera, or auto when it has none).
     pub camera: Option<CameraArg>,
+    /// `--view-angle`, `--view-azimuth`, `--distance` for the automatic camera, if any was given.
+    pub framing: Option<FramingView>,
     /// Width / height of the image.
     pub aspect: f32,
     /// Set on every parallax material.
@@ -45,12 +47,19 @@ pub fn spawn(app: &mut App, preview: &ScenePreview<'_>) -> Result<()> {
     // The loader's errors name the file and the problem.
     let scene = pom::load_gltf(app, path).map_err(|error| anyhow!(one_line(&error.to_string())))?;
     // Checked before any warning is printed, so that a bad index is the only line on stderr.
-    let viewpoint = choose_viewpoint(preview.camera, scene.cameras.len(), path)?;
+    let viewpoint = choose_viewpoint(
+        preview.camera,
+        preview.framing.is_some(),
+        scene.cameras.len(),
+        path,
+    )?;
     for warning in &scene.warnings {
         warn(&format!("{}: {warning}", path.display()));
     }
     match viewpoint {
-        Viewpoint::File(index) => activate_camera(&mut app.world, &scene.cameras, Some(index)),
+        Viewpoint::File(index) => {
+            scene.activate_camera(&mut app.world, Some(index));
+        }
         Viewpoint::Framing => frame_scene(app, &scene, preview),
     }
     if scene.lights.is_empty() {
@@ -65,46 +74,43 @@ pub fn spawn(app: &mut App, preview: &ScenePreview<'_>) -> Result<()> {
 }
 
 /// `--camera` against the file's cameras: an index it has, auto, or by default its first
-/// camera (auto when it has none).
+/// camera (auto when it has none, or when the automatic camera's options were given).
 fn choose_viewpoint(
     requested: Option<CameraArg>,
+    framing_options: bool,
     cameras: usize,
     path: &Path,
 ) -> Result<Viewpoint> {
     match requested {
         Some(CameraArg::Auto) => Ok(Viewpoint::Framing),
+        Some(CameraArg::Index(index)) if framing_options => bail!(
+            "--view-angle, --view-azimuth and --distance move the automatic camera, not --camera {index}"
+        ),
         Some(CameraArg::Index(index)) if index < cameras => Ok(Viewpoint::File(index)),
         Some(CameraArg::Index(index)) => bail!(
             "--camera {index}, but {} has {}",
             path.display(),
             count(cameras, "camera", "cameras")
         ),
-        None if cameras == 0 => Ok(Viewpoint::Framing),
+        None if cameras == 0 || framing_options => Ok(Viewpoint::Framing),
         None => Ok(Viewpoint::File(0)),
     }
 }
 
-/// Makes the file's camera `chosen` the only active one of `cameras` (none with `None`).
-fn activate_camera(world: &mut World, cameras: &[Entity], chosen: Option<usize>) {
-    for (index, &entity) in cameras.iter().enumerate() {
-        if let Ok(mut camera) = world.get::<&mut Camera>(entity) {
-            camera.active = Some(index) == chosen;
-        }
-    }
-}
-
-/// Turns the file's cameras off and spawns a three-quarter view of the scene's meshes (of a
-/// unit box at the origin, with a warning, when there are none).
+/// Turns the file's cameras off and spawns a camera framing what the scene is about
+/// (`GltfScene::framing_bounds`; a unit box at the origin, with a warning, without meshes).
 fn frame_scene(app: &mut App, scene: &GltfScene, preview: &ScenePreview<'_>) {
-    activate_camera(&mut app.world, &scene.cameras, None);
-    let bounds = scene.bounds.unwrap_or_else(|| {
+    scene.activate_camera(&mut app.world, None);
+    let bounds = scene.framing_bounds.unwrap_or_else(|| {
         warn(&format!(
             "{} has no meshes: framing a unit box at the origin",
             preview.path.display()
         ));
         EMPTY_SCENE_BOUNDS
     });
-    app.world.spawn(three_quarter_view(bounds, preview.aspect));
+    let view = preview.framing.unwrap_or_default();
+    app.world
+        .spawn(framing_camera(bounds, preview.aspect, view));
 }
 
 /// The plugin's default lighting: a sun, and the ambient light resource.
@@ -143,52 +149,52 @@ fn count(n: usize, one: &str, many: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use pom::hecs::Entity;
 
     #[test]
     fn the_default_camera_is_the_files_first_or_auto_without_one() {
         let path = Path::new("scene.gltf");
-        assert_eq!(choose_viewpoint(None, 2, path).unwrap(), Viewpoint::File(0));
-        assert_eq!(choose_viewpoint(None, 0, path).unwrap(), Viewpoint::Framing);
+        assert_eq!(
+            choose_viewpoint(None, false, 2, path).unwrap(),
+            Viewpoint::File(0)
+        );
+        assert_eq!(
+            choose_viewpoint(None, false, 0, path).unwrap(),
+            Viewpoint::Framing
+        );
         let auto = Some(CameraArg::Auto);
-        assert_eq!(choose_viewpoint(auto, 2, path).unwrap(), Viewpoint::Framing);
+        assert_eq!(
+            choose_viewpoint(auto, false, 2, path).unwrap(),
+            Viewpoint::Framing
+        );
         let second = Some(CameraArg::Index(1));
         assert_eq!(
-            choose_viewpoint(second, 2, path).unwrap(),
+            choose_viewpoint(second, false, 2, path).unwrap(),
             Viewpoint::File(1)
         );
+        // The automatic camera's options imply it, and contradict a file camera.
+        assert_eq!(
+            choose_viewpoint(None, true, 2, path).unwrap(),
+            Viewpoint::Framing
+        );
+        assert!(choose_viewpoint(second, true, 2, path).is_err());
     }
 
     #[test]
     fn a_camera_past_the_files_names_the_count() {
         let path = Path::new("scene.gltf");
-        let error = choose_viewpoint(Some(CameraArg::Index(3)), 2, path).unwrap_err();
+        let error = choose_viewpoint(Some(CameraArg::Index(3)), false, 2, path).unwrap_err();
         assert_eq!(
             error.to_string(),
             "--camera 3, but scene.gltf has 2 cameras"
         );
-        let error = choose_viewpoint(Some(CameraArg::Index(1)), 1, path).unwrap_err();
+        let error = choose_viewpoint(Some(CameraArg::Index(1)), false, 1, path).unwrap_err();
         assert_eq!(error.to_string(), "--camera 1, but scene.gltf has 1 camera");
-        let error = choose_viewpoint(Some(CameraArg::Index(0)), 0, path).unwrap_err();
+        let error = choose_viewpoint(Some(CameraArg::Index(0)), false, 0, path).unwrap_err();
         assert_eq!(
             error.to_string(),
             "--camera 0, but scene.gltf has 0 cameras"
         );
-    }
-
-    #[test]
-    fn only_the_chosen_camera_stays_active() {
-        let mut world = World::new();
-        let cameras: Vec<Entity> = (0..3).map(|_| world.spawn((Camera::default(),))).collect();
-        let active = |world: &World| -> Vec<bool> {
-            cameras
-                .iter()
-                .map(|&entity| world.get::<&Camera>(entity).unwrap().active)
-                .collect()
-        };
-        activate_camera(&mut world, &cameras, Some(1));
-        assert_eq!(active(&world), [false, true, false]);
-        activate_camera(&mut world, &cameras, None);
-        assert_eq!(active(&world), [false, false, false]);
     }
 
     #[test]

@@ -242,6 +242,45 @@ impl Gltf {
 }
 
 #[test]
+fn the_view_options_move_the_automatic_camera_of_a_scene() {
+    let dir = TempDir::new("scene-view");
+    let scene = Gltf::quad()
+        .with_light()
+        .with_two_cameras()
+        .write(&dir, "scene");
+    let (_, auto) = render(&scene, &dir.join("auto.png"), &["--camera", "auto"]);
+    // Given without --camera, they imply the automatic camera.
+    let (output, above) = render(
+        &scene,
+        &dir.join("above.png"),
+        &["--view-angle", "0", "--distance", "1.5"],
+    );
+    assert_eq!(warnings(&output), Vec::<String>::new());
+    assert_ne!(auto.to_rgba8().as_raw(), above.to_rgba8().as_raw());
+    let (_, turned) = render(
+        &scene,
+        &dir.join("turned.png"),
+        &["--camera", "auto", "--view-azimuth", "120"],
+    );
+    assert_ne!(auto.to_rgba8().as_raw(), turned.to_rgba8().as_raw());
+    // They move the automatic camera, not one of the file's.
+    let out = dir.join("contradiction.png");
+    let output = sandbox(&[
+        "render",
+        "--scene",
+        path_arg(&scene),
+        "--camera",
+        "1",
+        "--view-angle",
+        "30",
+        "--out",
+        path_arg(&out),
+    ]);
+    assert_one_line_error(&output, &["--view-angle", "automatic camera", "--camera 1"]);
+    assert!(!out.exists());
+}
+
+#[test]
 fn a_file_camera_and_the_auto_camera_both_render_and_differ() {
     let dir = TempDir::new("cameras");
     let scene = Gltf::quad()

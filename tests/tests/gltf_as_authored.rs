@@ -66,3 +66,49 @@ fn a_double_sided_quad_seen_from_behind() {
     );
     check_golden("gltf_double_sided_back", &image, FlipTolerance::default()).unwrap();
 }
+
+#[test]
+fn the_first_camera_node_is_the_one_looked_through() {
+    let dir = scratch_dir("two-cameras");
+    let mut fixture = GltfFixture::quad(1.0);
+    // Camera nodes: a parent with one child camera, listed after a sibling camera; the walk is
+    // depth first, parents before children, siblings in file order.
+    fixture.json["cameras"] = json!([
+        {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}},
+        {"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}}
+    ]);
+    fixture.json["nodes"] = json!([
+        {"name": "quad", "mesh": 0},
+        {"name": "rig", "children": [2]},
+        {"name": "near", "camera": 1, "translation": [0.0, 2.0, 0.0]},
+        {"name": "far", "camera": 0, "translation": [0.0, 5.0, 5.0]}
+    ]);
+    fixture.json["scenes"] = json!([{"nodes": [0, 1, 3]}]);
+    let mut app = app(16);
+    let scene = load_gltf(&mut app, fixture.write(&dir, "cameras")).unwrap();
+    let names = |app: &App| -> Vec<(String, bool)> {
+        scene
+            .cameras
+            .iter()
+            .map(|&entity| {
+                let name = app.world.get::<&pom::Name>(entity).unwrap().0.clone();
+                (name, app.world.get::<&Camera>(entity).unwrap().active)
+            })
+            .collect()
+    };
+    assert_eq!(
+        names(&app),
+        [("near".to_owned(), true), ("far".to_owned(), false)]
+    );
+    assert!(scene.activate_camera(&mut app.world, Some(1)));
+    assert_eq!(
+        names(&app),
+        [("near".to_owned(), false), ("far".to_owned(), true)]
+    );
+    assert!(
+        !scene.activate_camera(&mut app.world, Some(2)),
+        "no third camera"
+    );
+    assert!(scene.activate_camera(&mut app.world, None));
+    assert!(names(&app).iter().all(|(_, active)| !active));
+}

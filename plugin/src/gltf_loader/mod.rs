@@ -8,6 +8,7 @@
 //! lines, unknown required extensions) are skipped with one warning each.
 
 mod extras;
+mod framing;
 mod guards;
 mod materials;
 mod nodes;
@@ -27,14 +28,37 @@ use crate::App;
 pub struct GltfScene {
     /// Every entity spawned, parents before their children.
     pub entities: Vec<Entity>,
-    /// Entities with a [`crate::Camera`], in the order of the file's nodes.
+    /// Entities with a [`crate::Camera`]: camera N is the N-th camera node (from 0) of a walk
+    /// of the scene's nodes depth first, parents before children, siblings in file order.
+    /// Camera 0 is the active one; the others are loaded inactive.
     pub cameras: Vec<Entity>,
     /// Entities with a light.
     pub lights: Vec<Entity>,
     /// World-space bounding box (min, max) of every mesh, if there are any.
     pub bounds: Option<(Vec3, Vec3)>,
+    /// What an automatic camera frames: the box of every mesh except flat ones more than four
+    /// times wider than the rest (a ground plane, a backdrop), which would leave the scene's
+    /// objects a speck.
+    pub framing_bounds: Option<(Vec3, Vec3)>,
     /// One line per unsupported feature that was skipped.
     pub warnings: Vec<String>,
+}
+
+impl GltfScene {
+    /// Makes the file's camera `index` the only active one of the scene's cameras, or none with
+    /// `None` (to look through a camera of your own). Returns false, changing nothing, when the
+    /// file has no camera `index`.
+    pub fn activate_camera(&self, world: &mut hecs::World, index: Option<usize>) -> bool {
+        if index.is_some_and(|index| index >= self.cameras.len()) {
+            return false;
+        }
+        for (camera_index, &entity) in self.cameras.iter().enumerate() {
+            if let Ok(mut camera) = world.get::<&mut crate::Camera>(entity) {
+                camera.active = Some(camera_index) == index;
+            }
+        }
+        true
+    }
 }
 
 /// Why a glTF file could not be loaded.

@@ -20,13 +20,16 @@ fn transform_of(node: &gltf::Node<'_>) -> Transform {
     }
 }
 
-fn grow_bounds(bounds: &mut Option<(Vec3, Vec3)>, world: Affine3A, mesh: &Mesh) {
+/// The world-space box of `mesh` placed by `world` (`None` without vertices).
+fn mesh_bounds(world: Affine3A, mesh: &Mesh) -> Option<(Vec3, Vec3)> {
+    let mut bounds: Option<(Vec3, Vec3)> = None;
     for position in &mesh.positions {
         let point = world.transform_point3(Vec3::from(*position));
         let (min, max) = bounds.get_or_insert((point, point));
         *min = min.min(point);
         *max = max.max(point);
     }
+    bounds
 }
 
 fn camera_of(camera: &gltf::Camera<'_>) -> Camera {
@@ -81,6 +84,7 @@ fn spawn_nodes(
     images: &mut Assets<Image>,
 ) -> Result<(), GltfError> {
     let mut materials = MaterialCache::default();
+    let mut mesh_boxes = Vec::new();
     let mut stack: Vec<(gltf::Node<'_>, Option<Entity>, Affine3A)> = root
         .nodes()
         .map(|node| (node, None, Affine3A::IDENTITY))
@@ -143,7 +147,9 @@ fn spawn_nodes(
                     &mut scene.warnings,
                 )?;
                 let data = read_primitive(source, &mesh, &primitive, material.uv_transform)?;
-                grow_bounds(&mut scene.bounds, world, &data);
+                if let Some(bounds) = mesh_bounds(world, &data) {
+                    mesh_boxes.push(bounds);
+                }
                 drawable.push((meshes.add(data), material.kind));
             }
             // One primitive goes on the node itself; several get a child entity each.
@@ -168,7 +174,12 @@ fn spawn_nodes(
             }
         }
         if let Some(camera) = node.camera() {
-            let _ = app.world.insert_one(entity, camera_of(&camera));
+            // One rule everywhere: the first camera node is the one looked through.
+            let camera = Camera {
+                active: scene.cameras.is_empty(),
+                ..camera_of(&camera)
+            };
+            let _ = app.world.insert_one(entity, camera);
             scene.cameras.push(entity);
         }
         if let Some(light) = node.light() {
@@ -204,5 +215,10 @@ fn spawn_nodes(
             stack.push((child, Some(entity), world));
         }
     }
+    scene.bounds = mesh_boxes
+        .iter()
+        .copied()
+        .reduce(|(min_a, max_a), (min_b, max_b)| (min_a.min(min_b), max_a.max(max_b)));
+    scene.framing_bounds = super::framing::framing_bounds(&mesh_boxes);
     Ok(())
 }

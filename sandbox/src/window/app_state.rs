@@ -9,6 +9,7 @@ use pom::preview::{default_lighting, three_quarter_view};
 use pom::{App, GltfScene, Name, ParallaxOcclusionMaterial, Transform};
 
 use super::autosave::TunedState;
+use crate::cli_types::CameraArg;
 use crate::demo_scene::STREET_CORNER;
 
 /// Name of the embedded scene in the state file and the UI.
@@ -32,13 +33,13 @@ pub struct LoadedScene {
 
 /// Loads `path` (or the embedded street corner, also when `path` fails) into `app`, names its
 /// entities (the loader's `pom::Name` components) and adds a camera and a light when it has none.
-pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
+pub fn load_scene(app: &mut App, path: Option<&Path>, camera: Option<CameraArg>) -> LoadedScene {
     let mut messages = Vec::new();
     if let Some(path) = path {
         match pom::load_gltf(app, path) {
             Ok(scene) => {
                 let label = path.display().to_string();
-                return finish_loading(app, &scene, label, messages);
+                return finish_loading(app, &scene, label, messages, camera);
             }
             Err(error) => {
                 messages.push(format!(
@@ -50,11 +51,11 @@ pub fn load_scene(app: &mut App, path: Option<&Path>) -> LoadedScene {
         }
     }
     match pom::load_gltf_bytes(app, STREET_CORNER, EMBEDDED_SCENE) {
-        Ok(scene) => finish_loading(app, &scene, EMBEDDED_SCENE.into(), messages),
+        Ok(scene) => finish_loading(app, &scene, EMBEDDED_SCENE.into(), messages, camera),
         Err(error) => {
             messages.push(format!("could not load the embedded scene: {error}"));
             let label = EMBEDDED_SCENE.into();
-            finish_loading(app, &GltfScene::default(), label, messages)
+            finish_loading(app, &GltfScene::default(), label, messages, camera)
         }
     }
 }
@@ -66,6 +67,7 @@ pub fn finish_loading(
     scene: &GltfScene,
     label: String,
     mut messages: Vec<String>,
+    camera: Option<CameraArg>,
 ) -> LoadedScene {
     messages.extend(
         scene
@@ -74,9 +76,26 @@ pub fn finish_loading(
             .map(|warning| format!("{label}: {warning}")),
     );
     let bounds = scene
-        .bounds
+        .framing_bounds
         .unwrap_or((Vec3::splat(-0.5), Vec3::splat(0.5)));
-    if scene.cameras.is_empty() {
+    // The file's first camera (the loader's rule), unless --camera says otherwise.
+    let framed = match camera {
+        Some(CameraArg::Auto) => {
+            scene.activate_camera(&mut app.world, None);
+            true
+        }
+        Some(CameraArg::Index(index)) => {
+            if !scene.activate_camera(&mut app.world, Some(index)) {
+                messages.push(format!(
+                    "--camera {index}, but {label} has {} camera(s): opened on the first",
+                    scene.cameras.len()
+                ));
+            }
+            scene.cameras.is_empty()
+        }
+        None => scene.cameras.is_empty(),
+    };
+    if framed {
         app.world.spawn(three_quarter_view(bounds, FRAMING_ASPECT));
     }
     if scene.lights.is_empty() {
@@ -166,7 +185,7 @@ mod tests {
     #[test]
     fn the_street_corner_lists_its_materials_by_node_name() {
         let mut app = App::new();
-        let loaded = load_scene(&mut app, None);
+        let loaded = load_scene(&mut app, None, None);
         assert_eq!(loaded.label, EMBEDDED_SCENE);
         assert!(loaded.messages.is_empty(), "{:?}", loaded.messages);
         let names: Vec<String> = material_entities(&app)

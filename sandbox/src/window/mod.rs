@@ -38,6 +38,10 @@ pub struct WindowArgs {
     /// cannot be loaded shows its error in the window, which falls back to the street corner.
     #[arg(long, value_name = "PATH")]
     pub scene: Option<PathBuf>,
+    /// The scene's camera to open on, counting camera nodes from 0 as `render --help` says, or
+    /// auto for a view framing its meshes [default: 0, or auto when the file has no cameras].
+    #[arg(long, value_name = "INDEX|auto", value_parser = crate::cli_types::parse_camera)]
+    pub camera: Option<crate::cli_types::CameraArg>,
     /// Close the window after this many frames (for scripts and CI).
     #[arg(long, value_name = "N")]
     pub exit_after_frames: Option<u64>,

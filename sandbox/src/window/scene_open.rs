@@ -125,7 +125,7 @@ pub fn open_request(app: &mut App, request: &OpenRequest) -> Result<LoadedScene,
         let _ = app.world.despawn(entity);
     }
     let (scene, label) = opened?;
-    Ok(finish_loading(app, &scene, label, Vec::new()))
+    Ok(finish_loading(app, &scene, label, Vec::new(), None))
 }
 
 /// The loaded scene and its label.

@@ -38,6 +38,7 @@ const PANEL_WIDTH: f32 = 380.0;
 /// The application handler; [`WindowApp::finish`] reports how it ended.
 pub struct WindowApp {
     scene: Option<PathBuf>,
+    camera: Option<crate::cli_types::CameraArg>,
     split_method: Option<pom::ParallaxMethod>,
     exit_after_frames: Option<u64>,
     screenshot: Option<PathBuf>,
@@ -71,6 +72,7 @@ impl WindowApp {
     pub fn new(args: &WindowArgs, display: OwnedDisplayHandle) -> Self {
         Self {
             scene: args.scene.clone(),
+            camera: args.camera,
             split_method: args.split_method,
             exit_after_frames: args.exit_after_frames,
             screenshot: args.screenshot.clone(),
@@ -136,7 +138,7 @@ impl WindowApp {
         if let Some(hot_reload) = ShaderHotReload::from_repository() {
             app.add_plugin(hot_reload);
         }
-        let loaded = load_scene(&mut app, self.scene.as_deref());
+        let loaded = load_scene(&mut app, self.scene.as_deref(), self.camera);
         let mut panel = PanelState {
             messages: loaded.messages,
             ..PanelState::default()
