@@ -508,12 +508,9 @@ mod tests {
             &["--shadows", "off"],
             &["--shadow-softening", "1"],
             &["--depth-offset"],
-            &["--view-angle", "30"],
-            &["--view-azimuth", "30"],
             &["--light-angle", "30"],
             &["--light-azimuth", "30"],
             &["--projection", "perspective"],
-            &["--distance", "2"],
             &["--tiling", "2"],
         ] {
             let mut args = vec!["--scene", "city.glb"];
@@ -527,6 +524,7 @@ mod tests {
     fn every_material_preview_option_conflicts_with_a_scene() {
         use clap::CommandFactory;
         // Clap derives one group per flattened struct, named after it, holding its options.
+        // The view's camera options also move a scene's automatic camera.
         let command = RenderOnly::command();
         let mut preview_only: Vec<String> = command
             .get_groups()
@@ -534,6 +532,7 @@ mod tests {
                 ["TextureArgs", "MaterialArgs", "ViewArgs"].contains(&group.get_id().as_str())
             })
             .flat_map(|group| group.get_args().map(|id| id.to_string()))
+            .filter(|id| !["view_angle", "view_azimuth", "distance"].contains(&id.as_str()))
             .collect();
         preview_only.sort();
         let mut listed: Vec<String> = material_preview_only()

@@ -86,6 +86,20 @@ impl GltfFixture {
         textures.len() - 1
     }
 
+    /// Gives the quad's four vertices the RGBA colours `colors` (`COLOR_0`, floats).
+    pub fn add_vertex_colors(&mut self, colors: [[f32; 4]; 4]) {
+        let (offset, length) = push_f32s(&mut self.bin, colors.as_flattened());
+        let views = self.json["bufferViews"].as_array_mut().expect("array");
+        views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": length}));
+        let view = views.len() - 1;
+        let accessors = self.json["accessors"].as_array_mut().expect("array");
+        accessors
+            .push(json!({"bufferView": view, "componentType": 5126, "count": 4, "type": "VEC4"}));
+        let accessor = accessors.len() - 1;
+        self.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(accessor);
+        self.json["buffers"][0]["byteLength"] = json!(self.bin.len());
+    }
+
     /// Writes `NAME.gltf`, `quad.bin` and the images into `dir`; returns the document's path.
     pub fn write(&self, dir: &Path, name: &str) -> PathBuf {
         std::fs::create_dir_all(dir).expect("test directory");

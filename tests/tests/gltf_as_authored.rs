@@ -112,3 +112,257 @@ fn the_first_camera_node_is_the_one_looked_through() {
     assert!(scene.activate_camera(&mut app.world, None));
     assert!(names(&app).iter().all(|(_, active)| !active));
 }
+
+/// The fixture's quad seen from straight above, lit by a sun straight above (none with
+/// `lit` false), with `edit` applied to the document first. Returns the image and the loader's
+/// warnings.
+fn quad_from_above(
+    name: &str,
+    lit: bool,
+    edit: impl FnOnce(&mut GltfFixture),
+) -> (image::RgbaImage, Vec<String>) {
+    let dir = scratch_dir(name);
+    let mut fixture = GltfFixture::quad(1.0);
+    edit(&mut fixture);
+    let mut app = app(48);
+    let scene = load_gltf(&mut app, fixture.write(&dir, name)).unwrap();
+    *app.resources.get_mut::<pom::AmbientLight>().unwrap() = pom::AmbientLight {
+        color: pom::Color::WHITE,
+        intensity: 0.0,
+    };
+    app.world.spawn((
+        Camera::orthographic(1.25),
+        Transform::from_xyz(0.0, 2.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
+    ));
+    if lit {
+        app.world.spawn((
+            DirectionalLight::default(),
+            Transform::IDENTITY.looking_at(Vec3::NEG_Y, Vec3::NEG_Z),
+        ));
+    }
+    (render_and_capture(&mut app).unwrap(), scene.warnings)
+}
+
+#[test]
+fn vertex_colours_tint_the_base_colour() {
+    let (image, warnings) = quad_from_above("vertex-colours", true, |fixture| {
+        // Corners in the fixture's order: (-,-), (-,+), (+,+), (+,-) in x and z.
+        fixture.add_vertex_colors([
+            [1.0, 0.0, 0.0, 1.0],
+            [0.0, 1.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0, 1.0],
+        ]);
+    });
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // Seen from above with −Z up the image: x grows to the right, z downwards. Near each
+    // corner its colour leads (the quad covers pixels 5 to 43).
+    let leads = |pixel: [u8; 4], channel: usize| {
+        (0..3).all(|other| other == channel || pixel[channel] > pixel[other] + 100)
+    };
+    let (top_left, bottom_left) = (image.get_pixel(7, 7).0, image.get_pixel(7, 40).0);
+    let (bottom_right, top_right) = (image.get_pixel(40, 40).0, image.get_pixel(40, 7).0);
+    assert!(leads(top_left, 0), "{top_left:?}");
+    assert!(leads(bottom_left, 1), "{bottom_left:?}");
+    assert!(leads(bottom_right, 2), "{bottom_right:?}");
+    assert!(top_right.iter().take(3).all(|&c| c > 180), "{top_right:?}");
+    check_golden("gltf_vertex_colours", &image, FlipTolerance::default()).unwrap();
+}
+
+#[test]
+fn emission_glows_without_light() {
+    let (image, warnings) = quad_from_above("emissive", false, |fixture| {
+        fixture.json["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
+        fixture.json["materials"][0] = json!({
+            "name": "lamp",
+            "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
+            "emissiveFactor": [1.0, 0.5, 0.1],
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 0.5}}
+        });
+    });
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let centre = image.get_pixel(24, 24).0;
+    // (0.5, 0.25, 0.05) through Khronos Neutral (0.04 Fresnel floor off) and the sRGB curve.
+    let linear = |byte: u8| pom::srgb_to_linear(f32::from(byte) / 255.0);
+    assert!((linear(centre[0]) - 0.46).abs() < 0.02, "{centre:?}");
+    assert!((linear(centre[1]) - 0.21).abs() < 0.02, "{centre:?}");
+    check_golden("gltf_emissive", &image, FlipTolerance::default()).unwrap();
+}
+
+#[test]
+fn an_unlit_material_shows_its_colour_as_is() {
+    let (image, warnings) = quad_from_above("unlit", true, |fixture| {
+        fixture.json["extensionsUsed"] = json!(["KHR_materials_unlit"]);
+        fixture.json["materials"][0] = json!({
+            "name": "flat",
+            "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.3, 1.0]},
+            "extensions": {"KHR_materials_unlit": {}}
+        });
+    });
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let pixels: Vec<_> = image.pixels().collect();
+    let centre = *image.get_pixel(24, 24);
+    // One flat colour wherever the quad is, whatever the sun does.
+    assert!(pixels.iter().filter(|p| ***p == centre).count() > 48 * 48 / 2);
+    let linear = |byte: u8| pom::srgb_to_linear(f32::from(byte) / 255.0);
+    assert!((linear(centre.0[1]) - 0.46).abs() < 0.02, "{centre:?}");
+}
+
+#[test]
+fn an_alpha_mask_cuts_the_surface_out() {
+    let (image, warnings) = quad_from_above("mask", true, |fixture| {
+        // 4 × 4 checks of 16² texels: alpha 1 and alpha 0.2 (below the cutoff of 0.3). Large
+        // checks, so that filtering only blurs their edges.
+        let checker = image::RgbaImage::from_fn(64, 64, |x, y| {
+            let alpha = if (x / 16 + y / 16) % 2 == 0 { 255 } else { 51 };
+            image::Rgba([230, 200, 160, alpha])
+        });
+        let texture = fixture.add_texture("checker.png", pom_tests::gltf_fixture::png(&checker));
+        fixture.json["materials"][0] = json!({
+            "name": "lattice",
+            "alphaMode": "MASK",
+            "alphaCutoff": 0.3,
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": texture}}
+        });
+    });
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let background = *image.get_pixel(0, 0);
+    // Centres of neighbouring checks (the quad covers pixels 5 to 43, 9.5 per check): two cut
+    // out (background), two drawn.
+    let holes = [image.get_pixel(19, 10), image.get_pixel(10, 19)];
+    let solid = [image.get_pixel(10, 10), image.get_pixel(19, 19)];
+    for pixel in holes {
+        assert_eq!(*pixel, background);
+    }
+    for pixel in solid {
+        assert_ne!(*pixel, background);
+        assert_eq!(pixel.0[3], 255);
+    }
+    check_golden("gltf_alpha_mask", &image, FlipTolerance::default()).unwrap();
+}
+
+#[test]
+fn extensions_the_renderer_does_not_honour_are_named_once() {
+    let (_, warnings) = quad_from_above("extensions", true, |fixture| {
+        fixture.json["extensionsUsed"] = json!([
+            "KHR_materials_clearcoat",
+            "KHR_materials_transmission",
+            "KHR_materials_unlit"
+        ]);
+    });
+    assert_eq!(
+        warnings,
+        [
+            "extension KHR_materials_clearcoat is not supported: ignored",
+            "extension KHR_materials_transmission is not supported: ignored"
+        ]
+    );
+}
+
+#[test]
+fn an_alpha_cutoff_outside_zero_to_one_is_an_error_naming_it() {
+    // JSON has no NaN; these are the values a broken exporter writes instead.
+    for (name, cutoff) in [("negative", "-0.5"), ("huge", "2.5"), ("overflow", "1e999")] {
+        let dir = scratch_dir(&format!("cutoff-{name}"));
+        let fixture = GltfFixture::quad(1.0);
+        let path = fixture.write(&dir, name);
+        let text = std::fs::read_to_string(&path).unwrap().replace(
+            r#""name": "surface""#,
+            &format!(r#""name": "surface", "alphaMode": "MASK", "alphaCutoff": {cutoff}"#),
+        );
+        std::fs::write(&path, text).unwrap();
+        let mut app = app(8);
+        let error = load_gltf(&mut app, &path).unwrap_err().to_string();
+        eprintln!("alphaCutoff {cutoff}: {error}");
+        assert!(error.contains(&format!("{name}.gltf")), "{error}");
+        assert!(
+            error.contains("alphaCutoff")
+                || error.contains("alpha_cutoff")
+                || error.contains("number"),
+            "{error}"
+        );
+        assert!(app.world.is_empty(), "nothing half-loaded stays");
+    }
+}
+
+/// A parallax wall (the cobblestone-like raised block) seen at an angle, with or without a
+/// half-transparent blue pane from a glTF file floating in front of it.
+fn wall_behind_a_pane(pane: bool) -> image::RgbaImage {
+    use pom_tests::pom_scene::HeightMaterial;
+    let mut app = app(64);
+    app.finish().unwrap();
+    let textures = HeightMaterial {
+        field: pom::patterns::bricks(128, 4.0, 8.0),
+        height_scale: 0.06,
+    };
+    let wall = textures.material(&mut app);
+    let plane = app
+        .resources
+        .get_mut::<pom::Assets<pom::Mesh>>()
+        .unwrap()
+        .add(pom::Mesh::plane(2.0));
+    app.world.spawn((plane, wall, Transform::IDENTITY));
+    if pane {
+        let dir = scratch_dir("blend-pane");
+        let mut fixture = GltfFixture::quad(1.2);
+        fixture.json["materials"][0] = json!({
+            "name": "glass",
+            "alphaMode": "BLEND",
+            "doubleSided": true,
+            "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.35, 1.0, 0.45]}
+        });
+        fixture.json["nodes"][0]["translation"] = json!([0.0, 0.3, 0.0]);
+        let scene = load_gltf(&mut app, fixture.write(&dir, "pane")).unwrap();
+        assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    }
+    app.world.spawn((
+        Camera::perspective(45.0),
+        Transform::from_xyz(0.0, 1.8, 1.2).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    app.world.spawn((
+        DirectionalLight::default(),
+        Transform::IDENTITY.looking_at(Vec3::new(0.5, -1.0, -0.4), Vec3::Y),
+    ));
+    render_and_capture(&mut app).unwrap()
+}
+
+#[test]
+fn a_blended_pane_shows_the_parallax_wall_through_it() {
+    let bare = wall_behind_a_pane(false);
+    let glazed = wall_behind_a_pane(true);
+    // The centre 16 × 16 pixels lie under the pane.
+    let region = |image: &image::RgbaImage| -> Vec<[f32; 3]> {
+        (24..40)
+            .flat_map(|y| (24..40).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let p = image.get_pixel(x, y).0;
+                [f32::from(p[0]), f32::from(p[1]), f32::from(p[2])]
+            })
+            .collect()
+    };
+    let spread = |pixels: &[[f32; 3]]| {
+        let luma: Vec<f32> = pixels
+            .iter()
+            .map(|p| 0.3 * p[0] + 0.6 * p[1] + 0.1 * p[2])
+            .collect();
+        let mean = luma.iter().sum::<f32>() / luma.len() as f32;
+        (luma.iter().map(|l| (l - mean).powi(2)).sum::<f32>() / luma.len() as f32).sqrt()
+    };
+    let mean = |pixels: &[[f32; 3]], channel: usize| {
+        pixels.iter().map(|p| p[channel]).sum::<f32>() / pixels.len() as f32
+    };
+    let (under, clear) = (region(&glazed), region(&bare));
+    eprintln!(
+        "bricks: spread {:.1} bare, {:.1} through the pane; blue − red {:.1} bare, {:.1} through it",
+        spread(&clear),
+        spread(&under),
+        mean(&clear, 2) - mean(&clear, 0),
+        mean(&under, 2) - mean(&under, 0)
+    );
+    // Tinted blue, and the relief still shows through: more than a third of its contrast.
+    assert!(mean(&under, 2) - mean(&under, 0) > mean(&clear, 2) - mean(&clear, 0) + 30.0);
+    assert!(spread(&under) > spread(&clear) / 3.0 && spread(&clear) > 5.0);
+    // Opaque where the wall is: the pane keeps the pixel's alpha.
+    assert!(glazed.pixels().all(|p| p.0[3] == 255));
+    check_golden("gltf_blended_pane", &glazed, FlipTolerance::default()).unwrap();
+}

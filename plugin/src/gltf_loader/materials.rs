@@ -8,7 +8,7 @@ use image::DynamicImage;
 use super::extras::{PomExtras, choose};
 use super::{GltfError, Source, describe};
 use crate::{
-    Assets, Channel, Color, Handle, HeightSource, Image, LightingModel, LitMaterial,
+    AlphaMode, Assets, Channel, Color, Handle, HeightSource, Image, LightingModel, LitMaterial,
     ParallaxOcclusionMaterial, TextureKind,
 };
 
@@ -204,6 +204,34 @@ impl MaterialCache {
                 )
             });
 
+        let emissive_texture = match material.emissive_texture() {
+            Some(info) => Some(self.texture(
+                source,
+                images,
+                info.texture(),
+                TextureKind::Color,
+                Channel::Red,
+            )?),
+            None => None,
+        };
+        let [er, eg, eb] = material.emissive_factor();
+        let emissive = Color::linear_rgb(er, eg, eb);
+        let emissive_strength = material.emissive_strength().unwrap_or(1.0);
+        let unlit = material.unlit();
+        let (alpha_mode, alpha_cutoff) = match material.alpha_mode() {
+            gltf::material::AlphaMode::Mask => {
+                let cutoff = material.alpha_cutoff().unwrap_or(0.5);
+                if !(0.0..=1.0).contains(&cutoff) {
+                    return Err(material_error(format!(
+                        "alphaCutoff {cutoff} is outside 0..=1"
+                    )));
+                }
+                (AlphaMode::Mask, cutoff)
+            }
+            gltf::material::AlphaMode::Blend => (AlphaMode::Blend, 0.5),
+            gltf::material::AlphaMode::Opaque => (AlphaMode::Opaque, 0.5),
+        };
+
         let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
             .map_err(&material_error)?;
         let roughness = pbr.roughness_factor();
@@ -217,6 +245,12 @@ impl MaterialCache {
                 // Blinn-Phong exponent matching a GGX lobe of this roughness.
                 shininess: (2.0 / (roughness.powi(4)).max(1e-4) - 2.0).clamp(1.0, 512.0),
                 double_sided: material.double_sided(),
+                emissive_texture,
+                emissive,
+                emissive_strength,
+                unlit,
+                alpha_mode,
+                alpha_cutoff,
             }),
             Some(pom) => {
                 let height_map = match (pom.height_in_normal_alpha, pom.height_texture) {
@@ -276,6 +310,17 @@ impl MaterialCache {
                     double_sided: material.double_sided(),
                     ..ParallaxOcclusionMaterial::default()
                 };
+                // What the parallax material does not have yet is said, not dropped silently.
+                if emissive_texture.is_some() || emissive != Color::linear_rgb(0.0, 0.0, 0.0) {
+                    warnings.push(format!(
+                        "material {name}: emission is not supported on parallax materials; ignored"
+                    ));
+                }
+                if alpha_mode != AlphaMode::Opaque || unlit {
+                    warnings.push(format!(
+                        "material {name}: alpha mask, alpha blend and unlit are not supported on parallax materials; drawn opaque and lit"
+                    ));
+                }
                 pom.apply(&mut material).map_err(&material_error)?;
                 material
                     .validate()
@@ -283,11 +328,6 @@ impl MaterialCache {
                 MaterialComponent::Parallax(material)
             }
         };
-        if material.alpha_mode() == gltf::material::AlphaMode::Blend {
-            warnings.push(format!(
-                "material {name}: alpha blending is not supported; drawn opaque"
-            ));
-        }
         let loaded = LoadedMaterial { kind, uv_transform };
         self.materials.insert(key, loaded.clone());
         Ok(loaded)

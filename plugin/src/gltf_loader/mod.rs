@@ -140,10 +140,17 @@ struct Source {
     base: Option<PathBuf>,
     /// Extensions the file requires that this loader does not implement.
     unsupported_required: Vec<String>,
+    /// Extensions the file uses (without requiring them) that this loader does not implement.
+    unsupported_used: Vec<String>,
 }
 
 /// The extensions this loader implements.
-const SUPPORTED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_texture_transform"];
+const SUPPORTED_EXTENSIONS: [&str; 4] = [
+    "KHR_lights_punctual",
+    "KHR_texture_transform",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",
+];
 
 fn open(path: &Path) -> Result<Source, GltfError> {
     let bytes = std::fs::read(path).map_err(|error| GltfError::Open {
@@ -172,6 +179,14 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         .drain(..)
         .partition(|name| SUPPORTED_EXTENSIONS.contains(&name.as_str()));
     json.extensions_required = supported;
+    let unsupported_used: Vec<String> = json
+        .extensions_used
+        .iter()
+        .filter(|name| {
+            !SUPPORTED_EXTENSIONS.contains(&name.as_str()) && !unsupported.contains(*name)
+        })
+        .cloned()
+        .collect();
     guards::check_json(&json).map_err(open_error)?;
     let document =
         gltf::Document::from_json(json).map_err(|error| open_error(error.to_string()))?;
@@ -207,6 +222,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         buffers,
         base,
         unsupported_required: unsupported,
+        unsupported_used,
     })
 }
 
@@ -325,6 +341,11 @@ fn spawn_source(
         scene.warnings.push(format!(
             "required extension {extension} is not supported: ignored"
         ));
+    }
+    for extension in &source.unsupported_used {
+        scene
+            .warnings
+            .push(format!("extension {extension} is not supported: ignored"));
     }
     let mut built = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         nodes::spawn_scene(app, &source, &mut scene)

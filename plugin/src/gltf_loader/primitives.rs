@@ -40,6 +40,10 @@ pub(super) fn read_primitive(
         .read_tangents()
         .map(|tangents| tangents.map(|[x, y, z, w]| [x, y, z, -w]).collect())
         .unwrap_or_default();
+    let colors: Vec<[f32; 4]> = reader
+        .read_colors(0)
+        .map(|colors| colors.into_rgba_f32().collect())
+        .unwrap_or_default();
     let indices: Vec<u32> = match reader.read_indices() {
         Some(indices) => indices.into_u32().collect(),
         None => (0..vertex_count as u32).collect(),
@@ -60,6 +64,7 @@ pub(super) fn read_primitive(
         normals,
         uvs,
         tangents,
+        colors,
         indices,
     }
     .with_generated_attributes()

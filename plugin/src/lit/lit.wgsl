@@ -2,28 +2,61 @@
 // `LitParams` (every declared parameter of the material), the core's frame.wgsl and
 // mesh_vertex.wgsl, then tangent_space.wgsl and lighting.wgsl (see lit/mod.rs).
 
+// Pipeline-overridable: masked materials get their own pipelines (discard ends early depth
+// writes, so opaque ones must not carry it).
+override ALPHA_MASK: bool = false;
+
 @group(0) @binding(2) var<storage, read> materials: array<LitParams>;
 @group(1) @binding(0) var base_color_texture: texture_2d<f32>;
 @group(1) @binding(1) var normal_map: texture_2d<f32>;
-@group(1) @binding(2) var material_sampler: sampler;
+@group(1) @binding(2) var emissive_texture: texture_2d<f32>;
+@group(1) @binding(3) var material_sampler: sampler;
+
+// Base colour: texture × factor × vertex colour (glTF's product).
+fn base_color(in: VertexOut, material: LitParams) -> vec4<f32> {
+    return textureSample(base_color_texture, material_sampler, in.uv) * rgba(material.base_color) * in.color;
+}
+
+// Whether a masked surface is cut out here.
+fn cut_out(alpha: f32, material: LitParams) -> bool {
+    return ALPHA_MASK && alpha < material.alpha_cutoff;
+}
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let material = materials[in.object_index];
+    let base = base_color(in, material);
+    if cut_out(base.a, material) {
+        discard;
+    }
+    let emissive = rgba(material.emissive).rgb * material.emissive_strength
+        * textureSample(emissive_texture, material_sampler, in.uv).rgb;
+    // Opaque and masked surfaces are opaque where drawn (glTF ignores an opaque one's alpha).
+    let alpha = select(1.0, base.a, material.alpha_mode == ALPHA_MODE_BLEND);
+    if material.unlit != 0u {
+        return vec4<f32>(base.rgb + emissive, alpha);
+    }
     let surface_frame = facing_tangent_frame(in.world_normal, in.world_tangent, front_facing);
     let normal = perturbed_normal(
         surface_frame,
         textureSample(normal_map, material_sampler, in.uv).xyz,
         material.normal_strength,
     );
-    let base = textureSample(base_color_texture, material_sampler, in.uv) * rgba(material.base_color);
     let to_eye = direction_to_eye(in.world_position, normal);
     let surface = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0), 1.0, 0.0, LIGHTING_BLINN_PHONG);
 
-    var color = frame.ambient.rgb * base.rgb;
+    var color = frame.ambient.rgb * base.rgb + emissive;
     for (var i = 0u; i < light_count(); i += 1u) {
         let light = light_at(i, in.world_position);
         color += light.radiance * direct_lighting(surface, normal, light.to_light, to_eye);
     }
-    return vec4<f32>(color, base.a);
+    return vec4<f32>(color, alpha);
+}
+
+// The prepass of a masked surface: its holes write no depth.
+@fragment
+fn fs_prepass_alpha_mask(in: VertexOut) {
+    if cut_out(base_color(in, materials[in.object_index]).a, materials[in.object_index]) {
+        discard;
+    }
 }

@@ -9,6 +9,18 @@ use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{Color, Handle, Image, LightingModel};
 
+crate::choice_enum! {
+    /// How a surface's alpha is used (glTF alphaMode).
+    pub enum AlphaMode: "ALPHA_MODE" {
+        /// Alpha is ignored: the surface is opaque.
+        Opaque = "opaque",
+        /// Cut out where alpha is below alpha_cutoff; opaque elsewhere.
+        Mask = "mask",
+        /// Blended over what is behind, in the transparent phase, drawn back to front.
+        Blend = "blend",
+    }
+}
+
 crate::material_parameters! {
     /// A Blinn-Phong material with an optional colour texture and normal map.
     ///
@@ -22,6 +34,8 @@ crate::material_parameters! {
             base_color_texture: Option<Handle<Image>> = None,
             /// Tangent-space normal map, OpenGL convention (green up the image); flat when absent.
             normal_map: Option<Handle<Image>> = None,
+            /// sRGB emissive texture, multiplied with `emissive` (white when absent).
+            emissive_texture: Option<Handle<Image>> = None,
         }
         parameters {
             /// Colour multiplied with the texture, linear.
@@ -35,6 +49,17 @@ crate::material_parameters! {
                 .logarithmic();
             /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
             double_sided: bool = false, ParamSpec::toggle();
+            /// Light the surface gives off itself, linear (glTF emissiveFactor).
+            emissive: Color = Color::BLACK, ParamSpec::color();
+            /// Multiplies `emissive` (KHR_materials_emissive_strength): above 1 for lamps and screens.
+            emissive_strength: f32 = 1.0, ParamSpec::float(0.0, 100_000.0).editor(0.0, 10.0);
+            /// Ignore the lights: show the base colour as is (KHR_materials_unlit).
+            unlit: bool = false, ParamSpec::toggle();
+            /// Whether alpha cuts the surface out (glTF alphaMode).
+            alpha_mode: AlphaMode = AlphaMode::Opaque, ParamSpec::choice::<AlphaMode>();
+            /// Alpha below which a masked surface is cut out (glTF alphaCutoff).
+            alpha_cutoff: f32 = 0.5, ParamSpec::float(0.0, 1.0)
+                .applies_when(|material| material.alpha_mode == AlphaMode::Mask);
         }
     }
     preset LitPreset;
@@ -58,7 +83,11 @@ pub const LIT_ENTRY: WgslFile = crate::wgsl_file!("lit/lit.wgsl");
 /// The lit material's shader.
 pub const LIT_SHADER: ComposedShader = ComposedShader {
     name: "lit.wgsl",
-    constants: &[LightingModel::wgsl_constants, LitParams::wgsl],
+    constants: &[
+        LightingModel::wgsl_constants,
+        AlphaMode::wgsl_constants,
+        LitParams::wgsl,
+    ],
     files: &[
         shaders::FRAME,
         shaders::PARAMS,
@@ -74,6 +103,19 @@ pub const LIT_SHADER: ComposedShader = ComposedShader {
 pub struct LitPipelineKey {
     /// Both sides drawn (no culling).
     pub double_sided: bool,
+    /// How alpha is used: a mask may discard (in the prepass too); a blend draws in the
+    /// transparent phase.
+    pub alpha_mode: AlphaMode,
+}
+
+impl LitPipelineKey {
+    fn variant(self, entry_point: &'static str) -> FragmentVariant {
+        let mask = self.alpha_mode == AlphaMode::Mask;
+        FragmentVariant {
+            entry_point,
+            constants: vec![("ALPHA_MASK", f64::from(u8::from(mask)))],
+        }
+    }
 }
 
 impl Material for LitMaterial {
@@ -81,8 +123,11 @@ impl Material for LitMaterial {
     type Key = LitPipelineKey;
     const NAME: &'static str = "lit";
     const UNIFORM_WGSL_NAME: &'static str = "LitParams";
-    const TEXTURE_SLOTS: &'static [DefaultTexture] =
-        &[DefaultTexture::WhiteSrgb, DefaultTexture::FlatNormal];
+    const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
+        DefaultTexture::WhiteSrgb,
+        DefaultTexture::FlatNormal,
+        DefaultTexture::WhiteSrgb,
+    ];
 
     fn shader() -> ComposedShader {
         LIT_SHADER
@@ -92,7 +137,7 @@ impl Material for LitMaterial {
         [
             self.base_color_texture.as_ref().map(Handle::id),
             self.normal_map.as_ref().map(Handle::id),
-            None,
+            self.emissive_texture.as_ref().map(Handle::id),
             None,
         ]
     }
@@ -100,15 +145,25 @@ impl Material for LitMaterial {
     fn key(&self) -> Self::Key {
         LitPipelineKey {
             double_sided: self.double_sided,
+            alpha_mode: self.alpha_mode,
         }
+    }
+
+    fn blends(key: Self::Key) -> bool {
+        key.alpha_mode == AlphaMode::Blend
+    }
+
+    fn prepass_fragment(key: Self::Key) -> Option<FragmentVariant> {
+        // A cut-out surface must leave its holes out of the depth too.
+        (key.alpha_mode == AlphaMode::Mask).then(|| key.variant("fs_prepass_alpha_mask"))
     }
 
     fn cull_mode(key: Self::Key) -> Option<wgpu::Face> {
         (!key.double_sided).then_some(wgpu::Face::Back)
     }
 
-    fn fragment(_: Self::Key) -> FragmentVariant {
-        FragmentVariant::entry("fs_main")
+    fn fragment(key: Self::Key) -> FragmentVariant {
+        key.variant("fs_main")
     }
 
     fn uniform(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitParams {

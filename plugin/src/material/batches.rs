@@ -9,11 +9,10 @@ use glam::Mat4;
 
 use super::pipelines::MaterialPipelines;
 use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
-use crate::render::layout::MeshPass;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::texture_bind_groups::TextureBindGroups;
 use crate::render::{
-    DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
+    DrawPhase, DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
     PixelFootprint, UploadStats,
 };
 use crate::{AssetId, Assets, Image, Mesh};
@@ -370,30 +369,20 @@ impl<M: Material> MaterialBatches<M> {
         }
     }
 
-    /// The mesh pass this material draws in during `phase`'s render pass: the prepass, or the
-    /// opaque phase with or without one.
-    pub(crate) fn mesh_pass(&self, prepass_phase: bool) -> MeshPass {
-        if prepass_phase {
-            MeshPass::Prepass
-        } else {
-            // The opaque pass is the last one a draw takes part in.
-            self.pipelines
-                .passes()
-                .last()
-                .copied()
-                .unwrap_or(MeshPass::Opaque)
-        }
+    /// Whether any batch of the last prepared frame blends (draws in the transparent phase).
+    pub(crate) fn blends_any(&self) -> bool {
+        self.batches.iter().any(|batch| M::blends(batch.key))
     }
 
-    /// Records the batches whose mesh is on the GPU into `pass` (a [`MeshPass`] this material
-    /// takes part in), switching pipeline, textures and buffers only where they change.
+    /// Records the batches that draw in `phase` and whose mesh is on the GPU into `pass`,
+    /// switching pipeline, textures and buffers only where they change.
     pub(crate) fn draw(
         &self,
-        mesh_pass: MeshPass,
+        phase: DrawPhase,
         pass: &mut wgpu::RenderPass<'_>,
         assets: &GpuAssets,
     ) {
-        let frame_bind_group = if mesh_pass == MeshPass::Prepass {
+        let frame_bind_group = if phase == DrawPhase::Prepass {
             &self.prepass_bind_group
         } else {
             &self.frame_bind_group
@@ -403,6 +392,9 @@ impl<M: Material> MaterialBatches<M> {
         let mut bound_textures = None;
         let mut bound_mesh = None;
         for batch in &self.batches {
+            let Some(mesh_pass) = self.pipelines.pass_in(phase, batch.key) else {
+                continue;
+            };
             let (Some(mesh), Some(textures), Some(pipeline)) = (
                 assets.mesh(batch.mesh),
                 self.textures.get(&batch.textures),

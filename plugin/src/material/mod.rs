@@ -103,6 +103,12 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// The fragment entry point and constants of `key`'s pipeline in the opaque phase when
     /// the frame has no depth prepass (it tests and writes depth itself).
     fn fragment(key: Self::Key) -> FragmentVariant;
+    /// Whether `key` blends over what is behind it: its draws then go to the transparent phase
+    /// (back to front, depth tested, not in the prepass) instead of the prepass and the opaque
+    /// phase. `false` by default.
+    fn blends(_key: Self::Key) -> bool {
+        false
+    }
     /// Which faces `key`'s pipelines cull: back faces by default; `None` draws both sides
     /// (double-sided surfaces, whose shaders then see `front_facing` false on the back).
     fn cull_mode(_key: Self::Key) -> Option<wgpu::Face> {

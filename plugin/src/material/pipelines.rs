@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 
 use super::Material;
+use crate::render::DrawPhase;
 use crate::render::layout::{MeshPass, MeshPipelineDescriptor, mesh_pipeline};
 
 /// The compiled shader of material `M` and every pipeline made from it so far.
@@ -33,26 +34,40 @@ impl<M: Material> MaterialPipelines<M> {
         }
     }
 
-    /// The passes a draw of this material takes part in.
-    pub(crate) fn passes(&self) -> &'static [MeshPass] {
-        if self.prepass {
+    /// The passes a draw of `key` takes part in: the transparent one for a blending key,
+    /// else the prepass (when frames have one) and the opaque one.
+    pub(crate) fn passes(&self, key: M::Key) -> &'static [MeshPass] {
+        if M::blends(key) {
+            &[MeshPass::Transparent]
+        } else if self.prepass {
             &[MeshPass::Prepass, MeshPass::OpaqueAfterPrepass]
         } else {
             &[MeshPass::Opaque]
         }
     }
 
+    /// The pass a draw of `key` takes in `phase`, if it draws there at all.
+    pub(crate) fn pass_in(&self, phase: DrawPhase, key: M::Key) -> Option<MeshPass> {
+        let wanted = match phase {
+            DrawPhase::Prepass => MeshPass::Prepass,
+            DrawPhase::Transparent => MeshPass::Transparent,
+            _ if self.prepass => MeshPass::OpaqueAfterPrepass,
+            _ => MeshPass::Opaque,
+        };
+        self.passes(key).contains(&wanted).then_some(wanted)
+    }
+
     /// Compiles the pipelines of `key` unless they exist (a first use costs a pipeline
     /// compile per pass, a few milliseconds, once).
     pub(crate) fn ensure(&mut self, device: &wgpu::Device, key: M::Key) {
-        for &pass in self.passes() {
+        for &pass in self.passes(key) {
             if self.pipelines.contains_key(&(pass, key)) {
                 continue;
             }
             let fragment = match pass {
                 MeshPass::Prepass => M::prepass_fragment(key),
                 MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
-                MeshPass::Opaque => Some(M::fragment(key)),
+                MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
             };
             let pipeline = mesh_pipeline(
                 device,

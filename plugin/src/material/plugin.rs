@@ -192,11 +192,20 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .add_system(Stage::Prepare, prepare_materials::<M>);
         let phases = app.resources.get_or_default::<RenderPhases>();
         phases.add_draw::<M>(DrawPhase::Prepass, |resources, pass| {
-            draw_materials::<M>(resources, pass, true);
+            draw_materials::<M>(resources, pass, DrawPhase::Prepass);
         });
         phases.add_draw::<M>(DrawPhase::Opaque, |resources, pass| {
-            draw_materials::<M>(resources, pass, false);
+            draw_materials::<M>(resources, pass, DrawPhase::Opaque);
         });
+        phases.add_draw_when::<M>(
+            DrawPhase::Transparent,
+            |resources, pass| draw_materials::<M>(resources, pass, DrawPhase::Transparent),
+            |resources| {
+                resources
+                    .get::<MaterialBatches<M>>()
+                    .is_some_and(MaterialBatches::blends_any)
+            },
+        );
     }
 
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
@@ -386,17 +395,17 @@ fn prepare_materials<M: Material>(
         .unwrap_or_else(|| Err(AppError::missing::<MaterialBatches<M>>()))
 }
 
-/// Material `M`'s draws in the prepass or the opaque phase (registered in [`RenderPhases`]).
+/// Material `M`'s draws in `phase` (registered in [`RenderPhases`]).
 fn draw_materials<M: Material>(
     resources: &Resources,
     pass: &mut wgpu::RenderPass<'_>,
-    prepass_phase: bool,
+    phase: DrawPhase,
 ) {
     if let (Some(batches), Some(renderer)) = (
         resources.get::<MaterialBatches<M>>(),
         resources.get::<Renderer>(),
     ) {
-        batches.draw(batches.mesh_pass(prepass_phase), pass, &renderer.assets);
+        batches.draw(phase, pass, &renderer.assets);
     }
 }
 
@@ -425,6 +434,7 @@ mod tests {
         let phases = app.resources.get::<RenderPhases>().unwrap();
         assert_eq!(phases.draw_count(DrawPhase::Opaque), 2);
         assert_eq!(phases.draw_count(DrawPhase::Prepass), 2);
+        assert_eq!(phases.draw_count(DrawPhase::Transparent), 2);
         assert_eq!(
             app.resources
                 .get::<MaterialRegistry>()

@@ -58,6 +58,7 @@ impl Mesh {
             tangents: vec![flat.tangents[0]; positions.len()],
             positions,
             uvs,
+            colors: Vec::new(),
             indices,
         };
         mesh.validate()?;

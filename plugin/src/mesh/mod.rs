@@ -64,6 +64,8 @@ pub struct Mesh {
     pub uvs: Vec<[f32; 2]>,
     /// MikkTSpace tangents, `w` = bitangent sign (empty: generated).
     pub tangents: Vec<[f32; 4]>,
+    /// Linear RGBA per vertex, multiplied with the material's base colour (empty: white).
+    pub colors: Vec<[f32; 4]>,
     /// Three indices per triangle, counter-clockwise seen from the front.
     pub indices: Vec<u32>,
 }
@@ -76,6 +78,7 @@ impl Mesh {
             ("normals", self.normals.len()),
             ("uvs", self.uvs.len()),
             ("tangents", self.tangents.len()),
+            ("colors", self.colors.len()),
         ] {
             if found != 0 && found != expected {
                 return Err(MeshError::AttributeLength {
@@ -149,6 +152,9 @@ impl Mesh {
                 flat.normals.push(normal.into());
                 if !self.uvs.is_empty() {
                     flat.uvs.push(self.uvs[index as usize]);
+                }
+                if !self.colors.is_empty() {
+                    flat.colors.push(self.colors[index as usize]);
                 }
                 flat.indices.push((triangle_index * 3 + corner) as u32);
             }

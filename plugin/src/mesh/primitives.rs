@@ -24,6 +24,7 @@ impl Mesh {
                 .map(|(x, z)| [(x + 1.0) * 0.5 * tiling, (z + 1.0) * 0.5 * tiling])
                 .to_vec(),
             tangents: Vec::new(),
+            colors: Vec::new(),
             indices: vec![0, 1, 2, 0, 2, 3],
         };
         mesh.tangents = generate_tangents(&mesh);

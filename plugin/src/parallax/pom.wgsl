@@ -122,7 +122,9 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
     let fade = point.fade;
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
 
-    let base = textureSampleGrad(base_color_texture, material_sampler, uv, point.ddx_uv, point.ddy_uv) * rgba(params.base_color);
+    // Texture × factor × vertex colour, as glTF multiplies them.
+    let base = textureSampleGrad(base_color_texture, material_sampler, uv, point.ddx_uv, point.ddy_uv)
+        * rgba(params.base_color) * in.color;
     let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, point.ddx_uv, point.ddy_uv).xyz;
     let normal = perturbed_normal(surface_frame, encoded_normal, params.normal_strength);
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,

@@ -71,11 +71,13 @@ impl GpuContext {
         let info = adapter.get_info();
         // Optional features the renderer uses when present: 16-bit height maps stay 16-bit
         // (R16Unorm) or exact (filterable R32Float); passes are timed (GpuTimings); fragment
-        // shaders that test depth themselves still get the early test (shaders::create_module).
+        // shaders that test depth themselves still get the early test (shaders::create_module);
+        // transparent surfaces blend into float measurement targets too.
         let wanted = wgpu::Features::TEXTURE_FORMAT_16BIT_NORM
             | wgpu::Features::FLOAT32_FILTERABLE
             | wgpu::Features::TIMESTAMP_QUERY
-            | wgpu::Features::SHADER_EARLY_DEPTH_TEST;
+            | wgpu::Features::SHADER_EARLY_DEPTH_TEST
+            | wgpu::Features::FLOAT32_BLENDABLE;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("pom device"),

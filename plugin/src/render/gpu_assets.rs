@@ -281,6 +281,7 @@ fn upload_mesh(
             normal: mesh.normals[i],
             uv: mesh.uvs[i],
             tangent: mesh.tangents[i],
+            color: mesh.colors.get(i).copied().unwrap_or([1.0; 4]),
         })
         .collect();
     let label = format!("{id:?}");

@@ -110,6 +110,8 @@ pub struct Vertex {
     pub uv: [f32; 2],
     /// Tangent with bitangent sign.
     pub tangent: [f32; 4],
+    /// Linear RGBA vertex colour (white without one).
+    pub color: [f32; 4],
 }
 
 impl Vertex {
@@ -118,7 +120,7 @@ impl Vertex {
         array_stride: std::mem::size_of::<Vertex>() as wgpu::BufferAddress,
         step_mode: wgpu::VertexStepMode::Vertex,
         attributes: &wgpu::vertex_attr_array![
-            0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
+            0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4, 4 => Float32x4
         ],
     };
 }

@@ -46,6 +46,37 @@ pub(crate) enum MeshPass {
     OpaqueAfterPrepass,
     /// The opaque phase of a frame without prepass: depth tested `Less` and written.
     Opaque,
+    /// The transparent phase: depth tested `LessEqual`, never written, colour blended.
+    Transparent,
+}
+
+/// "Over" blending of a straight-alpha colour; the destination keeps its alpha (which marks
+/// display-referred pixels for post-processing). `None`, with a warning, where the target's
+/// format cannot blend (`Rgba32Float` without `FLOAT32_BLENDABLE`): the surface is then drawn
+/// opaque.
+fn over_blend(device: &wgpu::Device, format: wgpu::TextureFormat) -> Option<wgpu::BlendState> {
+    let blendable = format != wgpu::TextureFormat::Rgba32Float
+        || device
+            .features()
+            .contains(wgpu::Features::FLOAT32_BLENDABLE);
+    if !blendable {
+        log::warn!(
+            "the {format:?} scene target cannot blend on this adapter: transparent surfaces are drawn opaque"
+        );
+        return None;
+    }
+    Some(wgpu::BlendState {
+        color: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::SrcAlpha,
+            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        },
+        alpha: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::Zero,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Add,
+        },
+    })
 }
 
 /// What varies between the render pipelines of mesh materials.
@@ -84,9 +115,17 @@ pub(crate) fn mesh_pipeline(
     } = *descriptor;
     let (depth_write, depth_compare) = match pass {
         MeshPass::Prepass | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
-        MeshPass::OpaqueAfterPrepass => (false, wgpu::CompareFunction::LessEqual),
+        MeshPass::OpaqueAfterPrepass | MeshPass::Transparent => {
+            (false, wgpu::CompareFunction::LessEqual)
+        }
     };
-    let color_targets = [Some(color_format.into())];
+    let color_targets = [Some(wgpu::ColorTargetState {
+        format: color_format,
+        blend: (pass == MeshPass::Transparent)
+            .then(|| over_blend(device, color_format))
+            .flatten(),
+        write_mask: wgpu::ColorWrites::ALL,
+    })];
     let targets: &[Option<wgpu::ColorTargetState>] = if pass == MeshPass::Prepass {
         &[]
     } else {

@@ -18,6 +18,8 @@ struct VertexIn {
     @location(2) uv: vec2<f32>,
     // xyz: dP/du, w: sign so that cross(normal, tangent) * w = dP/dv (MikkTSpace).
     @location(3) tangent: vec4<f32>,
+    // Linear RGBA, multiplied with the base colour (white when the mesh has none).
+    @location(4) color: vec4<f32>,
 }
 
 struct VertexOut {
@@ -29,6 +31,7 @@ struct VertexOut {
     @location(2) uv: vec2<f32>,
     @location(3) world_tangent: vec4<f32>,
     @location(4) @interpolate(flat) object_index: u32,
+    @location(5) color: vec4<f32>,
 }
 
 // `normal_matrix` is the inverse transpose of `model`; `determinant_sign` flips the bitangent of
@@ -47,6 +50,7 @@ fn transform_vertex(
     out.world_normal = (normal_matrix * vec4<f32>(in.normal, 0.0)).xyz;
     out.world_tangent = vec4<f32>((model * vec4<f32>(in.tangent.xyz, 0.0)).xyz, in.tangent.w * determinant_sign);
     out.uv = in.uv;
+    out.color = in.color;
     out.object_index = object_index;
     return out;
 }

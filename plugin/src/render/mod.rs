@@ -36,7 +36,7 @@ pub use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
-pub use phases::{DrawPhase, PhaseDraw, PhaseWork, RenderPhase, RenderPhases};
+pub use phases::{DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases};
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
@@ -304,7 +304,8 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
     let prepass = resources.require::<Renderer>()?.depth_prepass;
     let phases = resources.get::<RenderPhases>();
-    let has = |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.draw_count(phase) > 0);
+    let has =
+        |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.has_draws(phase, resources));
     let has_work =
         |phase: RenderPhase| has_camera && phases.is_some_and(|p| p.work(phase).next().is_some());
     let (run_prepass, run_shadows, run_transparent) = (

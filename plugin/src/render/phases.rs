@@ -84,24 +84,39 @@ pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 /// Records whole passes of its own (shadow maps, say) into the frame's encoder.
 pub type PhaseWork = fn(&Resources, &mut wgpu::CommandEncoder);
 
+/// Whether a registered draw has anything to draw this frame (a phase none of whose draws has
+/// is skipped, pass and timing included).
+pub type HasDraws = fn(&Resources) -> bool;
+
 /// The work of every phase, in the order plugins added it; one entry per owner type and phase,
 /// so a plugin added twice draws once. A resource.
 #[derive(Debug, Default)]
 pub struct RenderPhases {
-    draws: Vec<(DrawPhase, TypeId, PhaseDraw)>,
+    draws: Vec<(DrawPhase, TypeId, PhaseDraw, HasDraws)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
 }
 
 impl RenderPhases {
     /// Adds `draw` to `phase` for `Owner` (a material type, say) unless `Owner` has one there.
     pub fn add_draw<Owner: 'static>(&mut self, phase: DrawPhase, draw: PhaseDraw) {
+        self.add_draw_when::<Owner>(phase, draw, |_| true);
+    }
+
+    /// Like [`RenderPhases::add_draw`], for a draw that has work only in some frames, as
+    /// `has_draws` tells.
+    pub fn add_draw_when<Owner: 'static>(
+        &mut self,
+        phase: DrawPhase,
+        draw: PhaseDraw,
+        has_draws: HasDraws,
+    ) {
         let owner = TypeId::of::<Owner>();
         if !self
             .draws
             .iter()
-            .any(|(p, id, _)| *p == phase && *id == owner)
+            .any(|(p, id, _, _)| *p == phase && *id == owner)
         {
-            self.draws.push((phase, owner, draw));
+            self.draws.push((phase, owner, draw, has_draws));
         }
     }
 
@@ -122,8 +137,15 @@ impl RenderPhases {
     pub fn draws(&self, phase: DrawPhase) -> impl Iterator<Item = PhaseDraw> + '_ {
         self.draws
             .iter()
-            .filter(move |(p, _, _)| *p == phase)
-            .map(|(_, _, draw)| *draw)
+            .filter(move |(p, _, _, _)| *p == phase)
+            .map(|(_, _, draw, _)| *draw)
+    }
+
+    /// Whether any draw of `phase` has work this frame.
+    pub fn has_draws(&self, phase: DrawPhase, resources: &Resources) -> bool {
+        self.draws
+            .iter()
+            .any(|(p, _, _, has_draws)| *p == phase && has_draws(resources))
     }
 
     /// The encoder work of `phase`, in the order it was added.
