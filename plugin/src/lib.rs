@@ -74,7 +74,8 @@ pub use dynamic_height::{
 pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf, load_gltf_bytes};
 pub use height_field::{HeightField, patterns};
 pub use image::{
-    Channel, Image, ImageError, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Pixels, TextureKind,
+    Channel, FilterMode, Image, ImageError, ImageSampler, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Pixels,
+    TextureKind, WrapMode,
 };
 #[cfg(feature = "scene-tests")]
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};

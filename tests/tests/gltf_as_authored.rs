@@ -366,3 +366,73 @@ fn a_blended_pane_shows_the_parallax_wall_through_it() {
     assert!(glazed.pixels().all(|p| p.0[3] == 255));
     check_golden("gltf_blended_pane", &glazed, FlipTolerance::default()).unwrap();
 }
+
+/// The unlit quad with a 2 × 2 texture (red, green / blue, white) under `sampler`.
+fn sampled_quad(name: &str, sampler: serde_json::Value) -> (image::RgbaImage, Vec<String>) {
+    quad_from_above(name, false, |fixture| {
+        let texels = image::RgbaImage::from_fn(2, 2, |x, y| match (x, y) {
+            (0, 0) => image::Rgba([255, 0, 0, 255]),
+            (1, 0) => image::Rgba([0, 255, 0, 255]),
+            (0, 1) => image::Rgba([0, 0, 255, 255]),
+            _ => image::Rgba([255, 255, 255, 255]),
+        });
+        let texture = fixture.add_texture("texels.png", pom_tests::gltf_fixture::png(&texels));
+        fixture.json["extensionsUsed"] = json!(["KHR_materials_unlit"]);
+        fixture.json["materials"][0] = json!({
+            "name": "texels",
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": texture}},
+            "extensions": {"KHR_materials_unlit": {}}
+        });
+        fixture.json["samplers"] = json!([sampler]);
+        fixture.json["textures"][texture]["sampler"] = json!(0);
+    })
+}
+
+#[test]
+fn a_gltf_sampler_is_honoured() {
+    let distinct = |image: &image::RgbaImage| {
+        let mut colours: Vec<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+        colours.sort_unstable();
+        colours.dedup();
+        colours.len()
+    };
+    // Nearest: four flat quadrants (and the background).
+    let (nearest, warnings) = sampled_quad(
+        "nearest",
+        json!({"magFilter": 9728, "minFilter": 9728, "wrapS": 33071, "wrapT": 33071}),
+    );
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert!(distinct(&nearest) <= 5, "{} colours", distinct(&nearest));
+    // (Khronos Neutral rolls pure red off to (241, 33, 33).)
+    let red = nearest.get_pixel(12, 12).0;
+    assert!(red[0] > 200 && red[1] < 60 && red[2] < 60, "{red:?}");
+    assert!(nearest.get_pixel(36, 36).0[..3].iter().all(|&c| c > 230));
+    // Linear (the default): blended texels, many colours.
+    let (linear, _) = sampled_quad("linear", json!({}));
+    assert!(distinct(&linear) > 50, "{} colours", distinct(&linear));
+    check_golden("gltf_sampler_nearest", &nearest, FlipTolerance::default()).unwrap();
+}
+
+#[test]
+fn a_sampler_with_an_invalid_wrap_mode_is_an_error_naming_the_file() {
+    let dir = scratch_dir("bad-wrap");
+    let mut fixture = GltfFixture::quad(1.0);
+    let texture = fixture.add_texture(
+        "texel.png",
+        pom_tests::gltf_fixture::png(&image::RgbaImage::from_pixel(1, 1, image::Rgba([9; 4]))),
+    );
+    fixture.json["materials"][0] = json!({
+        "name": "surface",
+        "pbrMetallicRoughness": {"baseColorTexture": {"index": texture}}
+    });
+    fixture.json["samplers"] = json!([{"wrapS": 12345}]);
+    fixture.json["textures"][texture]["sampler"] = json!(0);
+    let mut app = app(8);
+    let error = load_gltf(&mut app, fixture.write(&dir, "bad_wrap"))
+        .unwrap_err()
+        .to_string();
+    eprintln!("{error}");
+    assert!(error.contains("bad_wrap.gltf"), "{error}");
+    assert!(error.contains("wrapS"), "{error}");
+    assert!(app.world.is_empty());
+}

@@ -8,8 +8,8 @@ use image::DynamicImage;
 use super::extras::{PomExtras, choose};
 use super::{GltfError, Source, describe};
 use crate::{
-    AlphaMode, Assets, Channel, Color, Handle, HeightSource, Image, LightingModel, LitMaterial,
-    ParallaxOcclusionMaterial, TextureKind,
+    AlphaMode, Assets, Channel, Color, FilterMode, Handle, HeightSource, Image, ImageSampler,
+    LightingModel, LitMaterial, ParallaxOcclusionMaterial, TextureKind, WrapMode,
 };
 
 /// A material as loaded: one of the two kinds the renderer draws, plus the texture-coordinate
@@ -30,7 +30,7 @@ pub(super) enum MaterialComponent {
 #[derive(Default)]
 pub(super) struct MaterialCache {
     materials: HashMap<Option<usize>, LoadedMaterial>,
-    images: HashMap<(usize, TextureKind, Channel), Handle<Image>>,
+    images: HashMap<(usize, TextureKind, Channel, ImageSampler), Handle<Image>>,
 }
 
 fn to_dynamic(data: gltf::image::Data) -> Option<DynamicImage> {
@@ -94,6 +94,36 @@ fn to_dynamic(data: gltf::image::Data) -> Option<DynamicImage> {
     })
 }
 
+/// A glTF sampler as the renderer samples: wrap modes as given; no filter given is linear.
+fn sampler_of(sampler: &gltf::texture::Sampler<'_>) -> ImageSampler {
+    use gltf::texture::{MagFilter, MinFilter, WrappingMode};
+    let wrap = |mode| match mode {
+        WrappingMode::Repeat => WrapMode::Repeat,
+        WrappingMode::MirroredRepeat => WrapMode::MirroredRepeat,
+        WrappingMode::ClampToEdge => WrapMode::ClampToEdge,
+    };
+    let (min_filter, mipmap_filter) = match sampler.min_filter() {
+        Some(MinFilter::Nearest | MinFilter::NearestMipmapNearest) => {
+            (FilterMode::Nearest, FilterMode::Nearest)
+        }
+        Some(MinFilter::NearestMipmapLinear) => (FilterMode::Nearest, FilterMode::Linear),
+        Some(MinFilter::LinearMipmapNearest) => (FilterMode::Linear, FilterMode::Nearest),
+        Some(MinFilter::Linear | MinFilter::LinearMipmapLinear) | None => {
+            (FilterMode::Linear, FilterMode::Linear)
+        }
+    };
+    ImageSampler {
+        wrap_u: wrap(sampler.wrap_s()),
+        wrap_v: wrap(sampler.wrap_t()),
+        mag_filter: match sampler.mag_filter() {
+            Some(MagFilter::Nearest) => FilterMode::Nearest,
+            Some(MagFilter::Linear) | None => FilterMode::Linear,
+        },
+        min_filter,
+        mipmap_filter,
+    }
+}
+
 impl MaterialCache {
     /// The image of `texture`, decoded for `kind` (and `channel` for heights), added to `images`.
     fn texture(
@@ -105,7 +135,8 @@ impl MaterialCache {
         channel: Channel,
     ) -> Result<Handle<Image>, GltfError> {
         let image = texture.source();
-        let key = (image.index(), kind, channel);
+        let sampler = sampler_of(&texture.sampler());
+        let key = (image.index(), kind, channel, sampler);
         if let Some(handle) = self.images.get(&key) {
             return Ok(handle.clone());
         }
@@ -138,7 +169,8 @@ impl MaterialCache {
         let decoded = to_dynamic(data)
             .ok_or_else(|| image_error("pixel data is shorter than its size".into()))?;
         let loaded = Image::from_decoded(decoded, kind, channel, &name)
-            .map_err(|error| image_error(error.to_string()))?;
+            .map_err(|error| image_error(error.to_string()))?
+            .with_sampler(sampler);
         let handle = images.add(loaded);
         self.images.insert(key, handle.clone());
         Ok(handle)

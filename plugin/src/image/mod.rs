@@ -6,10 +6,12 @@ use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
 
 mod decode;
 mod mips;
+mod sampler;
 
 pub use decode::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 use decode::{decode_bytes, decode_file};
 use mips::Reduce;
+pub use sampler::{FilterMode, ImageSampler, WrapMode};
 
 /// What a texture holds: decides its GPU format and how its mip levels are filtered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -197,6 +199,7 @@ pub struct Image {
     pixels: Pixels,
     kind: TextureKind,
     gpu_written: bool,
+    sampler: ImageSampler,
 }
 
 impl Image {
@@ -215,7 +218,19 @@ impl Image {
             pixels,
             kind,
             gpu_written: false,
+            sampler: ImageSampler::default(),
         })
+    }
+
+    /// The same image sampled with `sampler` (a material samples all its textures with the
+    /// sampler of its first one).
+    pub fn with_sampler(self, sampler: ImageSampler) -> Self {
+        Self { sampler, ..self }
+    }
+
+    /// How the image is sampled.
+    pub fn sampler(&self) -> ImageSampler {
+        self.sampler
     }
 
     /// Builds an image from raw RGBA8 bytes, row by row.
@@ -242,6 +257,7 @@ impl Image {
             pixels: Pixels::Rgba8(RgbaImage::from_pixel(1, 1, image::Rgba(rgba))),
             kind,
             gpu_written: false,
+            sampler: ImageSampler::default(),
         }
     }
 
@@ -388,6 +404,7 @@ impl Image {
             pixels,
             kind: self.kind,
             gpu_written: self.gpu_written,
+            sampler: self.sampler,
         }
     }
 }

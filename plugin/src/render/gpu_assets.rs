@@ -28,6 +28,8 @@ pub struct GpuImage {
     pub view: wgpu::TextureView,
     /// Distinguishes re-uploads of the same asset, so bind groups that use it are rebuilt.
     pub upload_serial: u64,
+    /// How the image asks to be sampled.
+    pub sampler: crate::ImageSampler,
 }
 
 impl GpuImage {
@@ -448,6 +450,7 @@ fn upload_image(
         texture,
         view,
         upload_serial,
+        sampler: image.sampler(),
     }
 }
 

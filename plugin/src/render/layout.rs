@@ -24,19 +24,6 @@ pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// Trilinear, repeating: what every material texture is sampled with.
-pub(crate) fn material_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
-    device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some(label),
-        address_mode_u: wgpu::AddressMode::Repeat,
-        address_mode_v: wgpu::AddressMode::Repeat,
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: wgpu::MipmapFilterMode::Linear,
-        ..Default::default()
-    })
-}
-
 /// Which pass a mesh pipeline draws in, which sets its depth state and colour target.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum MeshPass {

@@ -4,6 +4,7 @@ use std::collections::HashMap;
 
 use super::gpu_assets::{DefaultTexture, GpuAssets};
 use super::{GpuContext, layout};
+use crate::ImageSampler;
 use crate::material::MaterialTextures;
 
 struct Entry {
@@ -13,12 +14,13 @@ struct Entry {
     bind_group: wgpu::BindGroup,
 }
 
-/// A layout of N filterable 2D textures (bindings 0..N) and a trilinear repeating sampler
-/// (binding N), and the bind groups built with it.
+/// A layout of N filterable 2D textures (bindings 0..N) and a sampler (binding N), and the bind
+/// groups built with it. A group samples with the sampler of its first image (trilinear and
+/// repeating without one): glTF gives each texture its own, a material binds one.
 pub(crate) struct TextureBindGroups {
     label: &'static str,
     layout: wgpu::BindGroupLayout,
-    sampler: wgpu::Sampler,
+    samplers: HashMap<ImageSampler, wgpu::Sampler>,
     defaults: &'static [DefaultTexture],
     groups: HashMap<MaterialTextures, Entry>,
 }
@@ -53,7 +55,7 @@ impl TextureBindGroups {
         Self {
             label,
             layout,
-            sampler: layout::material_sampler(&gpu.device, label),
+            samplers: HashMap::new(),
             defaults,
             groups: HashMap::new(),
         }
@@ -87,6 +89,15 @@ impl TextureBindGroups {
             let entry = match previous.remove(&key) {
                 Some(existing) if existing.serials == serials => existing,
                 _ => {
+                    let settings = images
+                        .iter()
+                        .flatten()
+                        .next()
+                        .map_or_else(ImageSampler::default, |image| image.sampler);
+                    let sampler = self
+                        .samplers
+                        .entry(settings)
+                        .or_insert_with(|| settings.create(&gpu.device, self.label));
                     let mut entries: Vec<wgpu::BindGroupEntry> = images
                         .iter()
                         .zip(self.defaults.iter().copied())
@@ -100,7 +111,7 @@ impl TextureBindGroups {
                         .collect();
                     entries.push(wgpu::BindGroupEntry {
                         binding: self.defaults.len() as u32,
-                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                        resource: wgpu::BindingResource::Sampler(sampler),
                     });
                     Entry {
                         serials,
