@@ -113,12 +113,22 @@ fn the_first_camera_node_is_the_one_looked_through() {
     assert!(names(&app).iter().all(|(_, active)| !active));
 }
 
-/// The fixture's quad seen from straight above, lit by a sun straight above (none with
-/// `lit` false), with `edit` applied to the document first. Returns the image and the loader's
-/// warnings.
+/// What lights the quad seen from above.
+#[derive(Clone, Copy, PartialEq)]
+enum Light {
+    /// Nothing: only what the surface emits shows.
+    Dark,
+    /// A sun straight above, no ambient light.
+    Sun,
+    /// A white ambient light of intensity 1, nothing else.
+    Ambient,
+}
+
+/// The fixture's quad seen from straight above under `light`, with `edit` applied to the
+/// document first. Returns the image and the loader's warnings.
 fn quad_from_above(
     name: &str,
-    lit: bool,
+    light: Light,
     edit: impl FnOnce(&mut GltfFixture),
 ) -> (image::RgbaImage, Vec<String>) {
     let dir = scratch_dir(name);
@@ -128,13 +138,13 @@ fn quad_from_above(
     let scene = load_gltf(&mut app, fixture.write(&dir, name)).unwrap();
     *app.resources.get_mut::<pom::AmbientLight>().unwrap() = pom::AmbientLight {
         color: pom::Color::WHITE,
-        intensity: 0.0,
+        intensity: if light == Light::Ambient { 1.0 } else { 0.0 },
     };
     app.world.spawn((
         Camera::orthographic(1.25),
         Transform::from_xyz(0.0, 2.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
     ));
-    if lit {
+    if light == Light::Sun {
         app.world.spawn((
             DirectionalLight::default(),
             Transform::IDENTITY.looking_at(Vec3::NEG_Y, Vec3::NEG_Z),
@@ -145,7 +155,7 @@ fn quad_from_above(
 
 #[test]
 fn vertex_colours_tint_the_base_colour() {
-    let (image, warnings) = quad_from_above("vertex-colours", true, |fixture| {
+    let (image, warnings) = quad_from_above("vertex-colours", Light::Sun, |fixture| {
         // Corners in the fixture's order: (-,-), (-,+), (+,+), (+,-) in x and z.
         fixture.add_vertex_colors([
             [1.0, 0.0, 0.0, 1.0],
@@ -171,7 +181,7 @@ fn vertex_colours_tint_the_base_colour() {
 
 #[test]
 fn emission_glows_without_light() {
-    let (image, warnings) = quad_from_above("emissive", false, |fixture| {
+    let (image, warnings) = quad_from_above("emissive", Light::Dark, |fixture| {
         fixture.json["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
         fixture.json["materials"][0] = json!({
             "name": "lamp",
@@ -191,7 +201,7 @@ fn emission_glows_without_light() {
 
 #[test]
 fn an_unlit_material_shows_its_colour_as_is() {
-    let (image, warnings) = quad_from_above("unlit", true, |fixture| {
+    let (image, warnings) = quad_from_above("unlit", Light::Sun, |fixture| {
         fixture.json["extensionsUsed"] = json!(["KHR_materials_unlit"]);
         fixture.json["materials"][0] = json!({
             "name": "flat",
@@ -210,7 +220,7 @@ fn an_unlit_material_shows_its_colour_as_is() {
 
 #[test]
 fn an_alpha_mask_cuts_the_surface_out() {
-    let (image, warnings) = quad_from_above("mask", true, |fixture| {
+    let (image, warnings) = quad_from_above("mask", Light::Sun, |fixture| {
         // 4 × 4 checks of 16² texels: alpha 1 and alpha 0.2 (below the cutoff of 0.3). Large
         // checks, so that filtering only blurs their edges.
         let checker = image::RgbaImage::from_fn(64, 64, |x, y| {
@@ -243,7 +253,7 @@ fn an_alpha_mask_cuts_the_surface_out() {
 
 #[test]
 fn extensions_the_renderer_does_not_honour_are_named_once() {
-    let (_, warnings) = quad_from_above("extensions", true, |fixture| {
+    let (_, warnings) = quad_from_above("extensions", Light::Sun, |fixture| {
         fixture.json["extensionsUsed"] = json!([
             "KHR_materials_clearcoat",
             "KHR_materials_transmission",
@@ -369,7 +379,7 @@ fn a_blended_pane_shows_the_parallax_wall_through_it() {
 
 /// The unlit quad with a 2 × 2 texture (red, green / blue, white) under `sampler`.
 fn sampled_quad(name: &str, sampler: serde_json::Value) -> (image::RgbaImage, Vec<String>) {
-    quad_from_above(name, false, |fixture| {
+    quad_from_above(name, Light::Dark, |fixture| {
         let texels = image::RgbaImage::from_fn(2, 2, |x, y| match (x, y) {
             (0, 0) => image::Rgba([255, 0, 0, 255]),
             (1, 0) => image::Rgba([0, 255, 0, 255]),
@@ -435,4 +445,46 @@ fn a_sampler_with_an_invalid_wrap_mode_is_an_error_naming_the_file() {
     assert!(error.contains("bad_wrap.gltf"), "{error}");
     assert!(error.contains("wrapS"), "{error}");
     assert!(app.world.is_empty());
+}
+
+#[test]
+fn occlusion_darkens_the_ambient_light_only() {
+    // A 2 × 2 occlusion map (open, closed / closed, open), sampled nearest.
+    let render = |name: &str, light: Light, strength: f32| {
+        let (image, warnings) = quad_from_above(name, light, |fixture| {
+            let occlusion = image::RgbaImage::from_fn(2, 2, |x, y| {
+                let open = if (x + y) % 2 == 0 { 255 } else { 0 };
+                image::Rgba([open, open, open, 255])
+            });
+            let png = pom_tests::gltf_fixture::png(&occlusion);
+            let texture = fixture.add_texture("occlusion.png", png);
+            fixture.json["materials"][0] = json!({
+                "name": "grey",
+                "occlusionTexture": {"index": texture, "strength": strength}
+            });
+            fixture.json["samplers"] = json!([{"magFilter": 9728, "minFilter": 9728}]);
+            fixture.json["textures"][texture]["sampler"] = json!(0);
+        });
+        assert!(warnings.is_empty(), "{warnings:?}");
+        image
+    };
+    let luminance = |image: &image::RgbaImage, x, y| {
+        let p: [u8; 4] = image.get_pixel(x, y).0;
+        pom::srgb_to_linear(f32::from(p[1]) / 255.0)
+    };
+    // Ambient light only: closed checks go dark, half as dark at strength 0.5.
+    let ambient = render("occlusion-ambient", Light::Ambient, 1.0);
+    let (open, closed) = (luminance(&ambient, 12, 12), luminance(&ambient, 36, 12));
+    assert!(open > 0.3 && closed < 0.01, "open {open}, closed {closed}");
+    let half = render("occlusion-half", Light::Ambient, 0.5);
+    let half_closed = luminance(&half, 36, 12);
+    assert!(
+        (half_closed / open - 0.5).abs() < 0.08,
+        "{half_closed} vs {open}"
+    );
+    // Direct light is not occluded: open and closed checks look the same in the sun.
+    let sun = render("occlusion-sun", Light::Sun, 1.0);
+    let (open, closed) = (sun.get_pixel(12, 12).0, sun.get_pixel(36, 12).0);
+    assert!(open[1].abs_diff(closed[1]) <= 2, "{open:?} vs {closed:?}");
+    check_golden("gltf_occlusion_ambient", &ambient, FlipTolerance::default()).unwrap();
 }

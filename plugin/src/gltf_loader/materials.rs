@@ -246,6 +246,19 @@ impl MaterialCache {
             )?),
             None => None,
         };
+        let (occlusion_texture, occlusion_strength) = match material.occlusion_texture() {
+            Some(info) => (
+                Some(self.texture(
+                    source,
+                    images,
+                    info.texture(),
+                    TextureKind::Data,
+                    Channel::Red,
+                )?),
+                info.strength().clamp(0.0, 1.0),
+            ),
+            None => (None, 1.0),
+        };
         let [er, eg, eb] = material.emissive_factor();
         let emissive = Color::linear_rgb(er, eg, eb);
         let emissive_strength = material.emissive_strength().unwrap_or(1.0);
@@ -264,6 +277,11 @@ impl MaterialCache {
             gltf::material::AlphaMode::Opaque => (AlphaMode::Opaque, 0.5),
         };
 
+        if pbr.metallic_roughness_texture().is_some() {
+            warnings.push(format!(
+                "material {name}: metallicRoughnessTexture is not supported; its roughness and metallic factors are used"
+            ));
+        }
         let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
             .map_err(&material_error)?;
         let roughness = pbr.roughness_factor();
@@ -278,6 +296,8 @@ impl MaterialCache {
                 shininess: (2.0 / (roughness.powi(4)).max(1e-4) - 2.0).clamp(1.0, 512.0),
                 double_sided: material.double_sided(),
                 emissive_texture,
+                occlusion_texture,
+                occlusion_strength,
                 emissive,
                 emissive_strength,
                 unlit,

@@ -10,7 +10,8 @@ override ALPHA_MASK: bool = false;
 @group(1) @binding(0) var base_color_texture: texture_2d<f32>;
 @group(1) @binding(1) var normal_map: texture_2d<f32>;
 @group(1) @binding(2) var emissive_texture: texture_2d<f32>;
-@group(1) @binding(3) var material_sampler: sampler;
+@group(1) @binding(3) var occlusion_texture: texture_2d<f32>;
+@group(1) @binding(4) var material_sampler: sampler;
 
 // Base colour: texture × factor × vertex colour (glTF's product).
 fn base_color(in: VertexOut, material: LitParams) -> vec4<f32> {
@@ -45,7 +46,10 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     let to_eye = direction_to_eye(in.world_position, normal);
     let surface = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0), 1.0, 0.0, LIGHTING_BLINN_PHONG);
 
-    var color = frame.ambient.rgb * base.rgb + emissive;
+    // glTF's occlusion darkens the indirect (ambient) light only.
+    let occlusion = 1.0 + material.occlusion_strength
+        * (textureSample(occlusion_texture, material_sampler, in.uv).r - 1.0);
+    var color = frame.ambient.rgb * base.rgb * occlusion + emissive;
     for (var i = 0u; i < light_count(); i += 1u) {
         let light = light_at(i, in.world_position);
         color += light.radiance * direct_lighting(surface, normal, light.to_light, to_eye);

@@ -36,6 +36,8 @@ crate::material_parameters! {
             normal_map: Option<Handle<Image>> = None,
             /// sRGB emissive texture, multiplied with `emissive` (white when absent).
             emissive_texture: Option<Handle<Image>> = None,
+            /// Ambient occlusion in the red channel, linear (glTF occlusionTexture); none when absent.
+            occlusion_texture: Option<Handle<Image>> = None,
         }
         parameters {
             /// Colour multiplied with the texture, linear.
@@ -49,6 +51,8 @@ crate::material_parameters! {
                 .logarithmic();
             /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
             double_sided: bool = false, ParamSpec::toggle();
+            /// How much the occlusion texture darkens the ambient light: 0 = not at all, 1 = fully.
+            occlusion_strength: f32 = 1.0, ParamSpec::float(0.0, 1.0);
             /// Light the surface gives off itself, linear (glTF emissiveFactor).
             emissive: Color = Color::BLACK, ParamSpec::color();
             /// Multiplies `emissive` (KHR_materials_emissive_strength): above 1 for lamps and screens.
@@ -127,6 +131,7 @@ impl Material for LitMaterial {
         DefaultTexture::WhiteSrgb,
         DefaultTexture::FlatNormal,
         DefaultTexture::WhiteSrgb,
+        DefaultTexture::WhiteLinear,
     ];
 
     fn shader() -> ComposedShader {
@@ -138,7 +143,7 @@ impl Material for LitMaterial {
             self.base_color_texture.as_ref().map(Handle::id),
             self.normal_map.as_ref().map(Handle::id),
             self.emissive_texture.as_ref().map(Handle::id),
-            None,
+            self.occlusion_texture.as_ref().map(Handle::id),
         ]
     }
 
