@@ -28,7 +28,8 @@ pub struct PointLight {
     pub color: Color,
     /// Brightness at a distance of one world unit.
     pub intensity: f32,
-    /// Distance beyond which the light has no effect.
+    /// Distance beyond which the light has no effect (`f32::INFINITY`: none, only the
+    /// inverse-square falloff).
     pub range: f32,
 }
 

@@ -488,3 +488,75 @@ fn occlusion_darkens_the_ambient_light_only() {
     assert!(open[1].abs_diff(closed[1]) <= 2, "{open:?} vs {closed:?}");
     check_golden("gltf_occlusion_ambient", &ambient, FlipTolerance::default()).unwrap();
 }
+
+#[test]
+fn a_point_light_without_range_reaches_a_floor_fifty_units_away() {
+    let dir = scratch_dir("unbounded-point");
+    let mut fixture = GltfFixture::quad(200.0);
+    fixture.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    fixture.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [
+        {"type": "point", "intensity": 2500.0}
+    ]}});
+    fixture.json["nodes"] = json!([
+        {"name": "floor", "mesh": 0},
+        {"name": "bulb", "translation": [0.0, 50.0, 0.0],
+         "extensions": {"KHR_lights_punctual": {"light": 0}}}
+    ]);
+    fixture.json["scenes"] = json!([{"nodes": [0, 1]}]);
+    let mut app = app(48);
+    let scene = load_gltf(&mut app, fixture.write(&dir, "bulb")).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let range = app
+        .world
+        .query::<&pom::PointLight>()
+        .iter()
+        .map(|light| light.range)
+        .next();
+    assert_eq!(range, Some(f32::INFINITY));
+    *app.resources.get_mut::<pom::AmbientLight>().unwrap() = pom::AmbientLight {
+        color: pom::Color::WHITE,
+        intensity: 0.0,
+    };
+    app.world.spawn((
+        Camera::perspective(60.0),
+        Transform::from_xyz(0.0, 30.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let image = render_and_capture(&mut app).unwrap();
+    // Under the bulb the floor is lit (2500 cd at 50 units), fading outwards; without the fix
+    // the 20-unit default range left it black.
+    let (under, edge) = (image.get_pixel(24, 30).0, image.get_pixel(2, 47).0);
+    assert!(under[1] > 150, "{under:?}");
+    assert!(edge[1] < under[1], "{edge:?} vs {under:?}");
+    check_golden(
+        "gltf_unbounded_point_light",
+        &image,
+        FlipTolerance::default(),
+    )
+    .unwrap();
+}
+
+#[test]
+fn a_light_with_a_negative_intensity_is_clamped_with_one_warning() {
+    let dir = scratch_dir("negative-light");
+    let mut fixture = GltfFixture::quad(1.0);
+    fixture.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    fixture.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [
+        {"type": "directional", "intensity": -5.0}
+    ]}});
+    fixture.json["nodes"] = json!([
+        {"name": "quad", "mesh": 0},
+        {"name": "sun", "extensions": {"KHR_lights_punctual": {"light": 0}}}
+    ]);
+    fixture.json["scenes"] = json!([{"nodes": [0, 1]}]);
+    let mut app = app(8);
+    let scene = load_gltf(&mut app, fixture.write(&dir, "negative")).unwrap();
+    assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
+    assert!(scene.warnings[0].contains("\"sun\"") && scene.warnings[0].contains("-5"));
+    let intensities: Vec<f32> = app
+        .world
+        .query::<&DirectionalLight>()
+        .iter()
+        .map(|light| light.intensity)
+        .collect();
+    assert_eq!(intensities, [0.0]);
+}

@@ -185,7 +185,13 @@ fn spawn_nodes(
         if let Some(light) = node.light() {
             let [r, g, b] = light.color();
             let color = Color::linear_rgb(r, g, b);
-            let intensity = light.intensity();
+            let mut intensity = light.intensity();
+            if !(intensity >= 0.0 && intensity.is_finite()) {
+                scene.warnings.push(format!(
+                    "node {node_name}: light intensity {intensity} is not a finite number ≥ 0; clamped to 0"
+                ));
+                intensity = 0.0;
+            }
             let inserted = match light.kind() {
                 gltf::khr_lights_punctual::Kind::Directional => app
                     .world
@@ -201,7 +207,8 @@ fn spawn_nodes(
                         PointLight {
                             color,
                             intensity,
-                            range: light.range().unwrap_or(PointLight::default().range),
+                            // No range: unbounded, as KHR_lights_punctual defines it.
+                            range: light.range().unwrap_or(f32::INFINITY),
                         },
                     )
                 }
