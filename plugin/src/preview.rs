@@ -179,7 +179,7 @@ pub fn spawn_preview_mesh(
     app.world.spawn((
         DirectionalLight {
             color: Color::WHITE,
-            intensity: 1.0,
+            intensity: 100_000.0,
         },
         view.light_transform(),
     ));
@@ -313,18 +313,18 @@ pub fn framing_camera(bounds: (Vec3, Vec3), aspect: f32, view: FramingView) -> (
     )
 }
 
-/// A sun 50° above the horizon from the front left, and a soft ambient term: the lighting a
-/// scene without lights of its own gets.
+/// A 160,000 lux sun 50° above the horizon from the front left, and a 15,000 lux bluish sky:
+/// the lighting a scene without lights of its own gets.
 pub fn default_lighting() -> (DirectionalLight, Transform, crate::AmbientLight) {
     (
         DirectionalLight {
             color: Color::linear_rgb(1.0, 0.97, 0.92),
-            intensity: 1.6,
+            intensity: 160_000.0,
         },
         Transform::IDENTITY.looking_at(Vec3::new(0.5, -1.2, -0.7), Vec3::Y),
         crate::AmbientLight {
             color: Color::linear_rgb(0.6, 0.7, 1.0),
-            intensity: 0.15,
+            intensity: 15_000.0,
         },
     )
 }

@@ -37,10 +37,11 @@ pub struct Exposure {
 }
 
 impl Exposure {
-    /// −0.263 EV100, the exposure at which a scene value of 1 maps to 1 (`1.2 · 2^EV100 = 1`):
-    /// our lights are in display-relative units (a sun of intensity 1 lights a white surface
-    /// facing it to white), so this keeps scenes as bright as they were authored.
-    pub const DEFAULT_EV100: f32 = -0.263_034_4;
+    /// 14.7 EV100 (bright daylight; "sunny 16" is 15): the exposure at which a 100,000 lux sun
+    /// lights a white Lambertian surface facing it to exactly 1.0 before tonemapping
+    /// (`100,000 / π / (1.2 · 2^EV100) = 1`). A glTF file with a real sun and one lit by the
+    /// loader's default light (a 160,000 lux sun) both look right at it.
+    pub const DEFAULT_EV100: f32 = 14.695_11;
     /// The range the command line, scripts and the sandbox accept.
     pub const RANGE: std::ops::RangeInclusive<f32> = -16.0..=24.0;
 
@@ -88,17 +89,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_default_exposure_maps_one_to_one() {
-        assert!((Exposure::default().multiplier() - 1.0).abs() < 1e-6);
-        assert!(
-            (Exposure {
-                ev100: 1.0 + Exposure::DEFAULT_EV100
-            }
-            .multiplier()
-                - 0.5)
-                .abs()
-                < 1e-6
-        );
+    fn the_default_exposure_shows_a_bright_sun_on_white_as_one() {
+        let sun_on_white = 100_000.0 * std::f32::consts::FRAC_1_PI;
+        assert!((sun_on_white * Exposure::default().multiplier() - 1.0).abs() < 1e-5);
+        let darker = Exposure {
+            ev100: 1.0 + Exposure::DEFAULT_EV100,
+        };
+        assert!((darker.multiplier() / Exposure::default().multiplier() - 0.5).abs() < 1e-6);
         // Out-of-range and non-finite values never reach the GPU as such.
         assert_eq!(
             Exposure { ev100: f32::NAN }.multiplier(),

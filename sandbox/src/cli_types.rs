@@ -116,8 +116,8 @@ pub fn parse_exposure(text: &str) -> Result<f32, String> {
 #[derive(Clone, Copy, Debug, clap::Args)]
 #[command(next_help_heading = "Display")]
 pub struct DisplayArgs {
-    /// Camera exposure in EV100, -16..=24; +1 halves the light [default: -0.263, where a scene
-    /// value of 1 shows as 1].
+    /// Camera exposure in EV100, -16..=24; +1 halves the light [default: 14.7, daylight: white
+    /// in a 100,000 lux sun shows as 1].
     #[arg(long, value_name = "EV", allow_negative_numbers = true, value_parser = parse_exposure)]
     pub exposure: Option<f32>,
     /// Tonemapping operator: none (clamp), aces, agx or neutral (Khronos PBR Neutral).

@@ -97,7 +97,7 @@ impl Gltf {
     fn with_light(mut self) -> Self {
         self.extensions_used.push("KHR_lights_punctual");
         self.members.push(
-            r#""extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}}"#
+            r#""extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 200000.0}]}}"#
                 .to_owned(),
         );
         self.nodes.push(

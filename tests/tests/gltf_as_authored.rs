@@ -120,7 +120,7 @@ enum Light {
     Dark,
     /// A sun straight above, no ambient light.
     Sun,
-    /// A white ambient light of intensity 1, nothing else.
+    /// A white ambient light of 100,000 lux, nothing else.
     Ambient,
 }
 
@@ -138,7 +138,11 @@ fn quad_from_above(
     let scene = load_gltf(&mut app, fixture.write(&dir, name)).unwrap();
     *app.resources.get_mut::<pom::AmbientLight>().unwrap() = pom::AmbientLight {
         color: pom::Color::WHITE,
-        intensity: if light == Light::Ambient { 1.0 } else { 0.0 },
+        intensity: if light == Light::Ambient {
+            100_000.0
+        } else {
+            0.0
+        },
     };
     app.world.spawn((
         Camera::orthographic(1.25),
@@ -517,13 +521,15 @@ fn a_point_light_without_range_reaches_a_floor_fifty_units_away() {
         color: pom::Color::WHITE,
         intensity: 0.0,
     };
+    // A night exposure: 2,500 cd at 50 m is 1 lux on the floor below.
     app.world.spawn((
         Camera::perspective(60.0),
+        pom::Exposure { ev100: -2.0 },
         Transform::from_xyz(0.0, 30.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
     let image = render_and_capture(&mut app).unwrap();
-    // Under the bulb the floor is lit (2500 cd at 50 units), fading outwards; without the fix
-    // the 20-unit default range left it black.
+    // Under the bulb the floor is lit, fading outwards; without the fix the 20-unit default
+    // range left it black.
     let (under, edge) = (image.get_pixel(24, 30).0, image.get_pixel(2, 47).0);
     assert!(under[1] > 150, "{under:?}");
     assert!(edge[1] < under[1], "{edge:?} vs {under:?}");
@@ -559,4 +565,51 @@ fn a_light_with_a_negative_intensity_is_clamped_with_one_warning() {
         .map(|light| light.intensity)
         .collect();
     assert_eq!(intensities, [0.0]);
+}
+
+#[test]
+fn a_box_in_a_real_sun_does_not_clip_at_the_default_exposure() {
+    // The file brings a 100,000 lux sun (bright daylight), as glTF states it; a white box of
+    // albedo 0.9 stands in it, seen from its lit side.
+    let dir = scratch_dir("real-sun");
+    let mut fixture = GltfFixture::quad(0.1);
+    fixture.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    fixture.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [
+        {"type": "directional", "intensity": 100000.0}
+    ]}});
+    fixture.json["nodes"] = json!([
+        {"name": "sun", "rotation": [-0.3535534, 0.3535534, 0.1464466, 0.8535534],
+         "extensions": {"KHR_lights_punctual": {"light": 0}}}
+    ]);
+    fixture.json["scenes"] = json!([{"nodes": [0]}]);
+    let mut app = app(64);
+    load_gltf(&mut app, fixture.write(&dir, "sun")).unwrap();
+    let cube = app
+        .resources
+        .get_mut::<pom::Assets<pom::Mesh>>()
+        .unwrap()
+        .add(pom::Mesh::cube(1.0));
+    app.world.spawn((
+        cube,
+        LitMaterial::from_color(pom::Color::linear_rgb(0.9, 0.9, 0.9)),
+        Transform::IDENTITY,
+    ));
+    app.world.spawn((
+        Camera::perspective(45.0),
+        Transform::from_xyz(1.8, 1.6, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let image = render_and_capture(&mut app).unwrap();
+    let background = *image.get_pixel(0, 0);
+    let lit: Vec<_> = image.pixels().filter(|p| **p != background).collect();
+    let clipped = lit.iter().filter(|p| p.0[..3].contains(&255)).count();
+    eprintln!("{} box pixels, {clipped} clipped", lit.len());
+    assert!(lit.len() > 500);
+    assert!(
+        clipped as f32 <= 0.01 * lit.len() as f32,
+        "{clipped} of {}",
+        lit.len()
+    );
+    // And it is daylight, not dusk: the sunlit faces are bright.
+    assert!(lit.iter().any(|p| p.0[0] > 200), "nothing bright");
+    check_golden("gltf_real_sun_box", &image, FlipTolerance::default()).unwrap();
 }

@@ -48,7 +48,7 @@ fn normal_mapped_cube_under_one_directional_light() {
         Camera::perspective(40.0),
         Transform::from_xyz(1.6, 1.3, 2.2).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    app.world.spawn(sun(Vec3::new(-0.5, -1.0, -0.8), 2.5));
+    app.world.spawn(sun(Vec3::new(-0.5, -1.0, -0.8), 250_000.0));
     app.world.spawn((cube, material, Transform::IDENTITY));
     let image = render_and_capture(&mut app).unwrap();
     check_golden("cube_directional", &image, FlipTolerance::default()).unwrap();
@@ -71,14 +71,14 @@ fn directional_and_point_light_together() {
     app.world.spawn((
         DirectionalLight {
             color: Color::linear_rgb(0.4, 0.5, 1.0),
-            intensity: 0.8,
+            intensity: 80_000.0,
         },
         Transform::IDENTITY.looking_at(Vec3::new(1.0, -1.0, -0.3), Vec3::Y),
     ));
     app.world.spawn((
         PointLight {
             color: Color::linear_rgb(1.0, 0.6, 0.25),
-            intensity: 2.5,
+            intensity: 250_000.0,
             range: 8.0,
         },
         Transform::from_xyz(1.3, 0.9, 0.6),
@@ -108,7 +108,7 @@ fn receding_cubes(camera: Camera) -> image::RgbaImage {
         camera,
         Transform::from_xyz(3.0, 2.5, 4.0).looking_at(Vec3::new(0.0, 0.0, -1.5), Vec3::Y),
     ));
-    app.world.spawn(sun(Vec3::new(-0.3, -1.0, -0.5), 2.0));
+    app.world.spawn(sun(Vec3::new(-0.3, -1.0, -0.5), 200_000.0));
     app.world.spawn((
         floor,
         LitMaterial {

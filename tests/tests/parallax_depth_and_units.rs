@@ -156,7 +156,7 @@ fn point_lights_cast_self_shadows_too() {
     app.world.despawn(sun).unwrap();
     app.world.spawn((
         PointLight {
-            intensity: 1.0,
+            intensity: 100_000.0,
             range: 10.0,
             ..PointLight::default()
         },

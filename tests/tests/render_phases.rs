@@ -226,11 +226,12 @@ fn bright_surface(tonemapping: Tonemapping, level: f32) -> ([f32; 3], [f32; 3]) 
         },
         Transform::IDENTITY,
     ));
-    // Straight down onto the plane: N·L = 1, so the red channel is 0.8 × intensity.
+    // Straight down onto the plane: N·L = 1, so the red channel is 0.8 × the exposed
+    // illuminance: `level` at the default exposure takes level / 0.8 × 100,000 lux.
     app.world.spawn((
         DirectionalLight {
             color: Color::WHITE,
-            intensity: level / albedo[0],
+            intensity: level / albedo[0] * 100_000.0,
         },
         Transform::from_xyz(0.0, 1.0, 0.0).looking_at(Vec3::ZERO, Vec3::Z),
     ));
@@ -338,7 +339,8 @@ fn one_stop_more_exposure_value_halves_the_light() {
     let (base, scene) = display_at(Exposure::DEFAULT_EV100);
     let (darker, _) = display_at(Exposure::DEFAULT_EV100 + 1.0);
     eprintln!("scene {scene}, display {base} at the default exposure, {darker} one stop darker");
-    // Ambient light only (0.05 by default): well inside the range where "none" is linear.
+    // Ambient light only (5,000 lux by default): well inside the range where "none" is linear.
+    // The scene is pre-exposed: tonemapping "none" shows it as it is.
     assert!(scene > 0.01 && scene < 1.0, "{scene}");
     assert!(
         (base - scene).abs() < 1e-4 * scene.max(1.0),
@@ -361,7 +363,7 @@ fn post_processed(path: PostProcessPath) -> (image::RgbaImage, bool) {
     pom::preview::spawn_preview(&mut app, material, &view).unwrap();
     // A light bright enough that tonemapping has highlights to compress.
     for light in app.world.query_mut::<&mut DirectionalLight>() {
-        light.intensity = 3.0;
+        light.intensity = 300_000.0;
     }
     let compute = app
         .resources

@@ -24,7 +24,8 @@ pub struct ExtractedFrame {
     pub has_camera: bool,
     /// How large the active camera's pixels are in the world (for per-object LOD).
     pub footprint: Option<PixelFootprint>,
-    /// The active camera's exposure (the default without a camera or component).
+    /// The active camera's exposure (the default without a camera or component), already
+    /// applied to the lights.
     pub exposure: Exposure,
     /// The active camera's tonemapping operator.
     pub tonemapping: Tonemapping,
@@ -79,11 +80,23 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         ),
     };
 
+    // Lux and candela to what the shaders multiply with the albedo: a Lambertian surface of
+    // albedo ρ lit with illuminance E sends radiance ρ·E/π towards the eye (Lagarde & de
+    // Rousiers §4.1), times the camera's exposure: the scene target holds pre-exposed values
+    // (Frostbite's pre-exposure), because daylight radiance (≈ 30,000 cd/m²) would overflow
+    // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
+    let (exposure, tonemapping) = camera_display_mapping(world);
+    let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
+    let ambient_intensity = if ambient.intensity.is_finite() {
+        ambient.intensity.max(0.0) * light_scale
+    } else {
+        0.0
+    };
     let mut frame = FrameUniform {
         view_projection: columns(view_projection),
         camera_position: camera_position.extend(1.0).into(),
         view_direction: view_direction.into(),
-        ambient: (Vec3::new(ambient.color.r, ambient.color.g, ambient.color.b) * ambient.intensity)
+        ambient: (Vec3::new(ambient.color.r, ambient.color.g, ambient.color.b) * ambient_intensity)
             .extend(0.0)
             .into(),
         light_counts: [0; 4],
@@ -92,7 +105,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     };
     let radiance = |color: Color, intensity: f32| {
         let intensity = if intensity.is_finite() {
-            intensity.max(0.0)
+            intensity.max(0.0) * light_scale
         } else {
             0.0
         };
@@ -135,7 +148,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     }
     frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
 
-    let (exposure, tonemapping) = camera_display_mapping(world);
     resources.insert(ExtractedFrame {
         frame,
         clear_color,

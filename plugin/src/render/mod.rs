@@ -157,7 +157,7 @@ pub struct Renderer {
     pub(crate) depth_prepass: bool,
     /// A 1 × 1 depth texture bound where the real one is being written.
     pub(crate) dummy_depth: wgpu::TextureView,
-    /// Exposure and tonemapping.
+    /// Tonemapping (the lights carry the exposure).
     post: PostProcess,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
@@ -282,11 +282,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let images = resources.require::<Assets<Image>>()?;
             let target = resources.require::<RenderTarget>()?;
             renderer.assets.release_freed(meshes, images);
-            let settings = PostSettings::new(
-                extracted.exposure,
-                extracted.tonemapping,
-                target.target_format(),
-            );
+            let settings = PostSettings::new(extracted.tonemapping, target.target_format());
             renderer.last_upload = UploadStats {
                 uniform_bytes: renderer.frame.upload(gpu, &extracted.frame)
                     + renderer.post.upload(gpu, settings),
@@ -482,7 +478,8 @@ pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
 }
 
 /// Reads the HDR scene of the last frame of a [`TargetFormat::Float32`] target back: the light
-/// the materials computed, before exposure and tonemapping.
+/// the materials computed, already exposed (the lights carry the camera's exposure), before
+/// tonemapping.
 pub fn capture_scene(app: &App) -> Result<Rgba32FImage, RenderError> {
     let (Some(gpu), Some(target)) = (
         app.resources.get::<GpuContext>(),

@@ -5,7 +5,8 @@
 //! shadows      shadow maps (encoder work; empty until a plugin adds some)
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! transparent  blended draws, sorted back to front by their plugin; depth read-only
-//! post         exposure and tonemapping, HDR scene → display target (compute where allowed)
+//! post         tonemapping, HDR scene → display target (compute where allowed); the scene is
+//!              pre-exposed (the lights carry the camera's exposure)
 //! overlay      UI drawn over the result by the application (the sandbox's egui)
 //! ```
 //! Each phase that has work is timed in [`super::GpuTimings`] under [`RenderPhase::name`].
@@ -26,7 +27,7 @@ pub enum RenderPhase {
     Opaque,
     /// Blended materials, back to front.
     Transparent,
-    /// Exposure and tonemapping into the display target.
+    /// Tonemapping into the display target.
     PostProcess,
     /// The application's UI over the finished image.
     Overlay,

@@ -1,4 +1,4 @@
-//! The post-processing phase: exposure and tonemapping from the HDR scene target into the
+//! The post-processing phase: tonemapping from the (pre-exposed) HDR scene target into the
 //! display target, as a compute pass where the adapter can write the display format from
 //! compute, else as a full-screen triangle.
 //!
@@ -9,10 +9,10 @@ use bytemuck::{Pod, Zeroable};
 
 use super::shaders::{ComposedShader, WgslFile};
 use super::{GpuContext, RenderTarget, TargetFormat};
+use crate::Tonemapping;
 use crate::material::Choice;
-use crate::{Exposure, Tonemapping};
 
-/// Shared post-processing functions (settings, exposure, tonemapping, sRGB encoding).
+/// Shared post-processing functions (settings, tonemapping, sRGB encoding).
 pub const POST_PROCESS: WgslFile = crate::wgsl_file!("render/post_process.wgsl");
 /// The tonemapping operators.
 pub const TONEMAPPING: WgslFile = crate::wgsl_file!("render/tonemapping.wgsl");
@@ -54,31 +54,28 @@ pub const POST_FRAGMENT: ComposedShader = ComposedShader {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct PostSettings {
-    /// Multiplier from scene values to the tonemapper's input.
-    pub exposure: f32,
     /// `TONEMAP_*` code of the operator.
     pub tonemapping: u32,
     /// 1: encode with the sRGB curve; 0: write linear floats.
     pub encode_srgb: u32,
     /// Padding to 16 bytes.
-    pub _padding: u32,
+    pub _padding: [u32; 2],
 }
 
 crate::wgsl_layout!(PostSettings {
-    exposure,
     tonemapping,
     encode_srgb,
     _padding
 });
 
 impl PostSettings {
-    /// The settings for a camera's exposure and operator, writing `format`.
-    pub fn new(exposure: Exposure, tonemapping: Tonemapping, format: TargetFormat) -> Self {
+    /// The settings for a camera's operator, writing `format` (exposure is applied to the
+    /// lights before the scene is drawn).
+    pub fn new(tonemapping: Tonemapping, format: TargetFormat) -> Self {
         Self {
-            exposure: exposure.multiplier(),
             tonemapping: tonemapping.code(),
             encode_srgb: u32::from(format == TargetFormat::Srgb8),
-            _padding: 0,
+            _padding: [0; 2],
         }
     }
 }
@@ -319,3 +316,19 @@ impl PostProcess {
 /// Every post-processing shader, for validation.
 pub(crate) const POST_SHADERS: [ComposedShader; 3] =
     [POST_COMPUTE_RGBA8, POST_COMPUTE_RGBA32F, POST_FRAGMENT];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_settings_match_their_wgsl() {
+        for shader in POST_SHADERS {
+            let layout = crate::material::check_wgsl_layout::<PostSettings>(
+                &shader.source(),
+                "PostSettings",
+            );
+            assert_eq!(layout, Ok(()), "{}", shader.name);
+        }
+    }
+}

@@ -1,15 +1,13 @@
-// Post-processing, shared by the compute pass and its fragment fallback: exposure and
-// tonemapping from the HDR scene target to the display target. Mirrors `PostSettings` in
-// post_process.rs (the layout test checks them).
+// Post-processing, shared by the compute pass and its fragment fallback: tonemapping from the
+// HDR scene target (pre-exposed: the lights carry the camera's exposure) to the display target.
+// Mirrors `PostSettings` in post_process.rs (the layout test checks them).
 
 struct PostSettings {
-    // Multiplier from scene values to the tonemapper's input (Exposure::multiplier).
-    exposure: f32,
     // TONEMAP_* code.
     tonemapping: u32,
     // 1: encode with the sRGB curve (8-bit display target); 0: write linear floats.
     encode_srgb: u32,
-    _padding: u32,
+    _padding: vec2<u32>,
 }
 
 @group(0) @binding(0) var scene: texture_2d<f32>;
@@ -30,7 +28,7 @@ fn post_process(pixel: vec2<u32>) -> vec4<f32> {
     if hdr.a < 0.0 {
         display = vec4<f32>(hdr.rgb, clamp(-1.0 - hdr.a, 0.0, 1.0));
     } else {
-        display = vec4<f32>(tonemap(hdr.rgb * settings.exposure, settings.tonemapping), clamp(hdr.a, 0.0, 1.0));
+        display = vec4<f32>(tonemap(hdr.rgb, settings.tonemapping), clamp(hdr.a, 0.0, 1.0));
     }
     if settings.encode_srgb != 0u {
         display = vec4<f32>(encode_srgb(display.rgb), display.a);

@@ -15,7 +15,7 @@ pub enum TargetFormat {
     Srgb8,
     /// 32-bit float per channel, no sRGB curve (scene in `Rgba32Float` too): linear display
     /// values and exact debug-view data for measurements. Read it back with
-    /// [`crate::render::capture_f32`], the scene before exposure with
+    /// [`crate::render::capture_f32`], the (pre-exposed) scene before tonemapping with
     /// [`crate::render::capture_scene`].
     Float32,
 }

@@ -17,7 +17,7 @@ pub struct Script {
     /// Lights (none: a glTF file's own, if any).
     #[serde(default)]
     pub lights: Vec<LightDesc>,
-    /// Ambient light (colour, intensity).
+    /// Ambient light (colour, illuminance in lux).
     #[serde(default)]
     pub ambient: Option<([f32; 3], f32)>,
     /// Things in the scene.
@@ -65,8 +65,8 @@ pub enum LightDesc {
         /// Linear colour.
         #[serde(default = "white")]
         color: [f32; 3],
-        /// Brightness.
-        #[serde(default = "one")]
+        /// Illuminance in lux.
+        #[serde(default = "bright_sun")]
         intensity: f32,
     },
     /// A point light.
@@ -76,8 +76,8 @@ pub enum LightDesc {
         /// Linear colour.
         #[serde(default = "white")]
         color: [f32; 3],
-        /// Brightness at one unit.
-        #[serde(default = "one")]
+        /// Luminous intensity in candela.
+        #[serde(default = "floodlight")]
         intensity: f32,
         /// Distance where it fades out.
         #[serde(default = "twenty")]
@@ -90,6 +90,12 @@ fn white() -> [f32; 3] {
 }
 fn one() -> f32 {
     1.0
+}
+fn bright_sun() -> f32 {
+    100_000.0
+}
+fn floodlight() -> f32 {
+    100_000.0
 }
 fn twenty() -> f32 {
     20.0

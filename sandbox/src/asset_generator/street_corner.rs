@@ -124,7 +124,7 @@ pub fn build(materials: &[EncodedMaterial]) -> Vec<u8> {
         .looking_at(Vec3::new(-0.3, 0.9, -1.3), Vec3::Y)
         .rotation;
     builder.node(json!({"name": "camera", "camera": camera, "translation": eye.to_array(), "rotation": camera_rotation.to_array()}));
-    let sun = builder.sun([1.0, 0.96, 0.88], 1.8);
+    let sun = builder.sun([1.0, 0.96, 0.88], 180_000.0);
     let sun_rotation = pom::Transform::IDENTITY
         .looking_at(Vec3::new(-0.55, -0.75, -0.45), Vec3::Y)
         .rotation;

@@ -47,11 +47,11 @@ pub fn display_controls(ui: &mut Ui, world: &mut World) {
             .step_by(0.1),
     )
     .on_hover_text(
-        "Higher is darker: +1 halves the light. The default, -0.263, shows a scene value of 1 as 1.",
+        "Higher is darker: +1 halves the light. The default, 14.7 (daylight), shows white in a 100,000 lux sun as 1.",
     );
     if ui
         .button("default exposure")
-        .on_hover_text("Back to -0.263 EV100.")
+        .on_hover_text("Back to 14.7 EV100.")
         .clicked()
     {
         state.ev100 = Exposure::DEFAULT_EV100;

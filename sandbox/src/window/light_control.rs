@@ -7,7 +7,7 @@ use pom::hecs::{Entity, World};
 use pom::{DirectionalLight, Transform};
 
 /// Brightness of a light added with "Add light": dimmer than a sun, so it reads as a fill.
-const ADDED_LIGHT_INTENSITY: f32 = 0.5;
+const ADDED_LIGHT_INTENSITY: f32 = 50_000.0;
 
 /// The light controls' state: which light is edited.
 #[derive(Debug, Default)]
@@ -117,8 +117,12 @@ impl LightControls {
         }
         drop(transform);
         if let Ok(mut light) = world.get::<&mut DirectionalLight>(entity) {
-            ui.add(Slider::new(&mut light.intensity, 0.0..=5.0).text("light intensity"))
-                .on_hover_text("How bright this light is.");
+            ui.add(
+                Slider::new(&mut light.intensity, 0.0..=500_000.0)
+                    .logarithmic(true)
+                    .text("light intensity (lux)"),
+            )
+            .on_hover_text("How bright this light is.");
         }
     }
 }
