@@ -79,7 +79,7 @@ pub use image::{
 };
 #[cfg(feature = "scene-tests")]
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
-pub use light::{AmbientLight, DirectionalLight, PointLight};
+pub use light::{AmbientLight, DirectionalLight, PointLight, SpotLight};
 pub use lit::{AlphaMode, LitMaterial, LitParams, LitPatch, LitPreset, lit_plugin};
 pub use material::{Material, MaterialPlugin};
 pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};

@@ -49,6 +49,55 @@ impl Default for PointLight {
     }
 }
 
+/// Light from a point at its entity's position into a cone along the entity's −Z axis
+/// (`KHR_lights_punctual`'s spot): full inside `inner_angle`, fading to nothing at
+/// `outer_angle`, and falling off with distance like a [`PointLight`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLight {
+    /// Colour, linear.
+    pub color: Color,
+    /// Luminous intensity in candela along the axis.
+    pub intensity: f32,
+    /// Distance beyond which the light has no effect (`f32::INFINITY`: none).
+    pub range: f32,
+    /// Half-angle in radians inside which the light is at full strength (0 ..= outer).
+    pub inner_angle: f32,
+    /// Half-angle in radians at which it reaches zero (0 < outer ≤ π/2).
+    pub outer_angle: f32,
+}
+
+impl Default for SpotLight {
+    /// glTF's default cone (inner 0, outer π/4), 100,000 cd, reaching to 20 units.
+    fn default() -> Self {
+        Self {
+            color: Color::WHITE,
+            intensity: 100_000.0,
+            range: 20.0,
+            inner_angle: 0.0,
+            outer_angle: std::f32::consts::FRAC_PI_4,
+        }
+    }
+}
+
+impl SpotLight {
+    /// The cone the renderer uses: outer clamped to (0, π/2], inner to [0, outer]; NaN as the
+    /// defaults.
+    pub fn sanitized_cone(&self) -> (f32, f32) {
+        let default = Self::default();
+        let outer = if self.outer_angle.is_finite() {
+            self.outer_angle.clamp(1e-3, std::f32::consts::FRAC_PI_2)
+        } else {
+            default.outer_angle
+        };
+        let inner = if self.inner_angle.is_finite() {
+            self.inner_angle.clamp(0.0, outer)
+        } else {
+            0.0
+        };
+        (inner, outer)
+    }
+}
+
 /// Light arriving equally from everywhere (a sky); a resource, one per app.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AmbientLight {

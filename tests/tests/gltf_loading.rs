@@ -202,8 +202,8 @@ fn hierarchy_cameras_and_lights_become_entities() {
     let scene = load_gltf(&mut app, fixture.write(&dir, "hierarchy")).unwrap();
     assert_eq!(scene.cameras.len(), 1);
     assert_eq!(scene.lights.len(), 2);
-    assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
-    assert!(scene.warnings[0].contains("spot"));
+    // The spot is a spot light now: nothing to warn about.
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     let (min, max) = scene.bounds.unwrap();
     assert!(
         (min - Vec3::new(9.5, 1.0, -0.5)).length() < 1e-5
@@ -224,6 +224,17 @@ fn hierarchy_cameras_and_lights_become_entities() {
     );
     let sun: DirectionalLight = only(&app);
     assert_eq!(sun.intensity, 2.0);
+    // glTF's default cone, no range: unbounded.
+    let spot: pom::SpotLight = only(&app);
+    assert_eq!(
+        (
+            spot.intensity,
+            spot.inner_angle,
+            spot.outer_angle,
+            spot.range
+        ),
+        (3.0, 0.0, std::f32::consts::FRAC_PI_4, f32::INFINITY)
+    );
 }
 
 #[test]

@@ -8,7 +8,7 @@ use super::primitives::read_primitive;
 use super::{GltfError, GltfScene, Source, describe};
 use crate::{
     App, Assets, Camera, Color, DirectionalLight, Image, Mesh, Name, Parent, PointLight,
-    Projection, Transform,
+    Projection, SpotLight, Transform,
 };
 
 fn transform_of(node: &gltf::Node<'_>) -> Transform {
@@ -196,12 +196,33 @@ fn spawn_nodes(
                 gltf::khr_lights_punctual::Kind::Directional => app
                     .world
                     .insert_one(entity, DirectionalLight { color, intensity }),
-                kind => {
-                    if matches!(kind, gltf::khr_lights_punctual::Kind::Spot { .. }) {
+                gltf::khr_lights_punctual::Kind::Spot {
+                    inner_cone_angle,
+                    outer_cone_angle,
+                } => {
+                    let spot = SpotLight {
+                        color,
+                        intensity,
+                        range: light.range().unwrap_or(f32::INFINITY),
+                        inner_angle: inner_cone_angle,
+                        outer_angle: outer_cone_angle,
+                    };
+                    let (inner, outer) = spot.sanitized_cone();
+                    if (inner, outer) != (inner_cone_angle, outer_cone_angle) {
                         scene.warnings.push(format!(
-                            "node {node_name}: spot lights are drawn as point lights"
+                            "node {node_name}: spot cone inner {inner_cone_angle} / outer {outer_cone_angle} rad is not 0 ≤ inner ≤ outer ≤ π/2; clamped to {inner} / {outer}"
                         ));
                     }
+                    app.world.insert_one(
+                        entity,
+                        SpotLight {
+                            inner_angle: inner,
+                            outer_angle: outer,
+                            ..spot
+                        },
+                    )
+                }
+                gltf::khr_lights_punctual::Kind::Point => {
                     app.world.insert_one(
                         entity,
                         PointLight {

@@ -10,7 +10,7 @@ use super::lowest_mip::PixelFootprint;
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform, PointLight,
-    Projection, Resources, Tonemapping, active_camera,
+    Projection, Resources, SpotLight, Tonemapping, active_camera,
 };
 
 /// Everything the Prepare and Render stages read about the current frame.
@@ -143,6 +143,25 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         frame.point_lights[point_count] = PointLightGpu {
             position_range: transform.translation().extend(light.range.max(0.0)).into(),
             radiance: radiance(light.color, light.intensity),
+            spot_direction: [0.0, 0.0, -1.0, 0.0],
+            // Scale 0, offset 1: full strength in every direction.
+            spot_cone: [0.0, 1.0, 0.0, 0.0],
+        };
+        point_count += 1;
+    }
+    for (light, transform) in world.query::<(&SpotLight, &GlobalTransform)>().iter() {
+        if point_count == MAX_POINT_LIGHTS {
+            log::warn!("more than {MAX_POINT_LIGHTS} point and spot lights: the rest are ignored");
+            break;
+        }
+        // glTF's cone: t = cos(angle to the axis) × scale + offset, clamped, squared.
+        let (inner, outer) = light.sanitized_cone();
+        let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
+        frame.point_lights[point_count] = PointLightGpu {
+            position_range: transform.translation().extend(light.range.max(0.0)).into(),
+            radiance: radiance(light.color, light.intensity),
+            spot_direction: transform.forward().extend(0.0).into(),
+            spot_cone: [scale, -outer.cos() * scale, 0.0, 0.0],
         };
         point_count += 1;
     }

@@ -16,6 +16,10 @@ struct PointLight {
     position_range: vec4<f32>,
     // rgb: colour × intensity.
     radiance: vec4<f32>,
+    // xyz: the direction a spot shines.
+    spot_direction: vec4<f32>,
+    // x: angle scale, y: angle offset (0 and 1 for a point light).
+    spot_cone: vec4<f32>,
 }
 
 struct Frame {
@@ -25,7 +29,7 @@ struct Frame {
     view_direction: vec4<f32>,
     // rgb: ambient colour × intensity.
     ambient: vec4<f32>,
-    // x: directional light count, y: point light count.
+    // x: directional light count, y: point and spot light count.
     light_counts: vec4<u32>,
     directional_lights: array<DirectionalLight, MAX_DIRECTIONAL_LIGHTS>,
     point_lights: array<PointLight, MAX_POINT_LIGHTS>,
@@ -80,6 +84,8 @@ fn light_at(index: u32, world_position: vec3<f32>) -> LightSample {
     let distance = length(offset);
     // At the light's own position any direction will do; the window makes it dark anyway.
     let to_light = select(vec3<f32>(0.0, 0.0, 1.0), offset / distance, distance > 1e-6);
-    let radiance = light.radiance.rgb * point_light_attenuation(distance, light.position_range.w);
+    // A spot's cone (KHR_lights_punctual): full inside the inner angle, squared fade to the outer.
+    let cone = clamp(dot(light.spot_direction.xyz, -to_light) * light.spot_cone.x + light.spot_cone.y, 0.0, 1.0);
+    let radiance = light.radiance.rgb * point_light_attenuation(distance, light.position_range.w) * cone * cone;
     return LightSample(to_light, radiance);
 }

@@ -5,7 +5,7 @@ use bytemuck::{Pod, Zeroable};
 
 /// Most directional lights one frame shades with (`MAX_DIRECTIONAL_LIGHTS` in WGSL).
 pub const MAX_DIRECTIONAL_LIGHTS: usize = 4;
-/// Most point lights one frame shades with (`MAX_POINT_LIGHTS` in WGSL).
+/// Most point and spot lights one frame shades with (`MAX_POINT_LIGHTS` in WGSL).
 pub const MAX_POINT_LIGHTS: usize = 16;
 
 /// One directional light as the shader reads it.
@@ -18,7 +18,7 @@ pub struct DirectionalLightGpu {
     pub radiance: [f32; 4],
 }
 
-/// One point light as the shader reads it.
+/// One point or spot light as the shader reads it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct PointLightGpu {
@@ -26,6 +26,11 @@ pub struct PointLightGpu {
     pub position_range: [f32; 4],
     /// rgb: colour × intensity.
     pub radiance: [f32; 4],
+    /// xyz: the direction a spot shines; w unused.
+    pub spot_direction: [f32; 4],
+    /// x: angle scale, y: angle offset of the spot's cone (glTF's formula; 0 and 1 for a
+    /// point light, which shines everywhere).
+    pub spot_cone: [f32; 4],
 }
 
 /// Per-frame values: camera and lights.
@@ -41,11 +46,11 @@ pub struct FrameUniform {
     pub view_direction: [f32; 4],
     /// rgb: ambient colour × intensity.
     pub ambient: [f32; 4],
-    /// x: directional light count, y: point light count.
+    /// x: directional light count, y: point and spot light count.
     pub light_counts: [u32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
     pub directional_lights: [DirectionalLightGpu; MAX_DIRECTIONAL_LIGHTS],
-    /// The point lights; only the first `light_counts.y` are used.
+    /// The point and spot lights; only the first `light_counts.y` are used.
     pub point_lights: [PointLightGpu; MAX_POINT_LIGHTS],
 }
 

@@ -83,6 +83,28 @@ pub enum LightDesc {
         #[serde(default = "twenty")]
         range: f32,
     },
+    /// A spot light at `position` shining along `direction` (glTF's cone).
+    Spot {
+        /// Position.
+        position: [f32; 3],
+        /// Direction the light shines.
+        direction: [f32; 3],
+        /// Linear colour.
+        #[serde(default = "white")]
+        color: [f32; 3],
+        /// Luminous intensity in candela along the axis.
+        #[serde(default = "floodlight")]
+        intensity: f32,
+        /// Distance where it fades out.
+        #[serde(default = "twenty")]
+        range: f32,
+        /// Half-angle of full strength, in degrees.
+        #[serde(default)]
+        inner_degrees: f32,
+        /// Half-angle where it reaches zero, in degrees (≤ 90).
+        #[serde(default = "forty_five")]
+        outer_degrees: f32,
+    },
 }
 
 fn white() -> [f32; 3] {
@@ -96,6 +118,9 @@ fn bright_sun() -> f32 {
 }
 fn floodlight() -> f32 {
     100_000.0
+}
+fn forty_five() -> f32 {
+    45.0
 }
 fn twenty() -> f32 {
     20.0
@@ -243,10 +268,10 @@ pub enum Step {
     MoveLight {
         /// Light index.
         light: usize,
-        /// New direction (directional lights).
+        /// New direction (directional and spot lights).
         #[serde(default)]
         direction: Option<[f32; 3]>,
-        /// New position (point lights).
+        /// New position (point and spot lights).
         #[serde(default)]
         position: Option<[f32; 3]>,
     },

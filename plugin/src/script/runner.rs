@@ -14,7 +14,8 @@ use super::{Outcome, Report, RunOptions, ScriptError, StepReport};
 use crate::{
     AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, Exposure, GpuContext,
     HeightSource, Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
-    PomPreset, Projection, RenderPlugin, TextureKind, Transform, flip_compare, load_gltf,
+    PomPreset, Projection, RenderPlugin, SpotLight, TextureKind, Transform, flip_compare,
+    load_gltf,
 };
 
 /// Runs the script at `path` with default options (no blessing, failure images next to the
@@ -178,6 +179,28 @@ impl<'a> Runner<'a> {
                     },
                     Transform::from_translation(vec3(*position)),
                 )),
+                LightDesc::Spot {
+                    position,
+                    direction,
+                    color,
+                    intensity,
+                    range,
+                    inner_degrees,
+                    outer_degrees,
+                } => {
+                    let mut transform = light_towards(vec3(*direction));
+                    transform.translation = vec3(*position);
+                    app.world.spawn((
+                        SpotLight {
+                            color: Color::linear_rgb(color[0], color[1], color[2]),
+                            intensity: *intensity,
+                            range: *range,
+                            inner_angle: inner_degrees.to_radians(),
+                            outer_angle: outer_degrees.to_radians(),
+                        },
+                        transform,
+                    ))
+                }
             })
             .collect();
         if let Some((color, intensity)) = script.ambient {
@@ -406,7 +429,10 @@ impl<'a> Runner<'a> {
                 let entity = self.lights[*light];
                 if let Ok(mut transform) = self.app.world.get::<&mut Transform>(entity) {
                     if let Some(direction) = direction {
+                        // Turned in place: a spot keeps its position.
+                        let translation = transform.translation;
                         *transform = light_towards(vec3(*direction));
+                        transform.translation = translation;
                     }
                     if let Some(position) = position {
                         transform.translation = vec3(*position);

@@ -1,10 +1,11 @@
 //! The light controls: the direction of a directional light as azimuth / elevation sliders,
-//! written into the light entity's `Transform`, and adding or removing lights.
+//! written into the light entity's `Transform`, adding or removing lights, and each spot
+//! light's intensity and cone.
 
 use egui::{Slider, Ui};
 use glam::Vec3;
 use pom::hecs::{Entity, World};
-use pom::{DirectionalLight, Transform};
+use pom::{DirectionalLight, SpotLight, Transform};
 
 /// Brightness of a light added with "Add light": dimmer than a sun, so it reads as a fill.
 const ADDED_LIGHT_INTENSITY: f32 = 50_000.0;
@@ -124,6 +125,47 @@ impl LightControls {
             )
             .on_hover_text("How bright this light is.");
         }
+    }
+}
+
+/// Shows every spot light's intensity and cone (degrees) and a button that adds one above the
+/// origin, shining down; edits `world` directly.
+pub fn spot_controls(ui: &mut Ui, world: &mut World) {
+    if ui
+        .button("Add spot light")
+        .on_hover_text("Adds a spot light 3 m above the origin, shining straight down.")
+        .clicked()
+    {
+        world.spawn((
+            SpotLight::default(),
+            light_transform(Vec3::new(0.0, 3.0, 0.0), 0.0, 90.0),
+        ));
+    }
+    let mut spots: Vec<Entity> = world
+        .query::<(Entity, &SpotLight)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .collect();
+    spots.sort();
+    for (index, entity) in spots.into_iter().enumerate() {
+        let Ok(mut spot) = world.get::<&mut SpotLight>(entity) else {
+            continue;
+        };
+        ui.label(format!("spot {index}"));
+        ui.add(
+            Slider::new(&mut spot.intensity, 0.0..=10_000_000.0)
+                .logarithmic(true)
+                .text("spot intensity (cd)"),
+        )
+        .on_hover_text("Luminous intensity along the axis, in candela.");
+        let mut outer = spot.outer_angle.to_degrees();
+        let mut inner = spot.inner_angle.to_degrees();
+        ui.add(Slider::new(&mut outer, 1.0..=90.0).text("outer cone °"))
+            .on_hover_text("Half-angle at which the light reaches zero.");
+        ui.add(Slider::new(&mut inner, 0.0..=outer).text("inner cone °"))
+            .on_hover_text("Half-angle inside which the light is at full strength.");
+        spot.outer_angle = outer.to_radians();
+        spot.inner_angle = inner.min(outer).to_radians();
     }
 }
 

@@ -369,3 +369,28 @@ fn the_display_controls_set_the_cameras_exposure_and_tonemapping() {
         .unwrap();
     assert_eq!(tonemapping, pom::Tonemapping::Neutral);
 }
+
+#[test]
+fn a_spot_light_is_added_and_its_cone_edited_from_the_panel() {
+    let mut harness = harness();
+    harness.get_by_label("Spot lights").click();
+    harness.run();
+    harness.get_by_label("Add spot light").click();
+    harness.run();
+    let spot = |harness: &Harness<'_, Fixture>| {
+        *harness
+            .state()
+            .app
+            .world
+            .query::<&pom::SpotLight>()
+            .iter()
+            .next()
+            .expect("a spot light was added")
+    };
+    assert_eq!(spot(&harness), pom::SpotLight::default());
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "outer cone °")
+        .set_value_accesskit(30.0);
+    harness.run();
+    assert!((spot(&harness).outer_angle - 30_f32.to_radians()).abs() < 1e-4);
+}

@@ -10,7 +10,7 @@ use super::app_state::{LoadedScene, material_entities};
 use super::display_control::display_controls;
 use super::file_browser::FileBrowser;
 use super::frame_timing::{FrameTimes, GpuTimingSource, gpu_pass_rows};
-use super::light_control::LightControls;
+use super::light_control::{LightControls, spot_controls};
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
 use super::scene_open::{OpenRequest, open_request, request_for_dropped};
@@ -97,6 +97,9 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         state.split.show(ui, app, state.selected);
         ui.separator();
         ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
+        ui.collapsing("Spot lights", |ui| spot_controls(ui, &mut app.world))
+            .header_response
+            .on_hover_text("Spot lights: intensity in candela and cone angles.");
         ui.collapsing("Display", |ui| display_controls(ui, &mut app.world))
             .header_response
             .on_hover_text("Exposure and tonemapping: how scene light maps to the screen.");
