@@ -46,6 +46,22 @@ enum Stack {
     Shared,
 }
 
+/// A started app: `plugin` and the parallax plugin (which brings the lit one).
+fn started(plugin: RenderPlugin) -> App {
+    let mut app = App::new();
+    app.add_plugin(plugin).add_plugin(PomPlugin);
+    app.finish().unwrap();
+    app
+}
+
+/// A square plane mesh of side `size`, added to the app's meshes.
+fn plane(app: &mut App, size: f32) -> pom::Handle<Mesh> {
+    app.resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::plane(size))
+}
+
 /// Fragment-shader invocations of the parallax material's opaque pipeline for `planes` full
 /// screen planes stacked along the view.
 fn parallax_invocations(planes: usize, depth_offset: bool, prepass: bool, stack: Stack) -> u32 {
@@ -140,25 +156,18 @@ fn depth_offset_scene(prepass: bool) -> image::RgbaImage {
         view_angle: 20.0,
         ..PreviewView::default()
     };
-    let mut app = App::new();
-    app.add_plugin(
+    let mut app = started(
         RenderPlugin::headless(128, 128)
             .with_format(TargetFormat::Srgb8)
             .with_depth_prepass(prepass),
-    )
-    .add_plugin(PomPlugin);
-    app.finish().unwrap();
+    );
     let material = ParallaxOcclusionMaterial {
         depth_offset: true,
         shadows: ShadowMode::Soft,
         ..cobbles().material(&mut app)
     };
     pom::preview::spawn_preview(&mut app, material, &view).unwrap();
-    let plane = app
-        .resources
-        .get_mut::<Assets<Mesh>>()
-        .unwrap()
-        .add(Mesh::plane(1.0));
+    let plane = plane(&mut app, 1.0);
     app.world.spawn((
         plane,
         LitMaterial {
@@ -203,19 +212,12 @@ fn the_prepass_changes_no_pixel_of_a_depth_offset_scene() {
 /// Linear display colour and scene colour at the centre of a lit orange plane whose brightest
 /// channel reaches `level` × white, through `tonemapping` at the default exposure.
 fn bright_surface(tonemapping: Tonemapping, level: f32) -> ([f32; 3], [f32; 3]) {
-    let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(16, 16).with_format(TargetFormat::Float32))
-        .add_plugin(PomPlugin);
-    app.finish().unwrap();
+    let mut app = started(RenderPlugin::headless(16, 16).with_format(TargetFormat::Float32));
     *app.resources.get_mut::<pom::AmbientLight>().unwrap() = pom::AmbientLight {
         color: Color::WHITE,
         intensity: 0.0,
     };
-    let plane = app
-        .resources
-        .get_mut::<Assets<Mesh>>()
-        .unwrap()
-        .add(Mesh::plane(4.0));
+    let plane = plane(&mut app, 4.0);
     let albedo = [0.8, 0.4, 0.1];
     app.world.spawn((
         plane,
@@ -311,15 +313,8 @@ fn bright_colours_keep_their_hue_through_the_tonemappers_that_promise_it() {
 #[test]
 fn one_stop_more_exposure_value_halves_the_light() {
     let display_at = |ev100: f32| {
-        let mut app = App::new();
-        app.add_plugin(RenderPlugin::headless(8, 8).with_format(TargetFormat::Float32))
-            .add_plugin(PomPlugin);
-        app.finish().unwrap();
-        let plane = app
-            .resources
-            .get_mut::<Assets<Mesh>>()
-            .unwrap()
-            .add(Mesh::plane(4.0));
+        let mut app = started(RenderPlugin::headless(8, 8).with_format(TargetFormat::Float32));
+        let plane = plane(&mut app, 4.0);
         app.world
             .spawn((plane, LitMaterial::default(), Transform::IDENTITY));
         app.world.spawn((
@@ -355,10 +350,7 @@ fn post_processed(path: PostProcessPath) -> (image::RgbaImage, bool) {
         view_angle: 40.0,
         ..PreviewView::default()
     };
-    let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(64, 48).with_post_process(path))
-        .add_plugin(PomPlugin);
-    app.finish().unwrap();
+    let mut app = started(RenderPlugin::headless(64, 48).with_post_process(path));
     let material = cobbles().material(&mut app);
     pom::preview::spawn_preview(&mut app, material, &view).unwrap();
     // A light bright enough that tonemapping has highlights to compress.
@@ -394,10 +386,8 @@ fn compute_and_fragment_post_processing_write_the_same_pixels() {
 
 #[test]
 fn each_phase_is_timed_under_its_name() {
-    let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(32, 32).with_gpu_timing(Some(pom::TimingMode::Blocking)))
-        .add_plugin(PomPlugin);
-    app.finish().unwrap();
+    let mut app =
+        started(RenderPlugin::headless(32, 32).with_gpu_timing(Some(pom::TimingMode::Blocking)));
     let material = cobbles().material(&mut app);
     pom::preview::spawn_preview(&mut app, material, &PreviewView::default()).unwrap();
     pom_tests::run_frames(&mut app, 3).unwrap();
@@ -473,17 +463,10 @@ fn the_transparent_phase_blends_over_the_opaque_result_and_keeps_its_depth() {
     use pom::wgpu;
     // `overlay_depth`: where the translucent triangle lies (0 = at the near plane), if drawn.
     let render = |overlay_depth: Option<f32>| {
-        let mut app = App::new();
         // The 8-bit target: its Rgba16Float scene blends everywhere (Rgba32Float needs
         // FLOAT32_BLENDABLE).
-        app.add_plugin(RenderPlugin::headless(16, 16))
-            .add_plugin(PomPlugin);
-        app.finish().unwrap();
-        let plane = app
-            .resources
-            .get_mut::<Assets<Mesh>>()
-            .unwrap()
-            .add(Mesh::plane(4.0));
+        let mut app = started(RenderPlugin::headless(16, 16));
+        let plane = plane(&mut app, 4.0);
         app.world.spawn((
             plane,
             LitMaterial::from_color(Color::linear_rgb(0.0, 0.0, 0.5)),

@@ -176,6 +176,20 @@ impl MaterialCache {
         Ok(handle)
     }
 
+    /// [`MaterialCache::texture`] of a texture slot the material may leave empty (red channel:
+    /// only height maps choose another).
+    fn optional_texture(
+        &mut self,
+        source: &Source,
+        images: &mut Assets<Image>,
+        texture: Option<gltf::Texture<'_>>,
+        kind: TextureKind,
+    ) -> Result<Option<Handle<Image>>, GltfError> {
+        texture
+            .map(|texture| self.texture(source, images, texture, kind, Channel::Red))
+            .transpose()
+    }
+
     /// The material of a primitive (`None` = glTF's default material).
     pub fn material(
         &mut self,
@@ -198,30 +212,17 @@ impl MaterialCache {
         let [r, g, b, a] = pbr.base_color_factor();
         let base_color = Color { r, g, b, a };
         let base_info = pbr.base_color_texture();
-        let base_color_texture = match &base_info {
-            Some(info) => Some(self.texture(
-                source,
-                images,
-                info.texture(),
-                TextureKind::Color,
-                Channel::Red,
-            )?),
-            None => None,
-        };
+        let base_texture = base_info.as_ref().map(|info| info.texture());
+        let base_color_texture =
+            self.optional_texture(source, images, base_texture, TextureKind::Color)?;
         let normal_info = material.normal_texture();
-        let (normal_map, normal_strength) = match &normal_info {
-            Some(info) => (
-                Some(self.texture(
-                    source,
-                    images,
-                    info.texture(),
-                    TextureKind::Normal,
-                    Channel::Red,
-                )?),
-                info.scale(),
-            ),
-            None => (None, 1.0),
-        };
+        let normal_map = self.optional_texture(
+            source,
+            images,
+            normal_info.as_ref().map(|info| info.texture()),
+            TextureKind::Normal,
+        )?;
+        let normal_strength = normal_info.as_ref().map_or(1.0, |info| info.scale());
 
         // The renderer samples every map of a material with the same coordinates, so the base
         // colour texture's transform (T · R · S, as the extension defines it) applies to all.
@@ -236,29 +237,22 @@ impl MaterialCache {
                 )
             });
 
-        let emissive_texture = match material.emissive_texture() {
-            Some(info) => Some(self.texture(
-                source,
-                images,
-                info.texture(),
-                TextureKind::Color,
-                Channel::Red,
-            )?),
-            None => None,
-        };
-        let (occlusion_texture, occlusion_strength) = match material.occlusion_texture() {
-            Some(info) => (
-                Some(self.texture(
-                    source,
-                    images,
-                    info.texture(),
-                    TextureKind::Data,
-                    Channel::Red,
-                )?),
-                info.strength().clamp(0.0, 1.0),
-            ),
-            None => (None, 1.0),
-        };
+        let emissive_texture = self.optional_texture(
+            source,
+            images,
+            material.emissive_texture().map(|info| info.texture()),
+            TextureKind::Color,
+        )?;
+        let occlusion_info = material.occlusion_texture();
+        let occlusion_texture = self.optional_texture(
+            source,
+            images,
+            occlusion_info.as_ref().map(|info| info.texture()),
+            TextureKind::Data,
+        )?;
+        let occlusion_strength = occlusion_info
+            .as_ref()
+            .map_or(1.0, |info| info.strength().clamp(0.0, 1.0));
         let [er, eg, eb] = material.emissive_factor();
         let emissive = Color::linear_rgb(er, eg, eb);
         let emissive_strength = material.emissive_strength().unwrap_or(1.0);

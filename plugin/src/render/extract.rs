@@ -10,7 +10,7 @@ use super::lowest_mip::PixelFootprint;
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform, PointLight,
-    Projection, Resources, SpotLight, Tonemapping, active_camera,
+    Projection, Resources, SpotLight, Tonemapping,
 };
 
 /// Everything the Prepare and Render stages read about the current frame.
@@ -31,20 +31,30 @@ pub struct ExtractedFrame {
     pub tonemapping: Tonemapping,
 }
 
-/// The [`Exposure`] and [`Tonemapping`] components of the active camera's entity, or their
-/// defaults.
-fn camera_display_mapping(world: &World) -> (Exposure, Tonemapping) {
+/// The active camera (as [`crate::active_camera`] finds it) with its entity's [`Exposure`] and
+/// [`Tonemapping`] (their defaults where it has none), in one query.
+fn active_camera_and_display(
+    world: &World,
+) -> (Option<(Camera, GlobalTransform)>, Exposure, Tonemapping) {
     world
-        .query::<(&Camera, Option<&Exposure>, Option<&Tonemapping>)>()
+        .query::<(
+            &Camera,
+            &GlobalTransform,
+            Option<&Exposure>,
+            Option<&Tonemapping>,
+        )>()
         .iter()
-        .find(|(camera, _, _)| camera.active)
-        .map(|(_, exposure, tonemapping)| {
-            (
-                exposure.copied().unwrap_or_default(),
-                tonemapping.copied().unwrap_or_default(),
-            )
-        })
-        .unwrap_or_default()
+        .find(|(camera, _, _, _)| camera.active)
+        .map_or_else(
+            Default::default,
+            |(camera, transform, exposure, tonemapping)| {
+                (
+                    Some((*camera, *transform)),
+                    exposure.copied().unwrap_or_default(),
+                    tonemapping.copied().unwrap_or_default(),
+                )
+            },
+        )
 }
 
 fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
@@ -58,7 +68,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let (aspect, target_size) = (target.aspect(), target.size());
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
 
-    let camera = active_camera(world);
+    let (camera, exposure, tonemapping) = active_camera_and_display(world);
     let (view_projection, camera_position, view_direction, clear_color) = match camera {
         Some((camera, transform)) => {
             let view = transform.to_mat4().inverse();
@@ -85,7 +95,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     // Rousiers §4.1), times the camera's exposure: the scene target holds pre-exposed values
     // (Frostbite's pre-exposure), because daylight radiance (≈ 30,000 cd/m²) would overflow
     // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
-    let (exposure, tonemapping) = camera_display_mapping(world);
     let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
     let ambient_intensity = if ambient.intensity.is_finite() {
         ambient.intensity.max(0.0) * light_scale

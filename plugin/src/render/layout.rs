@@ -24,6 +24,40 @@ pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A full-screen pass's pipeline: `fullscreen_vertex` (fullscreen_triangle.wgsl, composed into
+/// `shader`) and the fragment entry `fragment_entry` writing one `format` target, no depth.
+/// `layout: None` derives the layout from the shader.
+pub(crate) fn fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: Option<&wgpu::PipelineLayout>,
+    shader: &wgpu::ShaderModule,
+    fragment_entry: &str,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout,
+        vertex: wgpu::VertexState {
+            module: shader,
+            entry_point: Some("fullscreen_vertex"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: shader,
+            entry_point: Some(fragment_entry),
+            compilation_options: Default::default(),
+            targets: &[Some(format.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 /// Which pass a mesh pipeline draws in, which sets its depth state and colour target.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum MeshPass {

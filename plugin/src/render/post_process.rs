@@ -7,7 +7,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::shaders::{ComposedShader, WgslFile};
+use super::shaders::{self, ComposedShader, WgslFile};
 use super::{GpuContext, RenderTarget, TargetFormat};
 use crate::Tonemapping;
 use crate::material::Choice;
@@ -47,7 +47,12 @@ pub const POST_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
 pub const POST_FRAGMENT: ComposedShader = ComposedShader {
     name: "post_fragment.wgsl",
     constants: &[Tonemapping::wgsl_constants],
-    files: &[TONEMAPPING, POST_PROCESS, POST_FRAGMENT_ENTRY],
+    files: &[
+        TONEMAPPING,
+        POST_PROCESS,
+        shaders::FULLSCREEN_TRIANGLE,
+        POST_FRAGMENT_ENTRY,
+    ],
 };
 
 /// The post-processing uniform; mirrors `PostSettings` in post_process.wgsl.
@@ -178,29 +183,14 @@ impl PostProcess {
             ))
         } else {
             let shader = POST_FRAGMENT.create_module(device);
-            PostPipeline::Fragment(
-                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("post-process fragment pipeline"),
-                    layout: Some(&pipeline_layout),
-                    vertex: wgpu::VertexState {
-                        module: &shader,
-                        entry_point: Some("post_vertex"),
-                        compilation_options: Default::default(),
-                        buffers: &[],
-                    },
-                    primitive: Default::default(),
-                    depth_stencil: None,
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &shader,
-                        entry_point: Some("post_fragment"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(display.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                }),
-            )
+            PostPipeline::Fragment(super::layout::fullscreen_pipeline(
+                device,
+                "post-process fragment pipeline",
+                Some(&pipeline_layout),
+                &shader,
+                "post_fragment",
+                display,
+            ))
         };
         let settings = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("post-process settings"),

@@ -43,6 +43,8 @@ pub const PREPASS_DEPTH: WgslFile = wgsl_file!("render/prepass_depth.wgsl");
 pub const FRAGMENT_COUNTER: WgslFile = wgsl_file!("render/fragment_counter.wgsl");
 /// `count_fragment_invocation()` that counts, into group 0, binding 4.
 pub const FRAGMENT_COUNTER_COUNTING: WgslFile = wgsl_file!("render/fragment_counter_counting.wgsl");
+/// `fullscreen_vertex`: the vertex stage of full-screen passes.
+pub const FULLSCREEN_TRIANGLE: WgslFile = wgsl_file!("render/fullscreen_triangle.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
 

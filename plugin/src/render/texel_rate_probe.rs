@@ -23,7 +23,7 @@ pub const TEXEL_RATE_PROBE_ENTRY: WgslFile = crate::wgsl_file!("render/texel_rat
 pub const TEXEL_RATE_PROBE: ComposedShader = ComposedShader {
     name: "texel_rate_probe.wgsl",
     constants: &[],
-    files: &[TEXEL_RATE_PROBE_ENTRY],
+    files: &[super::shaders::FULLSCREEN_TRIANGLE, TEXEL_RATE_PROBE_ENTRY],
 };
 
 /// A full-screen pass in which every pixel takes a fixed number of bilinear samples.
@@ -73,27 +73,14 @@ impl TexelRateProbe {
             contents: bytemuck::cast_slice(&[taps as f32, step, step * 0.5, 0.0]),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("texel-rate probe"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = super::layout::fullscreen_pipeline(
+            device,
+            "texel-rate probe",
+            None,
+            &shader,
+            "fs_main",
+            format,
+        );
         let view = texture.create_view(&Default::default());
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("texel-rate probe bindings"),
