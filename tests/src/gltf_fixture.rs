@@ -49,7 +49,8 @@ impl GltfFixture {
                 "indices": 4,
                 "material": 0
             }]}],
-            "materials": [{"name": "surface"}],
+            // A white dielectric (glTF's default material would be a rough metal).
+            "materials": [{"name": "surface", "pbrMetallicRoughness": {"metallicFactor": 0.0}}],
             "accessors": [
                 {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-h, 0.0, -h], "max": [h, 0.0, h]},
                 {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},

@@ -24,7 +24,11 @@ fn quad_from_behind(double_sided: bool) -> image::RgbaImage {
     fixture.json["materials"][0] = json!({
         "name": "orange",
         "doubleSided": double_sided,
-        "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.4, 0.1, 1.0], "roughness": 0.6}
+        "pbrMetallicRoughness": {
+            "baseColorFactor": [0.9, 0.4, 0.1, 1.0],
+            "metallicFactor": 0.0,
+            "roughnessFactor": 0.6
+        }
     });
     let mut app = app(64);
     load_gltf(&mut app, fixture.write(&dir, "quad")).unwrap();
@@ -189,7 +193,7 @@ fn emission_glows_without_light() {
         fixture.json["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
         fixture.json["materials"][0] = json!({
             "name": "lamp",
-            "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
+            "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0},
             "emissiveFactor": [1.0, 0.5, 0.1],
             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 0.5}}
         });
@@ -236,7 +240,7 @@ fn an_alpha_mask_cuts_the_surface_out() {
             "name": "lattice",
             "alphaMode": "MASK",
             "alphaCutoff": 0.3,
-            "pbrMetallicRoughness": {"baseColorTexture": {"index": texture}}
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": texture}, "metallicFactor": 0.0}
         });
     });
     assert!(warnings.is_empty(), "{warnings:?}");
@@ -323,7 +327,10 @@ fn wall_behind_a_pane(pane: bool) -> image::RgbaImage {
             "name": "glass",
             "alphaMode": "BLEND",
             "doubleSided": true,
-            "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.35, 1.0, 0.45]}
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [0.1, 0.35, 1.0, 0.45],
+                "metallicFactor": 0.0
+            }
         });
         fixture.json["nodes"][0]["translation"] = json!([0.0, 0.3, 0.0]);
         let scene = load_gltf(&mut app, fixture.write(&dir, "pane")).unwrap();
@@ -452,6 +459,47 @@ fn a_sampler_with_an_invalid_wrap_mode_is_an_error_naming_the_file() {
 }
 
 #[test]
+fn the_metallic_roughness_texture_sets_metalness_and_roughness_per_texel() {
+    // 2 × 2 texels, sampled nearest: roughness in green, metalness in blue (red is unused and
+    // full, so a shader reading the wrong channel makes everything a metal):
+    //   rough metal  | rough dielectric
+    //   smooth metal | smooth dielectric
+    let (image, warnings) = quad_from_above("metallic-roughness", Light::Sun, |fixture| {
+        let texels = image::RgbaImage::from_fn(2, 2, |x, y| {
+            let roughness = if y == 0 { 255 } else { 77 };
+            let metal = if x == 0 { 255 } else { 0 };
+            image::Rgba([255, roughness, metal, 255])
+        });
+        let png = pom_tests::gltf_fixture::png(&texels);
+        let texture = fixture.add_texture("metallic_roughness.png", png);
+        fixture.json["materials"][0] = json!({
+            "name": "painted metal",
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [0.8, 0.3, 0.1, 1.0],
+                "metallicRoughnessTexture": {"index": texture}
+            }
+        });
+        fixture.json["samplers"] = json!([{"magFilter": 9728, "minFilter": 9728}]);
+        fixture.json["textures"][texture]["sampler"] = json!(0);
+    });
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let red = |x, y| pom::srgb_to_linear(f32::from(image.get_pixel(x, y).0[0]) / 255.0);
+    let (rough_metal, rough_dielectric) = (red(14, 14), red(34, 14));
+    let (smooth_metal, smooth_dielectric) = (red(14, 34), red(34, 34));
+    eprintln!(
+        "rough metal {rough_metal:.3}, rough dielectric {rough_dielectric:.3}, \
+         smooth metal {smooth_metal:.3}, smooth dielectric {smooth_dielectric:.3}"
+    );
+    // Seen and lit head-on, a fully rough metal reflects a quarter of its colour (GGX at
+    // roughness 1), a dielectric its diffuse colour.
+    assert!(rough_metal < 0.4 * rough_dielectric, "metalness ignored");
+    // The mirror direction is the camera's: a smooth lobe is far brighter there.
+    assert!(smooth_metal > 2.5 * rough_metal, "roughness ignored");
+    assert!(smooth_dielectric > rough_dielectric, "roughness ignored");
+    check_golden("gltf_metallic_roughness", &image, FlipTolerance::default()).unwrap();
+}
+
+#[test]
 fn occlusion_darkens_the_ambient_light_only() {
     // A 2 × 2 occlusion map (open, closed / closed, open), sampled nearest.
     let render = |name: &str, light: Light, strength: f32| {
@@ -464,6 +512,7 @@ fn occlusion_darkens_the_ambient_light_only() {
             let texture = fixture.add_texture("occlusion.png", png);
             fixture.json["materials"][0] = json!({
                 "name": "grey",
+                "pbrMetallicRoughness": {"metallicFactor": 0.0},
                 "occlusionTexture": {"index": texture, "strength": strength}
             });
             fixture.json["samplers"] = json!([{"magFilter": 9728, "minFilter": 9728}]);

@@ -70,7 +70,8 @@ fn every_method_and_shadow_mode_stays_finite_at_every_angle() {
                         LightingModel::Phong,
                         LightingModel::BlinnPhong,
                         LightingModel::CookTorrance,
-                    ][index % 3];
+                        LightingModel::GgxLambert,
+                    ][index % 4];
                     material.debug_view =
                         [DebugView::None, DebugView::Lod, DebugView::Samples][index % 3];
                 });
@@ -119,12 +120,15 @@ fn changing_a_field_shows_in_the_next_frame() {
         render_and_capture(&mut app).unwrap() == first,
         "nothing changed, yet the pixels did"
     );
-    let changes: [MaterialEdit; 8] = [
+    let changes: [MaterialEdit; 9] = [
         ("lighting (Blinn-Phong)", |m| {
             m.lighting = LightingModel::BlinnPhong
         }),
         ("lighting (Cook-Torrance)", |m| {
             m.lighting = LightingModel::CookTorrance
+        }),
+        ("lighting (GGX-Lambert)", |m| {
+            m.lighting = LightingModel::GgxLambert
         }),
         ("metallic", |m| m.metallic = 1.0),
         ("roughness", |m| m.roughness = 0.2),

@@ -271,11 +271,7 @@ impl MaterialCache {
             gltf::material::AlphaMode::Opaque => (AlphaMode::Opaque, 0.5),
         };
 
-        if pbr.metallic_roughness_texture().is_some() {
-            warnings.push(format!(
-                "material {name}: metallicRoughnessTexture is not supported; its roughness and metallic factors are used"
-            ));
-        }
+        let metallic_roughness_info = pbr.metallic_roughness_texture();
         let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
             .map_err(&material_error)?;
         let roughness = pbr.roughness_factor();
@@ -285,9 +281,15 @@ impl MaterialCache {
                 base_color_texture,
                 normal_map,
                 normal_strength,
-                specular_strength: 0.5 * (1.0 - roughness),
-                // Blinn-Phong exponent matching a GGX lobe of this roughness.
-                shininess: (2.0 / (roughness.powi(4)).max(1e-4) - 2.0).clamp(1.0, 512.0),
+                lighting: LightingModel::GgxLambert,
+                roughness,
+                metallic: pbr.metallic_factor(),
+                metallic_roughness_texture: self.optional_texture(
+                    source,
+                    images,
+                    metallic_roughness_info.map(|info| info.texture()),
+                    TextureKind::Data,
+                )?,
                 double_sided: material.double_sided(),
                 emissive_texture,
                 occlusion_texture,
@@ -297,6 +299,7 @@ impl MaterialCache {
                 unlit,
                 alpha_mode,
                 alpha_cutoff,
+                ..LitMaterial::default()
             }),
             Some(pom) => {
                 let height_map = match (pom.height_in_normal_alpha, pom.height_texture) {
@@ -347,9 +350,9 @@ impl MaterialCache {
                     base_color_texture,
                     normal_map,
                     height_map: Some(height_map),
-                    // glTF materials are physically based: Cook-Torrance, driven by their
-                    // roughness and metallic factors, unless the extras say otherwise.
-                    lighting: LightingModel::CookTorrance,
+                    // glTF's own BRDF, driven by the roughness and metallic factors, unless
+                    // the extras say otherwise.
+                    lighting: LightingModel::GgxLambert,
                     roughness,
                     metallic: pbr.metallic_factor(),
                     normal_strength,
@@ -360,6 +363,11 @@ impl MaterialCache {
                 if emissive_texture.is_some() || emissive != Color::linear_rgb(0.0, 0.0, 0.0) {
                     warnings.push(format!(
                         "material {name}: emission is not supported on parallax materials; ignored"
+                    ));
+                }
+                if metallic_roughness_info.is_some() {
+                    warnings.push(format!(
+                        "material {name}: metallicRoughnessTexture is not supported on parallax materials; its roughness and metallic factors are used"
                     ));
                 }
                 if alpha_mode != AlphaMode::Opaque || unlit {

@@ -11,7 +11,8 @@ override ALPHA_MASK: bool = false;
 @group(1) @binding(1) var normal_map: texture_2d<f32>;
 @group(1) @binding(2) var emissive_texture: texture_2d<f32>;
 @group(1) @binding(3) var occlusion_texture: texture_2d<f32>;
-@group(1) @binding(4) var material_sampler: sampler;
+@group(1) @binding(4) var metallic_roughness_texture: texture_2d<f32>;
+@group(1) @binding(5) var material_sampler: sampler;
 
 // Base colour: texture × factor × vertex colour (glTF's product).
 fn base_color(in: VertexOut, material: LitParams) -> vec4<f32> {
@@ -44,7 +45,10 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
         material.normal_strength,
     );
     let to_eye = direction_to_eye(in.world_position, normal);
-    let surface = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0), 1.0, 0.0, LIGHTING_BLINN_PHONG);
+    // glTF: roughness in green, metalness in blue, each times its factor.
+    let metallic_roughness = textureSample(metallic_roughness_texture, material_sampler, in.uv);
+    let surface = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0),
+        material.roughness * metallic_roughness.g, material.metallic * metallic_roughness.b, material.lighting);
 
     // glTF's occlusion darkens the indirect (ambient) light only.
     let occlusion = 1.0 + material.occlusion_strength

@@ -22,7 +22,8 @@ crate::choice_enum! {
 }
 
 crate::material_parameters! {
-    /// A Blinn-Phong material with an optional colour texture and normal map.
+    /// A lit material with optional colour, normal, emissive, occlusion and metallic-roughness
+    /// textures: Blinn-Phong by default, GGX-Lambert for glTF's metallic-roughness materials.
     ///
     /// Put it on an entity with a `Handle<Mesh>` and a [`crate::Transform`]; with
     /// [`crate::DefaultPlugins`] a mesh entity without any material is drawn with
@@ -38,17 +39,31 @@ crate::material_parameters! {
             emissive_texture: Option<Handle<Image>> = None,
             /// Ambient occlusion in the red channel, linear (glTF occlusionTexture); none when absent.
             occlusion_texture: Option<Handle<Image>> = None,
+            /// Roughness in green and metalness in blue, linear, multiplied with `roughness` and
+            /// `metallic` (glTF metallicRoughnessTexture); GGX models only.
+            metallic_roughness_texture: Option<Handle<Image>> = None,
         }
         parameters {
             /// Colour multiplied with the texture, linear.
             base_color: Color = Color::WHITE, ParamSpec::color();
             /// Scales the normal map's XY tilt: 0 = flat, 1 = as authored.
             normal_strength: f32 = 1.0, ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
-            /// Weight of the specular highlight.
-            specular_strength: f32 = 0.25, ParamSpec::float(0.0, 100.0).editor(0.0, 2.0);
-            /// Blinn-Phong exponent: higher = smaller, sharper highlight.
+            /// Reflection model: Phong and Blinn-Phong use specular and shininess; Cook-Torrance
+            /// and GGX-Lambert (glTF's) roughness and metallic, times the metallic-roughness texture.
+            lighting: LightingModel = LightingModel::BlinnPhong, ParamSpec::choice::<LightingModel>();
+            /// Weight of the Phong / Blinn-Phong highlight.
+            specular_strength: f32 = 0.25, ParamSpec::float(0.0, 100.0).editor(0.0, 2.0)
+                .applies_when(|material| !material.lighting.uses_roughness());
+            /// Phong / Blinn-Phong exponent: higher = smaller, sharper highlight.
             shininess: f32 = 32.0, ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
-                .logarithmic();
+                .logarithmic()
+                .applies_when(|material| !material.lighting.uses_roughness());
+            /// GGX roughness (glTF roughnessFactor): 0 is a mirror, 1 fully rough.
+            roughness: f32 = 0.5, ParamSpec::float(0.0, 1.0)
+                .applies_when(|material| material.lighting.uses_roughness());
+            /// Metalness (glTF metallicFactor): 0 is a dielectric, 1 a metal.
+            metallic: f32 = 0.0, ParamSpec::float(0.0, 1.0)
+                .applies_when(|material| material.lighting.uses_roughness());
             /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
             double_sided: bool = false, ParamSpec::toggle();
             /// How much the occlusion texture darkens the ambient light: 0 = not at all, 1 = fully.
@@ -132,6 +147,7 @@ impl Material for LitMaterial {
         DefaultTexture::FlatNormal,
         DefaultTexture::WhiteSrgb,
         DefaultTexture::WhiteLinear,
+        DefaultTexture::WhiteLinear,
     ];
 
     fn shader() -> ComposedShader {
@@ -139,12 +155,20 @@ impl Material for LitMaterial {
     }
 
     fn textures(&self) -> MaterialTextures {
-        [
-            self.base_color_texture.as_ref().map(Handle::id),
-            self.normal_map.as_ref().map(Handle::id),
-            self.emissive_texture.as_ref().map(Handle::id),
-            self.occlusion_texture.as_ref().map(Handle::id),
+        let mut textures = [None; MAX_MATERIAL_TEXTURES];
+        for (slot, image) in [
+            &self.base_color_texture,
+            &self.normal_map,
+            &self.emissive_texture,
+            &self.occlusion_texture,
+            &self.metallic_roughness_texture,
         ]
+        .into_iter()
+        .enumerate()
+        {
+            textures[slot] = image.as_ref().map(Handle::id);
+        }
+        textures
     }
 
     fn key(&self) -> Self::Key {

@@ -35,7 +35,7 @@ use crate::render::{DefaultTexture, DrawView};
 use crate::{AssetId, Image};
 
 /// Most texture slots one material binds.
-pub const MAX_MATERIAL_TEXTURES: usize = 4;
+pub const MAX_MATERIAL_TEXTURES: usize = 6;
 
 /// The image in each texture slot of a draw; `None` binds the slot's default texture.
 pub type MaterialTextures = [Option<AssetId<Image>>; MAX_MATERIAL_TEXTURES];

@@ -448,15 +448,15 @@ mod tests {
 
     /// A material that asks for one texture slot too many.
     #[derive(Clone, Debug, Default, PartialEq)]
-    struct FiveTextures;
+    struct TooManyTextures;
 
-    impl Material for FiveTextures {
+    impl Material for TooManyTextures {
         type Uniform = crate::LitParams;
         type Key = ();
-        const NAME: &'static str = "five textures";
+        const NAME: &'static str = "too many textures";
         const UNIFORM_WGSL_NAME: &'static str = "LitParams";
         const TEXTURE_SLOTS: &'static [crate::render::DefaultTexture] =
-            &[crate::render::DefaultTexture::WhiteSrgb; 5];
+            &[crate::render::DefaultTexture::WhiteSrgb; super::super::MAX_MATERIAL_TEXTURES + 1];
         fn shader() -> crate::render::shaders::ComposedShader {
             crate::lit::LIT_SHADER
         }
@@ -478,11 +478,13 @@ mod tests {
     #[test]
     fn too_many_texture_slots_is_an_error_naming_the_material() {
         let mut app = App::new();
-        app.add_plugin(MaterialPlugin::<FiveTextures>::default());
+        app.add_plugin(MaterialPlugin::<TooManyTextures>::default());
         let error = app.finish().unwrap_err().to_string();
-        assert!(
-            error.contains("material five textures declares 5 texture slots; at most 4"),
-            "{error}"
+        let expected = format!(
+            "material too many textures declares {} texture slots; at most {}",
+            super::super::MAX_MATERIAL_TEXTURES + 1,
+            super::super::MAX_MATERIAL_TEXTURES
         );
+        assert!(error.contains(&expected), "{error}");
     }
 }

@@ -62,6 +62,15 @@ crate::choice_enum! {
         BlinnPhong = "blinn_phong",
         /// Cook-Torrance (GGX) specular over Oren-Nayar diffuse, with roughness and metallic.
         CookTorrance = "cook_torrance",
+        /// GGX specular over Lambert diffuse, with roughness and metallic: glTF's BRDF (spec appendix B).
+        GgxLambert = "ggx_lambert",
+    }
+}
+
+impl LightingModel {
+    /// Whether the model is driven by roughness and metallic (else specular and shininess).
+    pub fn uses_roughness(self) -> bool {
+        matches!(self, Self::CookTorrance | Self::GgxLambert)
     }
 }
 
@@ -152,23 +161,23 @@ crate::material_parameters! {
                 .logarithmic()
                 .applies_when(|material| material.shadows == ShadowMode::Soft);
             /// Reflection model: Phong and Blinn-Phong use specular and shininess, Cook-Torrance
-            /// roughness and metallic.
+            /// and GGX-Lambert roughness and metallic.
             lighting: LightingModel = LightingModel::Phong, ParamSpec::choice::<LightingModel>();
             /// Linear RGBA multiplied with the colour texture.
             base_color: Color = Color::WHITE, ParamSpec::color();
             /// Weight of the Phong / Blinn-Phong highlight.
             specular_strength: f32 = 0.3, ParamSpec::float(0.0, 100.0).editor(0.0, 2.0)
-                .applies_when(|material| material.lighting != LightingModel::CookTorrance);
+                .applies_when(|material| !material.lighting.uses_roughness());
             /// Phong / Blinn-Phong exponent: higher is a smaller, sharper highlight.
             shininess: f32 = 32.0, ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
                 .logarithmic()
-                .applies_when(|material| material.lighting != LightingModel::CookTorrance);
+                .applies_when(|material| !material.lighting.uses_roughness());
             /// Cook-Torrance and Oren-Nayar roughness: 0 is a mirror, 1 fully rough.
             roughness: f32 = 0.6, ParamSpec::float(0.0, 1.0)
-                .applies_when(|material| material.lighting == LightingModel::CookTorrance);
+                .applies_when(|material| material.lighting.uses_roughness());
             /// Cook-Torrance metalness: 0 is a dielectric, 1 a metal.
             metallic: f32 = 0.0, ParamSpec::float(0.0, 1.0)
-                .applies_when(|material| material.lighting == LightingModel::CookTorrance);
+                .applies_when(|material| material.lighting.uses_roughness());
             /// Scales the normal map's tilt: 0 is flat, 1 as authored.
             normal_strength: f32 = 1.0, ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
             /// An inspection image instead of the lit surface (LOD, mip, samples, uv, ...).

@@ -33,11 +33,14 @@ fn blinn_phong(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3
     return (surface.albedo + vec3<f32>(specular)) * n_dot_l;
 }
 
-// Cook-Torrance specular (GGX distribution, Smith-Schlick visibility, Schlick Fresnel) over an
-// Oren-Nayar diffuse term, as in the "Parallax Mapping with Self Shadowing" seed.
-fn cook_torrance_oren_nayar(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
-    let n_dot_v = max(dot(normal, to_eye), 1e-4);
-    let half_vector = safe_normalize(to_light + to_eye, normal);
+// GGX specular (GGX distribution, Smith-Schlick visibility, Schlick Fresnel) and its Fresnel
+// term, which the diffuse terms below leave to the specular lobe.
+struct Specular {
+    reflected: vec3<f32>,
+    fresnel: vec3<f32>,
+}
+
+fn ggx_specular(surface: Surface, n_dot_l: f32, n_dot_v: f32, normal: vec3<f32>, half_vector: vec3<f32>, to_eye: vec3<f32>) -> Specular {
     let n_dot_h = max(dot(normal, half_vector), 0.0);
     let v_dot_h = max(dot(to_eye, half_vector), 0.0);
     let roughness = clamp(surface.roughness, 0.03, 1.0);
@@ -50,9 +53,18 @@ fn cook_torrance_oren_nayar(surface: Surface, n_dot_l: f32, normal: vec3<f32>, t
     let f0 = mix(vec3<f32>(0.04), surface.albedo, surface.metallic);
     let fresnel = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
     // π cancels the 1/π of the BRDF so a light of radiance E behaves as in the Phong models.
-    let specular = fresnel * distribution * visibility * 0.25 * PI;
+    return Specular(fresnel * distribution * visibility * 0.25 * PI, fresnel);
+}
+
+// Cook-Torrance specular over an Oren-Nayar diffuse term, as in the "Parallax Mapping with Self
+// Shadowing" seed.
+fn cook_torrance_oren_nayar(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let n_dot_v = max(dot(normal, to_eye), 1e-4);
+    let half_vector = safe_normalize(to_light + to_eye, normal);
+    let specular = ggx_specular(surface, n_dot_l, n_dot_v, normal, half_vector, to_eye);
 
     // Oren-Nayar with σ = roughness: rough surfaces scatter more light back towards the light.
+    let roughness = clamp(surface.roughness, 0.03, 1.0);
     let sigma2 = roughness * roughness;
     let a = 1.0 - 0.5 * sigma2 / (sigma2 + 0.33);
     let b = 0.45 * sigma2 / (sigma2 + 0.09);
@@ -62,8 +74,17 @@ fn cook_torrance_oren_nayar(surface: Surface, n_dot_l: f32, normal: vec3<f32>, t
     let sin_alpha = sqrt(max(1.0 - min(n_dot_l, n_dot_v) * min(n_dot_l, n_dot_v), 0.0));
     let tan_beta = sqrt(max(1.0 - max(n_dot_l, n_dot_v) * max(n_dot_l, n_dot_v), 0.0)) / max(max(n_dot_l, n_dot_v), 1e-4);
     let oren_nayar = a + b * cos_phi * sin_alpha * tan_beta;
-    let diffuse = surface.albedo * (1.0 - surface.metallic) * (vec3<f32>(1.0) - fresnel) * oren_nayar;
-    return (diffuse + specular) * n_dot_l;
+    let diffuse = surface.albedo * (1.0 - surface.metallic) * (vec3<f32>(1.0) - specular.fresnel) * oren_nayar;
+    return (diffuse + specular.reflected) * n_dot_l;
+}
+
+// glTF's metallic-roughness BRDF (specification, appendix B): the same GGX lobe over Lambert.
+fn ggx_lambert(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let n_dot_v = max(dot(normal, to_eye), 1e-4);
+    let half_vector = safe_normalize(to_light + to_eye, normal);
+    let specular = ggx_specular(surface, n_dot_l, n_dot_v, normal, half_vector, to_eye);
+    let diffuse = surface.albedo * (1.0 - surface.metallic) * (vec3<f32>(1.0) - specular.fresnel);
+    return (diffuse + specular.reflected) * n_dot_l;
 }
 
 // Reflected light for one light of unit radiance arriving from `to_light`.
@@ -78,6 +99,9 @@ fn direct_lighting(surface: Surface, normal: vec3<f32>, to_light: vec3<f32>, to_
         }
         case LIGHTING_COOK_TORRANCE: {
             return cook_torrance_oren_nayar(surface, n_dot_l, normal, to_light, to_eye);
+        }
+        case LIGHTING_GGX_LAMBERT: {
+            return ggx_lambert(surface, n_dot_l, normal, to_light, to_eye);
         }
         default: {
             return blinn_phong(surface, n_dot_l, normal, to_light, to_eye);
