@@ -56,6 +56,7 @@ mod resources;
 pub mod script;
 #[cfg(feature = "dev-tools")]
 mod shader_reload;
+mod shadows;
 #[cfg(feature = "dev-tools")]
 mod split_view;
 mod tonemapping;
@@ -102,6 +103,7 @@ pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 pub use shader_reload::{
     ShaderHotReload, ShaderReloadError, ShaderReloadStatus, compose_checked, reload_changed_shaders,
 };
+pub use shadows::{DIRECTIONAL_CASCADES, LightShadows, NotShadowCaster, NotShadowReceiver};
 #[cfg(feature = "dev-tools")]
 pub use split_view::{SplitView, SplitViewError, render_split_view};
 pub use tonemapping::{Exposure, Tonemapping, set_camera_display_mapping};

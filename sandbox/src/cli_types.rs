@@ -5,7 +5,9 @@
 use std::path::PathBuf;
 
 use clap::ValueEnum;
+use pom::hecs::{Entity, World};
 use pom::preview::{MAX_VIEW_ANGLE, PreviewProjection};
+use pom::{DirectionalLight, LightShadows, PointLight, SpotLight};
 
 /// `--projection`: how the preview camera projects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -135,6 +137,80 @@ impl DisplayArgs {
     }
 }
 
+/// `--scene-shadows`: a switch spelled `on` or `off`. The values have no doc comments, so
+/// `--help` lists them on one line instead of explaining each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Switch {
+    On,
+    Off,
+}
+
+/// A shadow-map side in texels, within [`LightShadows::MIN_MAP_SIZE`]`..=`
+/// [`LightShadows::MAX_MAP_SIZE`]; the renderer would clamp anything else without a word.
+pub fn parse_shadow_map_size(text: &str) -> Result<u32, String> {
+    let (min, max) = (LightShadows::MIN_MAP_SIZE, LightShadows::MAX_MAP_SIZE);
+    let value: u32 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a whole number of texels ({min}..={max})"))?;
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("{value} texels is outside {min}..={max}"))
+    }
+}
+
+/// Scene shadows of every light: `--scene-shadows` and `--shadow-map-size`.
+#[derive(Clone, Copy, Debug, clap::Args)]
+#[command(next_help_heading = "Shadows")]
+pub struct ShadowArgs {
+    /// Whether the lights cast scene shadows (shadow maps); the parallax materials'
+    /// self-shadows do not depend on it.
+    #[arg(long, value_name = "on|off", value_enum, default_value = "on")]
+    pub scene_shadows: Switch,
+    /// Texels along each side of every light's shadow map (per cascade or cube face),
+    /// 16..=8192 [default: 2048].
+    #[arg(long, value_name = "TEXELS", value_parser = parse_shadow_map_size)]
+    pub shadow_map_size: Option<u32>,
+}
+
+impl ShadowArgs {
+    /// Puts the switch and the map size on every light of `world` (directional, point and
+    /// spot), keeping the rest of a `LightShadows` the light already has.
+    pub fn apply(&self, world: &mut World) {
+        for light in light_entities(world) {
+            let mut shadows = world
+                .get::<&LightShadows>(light)
+                .map_or_else(|_| LightShadows::default(), |shadows| *shadows);
+            shadows.enabled = self.scene_shadows == Switch::On;
+            if let Some(map_size) = self.shadow_map_size {
+                shadows.map_size = map_size;
+            }
+            // The entity was just listed, so it exists.
+            let _ = world.insert_one(light, shadows);
+        }
+    }
+}
+
+/// Every entity holding a directional, point or spot light, in entity order.
+pub fn light_entities(world: &World) -> Vec<Entity> {
+    let mut lights: Vec<Entity> = world
+        .query::<(Entity, &DirectionalLight)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .chain(
+            world
+                .query::<(Entity, &PointLight)>()
+                .iter()
+                .map(|(e, _)| e),
+        )
+        .chain(world.query::<(Entity, &SpotLight)>().iter().map(|(e, _)| e))
+        .collect();
+    lights.sort();
+    lights.dedup();
+    lights
+}
+
 /// A view angle in degrees, 0 (straight down) up to the preview's steepest angle; the preview
 /// would clamp anything else, and an angle the user did not ask for is worse than an error.
 pub fn parse_view_angle(text: &str) -> Result<f32, String> {
@@ -196,6 +272,52 @@ mod tests {
         for bad in ["-1", "90", "120", "NaN"] {
             assert!(parse_view_angle(bad).is_err(), "{bad:?} was accepted");
         }
+    }
+
+    #[test]
+    fn shadow_map_sizes_outside_the_limits_are_rejected_naming_them() {
+        assert_eq!(parse_shadow_map_size("16"), Ok(16));
+        assert_eq!(parse_shadow_map_size(" 1024 "), Ok(1024));
+        assert_eq!(parse_shadow_map_size("8192"), Ok(8192));
+        for bad in ["0", "15", "8193", "-1", "1e3", "2048.0", "big", ""] {
+            let error = parse_shadow_map_size(bad).expect_err(bad);
+            assert!(error.contains("16..=8192"), "{bad:?}: {error}");
+        }
+    }
+
+    #[test]
+    fn shadow_flags_reach_every_light() {
+        let mut world = World::new();
+        let sun = world.spawn((DirectionalLight::default(),));
+        let lamp = world.spawn((PointLight::default(),));
+        let tuned = LightShadows {
+            softness: 3.0,
+            ..LightShadows::default()
+        };
+        let spot = world.spawn((SpotLight::default(), tuned));
+        let not_a_light = world.spawn((pom::Transform::IDENTITY,));
+        assert_eq!(light_entities(&world), [sun, lamp, spot]);
+        let args = ShadowArgs {
+            scene_shadows: Switch::Off,
+            shadow_map_size: Some(512),
+        };
+        args.apply(&mut world);
+        for light in [sun, lamp, spot] {
+            let shadows = *world.get::<&LightShadows>(light).unwrap();
+            assert!(!shadows.enabled, "{shadows:?}");
+            assert_eq!(shadows.map_size, 512);
+        }
+        assert_eq!(world.get::<&LightShadows>(spot).unwrap().softness, 3.0);
+        assert!(world.get::<&LightShadows>(not_a_light).is_err());
+        // Without a size, the switch alone changes and the size stays.
+        ShadowArgs {
+            scene_shadows: Switch::On,
+            shadow_map_size: None,
+        }
+        .apply(&mut world);
+        let shadows = *world.get::<&LightShadows>(sun).unwrap();
+        assert!(shadows.enabled);
+        assert_eq!(shadows.map_size, 512);
     }
 
     #[test]

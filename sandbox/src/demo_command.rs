@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use crate::cli_types::{DisplayArgs, parse_size};
+use crate::cli_types::{DisplayArgs, ShadowArgs, parse_size};
 use crate::{demo_scene, frame_output};
 
 /// Options of the `snapshot` command.
@@ -24,6 +24,8 @@ pub struct DemoArgs {
     pub size: (u32, u32),
     #[command(flatten)]
     pub display: DisplayArgs,
+    #[command(flatten)]
+    pub shadows: ShadowArgs,
 }
 
 /// Renders the demo scene and writes it to `args.out`.
@@ -34,6 +36,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         .add_plugin(pom::PomPlugin);
     demo_scene::spawn(&mut app)?;
     args.display.apply(&mut app);
+    args.shadows.apply(&mut app.world);
     app.update().context("rendering the demo scene")?;
     let image = pom::capture(&app).context("reading the frame back")?;
     frame_output::write(&app, image.into(), &args.out)

@@ -15,7 +15,7 @@ use pom::{
 };
 
 use crate::cli_types::{
-    CameraArg, DisplayArgs, ProjectionArg, parse_camera, parse_finite, parse_png_path,
+    CameraArg, DisplayArgs, ProjectionArg, ShadowArgs, parse_camera, parse_finite, parse_png_path,
     parse_positive, parse_size, parse_view_angle,
 };
 use crate::frame_output;
@@ -82,6 +82,8 @@ pub struct RenderArgs {
     pub view: ViewArgs,
     #[command(flatten)]
     pub display: DisplayArgs,
+    #[command(flatten)]
+    pub shadows: ShadowArgs,
 }
 
 /// Where the picture goes.
@@ -311,6 +313,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
     let material = textures.attach(images, settings);
     spawn_preview(&mut app, material, &args.view()).context("setting up the preview")?;
     args.display.apply(&mut app);
+    args.shadows.apply(&mut app.world);
     render_and_write(&mut app, &args.output, "rendering the preview")
 }
 
@@ -328,6 +331,7 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
     };
     scene_preview::spawn(&mut app, &preview)?;
     args.display.apply(&mut app);
+    args.shadows.apply(&mut app.world);
     render_and_write(&mut app, &args.output, "rendering the scene")
 }
 
@@ -541,6 +545,31 @@ mod tests {
             .collect();
         listed.sort();
         assert_eq!(preview_only, listed);
+    }
+
+    #[test]
+    fn scene_shadow_flags_parse_for_the_preview_and_a_scene() {
+        use crate::cli_types::Switch;
+        let defaults = parse(&[]).unwrap();
+        assert_eq!(defaults.shadows.scene_shadows, Switch::On);
+        assert_eq!(defaults.shadows.shadow_map_size, None);
+        for scene in [&[][..], &["--scene", "city.glb"]] {
+            let mut args = scene.to_vec();
+            args.extend(["--scene-shadows", "off", "--shadow-map-size", "1024"]);
+            let args = parse(&args).unwrap();
+            assert_eq!(args.shadows.scene_shadows, Switch::Off);
+            assert_eq!(args.shadows.shadow_map_size, Some(1024));
+        }
+        for bad in [
+            &["--scene-shadows", "maybe"][..],
+            &["--shadow-map-size", "0"],
+            &["--shadow-map-size", "16384"],
+            &["--shadow-map-size", "large"],
+        ] {
+            let error = parse(bad).expect_err(&format!("{bad:?} was accepted"));
+            let rendered = error.render().to_string();
+            assert!(rendered.contains(bad[0]), "{bad:?}: {rendered}");
+        }
     }
 
     #[test]

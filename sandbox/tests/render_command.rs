@@ -104,6 +104,51 @@ fn a_bad_exposure_is_rejected() {
 }
 
 #[test]
+fn a_bad_shadow_map_size_is_rejected_naming_the_flag_and_the_limit() {
+    let dir = TempDir::new("bad-shadow-map-size");
+    let out = dir.join("out.png");
+    for command in ["render", "snapshot"] {
+        for bad in ["0", "9000", "big"] {
+            let output = sandbox(&[command, "--out", path_arg(&out), "--shadow-map-size", bad]);
+            assert_one_line_error(&output, &["--shadow-map-size", bad, "16..=8192"]);
+        }
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn an_unknown_scene_shadows_switch_is_rejected_with_the_valid_ones() {
+    let dir = TempDir::new("bad-scene-shadows");
+    let out = dir.join("out.png");
+    for command in ["render", "snapshot"] {
+        let output = sandbox(&[command, "--out", path_arg(&out), "--scene-shadows", "maybe"]);
+        assert_one_line_error(&output, &["maybe", "--scene-shadows", "on", "off"]);
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn the_shadow_flags_render() {
+    let dir = TempDir::new("shadow-flags");
+    for command in ["render", "snapshot"] {
+        let out = dir.join(&format!("{command}.png"));
+        let output = sandbox(&[
+            command,
+            "--out",
+            path_arg(&out),
+            "--size",
+            "16x16",
+            "--scene-shadows",
+            "off",
+            "--shadow-map-size",
+            "512",
+        ]);
+        assert_success(&output);
+        assert!(out.exists(), "{command} wrote nothing");
+    }
+}
+
+#[test]
 fn an_unknown_tonemap_is_rejected_with_the_valid_ones() {
     let dir = TempDir::new("unknown-tonemap");
     let out = dir.join("out.png");

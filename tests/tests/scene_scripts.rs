@@ -95,6 +95,12 @@ fn the_same_script_gives_the_same_pixels() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+#[test]
+fn lights_with_shadow_settings_run() {
+    let report = run_script_with(fixture("light_shadows.ron"), &RunOptions::default()).unwrap();
+    assert!(report.passed(), "{report}");
+}
+
 fn error_of(source: &str) -> String {
     let dir = std::env::temp_dir().join(format!(
         "pom-script-errors-{}-{}",
@@ -138,6 +144,14 @@ fn bad_scripts_name_the_file_line_and_column() {
     assert!(
         missing_file.contains("bad.ron:3:") && missing_file.contains("nowhere.glb"),
         "{missing_file}"
+    );
+    let tiny_shadow_map = error_of(&format!(
+        "(\n  {CAMERA},\n  lights: [Point(position: (0.0, 1.0, 0.0),\n    shadows: (map_size: 0))],\n  steps: [],\n)"
+    ));
+    assert!(
+        tiny_shadow_map.contains("bad.ron:4:15")
+            && tiny_shadow_map.contains("light 0 shadows: map_size 0 is outside 16..=8192"),
+        "{tiny_shadow_map}"
     );
     let missing_capture = error_of(&format!(
         "(\n  {CAMERA},\n  steps: [ExpectMatch(capture: \"never\", reference: \"r.png\")],\n)"

@@ -17,3 +17,21 @@ fn the_shipped_street_corner_matches_its_reference() {
     let image = render_and_capture(&mut app).unwrap();
     check_golden("street_corner", &image, FlipTolerance::default()).unwrap();
 }
+
+/// The same scene with its sun casting scene shadows: the ball and the crate stand on the
+/// cobblestones, and the relief's own shadow map agrees with its self-shadowing.
+#[test]
+fn the_street_corner_with_scene_shadows_matches_its_reference() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::headless(384, 216))
+        .add_plugin(PomPlugin);
+    let scene = load_gltf(&mut app, &path).unwrap();
+    for &light in &scene.lights {
+        app.world
+            .insert_one(light, pom::LightShadows::default())
+            .unwrap();
+    }
+    let image = render_and_capture(&mut app).unwrap();
+    check_golden("street_corner_shadows", &image, FlipTolerance::default()).unwrap();
+}

@@ -1,6 +1,6 @@
 // `LitMaterial`: lit, normal-mapped meshes. Composed after the generated enum codes and
 // `LitParams` (every declared parameter of the material), the core's frame.wgsl and
-// mesh_vertex.wgsl, then tangent_space.wgsl and lighting.wgsl (see lit/mod.rs).
+// mesh_vertex.wgsl and shadows.wgsl, then tangent_space.wgsl and lighting.wgsl (see lit/mod.rs).
 
 // Pipeline-overridable: masked materials get their own pipelines (discard ends early depth
 // writes, so opaque ones must not carry it).
@@ -54,9 +54,14 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     let occlusion = 1.0 + material.occlusion_strength
         * (textureSample(occlusion_texture, material_sampler, in.uv).r - 1.0);
     var color = frame.ambient.rgb * base.rgb * occlusion + emissive;
+    let receives_shadows = receives_scene_shadows(in.object_index);
     for (var i = 0u; i < light_count(); i += 1u) {
         let light = light_at(i, in.world_position);
-        color += light.radiance * direct_lighting(surface, normal, light.to_light, to_eye);
+        var visibility = 1.0;
+        if receives_shadows && dot(normal, light.to_light) > 0.0 {
+            visibility = scene_shadow(i, in.world_position, surface_frame.normal);
+        }
+        color += light.radiance * visibility * direct_lighting(surface, normal, light.to_light, to_eye);
     }
     return vec4<f32>(color, alpha);
 }

@@ -111,6 +111,7 @@ pub const LIT_SHADER: ComposedShader = ComposedShader {
         shaders::FRAME,
         shaders::PARAMS,
         shaders::MESH_VERTEX,
+        shaders::SHADOWS,
         shaders::TANGENT_SPACE,
         shaders::LIGHTING,
         LIT_ENTRY,

@@ -9,6 +9,7 @@ use glam::Mat4;
 
 use super::pipelines::MaterialPipelines;
 use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
+use crate::render::layout::MeshPass;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::texture_bind_groups::TextureBindGroups;
 use crate::render::{
@@ -23,12 +24,17 @@ pub(crate) struct ExtractedDraw<M> {
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) model: Mat4,
     pub(crate) material: M,
+    /// Drawn into shadow maps (no [`crate::NotShadowCaster`]).
+    pub(crate) casts_shadows: bool,
+    /// Scene shadows fall on it (no [`crate::NotShadowReceiver`]).
+    pub(crate) receives_shadows: bool,
 }
 
 /// Draws sharing pipeline, textures and mesh, adjacent in the per-draw buffers.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Batch<K> {
     pub(crate) key: K,
+    pub(crate) casts_shadows: bool,
     pub(crate) textures: MaterialTextures,
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) instances: Range<u32>,
@@ -37,6 +43,7 @@ pub(crate) struct Batch<K> {
 #[derive(Clone, Copy)]
 struct SortEntry<K> {
     key: K,
+    casts_shadows: bool,
     textures: MaterialTextures,
     mesh: AssetId<Mesh>,
     /// Distance from the eye to the object's origin along the view, as ordered bits: the
@@ -60,17 +67,29 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) footprint: Option<&'a PixelFootprint>,
     /// The eye and the direction it looks, for drawing nearest first.
     pub(crate) eye: (glam::Vec3, glam::Vec3),
+    /// Whether the frame renders shadow maps (casters then need their shadow pipelines).
+    pub(crate) shadow_maps: bool,
 }
 
-/// The depth textures a material's group 0 binds at binding 3: the prepass depth in the
-/// opaque phase after a prepass, a dummy wherever the depth buffer is being written.
+/// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
+/// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
+/// (the prepass and the shadow maps themselves).
 pub(crate) struct DepthBindings<'a> {
     /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
     pub(crate) opaque: &'a wgpu::TextureView,
     /// The 1 × 1 dummy.
     pub(crate) dummy: &'a wgpu::TextureView,
-    /// The target the views belong to ([`crate::render::RenderTarget::id`]).
-    pub(crate) target_id: u64,
+    /// Every shadow map, for receivers.
+    pub(crate) shadow_maps: &'a wgpu::TextureView,
+    /// Their 1 × 1 × 1 stand-in.
+    pub(crate) dummy_shadow_maps: &'a wgpu::TextureView,
+    /// What receivers read of each map.
+    pub(crate) shadow_views: &'a wgpu::Buffer,
+    /// The shadow maps' comparison sampler.
+    pub(crate) shadow_sampler: &'a wgpu::Sampler,
+    /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
+    /// belong to: bind groups follow when either changes.
+    pub(crate) bound: (u64, u64),
 }
 
 /// Material `M`'s GPU state. A resource.
@@ -82,14 +101,15 @@ pub(crate) struct MaterialBatches<M: Material> {
     // Group 0 of the prepass and of the opaque phase, and the target they were made for.
     prepass_bind_group: wgpu::BindGroup,
     frame_bind_group: wgpu::BindGroup,
-    bound_target: u64,
+    bound: (u64, u64),
     // The fragment invocation counter (tests), bound at binding 4 when present.
     counter: Option<wgpu::Buffer>,
     textures: TextureBindGroups,
     pub(crate) batches: Vec<Batch<M::Key>>,
     order: Vec<SortEntry<M::Key>>,
-    // The model matrix and transform of each sorted slot, kept from frame to frame.
-    models: Vec<Mat4>,
+    // The model matrix (and whether it receives shadows) and transform of each sorted slot,
+    // kept from frame to frame.
+    models: Vec<(Mat4, bool)>,
     transform_data: Vec<MeshTransform>,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
     uniform_data: Vec<M::Uniform>,
@@ -104,19 +124,35 @@ struct FrameBindings<'a> {
     counter: Option<&'a wgpu::Buffer>,
 }
 
+/// Which depth textures a group 0 binds: the real ones where they are read, or the dummies
+/// where they are being written.
+#[derive(Clone, Copy, PartialEq)]
+enum DepthUse {
+    Shading,
+    Writing,
+}
+
 fn frame_bind_group(
     gpu: &GpuContext,
     label: &str,
     layout: &wgpu::BindGroupLayout,
     bindings: &FrameBindings<'_>,
-    depth: &wgpu::TextureView,
+    depth: &DepthBindings<'_>,
+    depth_use: DepthUse,
 ) -> wgpu::BindGroup {
     let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+    let (prepass_depth, shadow_maps) = match depth_use {
+        DepthUse::Shading => (depth.opaque, depth.shadow_maps),
+        DepthUse::Writing => (depth.dummy, depth.dummy_shadow_maps),
+    };
     let mut entries = vec![
-        entry(0, bindings.frame.buffer().as_entire_binding()),
+        entry(0, bindings.frame.binding()),
         entry(1, bindings.transforms.as_entire_binding()),
         entry(2, bindings.uniforms.as_entire_binding()),
-        entry(3, wgpu::BindingResource::TextureView(depth)),
+        entry(3, wgpu::BindingResource::TextureView(prepass_depth)),
+        entry(5, depth.shadow_views.as_entire_binding()),
+        entry(6, wgpu::BindingResource::TextureView(shadow_maps)),
+        entry(7, wgpu::BindingResource::Sampler(depth.shadow_sampler)),
     ];
     if let Some(counter) = bindings.counter {
         entries.push(entry(4, counter.as_entire_binding()));
@@ -140,6 +176,40 @@ fn prepass_depth_entry() -> wgpu::BindGroupLayoutEntry {
         },
         count: None,
     }
+}
+
+/// Bindings 5 to 7 of group 0: what receivers read of each shadow map, the maps, their
+/// comparison sampler.
+fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
+    let visibility = wgpu::ShaderStages::FRAGMENT;
+    [
+        wgpu::BindGroupLayoutEntry {
+            binding: 5,
+            visibility,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 6,
+            visibility,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 7,
+            visibility,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+    ]
 }
 
 /// Binding 4 of group 0: the fragment invocation counter.
@@ -180,6 +250,7 @@ impl<M: Material> MaterialBatches<M> {
             ObjectBuffer::<M::Uniform>::layout_entry(2),
             prepass_depth_entry(),
         ];
+        layout_entries.extend(shadow_entries());
         if counter.is_some() {
             layout_entries.push(counter_entry());
         }
@@ -206,10 +277,17 @@ impl<M: Material> MaterialBatches<M> {
             &format!("{} prepass", M::NAME),
             &frame_layout,
             &bindings,
-            depth.dummy,
+            depth,
+            DepthUse::Writing,
         );
-        let frame_bind_group =
-            frame_bind_group(gpu, M::NAME, &frame_layout, &bindings, depth.opaque);
+        let frame_bind_group = frame_bind_group(
+            gpu,
+            M::NAME,
+            &frame_layout,
+            &bindings,
+            depth,
+            DepthUse::Shading,
+        );
         Self {
             pipelines: MaterialPipelines::new(shader, layout, color_format, prepass),
             frame_layout,
@@ -217,7 +295,7 @@ impl<M: Material> MaterialBatches<M> {
             uniforms,
             prepass_bind_group,
             frame_bind_group,
-            bound_target: depth.target_id,
+            bound: depth.bound,
             counter,
             textures,
             batches: Vec::new(),
@@ -279,6 +357,7 @@ impl<M: Material> MaterialBatches<M> {
             let view_depth = (draw.model.w_axis.truncate() - eye).dot(forward);
             self.order.push(SortEntry {
                 key,
+                casts_shadows: draw.casts_shadows,
                 textures,
                 mesh: draw.mesh,
                 view_depth: depth_order_bits(view_depth),
@@ -290,8 +369,15 @@ impl<M: Material> MaterialBatches<M> {
         // "overdraw"). Stable: draws that share everything keep the order of the world's
         // query. Most frames come in the order the last one was sorted into (a still camera),
         // which the check finds in one pass.
-        let sort_key =
-            |entry: &SortEntry<M::Key>| (entry.key, entry.textures, entry.mesh, entry.view_depth);
+        let sort_key = |entry: &SortEntry<M::Key>| {
+            (
+                entry.key,
+                entry.casts_shadows,
+                entry.textures,
+                entry.mesh,
+                entry.view_depth,
+            )
+        };
         if !self.order.is_sorted_by_key(sort_key) {
             self.order.sort_by_key(sort_key);
         }
@@ -300,11 +386,12 @@ impl<M: Material> MaterialBatches<M> {
         self.models.truncate(self.order.len());
         self.transform_data.truncate(self.order.len());
         for (slot, entry) in self.order.iter().enumerate() {
-            let model = draws[entry.draw].model;
+            let draw = &draws[entry.draw];
+            let model = (draw.model, draw.receives_shadows);
             if self.models.get(slot) == Some(&model) {
                 continue;
             }
-            let transform = MeshTransform::new(model);
+            let transform = MeshTransform::new(model.0, model.1);
             if slot < self.models.len() {
                 self.models[slot] = model;
                 self.transform_data[slot] = transform;
@@ -319,7 +406,7 @@ impl<M: Material> MaterialBatches<M> {
         let (transform_bytes, transforms_grew) = self.transforms.upload(gpu, &self.transform_data);
         let (uniform_bytes, uniforms_grew) = self.uniforms.upload(gpu, &self.sorted_uniforms);
         stats.uniform_bytes += transform_bytes + uniform_bytes;
-        if transforms_grew || uniforms_grew || self.bound_target != inputs.depth.target_id {
+        if transforms_grew || uniforms_grew || self.bound != inputs.depth.bound {
             let bindings = FrameBindings {
                 frame: inputs.frame,
                 transforms: self.transforms.buffer(),
@@ -331,16 +418,18 @@ impl<M: Material> MaterialBatches<M> {
                 &format!("{} prepass", M::NAME),
                 &self.frame_layout,
                 &bindings,
-                inputs.depth.dummy,
+                inputs.depth,
+                DepthUse::Writing,
             );
             self.frame_bind_group = frame_bind_group(
                 gpu,
                 M::NAME,
                 &self.frame_layout,
                 &bindings,
-                inputs.depth.opaque,
+                inputs.depth,
+                DepthUse::Shading,
             );
-            self.bound_target = inputs.depth.target_id;
+            self.bound = inputs.depth.bound;
         }
 
         self.batches.clear();
@@ -349,6 +438,7 @@ impl<M: Material> MaterialBatches<M> {
             match self.batches.last_mut() {
                 Some(batch)
                     if batch.key == entry.key
+                        && batch.casts_shadows == entry.casts_shadows
                         && batch.textures == entry.textures
                         && batch.mesh == entry.mesh =>
                 {
@@ -356,6 +446,7 @@ impl<M: Material> MaterialBatches<M> {
                 }
                 _ => self.batches.push(Batch {
                     key: entry.key,
+                    casts_shadows: entry.casts_shadows,
                     textures: entry.textures,
                     mesh: entry.mesh,
                     instances: instance..instance + 1,
@@ -366,6 +457,9 @@ impl<M: Material> MaterialBatches<M> {
             .prepare(gpu, assets, self.batches.iter().map(|batch| batch.textures));
         for batch in &self.batches {
             self.pipelines.ensure(&gpu.device, batch.key);
+            if inputs.shadow_maps && batch.casts_shadows && !M::blends(batch.key) {
+                self.pipelines.ensure_shadow(&gpu.device, batch.key);
+            }
         }
     }
 
@@ -387,12 +481,43 @@ impl<M: Material> MaterialBatches<M> {
         } else {
             &self.frame_bind_group
         };
-        pass.set_bind_group(0, frame_bind_group, &[]);
+        // Slot 0 of the frame uniform: the camera's view.
+        pass.set_bind_group(0, frame_bind_group, &[0]);
+        self.draw_batches(pass, assets, |batch| {
+            self.pipelines.pass_in(phase, batch.key)
+        });
+    }
+
+    /// Records the shadow casters into one shadow map's `pass`, whose view is the frame
+    /// uniform's slot at `frame_offset`.
+    pub(crate) fn draw_shadow_casters(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        frame_offset: u32,
+        assets: &GpuAssets,
+    ) {
+        if !self.batches.iter().any(|batch| batch.casts_shadows) {
+            return;
+        }
+        pass.set_bind_group(0, &self.prepass_bind_group, &[frame_offset]);
+        self.draw_batches(pass, assets, |batch| {
+            (batch.casts_shadows && !M::blends(batch.key)).then_some(MeshPass::Shadow)
+        });
+    }
+
+    /// Records the batches for which `pass_of` names a pass, with that pass's pipeline,
+    /// switching pipeline, textures and buffers only where they change.
+    fn draw_batches(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        assets: &GpuAssets,
+        pass_of: impl Fn(&Batch<M::Key>) -> Option<MeshPass>,
+    ) {
         let mut bound_key = None;
         let mut bound_textures = None;
         let mut bound_mesh = None;
         for batch in &self.batches {
-            let Some(mesh_pass) = self.pipelines.pass_in(phase, batch.key) else {
+            let Some(mesh_pass) = pass_of(batch) else {
                 continue;
             };
             let (Some(mesh), Some(textures), Some(pipeline)) = (
@@ -402,9 +527,9 @@ impl<M: Material> MaterialBatches<M> {
             ) else {
                 continue;
             };
-            if bound_key != Some(batch.key) {
+            if bound_key != Some((mesh_pass, batch.key)) {
                 pass.set_pipeline(pipeline);
-                bound_key = Some(batch.key);
+                bound_key = Some((mesh_pass, batch.key));
             }
             if bound_textures != Some(batch.textures) {
                 pass.set_bind_group(1, textures, &[]);

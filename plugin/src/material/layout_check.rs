@@ -172,6 +172,19 @@ mod tests {
             check_wgsl_layout::<crate::render::FrameUniform>(&source, "Frame"),
             Ok(())
         );
+        use crate::render::gpu_types::{DirectionalLightGpu, PointLightGpu, ShadowViewGpu};
+        assert_eq!(
+            check_wgsl_layout::<DirectionalLightGpu>(&source, "DirectionalLight"),
+            Ok(())
+        );
+        assert_eq!(
+            check_wgsl_layout::<PointLightGpu>(&source, "PointLight"),
+            Ok(())
+        );
+        assert_eq!(
+            check_wgsl_layout::<ShadowViewGpu>(&source, "ShadowView"),
+            Ok(())
+        );
     }
 
     #[test]

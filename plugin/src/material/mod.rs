@@ -120,6 +120,12 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn prepass_fragment(_key: Self::Key) -> Option<FragmentVariant> {
         None
     }
+    /// The fragment stage of `key` in a shadow map (the light's view, depth only):
+    /// [`Material::prepass_fragment`] by default. A material whose surface lies elsewhere than
+    /// its polygon (parallax relief) names the entry point that writes that depth.
+    fn shadow_fragment(key: Self::Key) -> Option<FragmentVariant> {
+        Self::prepass_fragment(key)
+    }
     /// The fragment stage of `key` in the opaque phase after a depth prepass (depth tested
     /// `LessEqual`, never written): [`Material::fragment`] by default.
     fn fragment_after_prepass(key: Self::Key) -> FragmentVariant {

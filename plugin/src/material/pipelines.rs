@@ -61,28 +61,39 @@ impl<M: Material> MaterialPipelines<M> {
     /// compile per pass, a few milliseconds, once).
     pub(crate) fn ensure(&mut self, device: &wgpu::Device, key: M::Key) {
         for &pass in self.passes(key) {
-            if self.pipelines.contains_key(&(pass, key)) {
-                continue;
-            }
-            let fragment = match pass {
-                MeshPass::Prepass => M::prepass_fragment(key),
-                MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
-                MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
-            };
-            let pipeline = mesh_pipeline(
-                device,
-                &MeshPipelineDescriptor {
-                    label: &format!("{} {pass:?} pipeline {key:?}", M::NAME),
-                    layout: &self.layout,
-                    shader: &self.shader,
-                    pass,
-                    fragment: fragment.as_ref(),
-                    color_format: self.color_format,
-                    cull_mode: M::cull_mode(key),
-                },
-            );
-            self.pipelines.insert((pass, key), pipeline);
+            self.ensure_pass(device, pass, key);
         }
+    }
+
+    /// Compiles `key`'s shadow-map pipeline unless it exists (only frames with shadow maps
+    /// need it).
+    pub(crate) fn ensure_shadow(&mut self, device: &wgpu::Device, key: M::Key) {
+        self.ensure_pass(device, MeshPass::Shadow, key);
+    }
+
+    fn ensure_pass(&mut self, device: &wgpu::Device, pass: MeshPass, key: M::Key) {
+        if self.pipelines.contains_key(&(pass, key)) {
+            return;
+        }
+        let fragment = match pass {
+            MeshPass::Prepass => M::prepass_fragment(key),
+            MeshPass::Shadow => M::shadow_fragment(key),
+            MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
+            MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
+        };
+        let pipeline = mesh_pipeline(
+            device,
+            &MeshPipelineDescriptor {
+                label: &format!("{} {pass:?} pipeline {key:?}", M::NAME),
+                layout: &self.layout,
+                shader: &self.shader,
+                pass,
+                fragment: fragment.as_ref(),
+                color_format: self.color_format,
+                cull_mode: M::cull_mode(key),
+            },
+        );
+        self.pipelines.insert((pass, key), pipeline);
     }
 
     /// The pipeline of `key` in `pass`, once [`MaterialPipelines::ensure`]d.

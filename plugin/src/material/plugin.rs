@@ -18,8 +18,8 @@ use crate::render::{
     Renderer, UploadStats, depth_bindings,
 };
 use crate::{
-    App, AppError, Assets, BoxedError, GlobalTransform, GpuContext, Handle, Image, Mesh, Plugin,
-    Resources, Stage,
+    App, AppError, Assets, BoxedError, GlobalTransform, GpuContext, Handle, Image, Mesh,
+    NotShadowCaster, NotShadowReceiver, Plugin, Resources, Stage,
 };
 
 /// Extracts, prepares and draws every entity that has a material `M`, a `Handle<Mesh>` and a
@@ -206,6 +206,14 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                     .is_some_and(MaterialBatches::blends_any)
             },
         );
+        phases.add_shadow_draw::<M>(|resources, pass, slot| {
+            if let (Some(batches), Some(renderer)) = (
+                resources.get::<MaterialBatches<M>>(),
+                resources.get::<Renderer>(),
+            ) {
+                batches.draw_shadow_casters(pass, renderer.frame.offset(slot), &renderer.assets);
+            }
+        });
     }
 
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
@@ -235,12 +243,24 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             &renderer.frame,
             target.scene_format(),
             renderer.depth_prepass,
-            &renderer.depth_bindings(target),
+            &depth_bindings(
+                renderer.depth_prepass,
+                &renderer.dummy_depth,
+                &renderer.shadow_maps,
+                target,
+            ),
             counter,
         );
         app.insert_resource(batches);
         Ok(())
     }
+}
+
+/// Whether a draw casts and receives scene shadows (its marker components).
+#[derive(Clone, Copy)]
+struct ShadowRoles {
+    casts: bool,
+    receives: bool,
 }
 
 /// The Extract stage's system of material `M`: copies each drawable entity's mesh, transform
@@ -274,52 +294,70 @@ fn extract_into<M: Material>(
     // old one lowers it: tens of thousands of atomic operations a frame for nothing).
     let mut count = 0;
     // `entity` is `None` for meshes drawn with the default material (found by archetype).
-    let mut push =
-        |entity: Option<Entity>, mesh: &Handle<Mesh>, transform: &GlobalTransform, material: &M| {
-            let model = transform.to_mat4();
-            if !model.is_finite() {
-                log::warn!(
-                    "{} mesh {:?} has a non-finite transform: not drawn",
-                    M::NAME,
-                    mesh.id()
-                );
-                return;
+    let mut push = |entity: Option<Entity>,
+                    mesh: &Handle<Mesh>,
+                    transform: &GlobalTransform,
+                    material: &M,
+                    shadows: ShadowRoles| {
+        let model = transform.to_mat4();
+        if !model.is_finite() {
+            log::warn!(
+                "{} mesh {:?} has a non-finite transform: not drawn",
+                M::NAME,
+                mesh.id()
+            );
+            return;
+        }
+        if let Some(entity) = entity {
+            let problems = material.problems();
+            if problems.is_empty() {
+                // Valid again: forget it, so a later bad value is logged anew.
+                if !warnings.0.is_empty() {
+                    warnings.0.remove(&entity);
+                }
+            } else if warnings.0.get(&entity) != Some(&problems) {
+                for problem in &problems {
+                    log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
+                }
+                warnings.0.insert(entity, problems);
             }
-            if let Some(entity) = entity {
-                let problems = material.problems();
-                if problems.is_empty() {
-                    // Valid again: forget it, so a later bad value is logged anew.
-                    if !warnings.0.is_empty() {
-                        warnings.0.remove(&entity);
-                    }
-                } else if warnings.0.get(&entity) != Some(&problems) {
-                    for problem in &problems {
-                        log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
-                    }
-                    warnings.0.insert(entity, problems);
+        }
+        match extracted.draws.get_mut(count) {
+            Some(draw) => {
+                draw.mesh = mesh.id();
+                draw.model = model;
+                draw.casts_shadows = shadows.casts;
+                draw.receives_shadows = shadows.receives;
+                if draw.material != *material {
+                    draw.material = material.clone();
                 }
             }
-            match extracted.draws.get_mut(count) {
-                Some(draw) => {
-                    draw.mesh = mesh.id();
-                    draw.model = model;
-                    if draw.material != *material {
-                        draw.material = material.clone();
-                    }
-                }
-                None => extracted.draws.push(ExtractedDraw {
-                    mesh: mesh.id(),
-                    model,
-                    material: material.clone(),
-                }),
-            }
-            count += 1;
-        };
-    for (entity, mesh, transform, material) in world
-        .query::<(Entity, &Handle<Mesh>, &GlobalTransform, &M)>()
+            None => extracted.draws.push(ExtractedDraw {
+                mesh: mesh.id(),
+                model,
+                material: material.clone(),
+                casts_shadows: shadows.casts,
+                receives_shadows: shadows.receives,
+            }),
+        }
+        count += 1;
+    };
+    for (entity, mesh, transform, material, not_caster, not_receiver) in world
+        .query::<(
+            Entity,
+            &Handle<Mesh>,
+            &GlobalTransform,
+            &M,
+            Option<&NotShadowCaster>,
+            Option<&NotShadowReceiver>,
+        )>()
         .iter()
     {
-        push(Some(entity), mesh, transform, material);
+        let shadows = ShadowRoles {
+            casts: not_caster.is_none(),
+            receives: not_receiver.is_none(),
+        };
+        push(Some(entity), mesh, transform, material, shadows);
     }
     if fallback && let Some(registry) = resources.get::<MaterialRegistry>() {
         let default = M::default();
@@ -333,8 +371,12 @@ fn extract_into<M: Material>(
                 archetype.get::<&Handle<Mesh>>(),
                 archetype.get::<&GlobalTransform>(),
             ) {
+                let shadows = ShadowRoles {
+                    casts: !archetype.has::<NotShadowCaster>(),
+                    receives: !archetype.has::<NotShadowReceiver>(),
+                };
                 for (mesh, transform) in meshes.iter().zip(transforms.iter()) {
-                    push(None, mesh, transform, &default);
+                    push(None, mesh, transform, &default, shadows);
                 }
             }
         }
@@ -360,6 +402,7 @@ fn prepare_materials<M: Material>(
                             let depth: DepthBindings<'_> = depth_bindings(
                                 renderer.depth_prepass,
                                 &renderer.dummy_depth,
+                                &renderer.shadow_maps,
                                 target,
                             );
                             let inputs = PrepareInputs {
@@ -373,6 +416,7 @@ fn prepare_materials<M: Material>(
                                     glam::Vec4::from(frame.frame.camera_position).truncate(),
                                     glam::Vec4::from(frame.frame.view_direction).truncate(),
                                 ),
+                                shadow_maps: !frame.shadow_views.is_empty(),
                             };
                             let mut stats = UploadStats::default();
                             batches.prepare(

@@ -89,6 +89,8 @@ crate::choice_enum! {
         Uv = "uv",
         /// The self-shadowing visibility of the first light (1 = lit), raw, in R, G and B.
         Shadow = "shadow",
+        /// The scene-shadow (shadow map) visibility of the first light (1 = lit), raw, in R, G, B.
+        SceneShadow = "scene_shadow",
         /// The shading normal in tangent space, encoded as n × 0.5 + 0.5.
         Normal = "normal",
     }

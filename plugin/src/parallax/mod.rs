@@ -43,6 +43,7 @@ pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
         shaders::FRAME,
         shaders::PARAMS,
         shaders::MESH_VERTEX,
+        shaders::SHADOWS,
         shaders::PREPASS_DEPTH,
         shaders::FRAGMENT_COUNTER,
         shaders::TANGENT_SPACE,
@@ -100,6 +101,10 @@ impl Material for ParallaxOcclusionMaterial {
 
     fn prepass_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
         key.prepass_fragment()
+    }
+
+    fn shadow_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
+        key.shadow_fragment()
     }
 
     fn fragment_after_prepass(key: PomPipelineKey) -> FragmentVariant {

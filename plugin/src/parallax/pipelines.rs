@@ -64,6 +64,13 @@ impl PomPipelineKey {
             .then(|| self.variant("fs_prepass_depth_offset"))
     }
 
+    /// The shadow map's fragment stage: the relief's depth seen from the light (the march
+    /// along the light's view ray), except where only normal mapping runs (the polygon's).
+    pub fn shadow_fragment(self) -> Option<FragmentVariant> {
+        (self.method != ParallaxMethod::NormalMapping)
+            .then(|| self.variant("fs_prepass_depth_offset"))
+    }
+
     /// The opaque phase's fragment stage after a prepass.
     pub fn fragment_after_prepass(self) -> FragmentVariant {
         self.variant(if self.depth_offset {

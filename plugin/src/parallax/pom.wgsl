@@ -98,15 +98,20 @@ fn find_surface(in: VertexOut, front_facing: bool) -> SurfacePoint {
     return point;
 }
 
-// The depth (clip space, 0..1) of the visible point: it lies (1 − height) × H below the polygon,
-// offset sideways by the change of texture coordinate.
-fn displaced_depth(in: VertexOut, point: SurfacePoint) -> f32 {
+// The world position of the visible point: it lies (1 − height) × H below the polygon, offset
+// sideways by the change of texture coordinate.
+fn displaced_position(in: VertexOut, point: SurfacePoint) -> vec3<f32> {
     let frame_ts = point.surface_frame;
     let du = (point.uv - in.uv) / max(point.uv_per_world, 1e-30);
     let depth_below = (1.0 - point.height) * point.height_scale / max(point.uv_per_world, 1e-30);
     let displaced = in.world_position + frame_ts.tangent * du.x + frame_ts.bitangent_v * du.y
         - frame_ts.normal * depth_below;
-    let clip = frame.view_projection * vec4<f32>(select(in.world_position, displaced, point.uv_per_world > 0.0), 1.0);
+    return select(in.world_position, displaced, point.uv_per_world > 0.0);
+}
+
+// The depth (clip space, 0..1) of the visible point.
+fn displaced_depth(in: VertexOut, point: SurfacePoint) -> f32 {
+    let clip = frame.view_projection * vec4<f32>(displaced_position(in, point), 1.0);
     // Never in front of the polygon: the relief lies below it. Where the march found the top
     // (or did not run) the point is the polygon's own, and projecting the interpolated world
     // position can come out a rounding error nearer than the rasterized depth; the opaque
@@ -132,6 +137,10 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
 
     var color = frame.ambient.rgb * base.rgb;
     var first_visibility = 1.0;
+    var first_scene_visibility = 1.0;
+    // Scene shadows are looked up where the march found the surface, not on the polygon.
+    let receives_shadows = receives_scene_shadows(in.object_index);
+    let surface_position = displaced_position(in, point);
     for (var i = 0u; i < light_count(); i += 1u) {
         let light = light_at(i, in.world_position);
         var visibility = 1.0;
@@ -148,10 +157,18 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
             }
             visibility = mix(visibility, 1.0, fade);
         }
+        var scene_visibility = 1.0;
+        if receives_shadows && dot(surface_frame.normal, light.to_light) > 0.0 {
+            scene_visibility = scene_shadow(i, surface_position, normal);
+        }
         if i == 0u {
             first_visibility = visibility;
+            first_scene_visibility = scene_visibility;
         }
-        color += light.radiance * visibility * direct_lighting(surface, normal, light.to_light, point.to_eye);
+        // The shadow map holds the relief too, so where both see the same occluder they agree:
+        // the darker of the two, never their product, so no point is darkened twice.
+        color += light.radiance * min(visibility, scene_visibility)
+            * direct_lighting(surface, normal, light.to_light, point.to_eye);
     }
 
     // Data views carry DEBUG_VIEW_ALPHA: post-processing writes them as they are.
@@ -173,6 +190,9 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
         }
         case DEBUG_SHADOW: {
             return vec4<f32>(vec3<f32>(first_visibility), DEBUG_VIEW_ALPHA);
+        }
+        case DEBUG_SCENE_SHADOW: {
+            return vec4<f32>(vec3<f32>(first_scene_visibility), DEBUG_VIEW_ALPHA);
         }
         case DEBUG_NORMAL: {
             return vec4<f32>(to_tangent_space(surface_frame, normal) * 0.5 + 0.5, DEBUG_VIEW_ALPHA);
@@ -208,8 +228,9 @@ fn fs_main_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool
     return ColorAndDepth(shade(in, point), displaced_depth(in, point));
 }
 
-// `depth_offset` in the prepass: only the march and the depth (pushed away from the eye only,
-// as above).
+// `depth_offset` in the prepass, and every parallax caster in a shadow map (where the "eye" is
+// the light, so the march follows the light's view ray): only the march and the depth (pushed
+// away from the eye only, as above).
 @fragment @early_depth_test(greater_equal)
 fn fs_prepass_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @builtin(frag_depth) f32 {
     return displaced_depth(in, find_surface(in, front_facing));

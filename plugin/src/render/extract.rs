@@ -7,10 +7,13 @@ use super::gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
 };
 use super::lowest_mip::PixelFootprint;
+use super::shadow_views::{
+    CascadeCamera, MAX_SHADOW_VIEWS, ShadowViewPlan, directional_views, point_views, spot_view,
+};
 use super::target::RenderTarget;
 use crate::{
-    AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform, PointLight,
-    Projection, Resources, SpotLight, Tonemapping,
+    AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform,
+    LightShadows, PointLight, Projection, Resources, SpotLight, Tonemapping,
 };
 
 /// Everything the Prepare and Render stages read about the current frame.
@@ -29,6 +32,43 @@ pub struct ExtractedFrame {
     pub exposure: Exposure,
     /// The active camera's tonemapping operator.
     pub tonemapping: Tonemapping,
+    /// The shadow maps to render this frame, in the order the lights reference them.
+    pub shadow_views: Vec<ShadowViewPlan>,
+}
+
+/// The shadow maps of a frame as its lights claim them, up to [`MAX_SHADOW_VIEWS`].
+struct ShadowViewList {
+    views: Vec<ShadowViewPlan>,
+    overflowed: bool,
+}
+
+impl ShadowViewList {
+    /// Adds a light's maps; returns (first view, count) for its GPU record, (0, 0) when it
+    /// casts none or they do not fit.
+    fn claim(&mut self, views: &[ShadowViewPlan]) -> (u32, u32) {
+        if views.is_empty() {
+            return (0, 0);
+        }
+        if self.views.len() + views.len() > MAX_SHADOW_VIEWS {
+            self.overflowed = true;
+            return (0, 0);
+        }
+        let first = self.views.len();
+        self.views.extend(views.iter().enumerate().map(|(i, view)| {
+            let mut view = *view;
+            view.gpu.layer = (first + i) as u32;
+            view
+        }));
+        (first as u32, views.len() as u32)
+    }
+}
+
+/// A light's shadow settings as the renderer uses them; `None` when it casts no shadow (no
+/// [`LightShadows`], or one switched off).
+fn enabled_shadows(shadows: Option<&LightShadows>) -> Option<LightShadows> {
+    shadows
+        .map(LightShadows::sanitized)
+        .filter(|shadows| shadows.enabled)
 }
 
 /// The active camera (as [`crate::active_camera`] finds it) with its entity's [`Exposure`] and
@@ -69,6 +109,21 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
 
     let (camera, exposure, tonemapping) = active_camera_and_display(world);
+    let cascade_camera = camera.map(|(camera, transform)| {
+        let matrix = transform.to_mat4();
+        CascadeCamera {
+            position: transform.translation(),
+            forward: transform.forward(),
+            right: matrix.x_axis.truncate().normalize_or_zero(),
+            up: matrix.y_axis.truncate().normalize_or_zero(),
+            projection: camera.projection,
+            aspect,
+        }
+    });
+    let mut shadow_views = ShadowViewList {
+        views: Vec::new(),
+        overflowed: false,
+    };
     let (view_projection, camera_position, view_direction, clear_color) = match camera {
         Some((camera, transform)) => {
             let view = transform.to_mat4().inverse();
@@ -127,8 +182,8 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     };
 
     let mut directional_count = 0;
-    for (light, transform) in world
-        .query::<(&DirectionalLight, &GlobalTransform)>()
+    for (light, transform, shadows) in world
+        .query::<(&DirectionalLight, &GlobalTransform, Option<&LightShadows>)>()
         .iter()
     {
         if directional_count == MAX_DIRECTIONAL_LIGHTS {
@@ -137,28 +192,53 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             );
             break;
         }
+        let (first_shadow_view, shadow_view_count) =
+            match (enabled_shadows(shadows), &cascade_camera) {
+                (Some(shadows), Some(camera)) => {
+                    shadow_views.claim(&directional_views(camera, transform.forward(), &shadows))
+                }
+                _ => (0, 0),
+            };
         frame.directional_lights[directional_count] = DirectionalLightGpu {
             direction_to_light: (-transform.forward()).extend(0.0).into(),
             radiance: radiance(light.color, light.intensity),
+            first_shadow_view,
+            shadow_view_count,
+            _padding: [0; 2],
         };
         directional_count += 1;
     }
     let mut point_count = 0;
-    for (light, transform) in world.query::<(&PointLight, &GlobalTransform)>().iter() {
+    for (light, transform, shadows) in world
+        .query::<(&PointLight, &GlobalTransform, Option<&LightShadows>)>()
+        .iter()
+    {
         if point_count == MAX_POINT_LIGHTS {
             log::warn!("more than {MAX_POINT_LIGHTS} point lights: the rest are ignored");
             break;
         }
+        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows) {
+            Some(shadows) => {
+                shadow_views.claim(&point_views(transform.translation(), light.range, &shadows))
+            }
+            None => (0, 0),
+        };
         frame.point_lights[point_count] = PointLightGpu {
             position_range: transform.translation().extend(light.range.max(0.0)).into(),
             radiance: radiance(light.color, light.intensity),
             spot_direction: [0.0, 0.0, -1.0, 0.0],
             // Scale 0, offset 1: full strength in every direction.
             spot_cone: [0.0, 1.0, 0.0, 0.0],
+            first_shadow_view,
+            shadow_view_count,
+            _padding: [0; 2],
         };
         point_count += 1;
     }
-    for (light, transform) in world.query::<(&SpotLight, &GlobalTransform)>().iter() {
+    for (light, transform, shadows) in world
+        .query::<(&SpotLight, &GlobalTransform, Option<&LightShadows>)>()
+        .iter()
+    {
         if point_count == MAX_POINT_LIGHTS {
             log::warn!("more than {MAX_POINT_LIGHTS} point and spot lights: the rest are ignored");
             break;
@@ -166,21 +246,44 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         // glTF's cone: t = cos(angle to the axis) × scale + offset, clamped, squared.
         let (inner, outer) = light.sanitized_cone();
         let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
+        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows) {
+            Some(shadows) => shadow_views.claim(&[spot_view(
+                transform.translation(),
+                transform.forward(),
+                outer,
+                light.range,
+                &shadows,
+            )]),
+            None => (0, 0),
+        };
         frame.point_lights[point_count] = PointLightGpu {
             position_range: transform.translation().extend(light.range.max(0.0)).into(),
             radiance: radiance(light.color, light.intensity),
             spot_direction: transform.forward().extend(0.0).into(),
             spot_cone: [scale, -outer.cos() * scale, 0.0, 0.0],
+            first_shadow_view,
+            shadow_view_count,
+            _padding: [0; 2],
         };
         point_count += 1;
     }
     frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
+    if shadow_views.overflowed {
+        log::warn!(
+            "the lights ask for more than {MAX_SHADOW_VIEWS} shadow maps: the rest cast no scene shadow"
+        );
+    }
 
     resources.insert(ExtractedFrame {
         frame,
         clear_color,
         exposure,
         tonemapping,
+        shadow_views: if camera.is_some() {
+            shadow_views.views
+        } else {
+            Vec::new()
+        },
         has_camera: camera.is_some(),
         footprint: camera
             .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target_size)),

@@ -9,6 +9,10 @@ struct DirectionalLight {
     direction_to_light: vec4<f32>,
     // rgb: colour × intensity.
     radiance: vec4<f32>,
+    // Its shadow maps: shadow_views[first_shadow_view ..][.. shadow_view_count] (shadows.wgsl).
+    first_shadow_view: u32,
+    shadow_view_count: u32,
+    _padding: vec2<u32>,
 }
 
 struct PointLight {
@@ -20,6 +24,10 @@ struct PointLight {
     spot_direction: vec4<f32>,
     // x: angle scale, y: angle offset (0 and 1 for a point light).
     spot_cone: vec4<f32>,
+    // A spot's one shadow map, a point light's six cube faces (+X, −X, +Y, −Y, +Z, −Z).
+    first_shadow_view: u32,
+    shadow_view_count: u32,
+    _padding: vec2<u32>,
 }
 
 struct Frame {

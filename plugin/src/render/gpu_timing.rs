@@ -95,6 +95,16 @@ impl PassTimestamps {
         }
     }
 
+    /// The `timestamp_writes` for one of several render passes timed as one span: the first
+    /// writes the beginning, the last the end.
+    pub fn render_part(&self, first: bool, last: bool) -> wgpu::RenderPassTimestampWrites<'_> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: &self.query_set,
+            beginning_of_pass_write_index: first.then_some(self.begin),
+            end_of_pass_write_index: last.then_some(self.begin + 1),
+        }
+    }
+
     /// The `timestamp_writes` for a compute pass.
     pub fn compute(&self) -> wgpu::ComputePassTimestampWrites<'_> {
         wgpu::ComputePassTimestampWrites {

@@ -16,7 +16,21 @@ pub struct DirectionalLightGpu {
     pub direction_to_light: [f32; 4],
     /// rgb: colour × intensity.
     pub radiance: [f32; 4],
+    /// The light's shadow maps: the first of its [`ShadowViewGpu`]s (its cascades).
+    pub first_shadow_view: u32,
+    /// How many shadow views it has (0: it casts no scene shadow).
+    pub shadow_view_count: u32,
+    /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
+    pub _padding: [u32; 2],
 }
+
+crate::wgsl_layout!(DirectionalLightGpu {
+    direction_to_light,
+    radiance,
+    first_shadow_view,
+    shadow_view_count,
+    _padding
+});
 
 /// One point or spot light as the shader reads it.
 #[repr(C)]
@@ -31,7 +45,59 @@ pub struct PointLightGpu {
     /// x: angle scale, y: angle offset of the spot's cone (glTF's formula; 0 and 1 for a
     /// point light, which shines everywhere).
     pub spot_cone: [f32; 4],
+    /// The light's shadow maps: the first of its [`ShadowViewGpu`]s (a spot's one, a point
+    /// light's six cube faces in the order +X, −X, +Y, −Y, +Z, −Z).
+    pub first_shadow_view: u32,
+    /// How many shadow views it has (0: it casts no scene shadow).
+    pub shadow_view_count: u32,
+    /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
+    pub _padding: [u32; 2],
 }
+
+crate::wgsl_layout!(PointLightGpu {
+    position_range,
+    radiance,
+    spot_direction,
+    spot_cone,
+    first_shadow_view,
+    shadow_view_count,
+    _padding
+});
+
+/// One shadow map as the receiving shaders read it (`ShadowView` in shadows.wgsl): a cascade of
+/// a directional light, a spot light's map or one cube face of a point light.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct ShadowViewGpu {
+    /// World to the light's clip space.
+    pub view_projection: [[f32; 4]; 4],
+    /// The part of its layer the map covers along each side (a smaller map uses a corner).
+    pub uv_scale: f32,
+    /// Cascades: the distance along the camera's view up to which this cascade covers.
+    pub far_view_depth: f32,
+    /// World size of one texel: across the whole map for an orthographic view, at one unit
+    /// from the light for a perspective one.
+    pub texel_world_size: f32,
+    /// 1 for a perspective view (spot, cube face): texels grow with the distance.
+    pub perspective: u32,
+    /// Filter radius in texels.
+    pub softness: f32,
+    /// The array layer holding the map.
+    pub layer: u32,
+    /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
+    pub _padding: [u32; 2],
+}
+
+crate::wgsl_layout!(ShadowViewGpu {
+    view_projection,
+    uv_scale,
+    far_view_depth,
+    texel_world_size,
+    perspective,
+    softness,
+    layer,
+    _padding
+});
 
 /// Per-frame values: camera and lights.
 #[repr(C)]
@@ -64,20 +130,23 @@ pub struct MeshTransform {
     pub normal_matrix: [[f32; 4]; 4],
     /// Sign of det(model): mirroring flips the bitangent.
     pub determinant_sign: f32,
+    /// 1 where scene shadows fall on the object, 0 for a [`crate::NotShadowReceiver`].
+    pub receives_shadows: u32,
     /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
-    pub _padding: [f32; 3],
+    pub _padding: [f32; 2],
 }
 
 crate::wgsl_layout!(MeshTransform {
     model,
     normal_matrix,
     determinant_sign,
+    receives_shadows,
     _padding
 });
 
 impl MeshTransform {
-    /// The transform of an object placed by `model`.
-    pub fn new(model: glam::Mat4) -> Self {
+    /// The transform of an object placed by `model`, receiving scene shadows or not.
+    pub fn new(model: glam::Mat4, receives_shadows: bool) -> Self {
         let determinant = model.determinant();
         // A zero scale has no inverse; such an object has no area, so any normal will do.
         // A huge but finite scale can overflow the inverse: any normal will do there too.
@@ -88,7 +157,8 @@ impl MeshTransform {
             model: model.to_cols_array_2d(),
             normal_matrix: normal_matrix.to_cols_array_2d(),
             determinant_sign: if determinant < 0.0 { -1.0 } else { 1.0 },
-            _padding: [0.0; 3],
+            receives_shadows: u32::from(receives_shadows),
+            _padding: [0.0; 2],
         }
     }
 }

@@ -63,6 +63,8 @@ pub(crate) fn fullscreen_pipeline(
 pub(crate) enum MeshPass {
     /// The depth prepass: depth tested `Less` and written, no colour.
     Prepass,
+    /// A shadow map: as the prepass, from a light's view, into the shadow-map format.
+    Shadow,
     /// The opaque phase after a prepass: depth tested `LessEqual` against it, never written.
     OpaqueAfterPrepass,
     /// The opaque phase of a frame without prepass: depth tested `Less` and written.
@@ -135,7 +137,9 @@ pub(crate) fn mesh_pipeline(
         cull_mode,
     } = *descriptor;
     let (depth_write, depth_compare) = match pass {
-        MeshPass::Prepass | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
+        MeshPass::Prepass | MeshPass::Shadow | MeshPass::Opaque => {
+            (true, wgpu::CompareFunction::Less)
+        }
         MeshPass::OpaqueAfterPrepass | MeshPass::Transparent => {
             (false, wgpu::CompareFunction::LessEqual)
         }
@@ -147,11 +151,12 @@ pub(crate) fn mesh_pipeline(
             .flatten(),
         write_mask: wgpu::ColorWrites::ALL,
     })];
-    let targets: &[Option<wgpu::ColorTargetState>] = if pass == MeshPass::Prepass {
-        &[]
-    } else {
-        &color_targets
-    };
+    let targets: &[Option<wgpu::ColorTargetState>] =
+        if matches!(pass, MeshPass::Prepass | MeshPass::Shadow) {
+            &[]
+        } else {
+            &color_targets
+        };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: Some(layout),
@@ -166,7 +171,11 @@ pub(crate) fn mesh_pipeline(
             ..Default::default()
         },
         depth_stencil: Some(wgpu::DepthStencilState {
-            format: super::target::DEPTH_FORMAT,
+            format: if pass == MeshPass::Shadow {
+                super::SHADOW_MAP_FORMAT
+            } else {
+                super::target::DEPTH_FORMAT
+            },
             depth_write_enabled: Some(depth_write),
             depth_compare: Some(depth_compare),
             stencil: Default::default(),

@@ -7,7 +7,9 @@ struct MeshTransform {
     normal_matrix: mat4x4<f32>,
     // Sign of det(model): mirroring flips the bitangent.
     determinant_sign: f32,
-    _padding: array<f32, 3>,
+    // 1 where scene shadows fall on the object (0: NotShadowReceiver).
+    receives_shadows: u32,
+    _padding: array<f32, 2>,
 }
 
 @group(0) @binding(1) var<storage, read> transforms: array<MeshTransform>;

@@ -9,13 +9,15 @@ mod fragment_counter;
 mod frame_uniform;
 mod gpu_assets;
 mod gpu_timing;
-mod gpu_types;
+pub(crate) mod gpu_types;
 pub(crate) mod layout;
 mod lowest_mip;
 pub(crate) mod object_buffer;
 mod phases;
 mod post_process;
 pub mod shaders;
+mod shadow_maps;
+mod shadow_views;
 mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
@@ -32,13 +34,16 @@ pub(crate) use gpu_assets::GpuAssets;
 pub use gpu_assets::{DefaultTexture, UploadStats};
 pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_gpu_timing};
 pub use gpu_timing::{PassTimestamps, time_pass};
-#[cfg(test)]
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
-pub use phases::{DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases};
+pub use phases::{
+    DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ShadowDraw,
+};
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
+pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
+pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
@@ -157,6 +162,8 @@ pub struct Renderer {
     pub(crate) depth_prepass: bool,
     /// A 1 × 1 depth texture bound where the real one is being written.
     pub(crate) dummy_depth: wgpu::TextureView,
+    /// Every light's shadow maps.
+    pub(crate) shadow_maps: ShadowMaps,
     /// Tonemapping (the lights carry the exposure).
     post: PostProcess,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
@@ -173,21 +180,14 @@ impl Renderer {
     pub fn post_process_is_compute(&self) -> bool {
         self.post.is_compute()
     }
-
-    /// What materials bind as the prepass depth for `target`.
-    pub(crate) fn depth_bindings<'a>(
-        &'a self,
-        target: &'a RenderTarget,
-    ) -> crate::material::DepthBindings<'a> {
-        depth_bindings(self.depth_prepass, &self.dummy_depth, target)
-    }
 }
 
-/// What materials bind as the prepass depth for `target`: its depth after a prepass, else the
-/// dummy (fields apart, so the renderer's assets stay borrowable).
+/// What materials bind as the prepass depth and shadow maps for `target`: its depth after a
+/// prepass, else the dummy (fields apart, so the renderer's assets stay borrowable).
 pub(crate) fn depth_bindings<'a>(
     depth_prepass: bool,
     dummy: &'a wgpu::TextureView,
+    shadow_maps: &'a ShadowMaps,
     target: &'a RenderTarget,
 ) -> crate::material::DepthBindings<'a> {
     crate::material::DepthBindings {
@@ -197,7 +197,11 @@ pub(crate) fn depth_bindings<'a>(
             dummy
         },
         dummy,
-        target_id: target.id(),
+        shadow_maps: shadow_maps.array_view(),
+        dummy_shadow_maps: shadow_maps.dummy_view(),
+        shadow_views: shadow_maps.views_buffer(),
+        shadow_sampler: shadow_maps.sampler(),
+        bound: (target.id(), shadow_maps.generation()),
     }
 }
 
@@ -257,6 +261,7 @@ impl Plugin for RenderPlugin {
             frame,
             depth_prepass: self.depth_prepass,
             dummy_depth,
+            shadow_maps: ShadowMaps::new(gpu),
             post: PostProcess::new(
                 gpu,
                 self.format,
@@ -283,8 +288,23 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let target = resources.require::<RenderTarget>()?;
             renderer.assets.release_freed(meshes, images);
             let settings = PostSettings::new(extracted.tonemapping, target.target_format());
+            // Each shadow map sees the frame from its light: the same lights, the light's eye.
+            let light_views: Vec<FrameUniform> = extracted
+                .shadow_views
+                .iter()
+                .map(|plan| FrameUniform {
+                    view_projection: plan.gpu.view_projection,
+                    camera_position: plan.eye.extend(1.0).into(),
+                    view_direction: plan
+                        .forward
+                        .extend(if plan.orthographic { 1.0 } else { 0.0 })
+                        .into(),
+                    ..extracted.frame
+                })
+                .collect();
             renderer.last_upload = UploadStats {
-                uniform_bytes: renderer.frame.upload(gpu, &extracted.frame)
+                uniform_bytes: renderer.frame.upload(gpu, &extracted.frame, &light_views)
+                    + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views)
                     + renderer.post.upload(gpu, settings),
                 ..UploadStats::default()
             };
@@ -304,9 +324,12 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.has_draws(phase, resources));
     let has_work =
         |phase: RenderPhase| has_camera && phases.is_some_and(|p| p.work(phase).next().is_some());
+    let shadow_map_count = resources.require::<ExtractedFrame>()?.shadow_views.len();
+    let run_shadow_maps =
+        shadow_map_count > 0 && phases.is_some_and(|p| p.shadow_draws().next().is_some());
     let (run_prepass, run_shadows, run_transparent) = (
         prepass && has(DrawPhase::Prepass),
-        has_work(RenderPhase::Shadows),
+        run_shadow_maps || has_work(RenderPhase::Shadows),
         has(DrawPhase::Transparent),
     );
     // Reserve the timestamps first: the timer is borrowed mutably.
@@ -318,6 +341,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         }
     };
     let prepass_time = time(run_prepass, RenderPhase::Prepass);
+    let shadows_time = time(run_shadow_maps, RenderPhase::Shadows);
     let opaque_time = time(true, RenderPhase::Opaque);
     let transparent_time = time(run_transparent, RenderPhase::Transparent);
     let post_time = time(true, RenderPhase::PostProcess);
@@ -358,6 +382,40 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             multiview_mask: None,
         });
         draw_phase(DrawPhase::Prepass, &mut pass);
+    }
+    if run_shadow_maps && let Some(phases) = phases {
+        let shadow_maps = &resources.require::<Renderer>()?.shadow_maps;
+        let layer_size = shadow_maps.layer_size();
+        for (index, plan) in extracted.shadow_views.iter().enumerate() {
+            let Some(layer) = shadow_maps.layer_view(plan.gpu.layer) else {
+                continue;
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow map"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: layer,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                // The phase's span: the first map's pass begins it, the last one ends it.
+                timestamp_writes: shadows_time
+                    .as_ref()
+                    .filter(|_| index == 0 || index + 1 == shadow_map_count)
+                    .map(|time| time.render_part(index == 0, index + 1 == shadow_map_count)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            // A smaller map draws into a corner of its layer.
+            let size = plan.map_size.min(layer_size) as f32;
+            pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+            for draw in phases.shadow_draws() {
+                draw(resources, &mut pass, 1 + index as u32);
+            }
+        }
     }
     if run_shadows && let Some(phases) = phases {
         for work in phases.work(RenderPhase::Shadows) {

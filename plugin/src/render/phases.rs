@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! prepass      depth of opaque geometry (depth-offset materials write their displaced depth)
-//! shadows      shadow maps (encoder work; empty until a plugin adds some)
+//! shadows      a depth pass per shadow map (cascade, spot map, cube face) into which every
+//!              material draws its casters from the light's view
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! transparent  blended draws, sorted back to front by their plugin; depth read-only
 //! post         tonemapping, HDR scene → display target (compute where allowed); the scene is
@@ -82,7 +83,12 @@ impl From<DrawPhase> for RenderPhase {
 /// Records draws into a phase's open render pass, given the resources.
 pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 
-/// Records whole passes of its own (shadow maps, say) into the frame's encoder.
+/// Records shadow casters into one shadow map's open render pass, given the resources and
+/// the frame-uniform slot that holds the map's view (bind it with
+/// [`super::FrameUniformBuffer::offset`]).
+pub type ShadowDraw = fn(&Resources, &mut wgpu::RenderPass<'_>, u32);
+
+/// Records whole passes of its own into the frame's encoder.
 pub type PhaseWork = fn(&Resources, &mut wgpu::CommandEncoder);
 
 /// Whether a registered draw has anything to draw this frame (a phase none of whose draws has
@@ -94,6 +100,7 @@ pub type HasDraws = fn(&Resources) -> bool;
 #[derive(Debug, Default)]
 pub struct RenderPhases {
     draws: Vec<(DrawPhase, TypeId, PhaseDraw, HasDraws)>,
+    shadow_draws: Vec<(TypeId, ShadowDraw)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
 }
 
@@ -119,6 +126,20 @@ impl RenderPhases {
         {
             self.draws.push((phase, owner, draw, has_draws));
         }
+    }
+
+    /// Adds `draw` to every shadow map of the shadows phase for `Owner` unless `Owner` has one:
+    /// the core opens one pass per map (a cascade, a spot's map, a cube face) and calls it.
+    pub fn add_shadow_draw<Owner: 'static>(&mut self, draw: ShadowDraw) {
+        let owner = TypeId::of::<Owner>();
+        if !self.shadow_draws.iter().any(|(id, _)| *id == owner) {
+            self.shadow_draws.push((owner, draw));
+        }
+    }
+
+    /// The shadow-map draws, in the order they were added.
+    pub fn shadow_draws(&self) -> impl Iterator<Item = ShadowDraw> + '_ {
+        self.shadow_draws.iter().map(|(_, draw)| *draw)
     }
 
     /// Adds encoder `work` to `phase` for `Owner` unless `Owner` has some there; it runs after

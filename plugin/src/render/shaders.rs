@@ -36,6 +36,8 @@ pub const LIGHTING: WgslFile = wgsl_file!("render/lighting.wgsl");
 pub const PARAMS: WgslFile = wgsl_file!("render/params.wgsl");
 /// Vertex input/output, the per-draw transforms and the shared vertex stage `vs_main`.
 pub const MESH_VERTEX: WgslFile = wgsl_file!("render/mesh_vertex.wgsl");
+/// Scene shadows: the shadow maps and `scene_shadow()`, for materials that receive them.
+pub const SHADOWS: WgslFile = wgsl_file!("render/shadows.wgsl");
 /// The depth prepass's result, bound for materials that test a depth of their own against it.
 pub const PREPASS_DEPTH: WgslFile = wgsl_file!("render/prepass_depth.wgsl");
 /// `count_fragment_invocation()`: does nothing, unless a [`super::FragmentInvocationCounter`]

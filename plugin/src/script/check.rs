@@ -11,10 +11,43 @@ fn locate(text: &str, needle: &str, after: &str) -> (usize, usize) {
     let offset = text[start..]
         .find(needle)
         .map_or(start, |found| start + found);
+    line_and_column(text, offset)
+}
+
+/// Line and column (1-based) of byte `offset` of `text`.
+fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset];
     let line = before.matches('\n').count() + 1;
     let column = before.len() - before.rfind('\n').map_or(0, |newline| newline + 1) + 1;
     (line, column)
+}
+
+/// Byte offsets of `needle` in `text` from `start` on, leaving out `//` comments.
+fn uncommented(text: &str, needle: &str, start: usize) -> impl Iterator<Item = usize> {
+    text[start..]
+        .match_indices(needle)
+        .map(move |(found, _)| start + found)
+        .filter(|&offset| {
+            let line_start = text[..offset].rfind('\n').map_or(0, |newline| newline + 1);
+            !text[line_start..offset].contains("//")
+        })
+}
+
+/// Line and column of `field` inside the `nth` (0-based) `shadows` setting of the script's
+/// lights, or of that setting itself: the lights' shadows are found in the order written.
+fn locate_light_shadows(text: &str, nth: usize, field: &str) -> (usize, usize) {
+    let lights = uncommented(text, "lights", 0).next().unwrap_or(0);
+    let Some(setting) = uncommented(text, "shadows", lights).nth(nth) else {
+        return line_and_column(text, lights);
+    };
+    // The field's own line when it is written inside this setting (before its closing bracket).
+    let end = text[setting..]
+        .find(')')
+        .map_or(text.len(), |close| setting + close);
+    let offset = text[setting..end]
+        .find(field)
+        .map_or(setting, |found| setting + found);
+    line_and_column(text, offset)
 }
 
 /// Checks every name and file the script refers to before anything runs.
@@ -47,6 +80,22 @@ pub(super) fn check(
                 crate::Exposure::RANGE.end()
             ),
         });
+    }
+    let lights_with_shadows = script
+        .lights
+        .iter()
+        .enumerate()
+        .filter_map(|(index, light)| light.shadows().map(|shadows| (index, shadows)));
+    for (nth, (index, shadows)) in lights_with_shadows.enumerate() {
+        if let Some((field, problem)) = shadows.problem() {
+            let (line, column) = locate_light_shadows(text, nth, field);
+            return Err(ScriptError::Parse {
+                path: path.to_owned(),
+                line,
+                column,
+                reason: format!("light {index} shadows: {problem}"),
+            });
+        }
     }
     let mut names = Vec::new();
     for entity in &script.entities {
@@ -180,7 +229,15 @@ pub(super) fn check(
 
 #[cfg(test)]
 mod tests {
-    use super::locate;
+    use super::{locate, locate_light_shadows};
+
+    #[test]
+    fn light_shadows_are_located_at_their_field_in_the_order_written() {
+        let text = "// lights with shadows\n(\n  lights: [\n    Point(position: (0, 1, 0), shadows: (softness: 2.0)),\n    Spot(position: (0, 1, 0), direction: (0, -1, 0),\n         shadows: (enabled: true,\n                   map_size: 9000)),\n  ],\n)";
+        assert_eq!(locate_light_shadows(text, 1, "map_size"), (7, 20));
+        // A field the setting does not write: the setting itself.
+        assert_eq!(locate_light_shadows(text, 0, "map_size"), (4, 32));
+    }
 
     #[test]
     fn locate_reports_one_based_line_and_column() {

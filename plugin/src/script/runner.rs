@@ -13,9 +13,9 @@ use super::stats::{measure, required_view};
 use super::{Outcome, Report, RunOptions, ScriptError, StepReport};
 use crate::{
     AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, Exposure, GpuContext,
-    HeightSource, Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
-    PomPreset, Projection, RenderPlugin, SpotLight, TextureKind, Transform, flip_compare,
-    load_gltf,
+    HeightSource, Image, LightShadows, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight,
+    PomPlugin, PomPreset, Projection, RenderPlugin, SpotLight, TextureKind, Transform,
+    flip_compare, load_gltf,
 };
 
 /// Runs the script at `path` with default options (no blessing, failure images next to the
@@ -123,6 +123,67 @@ fn light_towards(direction: Vec3) -> Transform {
     Transform::IDENTITY.looking_at(direction, up)
 }
 
+/// Spawns the light `desc` describes, with its `LightShadows` when the script sets them.
+fn spawn_light(world: &mut hecs::World, desc: &LightDesc) -> Entity {
+    let linear = |color: &[f32; 3]| Color::linear_rgb(color[0], color[1], color[2]);
+    let entity = match desc {
+        LightDesc::Directional {
+            direction,
+            color,
+            intensity,
+            ..
+        } => world.spawn((
+            DirectionalLight {
+                color: linear(color),
+                intensity: *intensity,
+            },
+            light_towards(vec3(*direction)),
+        )),
+        LightDesc::Point {
+            position,
+            color,
+            intensity,
+            range,
+            ..
+        } => world.spawn((
+            PointLight {
+                color: linear(color),
+                intensity: *intensity,
+                range: *range,
+            },
+            Transform::from_translation(vec3(*position)),
+        )),
+        LightDesc::Spot {
+            position,
+            direction,
+            color,
+            intensity,
+            range,
+            inner_degrees,
+            outer_degrees,
+            ..
+        } => {
+            let mut transform = light_towards(vec3(*direction));
+            transform.translation = vec3(*position);
+            world.spawn((
+                SpotLight {
+                    color: linear(color),
+                    intensity: *intensity,
+                    range: *range,
+                    inner_angle: inner_degrees.to_radians(),
+                    outer_angle: outer_degrees.to_radians(),
+                },
+                transform,
+            ))
+        }
+    };
+    if let Some(shadows) = desc.shadows() {
+        // Just spawned, so the entity exists.
+        let _ = world.insert_one(entity, LightShadows::from(shadows));
+    }
+    entity
+}
+
 impl<'a> Runner<'a> {
     fn new(
         script: &Script,
@@ -154,54 +215,7 @@ impl<'a> Runner<'a> {
         let lights = script
             .lights
             .iter()
-            .map(|light| match light {
-                LightDesc::Directional {
-                    direction,
-                    color,
-                    intensity,
-                } => app.world.spawn((
-                    DirectionalLight {
-                        color: Color::linear_rgb(color[0], color[1], color[2]),
-                        intensity: *intensity,
-                    },
-                    light_towards(vec3(*direction)),
-                )),
-                LightDesc::Point {
-                    position,
-                    color,
-                    intensity,
-                    range,
-                } => app.world.spawn((
-                    PointLight {
-                        color: Color::linear_rgb(color[0], color[1], color[2]),
-                        intensity: *intensity,
-                        range: *range,
-                    },
-                    Transform::from_translation(vec3(*position)),
-                )),
-                LightDesc::Spot {
-                    position,
-                    direction,
-                    color,
-                    intensity,
-                    range,
-                    inner_degrees,
-                    outer_degrees,
-                } => {
-                    let mut transform = light_towards(vec3(*direction));
-                    transform.translation = vec3(*position);
-                    app.world.spawn((
-                        SpotLight {
-                            color: Color::linear_rgb(color[0], color[1], color[2]),
-                            intensity: *intensity,
-                            range: *range,
-                            inner_angle: inner_degrees.to_radians(),
-                            outer_angle: outer_degrees.to_radians(),
-                        },
-                        transform,
-                    ))
-                }
-            })
+            .map(|light| spawn_light(&mut app.world, light))
             .collect();
         if let Some((color, intensity)) = script.ambient {
             app.insert_resource(AmbientLight {
@@ -665,5 +679,47 @@ fn stat_name(stat: &Statistic) -> String {
         Statistic::NormalMappingFraction => "normal-mapping fraction".into(),
         Statistic::ShadowedFraction => "shadowed fraction".into(),
         Statistic::UvShift { baseline } => format!("UV shift from {baseline:?}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lights_shadow_settings_reach_its_component() {
+        let script = parse_script(
+            "(
+                camera: (position: (0.0, 1.0, 1.0), target: (0.0, 0.0, 0.0)),
+                lights: [
+                    Directional(direction: (0.0, -1.0, 0.0),
+                        shadows: Some((enabled: true, map_size: 1024, softness: 2.0, distance: 30.0))),
+                    Point(position: (0.0, 1.0, 0.0), shadows: (enabled: false)),
+                    Spot(position: (0.0, 1.0, 0.0), direction: (0.0, -1.0, 0.0)),
+                ],
+                steps: [],
+            )",
+            Path::new("shadows.ron"),
+        )
+        .unwrap();
+        let mut world = hecs::World::new();
+        let lights: Vec<Entity> = script
+            .lights
+            .iter()
+            .map(|light| spawn_light(&mut world, light))
+            .collect();
+        let shadows_of = |light: Entity| world.get::<&LightShadows>(light).map(|s| *s).ok();
+        assert_eq!(
+            shadows_of(lights[0]),
+            Some(LightShadows {
+                enabled: true,
+                map_size: 1024,
+                softness: 2.0,
+                distance: 30.0,
+            })
+        );
+        assert_eq!(shadows_of(lights[1]), Some(LightShadows::off()));
+        assert_eq!(shadows_of(lights[2]), None, "absent: the default");
+        assert!(world.satisfies::<&SpotLight>(lights[2]));
     }
 }

@@ -138,11 +138,15 @@ pub fn material_entities(app: &App) -> Vec<(Entity, String)> {
         .collect()
 }
 
-/// The current parameters of every material of `app`, stored under `scene` in `state`, and
-/// the camera's display controls.
+/// The current parameters of every material of `app` and the shadows of its named lights,
+/// stored under `scene` in `state`, and the camera's display controls.
 pub fn record_tuned(app: &App, scene: &str, state: &mut TunedState) {
     if let Some(display) = super::display_control::active_display(&app.world) {
         state.display = Some(display);
+    }
+    let light_shadows = super::light_control::named_light_shadows(&app.world);
+    if !light_shadows.is_empty() {
+        state.light_shadows.insert(scene.to_owned(), light_shadows);
     }
     let materials = state.scenes.entry(scene.to_owned()).or_default();
     for (entity, name) in material_entities(app) {
@@ -152,11 +156,14 @@ pub fn record_tuned(app: &App, scene: &str, state: &mut TunedState) {
     }
 }
 
-/// Applies the values `state` holds for `scene` to the materials of the same names, and the
-/// saved display controls to the camera.
+/// Applies the values `state` holds for `scene` to the materials and lights of the same
+/// names, and the saved display controls to the camera.
 pub fn restore_tuned(app: &mut App, scene: &str, state: &TunedState) {
     if let Some(display) = state.display {
         super::display_control::apply_display(&mut app.world, display);
+    }
+    if let Some(light_shadows) = state.light_shadows.get(scene) {
+        super::light_control::restore_light_shadows(&mut app.world, light_shadows);
     }
     let Some(saved) = state.scenes.get(scene) else {
         return;
@@ -180,7 +187,39 @@ pub fn spin(world: &mut World, entity: Entity, dt: f32) {
 
 #[cfg(test)]
 mod tests {
+    use pom::{DirectionalLight, LightShadows, PointLight};
+
     use super::*;
+
+    #[test]
+    fn named_lights_keep_their_shadows_through_the_state_file() {
+        let mut app = App::new();
+        let tuned = LightShadows {
+            map_size: 1024,
+            softness: 3.0,
+            ..LightShadows::off()
+        };
+        app.world
+            .spawn((DirectionalLight::default(), Name::new("sun"), tuned));
+        // Unnamed: nothing to find it by at the next start.
+        app.world
+            .spawn((PointLight::default(), LightShadows::off()));
+        let mut state = TunedState::default();
+        record_tuned(&app, "scene", &mut state);
+        assert_eq!(state.light_shadows["scene"].len(), 1);
+        let text = ron::to_string(&state).unwrap();
+        let reloaded: TunedState = ron::from_str(&text).unwrap();
+        assert_eq!(reloaded, state);
+        let mut next_start = App::new();
+        let sun = next_start
+            .world
+            .spawn((DirectionalLight::default(), Name::new("sun")));
+        restore_tuned(&mut next_start, "scene", &reloaded);
+        assert_eq!(*next_start.world.get::<&LightShadows>(sun).unwrap(), tuned);
+        // A state file written before shadows were kept still loads.
+        let older: TunedState = ron::from_str("(scenes: {}, display: None)").unwrap();
+        assert!(older.light_shadows.is_empty());
+    }
 
     #[test]
     fn the_street_corner_lists_its_materials_by_node_name() {

@@ -12,8 +12,9 @@ use serde::{Deserialize, Serialize};
 /// The shortest time between two writes of the state file.
 const MIN_INTERVAL: Duration = Duration::from_secs(1);
 
-/// What the state file holds: per scene, per material entity name, its parameters; and the
-/// display controls (exposure, tonemapping), the same for every scene.
+/// What the state file holds: per scene, per material entity name, its parameters, and per
+/// light name, its shadows; and the display controls (exposure, tonemapping), the same for
+/// every scene.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct TunedState {
@@ -21,6 +22,8 @@ pub struct TunedState {
     pub scenes: BTreeMap<String, BTreeMap<String, PomPreset>>,
     /// The camera's exposure and operator, once set.
     pub display: Option<super::display_control::DisplayState>,
+    /// Scene name → light name → its shadow settings, once set.
+    pub light_shadows: BTreeMap<String, BTreeMap<String, super::light_control::ShadowState>>,
 }
 
 /// The default state file: under the user's configuration folder, or `target/` without one.

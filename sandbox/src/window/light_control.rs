@@ -1,14 +1,140 @@
 //! The light controls: the direction of a directional light as azimuth / elevation sliders,
-//! written into the light entity's `Transform`, adding or removing lights, and each spot
-//! light's intensity and cone.
+//! written into the light entity's `Transform`, adding or removing lights, each spot light's
+//! intensity and cone, and every light's scene shadows (its `LightShadows`), which the state
+//! file keeps per light name.
 
-use egui::{Slider, Ui};
+use std::collections::BTreeMap;
+
+use egui::{CollapsingHeader, ComboBox, Slider, SliderClamping, Ui};
 use glam::Vec3;
 use pom::hecs::{Entity, World};
-use pom::{DirectionalLight, SpotLight, Transform};
+use pom::{DirectionalLight, LightShadows, Name, PointLight, SpotLight, Transform};
+use serde::{Deserialize, Serialize};
 
 /// Brightness of a light added with "Add light": dimmer than a sun, so it reads as a fill.
 const ADDED_LIGHT_INTENSITY: f32 = 50_000.0;
+/// The shadow-map sizes the panel offers, in texels per side: from cheap to sharp.
+const SHADOW_MAP_SIZES: [u32; 4] = [512, 1024, 2048, 4096];
+/// How far a directional light's cascades may reach from the camera, in world units.
+const CASCADE_DISTANCE_RANGE: std::ops::RangeInclusive<f32> = 1.0..=1000.0;
+
+/// What the state file keeps of a light's shadows (a `LightShadows`, which has no serde form).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ShadowState {
+    /// Whether the light casts scene shadows.
+    pub enabled: bool,
+    /// Texels per side of one map.
+    pub map_size: u32,
+    /// Filter width in texels.
+    pub softness: f32,
+    /// Directional lights: how far the cascades reach.
+    pub distance: f32,
+}
+
+impl From<LightShadows> for ShadowState {
+    fn from(shadows: LightShadows) -> Self {
+        Self {
+            enabled: shadows.enabled,
+            map_size: shadows.map_size,
+            softness: shadows.softness,
+            distance: shadows.distance,
+        }
+    }
+}
+
+impl From<ShadowState> for LightShadows {
+    fn from(state: ShadowState) -> Self {
+        Self {
+            enabled: state.enabled,
+            map_size: state.map_size,
+            softness: state.softness,
+            distance: state.distance,
+        }
+        // A hand-edited state file must not reach the renderer out of range.
+        .sanitized()
+    }
+}
+
+/// The shadow settings of every named light that has them, by name: what the state file keeps.
+/// Lights without a name (added in the panel) cannot be found again at the next start.
+pub fn named_light_shadows(world: &World) -> BTreeMap<String, ShadowState> {
+    world
+        .query::<(&Name, &LightShadows)>()
+        .iter()
+        .map(|(name, shadows)| (name.0.clone(), ShadowState::from(*shadows)))
+        .collect()
+}
+
+/// Gives the named lights of `world` the shadow settings `saved` holds under their names.
+pub fn restore_light_shadows(world: &mut World, saved: &BTreeMap<String, ShadowState>) {
+    let restored: Vec<(Entity, LightShadows)> = crate::cli_types::light_entities(world)
+        .into_iter()
+        .filter_map(|light| {
+            let name = world.get::<&Name>(light).ok()?;
+            saved.get(&name.0).map(|state| (light, (*state).into()))
+        })
+        .collect();
+    for (light, shadows) in restored {
+        // Listed just above, so the entity exists.
+        let _ = world.insert_one(light, shadows);
+    }
+}
+
+/// The "Shadows" section of `light`: on/off, map size, softness and, for a directional light,
+/// how far its cascades reach. Edits the light's `LightShadows` (adding one on the first
+/// change; until then the light has the defaults).
+fn shadow_controls(ui: &mut Ui, world: &mut World, light: Entity, directional: bool) {
+    let before = world
+        .get::<&LightShadows>(light)
+        .map_or_else(|_| LightShadows::default(), |shadows| *shadows);
+    let mut shadows = before;
+    CollapsingHeader::new("Shadows")
+        .id_salt(("shadows", light))
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.checkbox(&mut shadows.enabled, "scene shadows")
+                .on_hover_text(
+                    "Whether this light casts shadows on the scene (shadow maps). The parallax self-shadows are set per material.",
+                );
+            ui.add_enabled_ui(shadows.enabled, |ui| {
+                ComboBox::from_label("shadow map size")
+                    .selected_text(shadows.map_size.to_string())
+                    .show_ui(ui, |ui| {
+                        for size in SHADOW_MAP_SIZES {
+                            ui.selectable_value(&mut shadows.map_size, size, size.to_string());
+                        }
+                    })
+                    .response
+                    .on_hover_text(
+                        "Texels along each side of the shadow map (per cascade or cube face): larger is sharper and costs more memory and time.",
+                    );
+                // Only edits are clamped: showing a light whose values were set elsewhere (a
+                // script, a file) must not change them.
+                ui.add(
+                    Slider::new(&mut shadows.softness, 0.0..=LightShadows::MAX_SOFTNESS)
+                        .clamping(SliderClamping::Edits)
+                        .text("shadow softness (texels)"),
+                )
+                .on_hover_text(
+                    "Width of the shadow's filter in shadow-map texels: larger is softer, 0 is one hardware-filtered lookup.",
+                );
+                if directional {
+                    ui.add(
+                        Slider::new(&mut shadows.distance, CASCADE_DISTANCE_RANGE)
+                            .logarithmic(true)
+                            .clamping(SliderClamping::Edits)
+                            .text("cascade distance"),
+                    )
+                    .on_hover_text(
+                        "How far from the camera the sun's shadow cascades reach, in world units: shorter is sharper close by.",
+                    );
+                }
+            });
+        });
+    if shadows != before {
+        let _ = world.insert_one(light, shadows);
+    }
+}
 
 /// The light controls' state: which light is edited.
 #[derive(Debug, Default)]
@@ -125,6 +251,7 @@ impl LightControls {
             )
             .on_hover_text("How bright this light is.");
         }
+        shadow_controls(ui, world, entity, true);
     }
 }
 
@@ -166,6 +293,25 @@ pub fn spot_controls(ui: &mut Ui, world: &mut World) {
             .on_hover_text("Half-angle inside which the light is at full strength.");
         spot.outer_angle = outer.to_radians();
         spot.inner_angle = inner.min(outer).to_radians();
+        drop(spot);
+        shadow_controls(ui, world, entity, false);
+    }
+}
+
+/// Shows every point light's scene shadows; edits `world` directly.
+pub fn point_controls(ui: &mut Ui, world: &mut World) {
+    let mut points: Vec<Entity> = world
+        .query::<(Entity, &PointLight)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .collect();
+    points.sort();
+    if points.is_empty() {
+        ui.label("No point light in this scene.");
+    }
+    for (index, entity) in points.into_iter().enumerate() {
+        ui.label(format!("point {index}"));
+        shadow_controls(ui, world, entity, false);
     }
 }
 

@@ -394,3 +394,82 @@ fn a_spot_light_is_added_and_its_cone_edited_from_the_panel() {
     harness.run();
     assert!((spot(&harness).outer_angle - 30_f32.to_radians()).abs() < 1e-4);
 }
+
+fn shadows_of(harness: &Harness<'_, Fixture>, light: Entity) -> Option<pom::LightShadows> {
+    harness
+        .state()
+        .app
+        .world
+        .get::<&pom::LightShadows>(light)
+        .map(|shadows| *shadows)
+        .ok()
+}
+
+#[test]
+fn a_directional_lights_shadow_controls_reach_its_component() {
+    let mut harness = harness();
+    let sun = harness.state_mut().app.world.spawn((
+        pom::DirectionalLight::default(),
+        super::light_control::light_transform(glam::Vec3::ZERO, 0.0, 45.0),
+    ));
+    harness.get_by_label("Light").click();
+    harness.run();
+    assert_eq!(shadows_of(&harness, sun), None, "untouched: the defaults");
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "shadow softness (texels)")
+        .set_value_accesskit(4.0);
+    harness.run();
+    harness.get_by_label("shadow map size").click();
+    harness.run();
+    harness.get_by_label("1024").click();
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "cascade distance")
+        .set_value_accesskit(200.0);
+    harness.run();
+    let shadows = shadows_of(&harness, sun).expect("the controls added a LightShadows");
+    assert!(shadows.enabled);
+    assert_eq!(shadows.map_size, 1024);
+    assert!((shadows.softness - 4.0).abs() < 1e-4, "{shadows:?}");
+    assert!((shadows.distance - 200.0).abs() < 0.5, "{shadows:?}");
+    harness.get_by_label("scene shadows").click();
+    harness.run();
+    assert!(!shadows_of(&harness, sun).unwrap().enabled);
+}
+
+#[test]
+fn point_and_spot_lights_have_shadow_controls_without_a_cascade_distance() {
+    let mut harness = harness();
+    let lamp = harness.state_mut().app.world.spawn((
+        pom::PointLight::default(),
+        pom::Transform::from_xyz(0.0, 1.0, 0.0),
+    ));
+    harness.get_by_label("Point lights").click();
+    harness.run();
+    harness.get_by_label("point 0");
+    assert!(harness.query_by_label("cascade distance").is_none());
+    harness.get_by_label("scene shadows").click();
+    harness.run();
+    assert_eq!(shadows_of(&harness, lamp), Some(pom::LightShadows::off()));
+    // Closed again, so the spot's controls below are the only ones shown.
+    harness.get_by_label("Point lights").click();
+    harness.run();
+    harness.get_by_label("Spot lights").click();
+    harness.run();
+    harness.get_by_label("Add spot light").click();
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "shadow softness (texels)")
+        .set_value_accesskit(0.0);
+    harness.run();
+    let spot = harness
+        .state()
+        .app
+        .world
+        .query::<(Entity, &pom::SpotLight)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .next()
+        .unwrap();
+    assert_eq!(shadows_of(&harness, spot).unwrap().softness, 0.0);
+}

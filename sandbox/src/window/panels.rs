@@ -10,7 +10,7 @@ use super::app_state::{LoadedScene, material_entities};
 use super::display_control::display_controls;
 use super::file_browser::FileBrowser;
 use super::frame_timing::{FrameTimes, GpuTimingSource, gpu_pass_rows};
-use super::light_control::{LightControls, spot_controls};
+use super::light_control::{LightControls, point_controls, spot_controls};
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
 use super::scene_open::{OpenRequest, open_request, request_for_dropped};
@@ -99,7 +99,10 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
         ui.collapsing("Spot lights", |ui| spot_controls(ui, &mut app.world))
             .header_response
-            .on_hover_text("Spot lights: intensity in candela and cone angles.");
+            .on_hover_text("Spot lights: intensity in candela, cone angles and shadows.");
+        ui.collapsing("Point lights", |ui| point_controls(ui, &mut app.world))
+            .header_response
+            .on_hover_text("Point lights: their shadows.");
         ui.collapsing("Display", |ui| display_controls(ui, &mut app.world))
             .header_response
             .on_hover_text("Exposure and tonemapping: how scene light maps to the screen.");

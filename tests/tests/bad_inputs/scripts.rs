@@ -75,6 +75,33 @@ fn script_camera_exposure_out_of_range() {
 }
 
 #[test]
+fn script_light_shadow_map_size_out_of_range() {
+    assert_script_parse(
+        "scripts/shadow_map_size_out_of_range.ron",
+        7,
+        "light 1 shadows: map_size 9000 is outside 16..=8192",
+    );
+}
+
+#[test]
+fn script_light_shadow_softness_nan() {
+    assert_script_parse(
+        "scripts/shadow_softness_nan.ron",
+        6,
+        "light 0 shadows: softness NaN is outside 0..=8 texels",
+    );
+}
+
+#[test]
+fn script_light_shadow_softness_negative() {
+    assert_script_parse(
+        "scripts/shadow_softness_negative.ron",
+        5,
+        "light 0 shadows: softness -1 is outside 0..=8 texels",
+    );
+}
+
+#[test]
 fn script_unknown_tonemap() {
     assert_script_parse("scripts/unknown_tonemap.ron", 5, "filmic");
 }

@@ -1,0 +1,82 @@
+//! Scene shadows through shadow maps: which lights cast them and how ([`LightShadows`]), and
+//! which meshes take part ([`NotShadowCaster`], [`NotShadowReceiver`]).
+//!
+//! A light casts scene shadows when its entity has a [`LightShadows`] component (enabled);
+//! without one it casts none, so scenes pay for shadow maps only where asked (the sandbox's
+//! `render` and `snapshot` turn them on for every light by default). Every opaque mesh casts
+//! and receives unless marked. A directional light renders
+//! [`DIRECTIONAL_CASCADES`] cascades over the camera's view out to [`LightShadows::distance`], a
+//! spot light one perspective map, a point light six (a cube). Parallax materials write the
+//! relief's depth into the maps (they march along the light's view) and look the maps up at the
+//! displaced point the view's march found.
+
+/// How many cascades a directional light's shadow map has.
+pub const DIRECTIONAL_CASCADES: usize = 3;
+
+/// A light's shadow maps; a component on the light's entity (without one the light casts no
+/// scene shadow; `LightShadows::default()` turns them on).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightShadows {
+    /// Whether the light casts scene shadows (its parallax self-shadows do not depend on it).
+    pub enabled: bool,
+    /// Texels along each side of one map (per cascade or cube face), 16 ..= 8192.
+    pub map_size: u32,
+    /// Width of the filter (PCF), in shadow-map texels: larger is softer, 0 is one
+    /// hardware-filtered lookup.
+    pub softness: f32,
+    /// Directional lights: how far from the camera the cascades reach, in world units.
+    pub distance: f32,
+}
+
+impl LightShadows {
+    /// The smallest map size.
+    pub const MIN_MAP_SIZE: u32 = 16;
+    /// The largest map size.
+    pub const MAX_MAP_SIZE: u32 = 8192;
+    /// The widest filter, in texels.
+    pub const MAX_SOFTNESS: f32 = 8.0;
+
+    /// Shadows switched off for this light.
+    pub fn off() -> Self {
+        Self {
+            enabled: false,
+            ..Self::default()
+        }
+    }
+
+    /// The settings the renderer uses: the map size clamped to
+    /// [`Self::MIN_MAP_SIZE`]`..=`[`Self::MAX_MAP_SIZE`], softness to `0..=`[`Self::MAX_SOFTNESS`]
+    /// and the distance to a positive finite value (NaN as the defaults).
+    pub fn sanitized(&self) -> Self {
+        let default = Self::default();
+        let finite_or = |value: f32, fallback: f32| {
+            if value.is_finite() { value } else { fallback }
+        };
+        Self {
+            enabled: self.enabled,
+            map_size: self.map_size.clamp(Self::MIN_MAP_SIZE, Self::MAX_MAP_SIZE),
+            softness: finite_or(self.softness, default.softness).clamp(0.0, Self::MAX_SOFTNESS),
+            distance: finite_or(self.distance, default.distance).clamp(1e-3, 1e6),
+        }
+    }
+}
+
+impl Default for LightShadows {
+    /// On, 2048² texels per map, a 1.5-texel filter, cascades out to 50 units.
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            map_size: 2048,
+            softness: 1.5,
+            distance: 50.0,
+        }
+    }
+}
+
+/// Marks a mesh entity that casts no shadow (it is left out of every shadow map).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NotShadowCaster;
+
+/// Marks a mesh entity on which no scene shadow falls (its parallax self-shadows remain).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NotShadowReceiver;
