@@ -32,8 +32,18 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     let cases = json["cases"].as_array().unwrap();
     // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, POM for the
     // texel rate, 3 phases, 2 far-field, 6 overdraw (1 plane, 4 back to front, 4 copies of one
-    // mesh; with and without depth offset).
-    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 6));
+    // mesh; with and without depth offset), 19 scene-shadow figures (the street corner without
+    // shadows: 3 phases and the frame; with a sun, a spot, a point light: 4 phases and the
+    // frame each).
+    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 6 + 19));
+    for light in ["sun, 3 cascades", "spot, 1 map", "point, 6 faces"] {
+        assert!(
+            cases.iter().any(|c| c["group"] == "scene_shadows"
+                && c["pass"] == "shadows"
+                && c["variant"] == light),
+            "no shadow phase for {light}"
+        );
+    }
     for phase in ["prepass", "opaque", "post"] {
         assert!(
             cases

@@ -450,14 +450,20 @@ fn a_scene_without_meshes_frames_a_unit_box_with_a_warning() {
     assert!(warnings[1].contains("default light"), "{warnings:?}");
 }
 
-#[test]
-fn the_shipped_street_corner_renders_like_its_reference() {
+/// `render --scene` of the shipped street corner, with `extra` flags, against a reference of
+/// tests/golden (the library's golden tests compare the same references with FLIP).
+fn street_corner_matches(extra: &[&str], reference_name: &str) {
     let repository = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let out = std::env::temp_dir().join(format!("pom-street-corner-{}.png", std::process::id()));
+    let out = std::env::temp_dir().join(format!(
+        "pom-street-corner-{}-{reference_name}",
+        std::process::id()
+    ));
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_sandbox"))
         .args(["render", "--scene"])
         .arg(repository.join("assets/street_corner.glb"))
-        .args(["--size", "384x216", "--out"])
+        .args(["--size", "384x216"])
+        .args(extra)
+        .arg("--out")
         .arg(&out)
         .output()
         .expect("run the sandbox");
@@ -467,8 +473,7 @@ fn the_shipped_street_corner_renders_like_its_reference() {
         String::from_utf8_lossy(&output.stderr)
     );
     let rendered = image::open(&out).expect("the render").to_rgba8();
-    // The same reference the library's golden test uses (tests/golden, compared there with FLIP).
-    let reference = image::open(repository.join("tests/golden/street_corner.png"))
+    let reference = image::open(repository.join("tests/golden").join(reference_name))
         .expect("the reference")
         .to_rgba8();
     assert_eq!(rendered.dimensions(), reference.dimensions());
@@ -481,7 +486,13 @@ fn the_shipped_street_corner_renders_like_its_reference() {
     let mean = total as f64 / rendered.as_raw().len() as f64;
     assert!(
         mean < 1.0,
-        "mean difference {mean} levels from the reference"
+        "{extra:?}: mean difference {mean} levels from {reference_name}"
     );
-    std::fs::remove_file(&out).expect("clean up");
+}
+
+#[test]
+fn the_shipped_street_corner_renders_like_its_reference() {
+    // Scene shadows are on by default in `render`.
+    street_corner_matches(&[], "street_corner_shadows.png");
+    street_corner_matches(&["--scene-shadows", "off"], "street_corner.png");
 }

@@ -243,7 +243,8 @@ impl<M: Material> MaterialBatches<M> {
             Some(_) => M::shader().counting_source(),
             None => M::shader().source(),
         };
-        let shader = crate::render::shaders::create_module(device, M::shader().name, source);
+        let shader =
+            crate::render::shaders::create_module(device, M::shader().name, source.clone());
         let mut layout_entries = vec![
             FrameUniformBuffer::layout_entry(),
             ObjectBuffer::<MeshTransform>::layout_entry(1),
@@ -289,7 +290,7 @@ impl<M: Material> MaterialBatches<M> {
             DepthUse::Shading,
         );
         Self {
-            pipelines: MaterialPipelines::new(shader, layout, color_format, prepass),
+            pipelines: MaterialPipelines::new(shader, &source, layout, color_format, prepass),
             frame_layout,
             transforms,
             uniforms,
@@ -455,6 +456,7 @@ impl<M: Material> MaterialBatches<M> {
         }
         self.textures
             .prepare(gpu, assets, self.batches.iter().map(|batch| batch.textures));
+        self.pipelines.set_scene_shadows(inputs.shadow_maps);
         for batch in &self.batches {
             self.pipelines.ensure(&gpu.device, batch.key);
             if inputs.shadow_maps && batch.casts_shadows && !M::blends(batch.key) {

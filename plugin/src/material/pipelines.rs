@@ -13,14 +13,25 @@ pub(crate) struct MaterialPipelines<M: Material> {
     color_format: wgpu::TextureFormat,
     /// Whether the frame has a depth prepass (the opaque pipelines' depth state follows).
     prepass: bool,
-    pipelines: HashMap<(MeshPass, M::Key), wgpu::RenderPipeline>,
+    /// Whether the shader declares the core's `SCENE_SHADOWS` override (shadows.wgsl).
+    declares_scene_shadows: bool,
+    /// Whether this frame renders shadow maps: the shading pipelines then read them.
+    scene_shadows: bool,
+    pipelines: HashMap<(MeshPass, bool, M::Key), wgpu::RenderPipeline>,
 }
+
+/// The pipeline-overridable constant of shadows.wgsl that compiles the shadow-map lookups in:
+/// a frame without shadow maps uses pipelines without them (code that is there costs registers
+/// even where it does not run; measured in sandbox/BENCHMARKS.md, "scene shadows").
+const SCENE_SHADOWS: &str = "SCENE_SHADOWS";
 
 impl<M: Material> MaterialPipelines<M> {
     /// No pipelines yet; they will come from `shader` with `layout`, for scene targets of
     /// `color_format`, in frames with or without a depth `prepass`.
+    /// `source` is the shader's WGSL (to see whether it receives scene shadows).
     pub(crate) fn new(
         shader: wgpu::ShaderModule,
+        source: &str,
         layout: wgpu::PipelineLayout,
         color_format: wgpu::TextureFormat,
         prepass: bool,
@@ -30,8 +41,20 @@ impl<M: Material> MaterialPipelines<M> {
             layout,
             color_format,
             prepass,
+            declares_scene_shadows: source.contains(&format!("override {SCENE_SHADOWS}")),
+            scene_shadows: false,
             pipelines: HashMap::new(),
         }
+    }
+
+    /// Sets whether this frame renders shadow maps (which shading pipelines are used).
+    pub(crate) fn set_scene_shadows(&mut self, scene_shadows: bool) {
+        self.scene_shadows = scene_shadows && self.declares_scene_shadows;
+    }
+
+    /// Whether `pass` of this frame reads the shadow maps.
+    fn reads_shadow_maps(&self, pass: MeshPass) -> bool {
+        self.scene_shadows && !matches!(pass, MeshPass::Prepass | MeshPass::Shadow)
     }
 
     /// The passes a draw of `key` takes part in: the transparent one for a blending key,
@@ -72,19 +95,23 @@ impl<M: Material> MaterialPipelines<M> {
     }
 
     fn ensure_pass(&mut self, device: &wgpu::Device, pass: MeshPass, key: M::Key) {
-        if self.pipelines.contains_key(&(pass, key)) {
+        let shadowed = self.reads_shadow_maps(pass);
+        if self.pipelines.contains_key(&(pass, shadowed, key)) {
             return;
         }
-        let fragment = match pass {
+        let mut fragment = match pass {
             MeshPass::Prepass => M::prepass_fragment(key),
             MeshPass::Shadow => M::shadow_fragment(key),
             MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
         };
+        if shadowed && let Some(fragment) = &mut fragment {
+            fragment.constants.push((SCENE_SHADOWS, 1.0));
+        }
         let pipeline = mesh_pipeline(
             device,
             &MeshPipelineDescriptor {
-                label: &format!("{} {pass:?} pipeline {key:?}", M::NAME),
+                label: &format!("{} {pass:?} pipeline {key:?} shadowed {shadowed}", M::NAME),
                 layout: &self.layout,
                 shader: &self.shader,
                 pass,
@@ -93,12 +120,13 @@ impl<M: Material> MaterialPipelines<M> {
                 cull_mode: M::cull_mode(key),
             },
         );
-        self.pipelines.insert((pass, key), pipeline);
+        self.pipelines.insert((pass, shadowed, key), pipeline);
     }
 
     /// The pipeline of `key` in `pass`, once [`MaterialPipelines::ensure`]d.
     pub(crate) fn get(&self, pass: MeshPass, key: &M::Key) -> Option<&wgpu::RenderPipeline> {
-        self.pipelines.get(&(pass, *key))
+        self.pipelines
+            .get(&(pass, self.reads_shadow_maps(pass), *key))
     }
 
     /// Every pipeline in use rebuilt from `shader` (a recompiled shader), for hot reload:
@@ -106,9 +134,17 @@ impl<M: Material> MaterialPipelines<M> {
     /// pipelines are built, so a broken shader is caught before anything uses it.
     #[cfg(feature = "dev-tools")]
     pub(crate) fn rebuilt(&self, device: &wgpu::Device, shader: wgpu::ShaderModule) -> Self {
-        let mut rebuilt = Self::new(shader, self.layout.clone(), self.color_format, self.prepass);
+        let mut rebuilt = Self {
+            shader,
+            layout: self.layout.clone(),
+            color_format: self.color_format,
+            prepass: self.prepass,
+            declares_scene_shadows: self.declares_scene_shadows,
+            scene_shadows: self.scene_shadows,
+            pipelines: HashMap::new(),
+        };
         let keys: std::collections::BTreeSet<M::Key> =
-            self.pipelines.keys().map(|(_, key)| *key).collect();
+            self.pipelines.keys().map(|(_, _, key)| *key).collect();
         for key in keys.into_iter().chain([M::default().key()]) {
             rebuilt.ensure(device, key);
         }

@@ -34,6 +34,8 @@ pub struct ExtractedFrame {
     pub tonemapping: Tonemapping,
     /// The shadow maps to render this frame, in the order the lights reference them.
     pub shadow_views: Vec<ShadowViewPlan>,
+    /// Whether the lights asked for more than [`MAX_SHADOW_VIEWS`] maps.
+    pub shadow_maps_overflowed: bool,
 }
 
 /// The shadow maps of a frame as its lights claim them, up to [`MAX_SHADOW_VIEWS`].
@@ -268,7 +270,11 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         point_count += 1;
     }
     frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
-    if shadow_views.overflowed {
+    // Once per episode, not every frame.
+    let overflow_warned = resources
+        .get::<ExtractedFrame>()
+        .is_some_and(|last| last.shadow_maps_overflowed);
+    if shadow_views.overflowed && !overflow_warned {
         log::warn!(
             "the lights ask for more than {MAX_SHADOW_VIEWS} shadow maps: the rest cast no scene shadow"
         );
@@ -279,6 +285,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         clear_color,
         exposure,
         tonemapping,
+        shadow_maps_overflowed: shadow_views.overflowed,
         shadow_views: if camera.is_some() {
             shadow_views.views
         } else {

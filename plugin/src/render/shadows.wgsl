@@ -17,6 +17,10 @@ struct ShadowView {
     _padding: vec2<u32>,
 }
 
+// Set by the renderer on the shading pipelines of frames that render shadow maps; without it
+// the compiler drops every lookup below (and the registers they would hold).
+override SCENE_SHADOWS: bool = false;
+
 @group(0) @binding(5) var<storage, read> shadow_views: array<ShadowView>;
 @group(0) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(0) @binding(7) var shadow_sampler: sampler_comparison;
@@ -31,7 +35,7 @@ const SHADOW_NORMAL_OFFSET: f32 = 1.5;
 
 // Whether scene shadows fall on the object drawn as instance `object_index`.
 fn receives_scene_shadows(object_index: u32) -> bool {
-    return transforms[object_index].receives_shadows != 0u;
+    return SCENE_SHADOWS && transforms[object_index].receives_shadows != 0u;
 }
 
 // The cube face (+X, −X, +Y, −Y, +Z, −Z) that sees `offset` from the light.

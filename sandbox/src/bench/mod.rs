@@ -9,6 +9,7 @@ mod cpu_side;
 mod report;
 mod sample_count;
 mod scene;
+mod scene_shadows;
 mod stats;
 mod texel_rate;
 mod versus_mesh;
@@ -73,6 +74,8 @@ pub enum Measurement {
     Phases,
     /// Four planes stacked along the view (drawn back to front) against one.
     Overdraw,
+    /// The street corner with and without scene shadows, per light type.
+    SceneShadows,
 }
 
 /// Planes stacked by the overdraw measurement, and how far apart (in plane sizes: several
@@ -235,6 +238,42 @@ impl Runner<'_> {
                     height: size.1,
                     ratio: stacked_ms / one_ms,
                 });
+            }
+        }
+        Ok(())
+    }
+
+    /// The street corner per light type with scene shadows and without: each phase, and the
+    /// frame (their sum).
+    fn scene_shadows(&mut self, size: (u32, u32)) -> Result<()> {
+        let place = (size, 1.0);
+        let material = self.base.clone();
+        let mut frame_without = None;
+        for case in scene_shadows::ShadowCase::ALL {
+            let times = scene_shadows::time(size, case, self.warmup, self.frames)?;
+            let frames: Vec<f64> = (0..self.frames)
+                .map(|frame| times.iter().map(|phase| phase[frame]).sum())
+                .collect();
+            for (phase, times) in case.phases().iter().zip(&times) {
+                let variant = case.name().to_owned();
+                self.record("scene_shadows", place, &material, (*phase, variant), times)?;
+            }
+            let variant = case.name().to_owned();
+            let frame_ms = self.record(
+                "scene_shadows",
+                place,
+                &material,
+                ("frame", variant),
+                &frames,
+            )?;
+            match frame_without {
+                None => frame_without = Some(frame_ms),
+                Some(without) => self.ratios.push(Ratio {
+                    what: format!("street corner frame: {} / no shadows", case.name()),
+                    width: size.0,
+                    height: size.1,
+                    ratio: frame_ms / without,
+                }),
             }
         }
         Ok(())
@@ -454,6 +493,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
         if wanted(Measurement::Overdraw) {
             runner.overdraw(size)?;
+        }
+        if wanted(Measurement::SceneShadows) {
+            runner.scene_shadows(size)?;
         }
     }
 

@@ -94,6 +94,11 @@ impl BenchScene {
         Ok(Self { app })
     }
 
+    /// A scene around an app already set up (with blocking GPU timing).
+    pub fn from_app(app: App) -> Self {
+        Self { app }
+    }
+
     /// Sets the colour the image is cleared to (alpha 0 marks pixels nothing was drawn on).
     pub fn set_clear_color(&mut self, color: pom::Color) {
         for camera in self.app.world.query_mut::<&mut Camera>() {

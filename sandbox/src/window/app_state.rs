@@ -103,6 +103,13 @@ pub fn finish_loading(
         app.world.spawn((sun, transform));
         app.resources.insert(ambient);
     }
+    // Scene shadows on, as in `render` and `snapshot`, wherever the light has no setting yet;
+    // the light panel switches them per light.
+    for light in crate::cli_types::light_entities(&app.world) {
+        if !app.world.satisfies::<&pom::LightShadows>(light) {
+            let _ = app.world.insert_one(light, pom::LightShadows::default());
+        }
+    }
     let centre = (bounds.0 + bounds.1) * 0.5;
     let focus_distance =
         super::camera_control::active_camera_transform(&app.world).map_or(5.0, |camera| {
