@@ -80,3 +80,34 @@ pub struct NotShadowCaster;
 /// Marks a mesh entity on which no scene shadow falls (its parallax self-shadows remain).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct NotShadowReceiver;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn out_of_range_settings_are_clamped_and_nan_takes_the_default() {
+        let wild = LightShadows {
+            enabled: true,
+            map_size: 0,
+            softness: f32::NAN,
+            distance: -5.0,
+        }
+        .sanitized();
+        assert_eq!(wild.map_size, LightShadows::MIN_MAP_SIZE);
+        assert_eq!(wild.softness, LightShadows::default().softness);
+        assert!(wild.distance > 0.0);
+        let huge = LightShadows {
+            map_size: u32::MAX,
+            softness: 1e9,
+            distance: f32::INFINITY,
+            ..LightShadows::default()
+        }
+        .sanitized();
+        assert_eq!(huge.map_size, LightShadows::MAX_MAP_SIZE);
+        assert_eq!(huge.softness, LightShadows::MAX_SOFTNESS);
+        assert_eq!(huge.distance, LightShadows::default().distance);
+        assert_eq!(LightShadows::default().sanitized(), LightShadows::default());
+        assert!(!LightShadows::off().sanitized().enabled);
+    }
+}

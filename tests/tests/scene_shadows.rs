@@ -262,6 +262,13 @@ fn a_lit_parallax_plane_does_not_shadow_itself() {
     for kind in [LightKind::Directional, LightKind::Spot, LightKind::Point] {
         for angle in [0.0, 20.0, 40.0, 60.0, 80.0] {
             let (self_shadow, scene) = lone_plane(kind, angle);
+            let finite = |image: &image::Rgba32FImage| {
+                image.pixels().all(|p| p.0.iter().all(|c| c.is_finite()))
+            };
+            assert!(
+                finite(&self_shadow) && finite(&scene),
+                "{kind:?} at {angle}°: NaN"
+            );
             let mut lit = 0;
             let mut worst = 1.0_f32;
             for (own, mapped) in self_shadow.pixels().zip(scene.pixels()) {
@@ -278,4 +285,51 @@ fn a_lit_parallax_plane_does_not_shadow_itself() {
             assert!(worst >= 0.99, "{kind:?} at {angle}°: visibility {worst}");
         }
     }
+}
+
+/// Lights a user can place badly: a sun with a zero scale (no direction), a spot pointing
+/// straight up, a point light inside the plane, and absurd settings. No NaN, no GPU error.
+#[test]
+fn badly_placed_lights_and_settings_render_cleanly() {
+    let mut app = pom_app(48, TargetFormat::Float32).unwrap();
+    let material = HeightMaterial {
+        field: pom::patterns::raised_block(64, 0.4),
+        height_scale: 0.05,
+    }
+    .material(&mut app);
+    let plane = mesh(&mut app, Mesh::plane(PLANE));
+    app.world.spawn((plane, material, Transform::IDENTITY));
+    let wild = LightShadows {
+        map_size: 0,
+        softness: f32::NAN,
+        distance: -1.0,
+        ..LightShadows::default()
+    };
+    app.world.spawn((
+        DirectionalLight::default(),
+        wild,
+        Transform {
+            scale: Vec3::ZERO,
+            ..Transform::IDENTITY
+        },
+    ));
+    app.world.spawn((
+        SpotLight::default(),
+        LightShadows::default(),
+        Transform::from_xyz(0.0, 1.0, 0.0).looking_at(Vec3::new(0.0, 5.0, 0.0), Vec3::Z),
+    ));
+    app.world.spawn((
+        PointLight::default(),
+        LightShadows {
+            map_size: 64,
+            ..LightShadows::default()
+        },
+        Transform::IDENTITY,
+    ));
+    app.world.spawn((
+        Camera::perspective(50.0),
+        Transform::from_xyz(0.0, 2.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let image = render_and_capture_f32(&mut app).unwrap();
+    assert!(image.pixels().all(|p| p.0.iter().all(|c| c.is_finite())));
 }

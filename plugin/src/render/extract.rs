@@ -48,7 +48,17 @@ impl ShadowViewList {
     /// Adds a light's maps; returns (first view, count) for its GPU record, (0, 0) when it
     /// casts none or they do not fit.
     fn claim(&mut self, views: &[ShadowViewPlan]) -> (u32, u32) {
-        if views.is_empty() {
+        // A light whose transform has no direction (a zero scale) or no finite place has no
+        // map: NaN matrices would reach every receiver.
+        let finite = |view: &ShadowViewPlan| {
+            view.gpu
+                .view_projection
+                .iter()
+                .flatten()
+                .all(|value| value.is_finite())
+                && view.gpu.texel_world_size.is_finite()
+        };
+        if views.is_empty() || !views.iter().all(finite) {
             return (0, 0);
         }
         if self.views.len() + views.len() > MAX_SHADOW_VIEWS {
