@@ -54,8 +54,23 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3<f32>(x, x - 1.0, x - 2.0), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// What a pixel covers: the change of the texture coordinate and of the world position from one
+// pixel to the next, across and down. The march takes it as an argument and uses no stage
+// built-in, so a compute pass that knows the pixel's rays can call it as the fragment stage does.
+struct PixelFootprint {
+    ddx_uv: vec2<f32>,
+    ddy_uv: vec2<f32>,
+    ddx_world: vec3<f32>,
+    ddy_world: vec3<f32>,
+}
+
+// The fragment stage's footprint: screen-space derivatives, taken once before any branch.
+fn fragment_footprint(in: VertexOut) -> PixelFootprint {
+    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position));
+}
+
 // The march: the same code for the prepass, which only needs the depth, and the shading.
-fn find_surface(in: VertexOut, front_facing: bool) -> SurfacePoint {
+fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> SurfacePoint {
     let material = materials[in.object_index];
     let params = material.params;
     var point: SurfacePoint;
@@ -63,13 +78,12 @@ fn find_surface(in: VertexOut, front_facing: bool) -> SurfacePoint {
     point.to_eye = direction_to_eye(in.world_position, point.surface_frame.normal);
     let to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
 
-    // Everything derived from screen-space derivatives happens here, once, before any branch.
-    point.ddx_uv = dpdx(in.uv);
-    point.ddy_uv = dpdy(in.uv);
+    point.ddx_uv = footprint.ddx_uv;
+    point.ddy_uv = footprint.ddy_uv;
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
     point.mip = mip_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size);
     // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces.
-    let world_area = length(cross(dpdx(in.world_position), dpdy(in.world_position)));
+    let world_area = length(cross(footprint.ddx_world, footprint.ddy_world));
     let uv_area = abs(point.ddx_uv.x * point.ddy_uv.y - point.ddx_uv.y * point.ddy_uv.x);
     point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
@@ -209,7 +223,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
 @fragment @early_depth_test(force)
 fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     count_fragment_invocation();
-    return shade(in, find_surface(in, front_facing));
+    return shade(in, find_surface(in, front_facing, fragment_footprint(in)));
 }
 
 struct ColorAndDepth {
@@ -224,7 +238,7 @@ struct ColorAndDepth {
 @fragment @early_depth_test(greater_equal)
 fn fs_main_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> ColorAndDepth {
     count_fragment_invocation();
-    let point = find_surface(in, front_facing);
+    let point = find_surface(in, front_facing, fragment_footprint(in));
     return ColorAndDepth(shade(in, point), displaced_depth(in, point));
 }
 
@@ -233,7 +247,7 @@ fn fs_main_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool
 // away from the eye only, as above).
 @fragment @early_depth_test(greater_equal)
 fn fs_prepass_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @builtin(frag_depth) f32 {
-    return displaced_depth(in, find_surface(in, front_facing));
+    return displaced_depth(in, find_surface(in, front_facing, fragment_footprint(in)));
 }
 
 // `depth_offset` in the opaque phase after the prepass. The hardware test (rasterized depth
@@ -244,7 +258,7 @@ fn fs_prepass_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: b
 @fragment @early_depth_test(force)
 fn fs_main_after_depth_prepass(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     count_fragment_invocation();
-    let point = find_surface(in, front_facing);
+    let point = find_surface(in, front_facing, fragment_footprint(in));
     let depth = displaced_depth(in, point);
     let kept = textureLoad(prepass_depth, vec2<i32>(in.clip_position.xy), 0);
     if depth > kept {
