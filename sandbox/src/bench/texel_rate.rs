@@ -14,9 +14,12 @@ pub struct TexelRate {
 }
 
 // (adapter name contains, SMs, texture units per SM, clock in GHz)
-const KNOWN: [(&str, u32, u32, f64); 1] = [
+const KNOWN: [(&str, u32, u32, f64); 2] = [
     // 1.98 GHz: the SM clock seen steady under load on the project's machine (TOOLCHAIN.md).
     ("H100", 132, 4, 1.98),
+    // The same chip (GH100, 132 SMs enabled) with more memory: the benchmark machine since
+    // 2026-11-29 (../shared/DESIGN.md).
+    ("H200", 132, 4, 1.98),
 ];
 
 /// The figure for `adapter_name`: the override if given, else the table, else `None`.
@@ -41,9 +44,12 @@ mod tests {
     use super::texel_rate;
 
     #[test]
-    fn h100_from_the_table_override_wins_unknown_is_none() {
+    fn h100_and_h200_from_the_table_override_wins_unknown_is_none() {
         let h100 = texel_rate("NVIDIA H100 80GB HBM3", None).unwrap();
         assert!((h100.gtexels_per_s - 1045.44).abs() < 1e-9);
+        let h200 = texel_rate("NVIDIA H200", None).unwrap();
+        assert!((h200.gtexels_per_s - 1045.44).abs() < 1e-9);
+        assert!(h200.source.starts_with("H200"), "{}", h200.source);
         assert_eq!(
             texel_rate("NVIDIA H100", Some(7.0)).unwrap().gtexels_per_s,
             7.0
