@@ -55,6 +55,8 @@ mod resources;
 #[cfg(feature = "scene-tests")]
 pub mod script;
 #[cfg(feature = "dev-tools")]
+pub mod seed_port;
+#[cfg(feature = "dev-tools")]
 mod shader_reload;
 mod shadows;
 #[cfg(feature = "dev-tools")]

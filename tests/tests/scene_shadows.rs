@@ -165,7 +165,8 @@ fn marked_meshes_neither_cast_nor_receive() {
                 let z = (y as f32 + 0.5) * VIEW_HEIGHT / IMAGE as f32 - VIEW_HEIGHT * 0.5;
                 world_x(x as f32).abs() < PLANE * 0.5 - 0.02 && z.abs() < PLANE * 0.5 - 0.02
             })
-            .all(|(x, y)| image.get_pixel(x, y).0[0] > 0.99)
+            .map(|(x, y)| (image.get_pixel(x, y).0[0], x, y))
+            .fold((f32::INFINITY, 0, 0), |a, b| if b.0 < a.0 { b } else { a })
     };
     for (bar_casts, floor_receives) in [(false, true), (true, false)] {
         let image = step_scene(StepScene {
@@ -173,9 +174,10 @@ fn marked_meshes_neither_cast_nor_receive() {
             bar_casts,
             floor_receives,
         });
+        let (lowest, x, y) = lit_everywhere(&image);
         assert!(
-            lit_everywhere(&image),
-            "bar casts {bar_casts}, floor receives {floor_receives}"
+            lowest > 0.99,
+            "bar casts {bar_casts}, floor receives {floor_receives}: {lowest} at ({x}, {y})"
         );
     }
 }
@@ -332,4 +334,110 @@ fn badly_placed_lights_and_settings_render_cleanly() {
     ));
     let image = render_and_capture_f32(&mut app).unwrap();
     assert!(image.pixels().all(|p| p.0.iter().all(|c| c.is_finite())));
+}
+
+/// Where a spot or point light's map puts a small cube's shadow on a parallax floor: the
+/// scene-shadow view, straight down, at the point the ray from the light through the cube's
+/// centre meets the floor, and away from it.
+fn projected_shadow(light: LightKind, light_at: Vec3, cube_at: Vec3, cube_size: f32) -> (f32, f32) {
+    let mut app = pom_app(IMAGE, TargetFormat::Float32).unwrap();
+    let rolling = HeightField::from_fn(128, 128, |u, v| {
+        0.5 + 0.25
+            * ((u * 8.0 * std::f32::consts::PI).sin() + (v * 8.0 * std::f32::consts::PI).cos())
+    });
+    let material = ParallaxOcclusionMaterial {
+        debug_view: DebugView::SceneShadow,
+        ..HeightMaterial {
+            field: rolling,
+            height_scale: 0.005,
+        }
+        .material(&mut app)
+    };
+    let floor = mesh(&mut app, Mesh::plane(PLANE));
+    app.world.spawn((floor, material, Transform::IDENTITY));
+    let cube = mesh(&mut app, Mesh::cube(cube_size));
+    app.world.spawn((
+        cube,
+        LitMaterial::default(),
+        Transform::from_xyz(cube_at.x, cube_at.y, cube_at.z),
+    ));
+    // The floor point behind the cube's centre, seen from the light.
+    let t = light_at.y / (light_at.y - cube_at.y);
+    let shadow = light_at + (cube_at - light_at) * t;
+    let placed =
+        Transform::from_xyz(light_at.x, light_at.y, light_at.z).looking_at(shadow, Vec3::Z);
+    let shadows = LightShadows {
+        map_size: 1024,
+        ..LightShadows::default()
+    };
+    match light {
+        LightKind::Spot => app.world.spawn((
+            SpotLight {
+                range: f32::INFINITY,
+                ..SpotLight::default()
+            },
+            shadows,
+            placed,
+        )),
+        _ => app.world.spawn((
+            PointLight {
+                range: f32::INFINITY,
+                ..PointLight::default()
+            },
+            shadows,
+            placed,
+        )),
+    };
+    app.world.spawn((
+        Camera::orthographic(VIEW_HEIGHT),
+        Transform::from_xyz(0.0, 3.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
+    ));
+    let image = render_and_capture_f32(&mut app).unwrap();
+    let at = |x: f32, z: f32| {
+        let pixel = |w: f32| ((w + VIEW_HEIGHT * 0.5) / VIEW_HEIGHT * IMAGE as f32) as u32;
+        image.get_pixel(pixel(x), pixel(z)).0[0]
+    };
+    // Away from the shadow: the same distance from the light's foot, a quarter turn around it.
+    let foot = Vec3::new(light_at.x, 0.0, light_at.z);
+    let away = foot + (shadow - foot).cross(Vec3::Y).normalize() * 0.6;
+    (at(shadow.x, shadow.z), at(away.x, away.z))
+}
+
+/// Positive controls for the perspective maps: a spot's map, a point light's floor face (−Y)
+/// and, with the light low over the floor, a side face (−X). Each shadow lies where the light
+/// projects its caster, and the floor a quarter turn away stays lit.
+#[test]
+fn spot_and_point_shadows_fall_where_the_light_projects_the_caster() {
+    let cases = [
+        (
+            LightKind::Spot,
+            Vec3::new(1.0, 2.0, 0.0),
+            Vec3::new(0.0, 0.5, 0.0),
+            0.2,
+        ),
+        (
+            LightKind::Point,
+            Vec3::new(1.0, 2.0, 0.0),
+            Vec3::new(0.0, 0.5, 0.0),
+            0.2,
+        ),
+        (
+            LightKind::Point,
+            Vec3::new(0.9, 0.3, 0.0),
+            Vec3::new(0.45, 0.2, 0.0),
+            0.1,
+        ),
+    ];
+    for (kind, light, cube, size) in cases {
+        let (shadowed, lit) = projected_shadow(kind, light, cube, size);
+        eprintln!("{kind:?} at {light}: {shadowed:.3} in the shadow, {lit:.3} away from it");
+        assert!(
+            shadowed < 0.2,
+            "{kind:?} at {light}: no shadow ({shadowed})"
+        );
+        assert!(
+            lit > 0.99,
+            "{kind:?} at {light}: dark away from the shadow ({lit})"
+        );
+    }
 }

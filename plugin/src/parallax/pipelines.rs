@@ -67,8 +67,11 @@ impl PomPipelineKey {
     /// The shadow map's fragment stage: the relief's depth seen from the light (the march
     /// along the light's view ray), except where only normal mapping runs (the polygon's).
     pub fn shadow_fragment(self) -> Option<FragmentVariant> {
-        (self.method != ParallaxMethod::NormalMapping)
-            .then(|| self.variant("fs_prepass_depth_offset"))
+        (self.method != ParallaxMethod::NormalMapping).then(|| {
+            let mut variant = self.variant("fs_prepass_depth_offset");
+            variant.constants.push(("SHADOW_CASTER", 1.0));
+            variant
+        })
     }
 
     /// The opaque phase's fragment stage after a prepass.

@@ -8,6 +8,10 @@ override METHOD: u32 = METHOD_OCCLUSION;
 override SHADOW_MODE: u32 = SHADOWS_SOFT;
 override LIGHTING_MODEL: u32 = LIGHTING_PHONG;
 override DEBUG_VIEW: u32 = DEBUG_NONE;
+// Set on the shadow-map pipelines: a caster always marches (no LOD fade: a light far from the
+// surface, or at a grazing angle, would otherwise leave the flat polygon in the map, above every
+// receiver's relief, which would then read as shadowed).
+override SHADOW_CASTER: bool = false;
 
 // `PomParams` (every declared parameter, in declaration order) is generated from the Rust
 // declarations and prepended, like the enum codes.
@@ -91,7 +95,7 @@ fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) ->
 
     point.field = HeightField(material.height_channel, u32(params.height_convention == CONVENTION_DEPTH), point.ddx_uv, point.ddy_uv);
     let method = METHOD;
-    point.fade = lod_fade(point.mip, params.lod_threshold, params.lod_band);
+    point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
     point.marched = point.fade < 1.0 && method != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;
 
@@ -173,6 +177,8 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
         }
         var scene_visibility = 1.0;
         if receives_shadows && dot(surface_frame.normal, light.to_light) > 0.0 {
+            // The bias follows the relief's own surface (the shading normal): on a groove's
+            // wall the polygon's normal would leave the point inside its own depths.
             scene_visibility = scene_shadow(i, surface_position, normal);
         }
         if i == 0u {

@@ -75,12 +75,47 @@ impl ShadowViewList {
     }
 }
 
-/// A light's shadow settings as the renderer uses them; `None` when it casts no shadow (no
-/// [`LightShadows`], or one switched off).
-fn enabled_shadows(shadows: Option<&LightShadows>) -> Option<LightShadows> {
+/// What the shadow maps of one frame may take of the GPU's memory: the array holds every map at
+/// the largest size asked for.
+const SHADOW_MAP_BUDGET_BYTES: u64 = 512 << 20;
+
+/// The largest map side this frame's shadow maps may have: the device's texture limit, and a
+/// power of two small enough for every map the lights ask for to fit the budget.
+fn shadow_map_cap(world: &World, device_limit: u32) -> u32 {
+    let enabled = |shadows: Option<&LightShadows>| shadows.is_some_and(|shadows| shadows.enabled);
+    let mut views = 0;
+    for (_, shadows) in world
+        .query::<(&DirectionalLight, Option<&LightShadows>)>()
+        .iter()
+    {
+        views += 3 * usize::from(enabled(shadows));
+    }
+    for (_, shadows) in world.query::<(&SpotLight, Option<&LightShadows>)>().iter() {
+        views += usize::from(enabled(shadows));
+    }
+    for (_, shadows) in world.query::<(&PointLight, Option<&LightShadows>)>().iter() {
+        views += 6 * usize::from(enabled(shadows));
+    }
+    let views = views.clamp(1, MAX_SHADOW_VIEWS) as u64;
+    let mut cap = LightShadows::MAX_MAP_SIZE.min(device_limit.max(LightShadows::MIN_MAP_SIZE));
+    while cap > LightShadows::MIN_MAP_SIZE
+        && u64::from(cap).pow(2) * 4 * views > SHADOW_MAP_BUDGET_BYTES
+    {
+        cap /= 2;
+    }
+    cap
+}
+
+/// A light's shadow settings as the renderer uses them, its map no larger than `cap`; `None`
+/// when it casts no shadow (no [`LightShadows`], or one switched off).
+fn enabled_shadows(shadows: Option<&LightShadows>, cap: u32) -> Option<LightShadows> {
     shadows
         .map(LightShadows::sanitized)
         .filter(|shadows| shadows.enabled)
+        .map(|shadows| LightShadows {
+            map_size: shadows.map_size.min(cap),
+            ..shadows
+        })
 }
 
 /// The active camera (as [`crate::active_camera`] finds it) with its entity's [`Exposure`] and
@@ -132,6 +167,12 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             aspect,
         }
     });
+    let device_limit = resources
+        .get::<crate::GpuContext>()
+        .map_or(LightShadows::MAX_MAP_SIZE, |gpu| {
+            gpu.device.limits().max_texture_dimension_2d
+        });
+    let map_cap = shadow_map_cap(world, device_limit);
     let mut shadow_views = ShadowViewList {
         views: Vec::new(),
         overflowed: false,
@@ -205,7 +246,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             break;
         }
         let (first_shadow_view, shadow_view_count) =
-            match (enabled_shadows(shadows), &cascade_camera) {
+            match (enabled_shadows(shadows, map_cap), &cascade_camera) {
                 (Some(shadows), Some(camera)) => {
                     shadow_views.claim(&directional_views(camera, transform.forward(), &shadows))
                 }
@@ -229,7 +270,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             log::warn!("more than {MAX_POINT_LIGHTS} point lights: the rest are ignored");
             break;
         }
-        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows) {
+        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows, map_cap) {
             Some(shadows) => {
                 shadow_views.claim(&point_views(transform.translation(), light.range, &shadows))
             }
@@ -258,7 +299,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         // glTF's cone: t = cos(angle to the axis) × scale + offset, clamped, squared.
         let (inner, outer) = light.sanitized_cone();
         let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
-        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows) {
+        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows, map_cap) {
             Some(shadows) => shadow_views.claim(&[spot_view(
                 transform.translation(),
                 transform.forward(),

@@ -59,14 +59,16 @@ fn up_for(forward: Vec3) -> Vec3 {
     }
 }
 
-/// Widens a half-angle so that the filter and the receiver offsets near the map's edge still
-/// read inside it: `margin_texels` more on each side of a `map_size` map.
+/// Widens a half-extent (a half-angle's tangent, a cascade's radius) so that the filter and the
+/// receiver offsets near the map's edge still read inside it: `margin_texels` more on each side
+/// of a `map_size` map.
 fn widened_tan(tan_half_angle: f32, margin_texels: f32, map_size: u32) -> f32 {
     tan_half_angle * (1.0 + 2.0 * margin_texels / map_size as f32)
 }
 
+/// The filter's reach plus the receivers' largest offsets (shadows.wgsl), in texels.
 fn margin_texels(settings: &LightShadows) -> f32 {
-    settings.softness + 4.0
+    2.0 * settings.softness + 4.0
 }
 
 fn perspective_view(
@@ -195,7 +197,9 @@ pub fn directional_views(
             .iter()
             .map(|corner| corner.distance(centre))
             .fold(0.0_f32, f32::max);
-        // Whole 1/16 units, so the texel size only changes in steps as the view changes.
+        // Room for the filter and the receivers' offsets at the rim (as spot and cube maps have),
+        // in whole 1/16 units, so the texel size only changes in steps as the view changes.
+        let radius = widened_tan(radius, margin_texels(settings), settings.map_size);
         let radius = ((radius * 16.0).ceil() / 16.0).max(1.0 / 16.0);
         let texel = 2.0 * radius / map_size;
         let centre_in_light = rotation.transform_point3(centre);

@@ -76,6 +76,8 @@ pub enum Measurement {
     Overdraw,
     /// The street corner with and without scene shadows, per light type.
     SceneShadows,
+    /// Tatarchuk's listing 2 transliterated to WGSL on the same plane, beside our POM.
+    SeedPort,
 }
 
 /// Planes stacked by the overdraw measurement, and how far apart (in plane sizes: several
@@ -276,6 +278,38 @@ impl Runner<'_> {
                 }),
             }
         }
+        Ok(())
+    }
+
+    /// The base material and the seed's own shader (listing 2 ported) on the same plane: our
+    /// POM, then the port, and their ratio.
+    fn seed_port(&mut self, size: (u32, u32)) -> Result<()> {
+        let place = (size, self.view.tiling);
+        let material = self.base.clone();
+        let view = self.view;
+        let mut scene = self.scene(size, &view)?;
+        let ours = self.case_variant(
+            &mut scene,
+            "seed_port",
+            place,
+            material.clone(),
+            "ours".into(),
+        )?;
+        scene.use_seed_port()?;
+        let times = scene.time(self.warmup, self.frames)?;
+        let port = self.record(
+            "seed_port",
+            place,
+            &material,
+            (TIMED_PASS, "seed port".to_owned()),
+            &times,
+        )?;
+        self.ratios.push(Ratio {
+            what: "seed port: ours / the seed's listing 2".to_owned(),
+            width: size.0,
+            height: size.1,
+            ratio: ours / port,
+        });
         Ok(())
     }
 
@@ -496,6 +530,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
         if wanted(Measurement::SceneShadows) {
             runner.scene_shadows(size)?;
+        }
+        if wanted(Measurement::SeedPort) {
+            runner.seed_port(size)?;
         }
     }
 

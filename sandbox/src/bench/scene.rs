@@ -79,7 +79,8 @@ impl BenchScene {
                 .with_gpu_timing(timing)
                 .with_depth_prepass(options.depth_prepass),
         );
-        app.add_plugin(PomPlugin);
+        app.add_plugin(PomPlugin)
+            .add_plugin(pom::seed_port::seed_port_plugin());
         app.finish().context("starting the GPU")?;
         let images = app
             .resources
@@ -191,6 +192,26 @@ impl BenchScene {
                 behind,
                 pom::GlobalTransform(behind.to_affine()),
             ));
+        }
+        Ok(())
+    }
+
+    /// Draws the plane with the seed's shader ([`pom::seed_port::SeedPortMaterial`], with the
+    /// parallax material's textures and shared settings) instead of ours.
+    pub fn use_seed_port(&mut self) -> Result<()> {
+        let planes: Vec<_> = self
+            .app
+            .world
+            .query_mut::<(pom::hecs::Entity, &ParallaxOcclusionMaterial)>()
+            .into_iter()
+            .map(|(entity, material)| (entity, pom::seed_port::SeedPortMaterial::like(material)))
+            .collect();
+        anyhow::ensure!(!planes.is_empty(), "the scene has no parallax plane");
+        for (entity, port) in planes {
+            self.app
+                .world
+                .remove_one::<ParallaxOcclusionMaterial>(entity)?;
+            self.app.world.insert_one(entity, port)?;
         }
         Ok(())
     }
