@@ -10,7 +10,8 @@ use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::render_and_capture;
 
 const ENTRY: &str = "parallax/pom.wgsl";
-const SHADED_RETURN: &str = "return shade(in, find_surface(in, front_facing));";
+const SHADED_RETURN: &str =
+    "return shade(in, find_surface(in, front_facing, fragment_footprint(in)));";
 
 fn copy_shader_sources() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pom-hot-reload-{}", std::process::id()));
@@ -71,7 +72,7 @@ fn a_broken_edit_keeps_the_last_good_pipeline_and_a_good_edit_swaps_in() {
     edit_entry(&dir, 1, |text| {
         text.replace(
             SHADED_RETURN,
-            "return shade(in, find_surface(in, front_facing)).colour;",
+            "return shade(in, find_surface(in, front_facing, fragment_footprint(in))).colour;",
         )
     });
     let after_broken_edit = render_and_capture(&mut app).unwrap();
