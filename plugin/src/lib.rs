@@ -124,6 +124,8 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::POST_SHADERS[2],
     #[cfg(feature = "dev-tools")]
     render::TEXEL_RATE_PROBE,
+    #[cfg(feature = "dev-tools")]
+    seed_port::SEED_PORT_SHADER,
 ];
 
 /// Re-exported so users name the same versions the plugin was built with.
