@@ -34,9 +34,15 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // texel rate, 3 phases, 2 far-field, 6 overdraw (1 plane, 4 back to front, 4 copies of one
     // mesh; with and without depth offset), 19 scene-shadow figures (the street corner without
     // shadows: 3 phases and the frame; with a sun, a spot, a point light: 4 phases and the
-    // frame each), 2 seed-port figures (ours and the seed's listing 2 on the same plane).
-    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 6 + 19 + 2));
-    for variant in ["ours", "seed port"] {
+    // frame each), 4 seed-port figures (ours and the seed's listing 2 on the same plane, near
+    // and far).
+    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 6 + 19 + 4));
+    for variant in [
+        "ours",
+        "seed port",
+        "ours, far field",
+        "seed port, far field",
+    ] {
         assert!(
             cases
                 .iter()

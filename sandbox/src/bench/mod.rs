@@ -282,34 +282,47 @@ impl Runner<'_> {
     }
 
     /// The base material and the seed's own shader (listing 2 ported) on the same plane: our
-    /// POM, then the port, and their ratio.
+    /// POM, then the port, and their ratio; then the same far away (every pixel past the LOD
+    /// threshold), where both only normal-map: the per-pixel base cost.
     fn seed_port(&mut self, size: (u32, u32)) -> Result<()> {
-        let place = (size, self.view.tiling);
-        let material = self.base.clone();
-        let view = self.view;
-        let mut scene = self.scene(size, &view)?;
-        let ours = self.case_variant(
-            &mut scene,
-            "seed_port",
-            place,
-            material.clone(),
-            "ours".into(),
-        )?;
-        scene.use_seed_port()?;
-        let times = scene.time(self.warmup, self.frames)?;
-        let port = self.record(
-            "seed_port",
-            place,
-            &material,
-            (TIMED_PASS, "seed port".to_owned()),
-            &times,
-        )?;
-        self.ratios.push(Ratio {
-            what: "seed port: ours / the seed's listing 2".to_owned(),
-            width: size.0,
-            height: size.1,
-            ratio: ours / port,
-        });
+        let texture_width = self.textures.height.size().0;
+        let far_tiling = far_field_tiling(size, texture_width, self.base.lod_threshold);
+        for (tiling, far) in [(self.view.tiling, false), (far_tiling, true)] {
+            let place = (size, tiling);
+            let material = self.base.clone();
+            let view = PreviewView {
+                tiling,
+                ..self.view
+            };
+            let mut scene = self.scene(size, &view)?;
+            let (ours, port) = if far {
+                ("ours, far field", "seed port, far field")
+            } else {
+                ("ours", "seed port")
+            };
+            let ours_ms = self.case_variant(
+                &mut scene,
+                "seed_port",
+                place,
+                material.clone(),
+                ours.into(),
+            )?;
+            scene.use_seed_port()?;
+            let times = scene.time(self.warmup, self.frames)?;
+            let port_ms = self.record(
+                "seed_port",
+                place,
+                &material,
+                (TIMED_PASS, port.into()),
+                &times,
+            )?;
+            self.ratios.push(Ratio {
+                what: format!("{ours} / the seed's listing 2"),
+                width: size.0,
+                height: size.1,
+                ratio: ours_ms / port_ms,
+            });
+        }
         Ok(())
     }
 
