@@ -14,8 +14,10 @@
 pub const DIRECTIONAL_CASCADES: usize = 3;
 
 /// A light's shadow maps; a component on the light's entity (without one the light casts no
-/// scene shadow; `LightShadows::default()` turns them on).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// scene shadow; `LightShadows::default()` turns them on). Scene scripts write it as
+/// `(enabled, map_size, softness, distance)`, absent fields at their defaults.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct LightShadows {
     /// Whether the light casts scene shadows (its parallax self-shadows do not depend on it).
     pub enabled: bool,
@@ -35,6 +37,34 @@ impl LightShadows {
     pub const MAX_MAP_SIZE: u32 = 8192;
     /// The widest filter, in texels.
     pub const MAX_SOFTNESS: f32 = 8.0;
+
+    /// The first field out of range and why, naming its limits (`None`: every field is valid);
+    /// what scene scripts report where [`LightShadows::sanitized`] would clamp.
+    pub fn problem(&self) -> Option<(&'static str, String)> {
+        let (min, max) = (Self::MIN_MAP_SIZE, Self::MAX_MAP_SIZE);
+        let max_softness = Self::MAX_SOFTNESS;
+        if !(min..=max).contains(&self.map_size) {
+            Some((
+                "map_size",
+                format!("map_size {} is outside {min}..={max}", self.map_size),
+            ))
+        } else if !(0.0..=max_softness).contains(&self.softness) {
+            Some((
+                "softness",
+                format!(
+                    "softness {} is outside 0..={max_softness} texels",
+                    self.softness
+                ),
+            ))
+        } else if !(self.distance.is_finite() && self.distance > 0.0) {
+            Some((
+                "distance",
+                format!("distance {} must be finite and above 0", self.distance),
+            ))
+        } else {
+            None
+        }
+    }
 
     /// Shadows switched off for this light.
     pub fn off() -> Self {

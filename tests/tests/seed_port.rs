@@ -2,8 +2,7 @@
 //! cleanly and agrees with our parallax material where the two do the same thing.
 
 use pom::preview::PreviewView;
-use pom::seed_port::SeedPortMaterial;
-use pom::{ParallaxOcclusionMaterial, TargetFormat, patterns};
+use pom::{TargetFormat, patterns};
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{in_error_scopes, render_and_capture_f32};
 
@@ -21,18 +20,10 @@ fn render(view_angle: f32, port: bool) -> image::Rgba32FImage {
     app.add_plugin(pom::seed_port::seed_port_plugin());
     app.finish().unwrap();
     if port {
-        let planes: Vec<_> = app
-            .world
-            .query::<(pom::hecs::Entity, &ParallaxOcclusionMaterial)>()
-            .iter()
-            .map(|(entity, material)| (entity, SeedPortMaterial::like(material)))
-            .collect();
-        for (entity, material) in planes {
-            app.world
-                .remove_one::<ParallaxOcclusionMaterial>(entity)
-                .unwrap();
-            app.world.insert_one(entity, material).unwrap();
-        }
+        assert_eq!(
+            pom::seed_port::replace_parallax_materials(&mut app.world),
+            1
+        );
     }
     in_error_scopes(&mut app, "warm-up", |app| Ok(app.update()?)).unwrap();
     render_and_capture_f32(&mut app).unwrap()

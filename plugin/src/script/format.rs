@@ -68,9 +68,10 @@ pub enum LightDesc {
         /// Illuminance in lux.
         #[serde(default = "bright_sun")]
         intensity: f32,
-        /// Scene shadows (shadow maps) of this light [default: on, `LightShadows::default()`].
+        /// Scene shadows (shadow maps) of this light, absent fields at their defaults [default:
+        /// none, the light casts no scene shadow].
         #[serde(default)]
-        shadows: Option<ShadowsDesc>,
+        shadows: Option<crate::LightShadows>,
     },
     /// A point light.
     Point {
@@ -85,9 +86,10 @@ pub enum LightDesc {
         /// Distance where it fades out.
         #[serde(default = "twenty")]
         range: f32,
-        /// Scene shadows (shadow maps) of this light [default: on, `LightShadows::default()`].
+        /// Scene shadows (shadow maps) of this light, absent fields at their defaults [default:
+        /// none, the light casts no scene shadow].
         #[serde(default)]
-        shadows: Option<ShadowsDesc>,
+        shadows: Option<crate::LightShadows>,
     },
     /// A spot light at `position` shining along `direction` (glTF's cone).
     Spot {
@@ -110,90 +112,16 @@ pub enum LightDesc {
         /// Half-angle where it reaches zero, in degrees (≤ 90).
         #[serde(default = "forty_five")]
         outer_degrees: f32,
-        /// Scene shadows (shadow maps) of this light [default: on, `LightShadows::default()`].
+        /// Scene shadows (shadow maps) of this light, absent fields at their defaults [default:
+        /// none, the light casts no scene shadow].
         #[serde(default)]
-        shadows: Option<ShadowsDesc>,
+        shadows: Option<crate::LightShadows>,
     },
-}
-
-/// A light's scene shadows as a script writes them: `crate::LightShadows` with a serde form,
-/// whose absent fields keep their defaults.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct ShadowsDesc {
-    /// Whether the light casts scene shadows.
-    pub enabled: bool,
-    /// Texels along each side of one map, `LightShadows::MIN_MAP_SIZE..=MAX_MAP_SIZE`.
-    pub map_size: u32,
-    /// Filter width in shadow-map texels, `0..=LightShadows::MAX_SOFTNESS`.
-    pub softness: f32,
-    /// Directional lights: how far from the camera the cascades reach, in world units (> 0).
-    pub distance: f32,
-}
-
-impl Default for ShadowsDesc {
-    fn default() -> Self {
-        crate::LightShadows::default().into()
-    }
-}
-
-impl From<crate::LightShadows> for ShadowsDesc {
-    fn from(shadows: crate::LightShadows) -> Self {
-        Self {
-            enabled: shadows.enabled,
-            map_size: shadows.map_size,
-            softness: shadows.softness,
-            distance: shadows.distance,
-        }
-    }
-}
-
-impl From<ShadowsDesc> for crate::LightShadows {
-    fn from(desc: ShadowsDesc) -> Self {
-        Self {
-            enabled: desc.enabled,
-            map_size: desc.map_size,
-            softness: desc.softness,
-            distance: desc.distance,
-        }
-    }
-}
-
-impl ShadowsDesc {
-    /// The first field out of range and why, naming its limits (`None`: every field is valid).
-    pub fn problem(&self) -> Option<(&'static str, String)> {
-        let (min, max) = (
-            crate::LightShadows::MIN_MAP_SIZE,
-            crate::LightShadows::MAX_MAP_SIZE,
-        );
-        let max_softness = crate::LightShadows::MAX_SOFTNESS;
-        if !(min..=max).contains(&self.map_size) {
-            Some((
-                "map_size",
-                format!("map_size {} is outside {min}..={max}", self.map_size),
-            ))
-        } else if !(0.0..=max_softness).contains(&self.softness) {
-            Some((
-                "softness",
-                format!(
-                    "softness {} is outside 0..={max_softness} texels",
-                    self.softness
-                ),
-            ))
-        } else if !(self.distance.is_finite() && self.distance > 0.0) {
-            Some((
-                "distance",
-                format!("distance {} must be finite and above 0", self.distance),
-            ))
-        } else {
-            None
-        }
-    }
 }
 
 impl LightDesc {
     /// The light's shadow settings, when the script gives them.
-    pub fn shadows(&self) -> Option<ShadowsDesc> {
+    pub fn shadows(&self) -> Option<crate::LightShadows> {
         let (Self::Directional { shadows, .. }
         | Self::Point { shadows, .. }
         | Self::Spot { shadows, .. }) = self;

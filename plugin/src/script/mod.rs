@@ -4,12 +4,13 @@
 
 mod check;
 mod format;
+mod lights;
 mod runner;
 mod stats;
 
 pub use format::{
-    CameraDesc, EntityDesc, LightDesc, MaterialDesc, MaterialPatch, Rect, Script, ShadowsDesc,
-    ShapeDesc, Statistic, Step, TransformDesc,
+    CameraDesc, EntityDesc, LightDesc, MaterialDesc, MaterialPatch, Rect, Script, ShapeDesc,
+    Statistic, Step, TransformDesc,
 };
 pub use runner::{parse_script, run_script, run_script_with};
 

@@ -8,14 +8,14 @@ use hecs::Entity;
 use image::RgbaImage;
 
 use super::check::check;
-use super::format::{CameraDesc, LightDesc, MaterialDesc, Script, ShapeDesc, Statistic, Step};
+use super::format::{CameraDesc, MaterialDesc, Script, ShapeDesc, Statistic, Step};
+use super::lights::{light_towards, spawn_light};
 use super::stats::{measure, required_view};
 use super::{Outcome, Report, RunOptions, ScriptError, StepReport};
 use crate::{
     AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, Exposure, GpuContext,
-    HeightSource, Image, LightShadows, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight,
-    PomPlugin, PomPreset, Projection, RenderPlugin, SpotLight, TextureKind, Transform,
-    flip_compare, load_gltf,
+    HeightSource, Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
+    PomPreset, Projection, RenderPlugin, TextureKind, Transform, flip_compare, load_gltf,
 };
 
 /// Runs the script at `path` with default options (no blessing, failure images next to the
@@ -112,76 +112,6 @@ fn look(position: Vec3, target: Vec3) -> Transform {
         Vec3::Y
     };
     Transform::from_translation(position).looking_at(target, up)
-}
-
-fn light_towards(direction: Vec3) -> Transform {
-    let up = if direction.normalize_or_zero().y.abs() > 0.99 {
-        Vec3::Z
-    } else {
-        Vec3::Y
-    };
-    Transform::IDENTITY.looking_at(direction, up)
-}
-
-/// Spawns the light `desc` describes, with its `LightShadows` when the script sets them.
-fn spawn_light(world: &mut hecs::World, desc: &LightDesc) -> Entity {
-    let linear = |color: &[f32; 3]| Color::linear_rgb(color[0], color[1], color[2]);
-    let entity = match desc {
-        LightDesc::Directional {
-            direction,
-            color,
-            intensity,
-            ..
-        } => world.spawn((
-            DirectionalLight {
-                color: linear(color),
-                intensity: *intensity,
-            },
-            light_towards(vec3(*direction)),
-        )),
-        LightDesc::Point {
-            position,
-            color,
-            intensity,
-            range,
-            ..
-        } => world.spawn((
-            PointLight {
-                color: linear(color),
-                intensity: *intensity,
-                range: *range,
-            },
-            Transform::from_translation(vec3(*position)),
-        )),
-        LightDesc::Spot {
-            position,
-            direction,
-            color,
-            intensity,
-            range,
-            inner_degrees,
-            outer_degrees,
-            ..
-        } => {
-            let mut transform = light_towards(vec3(*direction));
-            transform.translation = vec3(*position);
-            world.spawn((
-                SpotLight {
-                    color: linear(color),
-                    intensity: *intensity,
-                    range: *range,
-                    inner_angle: inner_degrees.to_radians(),
-                    outer_angle: outer_degrees.to_radians(),
-                },
-                transform,
-            ))
-        }
-    };
-    if let Some(shadows) = desc.shadows() {
-        // Just spawned, so the entity exists.
-        let _ = world.insert_one(entity, LightShadows::from(shadows));
-    }
-    entity
 }
 
 impl<'a> Runner<'a> {
@@ -685,6 +615,7 @@ fn stat_name(stat: &Statistic) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{LightShadows, SpotLight};
 
     #[test]
     fn a_lights_shadow_settings_reach_its_component() {

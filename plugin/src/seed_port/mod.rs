@@ -182,6 +182,22 @@ impl Material for SeedPortMaterial {
     }
 }
 
+/// Puts the seed's shader in place of every parallax material in `world`, with its textures and
+/// shared settings ([`SeedPortMaterial::like`]); returns how many it replaced.
+pub fn replace_parallax_materials(world: &mut hecs::World) -> usize {
+    let planes: Vec<_> = world
+        .query_mut::<(hecs::Entity, &ParallaxOcclusionMaterial)>()
+        .into_iter()
+        .map(|(entity, material)| (entity, SeedPortMaterial::like(material)))
+        .collect();
+    for (entity, port) in &planes {
+        // Both listed by the query above, so the entity and its component exist.
+        let _ = world.remove_one::<ParallaxOcclusionMaterial>(*entity);
+        let _ = world.insert_one(*entity, port.clone());
+    }
+    planes.len()
+}
+
 /// Draws [`SeedPortMaterial`]s (the bench adds it beside the parallax plugin).
 pub fn seed_port_plugin() -> MaterialPlugin<SeedPortMaterial> {
     MaterialPlugin::default()

@@ -199,20 +199,8 @@ impl BenchScene {
     /// Draws the plane with the seed's shader ([`pom::seed_port::SeedPortMaterial`], with the
     /// parallax material's textures and shared settings) instead of ours.
     pub fn use_seed_port(&mut self) -> Result<()> {
-        let planes: Vec<_> = self
-            .app
-            .world
-            .query_mut::<(pom::hecs::Entity, &ParallaxOcclusionMaterial)>()
-            .into_iter()
-            .map(|(entity, material)| (entity, pom::seed_port::SeedPortMaterial::like(material)))
-            .collect();
-        anyhow::ensure!(!planes.is_empty(), "the scene has no parallax plane");
-        for (entity, port) in planes {
-            self.app
-                .world
-                .remove_one::<ParallaxOcclusionMaterial>(entity)?;
-            self.app.world.insert_one(entity, port)?;
-        }
+        let replaced = pom::seed_port::replace_parallax_materials(&mut self.app.world);
+        anyhow::ensure!(replaced > 0, "the scene has no parallax plane");
         Ok(())
     }
 
