@@ -95,8 +95,8 @@ pub use parallax::{
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{
-    GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPhase, RenderPlugin, TargetFormat,
-    TimingMode, capture, capture_f32, capture_scene,
+    GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
+    TargetFormat, TimingMode, capture, capture_f32, capture_scene,
 };
 pub use resources::Resources;
 #[cfg(feature = "scene-tests")]
@@ -117,7 +117,9 @@ pub use transform::{
 /// validation tests.
 pub const SHADERS: &[render::shaders::ComposedShader] = &[
     lit::LIT_SHADER,
+    lit::LIT_DEFERRED_SHADER,
     parallax::PARALLAX_SHADER,
+    parallax::PARALLAX_DEFERRED_SHADER,
     render::shaders::SOBEL,
     render::POST_SHADERS[0],
     render::POST_SHADERS[1],

@@ -12,7 +12,8 @@ pub use golden::{
     FlipTolerance, GoldenError, ImagesDiffer, check_golden, compare_images, golden_dir,
 };
 
-use pom::{App, AppError, GpuContext, RenderPlugin};
+use pom::render::Renderer;
+use pom::{App, AppError, GpuContext, RenderPath, RenderPlugin};
 
 /// What can fail while driving a test app.
 #[derive(Debug, thiserror::Error)]
@@ -122,4 +123,78 @@ pub fn render_and_capture_f32(app: &mut App) -> Result<image::Rgba32FImage, Harn
         app.update()?;
         Ok(pom::capture_f32(app)?)
     })
+}
+
+/// Most a deferred frame may differ from the forward one (mean FLIP), as the deferred-path issue
+/// sets it.
+pub const PATHS_AGREE_MEAN: f32 = 0.005;
+
+/// Renders the app's next frame on the forward path and the one after on the deferred path
+/// (inside error scopes), checks that the two agree (mean FLIP ≤ [`PATHS_AGREE_MEAN`]; on a
+/// failure both images and the FLIP error map are written under `target/deferred-path/NAME-*`),
+/// and returns the forward image. The app keeps the forward path afterwards. Scenes must be
+/// still from one frame to the next.
+pub fn render_both_paths(app: &mut App, name: &str) -> Result<image::RgbaImage, PathsDiffer> {
+    let forward = render_on_path(app, RenderPath::Forward)?;
+    let deferred = render_on_path(app, RenderPath::Deferred)?;
+    set_path(app, RenderPath::Forward);
+    let ran_deferred = app
+        .resources
+        .get::<Renderer>()
+        .is_some_and(Renderer::runs_deferred);
+    if !ran_deferred {
+        return Err(PathsDiffer::NotDeferred(name.to_owned()));
+    }
+    let comparison = pom::flip_compare(&forward, &deferred, 0.99)
+        .ok_or_else(|| PathsDiffer::NotDeferred(format!("{name}: sizes differ")))?;
+    eprintln!(
+        "{name}: forward vs deferred FLIP mean {:.5}, p99 {:.4}",
+        comparison.mean, comparison.at_percentile
+    );
+    if comparison.mean > PATHS_AGREE_MEAN || std::env::var_os("POM_SAVE_PATHS").is_some() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/deferred-path");
+        let _ = std::fs::create_dir_all(&dir);
+        let _ = forward.save(dir.join(format!("{name}-forward.png")));
+        let _ = deferred.save(dir.join(format!("{name}-deferred.png")));
+        let _ = comparison
+            .error_map
+            .save(dir.join(format!("{name}-difference.png")));
+        return Err(PathsDiffer::Images {
+            name: name.to_owned(),
+            mean: comparison.mean,
+        });
+    }
+    Ok(forward)
+}
+
+/// Why [`render_both_paths`] failed.
+#[derive(Debug, thiserror::Error)]
+pub enum PathsDiffer {
+    /// Rendering failed.
+    #[error(transparent)]
+    Harness(#[from] HarnessError),
+    /// The deferred frame ran forward (the adapter or a material cannot run it).
+    #[error("{0}: the deferred frame ran forward")]
+    NotDeferred(String),
+    /// The two frames differ.
+    #[error("{name}: forward and deferred differ, FLIP mean {mean:.5} > {PATHS_AGREE_MEAN}")]
+    Images {
+        /// The scene.
+        name: String,
+        /// Their mean FLIP error.
+        mean: f32,
+    },
+}
+
+fn set_path(app: &mut App, path: RenderPath) {
+    if let Some(renderer) = app.resources.get_mut::<Renderer>() {
+        renderer.set_path(path);
+    }
+}
+
+/// Renders one frame on `path` and captures it.
+pub fn render_on_path(app: &mut App, path: RenderPath) -> Result<image::RgbaImage, HarnessError> {
+    app.finish()?;
+    set_path(app, path);
+    render_and_capture(app)
 }

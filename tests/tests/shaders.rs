@@ -40,7 +40,9 @@ fn every_composed_shader_validates() {
         };
         let mut validator = naga::valid::Validator::new(
             naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default() | naga::valid::Capabilities::EARLY_DEPTH_TEST,
+            naga::valid::Capabilities::default()
+                | naga::valid::Capabilities::EARLY_DEPTH_TEST
+                | naga::valid::Capabilities::PRIMITIVE_INDEX,
         );
         if let Err(error) = validator.validate(&module) {
             failures.push(error.emit_to_string_with_path(&source, shader.name));

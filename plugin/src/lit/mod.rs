@@ -118,6 +118,32 @@ pub const LIT_SHADER: ComposedShader = ComposedShader {
     ],
 };
 
+/// The lit material's visibility-pass entry for masked surfaces.
+pub const LIT_DEFERRED_ENTRY: WgslFile = crate::wgsl_file!("lit/lit_deferred.wgsl");
+
+/// The lit material's shader for the deferred path: [`LIT_SHADER`] and its visibility pass (it
+/// shades in the opaque phase on both paths).
+pub const LIT_DEFERRED_SHADER: ComposedShader = ComposedShader {
+    name: "lit.wgsl (deferred)",
+    constants: &[
+        shaders::deferred_header,
+        LightingModel::wgsl_constants,
+        AlphaMode::wgsl_constants,
+        LitParams::wgsl,
+    ],
+    files: &[
+        shaders::FRAME,
+        shaders::PARAMS,
+        shaders::MESH_VERTEX,
+        shaders::SHADOWS,
+        shaders::TANGENT_SPACE,
+        shaders::LIGHTING,
+        LIT_ENTRY,
+        shaders::VISIBILITY,
+        LIT_DEFERRED_ENTRY,
+    ],
+};
+
 /// What one lit pipeline is compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct LitPipelineKey {
@@ -186,6 +212,18 @@ impl Material for LitMaterial {
     fn prepass_fragment(key: Self::Key) -> Option<FragmentVariant> {
         // A cut-out surface must leave its holes out of the depth too.
         (key.alpha_mode == AlphaMode::Mask).then(|| key.variant("fs_prepass_alpha_mask"))
+    }
+
+    fn deferred_shader() -> Option<ComposedShader> {
+        Some(LIT_DEFERRED_SHADER)
+    }
+
+    fn visibility_fragment(key: Self::Key) -> FragmentVariant {
+        if key.alpha_mode == AlphaMode::Mask {
+            key.variant("fs_visibility_alpha_mask")
+        } else {
+            FragmentVariant::entry("fs_visibility")
+        }
     }
 
     fn cull_mode(key: Self::Key) -> Option<wgpu::Face> {

@@ -7,10 +7,12 @@ use std::ops::Range;
 
 use glam::Mat4;
 
-use super::pipelines::MaterialPipelines;
+use super::deferred::{DeferredResolve, ResolveTargets};
+use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
 use crate::render::layout::MeshPass;
 use crate::render::object_buffer::ObjectBuffer;
+use crate::render::shaders::ComposedShader;
 use crate::render::texture_bind_groups::TextureBindGroups;
 use crate::render::{
     DrawPhase, DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
@@ -69,6 +71,8 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) eye: (glam::Vec3, glam::Vec3),
     /// Whether the frame renders shadow maps (casters then need their shadow pipelines).
     pub(crate) shadow_maps: bool,
+    /// The targets of the deferred resolve, on frames that run the deferred path.
+    pub(crate) deferred: Option<ResolveTargets<'a>>,
 }
 
 /// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
@@ -105,6 +109,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     // The fragment invocation counter (tests), bound at binding 4 when present.
     counter: Option<wgpu::Buffer>,
     textures: TextureBindGroups,
+    /// The deferred resolve's inputs, where the material compiled its deferred shader.
+    resolve: Option<DeferredResolve>,
     pub(crate) batches: Vec<Batch<M::Key>>,
     order: Vec<SortEntry<M::Key>>,
     // The model matrix (and whether it receives shadows) and transform of each sorted slot,
@@ -181,7 +187,7 @@ fn prepass_depth_entry() -> wgpu::BindGroupLayoutEntry {
 /// Bindings 5 to 7 of group 0: what receivers read of each shadow map, the maps, their
 /// comparison sampler.
 fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
-    let visibility = wgpu::ShaderStages::FRAGMENT;
+    let visibility = wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
     [
         wgpu::BindGroupLayoutEntry {
             binding: 5,
@@ -227,12 +233,15 @@ fn counter_entry() -> wgpu::BindGroupLayoutEntry {
 }
 
 impl<M: Material> MaterialBatches<M> {
-    /// Compiles `M`'s shader for scene targets of `color_format`, in frames with or without
-    /// a depth `prepass`; pipelines follow on first use. With a `counter` the shader counts
-    /// its fragment invocations into it.
+    /// Compiles `shader` (`M`'s, or its deferred one: then `tag` marks its visibility ids)
+    /// for scene targets of `color_format`, in frames with or without a depth `prepass`;
+    /// pipelines follow on first use. With a `counter` the shader counts its fragment
+    /// invocations into it.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         gpu: &GpuContext,
         frame: &FrameUniformBuffer,
+        (shader, deferred_tag): (ComposedShader, Option<u32>),
         color_format: wgpu::TextureFormat,
         prepass: bool,
         depth: &DepthBindings<'_>,
@@ -240,11 +249,11 @@ impl<M: Material> MaterialBatches<M> {
     ) -> Self {
         let device = &gpu.device;
         let source = match counter {
-            Some(_) => M::shader().counting_source(),
-            None => M::shader().source(),
+            Some(_) => shader.counting_source(),
+            None => shader.source(),
         };
-        let shader =
-            crate::render::shaders::create_module(device, M::shader().name, source.clone());
+        let source = crate::render::shaders::for_scene_format(source, color_format);
+        let module = crate::render::shaders::create_module(device, shader.name, source.clone());
         let mut layout_entries = vec![
             FrameUniformBuffer::layout_entry(),
             ObjectBuffer::<MeshTransform>::layout_entry(1),
@@ -264,6 +273,18 @@ impl<M: Material> MaterialBatches<M> {
             label: Some(&format!("{} pipeline layout", M::NAME)),
             bind_group_layouts: &[Some(&frame_layout), Some(textures.layout())],
             immediate_size: 0,
+        });
+        let resolve = deferred_tag.map(|_| DeferredResolve::new(gpu, M::NAME, color_format));
+        let resolve_layout = resolve.as_ref().map(|resolve| {
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(&format!("{} deferred resolve layout", M::NAME)),
+                bind_group_layouts: &[
+                    Some(&frame_layout),
+                    Some(textures.layout()),
+                    Some(resolve.layout()),
+                ],
+                immediate_size: 0,
+            })
         });
         let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
         let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
@@ -290,7 +311,16 @@ impl<M: Material> MaterialBatches<M> {
             DepthUse::Shading,
         );
         Self {
-            pipelines: MaterialPipelines::new(shader, &source, layout, color_format, prepass),
+            pipelines: MaterialPipelines::new(PipelineSetup {
+                shader: module,
+                source,
+                layout,
+                resolve_layout,
+                tag: deferred_tag.unwrap_or(0),
+                color_format,
+                prepass,
+            }),
+            resolve,
             frame_layout,
             transforms,
             uniforms,
@@ -456,13 +486,60 @@ impl<M: Material> MaterialBatches<M> {
         }
         self.textures
             .prepare(gpu, assets, self.batches.iter().map(|batch| batch.textures));
-        self.pipelines.set_scene_shadows(inputs.shadow_maps);
+        self.pipelines
+            .set_frame(inputs.shadow_maps, inputs.deferred.is_some());
         for batch in &self.batches {
             self.pipelines.ensure(&gpu.device, batch.key);
             if inputs.shadow_maps && batch.casts_shadows && !M::blends(batch.key) {
                 self.pipelines.ensure_shadow(&gpu.device, batch.key);
             }
         }
+        if let Some(resolve) = &mut self.resolve {
+            let pipelines = &self.pipelines;
+            match &inputs.deferred {
+                Some(targets) => resolve.prepare(
+                    gpu,
+                    targets,
+                    &self.batches,
+                    |batch| pipelines.resolves_in_compute(batch.key),
+                    assets,
+                ),
+                None => resolve.skip(),
+            }
+        }
+    }
+
+    /// Whether the deferred resolve has pixels of this material to shade this frame.
+    pub(crate) fn has_resolves(&self) -> bool {
+        self.resolve.as_ref().is_some_and(DeferredResolve::has_work)
+    }
+
+    /// Records the deferred resolve's dispatches of this frame into `pass`.
+    pub(crate) fn dispatch_resolves(&self, pass: &mut wgpu::ComputePass<'_>) {
+        let Some(resolve) = &self.resolve else {
+            return;
+        };
+        // Slot 0 of the frame uniform: the camera's view.
+        pass.set_bind_group(0, &self.frame_bind_group, &[0]);
+        let mut bound_key = None;
+        let mut bound_textures = None;
+        resolve.dispatch(pass, &self.batches, |pass, batch| {
+            let (Some(pipeline), Some(textures)) = (
+                self.pipelines.resolve(&batch.key),
+                self.textures.get(&batch.textures),
+            ) else {
+                return false;
+            };
+            if bound_key != Some(batch.key) {
+                pass.set_pipeline(pipeline);
+                bound_key = Some(batch.key);
+            }
+            if bound_textures != Some(batch.textures) {
+                pass.set_bind_group(1, textures, &[]);
+                bound_textures = Some(batch.textures);
+            }
+            true
+        });
     }
 
     /// Whether any batch of the last prepared frame blends (draws in the transparent phase).

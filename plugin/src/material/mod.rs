@@ -4,6 +4,7 @@
 
 mod batches;
 mod declare;
+mod deferred;
 mod layout_check;
 mod param_types;
 mod params;
@@ -26,6 +27,7 @@ pub use plugin::{
 pub(crate) use batches::DepthBindings;
 #[cfg(feature = "dev-tools")]
 pub(crate) use plugin::MaterialRegistry;
+pub(crate) use plugin::material_without_deferred_shader;
 
 use std::fmt::Debug;
 use std::hash::Hash;
@@ -51,7 +53,8 @@ pub struct TextureFacts {
     pub mip_levels: u32,
 }
 
-/// The fragment entry point and pipeline-overridable constants of one pipeline variant.
+/// The entry point (fragment, or compute for a deferred resolve) and pipeline-overridable
+/// constants of one pipeline variant.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FragmentVariant {
     /// The `@fragment` function.
@@ -130,6 +133,29 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// `LessEqual`, never written): [`Material::fragment`] by default.
     fn fragment_after_prepass(key: Self::Key) -> FragmentVariant {
         Self::fragment(key)
+    }
+    /// The material's shader for the deferred path ([`crate::RenderPath`]): the constants of
+    /// [`Material::shader`] after [`crate::render::shaders::deferred_header`], its files, then the core's
+    /// [`crate::render::shaders::VISIBILITY`] (and
+    /// [`crate::render::shaders::DEFERRED_RESOLVE`] for a compute resolve) and the
+    /// material's own deferred entry points. `None` (the default): an app that draws this
+    /// material renders forward (the deferred path needs every opaque draw in the visibility
+    /// buffer).
+    fn deferred_shader() -> Option<ComposedShader> {
+        None
+    }
+    /// The fragment stage of `key` in the visibility pass (the deferred path's prepass, which
+    /// also writes each pixel's id): the core's `fs_visibility` by default. A material whose
+    /// [`Material::prepass_fragment`] discards or moves the depth names its twin, which does the
+    /// same and returns `visibility_id(...)`.
+    fn visibility_fragment(_key: Self::Key) -> FragmentVariant {
+        FragmentVariant::entry("fs_visibility")
+    }
+    /// The compute entry point (and constants) that shades `key`'s pixels from the visibility
+    /// buffer on the deferred path, in its deferred shader; `None` (the default): `key` draws in
+    /// the opaque phase on both paths.
+    fn deferred_resolve(_key: Self::Key) -> Option<FragmentVariant> {
+        None
     }
     /// The uniform, given the textures as the GPU holds them (`None`: the slot's default).
     fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> Self::Uniform;

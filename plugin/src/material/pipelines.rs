@@ -10,6 +10,11 @@ use crate::render::layout::{MeshPass, MeshPipelineDescriptor, mesh_pipeline};
 pub(crate) struct MaterialPipelines<M: Material> {
     shader: wgpu::ShaderModule,
     layout: wgpu::PipelineLayout,
+    /// The deferred resolve's layout (groups 0 and 1 as `layout`, then the resolve's group
+    /// 2), where the module holds `M`'s deferred shader.
+    resolve_layout: Option<wgpu::PipelineLayout>,
+    /// `M`'s place among the app's materials, from 1: its visibility ids carry it.
+    tag: u32,
     color_format: wgpu::TextureFormat,
     /// Whether the frame has a depth prepass (the opaque pipelines' depth state follows).
     prepass: bool,
@@ -17,7 +22,10 @@ pub(crate) struct MaterialPipelines<M: Material> {
     declares_scene_shadows: bool,
     /// Whether this frame renders shadow maps: the shading pipelines then read them.
     scene_shadows: bool,
+    /// Whether this frame runs the deferred path.
+    deferred: bool,
     pipelines: HashMap<(MeshPass, bool, M::Key), wgpu::RenderPipeline>,
+    resolve_pipelines: HashMap<(bool, M::Key), wgpu::ComputePipeline>,
 }
 
 /// The pipeline-overridable constant of shadows.wgsl that compiles the shadow-map lookups in:
@@ -25,43 +33,73 @@ pub(crate) struct MaterialPipelines<M: Material> {
 /// even where it does not run; measured in sandbox/BENCHMARKS.md, "scene shadows").
 const SCENE_SHADOWS: &str = "SCENE_SHADOWS";
 
+/// The pipeline-overridable constant of visibility.wgsl that holds the material's tag.
+const VISIBILITY_TAG: &str = "VISIBILITY_TAG";
+
+/// How a material's pipelines are made: its module and layouts, its tag, the scene format and
+/// whether frames have a depth prepass.
+pub(crate) struct PipelineSetup {
+    pub(crate) shader: wgpu::ShaderModule,
+    /// The module's WGSL (to see whether it receives scene shadows).
+    pub(crate) source: String,
+    pub(crate) layout: wgpu::PipelineLayout,
+    /// Present where the module is `M`'s deferred shader.
+    pub(crate) resolve_layout: Option<wgpu::PipelineLayout>,
+    pub(crate) tag: u32,
+    pub(crate) color_format: wgpu::TextureFormat,
+    pub(crate) prepass: bool,
+}
+
 impl<M: Material> MaterialPipelines<M> {
-    /// No pipelines yet; they will come from `shader` with `layout`, for scene targets of
-    /// `color_format`, in frames with or without a depth `prepass`.
-    /// `source` is the shader's WGSL (to see whether it receives scene shadows).
-    pub(crate) fn new(
-        shader: wgpu::ShaderModule,
-        source: &str,
-        layout: wgpu::PipelineLayout,
-        color_format: wgpu::TextureFormat,
-        prepass: bool,
-    ) -> Self {
+    /// No pipelines yet; they will come from `setup`.
+    pub(crate) fn new(setup: PipelineSetup) -> Self {
         Self {
-            shader,
-            layout,
-            color_format,
-            prepass,
-            declares_scene_shadows: source.contains(&format!("override {SCENE_SHADOWS}")),
+            declares_scene_shadows: setup.source.contains(&format!("override {SCENE_SHADOWS}")),
+            shader: setup.shader,
+            layout: setup.layout,
+            resolve_layout: setup.resolve_layout,
+            tag: setup.tag,
+            color_format: setup.color_format,
+            prepass: setup.prepass,
             scene_shadows: false,
+            deferred: false,
             pipelines: HashMap::new(),
+            resolve_pipelines: HashMap::new(),
         }
     }
 
-    /// Sets whether this frame renders shadow maps (which shading pipelines are used).
-    pub(crate) fn set_scene_shadows(&mut self, scene_shadows: bool) {
+    /// Sets whether this frame renders shadow maps (which shading pipelines are used) and
+    /// whether it runs the deferred path (which the renderer only chooses where every material
+    /// has its deferred shader).
+    pub(crate) fn set_frame(&mut self, scene_shadows: bool, deferred: bool) {
         self.scene_shadows = scene_shadows && self.declares_scene_shadows;
+        self.deferred = deferred && self.resolve_layout.is_some();
+    }
+
+    /// Whether `key`'s pixels are shaded by the deferred resolve this frame.
+    pub(crate) fn resolves_in_compute(&self, key: M::Key) -> bool {
+        self.deferred && !M::blends(key) && M::deferred_resolve(key).is_some()
     }
 
     /// Whether `pass` of this frame reads the shadow maps.
     fn reads_shadow_maps(&self, pass: MeshPass) -> bool {
-        self.scene_shadows && !matches!(pass, MeshPass::Prepass | MeshPass::Shadow)
+        self.scene_shadows
+            && !matches!(
+                pass,
+                MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow
+            )
     }
 
     /// The passes a draw of `key` takes part in: the transparent one for a blending key,
-    /// else the prepass (when frames have one) and the opaque one.
+    /// else the prepass (the visibility pass on deferred frames; when frames have one) and the
+    /// opaque one (unless the deferred resolve shades it).
     pub(crate) fn passes(&self, key: M::Key) -> &'static [MeshPass] {
         if M::blends(key) {
             &[MeshPass::Transparent]
+        } else if self.resolves_in_compute(key) {
+            &[MeshPass::Visibility]
+        } else if self.deferred {
+            &[MeshPass::Visibility, MeshPass::OpaqueAfterPrepass]
         } else if self.prepass {
             &[MeshPass::Prepass, MeshPass::OpaqueAfterPrepass]
         } else {
@@ -72,6 +110,7 @@ impl<M: Material> MaterialPipelines<M> {
     /// The pass a draw of `key` takes in `phase`, if it draws there at all.
     pub(crate) fn pass_in(&self, phase: DrawPhase, key: M::Key) -> Option<MeshPass> {
         let wanted = match phase {
+            DrawPhase::Prepass if self.deferred => MeshPass::Visibility,
             DrawPhase::Prepass => MeshPass::Prepass,
             DrawPhase::Transparent => MeshPass::Transparent,
             _ if self.prepass => MeshPass::OpaqueAfterPrepass,
@@ -86,6 +125,44 @@ impl<M: Material> MaterialPipelines<M> {
         for &pass in self.passes(key) {
             self.ensure_pass(device, pass, key);
         }
+        if self.resolves_in_compute(key) {
+            self.ensure_resolve(device, key);
+        }
+    }
+
+    fn ensure_resolve(&mut self, device: &wgpu::Device, key: M::Key) {
+        let shadowed = self.scene_shadows;
+        let (Some(layout), Some(mut entry)) = (&self.resolve_layout, M::deferred_resolve(key))
+        else {
+            return;
+        };
+        if self.resolve_pipelines.contains_key(&(shadowed, key)) {
+            return;
+        }
+        if shadowed {
+            entry.constants.push((SCENE_SHADOWS, 1.0));
+        }
+        entry.constants.push((VISIBILITY_TAG, f64::from(self.tag)));
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(&format!(
+                "{} deferred resolve {key:?} shadowed {shadowed}",
+                M::NAME
+            )),
+            layout: Some(layout),
+            module: &self.shader,
+            entry_point: Some(entry.entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &entry.constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        self.resolve_pipelines.insert((shadowed, key), pipeline);
+    }
+
+    /// The deferred resolve's pipeline of `key`, once [`MaterialPipelines::ensure`]d.
+    pub(crate) fn resolve(&self, key: &M::Key) -> Option<&wgpu::ComputePipeline> {
+        self.resolve_pipelines.get(&(self.scene_shadows, *key))
     }
 
     /// Compiles `key`'s shadow-map pipeline unless it exists (only frames with shadow maps
@@ -101,6 +178,13 @@ impl<M: Material> MaterialPipelines<M> {
         }
         let mut fragment = match pass {
             MeshPass::Prepass => M::prepass_fragment(key),
+            MeshPass::Visibility => {
+                let mut variant = M::visibility_fragment(key);
+                variant
+                    .constants
+                    .push((VISIBILITY_TAG, f64::from(self.tag)));
+                Some(variant)
+            }
             MeshPass::Shadow => M::shadow_fragment(key),
             MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
@@ -137,11 +221,15 @@ impl<M: Material> MaterialPipelines<M> {
         let mut rebuilt = Self {
             shader,
             layout: self.layout.clone(),
+            resolve_layout: self.resolve_layout.clone(),
+            tag: self.tag,
             color_format: self.color_format,
             prepass: self.prepass,
             declares_scene_shadows: self.declares_scene_shadows,
             scene_shadows: self.scene_shadows,
+            deferred: self.deferred,
             pipelines: HashMap::new(),
+            resolve_pipelines: HashMap::new(),
         };
         let keys: std::collections::BTreeSet<M::Key> =
             self.pipelines.keys().map(|(_, _, key)| *key).collect();

@@ -11,6 +11,7 @@ use hecs::{Entity, World};
 
 use super::Material;
 use super::batches::{DepthBindings, ExtractedDraw, MaterialBatches, PrepareInputs};
+use super::deferred::ResolveTargets;
 #[cfg(feature = "dev-tools")]
 use crate::render::shaders::ComposedShader;
 use crate::render::{
@@ -96,9 +97,13 @@ pub(crate) type RebuiltPipelines = Box<dyn Any>;
 /// One registered material type.
 pub(crate) struct MaterialEntry {
     type_id: TypeId,
-    /// Its shader as compiled.
+    name: &'static str,
+    /// Its shader as compiled (its deferred shader where it has one and the adapter the
+    /// visibility pass).
     #[cfg(feature = "dev-tools")]
     pub(crate) shader: ComposedShader,
+    /// Whether its pipelines can draw the visibility pass (it compiled its deferred shader).
+    deferred: bool,
     /// Whether entities of an archetype have it.
     has: fn(&hecs::Archetype) -> bool,
     /// Whether it also draws, with its default, meshes that have no registered material.
@@ -137,6 +142,20 @@ impl MaterialRegistry {
     }
 }
 
+/// The first of the app's materials that cannot draw the visibility pass, if any: the deferred
+/// path needs them all.
+pub(crate) fn material_without_deferred_shader(resources: &Resources) -> Option<&'static str> {
+    resources
+        .get::<MaterialRegistry>()?
+        .entries
+        .iter()
+        .find(|entry| !entry.deferred)
+        .map(|entry| entry.name)
+}
+
+/// Most materials the visibility ids tell apart (their tag has 8 bits; 0 is "none").
+const MAX_VISIBILITY_TAGS: usize = 255;
+
 /// This frame's draws of `M`, as extracted. A resource.
 pub(crate) struct ExtractedMaterials<M> {
     pub(crate) draws: Vec<ExtractedDraw<M>>,
@@ -169,6 +188,8 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
         }
         registry.entries.push(MaterialEntry {
             type_id: TypeId::of::<M>(),
+            name: M::NAME,
+            deferred: false,
             has: |archetype| archetype.has::<M>(),
             draws_meshes_without_material: self.draws_meshes_without_material,
             #[cfg(feature = "dev-tools")]
@@ -206,6 +227,18 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                     .is_some_and(MaterialBatches::blends_any)
             },
         );
+        phases.add_resolve::<M>(
+            |resources, pass| {
+                if let Some(batches) = resources.get::<MaterialBatches<M>>() {
+                    batches.dispatch_resolves(pass);
+                }
+            },
+            |resources| {
+                resources
+                    .get::<MaterialBatches<M>>()
+                    .is_some_and(MaterialBatches::has_resolves)
+            },
+        );
         phases.add_shadow_draw::<M>(|resources, pass, slot| {
             if let (Some(batches), Some(renderer)) = (
                 resources.get::<MaterialBatches<M>>(),
@@ -238,9 +271,34 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .resources
             .get::<FragmentInvocationCounter>()
             .map(|counter| counter.buffer().clone());
+        // The deferred shader where the material has one and the adapter the visibility pass;
+        // its tag is its place in the registry.
+        let tag = app
+            .resources
+            .get::<MaterialRegistry>()
+            .and_then(|registry| {
+                registry
+                    .entries
+                    .iter()
+                    .position(|entry| entry.type_id == TypeId::of::<M>())
+            })
+            .filter(|position| *position < MAX_VISIBILITY_TAGS)
+            .map(|position| position as u32 + 1);
+        let shader = match (M::deferred_shader(), tag) {
+            (Some(shader), Some(tag))
+                if gpu
+                    .device
+                    .features()
+                    .contains(wgpu::Features::PRIMITIVE_INDEX) =>
+            {
+                (shader, Some(tag))
+            }
+            _ => (M::shader(), None),
+        };
         let batches = MaterialBatches::<M>::new(
             gpu,
             &renderer.frame,
+            shader,
             target.scene_format(),
             renderer.depth_prepass,
             &depth_bindings(
@@ -252,6 +310,17 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             counter,
         );
         app.insert_resource(batches);
+        if let Some(entry) = app
+            .resources
+            .get_or_default::<MaterialRegistry>()
+            .entry_mut::<M>()
+        {
+            entry.deferred = shader.1.is_some();
+            #[cfg(feature = "dev-tools")]
+            {
+                entry.shader = shader.0;
+            }
+        }
         Ok(())
     }
 }
@@ -405,6 +474,19 @@ fn prepare_materials<M: Material>(
                                 &renderer.shadow_maps,
                                 target,
                             );
+                            let deferred = renderer
+                                .visibility
+                                .as_ref()
+                                .filter(|_| renderer.deferred)
+                                .map(|visibility| ResolveTargets {
+                                    visibility: &visibility.view,
+                                    scene: &target.scene_view,
+                                    target: target.id(),
+                                    size: target.size(),
+                                    view_projection: glam::Mat4::from_cols_array_2d(
+                                        &frame.frame.view_projection,
+                                    ),
+                                });
                             let inputs = PrepareInputs {
                                 gpu: resources.require::<GpuContext>()?,
                                 frame: &renderer.frame,
@@ -417,6 +499,7 @@ fn prepare_materials<M: Material>(
                                     glam::Vec4::from(frame.frame.view_direction).truncate(),
                                 ),
                                 shadow_maps: !frame.shadow_views.is_empty(),
+                                deferred,
                             };
                             let mut stats = UploadStats::default();
                             batches.prepare(

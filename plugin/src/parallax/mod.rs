@@ -53,6 +53,40 @@ pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
     ],
 };
 
+/// The parallax material's entry points of the deferred path.
+pub const PARALLAX_DEFERRED_ENTRY: WgslFile = crate::wgsl_file!("parallax/pom_deferred.wgsl");
+
+/// The parallax material's shader for the deferred path: [`PARALLAX_SHADER`], the visibility
+/// pass and the compute resolve.
+pub const PARALLAX_DEFERRED_SHADER: ComposedShader = ComposedShader {
+    name: "pom.wgsl (deferred)",
+    constants: &[
+        shaders::deferred_header,
+        ParallaxMethod::wgsl_constants,
+        ShadowMode::wgsl_constants,
+        HeightConvention::wgsl_constants,
+        HeightUnits::wgsl_constants,
+        LightingModel::wgsl_constants,
+        DebugView::wgsl_constants,
+        PomParams::wgsl,
+    ],
+    files: &[
+        shaders::FRAME,
+        shaders::PARAMS,
+        shaders::MESH_VERTEX,
+        shaders::SHADOWS,
+        shaders::PREPASS_DEPTH,
+        shaders::FRAGMENT_COUNTER,
+        shaders::TANGENT_SPACE,
+        shaders::LIGHTING,
+        PARALLAX_MARCH,
+        PARALLAX_ENTRY,
+        shaders::VISIBILITY,
+        shaders::DEFERRED_RESOLVE,
+        PARALLAX_DEFERRED_ENTRY,
+    ],
+};
+
 /// Entities whose parallax material was clamped (each warned about once per change).
 pub type MaterialWarnings = crate::material::MaterialWarnings<ParallaxOcclusionMaterial>;
 
@@ -109,6 +143,18 @@ impl Material for ParallaxOcclusionMaterial {
 
     fn fragment_after_prepass(key: PomPipelineKey) -> FragmentVariant {
         key.fragment_after_prepass()
+    }
+
+    fn deferred_shader() -> Option<ComposedShader> {
+        Some(PARALLAX_DEFERRED_SHADER)
+    }
+
+    fn visibility_fragment(key: PomPipelineKey) -> FragmentVariant {
+        key.visibility_fragment()
+    }
+
+    fn deferred_resolve(key: PomPipelineKey) -> Option<FragmentVariant> {
+        Some(key.deferred_resolve())
     }
 
     fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {

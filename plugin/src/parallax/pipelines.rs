@@ -83,6 +83,21 @@ impl PomPipelineKey {
         })
     }
 
+    /// The visibility pass's fragment stage (deferred path): the core's, or with depth offset
+    /// the one that also writes the displaced depth.
+    pub fn visibility_fragment(self) -> FragmentVariant {
+        if self.depth_offset {
+            self.variant("fs_visibility_depth_offset")
+        } else {
+            FragmentVariant::entry("fs_visibility")
+        }
+    }
+
+    /// The compute resolve that marches and shades this pipeline's pixels on the deferred path.
+    pub fn deferred_resolve(self) -> FragmentVariant {
+        self.variant("cs_resolve")
+    }
+
     fn variant(self, entry_point: &'static str) -> FragmentVariant {
         FragmentVariant {
             entry_point,

@@ -58,21 +58,6 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3<f32>(x, x - 1.0, x - 2.0), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
-// What a pixel covers: the change of the texture coordinate and of the world position from one
-// pixel to the next, across and down. The march takes it as an argument and uses no stage
-// built-in, so a compute pass that knows the pixel's rays can call it as the fragment stage does.
-struct PixelFootprint {
-    ddx_uv: vec2<f32>,
-    ddy_uv: vec2<f32>,
-    ddx_world: vec3<f32>,
-    ddy_world: vec3<f32>,
-}
-
-// The fragment stage's footprint: screen-space derivatives, taken once before any branch.
-fn fragment_footprint(in: VertexOut) -> PixelFootprint {
-    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position));
-}
-
 // The march: the same code for the prepass, which only needs the depth, and the shading.
 fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> SurfacePoint {
     let material = materials[in.object_index];

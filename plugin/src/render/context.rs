@@ -72,12 +72,14 @@ impl GpuContext {
         // Optional features the renderer uses when present: 16-bit height maps stay 16-bit
         // (R16Unorm) or exact (filterable R32Float); passes are timed (GpuTimings); fragment
         // shaders that test depth themselves still get the early test (shaders::create_module);
-        // transparent surfaces blend into float measurement targets too.
+        // transparent surfaces blend into float measurement targets too; the deferred path's
+        // visibility pass knows each pixel's triangle.
         let wanted = wgpu::Features::TEXTURE_FORMAT_16BIT_NORM
             | wgpu::Features::FLOAT32_FILTERABLE
             | wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::SHADER_EARLY_DEPTH_TEST
-            | wgpu::Features::FLOAT32_BLENDABLE;
+            | wgpu::Features::FLOAT32_BLENDABLE
+            | wgpu::Features::PRIMITIVE_INDEX;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("pom device"),

@@ -293,14 +293,15 @@ fn upload_mesh(
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label} vertices")),
                 contents: bytemuck::cast_slice(&vertices),
-                usage: wgpu::BufferUsages::VERTEX,
+                // Storage too: the deferred resolve reads the triangles a pixel shows.
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
             }),
         indices: gpu
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{label} indices")),
                 contents: bytemuck::cast_slice(&mesh.indices),
-                usage: wgpu::BufferUsages::INDEX,
+                usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
             }),
         index_count: mesh.indices.len() as u32,
     })

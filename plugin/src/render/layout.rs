@@ -1,10 +1,10 @@
 //! Bind group layout entries the material passes share.
 
-/// A filterable float 2D texture visible to the fragment stage.
+/// A filterable float 2D texture visible to the fragment stage and the deferred resolve.
 pub(crate) fn texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE),
         ty: wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Float { filterable: true },
             view_dimension: wgpu::TextureViewDimension::D2,
@@ -14,11 +14,11 @@ pub(crate) fn texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// A filtering sampler visible to the fragment stage.
+/// A filtering sampler visible to the fragment stage and the deferred resolve.
 pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE),
         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
         count: None,
     }
@@ -63,6 +63,9 @@ pub(crate) fn fullscreen_pipeline(
 pub(crate) enum MeshPass {
     /// The depth prepass: depth tested `Less` and written, no colour.
     Prepass,
+    /// The deferred path's prepass: as the prepass, plus each pixel's id into the visibility
+    /// buffer.
+    Visibility,
     /// A shadow map: as the prepass, from a light's view, into the shadow-map format.
     Shadow,
     /// The opaque phase after a prepass: depth tested `LessEqual` against it, never written.
@@ -137,7 +140,7 @@ pub(crate) fn mesh_pipeline(
         cull_mode,
     } = *descriptor;
     let (depth_write, depth_compare) = match pass {
-        MeshPass::Prepass | MeshPass::Shadow | MeshPass::Opaque => {
+        MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow | MeshPass::Opaque => {
             (true, wgpu::CompareFunction::Less)
         }
         MeshPass::OpaqueAfterPrepass | MeshPass::Transparent => {
@@ -151,12 +154,12 @@ pub(crate) fn mesh_pipeline(
             .flatten(),
         write_mask: wgpu::ColorWrites::ALL,
     })];
-    let targets: &[Option<wgpu::ColorTargetState>] =
-        if matches!(pass, MeshPass::Prepass | MeshPass::Shadow) {
-            &[]
-        } else {
-            &color_targets
-        };
+    let visibility_targets = [Some(wgpu::ColorTargetState::from(super::VISIBILITY_FORMAT))];
+    let targets: &[Option<wgpu::ColorTargetState>] = match pass {
+        MeshPass::Prepass | MeshPass::Shadow => &[],
+        MeshPass::Visibility => &visibility_targets,
+        _ => &color_targets,
+    };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: Some(layout),

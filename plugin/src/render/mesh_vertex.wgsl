@@ -63,3 +63,19 @@ fn vs_main(in: VertexIn, @builtin(instance_index) object_index: u32) -> VertexOu
     let transform = transforms[object_index];
     return transform_vertex(in, transform.model, transform.normal_matrix, transform.determinant_sign, object_index);
 }
+
+// What a pixel covers: the change of the texture coordinate and of the world position from one
+// pixel to the next, across and down. Materials take it as an argument and use no stage
+// built-in, so the deferred resolve (deferred_resolve.wgsl), which knows the pixel's rays, calls
+// them as the fragment stage does.
+struct PixelFootprint {
+    ddx_uv: vec2<f32>,
+    ddy_uv: vec2<f32>,
+    ddx_world: vec3<f32>,
+    ddy_world: vec3<f32>,
+}
+
+// The fragment stage's footprint: screen-space derivatives, taken once before any branch.
+fn fragment_footprint(in: VertexOut) -> PixelFootprint {
+    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position));
+}

@@ -15,6 +15,7 @@ mod lowest_mip;
 pub(crate) mod object_buffer;
 mod phases;
 mod post_process;
+mod render_path;
 pub mod shaders;
 mod shadow_maps;
 mod shadow_views;
@@ -38,10 +39,13 @@ pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
 pub use phases::{
-    DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ShadowDraw,
+    DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
+    ShadowDraw,
 };
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
+pub(crate) use render_path::VisibilityBuffer;
+pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath, VISIBILITY_FORMAT};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
@@ -91,6 +95,8 @@ pub struct RenderPlugin {
     pub depth_prepass: bool,
     /// Where post-processing runs.
     pub post_process: PostProcessPath,
+    /// Where opaque surfaces are shaded: forward, deferred, or the faster on the adapter.
+    pub path: RenderPath,
 }
 
 /// Where the post-processing phase runs.
@@ -115,7 +121,13 @@ impl RenderPlugin {
             gpu_timing: Some(TimingMode::NonBlocking),
             depth_prepass: true,
             post_process: PostProcessPath::Fastest,
+            path: RenderPath::Auto,
         }
+    }
+
+    /// The same plugin shading opaque surfaces on `path`.
+    pub fn with_path(self, path: RenderPath) -> Self {
+        Self { path, ..self }
     }
 
     /// The same plugin with the depth prepass on or off.
@@ -164,6 +176,16 @@ pub struct Renderer {
     pub(crate) dummy_depth: wgpu::TextureView,
     /// Every light's shadow maps.
     pub(crate) shadow_maps: ShadowMaps,
+    /// The path asked for.
+    path: RenderPath,
+    /// Whether this frame runs deferred (decided in the Prepare stage).
+    pub(crate) deferred: bool,
+    /// Why the last frame that asked for deferred ran forward, as logged.
+    deferred_unavailable: Option<DeferredUnavailable>,
+    /// The deferred path's visibility buffer, once a frame has needed it.
+    pub(crate) visibility: Option<VisibilityBuffer>,
+    /// No frame has chosen its path yet (the first choice is always logged).
+    first_frame: bool,
     /// Tonemapping (the lights carry the exposure).
     post: PostProcess,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
@@ -179,6 +201,72 @@ impl Renderer {
     /// Whether post-processing runs as a compute pass (else as a full-screen triangle).
     pub fn post_process_is_compute(&self) -> bool {
         self.post.is_compute()
+    }
+
+    /// The path asked for (see [`Renderer::runs_deferred`] for the one that runs).
+    pub fn path(&self) -> RenderPath {
+        self.path
+    }
+
+    /// Asks for `path` from the next frame on (the choice is logged).
+    pub fn set_path(&mut self, path: RenderPath) {
+        self.path = path;
+    }
+
+    /// Whether the last prepared frame ran the deferred path.
+    pub fn runs_deferred(&self) -> bool {
+        self.deferred
+    }
+
+    /// Why the last frame runs forward although its path asked for deferred, if it does.
+    pub fn deferred_unavailable(&self) -> Option<DeferredUnavailable> {
+        self.deferred_unavailable
+    }
+
+    /// Decides whether this frame runs deferred, logging when the decision changes, and makes
+    /// the visibility buffer on the first deferred frame of a target.
+    fn choose_path(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        material_without_deferred: Option<&'static str>,
+    ) {
+        let wants = match self.path {
+            RenderPath::Forward => false,
+            RenderPath::Deferred => true,
+            RenderPath::Auto => render_path::auto_picks_deferred(gpu),
+        };
+        let support = render_path::deferred_support(gpu, self.depth_prepass).and_then(|()| {
+            material_without_deferred.map_or(Ok(()), |name| {
+                Err(DeferredUnavailable::MaterialWithoutDeferredShader(name))
+            })
+        });
+        let unavailable = if wants { support.err() } else { None };
+        let deferred = wants && unavailable.is_none();
+        if (deferred, unavailable) != (self.deferred, self.deferred_unavailable) || self.first_frame
+        {
+            match unavailable {
+                Some(reason) => {
+                    log::warn!("render path {}: runs forward, since {reason}", self.path)
+                }
+                None => log::info!(
+                    "render path {}: runs {}",
+                    self.path,
+                    if deferred { "deferred" } else { "forward" }
+                ),
+            }
+        }
+        self.first_frame = false;
+        self.deferred = deferred;
+        self.deferred_unavailable = unavailable;
+        if deferred
+            && self
+                .visibility
+                .as_ref()
+                .is_none_or(|v| v.target != target.id())
+        {
+            self.visibility = Some(VisibilityBuffer::new(gpu, target));
+        }
     }
 }
 
@@ -262,6 +350,11 @@ impl Plugin for RenderPlugin {
             depth_prepass: self.depth_prepass,
             dummy_depth,
             shadow_maps: ShadowMaps::new(gpu),
+            path: self.path,
+            deferred: false,
+            deferred_unavailable: None,
+            visibility: None,
+            first_frame: true,
             post: PostProcess::new(
                 gpu,
                 self.format,
@@ -286,6 +379,11 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let meshes = resources.require::<Assets<Mesh>>()?;
             let images = resources.require::<Assets<Image>>()?;
             let target = resources.require::<RenderTarget>()?;
+            renderer.choose_path(
+                gpu,
+                target,
+                crate::material::material_without_deferred_shader(resources),
+            );
             renderer.assets.release_freed(meshes, images);
             let settings = PostSettings::new(extracted.tonemapping, target.target_format());
             // Each shadow map sees the frame from its light: the same lights, the light's eye.
@@ -319,6 +417,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
     let prepass = resources.require::<Renderer>()?.depth_prepass;
+    let deferred = resources.require::<Renderer>()?.deferred;
     let phases = resources.get::<RenderPhases>();
     let has =
         |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.has_draws(phase, resources));
@@ -332,6 +431,8 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         run_shadow_maps || has_work(RenderPhase::Shadows),
         has(DrawPhase::Transparent),
     );
+    let run_resolve =
+        deferred && run_prepass && has_camera && phases.is_some_and(|p| p.has_resolves(resources));
     // Reserve the timestamps first: the timer is borrowed mutably.
     let mut time = |run: bool, phase: RenderPhase| {
         if run {
@@ -343,6 +444,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     let prepass_time = time(run_prepass, RenderPhase::Prepass);
     let shadows_time = time(run_shadow_maps, RenderPhase::Shadows);
     let opaque_time = time(true, RenderPhase::Opaque);
+    let resolve_time = time(run_resolve, RenderPhase::Resolve);
     let transparent_time = time(run_transparent, RenderPhase::Transparent);
     let post_time = time(true, RenderPhase::PostProcess);
 
@@ -370,9 +472,22 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         })
     };
     if run_prepass {
+        // On the deferred path the prepass is the visibility pass: each pixel also keeps its
+        // draw and triangle (0: none).
+        let visibility = resources
+            .require::<Renderer>()?
+            .visibility
+            .as_ref()
+            .filter(|_| deferred)
+            .map(|visibility| {
+                Some(clearing_attachment(
+                    &visibility.view,
+                    wgpu::Color::TRANSPARENT,
+                ))
+            });
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("prepass"),
-            color_attachments: &[],
+            label: Some(if deferred { "visibility" } else { "prepass" }),
+            color_attachments: visibility.as_slice(),
             depth_stencil_attachment: depth_attachment(Some(wgpu::Operations {
                 load: wgpu::LoadOp::Clear(1.0),
                 store: wgpu::StoreOp::Store,
@@ -456,6 +571,15 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             multiview_mask: None,
         });
         draw_phase(DrawPhase::Opaque, &mut pass);
+    }
+    if run_resolve && let Some(phases) = phases {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("deferred resolve"),
+            timestamp_writes: resolve_time.as_ref().map(PassTimestamps::compute),
+        });
+        for dispatch in phases.resolves() {
+            dispatch(resources, &mut pass);
+        }
     }
     if run_transparent {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

@@ -5,6 +5,7 @@
 //! shadows      a depth pass per shadow map (cascade, spot map, cube face) into which every
 //!              material draws its casters from the light's view
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
+//! resolve      deferred path: materials shade their pixels of the visibility buffer in compute
 //! transparent  blended draws, sorted back to front by their plugin; depth read-only
 //! post         tonemapping, HDR scene → display target (compute where allowed); the scene is
 //!              pre-exposed (the lights carry the camera's exposure)
@@ -26,6 +27,9 @@ pub enum RenderPhase {
     Shadows,
     /// Opaque materials, into the HDR scene target.
     Opaque,
+    /// The deferred path's compute resolve: materials shade the pixels the visibility pass
+    /// gave them (see [`super::RenderPath`]).
+    Resolve,
     /// Blended materials, back to front.
     Transparent,
     /// Tonemapping into the display target.
@@ -36,10 +40,11 @@ pub enum RenderPhase {
 
 impl RenderPhase {
     /// Every phase, in the order a frame runs them.
-    pub const ALL: [RenderPhase; 6] = [
+    pub const ALL: [RenderPhase; 7] = [
         RenderPhase::Prepass,
         RenderPhase::Shadows,
         RenderPhase::Opaque,
+        RenderPhase::Resolve,
         RenderPhase::Transparent,
         RenderPhase::PostProcess,
         RenderPhase::Overlay,
@@ -51,6 +56,7 @@ impl RenderPhase {
             RenderPhase::Prepass => "prepass",
             RenderPhase::Shadows => "shadows",
             RenderPhase::Opaque => "opaque",
+            RenderPhase::Resolve => "resolve",
             RenderPhase::Transparent => "transparent",
             RenderPhase::PostProcess => "post",
             RenderPhase::Overlay => "overlay",
@@ -62,7 +68,8 @@ impl RenderPhase {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum DrawPhase {
-    /// Depth only; skipped when [`super::RenderPlugin::depth_prepass`] is off.
+    /// Depth only (plus the visibility id on the deferred path); skipped when
+    /// [`super::RenderPlugin::depth_prepass`] is off.
     Prepass,
     /// Colour into the HDR scene target; depth tested (and written only without a prepass).
     Opaque,
@@ -88,6 +95,10 @@ pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 /// [`super::FrameUniformBuffer::offset`]).
 pub type ShadowDraw = fn(&Resources, &mut wgpu::RenderPass<'_>, u32);
 
+/// Records the dispatches of the deferred resolve into its open compute pass, given the
+/// resources.
+pub type ResolveDispatch = fn(&Resources, &mut wgpu::ComputePass<'_>);
+
 /// Records whole passes of its own into the frame's encoder.
 pub type PhaseWork = fn(&Resources, &mut wgpu::CommandEncoder);
 
@@ -101,6 +112,7 @@ pub type HasDraws = fn(&Resources) -> bool;
 pub struct RenderPhases {
     draws: Vec<(DrawPhase, TypeId, PhaseDraw, HasDraws)>,
     shadow_draws: Vec<(TypeId, ShadowDraw)>,
+    resolves: Vec<(TypeId, ResolveDispatch, HasDraws)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
 }
 
@@ -135,6 +147,27 @@ impl RenderPhases {
         if !self.shadow_draws.iter().any(|(id, _)| *id == owner) {
             self.shadow_draws.push((owner, draw));
         }
+    }
+
+    /// Adds `dispatch` to the deferred resolve for `Owner` unless `Owner` has one: the core
+    /// opens one compute pass (on deferred frames where some `has_work` says so) and calls it.
+    pub fn add_resolve<Owner: 'static>(&mut self, dispatch: ResolveDispatch, has_work: HasDraws) {
+        let owner = TypeId::of::<Owner>();
+        if !self.resolves.iter().any(|(id, _, _)| *id == owner) {
+            self.resolves.push((owner, dispatch, has_work));
+        }
+    }
+
+    /// The deferred resolve's dispatches, in the order they were added.
+    pub fn resolves(&self) -> impl Iterator<Item = ResolveDispatch> + '_ {
+        self.resolves.iter().map(|(_, dispatch, _)| *dispatch)
+    }
+
+    /// Whether any deferred resolve has pixels to shade this frame.
+    pub fn has_resolves(&self, resources: &Resources) -> bool {
+        self.resolves
+            .iter()
+            .any(|(_, _, has_work)| has_work(resources))
     }
 
     /// The shadow-map draws, in the order they were added.

@@ -47,8 +47,43 @@ pub const FRAGMENT_COUNTER: WgslFile = wgsl_file!("render/fragment_counter.wgsl"
 pub const FRAGMENT_COUNTER_COUNTING: WgslFile = wgsl_file!("render/fragment_counter_counting.wgsl");
 /// `fullscreen_vertex`: the vertex stage of full-screen passes.
 pub const FULLSCREEN_TRIANGLE: WgslFile = wgsl_file!("render/fullscreen_triangle.wgsl");
+/// The visibility pass of the deferred path: `visibility_id()` and the default `fs_visibility`.
+pub const VISIBILITY: WgslFile = wgsl_file!("render/visibility.wgsl");
+/// The deferred resolve's inputs and `resolve_pixel()`, which rebuilds a pixel's vertex output
+/// and footprint from its visibility id.
+pub const DEFERRED_RESOLVE: WgslFile = wgsl_file!("render/deferred_resolve.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
+
+/// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
+/// the `primitive_index` extension the visibility pass needs, and `SceneOutput`, the scene
+/// target as the resolve writes it (an `Rgba16Float` scene; [`for_scene_format`] adapts it).
+pub fn deferred_header() -> String {
+    format!(
+        "enable primitive_index;\n{}",
+        scene_output_alias(wgpu::TextureFormat::Rgba16Float)
+    )
+}
+
+fn scene_output_alias(format: wgpu::TextureFormat) -> String {
+    let name = match format {
+        wgpu::TextureFormat::Rgba32Float => "rgba32float",
+        _ => "rgba16float",
+    };
+    format!("alias SceneOutput = texture_storage_2d<{name}, write>;\n")
+}
+
+/// A deferred shader's source for a scene target of `format` (`Rgba16Float` or `Rgba32Float`,
+/// what [`super::TargetFormat::scene_format`] gives).
+pub(crate) fn for_scene_format(source: String, format: wgpu::TextureFormat) -> String {
+    let default = scene_output_alias(wgpu::TextureFormat::Rgba16Float);
+    let wanted = scene_output_alias(format);
+    if wanted == default {
+        source
+    } else {
+        source.replacen(&default, &wanted, 1)
+    }
+}
 
 /// WGSL generated from Rust (enum codes, say), prepended to a composed shader.
 pub type GeneratedWgsl = fn() -> String;

@@ -131,12 +131,14 @@ impl RenderTarget {
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | storage,
         );
+        // Storage: the deferred resolve writes the pixels it shades from compute.
         let scene = texture(
             "render target scene colour",
             format.scene_format(),
             wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::STORAGE_BINDING,
         );
         let depth = texture(
             "render target depth",

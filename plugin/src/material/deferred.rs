@@ -1,0 +1,300 @@
+//! One material's deferred resolve: the bind group layout of its inputs (group 2 of
+//! `deferred_resolve.wgsl`), a uniform slot per resolved batch, a bind group per mesh, and the
+//! dispatches. The pipelines are [`super::pipelines::MaterialPipelines`]'.
+
+use std::collections::HashMap;
+
+use bytemuck::{Pod, Zeroable};
+use glam::Mat4;
+
+use super::batches::Batch;
+use crate::render::{GpuAssets, GpuContext, VISIBILITY_FORMAT};
+use crate::{AssetId, Mesh};
+
+/// Pixels per resolve workgroup along each side (`@workgroup_size(8, 8)`).
+const WORKGROUP_SIDE: u32 = 8;
+
+/// What one dispatch resolves. Mirrors `ResolveBatch` in deferred_resolve.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct ResolveBatch {
+    inverse_view_projection: [[f32; 4]; 4],
+    target_width: f32,
+    target_height: f32,
+    first_object: u32,
+    end_object: u32,
+}
+
+crate::wgsl_layout!(ResolveBatch {
+    inverse_view_projection,
+    target_width,
+    target_height,
+    first_object,
+    end_object,
+});
+
+/// The frame's targets and camera as the resolve sees them.
+pub(crate) struct ResolveTargets<'a> {
+    /// The visibility buffer the prepass wrote.
+    pub(crate) visibility: &'a wgpu::TextureView,
+    /// The HDR scene the resolve writes.
+    pub(crate) scene: &'a wgpu::TextureView,
+    /// The [`crate::render::RenderTarget::id`] of both.
+    pub(crate) target: u64,
+    pub(crate) size: (u32, u32),
+    pub(crate) view_projection: Mat4,
+}
+
+/// A mesh's resolve bind group and the buffers it was made with (a mesh uploaded anew gets
+/// new buffers).
+struct MeshBindGroup {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+}
+
+/// One dispatch of the frame: a batch and its uniform slot.
+struct Dispatch {
+    batch: usize,
+    offset: u32,
+}
+
+/// Material `M`'s resolve inputs.
+pub(crate) struct DeferredResolve {
+    label: &'static str,
+    layout: wgpu::BindGroupLayout,
+    slot_size: u64,
+    slots: wgpu::Buffer,
+    slot_data: Vec<u8>,
+    meshes: HashMap<AssetId<Mesh>, MeshBindGroup>,
+    /// The target the mesh bind groups were made for.
+    bound_target: u64,
+    dispatches: Vec<Dispatch>,
+    workgroups: (u32, u32),
+}
+
+impl DeferredResolve {
+    /// The layout of group 2 for a scene target of `scene_format`; no slots yet.
+    pub(crate) fn new(
+        gpu: &GpuContext,
+        label: &'static str,
+        scene_format: wgpu::TextureFormat,
+    ) -> Self {
+        let visibility = wgpu::ShaderStages::COMPUTE;
+        let storage = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = gpu
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(&format!("{label} deferred resolve layout")),
+                entries: &[
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 0,
+                        visibility,
+                        ty: wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Uniform,
+                            has_dynamic_offset: true,
+                            min_binding_size: wgpu::BufferSize::new(
+                                std::mem::size_of::<ResolveBatch>() as u64,
+                            ),
+                        },
+                        count: None,
+                    },
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 1,
+                        visibility,
+                        ty: wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Uint,
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                        count: None,
+                    },
+                    storage(2),
+                    storage(3),
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 4,
+                        visibility,
+                        ty: wgpu::BindingType::StorageTexture {
+                            access: wgpu::StorageTextureAccess::WriteOnly,
+                            format: scene_format,
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                        },
+                        count: None,
+                    },
+                ],
+            });
+        debug_assert_eq!(VISIBILITY_FORMAT, wgpu::TextureFormat::Rg32Uint);
+        let alignment = u64::from(gpu.device.limits().min_uniform_buffer_offset_alignment);
+        let slot_size =
+            (std::mem::size_of::<ResolveBatch>() as u64).div_ceil(alignment) * alignment;
+        Self {
+            label,
+            layout,
+            slot_size,
+            slots: Self::slot_buffer(gpu, label, slot_size, 4),
+            slot_data: Vec::new(),
+            meshes: HashMap::new(),
+            bound_target: 0,
+            dispatches: Vec::new(),
+            workgroups: (0, 0),
+        }
+    }
+
+    fn slot_buffer(gpu: &GpuContext, label: &str, slot_size: u64, slots: u64) -> wgpu::Buffer {
+        gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&format!("{label} resolve batches")),
+            size: slot_size * slots.max(1),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Group 2's layout, for the resolve's pipeline layout.
+    pub(crate) fn layout(&self) -> &wgpu::BindGroupLayout {
+        &self.layout
+    }
+
+    /// Plans this frame's dispatches: one per batch `resolves` picks, each over the whole
+    /// target (pixels of other batches return after one load), with its slot written and its
+    /// mesh's bind group made where missing.
+    pub(crate) fn prepare<K>(
+        &mut self,
+        gpu: &GpuContext,
+        targets: &ResolveTargets<'_>,
+        batches: &[Batch<K>],
+        resolves: impl Fn(&Batch<K>) -> bool,
+        assets: &GpuAssets,
+    ) {
+        self.dispatches.clear();
+        self.slot_data.clear();
+        let inverse = targets.view_projection.inverse();
+        // A camera that maps everything onto a plane has no rays: nothing to resolve.
+        if !inverse.is_finite() {
+            return;
+        }
+        if self.bound_target != targets.target {
+            self.meshes.clear();
+            self.bound_target = targets.target;
+        }
+        let (width, height) = targets.size;
+        self.workgroups = (
+            width.div_ceil(WORKGROUP_SIDE),
+            height.div_ceil(WORKGROUP_SIDE),
+        );
+        let mut used = Vec::new();
+        for (index, batch) in batches.iter().enumerate() {
+            let Some(mesh) = assets.mesh(batch.mesh).filter(|_| resolves(batch)) else {
+                continue;
+            };
+            let slot = ResolveBatch {
+                inverse_view_projection: inverse.to_cols_array_2d(),
+                target_width: width as f32,
+                target_height: height as f32,
+                first_object: batch.instances.start,
+                end_object: batch.instances.end,
+            };
+            let offset = self.slot_data.len() as u64;
+            self.slot_data.extend_from_slice(bytemuck::bytes_of(&slot));
+            self.slot_data.resize((offset + self.slot_size) as usize, 0);
+            self.dispatches.push(Dispatch {
+                batch: index,
+                offset: offset as u32,
+            });
+            used.push(batch.mesh);
+            let current = self.meshes.get(&batch.mesh).is_some_and(|bound| {
+                bound.vertices == mesh.vertices && bound.indices == mesh.indices
+            });
+            if !current {
+                let bind_group = self.mesh_bind_group(gpu, targets, &mesh.vertices, &mesh.indices);
+                self.meshes.insert(
+                    batch.mesh,
+                    MeshBindGroup {
+                        vertices: mesh.vertices.clone(),
+                        indices: mesh.indices.clone(),
+                        bind_group,
+                    },
+                );
+            }
+        }
+        self.meshes.retain(|mesh, _| used.contains(mesh));
+        if self.slot_data.is_empty() {
+            return;
+        }
+        if self.slots.size() < self.slot_data.len() as u64 {
+            let slots = (self.slot_data.len() as u64 / self.slot_size).next_power_of_two();
+            self.slots = Self::slot_buffer(gpu, self.label, self.slot_size, slots);
+            // Every bind group holds the old buffer.
+            self.meshes.clear();
+            return self.prepare(gpu, targets, batches, resolves, assets);
+        }
+        gpu.queue.write_buffer(&self.slots, 0, &self.slot_data);
+    }
+
+    fn mesh_bind_group(
+        &self,
+        gpu: &GpuContext,
+        targets: &ResolveTargets<'_>,
+        vertices: &wgpu::Buffer,
+        indices: &wgpu::Buffer,
+    ) -> wgpu::BindGroup {
+        let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("{} deferred resolve", self.label)),
+            layout: &self.layout,
+            entries: &[
+                entry(
+                    0,
+                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &self.slots,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(std::mem::size_of::<ResolveBatch>() as u64),
+                    }),
+                ),
+                entry(1, wgpu::BindingResource::TextureView(targets.visibility)),
+                entry(2, vertices.as_entire_binding()),
+                entry(3, indices.as_entire_binding()),
+                entry(4, wgpu::BindingResource::TextureView(targets.scene)),
+            ],
+        })
+    }
+
+    /// Plans no dispatch this frame (it runs forward).
+    pub(crate) fn skip(&mut self) {
+        self.dispatches.clear();
+    }
+
+    /// Whether this frame has pixels to resolve.
+    pub(crate) fn has_work(&self) -> bool {
+        !self.dispatches.is_empty()
+    }
+
+    /// Records this frame's dispatches into `pass`; `bind` sets the batch's pipeline and
+    /// groups 0 and 1 (it returns `false` where they are missing, and the batch is skipped).
+    pub(crate) fn dispatch<K>(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        batches: &[Batch<K>],
+        mut bind: impl FnMut(&mut wgpu::ComputePass<'_>, &Batch<K>) -> bool,
+    ) {
+        for dispatch in &self.dispatches {
+            let batch = &batches[dispatch.batch];
+            let Some(mesh) = self.meshes.get(&batch.mesh) else {
+                continue;
+            };
+            if !bind(pass, batch) {
+                continue;
+            }
+            pass.set_bind_group(2, &mesh.bind_group, &[dispatch.offset]);
+            pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
+        }
+    }
+}

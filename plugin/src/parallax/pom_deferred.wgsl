@@ -1,0 +1,30 @@
+// The parallax material's entry points of the deferred path: its visibility pass where the
+// prepass moves the depth, and the compute resolve that marches and shades each pixel the
+// visibility buffer gives it. Composed after pom.wgsl, visibility.wgsl and deferred_resolve.wgsl.
+
+struct VisibilityAndDepth {
+    @location(0) id: vec2<u32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// `depth_offset` in the visibility pass: the displaced depth (as `fs_prepass_depth_offset`) and
+// the id, so the pixel keeps whichever surface is really nearest.
+@fragment @early_depth_test(greater_equal)
+fn fs_visibility_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool,
+    @builtin(primitive_index) triangle: u32) -> VisibilityAndDepth {
+    let depth = displaced_depth(in, find_surface(in, front_facing, fragment_footprint(in)));
+    return VisibilityAndDepth(visibility_id(in.object_index, triangle), depth);
+}
+
+// One invocation per pixel: the pixels of this dispatch's batch march and shade as the fragment
+// entry points do; the others return at once.
+@compute @workgroup_size(8, 8)
+fn cs_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    let item = resolve_item(id.xy);
+    if !item.resolves {
+        return;
+    }
+    let pixel = resolve_pixel(item);
+    let point = find_surface(pixel.vertex, pixel.front_facing, pixel.footprint);
+    textureStore(scene_output, item.pixel, shade(pixel.vertex, point));
+}

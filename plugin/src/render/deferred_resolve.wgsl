@@ -1,0 +1,168 @@
+// The deferred resolve's inputs and the rebuilding of a pixel: from its visibility id, the
+// vertex output and footprint the rasterizer would have given the fragment stage, so a
+// material's compute entry calls the same march and shading functions its fragment entries do.
+// Composed after visibility.wgsl. Mirrors `ResolveBatch` and `Vertex` in Rust (the layout test
+// checks them against each other).
+
+// What one dispatch resolves: the pixels of one batch of draws (objects first..end of the
+// material, one mesh).
+struct ResolveBatch {
+    // Framebuffer → world, to cast each pixel's view ray.
+    inverse_view_projection: mat4x4<f32>,
+    target_width: f32,
+    target_height: f32,
+    first_object: u32,
+    end_object: u32,
+}
+
+// One vertex of a mesh's vertex buffer, read as storage (arrays, not vectors: no padding).
+struct StoredVertex {
+    position: array<f32, 3>,
+    normal: array<f32, 3>,
+    uv: array<f32, 2>,
+    tangent: array<f32, 4>,
+    color: array<f32, 4>,
+}
+
+@group(2) @binding(0) var<uniform> resolve_batch: ResolveBatch;
+@group(2) @binding(1) var visibility: texture_2d<u32>;
+@group(2) @binding(2) var<storage, read> mesh_vertices: array<StoredVertex>;
+@group(2) @binding(3) var<storage, read> mesh_indices: array<u32>;
+// `SceneOutput` is generated: the target's HDR scene format as a write-only storage texture.
+@group(2) @binding(4) var scene_output: SceneOutput;
+
+// A pixel a resolve invocation shades.
+struct ResolveItem {
+    pixel: vec2<u32>,
+    object_index: u32,
+    triangle: u32,
+    // False where the pixel is outside the target or shows another batch.
+    resolves: bool,
+}
+
+// Which pixel invocation `id` resolves, and whether this dispatch's batch shows there.
+fn resolve_item(id: vec2<u32>) -> ResolveItem {
+    var item: ResolveItem;
+    item.pixel = id;
+    item.resolves = false;
+    if f32(id.x) >= resolve_batch.target_width || f32(id.y) >= resolve_batch.target_height {
+        return item;
+    }
+    let visible = textureLoad(visibility, id, 0).xy;
+    item.object_index = visible.x & VISIBILITY_OBJECT_MASK;
+    item.triangle = visible.y;
+    item.resolves = (visible.x >> VISIBILITY_OBJECT_BITS) == VISIBILITY_TAG
+        && item.object_index >= resolve_batch.first_object && item.object_index < resolve_batch.end_object;
+    return item;
+}
+
+// The world point on the view ray through framebuffer position `pixel` at clip depth `depth`.
+fn unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
+    let ndc = vec2<f32>(pixel.x / resolve_batch.target_width * 2.0 - 1.0, 1.0 - pixel.y / resolve_batch.target_height * 2.0);
+    let world = resolve_batch.inverse_view_projection * vec4<f32>(ndc, depth, 1.0);
+    return world.xyz / world.w;
+}
+
+struct Ray {
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+}
+
+// The view ray through framebuffer position `pixel`: from the eye (perspective), or from the
+// near plane along the view (orthographic).
+fn pixel_ray(pixel: vec2<f32>) -> Ray {
+    if frame.view_direction.w > 0.5 {
+        return Ray(unproject(pixel, 0.0), frame.view_direction.xyz);
+    }
+    // Depth ½ stays finite under an infinite far plane.
+    return Ray(frame.camera_position.xyz, unproject(pixel, 0.5) - frame.camera_position.xyz);
+}
+
+// The barycentric weights of the point where `ray` meets the plane of triangle p0 p1 p2
+// (Möller–Trumbore without the inside test: off the triangle they extrapolate, as the
+// rasterizer does for the helper pixels derivatives come from).
+fn ray_barycentrics(ray: Ray, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>) -> vec3<f32> {
+    let edge1 = p1 - p0;
+    let edge2 = p2 - p0;
+    let p = cross(ray.direction, edge2);
+    let determinant = dot(edge1, p);
+    // Edge-on (no pixel of it is rasterized anyway): the first vertex.
+    if abs(determinant) < 1e-30 {
+        return vec3<f32>(1.0, 0.0, 0.0);
+    }
+    let t = ray.origin - p0;
+    let q = cross(t, edge1);
+    let u = dot(t, p) / determinant;
+    let v = dot(ray.direction, q) / determinant;
+    return vec3<f32>(1.0 - u - v, u, v);
+}
+
+fn stored_vertex_in(index: u32) -> VertexIn {
+    let v = mesh_vertices[index];
+    return VertexIn(
+        vec3<f32>(v.position[0], v.position[1], v.position[2]),
+        vec3<f32>(v.normal[0], v.normal[1], v.normal[2]),
+        vec2<f32>(v.uv[0], v.uv[1]),
+        vec4<f32>(v.tangent[0], v.tangent[1], v.tangent[2], v.tangent[3]),
+        vec4<f32>(v.color[0], v.color[1], v.color[2], v.color[3]),
+    );
+}
+
+// The three vertices of a triangle through the shared vertex stage.
+struct TriangleVertices {
+    a: VertexOut,
+    b: VertexOut,
+    c: VertexOut,
+}
+
+// The attributes at barycentric weights `w`, as the rasterizer interpolates them (perspective-
+// correct: the weights come from the world-space ray).
+fn interpolate_vertex(t: TriangleVertices, w: vec3<f32>) -> VertexOut {
+    var out = t.a;
+    out.world_position = t.a.world_position * w.x + t.b.world_position * w.y + t.c.world_position * w.z;
+    out.world_normal = t.a.world_normal * w.x + t.b.world_normal * w.y + t.c.world_normal * w.z;
+    out.uv = t.a.uv * w.x + t.b.uv * w.y + t.c.uv * w.z;
+    out.world_tangent = t.a.world_tangent * w.x + t.b.world_tangent * w.y + t.c.world_tangent * w.z;
+    out.color = t.a.color * w.x + t.b.color * w.y + t.c.color * w.z;
+    return out;
+}
+
+// What the fragment stage would have received at `item`'s pixel.
+struct ResolvedPixel {
+    vertex: VertexOut,
+    footprint: PixelFootprint,
+    front_facing: bool,
+}
+
+// Rebuilds `item`'s pixel from its triangle: the vertex output at the pixel centre, the
+// footprint from the rays through its quad neighbours across and down (where the fragment
+// stage's derivatives look), and which side of the triangle the eye sees.
+fn resolve_pixel(item: ResolveItem) -> ResolvedPixel {
+    let transform = transforms[item.object_index];
+    var t: TriangleVertices;
+    let first = item.triangle * 3u;
+    t.a = transform_vertex(stored_vertex_in(mesh_indices[first]), transform.model, transform.normal_matrix, transform.determinant_sign, item.object_index);
+    t.b = transform_vertex(stored_vertex_in(mesh_indices[first + 1u]), transform.model, transform.normal_matrix, transform.determinant_sign, item.object_index);
+    t.c = transform_vertex(stored_vertex_in(mesh_indices[first + 2u]), transform.model, transform.normal_matrix, transform.determinant_sign, item.object_index);
+    let p0 = t.a.world_position;
+    let p1 = t.b.world_position;
+    let p2 = t.c.world_position;
+
+    let centre = vec2<f32>(item.pixel) + 0.5;
+    let ray = pixel_ray(centre);
+    var resolved: ResolvedPixel;
+    resolved.vertex = interpolate_vertex(t, ray_barycentrics(ray, p0, p1, p2));
+    // The fragment stage differences a 2 × 2 quad's pixels: the neighbour across is to the
+    // right in the quad's left column and to the left in its right one (likewise down).
+    let step = 1.0 - 2.0 * vec2<f32>(item.pixel % vec2<u32>(2u));
+    let across = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(step.x, 0.0)), p0, p1, p2));
+    let down = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(0.0, step.y)), p0, p1, p2));
+    resolved.footprint = PixelFootprint((across.uv - resolved.vertex.uv) * step.x, (down.uv - resolved.vertex.uv) * step.y,
+        (across.world_position - resolved.vertex.world_position) * step.x,
+        (down.world_position - resolved.vertex.world_position) * step.y);
+    let clip = frame.view_projection * vec4<f32>(resolved.vertex.world_position, 1.0);
+    resolved.vertex.clip_position = vec4<f32>(centre, clip.z / clip.w, 1.0);
+    // Counter-clockwise seen from the eye is the front (wgpu's default winding).
+    resolved.front_facing = dot(cross(p1 - p0, p2 - p0), ray.direction) < 0.0;
+    return resolved;
+}

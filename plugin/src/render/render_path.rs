@@ -1,0 +1,158 @@
+//! Forward or deferred: where the opaque materials that can resolve in compute are shaded.
+//!
+//! Forward: every opaque draw shades in the opaque phase's fragment stage, after the depth
+//! prepass. Deferred: the prepass becomes the visibility pass (depth plus a draw and triangle id
+//! per pixel, [`VISIBILITY_FORMAT`]), and materials that offer a compute resolve
+//! ([`crate::Material::deferred_resolve`]) shade their pixels in a compute pass after the opaque
+//! phase; the others still draw there.
+
+use std::str::FromStr;
+
+use super::{GpuContext, RenderTarget};
+
+/// How opaque surfaces are shaded: [`super::RenderPlugin::path`], switchable at run time with
+/// [`super::Renderer::set_path`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum RenderPath {
+    /// Every opaque surface shades in a fragment shader.
+    Forward,
+    /// Materials that can resolve in compute shade there, from the visibility buffer; where the
+    /// adapter or the app cannot (see [`DeferredUnavailable`]) the frame runs forward, said once
+    /// in the log.
+    Deferred,
+    /// Deferred on a GPU that can run it, forward on a CPU rasterizer (lavapipe, where the two
+    /// stages cost the same and forward is the reference) and wherever deferred cannot run.
+    /// On the H200 the deferred frame is several times faster (sandbox/BENCHMARKS.md).
+    #[default]
+    Auto,
+}
+
+impl RenderPath {
+    /// Every path, as the command line names them.
+    pub const ALL: [RenderPath; 3] = [RenderPath::Forward, RenderPath::Deferred, RenderPath::Auto];
+
+    /// The path's name on the command line and in logs.
+    pub fn name(self) -> &'static str {
+        match self {
+            RenderPath::Forward => "forward",
+            RenderPath::Deferred => "deferred",
+            RenderPath::Auto => "auto",
+        }
+    }
+}
+
+impl std::fmt::Display for RenderPath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A render path name that is none of `forward`, `deferred`, `auto`.
+#[derive(Debug, thiserror::Error)]
+#[error("unknown render path {0:?}: expected forward, deferred or auto")]
+pub struct UnknownRenderPath(pub String);
+
+impl FromStr for RenderPath {
+    type Err = UnknownRenderPath;
+
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        RenderPath::ALL
+            .into_iter()
+            .find(|path| path.name() == name)
+            .ok_or_else(|| UnknownRenderPath(name.to_owned()))
+    }
+}
+
+/// Why a frame that asked for the deferred path runs forward.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DeferredUnavailable {
+    /// The visibility pass needs each pixel's triangle.
+    #[error("the adapter has no primitive_index (wgpu::Features::PRIMITIVE_INDEX)")]
+    NoPrimitiveIndex,
+    /// The visibility pass is the depth prepass.
+    #[error("the depth prepass is off (RenderPlugin::depth_prepass)")]
+    NoDepthPrepass,
+    /// Every opaque draw must write the visibility buffer.
+    #[error("material {0} has no deferred shader (Material::deferred_shader)")]
+    MaterialWithoutDeferredShader(&'static str),
+}
+
+/// The texture format of the visibility buffer: per pixel, the material's tag and the draw's
+/// index in its material (24 bits), and the triangle. Two words, not one: a mesh's triangle
+/// count alone can exceed what one word leaves next to a draw index.
+pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
+
+/// The visibility buffer of one target, made on the first deferred frame and kept.
+#[derive(Debug)]
+pub(crate) struct VisibilityBuffer {
+    pub(crate) view: wgpu::TextureView,
+    /// The [`RenderTarget::id`] it was made for.
+    pub(crate) target: u64,
+}
+
+impl VisibilityBuffer {
+    pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
+        let (width, height) = target.size();
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("visibility buffer"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: VISIBILITY_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        Self {
+            view: texture.create_view(&wgpu::TextureViewDescriptor::default()),
+            target: target.id(),
+        }
+    }
+}
+
+/// Whether the adapter and the renderer's settings allow the deferred path.
+pub(crate) fn deferred_support(
+    gpu: &GpuContext,
+    depth_prepass: bool,
+) -> Result<(), DeferredUnavailable> {
+    if !gpu
+        .device
+        .features()
+        .contains(wgpu::Features::PRIMITIVE_INDEX)
+    {
+        return Err(DeferredUnavailable::NoPrimitiveIndex);
+    }
+    if !depth_prepass {
+        return Err(DeferredUnavailable::NoDepthPrepass);
+    }
+    Ok(())
+}
+
+/// Whether [`RenderPath::Auto`] picks deferred on this adapter: on any GPU, not on a CPU
+/// rasterizer.
+pub(crate) fn auto_picks_deferred(gpu: &GpuContext) -> bool {
+    gpu.adapter_info().device_type != wgpu::DeviceType::Cpu
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_read_back_their_names_and_an_unknown_one_is_an_error() {
+        for path in RenderPath::ALL {
+            assert_eq!(path.name().parse::<RenderPath>().unwrap(), path);
+        }
+        let error = "deferrd".parse::<RenderPath>().unwrap_err().to_string();
+        assert!(
+            error.contains("\"deferrd\"") && error.contains("forward"),
+            "{error}"
+        );
+    }
+}
