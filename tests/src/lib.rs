@@ -198,3 +198,13 @@ pub fn render_on_path(app: &mut App, path: RenderPath) -> Result<image::RgbaImag
     set_path(app, path);
     render_and_capture(app)
 }
+
+/// Renders one frame on `path` and reads the float target back.
+pub fn render_on_path_f32(
+    app: &mut App,
+    path: RenderPath,
+) -> Result<image::Rgba32FImage, HarnessError> {
+    app.finish()?;
+    set_path(app, path);
+    render_and_capture_f32(app)
+}

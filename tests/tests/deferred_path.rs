@@ -1,26 +1,132 @@
 //! The deferred path (visibility pass, compute resolve) against the forward path: the same
-//! image, the same texture coordinates, no NaN.
+//! image, the same texture coordinates, the same depth-offset contacts, no NaN. The golden
+//! scenes and scene scripts are rendered both ways where they are checked (`render_both_paths`,
+//! tests/tests/scene_scripts.rs).
 
+use glam::Vec3;
 use pom::preview::{PreviewProjection, PreviewView};
-use pom::{ParallaxOcclusionMaterial, TargetFormat, patterns};
+use pom::render::Renderer;
+use pom::{
+    Assets, DebugView, LitMaterial, Mesh, ParallaxOcclusionMaterial, RenderPath, TargetFormat,
+    Transform, patterns,
+};
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
-use pom_tests::render_both_paths;
+use pom_tests::{render_both_paths, render_on_path_f32};
+
+/// Side of the test height map in texels.
+const TEXELS: u32 = 256;
+
+fn cobblestones() -> HeightMaterial {
+    HeightMaterial {
+        field: patterns::cobblestones(TEXELS, 6),
+        height_scale: 0.08,
+    }
+}
+
+fn perspective(view_angle: f32) -> PreviewView {
+    PreviewView {
+        view_angle,
+        projection: PreviewProjection::Perspective,
+        ..PreviewView::default()
+    }
+}
 
 #[test]
 fn a_parallax_plane_looks_the_same_on_both_paths() {
-    let textures = HeightMaterial {
-        field: patterns::cobblestones(256, 6),
-        height_scale: 0.08,
-    };
-    let view = PreviewView {
-        view_angle: 45.0,
-        projection: PreviewProjection::Perspective,
-        ..PreviewView::default()
-    };
-    let mut app = preview_app(128, TargetFormat::Srgb8, &textures, &view, |material| {
-        ParallaxOcclusionMaterial { ..material }
-    })
+    let mut app = preview_app(
+        128,
+        TargetFormat::Srgb8,
+        &cobblestones(),
+        &perspective(45.0),
+        |m| m,
+    )
     .unwrap();
     render_both_paths(&mut app, "parallax_plane").unwrap();
-    panic!("look");
+}
+
+/// Shortest difference between two coordinates on a repeating texture.
+fn wrapped(difference: f32) -> f32 {
+    difference - difference.round()
+}
+
+#[test]
+fn the_uv_view_agrees_within_a_twentieth_of_a_texel_over_the_angle_sweep() {
+    let textures = cobblestones();
+    let texels = TEXELS as f32;
+    let mut report = Vec::new();
+    for angle in [0.0_f32, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.9] {
+        let mut app = preview_app(
+            96,
+            TargetFormat::Float32,
+            &textures,
+            &perspective(angle),
+            |m| ParallaxOcclusionMaterial {
+                debug_view: DebugView::Uv,
+                ..m
+            },
+        )
+        .unwrap();
+        let forward = render_on_path_f32(&mut app, RenderPath::Forward).unwrap();
+        let deferred = render_on_path_f32(&mut app, RenderPath::Deferred).unwrap();
+        assert!(app.resources.get::<Renderer>().unwrap().runs_deferred());
+        let (mut total, mut count, mut other_region) = (0.0_f64, 0_u32, 0_u32);
+        for (f, d) in forward.pixels().zip(deferred.pixels()) {
+            assert!(
+                f.0.iter().chain(&d.0).all(|v| v.is_finite()),
+                "{angle}°: a NaN or infinite pixel"
+            );
+            // Blue: 1 marched, ½ in the LOD band, 0 normal mapping only; the background has
+            // the clear colour's blue (0.025 linear), which no region has.
+            let region = f.0[2];
+            if ![0.0, 0.5, 1.0].contains(&region) {
+                continue;
+            }
+            if d.0[2] != region {
+                other_region += 1;
+                continue;
+            }
+            let du = wrapped(f.0[0] - d.0[0]) * texels;
+            let dv = wrapped(f.0[1] - d.0[1]) * texels;
+            total += f64::from((du * du + dv * dv).sqrt());
+            count += 1;
+        }
+        let mean = total / f64::from(count.max(1));
+        report.push(format!(
+            "{angle:>5}°: mean |Δuv| {mean:.4} texel over {count} pixels, {other_region} in another LOD region"
+        ));
+        assert!(count > 1000, "{angle}°: only {count} pixels of the plane");
+        assert!(mean <= 0.05, "{angle}°: mean |Δuv| {mean} texel");
+        assert!(
+            other_region * 100 <= count,
+            "{angle}°: {other_region} pixels changed LOD region"
+        );
+    }
+    eprintln!("{}", report.join("\n"));
+}
+
+#[test]
+fn a_cube_in_depth_offset_relief_meets_it_the_same_way_on_both_paths() {
+    let view = PreviewView {
+        view_angle: 55.0,
+        projection: PreviewProjection::Perspective,
+        distance: 1.2,
+        ..PreviewView::default()
+    };
+    let mut app = preview_app(128, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
+        ParallaxOcclusionMaterial {
+            depth_offset: true,
+            height_scale: 0.15,
+            ..m
+        }
+    })
+    .unwrap();
+    // A cube sunk into the relief: where it meets the stones is decided by the displaced depth.
+    let cube = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::cube(0.3));
+    let transform = Transform::from_translation(Vec3::new(0.05, 0.0, 0.1));
+    app.world.spawn((cube, transform, LitMaterial::default()));
+    render_both_paths(&mut app, "depth_offset_contact").unwrap();
 }

@@ -7,7 +7,7 @@ use pom::{
     load_gltf,
 };
 use pom_tests::gltf_fixture::{GltfFixture, scratch_dir};
-use pom_tests::{FlipTolerance, check_golden, render_and_capture};
+use pom_tests::{FlipTolerance, check_golden, render_both_paths};
 use serde_json::json;
 
 fn app(size: u32) -> App {
@@ -50,7 +50,7 @@ fn quad_from_behind(double_sided: bool) -> image::RgbaImage {
         DirectionalLight::default(),
         Transform::IDENTITY.looking_at(Vec3::new(0.2, 1.0, 0.1), Vec3::Z),
     ));
-    render_and_capture(&mut app).unwrap()
+    render_both_paths(&mut app, "gltf_quad_from_behind").unwrap()
 }
 
 #[test]
@@ -158,7 +158,10 @@ fn quad_from_above(
             Transform::IDENTITY.looking_at(Vec3::NEG_Y, Vec3::NEG_Z),
         ));
     }
-    (render_and_capture(&mut app).unwrap(), scene.warnings)
+    (
+        render_both_paths(&mut app, "gltf_quad_from_above").unwrap(),
+        scene.warnings,
+    )
 }
 
 #[test]
@@ -344,7 +347,7 @@ fn wall_behind_a_pane(pane: bool) -> image::RgbaImage {
         DirectionalLight::default(),
         Transform::IDENTITY.looking_at(Vec3::new(0.5, -1.0, -0.4), Vec3::Y),
     ));
-    render_and_capture(&mut app).unwrap()
+    render_both_paths(&mut app, "gltf_wall_behind_a_pane").unwrap()
 }
 
 #[test]

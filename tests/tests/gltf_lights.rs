@@ -5,7 +5,7 @@ use glam::Vec3;
 use pom::{App, Camera, DirectionalLight, LitMaterial, TargetFormat, Transform, load_gltf};
 use pom_tests::gltf_fixture::{GltfFixture, scratch_dir};
 use pom_tests::pom_scene::pom_app;
-use pom_tests::{FlipTolerance, check_golden, render_and_capture};
+use pom_tests::{FlipTolerance, check_golden, render_both_paths};
 use serde_json::json;
 
 fn app(size: u32) -> App {
@@ -46,7 +46,7 @@ fn a_point_light_without_range_reaches_a_floor_fifty_units_away() {
         pom::Exposure { ev100: -2.0 },
         Transform::from_xyz(0.0, 30.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "gltf_unbounded_point_light").unwrap();
     // Under the bulb the floor is lit, fading outwards; without the fix the 20-unit default
     // range left it black.
     let (under, edge) = (image.get_pixel(24, 30).0, image.get_pixel(2, 47).0);
@@ -117,7 +117,7 @@ fn a_box_in_a_real_sun_does_not_clip_at_the_default_exposure() {
         Camera::perspective(45.0),
         Transform::from_xyz(1.8, 1.6, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "gltf_real_sun_box").unwrap();
     let background = *image.get_pixel(0, 0);
     let lit: Vec<_> = image.pixels().filter(|p| **p != background).collect();
     let clipped = lit.iter().filter(|p| p.0[..3].contains(&255)).count();
@@ -165,7 +165,7 @@ fn a_spot_lights_the_floor_out_to_its_outer_cone() {
         Camera::orthographic(4.0),
         Transform::from_xyz(0.0, 5.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
     ));
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "gltf_spot_light").unwrap();
     let green = |x: u32| image.get_pixel(x, 32).0[1];
     let centre = green(32);
     // Pixel centres along +x: radius (x − 32 + 0.5) / 16 m.

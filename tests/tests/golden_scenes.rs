@@ -6,7 +6,7 @@ use pom::{
     App, Assets, Camera, Color, DirectionalLight, Handle, Image, LitMaterial, Mesh, PointLight,
     Transform,
 };
-use pom_tests::{FlipTolerance, check_golden, fixtures, headless_app, render_and_capture};
+use pom_tests::{FlipTolerance, check_golden, fixtures, headless_app, render_both_paths};
 
 fn add_mesh(app: &mut App, mesh: Mesh) -> Handle<Mesh> {
     app.resources.get_mut::<Assets<Mesh>>().unwrap().add(mesh)
@@ -50,7 +50,7 @@ fn normal_mapped_cube_under_one_directional_light() {
     ));
     app.world.spawn(sun(Vec3::new(-0.5, -1.0, -0.8), 250_000.0));
     app.world.spawn((cube, material, Transform::IDENTITY));
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "cube_directional").unwrap();
     check_golden("cube_directional", &image, FlipTolerance::default()).unwrap();
 }
 
@@ -90,7 +90,7 @@ fn directional_and_point_light_together() {
         LitMaterial::from_color(Color::srgb(0.8, 0.8, 0.8)),
         Transform::from_xyz(-0.2, 0.6, 0.0),
     ));
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "two_lights").unwrap();
     check_golden("two_lights", &image, FlipTolerance::default()).unwrap();
 }
 
@@ -135,7 +135,7 @@ fn receding_cubes(camera: Camera) -> image::RgbaImage {
             },
         ));
     }
-    render_and_capture(&mut app).unwrap()
+    render_both_paths(&mut app, "receding_cubes").unwrap()
 }
 
 #[test]

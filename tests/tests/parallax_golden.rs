@@ -10,7 +10,7 @@ use pom::{
     patterns,
 };
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
-use pom_tests::{FlipTolerance, check_golden, render_and_capture};
+use pom_tests::{FlipTolerance, check_golden, render_both_paths};
 
 const TILE: u32 = 128;
 
@@ -64,7 +64,8 @@ fn contact_sheet(field: HeightField, height_scale: f32) -> RgbaImage {
             }
         })
         .unwrap();
-        let tile = render_and_capture(&mut app).unwrap();
+        let name = format!("tile_{method:?}_{shadows:?}_{debug_view:?}");
+        let tile = render_both_paths(&mut app, &name).unwrap();
         let (x, y) = (index as u32 % 4 * TILE, index as u32 / 4 * TILE);
         image::imageops::replace(&mut sheet, &tile, i64::from(x), i64::from(y));
     }

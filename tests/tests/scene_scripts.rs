@@ -1,10 +1,12 @@
-//! Every scene script under tests/scenes runs and passes; a wrong expectation fails readably;
+//! Every scene script under tests/scenes runs and passes, on the forward and the deferred path;
+//! a wrong expectation fails readably;
 //! the same script gives the same pixels twice. `UPDATE_GOLDENS=1` blesses missing references.
 
 use std::path::{Path, PathBuf};
 
-use pom::script::Outcome;
-use pom::{RunOptions, ScriptError, run_script_with};
+use pom::script::{Outcome, Report};
+use pom::{RenderPath, RunOptions, ScriptError, run_script_with};
+use pom_tests::PATHS_AGREE_MEAN;
 
 fn scenes() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")
@@ -28,27 +30,57 @@ fn every_shipped_script_passes() {
         scripts.len(),
         scenes().display()
     );
-    let options = RunOptions {
-        bless: bless(),
-        out_dir: None,
-    };
     let mut failures = Vec::new();
-    for script in &scripts {
-        match run_script_with(script, &options) {
-            Ok(report) => {
-                eprint!("{report}");
-                if !report.passed() {
-                    failures.push(format!(
-                        "{}: {} failed expectations",
-                        script.display(),
-                        report.failures()
-                    ));
+    // Each script on both paths: the references (made forward on this driver) hold for the
+    // deferred frame too, within FLIP mean PATHS_AGREE_MEAN.
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let options = RunOptions {
+            bless: bless() && path == RenderPath::Forward,
+            out_dir: None,
+            path,
+        };
+        for script in &scripts {
+            match run_script_with(script, &options) {
+                Ok(report) => {
+                    eprint!("{report}");
+                    if !report.passed() {
+                        failures.push(format!(
+                            "{} ({path}): {} failed expectations",
+                            script.display(),
+                            report.failures()
+                        ));
+                    }
+                    if path == RenderPath::Deferred {
+                        failures.extend(
+                            reference_means(&report)
+                                .filter(|mean| *mean > PATHS_AGREE_MEAN)
+                                .map(|mean| {
+                                    format!(
+                                        "{} (deferred): FLIP mean {mean} against a reference",
+                                        script.display()
+                                    )
+                                }),
+                        );
+                    }
                 }
+                Err(error) => failures.push(error.to_string()),
             }
-            Err(error) => failures.push(error.to_string()),
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The FLIP means of a report's reference comparisons ("FLIP mean 0.0012 (max ...").
+fn reference_means(report: &Report) -> impl Iterator<Item = f32> + '_ {
+    report.steps.iter().filter_map(|step| match &step.outcome {
+        Outcome::Passed(detail) | Outcome::Failed(detail) => detail
+            .strip_prefix("FLIP mean ")?
+            .split_whitespace()
+            .next()?
+            .parse()
+            .ok(),
+        _ => None,
+    })
 }
 
 fn fixture(name: &str) -> PathBuf {
@@ -82,7 +114,7 @@ fn the_same_script_gives_the_same_pixels() {
         &script,
         &RunOptions {
             bless: true,
-            out_dir: None,
+            ..RunOptions::default()
         },
     )
     .unwrap();

@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use pom::{App, PomPlugin, RenderPlugin, load_gltf};
-use pom_tests::{FlipTolerance, check_golden, render_and_capture};
+use pom_tests::{FlipTolerance, check_golden, render_both_paths};
 
 #[test]
 fn the_shipped_street_corner_matches_its_reference() {
@@ -14,7 +14,7 @@ fn the_shipped_street_corner_matches_its_reference() {
     let scene = load_gltf(&mut app, &path).unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     assert_eq!((scene.cameras.len(), scene.lights.len()), (1, 1));
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "street_corner").unwrap();
     check_golden("street_corner", &image, FlipTolerance::default()).unwrap();
 }
 
@@ -32,6 +32,6 @@ fn the_street_corner_with_scene_shadows_matches_its_reference() {
             .insert_one(light, pom::LightShadows::default())
             .unwrap();
     }
-    let image = render_and_capture(&mut app).unwrap();
+    let image = render_both_paths(&mut app, "street_corner_shadows").unwrap();
     check_golden("street_corner_shadows", &image, FlipTolerance::default()).unwrap();
 }

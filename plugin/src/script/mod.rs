@@ -17,7 +17,8 @@ pub use runner::{parse_script, run_script, run_script_with};
 use std::fmt;
 use std::path::PathBuf;
 
-/// How a script run treats references and where it writes failure images.
+/// How a script run treats references, where it writes failure images, and which render path
+/// it draws on.
 #[derive(Clone, Debug, Default)]
 pub struct RunOptions {
     /// Write missing or changed reference images instead of failing.
@@ -25,6 +26,9 @@ pub struct RunOptions {
     /// Where `NAME-actual.png` and `NAME-difference.png` of failed comparisons go (default:
     /// next to the reference).
     pub out_dir: Option<PathBuf>,
+    /// The render path ([`crate::RenderPath::Auto`] by default: forward on the software driver
+    /// CI runs on, where the references were made).
+    pub path: crate::RenderPath,
 }
 
 /// What became of one step.

@@ -127,10 +127,10 @@ impl<'a> Runner<'a> {
         };
         let (width, height) = script.size;
         let mut app = App::new();
-        app.add_plugin(RenderPlugin::headless(
-            width.clamp(1, 8192),
-            height.clamp(1, 8192),
-        ))
+        app.add_plugin(
+            RenderPlugin::headless(width.clamp(1, 8192), height.clamp(1, 8192))
+                .with_path(options.path),
+        )
         .add_plugin(PomPlugin);
         app.finish().map_err(|error| setup(error.to_string()))?;
         let camera = app.world.spawn((
