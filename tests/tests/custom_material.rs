@@ -8,8 +8,11 @@ mod tinted;
 
 use pom::glam::Vec3;
 use pom::material::check_material_layout;
-use pom::{Assets, Color, DirectionalLight, LitMaterial, MaterialPlugin, Mesh, Transform};
-use pom_tests::{FlipTolerance, check_golden, headless_app, render_and_capture};
+use pom::render::Renderer;
+use pom::{
+    Assets, Color, DirectionalLight, LitMaterial, MaterialPlugin, Mesh, RenderPath, Transform,
+};
+use pom_tests::{FlipTolerance, check_golden, headless_app, render_and_capture, render_on_path};
 use tinted::Tinted;
 
 #[test]
@@ -50,6 +53,28 @@ fn a_material_written_outside_the_crate_renders() {
         "{center:?}"
     );
     check_golden("custom_material", &image, FlipTolerance::default()).unwrap();
+}
+
+#[test]
+fn an_app_with_a_material_without_deferred_shader_renders_forward_and_says_why() {
+    let mut app = headless_app(32, 32).unwrap();
+    app.add_plugin(MaterialPlugin::<Tinted>::default());
+    let cube = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::cube(0.8));
+    app.world.spawn((
+        pom::Camera::perspective(45.0),
+        Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    app.world
+        .spawn((cube, Tinted::default(), Transform::IDENTITY));
+    render_on_path(&mut app, RenderPath::Deferred).unwrap();
+    let renderer = app.resources.get::<Renderer>().unwrap();
+    assert!(!renderer.runs_deferred());
+    let reason = renderer.deferred_unavailable().unwrap().to_string();
+    assert!(reason.contains("tinted"), "{reason}");
 }
 
 #[test]

@@ -130,3 +130,23 @@ fn a_cube_in_depth_offset_relief_meets_it_the_same_way_on_both_paths() {
     app.world.spawn((cube, transform, LitMaterial::default()));
     render_both_paths(&mut app, "depth_offset_contact").unwrap();
 }
+
+#[test]
+fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
+    let mut app = pom::App::new();
+    app.add_plugin(
+        pom::RenderPlugin::headless(32, 32)
+            .with_depth_prepass(false)
+            .with_path(RenderPath::Deferred),
+    )
+    .add_plugin(pom::PomPlugin);
+    let material = cobblestones().material(&mut app);
+    pom::preview::spawn_preview(&mut app, material, &perspective(30.0)).unwrap();
+    pom_tests::render_and_capture(&mut app).unwrap();
+    let renderer = app.resources.get::<Renderer>().unwrap();
+    assert!(!renderer.runs_deferred());
+    assert_eq!(
+        renderer.deferred_unavailable(),
+        Some(pom::render::DeferredUnavailable::NoDepthPrepass)
+    );
+}

@@ -7,7 +7,7 @@ use pom::{
     ParallaxOcclusionMaterial, TargetFormat,
 };
 use pom_tests::pom_scene::pom_app;
-use pom_tests::render_and_capture;
+use pom_tests::{render_and_capture, render_both_paths};
 
 const SIZE: u32 = 48;
 const HEIGHT_SCALE: f32 = 0.04;
@@ -90,7 +90,8 @@ fn rewriting_the_heights_changes_the_next_frame() {
             .unwrap()
             .get_mut(&field.height)
             .unwrap() = heights;
-        let image = render_and_capture(&mut app).unwrap();
+        // The deferred resolve reads the rewritten heights as the fragment stage does.
+        let image = render_both_paths(&mut app, "dynamic_height").unwrap();
         let normals = gpu_normals(&app, &field);
         assert!(
             image != previous,

@@ -298,3 +298,49 @@ impl DeferredResolve {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::check_wgsl_layout;
+    use crate::render::gpu_types::Vertex;
+
+    #[test]
+    fn the_resolve_inputs_match_their_wgsl() {
+        let source = crate::parallax::PARALLAX_DEFERRED_SHADER.source();
+        assert_eq!(
+            check_wgsl_layout::<ResolveBatch>(&source, "ResolveBatch"),
+            Ok(())
+        );
+        assert_eq!(check_wgsl_layout::<Vertex>(&source, "StoredVertex"), Ok(()));
+    }
+
+    #[test]
+    fn each_deferred_shader_is_its_forward_shader_and_more() {
+        use crate::render::shaders::{VISIBILITY, deferred_header};
+        for (forward, deferred) in [
+            (crate::lit::LIT_SHADER, crate::lit::LIT_DEFERRED_SHADER),
+            (
+                crate::parallax::PARALLAX_SHADER,
+                crate::parallax::PARALLAX_DEFERRED_SHADER,
+            ),
+        ] {
+            let header = crate::render::shaders::GENERATED_HEADER;
+            assert_eq!(
+                deferred.generated(),
+                forward
+                    .generated()
+                    .replacen(header, &format!("{header}{}", deferred_header()), 1),
+                "{}",
+                deferred.name
+            );
+            assert_eq!(
+                &deferred.files[..forward.files.len()],
+                forward.files,
+                "{}",
+                deferred.name
+            );
+            assert!(deferred.files.contains(&VISIBILITY), "{}", deferred.name);
+        }
+    }
+}

@@ -189,6 +189,15 @@ pub struct Vertex {
     pub color: [f32; 4],
 }
 
+// The deferred resolve reads vertex buffers as `array<StoredVertex>` (deferred_resolve.wgsl).
+crate::wgsl_layout!(Vertex {
+    position,
+    normal,
+    uv,
+    tangent,
+    color
+});
+
 impl Vertex {
     /// The vertex buffer layout matching `VertexIn` in WGSL.
     pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
