@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::ValueEnum;
 use pom::hecs::{Entity, World};
 use pom::preview::{MAX_VIEW_ANGLE, PreviewProjection};
-use pom::{DirectionalLight, LightShadows, PointLight, SpotLight};
+use pom::{DirectionalLight, LightShadows, PointLight, RenderPath, RenderPlugin, SpotLight};
 
 /// `--projection`: how the preview camera projects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -189,6 +189,29 @@ impl ShadowArgs {
             // The entity was just listed, so it exists.
             let _ = world.insert_one(light, shadows);
         }
+    }
+}
+
+/// `--path`: where opaque surfaces are shaded, spelled as [`RenderPath`]'s `FromStr` reads it
+/// (its error names the choices; clap adds the flag).
+#[derive(Clone, Copy, Debug, clap::Args)]
+#[command(next_help_heading = "Renderer")]
+pub struct PathArgs {
+    /// Render path: forward (fragment shaders), deferred (compute, from a visibility buffer) or
+    /// auto (deferred on a GPU, forward on a software driver).
+    #[arg(
+        long,
+        value_name = "forward|deferred|auto",
+        value_parser = str::parse::<RenderPath>,
+        default_value = "auto"
+    )]
+    pub path: RenderPath,
+}
+
+impl PathArgs {
+    /// `plugin`, shading on the path asked for.
+    pub fn apply(&self, plugin: RenderPlugin) -> RenderPlugin {
+        plugin.with_path(self.path)
     }
 }
 

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use crate::cli_types::{DisplayArgs, ShadowArgs, parse_size};
+use crate::cli_types::{DisplayArgs, PathArgs, ShadowArgs, parse_size};
 use crate::{demo_scene, frame_output};
 
 /// Options of the `snapshot` command.
@@ -26,13 +26,15 @@ pub struct DemoArgs {
     pub display: DisplayArgs,
     #[command(flatten)]
     pub shadows: ShadowArgs,
+    #[command(flatten)]
+    pub path: PathArgs,
 }
 
 /// Renders the demo scene and writes it to `args.out`.
 pub fn run(args: &DemoArgs) -> Result<()> {
     let (width, height) = args.size;
     let mut app = pom::App::new();
-    app.add_plugin(pom::RenderPlugin::headless(width, height))
+    app.add_plugin(args.path.apply(pom::RenderPlugin::headless(width, height)))
         .add_plugin(pom::PomPlugin);
     demo_scene::spawn(&mut app)?;
     args.display.apply(&mut app);

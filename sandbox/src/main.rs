@@ -178,6 +178,39 @@ mod tests {
     }
 
     #[test]
+    fn every_rendering_command_takes_a_render_path() {
+        use pom::RenderPath;
+        let path_of = |args: &[&str]| match Cli::try_parse_from(args).unwrap().command {
+            Some(Command::Render(render)) => render.path.path,
+            Some(Command::Snapshot(demo)) => demo.path.path,
+            Some(Command::Bench(bench)) => bench.path.path,
+            Some(Command::RunScript(script)) => script.path.path,
+            other => panic!("not a rendering command: {other:?}"),
+        };
+        let commands: [&[&str]; 4] = [
+            &["sandbox", "render", "--out", "a.png"],
+            &["sandbox", "snapshot"],
+            &["sandbox", "bench"],
+            &["sandbox", "run-script", "a.ron"],
+        ];
+        for command in commands {
+            assert_eq!(path_of(command), RenderPath::Auto, "{command:?}");
+            let mut args = command.to_vec();
+            args.extend(["--path", "deferred"]);
+            assert_eq!(path_of(&args), RenderPath::Deferred, "{args:?}");
+            let mut bad = command.to_vec();
+            bad.extend(["--path", "fastest"]);
+            let error = Cli::try_parse_from(&bad).unwrap_err();
+            let line = first_paragraph_on_one_line(&error.render().to_string());
+            assert_eq!(
+                line,
+                "error: invalid value 'fastest' for '--path <forward|deferred|auto>': unknown \
+                 render path \"fastest\": expected forward, deferred or auto"
+            );
+        }
+    }
+
+    #[test]
     fn usage_errors_become_one_line() {
         let error = Cli::try_parse_from(["sandbox", "render", "--out", "a.png", "--method", "x"])
             .unwrap_err();

@@ -15,8 +15,8 @@ use pom::{
 };
 
 use crate::cli_types::{
-    CameraArg, DisplayArgs, ProjectionArg, ShadowArgs, parse_camera, parse_finite, parse_png_path,
-    parse_positive, parse_size, parse_view_angle,
+    CameraArg, DisplayArgs, PathArgs, ProjectionArg, ShadowArgs, parse_camera, parse_finite,
+    parse_png_path, parse_positive, parse_size, parse_view_angle,
 };
 use crate::frame_output;
 use crate::material_args::{self, MaterialArgs, choice_parser};
@@ -84,6 +84,8 @@ pub struct RenderArgs {
     pub display: DisplayArgs,
     #[command(flatten)]
     pub shadows: ShadowArgs,
+    #[command(flatten)]
+    pub path: PathArgs,
 }
 
 /// Where the picture goes.
@@ -305,7 +307,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
     settings.validate().context("invalid material")?;
     let textures = PreviewTextures::load(&args.texture_files(), settings.height_scale)?;
 
-    let mut app = headless_app(&args.output);
+    let mut app = headless_app(&args.output, args.path);
     let images = app
         .resources
         .get_mut::<Assets<Image>>()
@@ -320,7 +322,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
 /// Loads the `--scene` file, picks its camera and lights, renders it. The GPU starts only once
 /// the file has loaded, for the same reason as above.
 fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
-    let mut app = headless_app(&args.output);
+    let mut app = headless_app(&args.output, args.path);
     let (width, height) = args.output.size;
     let preview = ScenePreview {
         path,
@@ -335,9 +337,9 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
     render_and_write(&mut app, &args.output, "rendering the scene")
 }
 
-/// An app with the headless renderer (a float target for the raw debug views) and the parallax
-/// material. The GPU starts on the first update.
-fn headless_app(output: &OutputArgs) -> App {
+/// An app with the headless renderer (a float target for the raw debug views) on `path`, and
+/// the parallax material. The GPU starts on the first update.
+fn headless_app(output: &OutputArgs, path: PathArgs) -> App {
     let format = if writes_raw_values(output.debug_view) {
         TargetFormat::Float32
     } else {
@@ -345,7 +347,7 @@ fn headless_app(output: &OutputArgs) -> App {
     };
     let (width, height) = output.size;
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(width, height).with_format(format));
+    app.add_plugin(path.apply(RenderPlugin::headless(width, height).with_format(format)));
     app.add_plugin(PomPlugin);
     app
 }
@@ -569,6 +571,31 @@ mod tests {
             let error = parse(bad).expect_err(&format!("{bad:?} was accepted"));
             let rendered = error.render().to_string();
             assert!(rendered.contains(bad[0]), "{bad:?}: {rendered}");
+        }
+    }
+
+    #[test]
+    fn the_render_path_flag_parses_for_the_preview_and_a_scene() {
+        use pom::RenderPath;
+        assert_eq!(parse(&[]).unwrap().path.path, RenderPath::Auto);
+        for path in RenderPath::ALL {
+            for scene in [&[][..], &["--scene", "city.glb"]] {
+                let mut args = scene.to_vec();
+                args.extend(["--path", path.name()]);
+                assert_eq!(parse(&args).unwrap().path.path, path);
+            }
+        }
+    }
+
+    #[test]
+    fn a_bad_render_path_is_rejected_naming_the_flag_and_the_choices() {
+        for bad in ["fast", "Deferred", ""] {
+            let error = parse(&["--path", bad]).expect_err(&format!("{bad:?} was accepted"));
+            assert_eq!(error.kind(), clap::error::ErrorKind::ValueValidation);
+            let rendered = error.render().to_string();
+            for expected in ["--path", "forward", "deferred", "auto"] {
+                assert!(rendered.contains(expected), "{bad:?}: {rendered}");
+            }
         }
     }
 

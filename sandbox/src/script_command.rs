@@ -5,6 +5,8 @@ use std::path::PathBuf;
 use anyhow::{Result, bail};
 use clap::Args;
 
+use crate::cli_types::PathArgs;
+
 /// Options of `run-script`.
 #[derive(Debug, Args)]
 pub struct ScriptArgs {
@@ -18,6 +20,8 @@ pub struct ScriptArgs {
     /// each reference].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub path: PathArgs,
 }
 
 /// Runs every script, prints one line per step, fails when any expectation or script failed.
@@ -25,6 +29,7 @@ pub fn run(args: &ScriptArgs) -> Result<()> {
     let options = pom::RunOptions {
         bless: args.bless,
         out_dir: args.out.clone(),
+        path: args.path.path,
     };
     let mut failed = 0;
     for script in &args.scripts {

@@ -38,15 +38,20 @@ fn mark<const INDEX: usize>(_: &mut pom::hecs::World, resources: &mut Resources)
 }
 
 /// Spawns `entities` small planes in a grid under one camera and times `frames` frames after
-/// `warmup` ones.
+/// `warmup` ones, rendered on `path`.
 pub fn measure(
     entities: usize,
     textures: &PreviewTextures,
+    path: pom::RenderPath,
     warmup: usize,
     frames: usize,
 ) -> Result<CpuSide> {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(256, 256).with_gpu_timing(None));
+    app.add_plugin(
+        RenderPlugin::headless(256, 256)
+            .with_gpu_timing(None)
+            .with_path(path),
+    );
     app.add_plugin(PomPlugin);
     app.add_system(Stage::PostUpdate, mark::<0>)
         .add_system(Stage::Extract, mark::<1>)

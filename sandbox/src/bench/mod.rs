@@ -21,15 +21,15 @@ use anyhow::{Context, Result};
 use clap::Args;
 use pom::material::Choice;
 use pom::preview::PreviewView;
-use pom::{ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode};
+use pom::{ParallaxMethod, ParallaxOcclusionMaterial, RenderPath, ShadowMode};
 
-use crate::cli_types::parse_size;
+use crate::cli_types::{PathArgs, parse_size};
 use crate::material_args::MaterialArgs;
 use crate::preview_textures::PreviewTextures;
 use crate::render_command::{TextureArgs, ViewArgs};
 use report::{AdapterReport, BenchReport, CaseResult, Ratio};
 use sample_count::{ProbeResult, SampleRate};
-use scene::{BenchScene, SceneOptions, TIMED_PASS, Warmup};
+use scene::{BenchScene, SceneOptions, Warmup};
 
 /// Exit message when the adapter cannot time passes (exit status 0).
 pub const NO_TIMESTAMPS: &str = "GPU timestamps are not available";
@@ -121,11 +121,14 @@ pub struct BenchArgs {
     pub material: MaterialArgs,
     #[command(flatten)]
     pub view: ViewArgs,
+    #[command(flatten)]
+    pub path: PathArgs,
 }
 
 struct Runner<'a> {
     warmup: Warmup,
     frames: usize,
+    path: RenderPath,
     textures: &'a PreviewTextures,
     base: ParallaxOcclusionMaterial,
     view: PreviewView,
@@ -193,8 +196,8 @@ impl Runner<'_> {
         variant: String,
     ) -> Result<f64> {
         Self::configure(scene, &material);
-        let times = scene.time(self.warmup, self.frames)?;
-        self.record(group, place, &material, (TIMED_PASS, variant), &times)
+        let (pass, times) = scene.time(self.warmup, self.frames)?;
+        self.record(group, place, &material, (pass, variant), &times)
     }
 
     /// The base material's frame phase by phase.
@@ -203,7 +206,7 @@ impl Runner<'_> {
         Self::configure(scene, &material);
         let phases = ["prepass", "opaque", "post"];
         let times = scene.time_phases(self.warmup, self.frames, &phases)?;
-        for (phase, times) in phases.into_iter().zip(&times) {
+        for (phase, times) in &times {
             let place = (size, self.view.tiling);
             self.record("phases", place, &material, (phase, String::new()), times)?;
         }
@@ -252,13 +255,13 @@ impl Runner<'_> {
         let material = self.base.clone();
         let mut frame_without = None;
         for case in scene_shadows::ShadowCase::ALL {
-            let times = scene_shadows::time(size, case, self.warmup, self.frames)?;
+            let times = scene_shadows::time(size, case, self.path, self.warmup, self.frames)?;
             let frames: Vec<f64> = (0..self.frames)
-                .map(|frame| times.iter().map(|phase| phase[frame]).sum())
+                .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
                 .collect();
-            for (phase, times) in case.phases().iter().zip(&times) {
+            for (phase, times) in &times {
                 let variant = case.name().to_owned();
-                self.record("scene_shadows", place, &material, (*phase, variant), times)?;
+                self.record("scene_shadows", place, &material, (phase, variant), times)?;
             }
             let variant = case.name().to_owned();
             let frame_ms = self.record(
@@ -283,7 +286,9 @@ impl Runner<'_> {
 
     /// The base material and the seed's own shader (listing 2 ported) on the same plane: our
     /// POM, then the port, and their ratio; then the same far away (every pixel past the LOD
-    /// threshold), where both only normal-map: the per-pixel base cost.
+    /// threshold), where both only normal-map: the per-pixel base cost. Each in its own scene:
+    /// the port has no deferred shader, and a registered material without one sends every
+    /// frame forward, so ours runs on the path asked for and the port forward.
     fn seed_port(&mut self, size: (u32, u32)) -> Result<()> {
         let texture_width = self.textures.height.size().0;
         let far_tiling = far_field_tiling(size, texture_width, self.base.lod_threshold);
@@ -307,15 +312,20 @@ impl Runner<'_> {
                 material.clone(),
                 ours.into(),
             )?;
-            scene.use_seed_port()?;
-            let times = scene.time(self.warmup, self.frames)?;
-            let port_ms = self.record(
-                "seed_port",
-                place,
-                &material,
-                (TIMED_PASS, port.into()),
-                &times,
+            drop(scene);
+            let mut scene = BenchScene::new(
+                SceneOptions {
+                    seed_port: true,
+                    ..SceneOptions::timed_plane(size, self.path)
+                },
+                self.textures,
+                material.clone(),
+                &view,
             )?;
+            scene.use_seed_port()?;
+            let (pass, times) = scene.time(self.warmup, self.frames)?;
+            let port_ms =
+                self.record("seed_port", place, &material, (pass, port.into()), &times)?;
             self.ratios.push(Ratio {
                 what: format!("{ours} / the seed's listing 2"),
                 width: size.0,
@@ -328,7 +338,7 @@ impl Runner<'_> {
 
     fn scene(&self, size: (u32, u32), view: &PreviewView) -> Result<BenchScene> {
         BenchScene::new(
-            SceneOptions::timed_plane(size),
+            SceneOptions::timed_plane(size, self.path),
             self.textures,
             self.base.clone(),
             view,
@@ -415,7 +425,8 @@ impl Runner<'_> {
             median_ms: probe_ms(PROBE_TAPS)?,
             one_tap_ms: probe_ms(1)?,
         };
-        let count = sample_count::count_view_samples(size, self.textures, &pom, &self.view)?;
+        let count =
+            sample_count::count_view_samples(size, self.textures, &pom, &self.view, self.path)?;
         Ok(SampleRate::new(size, count, pom_ms, probe, chip))
     }
 
@@ -450,6 +461,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let depth_map = base.height_convention == pom::HeightConvention::Depth;
     let textures = PreviewTextures::load(&args.textures.files(depth_map), base.height_scale)?;
     let view = args.view.preview_view();
+    let path = args.path.path;
     let sizes: Vec<(u32, u32)> = match (args.sizes.is_empty(), args.quick) {
         (false, _) => args.sizes.clone(),
         (true, true) => QUICK_SIZES.to_vec(),
@@ -480,7 +492,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let probe = BenchScene::new(
         SceneOptions {
             timestamps: !args.no_timestamps,
-            ..SceneOptions::timed_plane(sizes[0])
+            ..SceneOptions::timed_plane(sizes[0], path)
         },
         &textures,
         base.clone(),
@@ -505,6 +517,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut runner = Runner {
         warmup,
         frames,
+        path,
         textures: &textures,
         base: base.clone(),
         view,
@@ -562,6 +575,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 ..base.clone()
             },
             view: &view,
+            path,
             quick: args.quick,
             frames: (warmup, frames),
         })?)
@@ -574,6 +588,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         Some(cpu_side::measure(
             args.entities,
             &textures,
+            path,
             warmup.frames,
             frames,
         )?)
@@ -583,6 +598,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let report = BenchReport {
         texel_rate,
         adapter,
+        path: path.name(),
         unix_time: started,
         quick: args.quick,
         warmup_frames: warmup.frames,

@@ -89,6 +89,8 @@ pub struct Ratio {
 pub struct BenchReport {
     /// The adapter.
     pub adapter: AdapterReport,
+    /// The render path asked for (`--path`); a case's `pass` says whether it ran deferred.
+    pub path: &'static str,
     /// Seconds since the Unix epoch when the run started.
     pub unix_time: u64,
     /// Whether `--quick` was given.
@@ -168,9 +170,10 @@ impl BenchReport {
         }
         let _ = writeln!(
             out,
-            "{} warm-up + {} timed frames per case; GPU ms of the pass named (prepass+opaque: \
-             the material's phases)\n",
-            self.warmup_frames, self.timed_frames
+            "render path asked for: {}; {} warm-up + {} timed frames per case; GPU ms of the \
+             pass named (prepass+opaque, +resolve where a frame ran deferred: the material's \
+             phases)\n",
+            self.path, self.warmup_frames, self.timed_frames
         );
         let _ = writeln!(
             out,

@@ -91,6 +91,7 @@ pub fn count_view_samples(
     textures: &PreviewTextures,
     material: &ParallaxOcclusionMaterial,
     view: &PreviewView,
+    path: pom::RenderPath,
 ) -> Result<SampleCount> {
     let material = ParallaxOcclusionMaterial {
         debug_view: DebugView::Samples,
@@ -101,7 +102,7 @@ pub fn count_view_samples(
     let options = SceneOptions {
         timestamps: false,
         format: TargetFormat::Float32,
-        ..SceneOptions::timed_plane(size)
+        ..SceneOptions::timed_plane(size, path)
     };
     let mut scene = BenchScene::new(options, textures, material, view)?;
     scene.set_clear_color(Color {

@@ -6,10 +6,10 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result, bail};
 use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewView, spawn_preview, spawn_preview_mesh};
-use pom::render::{PROBE_PASS, RenderTarget, TexelRateProbe, resolve_gpu_timings};
+use pom::render::{PROBE_PASS, RenderTarget, Renderer, TexelRateProbe, resolve_gpu_timings};
 use pom::{
     App, Assets, Camera, GpuContext, GpuTimings, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPlugin, TargetFormat, TimingMode,
+    RenderPath, RenderPhase, RenderPlugin, TargetFormat, TimingMode,
 };
 
 use crate::preview_textures::PreviewTextures;
@@ -27,7 +27,10 @@ pub struct Warmup {
 /// What every case times: the material's phases (depth prepass + opaque), where its shaders
 /// run. Post-processing is the same for every material and is reported on its own (`phases`).
 pub const TIMED_PASS: &str = "prepass+opaque";
-/// The phases [`TIMED_PASS`] adds up.
+/// [`TIMED_PASS`] on a frame that ran deferred: the prepass is the visibility pass, and the
+/// material shades in the resolve.
+pub const TIMED_PASS_DEFERRED: &str = "prepass+opaque+resolve";
+/// The phases [`TIMED_PASS`] adds up (and the resolve, on the deferred path).
 const MATERIAL_PHASES: [&str; 2] = ["prepass", "opaque"];
 
 /// How a [`BenchScene`] is set up.
@@ -42,17 +45,24 @@ pub struct SceneOptions {
     pub surface: Option<Mesh>,
     /// Whether frames run the depth prepass.
     pub depth_prepass: bool,
+    /// Forward, deferred or auto (`--path`).
+    pub path: RenderPath,
+    /// Whether the seed port's material is registered, for [`BenchScene::use_seed_port`]. It
+    /// has no deferred shader, and a registered material without one sends every frame forward.
+    pub seed_port: bool,
 }
 
 impl SceneOptions {
-    /// The flat plane into an sRGB target of `size`, timed.
-    pub fn timed_plane(size: (u32, u32)) -> Self {
+    /// The flat plane into an sRGB target of `size`, timed, rendered on `path`.
+    pub fn timed_plane(size: (u32, u32), path: RenderPath) -> Self {
         Self {
             size,
             timestamps: true,
             format: TargetFormat::Srgb8,
             surface: None,
             depth_prepass: true,
+            path,
+            seed_port: false,
         }
     }
 }
@@ -60,6 +70,8 @@ impl SceneOptions {
 /// A headless app showing one material on the preview plane (or a mesh in its place).
 pub struct BenchScene {
     app: App,
+    /// Whether the seed port's material is registered ([`SceneOptions::seed_port`]).
+    seed_port: bool,
 }
 
 impl BenchScene {
@@ -71,16 +83,20 @@ impl BenchScene {
         view: &PreviewView,
     ) -> Result<Self> {
         let (width, height) = options.size;
+        let seed_port = options.seed_port;
         let mut app = App::new();
         let timing = options.timestamps.then_some(TimingMode::Blocking);
         app.add_plugin(
             RenderPlugin::headless(width, height)
                 .with_format(options.format)
                 .with_gpu_timing(timing)
-                .with_depth_prepass(options.depth_prepass),
+                .with_depth_prepass(options.depth_prepass)
+                .with_path(options.path),
         );
-        app.add_plugin(PomPlugin)
-            .add_plugin(pom::seed_port::seed_port_plugin());
+        app.add_plugin(PomPlugin);
+        if options.seed_port {
+            app.add_plugin(pom::seed_port::seed_port_plugin());
+        }
         app.finish().context("starting the GPU")?;
         let images = app
             .resources
@@ -92,12 +108,15 @@ impl BenchScene {
             None => spawn_preview(&mut app, material, view),
         }
         .context("setting up the scene")?;
-        Ok(Self { app })
+        Ok(Self { app, seed_port })
     }
 
     /// A scene around an app already set up (with blocking GPU timing).
     pub fn from_app(app: App) -> Self {
-        Self { app }
+        Self {
+            app,
+            seed_port: false,
+        }
     }
 
     /// Sets the colour the image is cleared to (alpha 0 marks pixels nothing was drawn on).
@@ -197,8 +216,13 @@ impl BenchScene {
     }
 
     /// Draws the plane with the seed's shader ([`pom::seed_port::SeedPortMaterial`], with the
-    /// parallax material's textures and shared settings) instead of ours.
+    /// parallax material's textures and shared settings) instead of ours; the scene must have
+    /// been made with [`SceneOptions::seed_port`].
     pub fn use_seed_port(&mut self) -> Result<()> {
+        anyhow::ensure!(
+            self.seed_port,
+            "the scene was made without the seed port's material"
+        );
         let replaced = pom::seed_port::replace_parallax_materials(&mut self.app.world);
         anyhow::ensure!(replaced > 0, "the scene has no parallax plane");
         Ok(())
@@ -212,22 +236,44 @@ impl BenchScene {
     }
 
     /// Renders `warmup.frames` untimed frames (and more until `warmup.least` has passed), then
-    /// `frames` timed ones; returns the material phases' milliseconds per timed frame.
-    pub fn time(&mut self, warmup: Warmup, frames: usize) -> Result<Vec<f64>> {
+    /// `frames` timed ones; returns what was timed ([`TIMED_PASS`], or [`TIMED_PASS_DEFERRED`]
+    /// where the frames ran deferred) and the material phases' milliseconds per timed frame.
+    pub fn time(&mut self, warmup: Warmup, frames: usize) -> Result<(&'static str, Vec<f64>)> {
         let phases = self.time_phases(warmup, frames, &MATERIAL_PHASES)?;
-        Ok((0..frames)
-            .map(|frame| phases.iter().map(|times| times[frame]).sum())
-            .collect())
+        let pass = if phases.len() > MATERIAL_PHASES.len() {
+            TIMED_PASS_DEFERRED
+        } else {
+            TIMED_PASS
+        };
+        let times = (0..frames)
+            .map(|frame| phases.iter().map(|(_, times)| times[frame]).sum())
+            .collect();
+        Ok((pass, times))
     }
 
-    /// Like [`BenchScene::time`], the milliseconds of each of `phases` per timed frame.
+    /// Like [`BenchScene::time`], each phase of `phases` with its milliseconds per timed frame;
+    /// where the frames run deferred, the resolve is added after the opaque phase.
     pub fn time_phases(
         &mut self,
         warmup: Warmup,
         frames: usize,
-        phases: &[&str],
-    ) -> Result<Vec<Vec<f64>>> {
-        self.time_frames(warmup, frames, phases, |app| Ok(app.update()?))
+        phases: &[&'static str],
+    ) -> Result<Vec<(&'static str, Vec<f64>)>> {
+        self.time_frames(
+            warmup,
+            frames,
+            |scene| on_path(phases, scene.runs_deferred()),
+            |app| Ok(app.update()?),
+        )
+    }
+
+    /// Whether the last frame ran the deferred path (the renderer decides per frame: a material
+    /// without a deferred shader, such as the seed port, sends a deferred frame forward).
+    fn runs_deferred(&self) -> bool {
+        self.app
+            .resources
+            .get::<Renderer>()
+            .is_some_and(Renderer::runs_deferred)
     }
 
     /// Times the plugin's [`TexelRateProbe`] taking `taps` samples per pixel over the whole
@@ -241,32 +287,41 @@ impl BenchScene {
         let gpu = self.app.resources.require::<GpuContext>()?;
         let target = self.app.resources.require::<RenderTarget>()?;
         let probe = TexelRateProbe::new(gpu, target.color.format(), taps);
-        let mut times = self.time_frames(warmup, frames, &[PROBE_PASS], |app| {
-            probe.render(&mut app.resources)?;
-            resolve_gpu_timings(&mut app.world, &mut app.resources)?;
-            Ok(())
-        })?;
-        Ok(times.pop().unwrap_or_default())
+        let mut times = self.time_frames(
+            warmup,
+            frames,
+            |_| vec![PROBE_PASS],
+            |app| {
+                probe.render(&mut app.resources)?;
+                resolve_gpu_timings(&mut app.world, &mut app.resources)?;
+                Ok(())
+            },
+        )?;
+        Ok(times.pop().map(|(_, times)| times).unwrap_or_default())
     }
 
-    /// Per pass of `passes`, its milliseconds in each timed frame.
+    /// Per pass of `passes` (chosen after the warm-up, which renders at least one frame), its
+    /// milliseconds in each timed frame.
     fn time_frames(
         &mut self,
         warmup: Warmup,
         frames: usize,
-        passes: &[&str],
+        passes: impl FnOnce(&Self) -> Vec<&'static str>,
         mut render: impl FnMut(&mut App) -> Result<()>,
-    ) -> Result<Vec<Vec<f64>>> {
+    ) -> Result<Vec<(&'static str, Vec<f64>)>> {
         let started = Instant::now();
         let mut warmed = 0;
-        while warmed < warmup.frames || started.elapsed() < warmup.least {
+        while warmed < warmup.frames.max(1) || started.elapsed() < warmup.least {
             render(&mut self.app).context("rendering a warm-up frame")?;
             warmed += 1;
         }
-        let mut times = vec![Vec::with_capacity(frames); passes.len()];
+        let mut times: Vec<(&'static str, Vec<f64>)> = passes(self)
+            .into_iter()
+            .map(|pass| (pass, Vec::with_capacity(frames)))
+            .collect();
         for frame in 0..frames {
             render(&mut self.app).context("rendering a timed frame")?;
-            for (pass, times) in passes.iter().zip(&mut times) {
+            for (pass, times) in &mut times {
                 let ms = self
                     .app
                     .resources
@@ -275,12 +330,53 @@ impl BenchScene {
                 match ms {
                     Some(ms) => times.push(ms),
                     None => {
-                        bail!("timed frame {frame}: the GPU gave no valid timestamps for {pass}")
+                        bail!(
+                            "timed frame {frame}: the GPU gave no valid timestamps for {}",
+                            *pass
+                        )
                     }
                 }
             }
         }
         self.check_errors().context("while timing")?;
         Ok(times)
+    }
+}
+
+/// `phases` as a frame on its path runs them: on the deferred path the resolve follows the
+/// opaque phase (at the end, if `phases` has no opaque phase).
+fn on_path(phases: &[&'static str], deferred: bool) -> Vec<&'static str> {
+    let mut on_path = phases.to_vec();
+    if deferred {
+        let after_opaque = phases
+            .iter()
+            .position(|phase| *phase == RenderPhase::Opaque.name())
+            .map_or(phases.len(), |index| index + 1);
+        on_path.insert(after_opaque, RenderPhase::Resolve.name());
+    }
+    on_path
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_deferred_frame_times_the_resolve_after_the_opaque_phase() {
+        let phases = ["prepass", "shadows", "opaque", "post"];
+        assert_eq!(on_path(&phases, false), phases);
+        assert_eq!(
+            on_path(&phases, true),
+            ["prepass", "shadows", "opaque", "resolve", "post"]
+        );
+        assert_eq!(
+            on_path(&MATERIAL_PHASES, true),
+            ["prepass", "opaque", "resolve"]
+        );
+        assert_eq!(
+            TIMED_PASS_DEFERRED,
+            on_path(&MATERIAL_PHASES, true).join("+")
+        );
+        assert_eq!(TIMED_PASS, MATERIAL_PHASES.join("+"));
     }
 }

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use glam::Vec3;
 use pom::{
-    App, DirectionalLight, GlobalTransform, LightShadows, PointLight, PomPlugin, RenderPlugin,
-    SpotLight, TimingMode, Transform, load_gltf,
+    App, DirectionalLight, GlobalTransform, LightShadows, PointLight, PomPlugin, RenderPath,
+    RenderPlugin, SpotLight, TimingMode, Transform, load_gltf,
 };
 
 use super::scene::{BenchScene, Warmup};
@@ -55,7 +55,7 @@ impl ShadowCase {
         }
     }
 
-    /// The phases a frame of this case runs.
+    /// The phases a frame of this case runs (and, on the deferred path, the resolve).
     pub fn phases(self) -> &'static [&'static str] {
         match self {
             Self::Off => &["prepass", "opaque", "post"],
@@ -64,11 +64,13 @@ impl ShadowCase {
     }
 }
 
-/// The street corner at `size`, lit as `case` says, timed.
-pub fn street_corner(size: (u32, u32), case: ShadowCase) -> Result<BenchScene> {
+/// The street corner at `size`, lit as `case` says, timed, rendered on `path`.
+pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Result<BenchScene> {
     let mut app = App::new();
     app.add_plugin(
-        RenderPlugin::headless(size.0, size.1).with_gpu_timing(Some(TimingMode::Blocking)),
+        RenderPlugin::headless(size.0, size.1)
+            .with_gpu_timing(Some(TimingMode::Blocking))
+            .with_path(path),
     )
     .add_plugin(PomPlugin);
     app.finish().context("starting the GPU")?;
@@ -123,12 +125,13 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase) -> Result<BenchScene> {
     Ok(BenchScene::from_app(app))
 }
 
-/// Per phase of `case`, its milliseconds in each timed frame.
+/// Per phase of `case` on `path`, its milliseconds in each timed frame.
 pub fn time(
     size: (u32, u32),
     case: ShadowCase,
+    path: RenderPath,
     warmup: Warmup,
     frames: usize,
-) -> Result<Vec<Vec<f64>>> {
-    street_corner(size, case)?.time_phases(warmup, frames, case.phases())
+) -> Result<Vec<(&'static str, Vec<f64>)>> {
+    street_corner(size, case, path)?.time_phases(warmup, frames, case.phases())
 }

@@ -141,6 +141,8 @@ pub struct Setup<'a> {
     pub base: &'a ParallaxOcclusionMaterial,
     /// Camera and light.
     pub view: &'a PreviewView,
+    /// Forward, deferred or auto (`--path`).
+    pub path: pom::RenderPath,
     /// Tiny grids for `--quick`.
     pub quick: bool,
     /// Untimed, then timed frames per candidate.
@@ -184,7 +186,7 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
         SceneOptions {
             timestamps: false,
             surface: Some(reference_mesh),
-            ..SceneOptions::timed_plane(setup.size)
+            ..SceneOptions::timed_plane(setup.size, setup.path)
         },
         setup.textures,
         on_mesh.clone(),
@@ -199,7 +201,7 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
 
     let mut candidates = Vec::new();
     let mut plane = BenchScene::new(
-        SceneOptions::timed_plane(setup.size),
+        SceneOptions::timed_plane(setup.size, setup.path),
         setup.textures,
         base.clone(),
         setup.view,
@@ -239,7 +241,7 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
         let mut scene = BenchScene::new(
             SceneOptions {
                 surface: Some(mesh),
-                ..SceneOptions::timed_plane(setup.size)
+                ..SceneOptions::timed_plane(setup.size, setup.path)
             },
             setup.textures,
             on_mesh.clone(),
@@ -286,7 +288,7 @@ fn score(
     let image = outside_reference_masked(reference, scene.capture()?);
     let flip = pom::flip_compare(reference, &image, FLIP_PERCENTILE)
         .context("reference and candidate differ in size")?;
-    let times = scene.time(warmup, frames)?;
+    let (_, times) = scene.time(warmup, frames)?;
     let spread = Spread::of(&times).context("no valid timings")?;
     eprintln!(
         "  {kind} {triangles} triangles, samples {}-{}: FLIP mean {:.4}, {:.4} ms",

@@ -15,6 +15,7 @@ mod light_control;
 mod material_editor;
 mod panels;
 mod presets;
+mod render_path_control;
 mod scene_open;
 mod screenshot;
 mod shader_status;

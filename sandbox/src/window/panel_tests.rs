@@ -15,7 +15,11 @@ struct Fixture {
 }
 
 fn harness() -> Harness<'static, Fixture> {
-    let mut app = App::new();
+    harness_with(App::new())
+}
+
+/// The panel over `app`, with one material entity added.
+fn harness_with(mut app: App) -> Harness<'static, Fixture> {
     let material = app.world.spawn((ParallaxOcclusionMaterial::default(),));
     let fixture = Fixture {
         app,
@@ -223,6 +227,44 @@ fn the_timing_panel_lists_the_plugins_gpu_pass_times() {
     harness.get_by_label("GPU time per pass (frame 42):");
     harness.get_by_label("  main pass: 2.500 ms");
     harness.get_by_label("  sobel pass: 0.250 ms");
+}
+
+/// Needs a GPU (lavapipe in `tests/run`): the control edits the renderer, which the render
+/// plugin makes once the GPU has started.
+#[test]
+fn switching_the_render_path_control_changes_the_renderers_path() {
+    use pom::RenderPath;
+    use pom::render::Renderer;
+    let mut app = App::new();
+    app.add_plugin(pom::RenderPlugin::headless(16, 16));
+    app.finish().expect("a GPU or lavapipe for this test");
+    let mut harness = harness_with(app);
+    let renderer = |harness: &Harness<'_, Fixture>| {
+        let renderer = harness.state().app.resources.get::<Renderer>().unwrap();
+        let status = super::render_path_control::path_status(
+            renderer.runs_deferred(),
+            renderer.deferred_unavailable(),
+        );
+        (renderer.path(), status)
+    };
+    assert_eq!(renderer(&harness).0, RenderPath::Auto);
+    harness.get_by_label("Timing").click();
+    harness.run();
+    for path in [RenderPath::Deferred, RenderPath::Forward, RenderPath::Auto] {
+        harness.get_by_label("render path").click();
+        harness.run();
+        harness.get_by_label(path.name()).click();
+        harness.run();
+        assert_eq!(renderer(&harness).0, path);
+        // The next frame runs on it, and the panel says which path that was.
+        harness.state_mut().app.update().unwrap();
+        harness.run();
+        let (_, status) = renderer(&harness);
+        harness.get_by_label(&status);
+        if path == RenderPath::Forward {
+            assert_eq!(status, "path: forward");
+        }
+    }
 }
 
 #[test]

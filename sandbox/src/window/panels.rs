@@ -13,6 +13,7 @@ use super::frame_timing::{FrameTimes, GpuTimingSource, gpu_pass_rows};
 use super::light_control::{LightControls, point_controls, spot_controls};
 use super::material_editor::edit_material;
 use super::presets::PresetControls;
+use super::render_path_control::render_path_controls;
 use super::scene_open::{OpenRequest, open_request, request_for_dropped};
 use super::shader_status::shader_reload_status;
 use super::split_controls::SplitControls;
@@ -109,6 +110,7 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         ui.checkbox(&mut state.spin_selected, "spin selected object")
             .on_hover_text("Turns the selected object slowly, to judge the parallax in motion.");
         ui.collapsing("Timing", |ui| {
+            render_path_controls(ui, app.resources.get_mut::<pom::render::Renderer>());
             state.frame_times.show(ui);
             let software_driver = app.resources.get::<pom::GpuContext>().is_some_and(|gpu| {
                 gpu.adapter_info().device_type == pom::wgpu::DeviceType::Cpu
