@@ -121,6 +121,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     parallax::PARALLAX_SHADER,
     parallax::PARALLAX_DEFERRED_SHADER,
     render::shaders::SOBEL,
+    render::DEFERRED_BACKGROUND,
     render::POST_SHADERS[0],
     render::POST_SHADERS[1],
     render::POST_SHADERS[2],

@@ -542,6 +542,13 @@ impl<M: Material> MaterialBatches<M> {
         });
     }
 
+    /// Whether any batch of the last prepared frame draws in `phase`.
+    pub(crate) fn draws_in(&self, phase: DrawPhase) -> bool {
+        self.batches
+            .iter()
+            .any(|batch| self.pipelines.pass_in(phase, batch.key).is_some())
+    }
+
     /// Whether any batch of the last prepared frame blends (draws in the transparent phase).
     pub(crate) fn blends_any(&self) -> bool {
         self.batches.iter().any(|batch| M::blends(batch.key))

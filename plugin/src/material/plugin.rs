@@ -215,9 +215,15 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
         phases.add_draw::<M>(DrawPhase::Prepass, |resources, pass| {
             draw_materials::<M>(resources, pass, DrawPhase::Prepass);
         });
-        phases.add_draw::<M>(DrawPhase::Opaque, |resources, pass| {
-            draw_materials::<M>(resources, pass, DrawPhase::Opaque);
-        });
+        phases.add_draw_when::<M>(
+            DrawPhase::Opaque,
+            |resources, pass| draw_materials::<M>(resources, pass, DrawPhase::Opaque),
+            |resources| {
+                resources
+                    .get::<MaterialBatches<M>>()
+                    .is_some_and(|batches| batches.draws_in(DrawPhase::Opaque))
+            },
+        );
         phases.add_draw_when::<M>(
             DrawPhase::Transparent,
             |resources, pass| draw_materials::<M>(resources, pass, DrawPhase::Transparent),

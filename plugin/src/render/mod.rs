@@ -3,6 +3,7 @@
 
 mod capture;
 mod context;
+mod deferred_background;
 mod draw_view;
 mod extract;
 mod fragment_counter;
@@ -27,6 +28,8 @@ pub(crate) mod texture_bind_groups;
 pub(crate) use capture::read_rgba32f;
 pub use capture::{CaptureError, read_rgba8, read_texture};
 pub use context::{GpuContext, GpuError};
+pub use deferred_background::DEFERRED_BACKGROUND;
+use deferred_background::DeferredBackground;
 pub use draw_view::DrawView;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use fragment_counter::FragmentInvocationCounter;
@@ -184,6 +187,8 @@ pub struct Renderer {
     deferred_unavailable: Option<DeferredUnavailable>,
     /// The deferred path's visibility buffer, once a frame has needed it.
     pub(crate) visibility: Option<VisibilityBuffer>,
+    /// The deferred path's background pass, once a frame has needed it.
+    background: Option<DeferredBackground>,
     /// No frame has chosen its path yet (the first choice is always logged).
     first_frame: bool,
     /// Tonemapping (the lights carry the exposure).
@@ -266,6 +271,9 @@ impl Renderer {
                 .is_none_or(|v| v.target != target.id())
         {
             self.visibility = Some(VisibilityBuffer::new(gpu, target));
+        }
+        if deferred && self.background.is_none() {
+            self.background = Some(DeferredBackground::new(gpu, target.scene_format()));
         }
     }
 }
@@ -354,6 +362,7 @@ impl Plugin for RenderPlugin {
             deferred: false,
             deferred_unavailable: None,
             visibility: None,
+            background: None,
             first_frame: true,
             post: PostProcess::new(
                 gpu,
@@ -384,6 +393,13 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
                 target,
                 crate::material::material_without_deferred_shader(resources),
             );
+            if let (true, Some(background), Some(visibility)) = (
+                renderer.deferred,
+                &mut renderer.background,
+                &renderer.visibility,
+            ) {
+                background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
+            }
             renderer.assets.release_freed(meshes, images);
             let settings = PostSettings::new(extracted.tonemapping, target.target_format());
             // Each shadow map sees the frame from its light: the same lights, the light's eye.
@@ -433,6 +449,9 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     );
     let run_resolve =
         deferred && run_prepass && has_camera && phases.is_some_and(|p| p.has_resolves(resources));
+    // A deferred frame whose opaque phase draws nothing writes the background from compute
+    // instead of clearing the scene in an empty render pass (a full-screen fragment pass).
+    let background_in_compute = run_resolve && !has(DrawPhase::Opaque);
     // Reserve the timestamps first: the timer is borrowed mutably.
     let mut time = |run: bool, phase: RenderPhase| {
         if run {
@@ -443,7 +462,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     };
     let prepass_time = time(run_prepass, RenderPhase::Prepass);
     let shadows_time = time(run_shadow_maps, RenderPhase::Shadows);
-    let opaque_time = time(true, RenderPhase::Opaque);
+    let opaque_time = time(!background_in_compute, RenderPhase::Opaque);
     let resolve_time = time(run_resolve, RenderPhase::Resolve);
     let transparent_time = time(run_transparent, RenderPhase::Transparent);
     let post_time = time(true, RenderPhase::PostProcess);
@@ -537,10 +556,8 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             work(resources, &mut encoder);
         }
     }
-    {
-        let clear = extracted.clear_color;
-        // The clear colour is shown as set: its negative alpha marks it display-referred
-        // (post_process.wgsl), so neither exposure nor tonemapping changes the background.
+    if !background_in_compute {
+        let [r, g, b, a] = clear_value(extracted.clear_color).map(f64::from);
         // After a prepass the depth is read-only: materials test against it, and may sample it.
         let depth_ops = if run_prepass {
             None
@@ -558,12 +575,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             label: Some("opaque"),
             color_attachments: &[Some(clearing_attachment(
                 &target.scene_view,
-                wgpu::Color {
-                    r: f64::from(clear.r),
-                    g: f64::from(clear.g),
-                    b: f64::from(clear.b),
-                    a: -1.0 - f64::from(clear.a.clamp(0.0, 1.0)),
-                },
+                wgpu::Color { r, g, b, a },
             ))],
             depth_stencil_attachment: depth_attachment(depth_ops),
             timestamp_writes: opaque_time.as_ref().map(PassTimestamps::render),
@@ -577,6 +589,11 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             label: Some("deferred resolve"),
             timestamp_writes: resolve_time.as_ref().map(PassTimestamps::compute),
         });
+        if background_in_compute
+            && let Some(background) = &resources.require::<Renderer>()?.background
+        {
+            background.record(&mut pass);
+        }
         for dispatch in phases.resolves() {
             dispatch(resources, &mut pass);
         }
@@ -623,6 +640,13 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             Ok(())
         })
         .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+}
+
+/// What the scene is cleared to: the clear colour as set, its negative alpha marking it
+/// display-referred (post_process.wgsl), so neither exposure nor tonemapping changes the
+/// background.
+fn clear_value(clear: crate::Color) -> [f32; 4] {
+    [clear.r, clear.g, clear.b, -1.0 - clear.a.clamp(0.0, 1.0)]
 }
 
 /// Reads the last rendered frame back as sRGB-encoded RGBA8 pixels.

@@ -1,0 +1,108 @@
+//! The deferred path's background pass (deferred_background.wgsl): the clear colour where the
+//! visibility buffer holds no draw, from compute, on deferred frames whose opaque phase has
+//! nothing to draw (it then skips that phase's render pass).
+
+use super::shaders::{self, ComposedShader, WgslFile};
+use super::{GpuContext, RenderTarget, VisibilityBuffer};
+
+/// The background pass's WGSL file.
+pub const DEFERRED_BACKGROUND_ENTRY: WgslFile =
+    crate::wgsl_file!("render/deferred_background.wgsl");
+
+/// The background pass's shader.
+pub const DEFERRED_BACKGROUND: ComposedShader = ComposedShader {
+    name: "deferred_background.wgsl",
+    constants: &[shaders::deferred_header],
+    files: &[DEFERRED_BACKGROUND_ENTRY],
+};
+
+/// Pixels per workgroup along each side (`@workgroup_size(8, 8)`).
+const WORKGROUP_SIDE: u32 = 8;
+
+/// The background pipeline, its clear-colour uniform, and the bind group of the current target.
+#[derive(Debug)]
+pub(crate) struct DeferredBackground {
+    pipeline: wgpu::ComputePipeline,
+    clear_color: wgpu::Buffer,
+    bind_group: Option<(u64, wgpu::BindGroup)>,
+    workgroups: (u32, u32),
+}
+
+impl DeferredBackground {
+    /// The pipeline for a scene target of `scene_format`.
+    pub(crate) fn new(gpu: &GpuContext, scene_format: wgpu::TextureFormat) -> Self {
+        let source = shaders::for_scene_format(DEFERRED_BACKGROUND.source(), scene_format);
+        let module = shaders::create_module(&gpu.device, DEFERRED_BACKGROUND.name, source);
+        let pipeline = gpu
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("deferred background"),
+                layout: None,
+                module: &module,
+                entry_point: Some("cs_background"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        let clear_color = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("deferred background colour"),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self {
+            pipeline,
+            clear_color,
+            bind_group: None,
+            workgroups: (0, 0),
+        }
+    }
+
+    /// Writes this frame's clear colour (as the opaque pass clears: see `render_frame`) and
+    /// binds `target` and its visibility buffer.
+    pub(crate) fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        visibility: &VisibilityBuffer,
+        clear: [f32; 4],
+    ) {
+        gpu.queue
+            .write_buffer(&self.clear_color, 0, bytemuck::cast_slice(&clear));
+        let (width, height) = target.size();
+        self.workgroups = (
+            width.div_ceil(WORKGROUP_SIDE),
+            height.div_ceil(WORKGROUP_SIDE),
+        );
+        if self.bind_group.as_ref().map(|(id, _)| *id) != Some(target.id()) {
+            let layout = self.pipeline.get_bind_group_layout(0);
+            let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("deferred background"),
+                layout: &layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&visibility.view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&target.scene_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: self.clear_color.as_entire_binding(),
+                    },
+                ],
+            });
+            self.bind_group = Some((target.id(), bind_group));
+        }
+    }
+
+    /// Records the pass into the resolve's compute pass.
+    pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        if let Some((_, bind_group)) = &self.bind_group {
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
+        }
+    }
+}
