@@ -240,7 +240,7 @@ impl BenchScene {
     /// where the frames ran deferred) and the material phases' milliseconds per timed frame.
     pub fn time(&mut self, warmup: Warmup, frames: usize) -> Result<(&'static str, Vec<f64>)> {
         let phases = self.time_phases(warmup, frames, &MATERIAL_PHASES)?;
-        let pass = if phases.len() > MATERIAL_PHASES.len() {
+        let pass = if self.runs_deferred() {
             TIMED_PASS_DEFERRED
         } else {
             TIMED_PASS
@@ -252,7 +252,9 @@ impl BenchScene {
     }
 
     /// Like [`BenchScene::time`], each phase of `phases` with its milliseconds per timed frame;
-    /// where the frames run deferred, the resolve is added after the opaque phase.
+    /// where the frames run deferred, the resolve is added after the opaque phase, and a phase
+    /// the deferred frame did not run is left out (the opaque phase, when only the resolve
+    /// shades: the background is then written from compute).
     pub fn time_phases(
         &mut self,
         warmup: Warmup,
@@ -262,7 +264,16 @@ impl BenchScene {
         self.time_frames(
             warmup,
             frames,
-            |scene| on_path(phases, scene.runs_deferred()),
+            |scene| {
+                let deferred = scene.runs_deferred();
+                let timings = scene.app.resources.get::<GpuTimings>();
+                on_path(phases, deferred)
+                    .into_iter()
+                    .filter(|phase| {
+                        !deferred || timings.is_some_and(|t| t.pass_ms(phase).is_some())
+                    })
+                    .collect()
+            },
             |app| Ok(app.update()?),
         )
     }
