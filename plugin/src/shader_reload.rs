@@ -174,6 +174,11 @@ fn reload(
     let mut rebuilt = Vec::new();
     for shader in changed {
         let source = compose_checked(shader, source_dir)?;
+        // A deferred shader writes the scene in the target's format (shaders::deferred_header).
+        let source = match resources.get::<crate::render::RenderTarget>() {
+            Some(target) => crate::render::shaders::for_scene_format(source, target.scene_format()),
+            None => source,
+        };
         let device = &gpu.device;
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = crate::render::shaders::create_module(device, shader.name, source);

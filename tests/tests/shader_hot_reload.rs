@@ -15,9 +15,16 @@ const SHADED_RETURN: &str =
 
 fn copy_shader_sources() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pom-hot-reload-{}", std::process::id()));
-    for file in [pom::lit::LIT_SHADER, pom::parallax::PARALLAX_SHADER]
-        .iter()
-        .flat_map(|shader| shader.files)
+    // The deferred shaders too: where the adapter has primitive_index the materials compile
+    // those, and a reload composes what was compiled.
+    for file in [
+        pom::lit::LIT_SHADER,
+        pom::parallax::PARALLAX_SHADER,
+        pom::lit::LIT_DEFERRED_SHADER,
+        pom::parallax::PARALLAX_DEFERRED_SHADER,
+    ]
+    .iter()
+    .flat_map(|shader| shader.files)
     {
         let path = dir.join(file.path);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
