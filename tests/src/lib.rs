@@ -151,7 +151,7 @@ pub fn render_both_paths(app: &mut App, name: &str) -> Result<image::RgbaImage, 
         "{name}: forward vs deferred FLIP mean {:.5}, p99 {:.4}",
         comparison.mean, comparison.at_percentile
     );
-    if comparison.mean > PATHS_AGREE_MEAN || std::env::var_os("POM_SAVE_PATHS").is_some() {
+    if comparison.mean > PATHS_AGREE_MEAN {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/deferred-path");
         let _ = std::fs::create_dir_all(&dir);
         let _ = forward.save(dir.join(format!("{name}-forward.png")));

@@ -150,3 +150,32 @@ fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
         Some(pom::render::DeferredUnavailable::NoDepthPrepass)
     );
 }
+
+#[test]
+fn instanced_parallax_cubes_resolve_each_instance_and_triangle() {
+    // Three cubes of one mesh and material: one batch whose instances own consecutive runs of
+    // visibility ids (12 triangles each), beside the plane's batch.
+    let view = PreviewView {
+        view_angle: 50.0,
+        projection: PreviewProjection::Perspective,
+        distance: 1.4,
+        ..PreviewView::default()
+    };
+    let textures = cobblestones();
+    let mut app = preview_app(128, TargetFormat::Srgb8, &textures, &view, |m| m).unwrap();
+    let material = textures.material(&mut app);
+    let cube = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::cube(0.2));
+    for (i, x) in [-0.3_f32, 0.0, 0.3].into_iter().enumerate() {
+        let transform = Transform {
+            translation: Vec3::new(x, 0.1, x * (i as f32 - 0.5)),
+            rotation: pom::glam::Quat::from_rotation_y(0.4 * i as f32),
+            ..Transform::IDENTITY
+        };
+        app.world.spawn((cube.clone(), transform, material.clone()));
+    }
+    render_both_paths(&mut app, "instanced_cubes").unwrap();
+}

@@ -2,7 +2,7 @@
 // masked surface's holes keep neither depth nor id. Composed after lit.wgsl and visibility.wgsl.
 
 @fragment
-fn fs_visibility_alpha_mask(in: VertexOut, @builtin(primitive_index) triangle: u32) -> @location(0) vec2<u32> {
+fn fs_visibility_alpha_mask(in: VertexOut, @builtin(primitive_index) triangle: u32) -> @location(0) u32 {
     if cut_out(base_color(in, materials[in.object_index]).a, materials[in.object_index]) {
         discard;
     }

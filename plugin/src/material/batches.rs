@@ -16,7 +16,7 @@ use crate::render::shaders::ComposedShader;
 use crate::render::texture_bind_groups::TextureBindGroups;
 use crate::render::{
     DrawPhase, DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
-    PixelFootprint, UploadStats,
+    PixelFootprint, UploadStats, VisibilityIds,
 };
 use crate::{AssetId, Assets, Image, Mesh};
 
@@ -40,6 +40,10 @@ pub(crate) struct Batch<K> {
     pub(crate) textures: MaterialTextures,
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) instances: Range<u32>,
+    /// On deferred frames, the visibility id of the first instance's first triangle (0: none).
+    pub(crate) first_id: u32,
+    /// The mesh's triangles: each instance owns that many ids.
+    pub(crate) triangles: u32,
 }
 
 #[derive(Clone, Copy)]
@@ -233,7 +237,7 @@ fn counter_entry() -> wgpu::BindGroupLayoutEntry {
 }
 
 impl<M: Material> MaterialBatches<M> {
-    /// Compiles `shader` (`M`'s, or its deferred one: then `tag` marks its visibility ids)
+    /// Compiles `shader` (`M`'s, or its deferred one where `deferred`)
     /// for scene targets of `color_format`, in frames with or without a depth `prepass`;
     /// pipelines follow on first use. With a `counter` the shader counts its fragment
     /// invocations into it.
@@ -241,7 +245,7 @@ impl<M: Material> MaterialBatches<M> {
     pub(crate) fn new(
         gpu: &GpuContext,
         frame: &FrameUniformBuffer,
-        (shader, deferred_tag): (ComposedShader, Option<u32>),
+        (shader, deferred): (ComposedShader, bool),
         color_format: wgpu::TextureFormat,
         prepass: bool,
         depth: &DepthBindings<'_>,
@@ -274,7 +278,7 @@ impl<M: Material> MaterialBatches<M> {
             bind_group_layouts: &[Some(&frame_layout), Some(textures.layout())],
             immediate_size: 0,
         });
-        let resolve = deferred_tag.map(|_| DeferredResolve::new(gpu, M::NAME, color_format));
+        let resolve = deferred.then(|| DeferredResolve::new(gpu, M::NAME, color_format));
         let resolve_layout = resolve.as_ref().map(|resolve| {
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(&format!("{} deferred resolve layout", M::NAME)),
@@ -316,7 +320,6 @@ impl<M: Material> MaterialBatches<M> {
                 source,
                 layout,
                 resolve_layout,
-                tag: deferred_tag.unwrap_or(0),
                 color_format,
                 prepass,
             }),
@@ -348,6 +351,7 @@ impl<M: Material> MaterialBatches<M> {
         assets: &mut GpuAssets,
         lod_cache: &mut MeshLodCache,
         stats: &mut UploadStats,
+        ids: &mut VisibilityIds,
     ) {
         let gpu = inputs.gpu;
         self.order.clear();
@@ -434,6 +438,30 @@ impl<M: Material> MaterialBatches<M> {
         self.sorted_uniforms.clear();
         self.sorted_uniforms
             .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));
+        self.batches.clear();
+        for (index, entry) in self.order.iter().enumerate() {
+            let instance = index as u32;
+            match self.batches.last_mut() {
+                Some(batch)
+                    if batch.key == entry.key
+                        && batch.casts_shadows == entry.casts_shadows
+                        && batch.textures == entry.textures
+                        && batch.mesh == entry.mesh =>
+                {
+                    batch.instances.end = instance + 1;
+                }
+                _ => self.batches.push(Batch {
+                    key: entry.key,
+                    casts_shadows: entry.casts_shadows,
+                    textures: entry.textures,
+                    mesh: entry.mesh,
+                    instances: instance..instance + 1,
+                    first_id: 0,
+                    triangles: 0,
+                }),
+            }
+        }
+        self.assign_visibility_ids(inputs.deferred.is_some().then_some(ids), assets);
         let (transform_bytes, transforms_grew) = self.transforms.upload(gpu, &self.transform_data);
         let (uniform_bytes, uniforms_grew) = self.uniforms.upload(gpu, &self.sorted_uniforms);
         stats.uniform_bytes += transform_bytes + uniform_bytes;
@@ -463,27 +491,6 @@ impl<M: Material> MaterialBatches<M> {
             self.bound = inputs.depth.bound;
         }
 
-        self.batches.clear();
-        for (index, entry) in self.order.iter().enumerate() {
-            let instance = index as u32;
-            match self.batches.last_mut() {
-                Some(batch)
-                    if batch.key == entry.key
-                        && batch.casts_shadows == entry.casts_shadows
-                        && batch.textures == entry.textures
-                        && batch.mesh == entry.mesh =>
-                {
-                    batch.instances.end = instance + 1;
-                }
-                _ => self.batches.push(Batch {
-                    key: entry.key,
-                    casts_shadows: entry.casts_shadows,
-                    textures: entry.textures,
-                    mesh: entry.mesh,
-                    instances: instance..instance + 1,
-                }),
-            }
-        }
         self.textures
             .prepare(gpu, assets, self.batches.iter().map(|batch| batch.textures));
         self.pipelines
@@ -505,6 +512,32 @@ impl<M: Material> MaterialBatches<M> {
                     assets,
                 ),
                 None => resolve.skip(),
+            }
+        }
+    }
+
+    /// Gives each batch its run of visibility `ids` (on deferred frames; else none) and each
+    /// instance the id of its first triangle.
+    fn assign_visibility_ids(&mut self, ids: Option<&mut VisibilityIds>, assets: &GpuAssets) {
+        let Some(ids) = ids else {
+            for transform in &mut self.transform_data {
+                transform.first_visibility_id = 0;
+            }
+            return;
+        };
+        for batch in &mut self.batches {
+            batch.triangles = assets
+                .mesh(batch.mesh)
+                .map_or(0, |mesh| mesh.index_count / 3);
+            let count =
+                u64::from(batch.instances.end - batch.instances.start) * u64::from(batch.triangles);
+            batch.first_id = ids.allocate(count).unwrap_or(0);
+            for (k, slot) in batch.instances.clone().enumerate() {
+                self.transform_data[slot as usize].first_visibility_id = if batch.first_id == 0 {
+                    0
+                } else {
+                    batch.first_id + k as u32 * batch.triangles
+                };
             }
         }
     }

@@ -8,7 +8,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Mat4;
 
 use super::batches::Batch;
-use crate::render::{GpuAssets, GpuContext, VISIBILITY_FORMAT};
+use crate::render::{GpuAssets, GpuContext};
 use crate::{AssetId, Mesh};
 
 /// Pixels per resolve workgroup along each side (`@workgroup_size(8, 8)`).
@@ -21,16 +21,22 @@ pub(crate) struct ResolveBatch {
     inverse_view_projection: [[f32; 4]; 4],
     target_width: f32,
     target_height: f32,
+    first_id: u32,
+    end_id: u32,
     first_object: u32,
-    end_object: u32,
+    triangles: u32,
+    _padding: [u32; 2],
 }
 
 crate::wgsl_layout!(ResolveBatch {
     inverse_view_projection,
     target_width,
     target_height,
+    first_id,
+    end_id,
     first_object,
-    end_object,
+    triangles,
+    _padding,
 });
 
 /// The frame's targets and camera as the resolve sees them.
@@ -132,7 +138,6 @@ impl DeferredResolve {
                     },
                 ],
             });
-        debug_assert_eq!(VISIBILITY_FORMAT, wgpu::TextureFormat::Rg32Uint);
         let alignment = u64::from(gpu.device.limits().min_uniform_buffer_offset_alignment);
         let slot_size =
             (std::mem::size_of::<ResolveBatch>() as u64).div_ceil(alignment) * alignment;
@@ -192,15 +197,22 @@ impl DeferredResolve {
         );
         let mut used = Vec::new();
         for (index, batch) in batches.iter().enumerate() {
-            let Some(mesh) = assets.mesh(batch.mesh).filter(|_| resolves(batch)) else {
+            let Some(mesh) = assets
+                .mesh(batch.mesh)
+                .filter(|_| resolves(batch) && batch.first_id != 0)
+            else {
                 continue;
             };
             let slot = ResolveBatch {
                 inverse_view_projection: inverse.to_cols_array_2d(),
                 target_width: width as f32,
                 target_height: height as f32,
+                first_id: batch.first_id,
+                end_id: batch.first_id
+                    + (batch.instances.end - batch.instances.start) * batch.triangles,
                 first_object: batch.instances.start,
-                end_object: batch.instances.end,
+                triangles: batch.triangles,
+                _padding: [0; 2],
             };
             let offset = self.slot_data.len() as u64;
             self.slot_data.extend_from_slice(bytemuck::bytes_of(&slot));

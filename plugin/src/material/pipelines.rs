@@ -13,8 +13,6 @@ pub(crate) struct MaterialPipelines<M: Material> {
     /// The deferred resolve's layout (groups 0 and 1 as `layout`, then the resolve's group
     /// 2), where the module holds `M`'s deferred shader.
     resolve_layout: Option<wgpu::PipelineLayout>,
-    /// `M`'s place among the app's materials, from 1: its visibility ids carry it.
-    tag: u32,
     color_format: wgpu::TextureFormat,
     /// Whether the frame has a depth prepass (the opaque pipelines' depth state follows).
     prepass: bool,
@@ -33,11 +31,8 @@ pub(crate) struct MaterialPipelines<M: Material> {
 /// even where it does not run; measured in sandbox/BENCHMARKS.md, "scene shadows").
 const SCENE_SHADOWS: &str = "SCENE_SHADOWS";
 
-/// The pipeline-overridable constant of visibility.wgsl that holds the material's tag.
-const VISIBILITY_TAG: &str = "VISIBILITY_TAG";
-
-/// How a material's pipelines are made: its module and layouts, its tag, the scene format and
-/// whether frames have a depth prepass.
+/// How a material's pipelines are made: its module and layouts, the scene format and whether
+/// frames have a depth prepass.
 pub(crate) struct PipelineSetup {
     pub(crate) shader: wgpu::ShaderModule,
     /// The module's WGSL (to see whether it receives scene shadows).
@@ -45,7 +40,6 @@ pub(crate) struct PipelineSetup {
     pub(crate) layout: wgpu::PipelineLayout,
     /// Present where the module is `M`'s deferred shader.
     pub(crate) resolve_layout: Option<wgpu::PipelineLayout>,
-    pub(crate) tag: u32,
     pub(crate) color_format: wgpu::TextureFormat,
     pub(crate) prepass: bool,
 }
@@ -58,7 +52,6 @@ impl<M: Material> MaterialPipelines<M> {
             shader: setup.shader,
             layout: setup.layout,
             resolve_layout: setup.resolve_layout,
-            tag: setup.tag,
             color_format: setup.color_format,
             prepass: setup.prepass,
             scene_shadows: false,
@@ -142,7 +135,6 @@ impl<M: Material> MaterialPipelines<M> {
         if shadowed {
             entry.constants.push((SCENE_SHADOWS, 1.0));
         }
-        entry.constants.push((VISIBILITY_TAG, f64::from(self.tag)));
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(&format!(
                 "{} deferred resolve {key:?} shadowed {shadowed}",
@@ -178,13 +170,7 @@ impl<M: Material> MaterialPipelines<M> {
         }
         let mut fragment = match pass {
             MeshPass::Prepass => M::prepass_fragment(key),
-            MeshPass::Visibility => {
-                let mut variant = M::visibility_fragment(key);
-                variant
-                    .constants
-                    .push((VISIBILITY_TAG, f64::from(self.tag)));
-                Some(variant)
-            }
+            MeshPass::Visibility => Some(M::visibility_fragment(key)),
             MeshPass::Shadow => M::shadow_fragment(key),
             MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
@@ -222,7 +208,6 @@ impl<M: Material> MaterialPipelines<M> {
             shader,
             layout: self.layout.clone(),
             resolve_layout: self.resolve_layout.clone(),
-            tag: self.tag,
             color_format: self.color_format,
             prepass: self.prepass,
             declares_scene_shadows: self.declares_scene_shadows,

@@ -153,9 +153,6 @@ pub(crate) fn material_without_deferred_shader(resources: &Resources) -> Option<
         .map(|entry| entry.name)
 }
 
-/// Most materials the visibility ids tell apart (their tag has 8 bits; 0 is "none").
-const MAX_VISIBILITY_TAGS: usize = 255;
-
 /// This frame's draws of `M`, as extracted. A resource.
 pub(crate) struct ExtractedMaterials<M> {
     pub(crate) draws: Vec<ExtractedDraw<M>>,
@@ -277,29 +274,17 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .resources
             .get::<FragmentInvocationCounter>()
             .map(|counter| counter.buffer().clone());
-        // The deferred shader where the material has one and the adapter the visibility pass;
-        // its tag is its place in the registry.
-        let tag = app
-            .resources
-            .get::<MaterialRegistry>()
-            .and_then(|registry| {
-                registry
-                    .entries
-                    .iter()
-                    .position(|entry| entry.type_id == TypeId::of::<M>())
-            })
-            .filter(|position| *position < MAX_VISIBILITY_TAGS)
-            .map(|position| position as u32 + 1);
-        let shader = match (M::deferred_shader(), tag) {
-            (Some(shader), Some(tag))
+        // The deferred shader where the material has one and the adapter the visibility pass.
+        let shader = match M::deferred_shader() {
+            Some(shader)
                 if gpu
                     .device
                     .features()
                     .contains(wgpu::Features::PRIMITIVE_INDEX) =>
             {
-                (shader, Some(tag))
+                (shader, true)
             }
-            _ => (M::shader(), None),
+            _ => (M::shader(), false),
         };
         let batches = MaterialBatches::<M>::new(
             gpu,
@@ -321,7 +306,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .get_or_default::<MaterialRegistry>()
             .entry_mut::<M>()
         {
-            entry.deferred = shader.1.is_some();
+            entry.deferred = shader.1;
             #[cfg(feature = "dev-tools")]
             {
                 entry.shader = shader.0;
@@ -514,6 +499,7 @@ fn prepare_materials<M: Material>(
                                 &mut renderer.assets,
                                 lod_cache,
                                 &mut stats,
+                                &mut renderer.visibility_ids,
                             );
                             lod_cache.retain_existing(inputs.meshes);
                             renderer.last_upload.meshes += stats.meshes;

@@ -3,7 +3,7 @@
 // visibility buffer gives it. Composed after pom.wgsl, visibility.wgsl and deferred_resolve.wgsl.
 
 struct VisibilityAndDepth {
-    @location(0) id: vec2<u32>,
+    @location(0) id: u32,
     @builtin(frag_depth) depth: f32,
 }
 

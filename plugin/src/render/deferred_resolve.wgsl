@@ -4,15 +4,18 @@
 // Composed after visibility.wgsl. Mirrors `ResolveBatch` and `Vertex` in Rust (the layout test
 // checks them against each other).
 
-// What one dispatch resolves: the pixels of one batch of draws (objects first..end of the
-// material, one mesh).
+// What one dispatch resolves: the pixels of one batch of draws (objects from `first_object`
+// on, one mesh of `triangles` triangles), whose visibility ids are first_id..end_id.
 struct ResolveBatch {
     // Framebuffer → world, to cast each pixel's view ray.
     inverse_view_projection: mat4x4<f32>,
     target_width: f32,
     target_height: f32,
+    first_id: u32,
+    end_id: u32,
     first_object: u32,
-    end_object: u32,
+    triangles: u32,
+    _padding: vec2<u32>,
 }
 
 // One vertex of a mesh's vertex buffer, read as storage (arrays, not vectors: no padding).
@@ -48,11 +51,12 @@ fn resolve_item(id: vec2<u32>) -> ResolveItem {
     if f32(id.x) >= resolve_batch.target_width || f32(id.y) >= resolve_batch.target_height {
         return item;
     }
-    let visible = textureLoad(visibility, id, 0).xy;
-    item.object_index = visible.x & VISIBILITY_OBJECT_MASK;
-    item.triangle = visible.y;
-    item.resolves = (visible.x >> VISIBILITY_OBJECT_BITS) == VISIBILITY_TAG
-        && item.object_index >= resolve_batch.first_object && item.object_index < resolve_batch.end_object;
+    let visible = textureLoad(visibility, id, 0).x;
+    item.resolves = visible >= resolve_batch.first_id && visible < resolve_batch.end_id;
+    let local = visible - resolve_batch.first_id;
+    let triangles = max(resolve_batch.triangles, 1u);
+    item.object_index = resolve_batch.first_object + local / triangles;
+    item.triangle = local % triangles;
     return item;
 }
 

@@ -132,8 +132,11 @@ pub struct MeshTransform {
     pub determinant_sign: f32,
     /// 1 where scene shadows fall on the object, 0 for a [`crate::NotShadowReceiver`].
     pub receives_shadows: u32,
+    /// On the deferred path, the visibility id of the object's first triangle (its triangle
+    /// `t` shows as this + `t`; 0 marks no draw); 0 on the forward path.
+    pub first_visibility_id: u32,
     /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
-    pub _padding: [f32; 2],
+    pub _padding: u32,
 }
 
 crate::wgsl_layout!(MeshTransform {
@@ -141,6 +144,7 @@ crate::wgsl_layout!(MeshTransform {
     normal_matrix,
     determinant_sign,
     receives_shadows,
+    first_visibility_id,
     _padding
 });
 
@@ -158,7 +162,8 @@ impl MeshTransform {
             normal_matrix: normal_matrix.to_cols_array_2d(),
             determinant_sign: if determinant < 0.0 { -1.0 } else { 1.0 },
             receives_shadows: u32::from(receives_shadows),
-            _padding: [0.0; 2],
+            first_visibility_id: 0,
+            _padding: 0,
         }
     }
 }

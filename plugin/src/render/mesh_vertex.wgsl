@@ -9,7 +9,9 @@ struct MeshTransform {
     determinant_sign: f32,
     // 1 where scene shadows fall on the object (0: NotShadowReceiver).
     receives_shadows: u32,
-    _padding: array<f32, 2>,
+    // Deferred path: the visibility id of the object's first triangle (visibility.wgsl).
+    first_visibility_id: u32,
+    _padding: u32,
 }
 
 @group(0) @binding(1) var<storage, read> transforms: array<MeshTransform>;

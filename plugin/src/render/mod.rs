@@ -47,8 +47,8 @@ pub use phases::{
 };
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
-pub(crate) use render_path::VisibilityBuffer;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath, VISIBILITY_FORMAT};
+pub(crate) use render_path::{VisibilityBuffer, VisibilityIds};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
@@ -189,6 +189,8 @@ pub struct Renderer {
     pub(crate) visibility: Option<VisibilityBuffer>,
     /// The deferred path's background pass, once a frame has needed it.
     background: Option<DeferredBackground>,
+    /// This frame's visibility ids, handed to the materials' batches as they prepare.
+    pub(crate) visibility_ids: VisibilityIds,
     /// No frame has chosen its path yet (the first choice is always logged).
     first_frame: bool,
     /// Tonemapping (the lights carry the exposure).
@@ -363,6 +365,7 @@ impl Plugin for RenderPlugin {
             deferred_unavailable: None,
             visibility: None,
             background: None,
+            visibility_ids: VisibilityIds::default(),
             first_frame: true,
             post: PostProcess::new(
                 gpu,
@@ -393,6 +396,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
                 target,
                 crate::material::material_without_deferred_shader(resources),
             );
+            renderer.visibility_ids.reset();
             if let (true, Some(background), Some(visibility)) = (
                 renderer.deferred,
                 &mut renderer.background,

@@ -79,10 +79,45 @@ pub enum DeferredUnavailable {
     MaterialWithoutDeferredShader(&'static str),
 }
 
-/// The texture format of the visibility buffer: per pixel, the material's tag and the draw's
-/// index in its material (24 bits), and the triangle. Two words, not one: a mesh's triangle
-/// count alone can exceed what one word leaves next to a draw index.
-pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
+/// The texture format of the visibility buffer: per pixel one id, the draw's first id plus the
+/// triangle (each deferred draw owns a run of ids, one per triangle: [`VisibilityIds`]). One
+/// word, not two: on the H200 each 4 bytes a fragment writes per pixel cost 1.18 ms at 4K
+/// (`Rg32Uint` 3.57 ms, `R32Uint` 2.39 ms, depth alone 1.21 ms; sandbox/BENCHMARKS.md).
+pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+
+/// Hands out a frame's visibility ids: each batch of deferred draws a run of one id per
+/// triangle per draw, from 1 (0 marks no draw). At most `u32::MAX` ids a frame: past that a
+/// batch gets none (its pixels would show the background) and the frame says so once.
+#[derive(Debug, Default)]
+pub(crate) struct VisibilityIds {
+    next: u64,
+    warned: bool,
+}
+
+impl VisibilityIds {
+    /// Starts a frame.
+    pub(crate) fn reset(&mut self) {
+        self.next = 1;
+    }
+
+    /// The first of `count` consecutive ids, or `None` when the frame has run out.
+    pub(crate) fn allocate(&mut self, count: u64) -> Option<u32> {
+        let first = self.next.max(1);
+        let end = first + count;
+        if end > u64::from(u32::MAX) {
+            if !self.warned {
+                log::error!(
+                    "a deferred frame needs more than {} visibility ids (one per triangle per draw): some draws are left out",
+                    u32::MAX
+                );
+                self.warned = true;
+            }
+            return None;
+        }
+        self.next = end;
+        u32::try_from(first).ok()
+    }
+}
 
 /// The visibility buffer of one target, made on the first deferred frame and kept.
 #[derive(Debug)]
@@ -143,6 +178,18 @@ pub(crate) fn auto_picks_deferred(gpu: &GpuContext) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn visibility_ids_are_handed_out_in_runs_from_one_until_they_run_out() {
+        let mut ids = VisibilityIds::default();
+        ids.reset();
+        assert_eq!(ids.allocate(6), Some(1));
+        assert_eq!(ids.allocate(2), Some(7));
+        assert_eq!(ids.allocate(u64::from(u32::MAX)), None);
+        assert_eq!(ids.allocate(1), Some(9));
+        ids.reset();
+        assert_eq!(ids.allocate(1), Some(1));
+    }
 
     #[test]
     fn paths_read_back_their_names_and_an_unknown_one_is_an_error() {
