@@ -122,6 +122,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     parallax::PARALLAX_DEFERRED_SHADER,
     render::shaders::SOBEL,
     render::DEFERRED_BACKGROUND,
+    material::DEFERRED_CLASSIFY_SHADER,
     render::POST_SHADERS[0],
     render::POST_SHADERS[1],
     render::POST_SHADERS[2],

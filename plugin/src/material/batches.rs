@@ -552,6 +552,7 @@ impl<M: Material> MaterialBatches<M> {
         let Some(resolve) = &self.resolve else {
             return;
         };
+        resolve.classify(pass);
         // Slot 0 of the frame uniform: the camera's view.
         pass.set_bind_group(0, &self.frame_bind_group, &[0]);
         let mut bound_key = None;

@@ -8,11 +8,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::Mat4;
 
 use super::batches::Batch;
+use super::resolve_tiles::ResolveTiles;
 use crate::render::{GpuAssets, GpuContext};
 use crate::{AssetId, Mesh};
-
-/// Pixels per resolve workgroup along each side (`@workgroup_size(8, 8)`).
-const WORKGROUP_SIDE: u32 = 8;
 
 /// What one dispatch resolves. Mirrors `ResolveBatch` in deferred_resolve.wgsl.
 #[repr(C)]
@@ -25,7 +23,11 @@ pub(crate) struct ResolveBatch {
     end_id: u32,
     first_object: u32,
     triangles: u32,
-    _padding: [u32; 2],
+    batch: u32,
+    tiles_across: u32,
+    tile_count: u32,
+    _padding_a: u32,
+    _padding_b: [u32; 2],
 }
 
 crate::wgsl_layout!(ResolveBatch {
@@ -36,7 +38,11 @@ crate::wgsl_layout!(ResolveBatch {
     end_id,
     first_object,
     triangles,
-    _padding,
+    batch,
+    tiles_across,
+    tile_count,
+    _padding_a,
+    _padding_b,
 });
 
 /// The frame's targets and camera as the resolve sees them.
@@ -59,10 +65,16 @@ struct MeshBindGroup {
     bind_group: wgpu::BindGroup,
 }
 
-/// One dispatch of the frame: a batch and its uniform slot.
+/// One dispatch of the frame: a batch, its place in the tile lists, and its uniform slot.
 struct Dispatch {
     batch: usize,
+    place: u32,
     offset: u32,
+}
+
+/// The end (exclusive) of `batch`'s visibility ids.
+fn end_id<K>(batch: &Batch<K>) -> u32 {
+    batch.first_id + (batch.instances.end - batch.instances.start) * batch.triangles
 }
 
 /// Material `M`'s resolve inputs.
@@ -73,10 +85,10 @@ pub(crate) struct DeferredResolve {
     slots: wgpu::Buffer,
     slot_data: Vec<u8>,
     meshes: HashMap<AssetId<Mesh>, MeshBindGroup>,
-    /// The target the mesh bind groups were made for.
-    bound_target: u64,
+    /// The target and tile buffers ([`ResolveTiles::generation`]) the mesh bind groups hold.
+    bound: (u64, u64),
+    tiles: ResolveTiles,
     dispatches: Vec<Dispatch>,
-    workgroups: (u32, u32),
 }
 
 impl DeferredResolve {
@@ -136,6 +148,8 @@ impl DeferredResolve {
                         },
                         count: None,
                     },
+                    storage(5),
+                    storage(6),
                 ],
             });
         let alignment = u64::from(gpu.device.limits().min_uniform_buffer_offset_alignment);
@@ -148,9 +162,9 @@ impl DeferredResolve {
             slots: Self::slot_buffer(gpu, label, slot_size, 4),
             slot_data: Vec::new(),
             meshes: HashMap::new(),
-            bound_target: 0,
+            bound: (0, 0),
+            tiles: ResolveTiles::new(gpu),
             dispatches: Vec::new(),
-            workgroups: (0, 0),
         }
     }
 
@@ -168,9 +182,9 @@ impl DeferredResolve {
         &self.layout
     }
 
-    /// Plans this frame's dispatches: one per batch `resolves` picks, each over the whole
-    /// target (pixels of other batches return after one load), with its slot written and its
-    /// mesh's bind group made where missing.
+    /// Plans this frame's dispatches: one per batch `resolves` picks, over the tiles the
+    /// classification finds it in, with its slot written and its mesh's bind group made where
+    /// missing.
     pub(crate) fn prepare<K>(
         &mut self,
         gpu: &GpuContext,
@@ -186,21 +200,33 @@ impl DeferredResolve {
         if !inverse.is_finite() {
             return;
         }
-        if self.bound_target != targets.target {
+        let resolved: Vec<(usize, &Batch<K>)> = batches
+            .iter()
+            .enumerate()
+            .filter(|(_, batch)| {
+                resolves(batch) && batch.first_id != 0 && assets.mesh(batch.mesh).is_some()
+            })
+            .collect();
+        let ranges: Vec<[u32; 2]> = resolved
+            .iter()
+            .map(|(_, batch)| [batch.first_id, end_id(batch)])
+            .collect();
+        self.tiles.prepare(
+            gpu,
+            targets.visibility,
+            targets.target,
+            targets.size,
+            &ranges,
+        );
+        let bound = (targets.target, self.tiles.generation());
+        if self.bound != bound {
             self.meshes.clear();
-            self.bound_target = targets.target;
+            self.bound = bound;
         }
         let (width, height) = targets.size;
-        self.workgroups = (
-            width.div_ceil(WORKGROUP_SIDE),
-            height.div_ceil(WORKGROUP_SIDE),
-        );
         let mut used = Vec::new();
-        for (index, batch) in batches.iter().enumerate() {
-            let Some(mesh) = assets
-                .mesh(batch.mesh)
-                .filter(|_| resolves(batch) && batch.first_id != 0)
-            else {
+        for (place, (index, batch)) in resolved.into_iter().enumerate() {
+            let Some(mesh) = assets.mesh(batch.mesh) else {
                 continue;
             };
             let slot = ResolveBatch {
@@ -208,17 +234,21 @@ impl DeferredResolve {
                 target_width: width as f32,
                 target_height: height as f32,
                 first_id: batch.first_id,
-                end_id: batch.first_id
-                    + (batch.instances.end - batch.instances.start) * batch.triangles,
+                end_id: end_id(batch),
                 first_object: batch.instances.start,
                 triangles: batch.triangles,
-                _padding: [0; 2],
+                batch: place as u32,
+                tiles_across: self.tiles.tiles_across(),
+                tile_count: self.tiles.tile_count(),
+                _padding_a: 0,
+                _padding_b: [0; 2],
             };
             let offset = self.slot_data.len() as u64;
             self.slot_data.extend_from_slice(bytemuck::bytes_of(&slot));
             self.slot_data.resize((offset + self.slot_size) as usize, 0);
             self.dispatches.push(Dispatch {
                 batch: index,
+                place: place as u32,
                 offset: offset as u32,
             });
             used.push(batch.mesh);
@@ -275,6 +305,8 @@ impl DeferredResolve {
                 entry(2, vertices.as_entire_binding()),
                 entry(3, indices.as_entire_binding()),
                 entry(4, wgpu::BindingResource::TextureView(targets.scene)),
+                entry(5, self.tiles.batch_tiles().as_entire_binding()),
+                entry(6, self.tiles.tile_counts().as_entire_binding()),
             ],
         })
     }
@@ -289,7 +321,15 @@ impl DeferredResolve {
         !self.dispatches.is_empty()
     }
 
-    /// Records this frame's dispatches into `pass`; `bind` sets the batch's pipeline and
+    /// Records the tile classification into `pass` (first: it binds a group 0 of its own).
+    pub(crate) fn classify(&self, pass: &mut wgpu::ComputePass<'_>) {
+        if self.has_work() {
+            self.tiles.record(pass);
+        }
+    }
+
+    /// Records this frame's dispatches into `pass`, one workgroup per tile each batch shows in
+    /// (indirect, after [`DeferredResolve::classify`]); `bind` sets the batch's pipeline and
     /// groups 0 and 1 (it returns `false` where they are missing, and the batch is skipped).
     pub(crate) fn dispatch<K>(
         &self,
@@ -306,7 +346,8 @@ impl DeferredResolve {
                 continue;
             }
             pass.set_bind_group(2, &mesh.bind_group, &[dispatch.offset]);
-            pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
+            let (args, offset) = self.tiles.dispatch_args(dispatch.place);
+            pass.dispatch_workgroups_indirect(args, offset);
         }
     }
 }

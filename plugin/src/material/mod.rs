@@ -10,6 +10,7 @@ mod param_types;
 mod params;
 mod pipelines;
 mod plugin;
+mod resolve_tiles;
 
 pub use layout_check::{
     LayoutMismatch, MemberLayout, WgslLayout, check_material_layout, check_wgsl_layout,
@@ -28,6 +29,7 @@ pub(crate) use batches::DepthBindings;
 #[cfg(feature = "dev-tools")]
 pub(crate) use plugin::MaterialRegistry;
 pub(crate) use plugin::material_without_deferred_shader;
+pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
 
 use std::fmt::Debug;
 use std::hash::Hash;

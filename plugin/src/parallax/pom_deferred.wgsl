@@ -16,11 +16,11 @@ fn fs_visibility_depth_offset(in: VertexOut, @builtin(front_facing) front_facing
     return VisibilityAndDepth(visibility_id(in.object_index, triangle), depth);
 }
 
-// One invocation per pixel: the pixels of this dispatch's batch march and shade as the fragment
-// entry points do; the others return at once.
+// One workgroup per 8 × 8 tile the batch shows in: its pixels march and shade as the fragment
+// entry points do; the tile's other pixels return at once.
 @compute @workgroup_size(8, 8)
-fn cs_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
-    let item = resolve_item(id.xy);
+fn cs_resolve(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
+    let item = resolve_item(group.xy, local.xy);
     if !item.resolves {
         return;
     }

@@ -15,7 +15,13 @@ struct ResolveBatch {
     end_id: u32,
     first_object: u32,
     triangles: u32,
-    _padding: vec2<u32>,
+    // The batch's place in the tile lists of deferred_classify.wgsl.
+    batch: u32,
+    tiles_across: u32,
+    tile_count: u32,
+    // (Uniform arrays need a 16-byte stride: no array here.)
+    _padding_a: u32,
+    _padding_b: vec2<u32>,
 }
 
 // One vertex of a mesh's vertex buffer, read as storage (arrays, not vectors: no padding).
@@ -33,6 +39,9 @@ struct StoredVertex {
 @group(2) @binding(3) var<storage, read> mesh_indices: array<u32>;
 // `SceneOutput` is generated: the target's HDR scene format as a write-only storage texture.
 @group(2) @binding(4) var scene_output: SceneOutput;
+// The tiles each batch shows in, and how many (deferred_classify.wgsl).
+@group(2) @binding(5) var<storage, read> batch_tiles: array<u32>;
+@group(2) @binding(6) var<storage, read> tile_counts: array<u32>;
 
 // A pixel a resolve invocation shades.
 struct ResolveItem {
@@ -43,20 +52,27 @@ struct ResolveItem {
     resolves: bool,
 }
 
-// Which pixel invocation `id` resolves, and whether this dispatch's batch shows there.
-fn resolve_item(id: vec2<u32>) -> ResolveItem {
+// Which pixel lane `local` of workgroup `group` resolves (one workgroup per 8 × 8 tile the
+// batch shows in, TILES_PER_ROW tiles a row), and whether the batch shows there.
+fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     var item: ResolveItem;
-    item.pixel = id;
     item.resolves = false;
+    let index = group.y * TILES_PER_ROW + group.x;
+    if index >= tile_counts[resolve_batch.batch] {
+        return item;
+    }
+    let tile = batch_tiles[resolve_batch.batch * resolve_batch.tile_count + index];
+    let id = vec2<u32>(tile % resolve_batch.tiles_across, tile / resolve_batch.tiles_across) * 8u + local;
+    item.pixel = id;
     if f32(id.x) >= resolve_batch.target_width || f32(id.y) >= resolve_batch.target_height {
         return item;
     }
     let visible = textureLoad(visibility, id, 0).x;
     item.resolves = visible >= resolve_batch.first_id && visible < resolve_batch.end_id;
-    let local = visible - resolve_batch.first_id;
+    let within = visible - resolve_batch.first_id;
     let triangles = max(resolve_batch.triangles, 1u);
-    item.object_index = resolve_batch.first_object + local / triangles;
-    item.triangle = local % triangles;
+    item.object_index = resolve_batch.first_object + within / triangles;
+    item.triangle = within % triangles;
     return item;
 }
 

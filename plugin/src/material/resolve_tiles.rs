@@ -1,0 +1,292 @@
+//! The deferred resolve's tile classification (deferred_classify.wgsl) for one material: which
+//! 8 × 8 tiles of the visibility buffer each of its resolve batches shows in, as a tile list and
+//! an indirect dispatch per batch, so a batch's resolve runs only where the batch is seen.
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::render::GpuContext;
+use crate::render::shaders::{self, ComposedShader};
+
+/// The classification's shader.
+pub const DEFERRED_CLASSIFY_SHADER: ComposedShader = ComposedShader {
+    name: "deferred_classify.wgsl",
+    constants: &[shaders::deferred_header],
+    files: &[shaders::DEFERRED_CLASSIFY],
+};
+
+/// Pixels per tile along each side.
+pub(crate) const TILE_SIDE: u32 = 8;
+
+/// Mirrors `ClassifyParams` in deferred_classify.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct ClassifyParams {
+    tiles_across: u32,
+    tile_count: u32,
+    batch_count: u32,
+    _padding: u32,
+}
+
+crate::wgsl_layout!(ClassifyParams {
+    tiles_across,
+    tile_count,
+    batch_count,
+    _padding
+});
+
+/// The buffers of one frame's classification, sized for `batches` batches of `tiles` tiles.
+struct TileBuffers {
+    batches: u64,
+    tiles: u64,
+    batch_ids: wgpu::Buffer,
+    tile_counts: wgpu::Buffer,
+    batch_tiles: wgpu::Buffer,
+    dispatch_args: wgpu::Buffer,
+}
+
+impl TileBuffers {
+    fn new(gpu: &GpuContext, batches: u64, tiles: u64) -> Self {
+        let buffer = |label: &str, size: u64, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(4),
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            batches,
+            tiles,
+            batch_ids: buffer(
+                "resolve batch ids",
+                batches * 8,
+                wgpu::BufferUsages::COPY_DST,
+            ),
+            tile_counts: buffer(
+                "resolve tile counts",
+                batches * 4,
+                wgpu::BufferUsages::COPY_DST,
+            ),
+            batch_tiles: buffer(
+                "resolve batch tiles",
+                batches * tiles * 4,
+                wgpu::BufferUsages::empty(),
+            ),
+            dispatch_args: buffer(
+                "resolve dispatch args",
+                batches * 12,
+                wgpu::BufferUsages::INDIRECT,
+            ),
+        }
+    }
+}
+
+/// One material's classification: pipelines, buffers, and the bind group of the current
+/// target and buffers.
+pub(crate) struct ResolveTiles {
+    layout: wgpu::BindGroupLayout,
+    classify: wgpu::ComputePipeline,
+    dispatch_args_pipeline: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    buffers: TileBuffers,
+    /// Bumped whenever the buffers are made anew (the resolve's bind groups hold them).
+    generation: u64,
+    bind_group: Option<((u64, u64), wgpu::BindGroup)>,
+    tiles: (u32, u32),
+    batch_count: u32,
+}
+
+impl ResolveTiles {
+    pub(crate) fn new(gpu: &GpuContext) -> Self {
+        let device = &gpu.device;
+        let visibility = wgpu::ShaderStages::COMPUTE;
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("resolve classification layout"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Uint,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                storage(2, true),
+                storage(3, false),
+                storage(4, false),
+                storage(5, false),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("resolve classification"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let module = DEFERRED_CLASSIFY_SHADER.create_module(device);
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        Self {
+            classify: pipeline("cs_classify"),
+            dispatch_args_pipeline: pipeline("cs_dispatch_args"),
+            layout,
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("resolve classification params"),
+                size: std::mem::size_of::<ClassifyParams>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            buffers: TileBuffers::new(gpu, 1, 1),
+            generation: 0,
+            bind_group: None,
+            tiles: (0, 0),
+            batch_count: 0,
+        }
+    }
+
+    /// Plans this frame: the batches' id ranges (`first..end`, increasing), a target of `size`
+    /// whose visibility buffer is `visibility` (`target` its id). Counts are zeroed before the
+    /// frame's classification runs (queue writes come before the frame's commands).
+    pub(crate) fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        visibility: &wgpu::TextureView,
+        target: u64,
+        size: (u32, u32),
+        ranges: &[[u32; 2]],
+    ) {
+        self.tiles = (size.0.div_ceil(TILE_SIDE), size.1.div_ceil(TILE_SIDE));
+        let tile_count = u64::from(self.tiles.0) * u64::from(self.tiles.1);
+        self.batch_count = ranges.len() as u32;
+        if ranges.is_empty() {
+            return;
+        }
+        let batches = ranges.len() as u64;
+        if batches > self.buffers.batches || tile_count != self.buffers.tiles {
+            self.buffers = TileBuffers::new(gpu, batches.next_power_of_two(), tile_count);
+            self.generation += 1;
+        }
+        let params = ClassifyParams {
+            tiles_across: self.tiles.0,
+            tile_count: tile_count as u32,
+            batch_count: self.batch_count,
+            _padding: 0,
+        };
+        gpu.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.queue
+            .write_buffer(&self.buffers.batch_ids, 0, bytemuck::cast_slice(ranges));
+        gpu.queue.write_buffer(
+            &self.buffers.tile_counts,
+            0,
+            bytemuck::cast_slice(&vec![0u32; ranges.len()]),
+        );
+        let bound = (target, self.generation);
+        if self.bind_group.as_ref().map(|(key, _)| *key) != Some(bound) {
+            let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+            let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("resolve classification"),
+                layout: &self.layout,
+                entries: &[
+                    entry(0, self.params.as_entire_binding()),
+                    entry(1, wgpu::BindingResource::TextureView(visibility)),
+                    entry(2, self.buffers.batch_ids.as_entire_binding()),
+                    entry(3, self.buffers.tile_counts.as_entire_binding()),
+                    entry(4, self.buffers.batch_tiles.as_entire_binding()),
+                    entry(5, self.buffers.dispatch_args.as_entire_binding()),
+                ],
+            });
+            self.bind_group = Some((bound, bind_group));
+        }
+    }
+
+    /// Records the classification and the indirect arguments into `pass` (before the batches'
+    /// dispatches; each dispatch of a compute pass sees the writes of the ones before).
+    pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        let Some((_, bind_group)) = &self.bind_group else {
+            return;
+        };
+        if self.batch_count == 0 {
+            return;
+        }
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.set_pipeline(&self.classify);
+        pass.dispatch_workgroups(self.tiles.0, self.tiles.1, 1);
+        pass.set_pipeline(&self.dispatch_args_pipeline);
+        pass.dispatch_workgroups(self.batch_count.div_ceil(64), 1, 1);
+    }
+
+    /// Tiles along the target's width.
+    pub(crate) fn tiles_across(&self) -> u32 {
+        self.tiles.0
+    }
+
+    /// Tiles of the whole target: the slots of each batch's list.
+    pub(crate) fn tile_count(&self) -> u32 {
+        self.tiles.0 * self.tiles.1
+    }
+
+    /// Changes whenever the buffers below are made anew.
+    pub(crate) fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Each batch's tile list.
+    pub(crate) fn batch_tiles(&self) -> &wgpu::Buffer {
+        &self.buffers.batch_tiles
+    }
+
+    /// Each batch's tile count.
+    pub(crate) fn tile_counts(&self) -> &wgpu::Buffer {
+        &self.buffers.tile_counts
+    }
+
+    /// Batch `batch`'s indirect dispatch arguments: the buffer and the byte offset.
+    pub(crate) fn dispatch_args(&self, batch: u32) -> (&wgpu::Buffer, u64) {
+        (&self.buffers.dispatch_args, u64::from(batch) * 12)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::check_wgsl_layout;
+
+    #[test]
+    fn the_classification_params_match_their_wgsl() {
+        let source = DEFERRED_CLASSIFY_SHADER.source();
+        assert_eq!(
+            check_wgsl_layout::<ClassifyParams>(&source, "ClassifyParams"),
+            Ok(())
+        );
+    }
+}

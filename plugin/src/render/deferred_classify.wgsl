@@ -1,0 +1,80 @@
+// Tile classification for the deferred resolve: for each 8 × 8 tile of the visibility buffer,
+// which of a material's resolve batches show in it. Each batch gets the list of its tiles and
+// an indirect dispatch of one workgroup per tile, so a batch's resolve runs only where it is
+// seen. Mirrors `ClassifyParams` in material/resolve_tiles.rs (the layout test checks them).
+
+struct ClassifyParams {
+    tiles_across: u32,
+    tile_count: u32,
+    batch_count: u32,
+    _padding: u32,
+}
+
+@group(0) @binding(0) var<uniform> params: ClassifyParams;
+@group(0) @binding(1) var visibility: texture_2d<u32>;
+// Each batch's visibility ids, first..end, in increasing order.
+@group(0) @binding(2) var<storage, read> batch_ids: array<vec2<u32>>;
+// Per batch: how many tiles it shows in (zeroed before each frame).
+@group(0) @binding(3) var<storage, read_write> tile_counts: array<atomic<u32>>;
+// Per batch, `tile_count` slots: the tiles it shows in (y × tiles_across + x).
+@group(0) @binding(4) var<storage, read_write> batch_tiles: array<u32>;
+// Per batch, the workgroup counts (x, y, z) of its indirect dispatch.
+@group(0) @binding(5) var<storage, read_write> dispatch_args: array<u32>;
+
+const NO_BATCH: u32 = 0xffffffffu;
+
+var<workgroup> lane_batches: array<u32, 64>;
+
+// The batch whose ids hold `id` (binary search), or NO_BATCH.
+fn batch_of(id: u32) -> u32 {
+    var low = 0u;
+    var high = params.batch_count;
+    while low < high {
+        let middle = (low + high) / 2u;
+        if id < batch_ids[middle].x {
+            high = middle;
+        } else if id >= batch_ids[middle].y {
+            low = middle + 1u;
+        } else {
+            return middle;
+        }
+    }
+    return NO_BATCH;
+}
+
+// One workgroup per tile: the first lane that shows a batch lists the tile for it.
+@compute @workgroup_size(8, 8)
+fn cs_classify(@builtin(workgroup_id) tile: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32) {
+    let pixel = tile.xy * 8u + local.xy;
+    var batch = NO_BATCH;
+    if all(pixel < textureDimensions(visibility)) {
+        batch = batch_of(textureLoad(visibility, pixel, 0).x);
+    }
+    lane_batches[lane] = batch;
+    workgroupBarrier();
+    if batch == NO_BATCH {
+        return;
+    }
+    for (var other = 0u; other < lane; other += 1u) {
+        if lane_batches[other] == batch {
+            return;
+        }
+    }
+    let slot = atomicAdd(&tile_counts[batch], 1u);
+    batch_tiles[batch * params.tile_count + slot] = tile.y * params.tiles_across + tile.x;
+}
+
+// One invocation per batch: its tile count as an indirect dispatch, TILES_PER_ROW tiles a row
+// (generated: shaders::deferred_header).
+@compute @workgroup_size(64)
+fn cs_dispatch_args(@builtin(global_invocation_id) id: vec3<u32>) {
+    let batch = id.x;
+    if batch >= params.batch_count {
+        return;
+    }
+    let tiles = atomicLoad(&tile_counts[batch]);
+    dispatch_args[batch * 3u] = min(tiles, TILES_PER_ROW);
+    dispatch_args[batch * 3u + 1u] = (tiles + TILES_PER_ROW - 1u) / TILES_PER_ROW;
+    dispatch_args[batch * 3u + 2u] = 1u;
+}
