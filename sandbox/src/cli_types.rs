@@ -215,6 +215,39 @@ impl PathArgs {
     }
 }
 
+/// `--path` of `sandbox bench`: like [`PathArgs`], but repeatable, so that one run times
+/// several paths side by side (`--path forward --path deferred`).
+#[derive(Clone, Debug, clap::Args)]
+#[command(next_help_heading = "Renderer")]
+pub struct BenchPathArgs {
+    /// Render path: forward (fragment shaders), deferred (compute, from a visibility buffer) or
+    /// auto (deferred on a GPU, forward on a software driver); repeatable: every measurement
+    /// runs once per path, in the order given.
+    #[arg(
+        long = "path",
+        value_name = "forward|deferred|auto",
+        value_parser = str::parse::<RenderPath>,
+        default_value = "auto"
+    )]
+    pub paths: Vec<RenderPath>,
+}
+
+impl BenchPathArgs {
+    /// The paths asked for, in order, each once (at least one: clap's default is auto).
+    pub fn paths(&self) -> Vec<RenderPath> {
+        let mut paths: Vec<RenderPath> = Vec::with_capacity(self.paths.len());
+        for path in &self.paths {
+            if !paths.contains(path) {
+                paths.push(*path);
+            }
+        }
+        if paths.is_empty() {
+            paths.push(RenderPath::Auto);
+        }
+        paths
+    }
+}
+
 /// Every entity holding a directional, point or spot light, in entity order.
 pub fn light_entities(world: &World) -> Vec<Entity> {
     let mut lights: Vec<Entity> = world
@@ -352,6 +385,15 @@ mod tests {
         for bad in ["-1", "first", "1.5", ""] {
             assert!(parse_camera(bad).is_err(), "{bad:?} was accepted");
         }
+    }
+
+    #[test]
+    fn bench_paths_keep_their_order_once_each() {
+        use RenderPath::{Auto, Deferred, Forward};
+        let paths = |paths: Vec<RenderPath>| BenchPathArgs { paths }.paths();
+        assert_eq!(paths(vec![]), [Auto]);
+        assert_eq!(paths(vec![Deferred, Forward]), [Deferred, Forward]);
+        assert_eq!(paths(vec![Forward, Deferred, Forward]), [Forward, Deferred]);
     }
 
     #[test]

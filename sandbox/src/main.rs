@@ -180,11 +180,11 @@ mod tests {
     #[test]
     fn every_rendering_command_takes_a_render_path() {
         use pom::RenderPath;
-        let path_of = |args: &[&str]| match Cli::try_parse_from(args).unwrap().command {
-            Some(Command::Render(render)) => render.path.path,
-            Some(Command::Snapshot(demo)) => demo.path.path,
-            Some(Command::Bench(bench)) => bench.path.path,
-            Some(Command::RunScript(script)) => script.path.path,
+        let paths_of = |args: &[&str]| match Cli::try_parse_from(args).unwrap().command {
+            Some(Command::Render(render)) => vec![render.path.path],
+            Some(Command::Snapshot(demo)) => vec![demo.path.path],
+            Some(Command::Bench(bench)) => bench.path.paths(),
+            Some(Command::RunScript(script)) => vec![script.path.path],
             other => panic!("not a rendering command: {other:?}"),
         };
         let commands: [&[&str]; 4] = [
@@ -194,10 +194,10 @@ mod tests {
             &["sandbox", "run-script", "a.ron"],
         ];
         for command in commands {
-            assert_eq!(path_of(command), RenderPath::Auto, "{command:?}");
+            assert_eq!(paths_of(command), [RenderPath::Auto], "{command:?}");
             let mut args = command.to_vec();
             args.extend(["--path", "deferred"]);
-            assert_eq!(path_of(&args), RenderPath::Deferred, "{args:?}");
+            assert_eq!(paths_of(&args), [RenderPath::Deferred], "{args:?}");
             let mut bad = command.to_vec();
             bad.extend(["--path", "fastest"]);
             let error = Cli::try_parse_from(&bad).unwrap_err();
@@ -208,6 +208,25 @@ mod tests {
                  render path \"fastest\": expected forward, deferred or auto"
             );
         }
+    }
+
+    #[test]
+    fn bench_takes_the_path_more_than_once_and_the_others_once() {
+        use pom::RenderPath;
+        let both = [
+            "sandbox", "bench", "--path", "forward", "--path", "deferred",
+        ];
+        let Some(Command::Bench(bench)) = Cli::try_parse_from(both).unwrap().command else {
+            panic!("not the bench command");
+        };
+        assert_eq!(
+            bench.path.paths(),
+            [RenderPath::Forward, RenderPath::Deferred]
+        );
+        let twice = [
+            "sandbox", "snapshot", "--path", "forward", "--path", "deferred",
+        ];
+        assert!(Cli::try_parse_from(twice).is_err());
     }
 
     #[test]

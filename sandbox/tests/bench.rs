@@ -65,6 +65,10 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         );
     }
     for case in cases {
+        assert!(
+            case["path"] == "forward" || case["path"] == "deferred",
+            "{case}"
+        );
         let spread = &case["spread"];
         for field in ["median_ms", "min_ms", "p10_ms", "p90_ms", "max_ms"] {
             let ms = spread[field].as_f64().unwrap();
@@ -105,7 +109,10 @@ fn quick_bench_writes_json_csv_and_a_chart() {
             assert!(rate[field].as_f64().unwrap() > 0.0, "{field} in {rate}");
         }
     }
-    let versus = &json["versus_mesh"];
+    // One path asked for (auto): one comparison and one CPU side.
+    assert_eq!(json["paths"], serde_json::json!(["auto"]));
+    assert_eq!(json["versus_mesh"].as_array().unwrap().len(), 1);
+    let versus = &json["versus_mesh"][0];
     let candidates = versus["candidates"].as_array().unwrap();
     for kind in ["pom", "mesh"] {
         assert!(
@@ -122,16 +129,17 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         let image = image::open(out.join(file)).unwrap();
         assert!(image.width() > 0 && image.height() > 0);
     }
-    assert_eq!(json["cpu_side"]["entities"], 200);
-    assert!(json["cpu_side"]["total"]["median_ms"].as_f64().unwrap() > 0.0);
+    assert_eq!(json["cpu_side"].as_array().unwrap().len(), 1);
+    assert_eq!(json["cpu_side"][0]["entities"], 200);
+    assert!(json["cpu_side"][0]["total"]["median_ms"].as_f64().unwrap() > 0.0);
     assert!(json["adapter"]["software_driver"].is_boolean());
 
     let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "group,method,shadows,width,height,min_samples,max_samples,lod_threshold,tiling,pass,\
-         frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant"
+        "group,method,shadows,width,height,min_samples,max_samples,lod_threshold,tiling,path,\
+         pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant"
     );
     assert_eq!(lines.count(), cases.len());
 
@@ -194,8 +202,8 @@ fn only_makes_just_the_measurements_asked_for() {
     assert_eq!(cases.len(), 2 * 2, "two far-field cases per size");
     assert!(cases.iter().all(|c| c["group"] == "far_field"));
     assert!(json["sample_rates"].as_array().unwrap().is_empty());
-    assert!(json["versus_mesh"].is_null());
-    assert_eq!(json["cpu_side"]["entities"], 20);
+    assert!(json["versus_mesh"].as_array().unwrap().is_empty());
+    assert_eq!(json["cpu_side"][0]["entities"], 20);
     assert!(!out.join("versus_pom.png").exists());
 }
 
@@ -203,4 +211,88 @@ fn only_makes_just_the_measurements_asked_for() {
 fn an_unknown_measurement_is_rejected() {
     let output = sandbox(&["bench", "--only", "everything"]);
     assert_one_line_error(&output, &["--only", "everything"]);
+}
+
+#[test]
+fn both_paths_are_timed_side_by_side_in_one_run() {
+    let dir = TempDir::new("bench-both-paths");
+    let out = dir.join("results");
+    let output = sandbox(&[
+        "bench",
+        "--quick",
+        "--only",
+        "phases",
+        "--only",
+        "seed-port",
+        "--path",
+        "forward",
+        "--path",
+        "deferred",
+        "--out",
+        path_arg(&out),
+    ]);
+    assert_success(&output);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
+    assert_eq!(json["paths"], serde_json::json!(["forward", "deferred"]));
+    let cases = json["cases"].as_array().unwrap();
+    let passes = |group: &str, path: &str, size: &str| -> Vec<&str> {
+        cases
+            .iter()
+            .filter(|c| {
+                c["group"] == group
+                    && c["path"] == path
+                    && format!("{}x{}", c["width"], c["height"]) == size
+            })
+            .map(|c| c["pass"].as_str().unwrap())
+            .collect()
+    };
+    for size in ["64x36", "96x54"] {
+        assert_eq!(
+            passes("phases", "forward", size),
+            ["prepass", "opaque", "post"]
+        );
+        let deferred = passes("phases", "deferred", size);
+        assert!(deferred.contains(&"resolve"), "{size}: {deferred:?}");
+        assert_eq!(deferred.last(), Some(&"post"), "{size}: {deferred:?}");
+    }
+    // The seed port has no deferred shader: its rows ran forward on both runs, ours did not.
+    let ran = |variant: &str| -> Vec<&str> {
+        cases
+            .iter()
+            .filter(|c| c["group"] == "seed_port" && c["variant"] == variant)
+            .map(|c| c["path"].as_str().unwrap())
+            .collect()
+    };
+    assert_eq!(ran("seed port"), ["forward"; 4]);
+    assert_eq!(ran("ours"), ["forward", "forward", "deferred", "deferred"]);
+    let ratios = json["ratios"].as_array().unwrap();
+    assert!(ratios.iter().any(|r| r["path"] == "deferred"));
+
+    let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
+    let deferred_rows = csv.lines().filter(|l| l.contains(",deferred,")).count();
+    let deferred_cases = cases.iter().filter(|c| c["path"] == "deferred").count();
+    assert_eq!(deferred_rows, deferred_cases);
+    assert!(deferred_rows > 0);
+
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let summary: Vec<&str> = stdout
+        .lines()
+        .skip_while(|l| !l.starts_with("phases side by side"))
+        .take_while(|l| !l.starts_with("wrote "))
+        .collect();
+    assert_eq!(summary.len(), 3, "no side-by-side summary:\n{stdout}");
+    for (line, size) in summary[1..].iter().zip(["64x36", "96x54"]) {
+        assert!(line.starts_with(&format!("{size}: forward ")), "{line}");
+        assert!(line.contains("resolve"), "{line}");
+        assert!(line.contains("forward / deferred"), "{line}");
+    }
+}
+
+#[test]
+fn only_bench_takes_the_path_more_than_once() {
+    let output = sandbox(&["bench", "--path", "forward", "--path", "sideways"]);
+    assert_one_line_error(&output, &["--path", "sideways"]);
+    let output = sandbox(&["render", "--path", "forward", "--path", "deferred"]);
+    assert_one_line_error(&output, &["--path"]);
 }

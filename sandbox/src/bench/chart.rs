@@ -34,11 +34,36 @@ fn bar_label(case: &CaseResult) -> String {
     format!("{}{shadows}", case.method)
 }
 
-fn sizes(cases: &[CaseResult]) -> Vec<(u32, u32)> {
-    let mut sizes: Vec<(u32, u32)> = cases.iter().map(|c| (c.width, c.height)).collect();
-    sizes.sort_unstable();
-    sizes.dedup();
-    sizes
+/// One series per image size and path the frames ran, by size, then in the order the paths
+/// ran; named by the size, and the path too where the cases ran on more than one.
+fn series<'a>(cases: impl IntoIterator<Item = &'a CaseResult>) -> Vec<(Series, String)> {
+    let mut series: Vec<Series> = Vec::new();
+    for case in cases {
+        let key = ((case.width, case.height), case.path);
+        if !series.contains(&key) {
+            series.push(key);
+        }
+    }
+    series.sort_by_key(|(size, _)| *size);
+    let several_paths = series.iter().any(|(_, path)| *path != series[0].1);
+    series
+        .into_iter()
+        .map(|key @ ((width, height), path)| {
+            let name = if several_paths {
+                format!("{width}x{height} {path}")
+            } else {
+                format!("{width}x{height}")
+            };
+            (key, name)
+        })
+        .collect()
+}
+
+/// An image size and the path the frames ran.
+type Series = ((u32, u32), &'static str);
+
+fn in_series(case: &CaseResult, (size, path): Series) -> bool {
+    (case.width, case.height) == size && case.path == path
 }
 
 /// Draws the chart for `cases` into `path` (PNG), titled with `adapter`.
@@ -66,7 +91,12 @@ fn draw(
         (FONT, 20),
     )?;
     let (left, right) = root.split_horizontally(900);
-    let sizes = sizes(cases);
+    // The seed port's forward rows would add a path that neither chart shows.
+    let series = series(
+        cases
+            .iter()
+            .filter(|c| c.group == "methods" || c.group == "samples"),
+    );
 
     let methods: Vec<&CaseResult> = cases.iter().filter(|c| c.group == "methods").collect();
     let labels: Vec<String> = {
@@ -96,16 +126,16 @@ fn draw(
         .y_desc("ms")
         .label_style((FONT, 12))
         .draw()?;
-    let width = 0.8 / sizes.len().max(1) as f64;
-    for (series, size) in sizes.iter().enumerate() {
-        let color = PALETTE[series % PALETTE.len()];
+    let width = 0.8 / series.len().max(1) as f64;
+    for (index, (key, name)) in series.iter().enumerate() {
+        let color = PALETTE[index % PALETTE.len()];
         let bars: Vec<(f64, &CaseResult)> = methods
             .iter()
-            .filter(|c| (c.width, c.height) == *size)
+            .filter(|c| in_series(c, *key))
             .filter_map(|c| {
                 let label = bar_label(c);
-                let index = labels.iter().position(|l| *l == label)?;
-                Some((index as f64 - 0.4 + width * series as f64, *c))
+                let bar = labels.iter().position(|l| *l == label)?;
+                Some((bar as f64 - 0.4 + width * index as f64, *c))
             })
             .collect();
         chart
@@ -115,7 +145,7 @@ fn draw(
                     color.filled(),
                 )
             }))?
-            .label(format!("{}x{}", size.0, size.1))
+            .label(name.as_str())
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], color.filled()));
         chart.draw_series(bars.iter().map(|(x, c)| {
             let middle = *x + width * 0.45;
@@ -147,16 +177,16 @@ fn draw(
         .y_desc("ms")
         .label_style((FONT, 12))
         .draw()?;
-    for (series, size) in sizes.iter().enumerate() {
-        let color = PALETTE[series % PALETTE.len()];
+    for (index, (key, name)) in series.iter().enumerate() {
+        let color = PALETTE[index % PALETTE.len()];
         let points: Vec<(u32, f64)> = sweep
             .iter()
-            .filter(|c| (c.width, c.height) == *size)
+            .filter(|c| in_series(c, *key))
             .map(|c| (c.max_samples, c.spread.median_ms))
             .collect();
         chart
             .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
-            .label(format!("{}x{}", size.0, size.1))
+            .label(name.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 12, y)], color));
         chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled())))?;
     }
@@ -175,4 +205,53 @@ pub fn check_written(path: &Path) -> Result<()> {
     image::open(path)
         .map(|_| ())
         .with_context(|| format!("reading back {}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bench::stats::Spread;
+
+    fn case(size: (u32, u32), path: &'static str) -> CaseResult {
+        CaseResult {
+            group: "methods",
+            method: "pom".into(),
+            shadows: "off".into(),
+            width: size.0,
+            height: size.1,
+            min_samples: 8,
+            max_samples: 50,
+            lod_threshold: 4.0,
+            tiling: 1.0,
+            path,
+            pass: "prepass+opaque",
+            variant: String::new(),
+            spread: Spread::of(&[1.0]).unwrap(),
+        }
+    }
+
+    #[test]
+    fn a_series_per_size_and_path_named_for_the_path_only_when_there_are_two() {
+        let names = |cases: &[CaseResult]| -> Vec<String> {
+            series(cases).into_iter().map(|(_, name)| name).collect()
+        };
+        let (small, large) = ((64, 36), (96, 54));
+        let one = [case(large, "deferred"), case(small, "deferred")];
+        assert_eq!(names(&one), ["64x36", "96x54"]);
+        let both = [
+            case(small, "forward"),
+            case(large, "forward"),
+            case(small, "deferred"),
+            case(large, "deferred"),
+        ];
+        assert_eq!(
+            names(&both),
+            [
+                "64x36 forward",
+                "64x36 deferred",
+                "96x54 forward",
+                "96x54 deferred"
+            ]
+        );
+    }
 }

@@ -8,10 +8,11 @@ use anyhow::{Context, Result};
 use pom::glam::Vec3;
 use pom::{
     App, Assets, Camera, DirectionalLight, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPlugin, Resources, Stage, Transform,
+    RenderPlugin, Resources, Stage, Transform, render::Renderer,
 };
 use serde::Serialize;
 
+use super::scene::path_name;
 use super::stats::Spread;
 use crate::preview_textures::PreviewTextures;
 
@@ -20,6 +21,8 @@ use crate::preview_textures::PreviewTextures;
 pub struct CpuSide {
     /// Entities with a parallax material.
     pub entities: usize,
+    /// The path the frames ran, `forward` or `deferred`.
+    pub path: &'static str,
     /// Extract stage.
     pub extract: Spread,
     /// Prepare stage (uploads; after the first frame only per-object data changes).
@@ -88,9 +91,14 @@ pub fn measure(
         DirectionalLight::default(),
         Transform::IDENTITY.looking_at(Vec3::new(-1.0, -2.0, -1.0), Vec3::Y),
     ));
-    for _ in 0..warmup {
+    // At least one frame, so the renderer has decided the path before timing.
+    for _ in 0..warmup.max(1) {
         app.update().context("rendering a warm-up frame")?;
     }
+    let deferred = app
+        .resources
+        .get::<Renderer>()
+        .is_some_and(Renderer::runs_deferred);
     let mut stages = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
     for _ in 0..frames {
         app.update().context("rendering a timed frame")?;
@@ -110,6 +118,7 @@ pub fn measure(
     let spread = |values: &[f64]| Spread::of(values).context("no CPU timings");
     Ok(CpuSide {
         entities,
+        path: path_name(deferred),
         extract: spread(&stages[0])?,
         prepare: spread(&stages[1])?,
         render: spread(&stages[2])?,

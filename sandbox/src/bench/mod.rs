@@ -1,8 +1,9 @@
 //! `sandbox bench`: times the parallax material's phases (depth prepass + opaque) with GPU
 //! timestamps over standard scenes (every method × shadow mode, a sample-count sweep, an
 //! LOD-threshold sweep, a far-field scene, the frame phase by phase, stacked planes for
-//! overdraw) and the CPU side of 10,000 parallax entities; prints a table and writes JSON, CSV
-//! and a PNG chart. See sandbox/BENCHMARKS.md.
+//! overdraw) and the CPU side of 10,000 parallax entities, once per render path asked for
+//! (`--path`, repeatable); prints a table and writes JSON, CSV and a PNG chart. See
+//! sandbox/BENCHMARKS.md.
 
 mod chart;
 mod cpu_side;
@@ -23,7 +24,7 @@ use pom::material::Choice;
 use pom::preview::PreviewView;
 use pom::{ParallaxMethod, ParallaxOcclusionMaterial, RenderPath, ShadowMode};
 
-use crate::cli_types::{PathArgs, parse_size};
+use crate::cli_types::{BenchPathArgs, parse_size};
 use crate::material_args::MaterialArgs;
 use crate::preview_textures::PreviewTextures;
 use crate::render_command::{TextureArgs, ViewArgs};
@@ -122,21 +123,130 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub view: ViewArgs,
     #[command(flatten)]
-    pub path: PathArgs,
+    pub path: BenchPathArgs,
 }
 
+/// A case's median milliseconds, and the path its frames ran.
+#[derive(Clone, Copy, Debug)]
+struct Median {
+    ms: f64,
+    path: &'static str,
+}
+
+/// Makes the measurements on one path at a time ([`Runner::path`]), collecting what every
+/// path measured.
 struct Runner<'a> {
     warmup: Warmup,
     frames: usize,
+    /// The path asked for in the measurements now running.
     path: RenderPath,
     textures: &'a PreviewTextures,
     base: ParallaxOcclusionMaterial,
     view: PreviewView,
     cases: Vec<CaseResult>,
     ratios: Vec<Ratio>,
+    sample_rates: Vec<SampleRate>,
+    versus_mesh: Vec<versus_mesh::VersusMesh>,
+    cpu_side: Vec<cpu_side::CpuSide>,
 }
 
 impl Runner<'_> {
+    /// Every measurement `args` asks for, at every size of `sizes`, on [`Runner::path`].
+    fn measure(
+        &mut self,
+        args: &BenchArgs,
+        sizes: &[(u32, u32)],
+        texel_rate: Option<f64>,
+    ) -> Result<()> {
+        let wanted =
+            |measurement: Measurement| args.only.is_empty() || args.only.contains(&measurement);
+        let asked = self.path;
+        let on_path = if args.path.paths().len() > 1 {
+            format!(", path {asked}")
+        } else {
+            String::new()
+        };
+        for &size in sizes {
+            eprintln!("timing {}x{}{on_path} ...", size.0, size.1);
+            let view = self.view;
+            let mut scene = self.scene(size, &view)?;
+            if wanted(Measurement::Methods) {
+                self.methods(&mut scene, size)?;
+            }
+            if wanted(Measurement::Samples) {
+                self.sample_sweep(&mut scene, size)?;
+            }
+            if wanted(Measurement::LodSweep) {
+                self.lod_sweep(&mut scene, size)?;
+            }
+            if wanted(Measurement::TexelRate) {
+                let rate = self.sample_rate(&mut scene, size, texel_rate)?;
+                self.sample_rates.push(rate);
+            }
+            if wanted(Measurement::Phases) {
+                self.phases(&mut scene, size)?;
+            }
+            drop(scene);
+            if wanted(Measurement::FarField) {
+                self.far_field(size)?;
+            }
+            if wanted(Measurement::Overdraw) {
+                self.overdraw(size)?;
+            }
+            if wanted(Measurement::SceneShadows) {
+                self.scene_shadows(size)?;
+            }
+            if wanted(Measurement::SeedPort) {
+                self.seed_port(size)?;
+            }
+        }
+        if wanted(Measurement::VersusMesh) {
+            let size = sizes[0];
+            eprintln!(
+                "POM against displaced grids at {}x{}{on_path} ...",
+                size.0, size.1
+            );
+            self.versus_mesh
+                .push(versus_mesh::compare(&versus_mesh::Setup {
+                    size,
+                    textures: self.textures,
+                    base: &ParallaxOcclusionMaterial {
+                        method: ParallaxMethod::Occlusion,
+                        ..self.base.clone()
+                    },
+                    view: &self.view,
+                    path: asked,
+                    quick: args.quick,
+                    frames: (self.warmup, self.frames),
+                })?);
+        }
+        if wanted(Measurement::CpuSide) {
+            eprintln!(
+                "timing the CPU side with {} entities{on_path} ...",
+                args.entities
+            );
+            self.cpu_side.push(cpu_side::measure(
+                args.entities,
+                self.textures,
+                asked,
+                self.warmup.frames,
+                self.frames,
+            )?);
+        }
+        Ok(())
+    }
+
+    /// Records `numerator / denominator` as `what` at `size`, on the numerator's path.
+    fn ratio(&mut self, what: String, size: (u32, u32), numerator: Median, denominator: Median) {
+        self.ratios.push(Ratio {
+            what,
+            width: size.0,
+            height: size.1,
+            path: numerator.path,
+            ratio: numerator.ms / denominator.ms,
+        });
+    }
+
     fn case(
         &mut self,
         scene: &mut BenchScene,
@@ -144,7 +254,7 @@ impl Runner<'_> {
         size: (u32, u32),
         tiling: f32,
         material: ParallaxOcclusionMaterial,
-    ) -> Result<f64> {
+    ) -> Result<Median> {
         self.case_variant(scene, group, (size, tiling), material, String::new())
     }
 
@@ -161,14 +271,16 @@ impl Runner<'_> {
         });
     }
 
+    /// Records `times` of `pass` (frames that ran on `path`, as [`BenchScene::path_ran`] says)
+    /// as one case; returns their median.
     fn record(
         &mut self,
         group: &'static str,
         (size, tiling): ((u32, u32), f32),
         material: &ParallaxOcclusionMaterial,
-        (pass, variant): (&'static str, String),
+        (path, pass, variant): (&'static str, &'static str, String),
         times: &[f64],
-    ) -> Result<f64> {
+    ) -> Result<Median> {
         let spread = stats::Spread::of(times).context("no valid timings")?;
         self.cases.push(CaseResult {
             group,
@@ -180,11 +292,15 @@ impl Runner<'_> {
             max_samples: material.max_samples,
             lod_threshold: material.lod_threshold,
             tiling,
+            path,
             pass,
             variant,
             spread,
         });
-        Ok(spread.median_ms)
+        Ok(Median {
+            ms: spread.median_ms,
+            path,
+        })
     }
 
     fn case_variant(
@@ -194,10 +310,11 @@ impl Runner<'_> {
         place: ((u32, u32), f32),
         material: ParallaxOcclusionMaterial,
         variant: String,
-    ) -> Result<f64> {
+    ) -> Result<Median> {
         Self::configure(scene, &material);
         let (pass, times) = scene.time(self.warmup, self.frames)?;
-        self.record(group, place, &material, (pass, variant), &times)
+        let path = scene.path_ran();
+        self.record(group, place, &material, (path, pass, variant), &times)
     }
 
     /// The base material's frame phase by phase.
@@ -206,9 +323,11 @@ impl Runner<'_> {
         Self::configure(scene, &material);
         let phases = ["prepass", "opaque", "post"];
         let times = scene.time_phases(self.warmup, self.frames, &phases)?;
+        let path = scene.path_ran();
         for (phase, times) in &times {
             let place = (size, self.view.tiling);
-            self.record("phases", place, &material, (phase, String::new()), times)?;
+            let row = (path, *phase, String::new());
+            self.record("phases", place, &material, row, times)?;
         }
         Ok(())
     }
@@ -237,12 +356,8 @@ impl Runner<'_> {
                 let variant = format!("{OVERDRAW_PLANES} planes, {order}{offset}");
                 let stacked_ms =
                     self.case_variant(&mut stacked, "overdraw", place, material.clone(), variant)?;
-                self.ratios.push(Ratio {
-                    what: format!("overdraw: {OVERDRAW_PLANES} planes {order} / 1{offset}"),
-                    width: size.0,
-                    height: size.1,
-                    ratio: stacked_ms / one_ms,
-                });
+                let what = format!("overdraw: {OVERDRAW_PLANES} planes {order} / 1{offset}");
+                self.ratio(what, size, stacked_ms, one_ms);
             }
         }
         Ok(())
@@ -255,30 +370,23 @@ impl Runner<'_> {
         let material = self.base.clone();
         let mut frame_without = None;
         for case in scene_shadows::ShadowCase::ALL {
-            let times = scene_shadows::time(size, case, self.path, self.warmup, self.frames)?;
+            let (path, times) =
+                scene_shadows::time(size, case, self.path, self.warmup, self.frames)?;
             let frames: Vec<f64> = (0..self.frames)
                 .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
                 .collect();
             for (phase, times) in &times {
-                let variant = case.name().to_owned();
-                self.record("scene_shadows", place, &material, (phase, variant), times)?;
+                let row = (path, *phase, case.name().to_owned());
+                self.record("scene_shadows", place, &material, row, times)?;
             }
-            let variant = case.name().to_owned();
-            let frame_ms = self.record(
-                "scene_shadows",
-                place,
-                &material,
-                ("frame", variant),
-                &frames,
-            )?;
+            let row = (path, "frame", case.name().to_owned());
+            let frame_ms = self.record("scene_shadows", place, &material, row, &frames)?;
             match frame_without {
                 None => frame_without = Some(frame_ms),
-                Some(without) => self.ratios.push(Ratio {
-                    what: format!("street corner frame: {} / no shadows", case.name()),
-                    width: size.0,
-                    height: size.1,
-                    ratio: frame_ms / without,
-                }),
+                Some(without) => {
+                    let what = format!("street corner frame: {} / no shadows", case.name());
+                    self.ratio(what, size, frame_ms, without);
+                }
             }
         }
         Ok(())
@@ -324,14 +432,10 @@ impl Runner<'_> {
             )?;
             scene.use_seed_port()?;
             let (pass, times) = scene.time(self.warmup, self.frames)?;
-            let port_ms =
-                self.record("seed_port", place, &material, (pass, port.into()), &times)?;
-            self.ratios.push(Ratio {
-                what: format!("{ours} / the seed's listing 2"),
-                width: size.0,
-                height: size.1,
-                ratio: ours_ms / port_ms,
-            });
+            let row = (scene.path_ran(), pass, port.into());
+            let port_ms = self.record("seed_port", place, &material, row, &times)?;
+            let what = format!("{ours} / the seed's listing 2");
+            self.ratio(what, size, ours_ms, port_ms);
         }
         Ok(())
     }
@@ -356,23 +460,21 @@ impl Runner<'_> {
 
     /// Every method × shadow mode, and the cost of POM's shadows.
     fn methods(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
-        let mut pom = [0.0; 3];
+        let mut pom = [None; 3];
         for method in METHODS {
             for (index, shadows) in SHADOWS.into_iter().enumerate() {
                 let material = self.with_modes(method, shadows);
                 let ms = self.case(scene, "methods", size, self.view.tiling, material)?;
                 if method == ParallaxMethod::Occlusion {
-                    pom[index] = ms;
+                    pom[index] = Some(ms);
                 }
             }
         }
-        for (shadows, on) in [("hard", pom[1]), ("soft", pom[2])] {
-            self.ratios.push(Ratio {
-                what: format!("POM {shadows} shadows / no shadows"),
-                width: size.0,
-                height: size.1,
-                ratio: on / pom[0],
-            });
+        let [Some(off), Some(hard), Some(soft)] = pom else {
+            anyhow::bail!("POM was not timed with every shadow mode");
+        };
+        for (shadows, on) in [("hard", hard), ("soft", soft)] {
+            self.ratio(format!("POM {shadows} shadows / no shadows"), size, on, off);
         }
         Ok(())
     }
@@ -413,7 +515,7 @@ impl Runner<'_> {
         chip: Option<f64>,
     ) -> Result<SampleRate> {
         let pom = self.with_modes(ParallaxMethod::Occlusion, ShadowMode::Off);
-        let pom_ms = self.case(scene, "texel_rate", size, self.view.tiling, pom.clone())?;
+        let pom_time = self.case(scene, "texel_rate", size, self.view.tiling, pom.clone())?;
         let (warmup, frames) = (self.warmup, self.frames);
         let mut probe_ms = |taps| -> Result<f64> {
             let times = scene.time_texel_rate_probe(taps, warmup, frames)?;
@@ -427,7 +529,13 @@ impl Runner<'_> {
         };
         let count =
             sample_count::count_view_samples(size, self.textures, &pom, &self.view, self.path)?;
-        Ok(SampleRate::new(size, count, pom_ms, probe, chip))
+        Ok(SampleRate::new(
+            size,
+            count,
+            (pom_time.ms, pom_time.path),
+            probe,
+            chip,
+        ))
     }
 
     /// Normal mapping and POM where every pixel is past the LOD threshold.
@@ -444,12 +552,12 @@ impl Runner<'_> {
         let normal_ms = self.case(&mut far, "far_field", size, far_tiling, normal)?;
         let pom = self.with_modes(ParallaxMethod::Occlusion, base_shadows);
         let pom_ms = self.case(&mut far, "far_field", size, far_tiling, pom)?;
-        self.ratios.push(Ratio {
-            what: "far field POM / normal mapping".to_owned(),
-            width: size.0,
-            height: size.1,
-            ratio: pom_ms / normal_ms,
-        });
+        self.ratio(
+            "far field POM / normal mapping".to_owned(),
+            size,
+            pom_ms,
+            normal_ms,
+        );
         Ok(())
     }
 }
@@ -461,7 +569,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let depth_map = base.height_convention == pom::HeightConvention::Depth;
     let textures = PreviewTextures::load(&args.textures.files(depth_map), base.height_scale)?;
     let view = args.view.preview_view();
-    let path = args.path.path;
+    let paths = args.path.paths();
     let sizes: Vec<(u32, u32)> = match (args.sizes.is_empty(), args.quick) {
         (false, _) => args.sizes.clone(),
         (true, true) => QUICK_SIZES.to_vec(),
@@ -492,7 +600,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let probe = BenchScene::new(
         SceneOptions {
             timestamps: !args.no_timestamps,
-            ..SceneOptions::timed_plane(sizes[0], path)
+            ..SceneOptions::timed_plane(sizes[0], paths[0])
         },
         &textures,
         base.clone(),
@@ -517,113 +625,56 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut runner = Runner {
         warmup,
         frames,
-        path,
+        path: paths[0],
         textures: &textures,
         base: base.clone(),
         view,
         cases: Vec::new(),
         ratios: Vec::new(),
+        sample_rates: Vec::new(),
+        versus_mesh: Vec::new(),
+        cpu_side: Vec::new(),
     };
-    let wanted =
-        |measurement: Measurement| args.only.is_empty() || args.only.contains(&measurement);
     let texel_rate = texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from));
-    let mut sample_rates = Vec::new();
-    for &size in &sizes {
-        eprintln!("timing {}x{} ...", size.0, size.1);
-        let mut scene = runner.scene(size, &view)?;
-        if wanted(Measurement::Methods) {
-            runner.methods(&mut scene, size)?;
-        }
-        if wanted(Measurement::Samples) {
-            runner.sample_sweep(&mut scene, size)?;
-        }
-        if wanted(Measurement::LodSweep) {
-            runner.lod_sweep(&mut scene, size)?;
-        }
-        if wanted(Measurement::TexelRate) {
-            let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);
-            sample_rates.push(runner.sample_rate(&mut scene, size, chip)?);
-        }
-        if wanted(Measurement::Phases) {
-            runner.phases(&mut scene, size)?;
-        }
-        drop(scene);
-        if wanted(Measurement::FarField) {
-            runner.far_field(size)?;
-        }
-        if wanted(Measurement::Overdraw) {
-            runner.overdraw(size)?;
-        }
-        if wanted(Measurement::SceneShadows) {
-            runner.scene_shadows(size)?;
-        }
-        if wanted(Measurement::SeedPort) {
-            runner.seed_port(size)?;
-        }
+    let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);
+    // One path after the other, each in scenes built on it: nothing of one path's frames
+    // (pipelines, the visibility buffer) is left in the other's.
+    for &path in &paths {
+        runner.path = path;
+        runner.measure(args, &sizes, chip)?;
     }
-
-    let versus_mesh = if wanted(Measurement::VersusMesh) {
-        eprintln!(
-            "POM against displaced grids at {}x{} ...",
-            sizes[0].0, sizes[0].1
-        );
-        Some(versus_mesh::compare(&versus_mesh::Setup {
-            size: sizes[0],
-            textures: &textures,
-            base: &ParallaxOcclusionMaterial {
-                method: ParallaxMethod::Occlusion,
-                ..base.clone()
-            },
-            view: &view,
-            path,
-            quick: args.quick,
-            frames: (warmup, frames),
-        })?)
-    } else {
-        None
-    };
-
-    let cpu_side = if wanted(Measurement::CpuSide) {
-        eprintln!("timing the CPU side with {} entities ...", args.entities);
-        Some(cpu_side::measure(
-            args.entities,
-            &textures,
-            path,
-            warmup.frames,
-            frames,
-        )?)
-    } else {
-        None
-    };
     let report = BenchReport {
         texel_rate,
         adapter,
-        path: path.name(),
+        paths: paths.iter().map(|path| path.name()).collect(),
         unix_time: started,
         quick: args.quick,
         warmup_frames: warmup.frames,
         timed_frames: frames,
         cases: runner.cases,
         ratios: runner.ratios,
-        sample_rates,
-        versus_mesh,
-        cpu_side,
+        sample_rates: runner.sample_rates,
+        versus_mesh: runner.versus_mesh,
+        cpu_side: runner.cpu_side,
     };
     print!("{}", report.table());
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     report.write_files(&args.out)?;
-    let images = report.versus_mesh.iter().flat_map(|v| &v.images);
-    for (file, image) in images {
-        let path = args.out.join(file);
-        image
-            .save(&path)
-            .with_context(|| format!("writing {}", path.display()))?;
+    // One comparison per path asked for, in their order.
+    for (versus, asked) in report.versus_mesh.iter().zip(&paths) {
+        let several = (paths.len() > 1).then_some(*asked);
+        for (file, image) in &versus.images {
+            let path = args.out.join(versus_file(file, several));
+            image
+                .save(&path)
+                .with_context(|| format!("writing {}", path.display()))?;
+        }
     }
     let chart_path = args.out.join("bench.png");
     chart::write_chart(&chart_path, &report.adapter.name, &report.cases)?;
     chart::check_written(&chart_path)?;
-    let versus = if report.versus_mesh.is_some() {
+    let versus = if !report.versus_mesh.is_empty() {
         " and the versus_*.png images"
     } else {
         ""
@@ -635,6 +686,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
+/// `file` (`versus_pom.png`), or with several paths asked for, named for the one its
+/// comparison asked for (`versus_pom-deferred.png`).
+fn versus_file(file: &str, asked: Option<RenderPath>) -> String {
+    match (asked, file.strip_suffix(".png")) {
+        (Some(path), Some(stem)) => format!("{stem}-{path}.png"),
+        _ => file.to_owned(),
+    }
+}
+
 /// Repeats across the plane so that one pixel covers 2^(lod_threshold + margin) texels: every
 /// pixel is past the LOD threshold and its transition band.
 fn far_field_tiling(size: (u32, u32), texture_width: u32, lod_threshold: f32) -> f32 {
@@ -644,7 +704,16 @@ fn far_field_tiling(size: (u32, u32), texture_width: u32, lod_threshold: f32) ->
 
 #[cfg(test)]
 mod tests {
-    use super::far_field_tiling;
+    use super::{RenderPath, far_field_tiling, versus_file};
+
+    #[test]
+    fn versus_images_are_named_for_their_path_when_there_are_several() {
+        assert_eq!(versus_file("versus_pom.png", None), "versus_pom.png");
+        assert_eq!(
+            versus_file("versus_pom.png", Some(RenderPath::Deferred)),
+            "versus_pom-deferred.png"
+        );
+    }
 
     #[test]
     fn far_field_puts_every_pixel_past_the_threshold() {

@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use pom::RenderPath;
 use serde::Serialize;
 
 use super::cpu_side::CpuSide;
@@ -33,6 +34,9 @@ pub struct CaseResult {
     pub lod_threshold: f32,
     /// UV repeats across the plane.
     pub tiling: f32,
+    /// The path its frames ran, `forward` or `deferred` (not necessarily the one asked for:
+    /// auto picks one, and the seed port runs forward).
+    pub path: &'static str,
     /// The timed pass or phases.
     pub pass: &'static str,
     /// What else sets the case apart ("4 planes, depth offset"); empty for most.
@@ -80,6 +84,8 @@ pub struct Ratio {
     pub width: u32,
     /// Image height.
     pub height: u32,
+    /// The path the numerator's frames ran, `forward` or `deferred`.
+    pub path: &'static str,
     /// Median over median.
     pub ratio: f64,
 }
@@ -89,8 +95,9 @@ pub struct Ratio {
 pub struct BenchReport {
     /// The adapter.
     pub adapter: AdapterReport,
-    /// The render path asked for (`--path`); a case's `pass` says whether it ran deferred.
-    pub path: &'static str,
+    /// The render paths asked for (`--path`, in order), each measured in turn; every case says
+    /// the path its frames ran.
+    pub paths: Vec<&'static str>,
     /// Seconds since the Unix epoch when the run started.
     pub unix_time: u64,
     /// Whether `--quick` was given.
@@ -107,15 +114,16 @@ pub struct BenchReport {
     pub ratios: Vec<Ratio>,
     /// POM's height samples per second at each size.
     pub sample_rates: Vec<SampleRate>,
-    /// POM on the plane against displaced grids at equal error (unless left out by `--only`).
-    pub versus_mesh: Option<VersusMesh>,
-    /// The CPU side (unless left out by `--only`).
-    pub cpu_side: Option<CpuSide>,
+    /// POM on the plane against displaced grids at equal error, once per path asked for
+    /// (none when left out by `--only`).
+    pub versus_mesh: Vec<VersusMesh>,
+    /// The CPU side, once per path asked for (none when left out by `--only`).
+    pub cpu_side: Vec<CpuSide>,
 }
 
 /// CSV columns, in order.
 pub const CSV_HEADER: &str = "group,method,shadows,width,height,min_samples,max_samples,\
-lod_threshold,tiling,pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant";
+lod_threshold,tiling,path,pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant";
 
 impl BenchReport {
     /// The cases as CSV, one line per case after [`CSV_HEADER`].
@@ -125,7 +133,7 @@ impl BenchReport {
             let s = &c.spread;
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{}",
                 c.group,
                 c.method,
                 c.shadows,
@@ -135,6 +143,7 @@ impl BenchReport {
                 c.max_samples,
                 c.lod_threshold,
                 c.tiling,
+                c.path,
                 c.pass,
                 s.count,
                 s.median_ms,
@@ -172,12 +181,14 @@ impl BenchReport {
             out,
             "render path asked for: {}; {} warm-up + {} timed frames per case; GPU ms of the \
              pass named (prepass+opaque, +resolve where a frame ran deferred: the material's \
-             phases)\n",
-            self.path, self.warmup_frames, self.timed_frames
+             phases) on the path the frames ran\n",
+            self.paths.join(", "),
+            self.warmup_frames,
+            self.timed_frames
         );
         let _ = writeln!(
             out,
-            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}  pass",
+            "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}  {:<8} pass",
             "group",
             "method",
             "shadow",
@@ -189,13 +200,14 @@ impl BenchReport {
             "min",
             "p10",
             "p90",
-            "max"
+            "max",
+            "path"
         );
         for c in &self.cases {
             let s = &c.spread;
             let _ = writeln!(
                 out,
-                "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>9.4}  {} {}",
+                "{:<10} {:<7} {:<6} {:>10} {:>8} {:>5} {:>7} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>9.4}  {:<8} {} {}",
                 c.group,
                 c.method,
                 c.shadows,
@@ -208,6 +220,7 @@ impl BenchReport {
                 s.p10_ms,
                 s.p90_ms,
                 s.max_ms,
+                c.path,
                 c.pass,
                 c.variant
             );
@@ -216,8 +229,8 @@ impl BenchReport {
         for ratio in &self.ratios {
             let _ = writeln!(
                 out,
-                "{} at {}x{}: {:.3}",
-                ratio.what, ratio.width, ratio.height, ratio.ratio
+                "{} at {}x{}, {}: {:.3}",
+                ratio.what, ratio.width, ratio.height, ratio.path, ratio.ratio
             );
         }
         for rate in &self.sample_rates {
@@ -228,11 +241,12 @@ impl BenchReport {
                 });
             let _ = writeln!(
                 out,
-                "POM height samples at {}x{}: {} per frame ({:.1} per marching pixel) in {:.4} ms \
+                "POM height samples at {}x{}, {}: {} per frame ({:.1} per marching pixel) in {:.4} ms \
                  = {:.3} G samples/s; fragment-stage probe {:.3} G texels/s (one-tap pass \
                  {:.4} ms); POM at {:.1} % of the fragment path, {chip}",
                 rate.width,
                 rate.height,
+                rate.path,
                 rate.count.total,
                 rate.count.total as f64 / rate.count.marching_pixels.max(1) as f64,
                 rate.pom_ms,
@@ -242,19 +256,65 @@ impl BenchReport {
                 rate.fraction_of_fragment_path * 100.0
             );
         }
-        if let Some(versus_mesh) = &self.versus_mesh {
+        for versus_mesh in &self.versus_mesh {
             out.push_str(&versus_mesh.table());
         }
-        if let Some(cpu) = &self.cpu_side {
+        for cpu in &self.cpu_side {
             let _ = writeln!(
                 out,
-                "\nCPU, {} parallax entities, median ms per frame: extract {:.3}, prepare {:.3}, \
-             render (record + submit) {:.3}, total {:.3}",
+                "\nCPU, {} parallax entities, {}, median ms per frame: extract {:.3}, prepare \
+                 {:.3}, render (record + submit) {:.3}, total {:.3}",
                 cpu.entities,
+                cpu.path,
                 cpu.extract.median_ms,
                 cpu.prepare.median_ms,
                 cpu.render.median_ms,
                 cpu.total.median_ms
+            );
+        }
+        out.push_str(&self.phases_side_by_side());
+        out
+    }
+
+    /// Where the `phases` measurement ran on both paths: per size, the forward and the
+    /// deferred frame (the sum of their phases' medians) and forward / deferred; else nothing.
+    pub fn phases_side_by_side(&self) -> String {
+        let frame = |size: (u32, u32), path: &str| -> Option<(f64, Vec<&str>)> {
+            let phases: Vec<&CaseResult> = self
+                .cases
+                .iter()
+                .filter(|c| c.group == "phases" && (c.width, c.height) == size && c.path == path)
+                .collect();
+            let ms = phases.iter().map(|c| c.spread.median_ms).sum();
+            (!phases.is_empty()).then(|| (ms, phases.iter().map(|c| c.pass).collect()))
+        };
+        let mut sizes: Vec<(u32, u32)> = Vec::new();
+        for case in self.cases.iter().filter(|c| c.group == "phases") {
+            if !sizes.contains(&(case.width, case.height)) {
+                sizes.push((case.width, case.height));
+            }
+        }
+        let mut out = String::new();
+        for size in sizes {
+            let forward = RenderPath::Forward.name();
+            let deferred = RenderPath::Deferred.name();
+            let (Some((forward_ms, forward_phases)), Some((deferred_ms, deferred_phases))) =
+                (frame(size, forward), frame(size, deferred))
+            else {
+                continue;
+            };
+            if out.is_empty() {
+                out.push_str("\nphases side by side, frame = sum of the phases' medians:\n");
+            }
+            let _ = writeln!(
+                out,
+                "{}x{}: {forward} {forward_ms:.4} ms ({}), {deferred} {deferred_ms:.4} ms ({}): \
+                 {forward} / {deferred} {:.2}x",
+                size.0,
+                size.1,
+                forward_phases.join("+"),
+                deferred_phases.join("+"),
+                forward_ms / deferred_ms
             );
         }
         out
@@ -269,5 +329,109 @@ impl BenchReport {
         let csv_path = dir.join("bench.csv");
         std::fs::write(&csv_path, self.csv())
             .with_context(|| format!("writing {}", csv_path.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn phase(size: (u32, u32), path: &'static str, pass: &'static str, ms: f64) -> CaseResult {
+        CaseResult {
+            group: "phases",
+            method: "pom".into(),
+            shadows: "soft".into(),
+            width: size.0,
+            height: size.1,
+            min_samples: 8,
+            max_samples: 50,
+            lod_threshold: 4.0,
+            tiling: 1.0,
+            path,
+            pass,
+            variant: String::new(),
+            spread: Spread::of(&[ms]).unwrap(),
+        }
+    }
+
+    fn report(cases: Vec<CaseResult>) -> BenchReport {
+        BenchReport {
+            adapter: AdapterReport {
+                name: "test".into(),
+                backend: "Vulkan".into(),
+                device_type: "Cpu".into(),
+                driver: String::new(),
+                driver_info: String::new(),
+                software_driver: true,
+            },
+            paths: vec!["forward", "deferred"],
+            unix_time: 0,
+            quick: true,
+            warmup_frames: 2,
+            timed_frames: 1,
+            texel_rate: None,
+            cases,
+            ratios: Vec::new(),
+            sample_rates: Vec::new(),
+            versus_mesh: Vec::new(),
+            cpu_side: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn both_paths_frames_are_summed_and_divided_per_size() {
+        let (small, large) = ((64, 36), (96, 54));
+        let mut cases = Vec::new();
+        for size in [small, large] {
+            let scale = f64::from(size.0) / 64.0;
+            cases.push(phase(size, "forward", "prepass", 1.0 * scale));
+            cases.push(phase(size, "forward", "opaque", 8.0 * scale));
+            cases.push(phase(size, "forward", "post", 1.0 * scale));
+        }
+        for size in [small, large] {
+            cases.push(phase(size, "deferred", "prepass", 3.0));
+            cases.push(phase(size, "deferred", "resolve", 1.0));
+            cases.push(phase(size, "deferred", "post", 1.0));
+        }
+        let summary = report(cases.clone()).phases_side_by_side();
+        let lines: Vec<&str> = summary.lines().filter(|l| !l.is_empty()).collect();
+        assert_eq!(lines.len(), 3, "{summary}");
+        assert_eq!(
+            lines[1],
+            "64x36: forward 10.0000 ms (prepass+opaque+post), deferred 5.0000 ms \
+             (prepass+resolve+post): forward / deferred 2.00x"
+        );
+        assert!(
+            lines[2].starts_with("96x54: forward 15.0000 ms"),
+            "{}",
+            lines[2]
+        );
+        assert!(
+            lines[2].ends_with("forward / deferred 3.00x"),
+            "{}",
+            lines[2]
+        );
+        assert!(report(cases.clone()).table().ends_with(&summary));
+
+        // One path alone: nothing to set side by side.
+        cases.retain(|c| c.path == "forward");
+        assert_eq!(report(cases).phases_side_by_side(), "");
+    }
+
+    #[test]
+    fn every_csv_row_names_its_path() {
+        let csv = report(vec![
+            phase((64, 36), "forward", "opaque", 2.0),
+            phase((64, 36), "deferred", "resolve", 1.0),
+        ])
+        .csv();
+        let header: Vec<&str> = CSV_HEADER.split(',').collect();
+        let column = header.iter().position(|c| *c == "path").unwrap();
+        let paths: Vec<&str> = csv
+            .lines()
+            .skip(1)
+            .map(|line| line.split(',').nth(column).unwrap())
+            .collect();
+        assert_eq!(paths, ["forward", "deferred"]);
     }
 }

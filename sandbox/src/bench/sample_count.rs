@@ -31,6 +31,8 @@ pub struct SampleRate {
     pub count: SampleCount,
     /// Median milliseconds of the POM main pass (shadows off) they were taken in.
     pub pom_ms: f64,
+    /// The path POM's timed frames ran, `forward` or `deferred`.
+    pub path: &'static str,
     /// Height samples per second, in billions.
     pub gsamples_per_s: f64,
     /// Bilinear samples per second the fragment stage reached in the texel-rate probe at this
@@ -57,12 +59,12 @@ pub struct ProbeResult {
 }
 
 impl SampleRate {
-    /// The rate of `count` samples in `pom_ms`, against the fragment path's `probe` and the
-    /// chip's `chip_gtexels` (G texels/s) if known.
+    /// The rate of `count` samples in `pom_ms` (frames that ran on `path`), against the
+    /// fragment path's `probe` and the chip's `chip_gtexels` (G texels/s) if known.
     pub fn new(
         size: (u32, u32),
         count: SampleCount,
-        pom_ms: f64,
+        (pom_ms, path): (f64, &'static str),
         probe: ProbeResult,
         chip_gtexels: Option<f64>,
     ) -> Self {
@@ -75,6 +77,7 @@ impl SampleRate {
             height: size.1,
             count,
             pom_ms,
+            path,
             gsamples_per_s,
             fragment_path_gtexels_per_s,
             fraction_of_fragment_path: gsamples_per_s / fragment_path_gtexels_per_s,
@@ -174,7 +177,7 @@ mod tests {
             one_tap_ms: 0.5,
         };
         // 4 M samples in 2 ms = 2 G/s; the probe: 64 × 1000 × 1000 in 8 ms = 8 G/s.
-        let rate = SampleRate::new((1000, 1000), count, 2.0, probe, Some(100.0));
+        let rate = SampleRate::new((1000, 1000), count, (2.0, "forward"), probe, Some(100.0));
         assert!((rate.gsamples_per_s - 2.0).abs() < 1e-12);
         assert!((rate.fragment_path_gtexels_per_s - 8.0).abs() < 1e-12);
         assert!((rate.fraction_of_fragment_path - 0.25).abs() < 1e-12);

@@ -33,6 +33,9 @@ pub const TIMED_PASS_DEFERRED: &str = "prepass+opaque+resolve";
 /// The phases [`TIMED_PASS`] adds up (and the resolve, on the deferred path).
 const MATERIAL_PHASES: [&str; 2] = ["prepass", "opaque"];
 
+/// Per phase (or pass) timed, its milliseconds in each timed frame.
+pub type PhaseTimes = Vec<(&'static str, Vec<f64>)>;
+
 /// How a [`BenchScene`] is set up.
 pub struct SceneOptions {
     /// Image size in pixels.
@@ -72,6 +75,9 @@ pub struct BenchScene {
     app: App,
     /// Whether the seed port's material is registered ([`SceneOptions::seed_port`]).
     seed_port: bool,
+    /// Whether the frames of the last timing ran deferred, as the renderer said after their
+    /// warm-up; `None` before any timing.
+    timed_deferred: Option<bool>,
 }
 
 impl BenchScene {
@@ -108,7 +114,11 @@ impl BenchScene {
             None => spawn_preview(&mut app, material, view),
         }
         .context("setting up the scene")?;
-        Ok(Self { app, seed_port })
+        Ok(Self {
+            app,
+            seed_port,
+            timed_deferred: None,
+        })
     }
 
     /// A scene around an app already set up (with blocking GPU timing).
@@ -116,6 +126,7 @@ impl BenchScene {
         Self {
             app,
             seed_port: false,
+            timed_deferred: None,
         }
     }
 
@@ -240,7 +251,7 @@ impl BenchScene {
     /// where the frames ran deferred) and the material phases' milliseconds per timed frame.
     pub fn time(&mut self, warmup: Warmup, frames: usize) -> Result<(&'static str, Vec<f64>)> {
         let phases = self.time_phases(warmup, frames, &MATERIAL_PHASES)?;
-        let pass = if self.runs_deferred() {
+        let pass = if self.timed_deferred == Some(true) {
             TIMED_PASS_DEFERRED
         } else {
             TIMED_PASS
@@ -260,7 +271,7 @@ impl BenchScene {
         warmup: Warmup,
         frames: usize,
         phases: &[&'static str],
-    ) -> Result<Vec<(&'static str, Vec<f64>)>> {
+    ) -> Result<PhaseTimes> {
         self.time_frames(
             warmup,
             frames,
@@ -285,6 +296,13 @@ impl BenchScene {
             .resources
             .get::<Renderer>()
             .is_some_and(Renderer::runs_deferred)
+    }
+
+    /// The path the frames of the last timing ran, `forward` or `deferred` (as the renderer
+    /// said after their warm-up, whatever `--path` asked for); before any timing, the path of
+    /// the last frame.
+    pub fn path_ran(&self) -> &'static str {
+        path_name(self.timed_deferred.unwrap_or_else(|| self.runs_deferred()))
     }
 
     /// Times the plugin's [`TexelRateProbe`] taking `taps` samples per pixel over the whole
@@ -326,6 +344,7 @@ impl BenchScene {
             render(&mut self.app).context("rendering a warm-up frame")?;
             warmed += 1;
         }
+        self.timed_deferred = Some(self.runs_deferred());
         let mut times: Vec<(&'static str, Vec<f64>)> = passes(self)
             .into_iter()
             .map(|pass| (pass, Vec::with_capacity(frames)))
@@ -351,6 +370,15 @@ impl BenchScene {
         }
         self.check_errors().context("while timing")?;
         Ok(times)
+    }
+}
+
+/// The name of the path a frame ran: [`RenderPath::Deferred`]'s or [`RenderPath::Forward`]'s.
+pub fn path_name(deferred: bool) -> &'static str {
+    if deferred {
+        RenderPath::Deferred.name()
+    } else {
+        RenderPath::Forward.name()
     }
 }
 

@@ -10,7 +10,7 @@ use pom::{
     RenderPlugin, SpotLight, TimingMode, Transform, load_gltf,
 };
 
-use super::scene::{BenchScene, Warmup};
+use super::scene::{BenchScene, PhaseTimes, Warmup};
 
 /// The shipped scene the measurement renders, relative to the repository's root.
 pub const STREET_CORNER: &str = "assets/street_corner.glb";
@@ -125,13 +125,16 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Re
     Ok(BenchScene::from_app(app))
 }
 
-/// Per phase of `case` on `path`, its milliseconds in each timed frame.
+/// Per phase of `case` asked to run on `path`, its milliseconds in each timed frame; and the
+/// path the frames ran ([`BenchScene::path_ran`]).
 pub fn time(
     size: (u32, u32),
     case: ShadowCase,
     path: RenderPath,
     warmup: Warmup,
     frames: usize,
-) -> Result<Vec<(&'static str, Vec<f64>)>> {
-    street_corner(size, case, path)?.time_phases(warmup, frames, case.phases())
+) -> Result<(&'static str, PhaseTimes)> {
+    let mut scene = street_corner(size, case, path)?;
+    let phases = scene.time_phases(warmup, frames, case.phases())?;
+    Ok((scene.path_ran(), phases))
 }

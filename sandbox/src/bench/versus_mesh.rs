@@ -46,6 +46,8 @@ pub struct Candidate {
     pub flip_mean: f32,
     /// 99th-percentile FLIP error.
     pub flip_p99: f32,
+    /// The path its timed frames ran, `forward` or `deferred`.
+    pub path: &'static str,
     /// Main pass milliseconds.
     pub spread: Spread,
 }
@@ -68,6 +70,8 @@ pub struct VersusMesh {
     pub width: u32,
     /// Image height.
     pub height: u32,
+    /// The path the base POM candidate's frames ran, `forward` or `deferred`.
+    pub path: &'static str,
     /// Triangles of the reference grid.
     pub reference_triangles: usize,
     /// Every candidate, POM first.
@@ -85,10 +89,11 @@ impl VersusMesh {
     pub fn table(&self) -> String {
         let v = self;
         let mut out = format!(
-            "\nPOM vs displaced grid at {}x{}, FLIP against a {}-triangle grid, shadows off:\n\
-                 {:<5} {:>10} {:>8} {:>10} {:>10} {:>10}\n",
+            "\nPOM vs displaced grid at {}x{}, {}, FLIP against a {}-triangle grid, shadows off:\n\
+                 {:<5} {:>10} {:>8} {:>10} {:>10} {:>10}  path\n",
             v.width,
             v.height,
+            v.path,
             v.reference_triangles,
             "kind",
             "triangles",
@@ -100,13 +105,14 @@ impl VersusMesh {
         for c in &v.candidates {
             let _ = writeln!(
                 out,
-                "{:<5} {:>10} {:>8} {:>10.4} {:>10.4} {:>10.4}",
+                "{:<5} {:>10} {:>8} {:>10.4} {:>10.4} {:>10.4}  {}",
                 c.kind,
                 c.triangles,
                 format!("{}-{}", c.samples.0, c.samples.1),
                 c.flip_mean,
                 c.flip_p99,
-                c.spread.median_ms
+                c.spread.median_ms,
+                c.path
             );
         }
         match &v.equal_error {
@@ -270,6 +276,7 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
     Ok(VersusMesh {
         width: setup.size.0,
         height: setup.size.1,
+        path: pom.path,
         reference_triangles,
         equal_error,
         candidates,
@@ -301,6 +308,7 @@ fn score(
         samples,
         flip_mean: flip.mean,
         flip_p99: flip.at_percentile,
+        path: scene.path_ran(),
         spread,
     })
 }
@@ -341,6 +349,7 @@ mod tests {
             samples: (0, 0),
             flip_mean,
             flip_p99: flip_mean,
+            path: "forward",
             spread: Spread::of(&[median_ms]).unwrap(),
         }
     }
