@@ -65,6 +65,9 @@ struct MeshBindGroup {
     bind_group: wgpu::BindGroup,
 }
 
+/// `ResolveBatch::batch` of a dispatch over the whole target (`UNCLASSIFIED` in WGSL).
+const UNCLASSIFIED: u32 = u32::MAX;
+
 /// One dispatch of the frame: a batch, its place in the tile lists, and its uniform slot.
 struct Dispatch {
     batch: usize,
@@ -183,8 +186,8 @@ impl DeferredResolve {
     }
 
     /// Plans this frame's dispatches: one per batch `resolves` picks, over the tiles the
-    /// classification finds it in, with its slot written and its mesh's bind group made where
-    /// missing.
+    /// classification finds it in (with two batches or more; one batch covers the target),
+    /// with its slot written and its mesh's bind group made where missing.
     pub(crate) fn prepare<K>(
         &mut self,
         gpu: &GpuContext,
@@ -207,8 +210,13 @@ impl DeferredResolve {
                 resolves(batch) && batch.first_id != 0 && assets.mesh(batch.mesh).is_some()
             })
             .collect();
+        // Classifying costs one read of the whole visibility buffer, as does each batch's
+        // whole-target dispatch (its pixels of other batches return after one load): it pays
+        // from two batches on.
+        let classified = resolved.len() >= 2;
         let ranges: Vec<[u32; 2]> = resolved
             .iter()
+            .filter(|_| classified)
             .map(|(_, batch)| [batch.first_id, end_id(batch)])
             .collect();
         self.tiles.prepare(
@@ -237,7 +245,11 @@ impl DeferredResolve {
                 end_id: end_id(batch),
                 first_object: batch.instances.start,
                 triangles: batch.triangles,
-                batch: place as u32,
+                batch: if classified {
+                    place as u32
+                } else {
+                    UNCLASSIFIED
+                },
                 tiles_across: self.tiles.tiles_across(),
                 tile_count: self.tiles.tile_count(),
                 _padding_a: 0,
@@ -346,8 +358,12 @@ impl DeferredResolve {
                 continue;
             }
             pass.set_bind_group(2, &mesh.bind_group, &[dispatch.offset]);
-            let (args, offset) = self.tiles.dispatch_args(dispatch.place);
-            pass.dispatch_workgroups_indirect(args, offset);
+            if self.tiles.has_batches() {
+                let (args, offset) = self.tiles.dispatch_args(dispatch.place);
+                pass.dispatch_workgroups_indirect(args, offset);
+            } else {
+                pass.dispatch_workgroups(self.tiles.tiles_across(), self.tiles.tiles_down(), 1);
+            }
         }
     }
 }

@@ -250,6 +250,16 @@ impl ResolveTiles {
         self.tiles.0
     }
 
+    /// Tiles along the target's height.
+    pub(crate) fn tiles_down(&self) -> u32 {
+        self.tiles.1
+    }
+
+    /// Whether this frame classifies (it has batches).
+    pub(crate) fn has_batches(&self) -> bool {
+        self.batch_count > 0
+    }
+
     /// Tiles of the whole target: the slots of each batch's list.
     pub(crate) fn tile_count(&self) -> u32 {
         self.tiles.0 * self.tiles.1

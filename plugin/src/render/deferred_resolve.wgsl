@@ -15,7 +15,8 @@ struct ResolveBatch {
     end_id: u32,
     first_object: u32,
     triangles: u32,
-    // The batch's place in the tile lists of deferred_classify.wgsl.
+    // The batch's place in the tile lists of deferred_classify.wgsl; UNCLASSIFIED where the
+    // dispatch covers the whole target (one workgroup per tile, in rows and columns).
     batch: u32,
     tiles_across: u32,
     tile_count: u32,
@@ -52,17 +53,31 @@ struct ResolveItem {
     resolves: bool,
 }
 
-// Which pixel lane `local` of workgroup `group` resolves (one workgroup per 8 × 8 tile the
-// batch shows in, TILES_PER_ROW tiles a row), and whether the batch shows there.
+const UNCLASSIFIED: u32 = 0xffffffffu;
+
+// The 8 × 8 tile workgroup `group` resolves: the group itself on a whole-target dispatch, else
+// the batch's tile at `group`'s place in its list (TILES_PER_ROW tiles a row), if there is one.
+fn resolve_tile(group: vec2<u32>) -> vec3<u32> {
+    if resolve_batch.batch == UNCLASSIFIED {
+        return vec3<u32>(group, 1u);
+    }
+    let index = group.y * TILES_PER_ROW + group.x;
+    if index >= tile_counts[resolve_batch.batch] {
+        return vec3<u32>(0u);
+    }
+    let tile = batch_tiles[resolve_batch.batch * resolve_batch.tile_count + index];
+    return vec3<u32>(tile % resolve_batch.tiles_across, tile / resolve_batch.tiles_across, 1u);
+}
+
+// Which pixel lane `local` of workgroup `group` resolves, and whether the batch shows there.
 fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     var item: ResolveItem;
     item.resolves = false;
-    let index = group.y * TILES_PER_ROW + group.x;
-    if index >= tile_counts[resolve_batch.batch] {
+    let tile = resolve_tile(group);
+    if tile.z == 0u {
         return item;
     }
-    let tile = batch_tiles[resolve_batch.batch * resolve_batch.tile_count + index];
-    let id = vec2<u32>(tile % resolve_batch.tiles_across, tile / resolve_batch.tiles_across) * 8u + local;
+    let id = tile.xy * 8u + local;
     item.pixel = id;
     if f32(id.x) >= resolve_batch.target_width || f32(id.y) >= resolve_batch.target_height {
         return item;
