@@ -42,7 +42,9 @@ fn every_composed_shader_validates() {
             naga::valid::ValidationFlags::all(),
             naga::valid::Capabilities::default()
                 | naga::valid::Capabilities::EARLY_DEPTH_TEST
-                | naga::valid::Capabilities::PRIMITIVE_INDEX,
+                | naga::valid::Capabilities::PRIMITIVE_INDEX
+                | naga::valid::Capabilities::SHADER_INT64
+                | naga::valid::Capabilities::SHADER_INT64_ATOMIC_MIN_MAX,
         );
         if let Err(error) = validator.validate(&module) {
             failures.push(error.emit_to_string_with_path(&source, shader.name));

@@ -2,9 +2,9 @@
 // masked surface's holes keep neither depth nor id. Composed after lit.wgsl and visibility.wgsl.
 
 @fragment
-fn fs_visibility_alpha_mask(in: VertexOut, @builtin(primitive_index) triangle: u32) -> @location(0) u32 {
+fn fs_visibility_alpha_mask(in: VertexOut, @builtin(primitive_index) triangle: u32) {
     if cut_out(base_color(in, materials[in.object_index]).a, materials[in.object_index]) {
         discard;
     }
-    return visibility_id(in.object_index, triangle);
+    keep_visible(in.clip_position, in.clip_position.z, visibility_id(in.object_index, triangle));
 }

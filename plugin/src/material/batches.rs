@@ -81,7 +81,9 @@ pub(crate) struct PrepareInputs<'a> {
 
 /// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
 /// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
-/// (the prepass and the shadow maps themselves).
+/// (the prepass and the shadow maps themselves); and the visibility keys (binding 8) the other
+/// way round: the real ones in the prepass, which writes them, a stand-in elsewhere (the
+/// deferred resolve reads them through a binding of its own).
 pub(crate) struct DepthBindings<'a> {
     /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
     pub(crate) opaque: &'a wgpu::TextureView,
@@ -95,9 +97,14 @@ pub(crate) struct DepthBindings<'a> {
     pub(crate) shadow_views: &'a wgpu::Buffer,
     /// The shadow maps' comparison sampler.
     pub(crate) shadow_sampler: &'a wgpu::Sampler,
+    /// The visibility keys the deferred path's prepass merges into (or the stand-in).
+    pub(crate) visibility: &'a wgpu::Buffer,
+    /// The one-key stand-in, bound where the keys are not written.
+    pub(crate) dummy_visibility: &'a wgpu::Buffer,
     /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
-    /// belong to: bind groups follow when either changes.
-    pub(crate) bound: (u64, u64),
+    /// belong to, and whether the target's visibility buffer exists: bind groups follow when
+    /// any changes.
+    pub(crate) bound: (u64, u64, bool),
 }
 
 /// Material `M`'s GPU state. A resource.
@@ -109,7 +116,7 @@ pub(crate) struct MaterialBatches<M: Material> {
     // Group 0 of the prepass and of the opaque phase, and the target they were made for.
     prepass_bind_group: wgpu::BindGroup,
     frame_bind_group: wgpu::BindGroup,
-    bound: (u64, u64),
+    bound: (u64, u64, bool),
     // The fragment invocation counter (tests), bound at binding 4 when present.
     counter: Option<wgpu::Buffer>,
     textures: TextureBindGroups,
@@ -151,9 +158,9 @@ fn frame_bind_group(
     depth_use: DepthUse,
 ) -> wgpu::BindGroup {
     let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
-    let (prepass_depth, shadow_maps) = match depth_use {
-        DepthUse::Shading => (depth.opaque, depth.shadow_maps),
-        DepthUse::Writing => (depth.dummy, depth.dummy_shadow_maps),
+    let (prepass_depth, shadow_maps, visibility) = match depth_use {
+        DepthUse::Shading => (depth.opaque, depth.shadow_maps, depth.dummy_visibility),
+        DepthUse::Writing => (depth.dummy, depth.dummy_shadow_maps, depth.visibility),
     };
     let mut entries = vec![
         entry(0, bindings.frame.binding()),
@@ -163,6 +170,7 @@ fn frame_bind_group(
         entry(5, depth.shadow_views.as_entire_binding()),
         entry(6, wgpu::BindingResource::TextureView(shadow_maps)),
         entry(7, wgpu::BindingResource::Sampler(depth.shadow_sampler)),
+        entry(8, visibility.as_entire_binding()),
     ];
     if let Some(counter) = bindings.counter {
         entries.push(entry(4, counter.as_entire_binding()));
@@ -222,6 +230,20 @@ fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
     ]
 }
 
+/// Binding 8 of group 0: the visibility keys the deferred path's prepass merges into.
+fn visibility_keys_entry() -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 8,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(crate::render::VISIBILITY_BYTES_PER_PIXEL),
+        },
+        count: None,
+    }
+}
+
 /// Binding 4 of group 0: the fragment invocation counter.
 fn counter_entry() -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -265,6 +287,7 @@ impl<M: Material> MaterialBatches<M> {
             prepass_depth_entry(),
         ];
         layout_entries.extend(shadow_entries());
+        layout_entries.push(visibility_keys_entry());
         if counter.is_some() {
             layout_entries.push(counter_entry());
         }

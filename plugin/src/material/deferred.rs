@@ -47,8 +47,8 @@ crate::wgsl_layout!(ResolveBatch {
 
 /// The frame's targets and camera as the resolve sees them.
 pub(crate) struct ResolveTargets<'a> {
-    /// The visibility buffer the prepass wrote.
-    pub(crate) visibility: &'a wgpu::TextureView,
+    /// The visibility keys the prepass merged.
+    pub(crate) visibility: &'a wgpu::Buffer,
     /// The HDR scene the resolve writes.
     pub(crate) scene: &'a wgpu::TextureView,
     /// The [`crate::render::RenderTarget::id`] of both.
@@ -129,16 +129,7 @@ impl DeferredResolve {
                         },
                         count: None,
                     },
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 1,
-                        visibility,
-                        ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Uint,
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                            multisampled: false,
-                        },
-                        count: None,
-                    },
+                    storage(1),
                     storage(2),
                     storage(3),
                     wgpu::BindGroupLayoutEntry {
@@ -313,7 +304,7 @@ impl DeferredResolve {
                         size: wgpu::BufferSize::new(std::mem::size_of::<ResolveBatch>() as u64),
                     }),
                 ),
-                entry(1, wgpu::BindingResource::TextureView(targets.visibility)),
+                entry(1, targets.visibility.as_entire_binding()),
                 entry(2, vertices.as_entire_binding()),
                 entry(3, indices.as_entire_binding()),
                 entry(4, wgpu::BindingResource::TextureView(targets.scene)),

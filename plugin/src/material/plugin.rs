@@ -280,7 +280,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                 if gpu
                     .device
                     .features()
-                    .contains(wgpu::Features::PRIMITIVE_INDEX) =>
+                    .contains(crate::render::DEFERRED_FEATURES) =>
             {
                 (shader, true)
             }
@@ -296,6 +296,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                 renderer.depth_prepass,
                 &renderer.dummy_depth,
                 &renderer.shadow_maps,
+                (renderer.visibility.as_ref(), &renderer.dummy_visibility),
                 target,
             ),
             counter,
@@ -463,6 +464,7 @@ fn prepare_materials<M: Material>(
                                 renderer.depth_prepass,
                                 &renderer.dummy_depth,
                                 &renderer.shadow_maps,
+                                (renderer.visibility.as_ref(), &renderer.dummy_visibility),
                                 target,
                             );
                             let deferred = renderer
@@ -470,7 +472,7 @@ fn prepare_materials<M: Material>(
                                 .as_ref()
                                 .filter(|_| renderer.deferred)
                                 .map(|visibility| ResolveTargets {
-                                    visibility: &visibility.view,
+                                    visibility: &visibility.keys,
                                     scene: &target.scene_view,
                                     target: target.id(),
                                     size: target.size(),

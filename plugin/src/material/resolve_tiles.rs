@@ -21,17 +21,23 @@ pub(crate) const TILE_SIDE: u32 = 8;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub(crate) struct ClassifyParams {
+    width: u32,
+    height: u32,
     tiles_across: u32,
     tile_count: u32,
     batch_count: u32,
-    _padding: u32,
+    _padding_a: u32,
+    _padding_b: [u32; 2],
 }
 
 crate::wgsl_layout!(ClassifyParams {
+    width,
+    height,
     tiles_across,
     tile_count,
     batch_count,
-    _padding
+    _padding_a,
+    _padding_b
 });
 
 /// The buffers of one frame's classification, sized for `batches` batches of `tiles` tiles.
@@ -123,16 +129,7 @@ impl ResolveTiles {
                     },
                     count: None,
                 },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Uint,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                storage(1, true),
                 storage(2, true),
                 storage(3, false),
                 storage(4, false),
@@ -179,7 +176,7 @@ impl ResolveTiles {
     pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
-        visibility: &wgpu::TextureView,
+        visibility: &wgpu::Buffer,
         target: u64,
         size: (u32, u32),
         ranges: &[[u32; 2]],
@@ -196,10 +193,13 @@ impl ResolveTiles {
             self.generation += 1;
         }
         let params = ClassifyParams {
+            width: size.0,
+            height: size.1,
             tiles_across: self.tiles.0,
             tile_count: tile_count as u32,
             batch_count: self.batch_count,
-            _padding: 0,
+            _padding_a: 0,
+            _padding_b: [0; 2],
         };
         gpu.queue
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
@@ -218,7 +218,7 @@ impl ResolveTiles {
                 layout: &self.layout,
                 entries: &[
                     entry(0, self.params.as_entire_binding()),
-                    entry(1, wgpu::BindingResource::TextureView(visibility)),
+                    entry(1, visibility.as_entire_binding()),
                     entry(2, self.buffers.batch_ids.as_entire_binding()),
                     entry(3, self.buffers.tile_counts.as_entire_binding()),
                     entry(4, self.buffers.batch_tiles.as_entire_binding()),

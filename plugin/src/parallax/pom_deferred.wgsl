@@ -2,18 +2,15 @@
 // prepass moves the depth, and the compute resolve that marches and shades each pixel the
 // visibility buffer gives it. Composed after pom.wgsl, visibility.wgsl and deferred_resolve.wgsl.
 
-struct VisibilityAndDepth {
-    @location(0) id: u32,
-    @builtin(frag_depth) depth: f32,
-}
-
-// `depth_offset` in the visibility pass: the displaced depth (as `fs_prepass_depth_offset`) and
-// the id, so the pixel keeps whichever surface is really nearest.
+// `depth_offset` in the visibility pass: the displaced depth (as `fs_prepass_depth_offset`),
+// which is also the depth the id is merged with, so the pixel keeps whichever surface is really
+// nearest.
 @fragment @early_depth_test(greater_equal)
 fn fs_visibility_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool,
-    @builtin(primitive_index) triangle: u32) -> VisibilityAndDepth {
+    @builtin(primitive_index) triangle: u32) -> @builtin(frag_depth) f32 {
     let depth = displaced_depth(in, find_surface(in, front_facing, fragment_footprint(in)));
-    return VisibilityAndDepth(visibility_id(in.object_index, triangle), depth);
+    keep_visible(in.clip_position, depth, visibility_id(in.object_index, triangle));
+    return depth;
 }
 
 // One workgroup per 8 × 8 tile the batch shows in: its pixels march and shade as the fragment

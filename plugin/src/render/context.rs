@@ -79,7 +79,7 @@ impl GpuContext {
             | wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::SHADER_EARLY_DEPTH_TEST
             | wgpu::Features::FLOAT32_BLENDABLE
-            | wgpu::Features::PRIMITIVE_INDEX;
+            | super::render_path::DEFERRED_FEATURES;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("pom device"),

@@ -19,11 +19,28 @@ pub const DEFERRED_BACKGROUND: ComposedShader = ComposedShader {
 /// Pixels per workgroup along each side (`@workgroup_size(8, 8)`).
 const WORKGROUP_SIDE: u32 = 8;
 
+/// Mirrors `BackgroundParams` in deferred_background.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct BackgroundParams {
+    clear_color: [f32; 4],
+    width: u32,
+    height: u32,
+    _padding: [u32; 2],
+}
+
+crate::wgsl_layout!(BackgroundParams {
+    clear_color,
+    width,
+    height,
+    _padding
+});
+
 /// The background pipeline, its clear-colour uniform, and the bind group of the current target.
 #[derive(Debug)]
 pub(crate) struct DeferredBackground {
     pipeline: wgpu::ComputePipeline,
-    clear_color: wgpu::Buffer,
+    params: wgpu::Buffer,
     bind_group: Option<(u64, wgpu::BindGroup)>,
     workgroups: (u32, u32),
 }
@@ -43,15 +60,15 @@ impl DeferredBackground {
                 compilation_options: Default::default(),
                 cache: None,
             });
-        let clear_color = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("deferred background colour"),
-            size: 16,
+        let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("deferred background parameters"),
+            size: std::mem::size_of::<BackgroundParams>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         Self {
             pipeline,
-            clear_color,
+            params,
             bind_group: None,
             workgroups: (0, 0),
         }
@@ -66,9 +83,15 @@ impl DeferredBackground {
         visibility: &VisibilityBuffer,
         clear: [f32; 4],
     ) {
-        gpu.queue
-            .write_buffer(&self.clear_color, 0, bytemuck::cast_slice(&clear));
         let (width, height) = target.size();
+        let params = BackgroundParams {
+            clear_color: clear,
+            width,
+            height,
+            _padding: [0; 2],
+        };
+        gpu.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         self.workgroups = (
             width.div_ceil(WORKGROUP_SIDE),
             height.div_ceil(WORKGROUP_SIDE),
@@ -81,7 +104,7 @@ impl DeferredBackground {
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&visibility.view),
+                        resource: visibility.keys.as_entire_binding(),
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
@@ -89,7 +112,7 @@ impl DeferredBackground {
                     },
                     wgpu::BindGroupEntry {
                         binding: 2,
-                        resource: self.clear_color.as_entire_binding(),
+                        resource: self.params.as_entire_binding(),
                     },
                 ],
             });
@@ -104,5 +127,19 @@ impl DeferredBackground {
             pass.set_bind_group(0, bind_group, &[]);
             pass.dispatch_workgroups(self.workgroups.0, self.workgroups.1, 1);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_background_params_match_their_wgsl() {
+        let source = DEFERRED_BACKGROUND.source();
+        assert_eq!(
+            crate::material::check_wgsl_layout::<BackgroundParams>(&source, "BackgroundParams"),
+            Ok(())
+        );
     }
 }

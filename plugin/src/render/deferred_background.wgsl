@@ -3,17 +3,27 @@
 // this replaces that phase's render pass, which would only clear the scene (a full-screen
 // fragment pass: measured in sandbox/BENCHMARKS.md).
 
-@group(0) @binding(0) var visibility: texture_2d<u32>;
+// Mirrors `BackgroundParams` in deferred_background.rs (the layout test checks them).
+struct BackgroundParams {
+    // The clear colour as the opaque pass would have cleared to (alpha marks it
+    // display-referred).
+    clear_color: vec4<f32>,
+    width: u32,
+    height: u32,
+    _padding: vec2<u32>,
+}
+
+// The visibility keys (visibility.wgsl), each read as (id, depth bits).
+@group(0) @binding(0) var<storage, read> visibility: array<vec2<u32>>;
 @group(0) @binding(1) var scene_output: SceneOutput;
-// The clear colour as the opaque pass would have cleared to (alpha marks it display-referred).
-@group(0) @binding(2) var<uniform> clear_color: vec4<f32>;
+@group(0) @binding(2) var<uniform> params: BackgroundParams;
 
 @compute @workgroup_size(8, 8)
 fn cs_background(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= textureDimensions(visibility)) {
+    if id.x >= params.width || id.y >= params.height {
         return;
     }
-    if textureLoad(visibility, id.xy, 0).x == 0u {
-        textureStore(scene_output, id.xy, clear_color);
+    if visibility[id.y * params.width + id.x].x == 0u {
+        textureStore(scene_output, id.xy, params.clear_color);
     }
 }

@@ -4,14 +4,18 @@
 // seen. Mirrors `ClassifyParams` in material/resolve_tiles.rs (the layout test checks them).
 
 struct ClassifyParams {
+    width: u32,
+    height: u32,
     tiles_across: u32,
     tile_count: u32,
     batch_count: u32,
-    _padding: u32,
+    _padding_a: u32,
+    _padding_b: vec2<u32>,
 }
 
 @group(0) @binding(0) var<uniform> params: ClassifyParams;
-@group(0) @binding(1) var visibility: texture_2d<u32>;
+// The visibility keys (visibility.wgsl), each read as (id, depth bits).
+@group(0) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
 // Each batch's visibility ids, first..end, in increasing order.
 @group(0) @binding(2) var<storage, read> batch_ids: array<vec2<u32>>;
 // Per batch: how many tiles it shows in (zeroed before each frame).
@@ -48,8 +52,8 @@ fn cs_classify(@builtin(workgroup_id) tile: vec3<u32>, @builtin(local_invocation
     @builtin(local_invocation_index) lane: u32) {
     let pixel = tile.xy * 8u + local.xy;
     var batch = NO_BATCH;
-    if all(pixel < textureDimensions(visibility)) {
-        batch = batch_of(textureLoad(visibility, pixel, 0).x);
+    if pixel.x < params.width && pixel.y < params.height {
+        batch = batch_of(visibility[pixel.y * params.width + pixel.x].x);
     }
     lane_batches[lane] = batch;
     workgroupBarrier();

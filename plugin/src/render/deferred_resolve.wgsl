@@ -35,7 +35,8 @@ struct StoredVertex {
 }
 
 @group(2) @binding(0) var<uniform> resolve_batch: ResolveBatch;
-@group(2) @binding(1) var visibility: texture_2d<u32>;
+// The visibility keys (visibility.wgsl), each read as (id, depth bits).
+@group(2) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
 @group(2) @binding(2) var<storage, read> mesh_vertices: array<StoredVertex>;
 @group(2) @binding(3) var<storage, read> mesh_indices: array<u32>;
 // `SceneOutput` is generated: the target's HDR scene format as a write-only storage texture.
@@ -82,7 +83,7 @@ fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     if f32(id.x) >= resolve_batch.target_width || f32(id.y) >= resolve_batch.target_height {
         return item;
     }
-    let visible = textureLoad(visibility, id, 0).x;
+    let visible = visibility[id.y * frame.target_size.x + id.x].x;
     item.resolves = visible >= resolve_batch.first_id && visible < resolve_batch.end_id;
     let within = visible - resolve_batch.first_id;
     let triangles = max(resolve_batch.triangles, 1u);

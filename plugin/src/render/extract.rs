@@ -217,6 +217,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             .extend(0.0)
             .into(),
         light_counts: [0; 4],
+        target_size: [target_size.0, target_size.1, 0, 0],
         directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
         point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
     };

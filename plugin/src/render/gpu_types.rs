@@ -114,6 +114,8 @@ pub struct FrameUniform {
     pub ambient: [f32; 4],
     /// x: directional light count, y: point and spot light count.
     pub light_counts: [u32; 4],
+    /// xy: the target's width and height in pixels (the visibility buffer's rows).
+    pub target_size: [u32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
     pub directional_lights: [DirectionalLightGpu; MAX_DIRECTIONAL_LIGHTS],
     /// The point and spot lights; only the first `light_counts.y` are used.
@@ -174,6 +176,7 @@ crate::wgsl_layout!(FrameUniform {
     view_direction,
     ambient,
     light_counts,
+    target_size,
     directional_lights,
     point_lights
 });

@@ -63,8 +63,8 @@ pub(crate) fn fullscreen_pipeline(
 pub(crate) enum MeshPass {
     /// The depth prepass: depth tested `Less` and written, no colour.
     Prepass,
-    /// The deferred path's prepass: as the prepass, plus each pixel's id into the visibility
-    /// buffer.
+    /// The deferred path's prepass: as the prepass, its fragments also merging each pixel's id
+    /// into the visibility buffer (a storage buffer: no colour target).
     Visibility,
     /// A shadow map: as the prepass, from a light's view, into the shadow-map format.
     Shadow,
@@ -154,10 +154,9 @@ pub(crate) fn mesh_pipeline(
             .flatten(),
         write_mask: wgpu::ColorWrites::ALL,
     })];
-    let visibility_targets = [Some(wgpu::ColorTargetState::from(super::VISIBILITY_FORMAT))];
+
     let targets: &[Option<wgpu::ColorTargetState>] = match pass {
-        MeshPass::Prepass | MeshPass::Shadow => &[],
-        MeshPass::Visibility => &visibility_targets,
+        MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow => &[],
         _ => &color_targets,
     };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -47,7 +47,10 @@ pub use phases::{
 };
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
-pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath, VISIBILITY_FORMAT};
+pub(crate) use render_path::DEFERRED_FEATURES;
+pub use render_path::{
+    DeferredUnavailable, RenderPath, UnknownRenderPath, VISIBILITY_BYTES_PER_PIXEL,
+};
 pub(crate) use render_path::{VisibilityBuffer, VisibilityIds};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
@@ -177,6 +180,8 @@ pub struct Renderer {
     pub(crate) depth_prepass: bool,
     /// A 1 × 1 depth texture bound where the real one is being written.
     pub(crate) dummy_depth: wgpu::TextureView,
+    /// A one-key visibility buffer bound where the real one is not written.
+    pub(crate) dummy_visibility: wgpu::Buffer,
     /// Every light's shadow maps.
     pub(crate) shadow_maps: ShadowMaps,
     /// The path asked for.
@@ -280,15 +285,20 @@ impl Renderer {
     }
 }
 
-/// What materials bind as the prepass depth and shadow maps for `target`: its depth after a
-/// prepass, else the dummy (fields apart, so the renderer's assets stay borrowable).
+/// What materials bind as the prepass depth, shadow maps and visibility keys for `target`: its
+/// depth after a prepass, else the dummy; the target's visibility buffer once made, else a
+/// stand-in (fields apart, so the renderer's assets stay borrowable).
 pub(crate) fn depth_bindings<'a>(
     depth_prepass: bool,
     dummy: &'a wgpu::TextureView,
     shadow_maps: &'a ShadowMaps,
+    (visibility, dummy_visibility): (Option<&'a VisibilityBuffer>, &'a wgpu::Buffer),
     target: &'a RenderTarget,
 ) -> crate::material::DepthBindings<'a> {
+    let visibility = visibility.filter(|visibility| visibility.target == target.id());
     crate::material::DepthBindings {
+        visibility: visibility.map_or(dummy_visibility, |visibility| &visibility.keys),
+        dummy_visibility,
         opaque: if depth_prepass {
             &target.depth_view
         } else {
@@ -299,7 +309,7 @@ pub(crate) fn depth_bindings<'a>(
         dummy_shadow_maps: shadow_maps.dummy_view(),
         shadow_views: shadow_maps.views_buffer(),
         shadow_sampler: shadow_maps.sampler(),
-        bound: (target.id(), shadow_maps.generation()),
+        bound: (target.id(), shadow_maps.generation(), visibility.is_some()),
     }
 }
 
@@ -359,6 +369,12 @@ impl Plugin for RenderPlugin {
             frame,
             depth_prepass: self.depth_prepass,
             dummy_depth,
+            dummy_visibility: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("visibility stand-in"),
+                size: VISIBILITY_BYTES_PER_PIXEL,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }),
             shadow_maps: ShadowMaps::new(gpu),
             path: self.path,
             deferred: false,
@@ -495,22 +511,14 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         })
     };
     if run_prepass {
-        // On the deferred path the prepass is the visibility pass: each pixel also keeps its
-        // draw and triangle (0: none).
-        let visibility = resources
-            .require::<Renderer>()?
-            .visibility
-            .as_ref()
-            .filter(|_| deferred)
-            .map(|visibility| {
-                Some(clearing_attachment(
-                    &visibility.view,
-                    wgpu::Color::TRANSPARENT,
-                ))
-            });
+        // On the deferred path the prepass is the visibility pass: its fragments also merge
+        // each pixel's draw and triangle into the visibility keys (0: none).
+        if let (true, Some(visibility)) = (deferred, &resources.require::<Renderer>()?.visibility) {
+            encoder.clear_buffer(&visibility.keys, 0, None);
+        }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(if deferred { "visibility" } else { "prepass" }),
-            color_attachments: visibility.as_slice(),
+            color_attachments: &[],
             depth_stencil_attachment: depth_attachment(Some(wgpu::Operations {
                 load: wgpu::LoadOp::Clear(1.0),
                 store: wgpu::StoreOp::Store,

@@ -2,7 +2,7 @@
 //!
 //! Forward: every opaque draw shades in the opaque phase's fragment stage, after the depth
 //! prepass. Deferred: the prepass becomes the visibility pass (depth plus a draw and triangle id
-//! per pixel, [`VISIBILITY_FORMAT`]), and materials that offer a compute resolve
+//! per pixel, merged into a buffer of 64-bit keys), and materials that offer a compute resolve
 //! ([`crate::Material::deferred_resolve`]) shade their pixels in a compute pass after the opaque
 //! phase; the others still draw there.
 
@@ -68,9 +68,11 @@ impl FromStr for RenderPath {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DeferredUnavailable {
-    /// The visibility pass needs each pixel's triangle.
-    #[error("the adapter has no primitive_index (wgpu::Features::PRIMITIVE_INDEX)")]
-    NoPrimitiveIndex,
+    /// The visibility pass needs each pixel's triangle and 64-bit atomics.
+    #[error(
+        "the adapter lacks primitive_index or 64-bit atomic min/max (wgpu::Features::PRIMITIVE_INDEX, SHADER_INT64, SHADER_INT64_ATOMIC_MIN_MAX)"
+    )]
+    MissingFeatures,
     /// The visibility pass is the depth prepass.
     #[error("the depth prepass is off (RenderPlugin::depth_prepass)")]
     NoDepthPrepass,
@@ -79,11 +81,13 @@ pub enum DeferredUnavailable {
     MaterialWithoutDeferredShader(&'static str),
 }
 
-/// The texture format of the visibility buffer: per pixel one id, the draw's first id plus the
-/// triangle (each deferred draw owns a run of ids, one per triangle: [`VisibilityIds`]). One
-/// word, not two: on the H200 each 4 bytes a fragment writes per pixel cost 1.18 ms at 4K
-/// (`Rg32Uint` 3.57 ms, `R32Uint` 2.39 ms, depth alone 1.21 ms; sandbox/BENCHMARKS.md).
-pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+/// Bytes per pixel of the visibility buffer: one 64-bit key, the pixel's depth above its
+/// visibility id, which every fragment of the visibility pass merges with `atomicMax`, so the
+/// nearest wins whatever the order fragments arrive in (each deferred draw owns a run of ids,
+/// one per triangle: [`VisibilityIds`]). A storage buffer, not a colour attachment: on the
+/// H200 a full-screen 4K pass that writes depth and an `R32Uint` attachment takes 2.39 ms,
+/// depth and a 64-bit atomic 1.23 ms (sandbox/BENCHMARKS.md).
+pub const VISIBILITY_BYTES_PER_PIXEL: u64 = 8;
 
 /// Hands out a frame's visibility ids: each batch of deferred draws a run of one id per
 /// triangle per draw, from 1 (0 marks no draw). At most `u32::MAX` ids a frame: past that a
@@ -122,7 +126,9 @@ impl VisibilityIds {
 /// The visibility buffer of one target, made on the first deferred frame and kept.
 #[derive(Debug)]
 pub(crate) struct VisibilityBuffer {
-    pub(crate) view: wgpu::TextureView,
+    /// One [`VISIBILITY_BYTES_PER_PIXEL`] key per pixel, row by row (cleared before each
+    /// visibility pass: 0 is "no draw").
+    pub(crate) keys: wgpu::Buffer,
     /// The [`RenderTarget::id`] it was made for.
     pub(crate) target: u64,
 }
@@ -130,38 +136,31 @@ pub(crate) struct VisibilityBuffer {
 impl VisibilityBuffer {
     pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
         let (width, height) = target.size();
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("visibility buffer"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: VISIBILITY_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
         Self {
-            view: texture.create_view(&wgpu::TextureViewDescriptor::default()),
+            keys: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("visibility buffer"),
+                size: u64::from(width) * u64::from(height) * VISIBILITY_BYTES_PER_PIXEL,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
             target: target.id(),
         }
     }
 }
+
+/// The adapter features the deferred path needs: each pixel's triangle, and 64-bit atomic max
+/// on the visibility keys.
+pub(crate) const DEFERRED_FEATURES: wgpu::Features = wgpu::Features::PRIMITIVE_INDEX
+    .union(wgpu::Features::SHADER_INT64)
+    .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
 /// Whether the adapter and the renderer's settings allow the deferred path.
 pub(crate) fn deferred_support(
     gpu: &GpuContext,
     depth_prepass: bool,
 ) -> Result<(), DeferredUnavailable> {
-    if !gpu
-        .device
-        .features()
-        .contains(wgpu::Features::PRIMITIVE_INDEX)
-    {
-        return Err(DeferredUnavailable::NoPrimitiveIndex);
+    if !gpu.device.features().contains(DEFERRED_FEATURES) {
+        return Err(DeferredUnavailable::MissingFeatures);
     }
     if !depth_prepass {
         return Err(DeferredUnavailable::NoDepthPrepass);

@@ -1,17 +1,31 @@
 // The visibility pass, the deferred path's prepass: with its depth, each pixel keeps one 32-bit
 // id that names the draw and the triangle it shows. Each draw owns a run of ids, one per
 // triangle, starting at its `first_visibility_id` (mesh_vertex.wgsl); 0 marks a pixel no
-// opaque draw covers (the pass clears to it). Composed after a material's files (with
-// `enable primitive_index;`) where the adapter can run the deferred path.
+// opaque draw covers. Composed after a material's files (with `enable primitive_index;`) where
+// the adapter can run the deferred path.
+
+// One 64-bit key per pixel, row by row: the depth's bits inverted above the id, so that
+// atomicMax keeps the nearest fragment whatever the order fragments arrive in (ties: the larger
+// id). Cleared to 0 before the pass; outside it a one-key stand-in is bound.
+@group(0) @binding(8) var<storage, read_write> visibility_keys: array<atomic<u64>>;
 
 // The id a pixel of draw `object_index`, triangle `triangle`, keeps.
 fn visibility_id(object_index: u32, triangle: u32) -> u32 {
     return transforms[object_index].first_visibility_id + triangle;
 }
 
-// The visibility pass of a material whose prepass has no fragment stage of its own. No depth
-// written and no side effects: the depth test runs before it.
+// Merges `id`, seen at framebuffer position `position` at clip depth `depth`, into the pixel's
+// key.
+fn keep_visible(position: vec4<f32>, depth: f32, id: u32) {
+    let pixel = vec2<u32>(position.xy);
+    let key = (u64(~bitcast<u32>(depth)) << 32u) | u64(id);
+    atomicMax(&visibility_keys[pixel.y * frame.target_size.x + pixel.x], key);
+}
+
+// The visibility pass of a material whose prepass has no fragment stage of its own. The depth
+// test runs first (forced: the atomic is the only side effect, and a fragment it rejects could
+// only have lost the merge).
 @fragment @early_depth_test(force)
-fn fs_visibility(in: VertexOut, @builtin(primitive_index) triangle: u32) -> @location(0) u32 {
-    return visibility_id(in.object_index, triangle);
+fn fs_visibility(in: VertexOut, @builtin(primitive_index) triangle: u32) {
+    keep_visible(in.clip_position, in.clip_position.z, visibility_id(in.object_index, triangle));
 }
