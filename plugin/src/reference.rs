@@ -5,6 +5,10 @@
 //! vectors are (u, v, normal) components. Sampling is bilinear with wrapping at mip level 0,
 //! which is what the GPU does when a texel covers at least a pixel.
 
+mod max_mip;
+
+pub use max_mip::{MaxPyramid, march_max_mip};
+
 use glam::{Vec2, Vec3};
 
 use crate::HeightField;
