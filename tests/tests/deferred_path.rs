@@ -11,7 +11,7 @@ use pom::{
     Transform, patterns,
 };
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
-use pom_tests::{render_both_paths, render_on_path_f32};
+use pom_tests::{render_both_paths, render_on_path, render_on_path_f32};
 
 /// Side of the test height map in texels.
 const TEXELS: u32 = 256;
@@ -178,4 +178,44 @@ fn instanced_parallax_cubes_resolve_each_instance_and_triangle() {
         app.world.spawn((cube.clone(), transform, material.clone()));
     }
     render_both_paths(&mut app, "instanced_cubes").unwrap();
+}
+
+#[test]
+fn a_fragment_counter_or_a_prepass_draw_of_no_material_keeps_frames_forward() {
+    use pom::render::{DeferredUnavailable, DrawPhase, FragmentInvocationCounter, RenderPhases};
+    let deferred_frame = |app: &mut pom::App| {
+        render_on_path(app, RenderPath::Deferred).unwrap();
+        let renderer = app.resources.get::<Renderer>().unwrap();
+        (renderer.runs_deferred(), renderer.deferred_unavailable())
+    };
+    let mut app = preview_app(
+        32,
+        TargetFormat::Srgb8,
+        &cobblestones(),
+        &perspective(30.0),
+        |m| m,
+    )
+    .unwrap();
+    assert_eq!(deferred_frame(&mut app), (true, None));
+    // Counting fragment invocations: the deferred path shades in compute.
+    let counter = FragmentInvocationCounter::new(app.resources.get::<pom::GpuContext>().unwrap());
+    app.insert_resource(counter);
+    assert_eq!(
+        deferred_frame(&mut app),
+        (false, Some(DeferredUnavailable::FragmentCounter))
+    );
+    app.resources.remove::<FragmentInvocationCounter>();
+    // A plugin's own prepass draw writes depth but no visibility key.
+    struct OwnDraw;
+    app.resources
+        .get_mut::<RenderPhases>()
+        .unwrap()
+        .add_draw::<OwnDraw>(DrawPhase::Prepass, |_, _| {});
+    assert_eq!(
+        deferred_frame(&mut app),
+        (
+            false,
+            Some(DeferredUnavailable::PrepassDrawWithoutVisibility)
+        )
+    );
 }

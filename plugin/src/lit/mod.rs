@@ -99,50 +99,45 @@ impl LitMaterial {
 /// The lit material's entry point.
 pub const LIT_ENTRY: WgslFile = crate::wgsl_file!("lit/lit.wgsl");
 
+/// The lit shader's generated constants after `$first`, and its files followed by `$more`:
+/// the forward and the deferred shader list them once.
+macro_rules! lit_shader {
+    ($name:literal, [$($first:expr),*], [$($more:expr),*]) => {
+        ComposedShader {
+            name: $name,
+            constants: &[
+                $($first,)*
+                LightingModel::wgsl_constants,
+                AlphaMode::wgsl_constants,
+                LitParams::wgsl,
+            ],
+            files: &[
+                shaders::FRAME,
+                shaders::PARAMS,
+                shaders::MESH_VERTEX,
+                shaders::SHADOWS,
+                shaders::TANGENT_SPACE,
+                shaders::LIGHTING,
+                LIT_ENTRY,
+                $($more,)*
+            ],
+        }
+    };
+}
+
 /// The lit material's shader.
-pub const LIT_SHADER: ComposedShader = ComposedShader {
-    name: "lit.wgsl",
-    constants: &[
-        LightingModel::wgsl_constants,
-        AlphaMode::wgsl_constants,
-        LitParams::wgsl,
-    ],
-    files: &[
-        shaders::FRAME,
-        shaders::PARAMS,
-        shaders::MESH_VERTEX,
-        shaders::SHADOWS,
-        shaders::TANGENT_SPACE,
-        shaders::LIGHTING,
-        LIT_ENTRY,
-    ],
-};
+pub const LIT_SHADER: ComposedShader = lit_shader!("lit.wgsl", [], []);
 
 /// The lit material's visibility-pass entry for masked surfaces.
 pub const LIT_DEFERRED_ENTRY: WgslFile = crate::wgsl_file!("lit/lit_deferred.wgsl");
 
 /// The lit material's shader for the deferred path: [`LIT_SHADER`] and its visibility pass (it
 /// shades in the opaque phase on both paths).
-pub const LIT_DEFERRED_SHADER: ComposedShader = ComposedShader {
-    name: "lit.wgsl (deferred)",
-    constants: &[
-        shaders::deferred_header,
-        LightingModel::wgsl_constants,
-        AlphaMode::wgsl_constants,
-        LitParams::wgsl,
-    ],
-    files: &[
-        shaders::FRAME,
-        shaders::PARAMS,
-        shaders::MESH_VERTEX,
-        shaders::SHADOWS,
-        shaders::TANGENT_SPACE,
-        shaders::LIGHTING,
-        LIT_ENTRY,
-        shaders::VISIBILITY,
-        LIT_DEFERRED_ENTRY,
-    ],
-};
+pub const LIT_DEFERRED_SHADER: ComposedShader = lit_shader!(
+    "lit.wgsl (deferred)",
+    [shaders::deferred_header],
+    [shaders::VISIBILITY, LIT_DEFERRED_ENTRY]
+);
 
 /// What one lit pipeline is compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

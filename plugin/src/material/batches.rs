@@ -107,6 +107,15 @@ pub(crate) struct DepthBindings<'a> {
     pub(crate) bound: (u64, u64, bool),
 }
 
+/// The shader a material compiles: its deferred shader where it has one and the adapter can
+/// run the visibility pass, else its forward one.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MaterialShader {
+    pub(crate) composed: ComposedShader,
+    /// Whether `composed` is the deferred shader.
+    pub(crate) deferred: bool,
+}
+
 /// Material `M`'s GPU state. A resource.
 pub(crate) struct MaterialBatches<M: Material> {
     pub(crate) pipelines: MaterialPipelines<M>,
@@ -139,6 +148,9 @@ struct FrameBindings<'a> {
     transforms: &'a wgpu::Buffer,
     uniforms: &'a wgpu::Buffer,
     counter: Option<&'a wgpu::Buffer>,
+    /// Whether the layout has the visibility keys (only a deferred shader's does: a writable
+    /// fragment-stage buffer is an optional capability the forward path must not need).
+    visibility_keys: bool,
 }
 
 /// Which depth textures a group 0 binds: the real ones where they are read, or the dummies
@@ -170,8 +182,10 @@ fn frame_bind_group(
         entry(5, depth.shadow_views.as_entire_binding()),
         entry(6, wgpu::BindingResource::TextureView(shadow_maps)),
         entry(7, wgpu::BindingResource::Sampler(depth.shadow_sampler)),
-        entry(8, visibility.as_entire_binding()),
     ];
+    if bindings.visibility_keys {
+        entries.push(entry(8, visibility.as_entire_binding()));
+    }
     if let Some(counter) = bindings.counter {
         entries.push(entry(4, counter.as_entire_binding()));
     }
@@ -267,7 +281,10 @@ impl<M: Material> MaterialBatches<M> {
     pub(crate) fn new(
         gpu: &GpuContext,
         frame: &FrameUniformBuffer,
-        (shader, deferred): (ComposedShader, bool),
+        MaterialShader {
+            composed: shader,
+            deferred,
+        }: MaterialShader,
         color_format: wgpu::TextureFormat,
         prepass: bool,
         depth: &DepthBindings<'_>,
@@ -287,7 +304,9 @@ impl<M: Material> MaterialBatches<M> {
             prepass_depth_entry(),
         ];
         layout_entries.extend(shadow_entries());
-        layout_entries.push(visibility_keys_entry());
+        if deferred {
+            layout_entries.push(visibility_keys_entry());
+        }
         if counter.is_some() {
             layout_entries.push(counter_entry());
         }
@@ -320,6 +339,7 @@ impl<M: Material> MaterialBatches<M> {
             transforms: transforms.buffer(),
             uniforms: uniforms.buffer(),
             counter: counter.as_ref(),
+            visibility_keys: deferred,
         };
         let prepass_bind_group = frame_bind_group(
             gpu,
@@ -494,6 +514,7 @@ impl<M: Material> MaterialBatches<M> {
                 transforms: self.transforms.buffer(),
                 uniforms: self.uniforms.buffer(),
                 counter: self.counter.as_ref(),
+                visibility_keys: self.resolve.is_some(),
             };
             self.prepass_bind_group = frame_bind_group(
                 gpu,

@@ -9,6 +9,7 @@ use glam::Mat4;
 
 use super::batches::Batch;
 use super::resolve_tiles::ResolveTiles;
+use crate::render::layout::compute_storage_buffer;
 use crate::render::{GpuAssets, GpuContext};
 use crate::{AssetId, Mesh};
 
@@ -101,17 +102,8 @@ impl DeferredResolve {
         label: &'static str,
         scene_format: wgpu::TextureFormat,
     ) -> Self {
-        let visibility = wgpu::ShaderStages::COMPUTE;
-        let storage = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let stages = wgpu::ShaderStages::COMPUTE;
+        let storage = |binding| compute_storage_buffer(binding, true);
         let layout = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -119,7 +111,7 @@ impl DeferredResolve {
                 entries: &[
                     wgpu::BindGroupLayoutEntry {
                         binding: 0,
-                        visibility,
+                        visibility: stages,
                         ty: wgpu::BindingType::Buffer {
                             ty: wgpu::BufferBindingType::Uniform,
                             has_dynamic_offset: true,
@@ -134,7 +126,7 @@ impl DeferredResolve {
                     storage(3),
                     wgpu::BindGroupLayoutEntry {
                         binding: 4,
-                        visibility,
+                        visibility: stages,
                         ty: wgpu::BindingType::StorageTexture {
                             access: wgpu::StorageTextureAccess::WriteOnly,
                             format: scene_format,
@@ -203,8 +195,9 @@ impl DeferredResolve {
             .collect();
         // Classifying costs one read of the whole visibility buffer, as does each batch's
         // whole-target dispatch (its pixels of other batches return after one load): it pays
-        // from two batches on.
-        let classified = resolved.len() >= 2;
+        // from two batches on, while the tile lists fit the device's buffers.
+        let classified =
+            resolved.len() >= 2 && ResolveTiles::fits(gpu, resolved.len(), targets.size);
         let ranges: Vec<[u32; 2]> = resolved
             .iter()
             .filter(|_| classified)

@@ -28,7 +28,7 @@ pub use plugin::{
 pub(crate) use batches::DepthBindings;
 #[cfg(feature = "dev-tools")]
 pub(crate) use plugin::MaterialRegistry;
-pub(crate) use plugin::material_without_deferred_shader;
+pub(crate) use plugin::{is_deferred_material, material_without_deferred_shader};
 pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
 
 use std::fmt::Debug;
@@ -138,8 +138,8 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     }
     /// The material's shader for the deferred path ([`crate::RenderPath`]): the constants of
     /// [`Material::shader`] after [`crate::render::shaders::deferred_header`], its files, then the core's
-    /// [`crate::render::shaders::VISIBILITY`] (and
-    /// [`crate::render::shaders::DEFERRED_RESOLVE`] for a compute resolve) and the
+    /// [`crate::render::shaders::VISIBILITY`] (and [`crate::render::shaders::VISIBILITY_READ`]
+    /// with [`crate::render::shaders::DEFERRED_RESOLVE`] for a compute resolve) and the
     /// material's own deferred entry points. `None` (the default): an app that draws this
     /// material renders forward (the deferred path needs every opaque draw in the visibility
     /// buffer).
@@ -149,7 +149,7 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// The fragment stage of `key` in the visibility pass (the deferred path's prepass, which
     /// also writes each pixel's id): the core's `fs_visibility` by default. A material whose
     /// [`Material::prepass_fragment`] discards or moves the depth names its twin, which does the
-    /// same and returns `visibility_id(...)`.
+    /// same and then calls `keep_visible(position, depth, visibility_id(...))`.
     fn visibility_fragment(_key: Self::Key) -> FragmentVariant {
         FragmentVariant::entry("fs_visibility")
     }

@@ -10,7 +10,9 @@ use std::marker::PhantomData;
 use hecs::{Entity, World};
 
 use super::Material;
-use super::batches::{DepthBindings, ExtractedDraw, MaterialBatches, PrepareInputs};
+use super::batches::{
+    DepthBindings, ExtractedDraw, MaterialBatches, MaterialShader, PrepareInputs,
+};
 use super::deferred::ResolveTargets;
 #[cfg(feature = "dev-tools")]
 use crate::render::shaders::ComposedShader;
@@ -140,6 +142,16 @@ impl MaterialRegistry {
     fn has_any(&self, archetype: &hecs::Archetype) -> bool {
         self.entries.iter().any(|entry| (entry.has)(archetype))
     }
+}
+
+/// Whether `owner` is a registered material whose pipelines draw the visibility pass.
+pub(crate) fn is_deferred_material(resources: &Resources, owner: TypeId) -> bool {
+    resources.get::<MaterialRegistry>().is_some_and(|registry| {
+        registry
+            .entries
+            .iter()
+            .any(|entry| entry.type_id == owner && entry.deferred)
+    })
 }
 
 /// The first of the app's materials that cannot draw the visibility pass, if any: the deferred
@@ -276,15 +288,21 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .map(|counter| counter.buffer().clone());
         // The deferred shader where the material has one and the adapter the visibility pass.
         let shader = match M::deferred_shader() {
-            Some(shader)
+            Some(composed)
                 if gpu
                     .device
                     .features()
                     .contains(crate::render::DEFERRED_FEATURES) =>
             {
-                (shader, true)
+                MaterialShader {
+                    composed,
+                    deferred: true,
+                }
             }
-            _ => (M::shader(), false),
+            _ => MaterialShader {
+                composed: M::shader(),
+                deferred: false,
+            },
         };
         let batches = MaterialBatches::<M>::new(
             gpu,
@@ -307,10 +325,10 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .get_or_default::<MaterialRegistry>()
             .entry_mut::<M>()
         {
-            entry.deferred = shader.1;
+            entry.deferred = shader.deferred;
             #[cfg(feature = "dev-tools")]
             {
-                entry.shader = shader.0;
+                entry.shader = shader.composed;
             }
         }
         Ok(())

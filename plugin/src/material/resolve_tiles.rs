@@ -5,17 +5,15 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::render::GpuContext;
+use crate::render::layout::compute_storage_buffer;
 use crate::render::shaders::{self, ComposedShader};
 
 /// The classification's shader.
 pub const DEFERRED_CLASSIFY_SHADER: ComposedShader = ComposedShader {
     name: "deferred_classify.wgsl",
     constants: &[shaders::deferred_header],
-    files: &[shaders::DEFERRED_CLASSIFY],
+    files: &[shaders::VISIBILITY_READ, shaders::DEFERRED_CLASSIFY],
 };
-
-/// Pixels per tile along each side.
-pub(crate) const TILE_SIDE: u32 = 8;
 
 /// Mirrors `ClassifyParams` in deferred_classify.wgsl.
 #[repr(C)]
@@ -105,23 +103,13 @@ pub(crate) struct ResolveTiles {
 impl ResolveTiles {
     pub(crate) fn new(gpu: &GpuContext) -> Self {
         let device = &gpu.device;
-        let visibility = wgpu::ShaderStages::COMPUTE;
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let storage = compute_storage_buffer;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("resolve classification layout"),
             entries: &[
                 wgpu::BindGroupLayoutEntry {
                     binding: 0,
-                    visibility,
+                    visibility: wgpu::ShaderStages::COMPUTE,
                     ty: wgpu::BindingType::Buffer {
                         ty: wgpu::BufferBindingType::Uniform,
                         has_dynamic_offset: false,
@@ -181,7 +169,10 @@ impl ResolveTiles {
         size: (u32, u32),
         ranges: &[[u32; 2]],
     ) {
-        self.tiles = (size.0.div_ceil(TILE_SIDE), size.1.div_ceil(TILE_SIDE));
+        self.tiles = (
+            size.0.div_ceil(shaders::DEFERRED_TILE_SIDE),
+            size.1.div_ceil(shaders::DEFERRED_TILE_SIDE),
+        );
         let tile_count = u64::from(self.tiles.0) * u64::from(self.tiles.1);
         self.batch_count = ranges.len() as u32;
         if ranges.is_empty() {
@@ -243,6 +234,16 @@ impl ResolveTiles {
         pass.dispatch_workgroups(self.tiles.0, self.tiles.1, 1);
         pass.set_pipeline(&self.dispatch_args_pipeline);
         pass.dispatch_workgroups(self.batch_count.div_ceil(64), 1, 1);
+    }
+
+    /// Whether the tile lists of `batches` batches over a target of `size` fit the device's
+    /// buffer limits (one list of every tile per batch: 518 KB each at 4K).
+    pub(crate) fn fits(gpu: &GpuContext, batches: usize, size: (u32, u32)) -> bool {
+        let side = shaders::DEFERRED_TILE_SIDE;
+        let tiles = u64::from(size.0.div_ceil(side)) * u64::from(size.1.div_ceil(side));
+        let bytes = (batches as u64).next_power_of_two() * tiles * 4;
+        let limits = gpu.device.limits();
+        bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
     }
 
     /// Tiles along the target's width.

@@ -27,65 +27,57 @@ pub const PARALLAX_MARCH: WgslFile = crate::wgsl_file!("parallax/march.wgsl");
 /// The parallax material's entry points.
 pub const PARALLAX_ENTRY: WgslFile = crate::wgsl_file!("parallax/pom.wgsl");
 
+/// The parallax shader's generated constants after `$first`, and its files followed by
+/// `$more`: the forward and the deferred shader list them once.
+macro_rules! parallax_shader {
+    ($name:literal, [$($first:expr),*], [$($more:expr),*]) => {
+        ComposedShader {
+            name: $name,
+            constants: &[
+                $($first,)*
+                ParallaxMethod::wgsl_constants,
+                ShadowMode::wgsl_constants,
+                HeightConvention::wgsl_constants,
+                HeightUnits::wgsl_constants,
+                LightingModel::wgsl_constants,
+                DebugView::wgsl_constants,
+                PomParams::wgsl,
+            ],
+            files: &[
+                shaders::FRAME,
+                shaders::PARAMS,
+                shaders::MESH_VERTEX,
+                shaders::SHADOWS,
+                shaders::PREPASS_DEPTH,
+                shaders::FRAGMENT_COUNTER,
+                shaders::TANGENT_SPACE,
+                shaders::LIGHTING,
+                PARALLAX_MARCH,
+                PARALLAX_ENTRY,
+                $($more,)*
+            ],
+        }
+    };
+}
+
 /// The parallax material's shader.
-pub const PARALLAX_SHADER: ComposedShader = ComposedShader {
-    name: "pom.wgsl",
-    constants: &[
-        ParallaxMethod::wgsl_constants,
-        ShadowMode::wgsl_constants,
-        HeightConvention::wgsl_constants,
-        HeightUnits::wgsl_constants,
-        LightingModel::wgsl_constants,
-        DebugView::wgsl_constants,
-        PomParams::wgsl,
-    ],
-    files: &[
-        shaders::FRAME,
-        shaders::PARAMS,
-        shaders::MESH_VERTEX,
-        shaders::SHADOWS,
-        shaders::PREPASS_DEPTH,
-        shaders::FRAGMENT_COUNTER,
-        shaders::TANGENT_SPACE,
-        shaders::LIGHTING,
-        PARALLAX_MARCH,
-        PARALLAX_ENTRY,
-    ],
-};
+pub const PARALLAX_SHADER: ComposedShader = parallax_shader!("pom.wgsl", [], []);
 
 /// The parallax material's entry points of the deferred path.
 pub const PARALLAX_DEFERRED_ENTRY: WgslFile = crate::wgsl_file!("parallax/pom_deferred.wgsl");
 
 /// The parallax material's shader for the deferred path: [`PARALLAX_SHADER`], the visibility
 /// pass and the compute resolve.
-pub const PARALLAX_DEFERRED_SHADER: ComposedShader = ComposedShader {
-    name: "pom.wgsl (deferred)",
-    constants: &[
-        shaders::deferred_header,
-        ParallaxMethod::wgsl_constants,
-        ShadowMode::wgsl_constants,
-        HeightConvention::wgsl_constants,
-        HeightUnits::wgsl_constants,
-        LightingModel::wgsl_constants,
-        DebugView::wgsl_constants,
-        PomParams::wgsl,
-    ],
-    files: &[
-        shaders::FRAME,
-        shaders::PARAMS,
-        shaders::MESH_VERTEX,
-        shaders::SHADOWS,
-        shaders::PREPASS_DEPTH,
-        shaders::FRAGMENT_COUNTER,
-        shaders::TANGENT_SPACE,
-        shaders::LIGHTING,
-        PARALLAX_MARCH,
-        PARALLAX_ENTRY,
+pub const PARALLAX_DEFERRED_SHADER: ComposedShader = parallax_shader!(
+    "pom.wgsl (deferred)",
+    [shaders::deferred_header],
+    [
         shaders::VISIBILITY,
+        shaders::VISIBILITY_READ,
         shaders::DEFERRED_RESOLVE,
-        PARALLAX_DEFERRED_ENTRY,
-    ],
-};
+        PARALLAX_DEFERRED_ENTRY
+    ]
+);
 
 /// Entities whose parallax material was clamped (each warned about once per change).
 pub type MaterialWarnings = crate::material::MaterialWarnings<ParallaxOcclusionMaterial>;

@@ -15,7 +15,7 @@ fn fs_visibility_depth_offset(in: VertexOut, @builtin(front_facing) front_facing
 
 // One workgroup per 8 × 8 tile the batch shows in: its pixels march and shade as the fragment
 // entry points do; the tile's other pixels return at once.
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(TILE_SIDE, TILE_SIDE)
 fn cs_resolve(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
     let item = resolve_item(group.xy, local.xy);
     if !item.resolves {

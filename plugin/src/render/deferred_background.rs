@@ -13,11 +13,8 @@ pub const DEFERRED_BACKGROUND_ENTRY: WgslFile =
 pub const DEFERRED_BACKGROUND: ComposedShader = ComposedShader {
     name: "deferred_background.wgsl",
     constants: &[shaders::deferred_header],
-    files: &[DEFERRED_BACKGROUND_ENTRY],
+    files: &[shaders::VISIBILITY_READ, DEFERRED_BACKGROUND_ENTRY],
 };
-
-/// Pixels per workgroup along each side (`@workgroup_size(8, 8)`).
-const WORKGROUP_SIDE: u32 = 8;
 
 /// Mirrors `BackgroundParams` in deferred_background.wgsl.
 #[repr(C)]
@@ -93,8 +90,8 @@ impl DeferredBackground {
         gpu.queue
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         self.workgroups = (
-            width.div_ceil(WORKGROUP_SIDE),
-            height.div_ceil(WORKGROUP_SIDE),
+            width.div_ceil(shaders::DEFERRED_TILE_SIDE),
+            height.div_ceil(shaders::DEFERRED_TILE_SIDE),
         );
         if self.bind_group.as_ref().map(|(id, _)| *id) != Some(target.id()) {
             let layout = self.pipeline.get_bind_group_layout(0);

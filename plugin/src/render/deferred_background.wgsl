@@ -13,17 +13,17 @@ struct BackgroundParams {
     _padding: vec2<u32>,
 }
 
-// The visibility keys (visibility.wgsl), each read as (id, depth bits).
+// The visibility keys (visibility_read.wgsl).
 @group(0) @binding(0) var<storage, read> visibility: array<vec2<u32>>;
 @group(0) @binding(1) var scene_output: SceneOutput;
 @group(0) @binding(2) var<uniform> params: BackgroundParams;
 
-@compute @workgroup_size(8, 8)
-fn cs_background(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= params.width || id.y >= params.height {
+@compute @workgroup_size(TILE_SIDE, TILE_SIDE)
+fn cs_background(@builtin(global_invocation_id) pixel: vec3<u32>) {
+    if pixel.x >= params.width || pixel.y >= params.height {
         return;
     }
-    if visibility[id.y * params.width + id.x].x == 0u {
-        textureStore(scene_output, id.xy, params.clear_color);
+    if visible_id(pixel.xy, params.width) == 0u {
+        textureStore(scene_output, pixel.xy, params.clear_color);
     }
 }

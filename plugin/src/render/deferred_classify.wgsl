@@ -14,7 +14,7 @@ struct ClassifyParams {
 }
 
 @group(0) @binding(0) var<uniform> params: ClassifyParams;
-// The visibility keys (visibility.wgsl), each read as (id, depth bits).
+// The visibility keys (visibility_read.wgsl).
 @group(0) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
 // Each batch's visibility ids, first..end, in increasing order.
 @group(0) @binding(2) var<storage, read> batch_ids: array<vec2<u32>>;
@@ -27,7 +27,7 @@ struct ClassifyParams {
 
 const NO_BATCH: u32 = 0xffffffffu;
 
-var<workgroup> lane_batches: array<u32, 64>;
+var<workgroup> lane_batches: array<u32, TILE_SIDE * TILE_SIDE>;
 
 // The batch whose ids hold `id` (binary search), or NO_BATCH.
 fn batch_of(id: u32) -> u32 {
@@ -47,13 +47,13 @@ fn batch_of(id: u32) -> u32 {
 }
 
 // One workgroup per tile: the first lane that shows a batch lists the tile for it.
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(TILE_SIDE, TILE_SIDE)
 fn cs_classify(@builtin(workgroup_id) tile: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>,
     @builtin(local_invocation_index) lane: u32) {
-    let pixel = tile.xy * 8u + local.xy;
+    let pixel = tile.xy * TILE_SIDE + local.xy;
     var batch = NO_BATCH;
     if pixel.x < params.width && pixel.y < params.height {
-        batch = batch_of(visibility[pixel.y * params.width + pixel.x].x);
+        batch = batch_of(visible_id(pixel, params.width));
     }
     lane_batches[lane] = batch;
     workgroupBarrier();

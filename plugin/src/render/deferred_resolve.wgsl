@@ -35,7 +35,7 @@ struct StoredVertex {
 }
 
 @group(2) @binding(0) var<uniform> resolve_batch: ResolveBatch;
-// The visibility keys (visibility.wgsl), each read as (id, depth bits).
+// The visibility keys (visibility_read.wgsl).
 @group(2) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
 @group(2) @binding(2) var<storage, read> mesh_vertices: array<StoredVertex>;
 @group(2) @binding(3) var<storage, read> mesh_indices: array<u32>;
@@ -71,6 +71,7 @@ fn resolve_tile(group: vec2<u32>) -> vec3<u32> {
 }
 
 // Which pixel lane `local` of workgroup `group` resolves, and whether the batch shows there.
+// (Composed after visibility_read.wgsl.)
 fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     var item: ResolveItem;
     item.resolves = false;
@@ -78,12 +79,12 @@ fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     if tile.z == 0u {
         return item;
     }
-    let id = tile.xy * 8u + local;
-    item.pixel = id;
-    if f32(id.x) >= resolve_batch.target_width || f32(id.y) >= resolve_batch.target_height {
+    let pixel = tile.xy * TILE_SIDE + local;
+    item.pixel = pixel;
+    if f32(pixel.x) >= resolve_batch.target_width || f32(pixel.y) >= resolve_batch.target_height {
         return item;
     }
-    let visible = visibility[id.y * frame.target_size.x + id.x].x;
+    let visible = visible_id(pixel, frame.target_size.x);
     item.resolves = visible >= resolve_batch.first_id && visible < resolve_batch.end_id;
     let within = visible - resolve_batch.first_id;
     let triangles = max(resolve_batch.triangles, 1u);

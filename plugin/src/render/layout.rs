@@ -24,6 +24,20 @@ pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A storage buffer of the deferred path's compute passes, read-only or not.
+pub(crate) fn compute_storage_buffer(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// A full-screen pass's pipeline: `fullscreen_vertex` (fullscreen_triangle.wgsl, composed into
 /// `shader`) and the fragment entry `fragment_entry` writing one `format` target, no depth.
 /// `layout: None` derives the layout from the shader.

@@ -24,6 +24,7 @@ mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
+mod visibility;
 
 pub(crate) use capture::read_rgba32f;
 pub use capture::{CaptureError, read_rgba8, read_texture};
@@ -48,15 +49,14 @@ pub use phases::{
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
 pub(crate) use render_path::DEFERRED_FEATURES;
-pub use render_path::{
-    DeferredUnavailable, RenderPath, UnknownRenderPath, VISIBILITY_BYTES_PER_PIXEL,
-};
-pub(crate) use render_path::{VisibilityBuffer, VisibilityIds};
+pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
+pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
+pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};
 
 use image::{Rgba32FImage, RgbaImage};
 
@@ -237,22 +237,29 @@ impl Renderer {
 
     /// Decides whether this frame runs deferred, logging when the decision changes, and makes
     /// the visibility buffer on the first deferred frame of a target.
+    /// `blocker` is what of the app stops the deferred path (a material, a draw, a counter).
     fn choose_path(
         &mut self,
         gpu: &GpuContext,
         target: &RenderTarget,
-        material_without_deferred: Option<&'static str>,
+        blocker: Option<DeferredUnavailable>,
     ) {
         let wants = match self.path {
             RenderPath::Forward => false,
             RenderPath::Deferred => true,
             RenderPath::Auto => render_path::auto_picks_deferred(gpu),
         };
-        let support = render_path::deferred_support(gpu, self.depth_prepass).and_then(|()| {
-            material_without_deferred.map_or(Ok(()), |name| {
-                Err(DeferredUnavailable::MaterialWithoutDeferredShader(name))
-            })
-        });
+        let support = render_path::deferred_support(gpu, self.depth_prepass)
+            .and_then(|()| blocker.map_or(Ok(()), Err))
+            .and_then(|()| {
+                if visibility::visibility_fits(gpu, target) {
+                    Ok(())
+                } else {
+                    Err(DeferredUnavailable::TargetTooLarge {
+                        bytes: visibility::visibility_bytes(target),
+                    })
+                }
+            });
         let unavailable = if wants { support.err() } else { None };
         let deferred = wants && unavailable.is_none();
         if (deferred, unavailable) != (self.deferred, self.deferred_unavailable) || self.first_frame
@@ -271,13 +278,11 @@ impl Renderer {
         self.first_frame = false;
         self.deferred = deferred;
         self.deferred_unavailable = unavailable;
-        if deferred
-            && self
-                .visibility
-                .as_ref()
-                .is_none_or(|v| v.target != target.id())
-        {
-            self.visibility = Some(VisibilityBuffer::new(gpu, target));
+        if deferred {
+            match &mut self.visibility {
+                Some(visibility) => visibility.follow(gpu, target),
+                None => self.visibility = Some(VisibilityBuffer::new(gpu, target)),
+            }
         }
         if deferred && self.background.is_none() {
             self.background = Some(DeferredBackground::new(gpu, target.scene_format()));
@@ -407,11 +412,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let meshes = resources.require::<Assets<Mesh>>()?;
             let images = resources.require::<Assets<Image>>()?;
             let target = resources.require::<RenderTarget>()?;
-            renderer.choose_path(
-                gpu,
-                target,
-                crate::material::material_without_deferred_shader(resources),
-            );
+            renderer.choose_path(gpu, target, deferred_blocker(resources));
             renderer.visibility_ids.reset();
             if let (true, Some(background), Some(visibility)) = (
                 renderer.deferred,
@@ -652,6 +653,23 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             Ok(())
         })
         .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+}
+
+/// What of the app keeps frames from the deferred path: a material without a deferred shader,
+/// a prepass draw that is no material's (it would write depth but no visibility key), or a
+/// [`FragmentInvocationCounter`] (the deferred path shades in compute, where it counts nothing).
+fn deferred_blocker(resources: &Resources) -> Option<DeferredUnavailable> {
+    if resources.contains::<FragmentInvocationCounter>() {
+        return Some(DeferredUnavailable::FragmentCounter);
+    }
+    if let Some(name) = crate::material::material_without_deferred_shader(resources) {
+        return Some(DeferredUnavailable::MaterialWithoutDeferredShader(name));
+    }
+    let phases = resources.get::<RenderPhases>()?;
+    phases
+        .draw_owners(DrawPhase::Prepass)
+        .any(|owner| !crate::material::is_deferred_material(resources, owner))
+        .then_some(DeferredUnavailable::PrepassDrawWithoutVisibility)
 }
 
 /// What the scene is cleared to: the clear colour as set, its negative alpha marking it

@@ -196,6 +196,14 @@ impl RenderPhases {
             .map(|(_, _, draw, _)| *draw)
     }
 
+    /// The owners (a material type, say) of the draws of `phase`.
+    pub(crate) fn draw_owners(&self, phase: DrawPhase) -> impl Iterator<Item = TypeId> + '_ {
+        self.draws
+            .iter()
+            .filter(move |(p, _, _, _)| *p == phase)
+            .map(|(_, owner, _, _)| *owner)
+    }
+
     /// Whether any draw of `phase` has work this frame.
     pub fn has_draws(&self, phase: DrawPhase, resources: &Resources) -> bool {
         self.draws

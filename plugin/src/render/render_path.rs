@@ -8,7 +8,7 @@
 
 use std::str::FromStr;
 
-use super::{GpuContext, RenderTarget};
+use super::GpuContext;
 
 /// How opaque surfaces are shaded: [`super::RenderPlugin::path`], switchable at run time with
 /// [`super::Renderer::set_path`].
@@ -79,73 +79,24 @@ pub enum DeferredUnavailable {
     /// Every opaque draw must write the visibility buffer.
     #[error("material {0} has no deferred shader (Material::deferred_shader)")]
     MaterialWithoutDeferredShader(&'static str),
-}
-
-/// Bytes per pixel of the visibility buffer: one 64-bit key, the pixel's depth above its
-/// visibility id, which every fragment of the visibility pass merges with `atomicMax`, so the
-/// nearest wins whatever the order fragments arrive in (each deferred draw owns a run of ids,
-/// one per triangle: [`VisibilityIds`]). A storage buffer, not a colour attachment: on the
-/// H200 a full-screen 4K pass that writes depth and an `R32Uint` attachment takes 2.39 ms,
-/// depth and a 64-bit atomic 1.23 ms (sandbox/BENCHMARKS.md).
-pub const VISIBILITY_BYTES_PER_PIXEL: u64 = 8;
-
-/// Hands out a frame's visibility ids: each batch of deferred draws a run of one id per
-/// triangle per draw, from 1 (0 marks no draw). At most `u32::MAX` ids a frame: past that a
-/// batch gets none (its pixels would show the background) and the frame says so once.
-#[derive(Debug, Default)]
-pub(crate) struct VisibilityIds {
-    next: u64,
-    warned: bool,
-}
-
-impl VisibilityIds {
-    /// Starts a frame.
-    pub(crate) fn reset(&mut self) {
-        self.next = 1;
-    }
-
-    /// The first of `count` consecutive ids, or `None` when the frame has run out.
-    pub(crate) fn allocate(&mut self, count: u64) -> Option<u32> {
-        let first = self.next.max(1);
-        let end = first + count;
-        if end > u64::from(u32::MAX) {
-            if !self.warned {
-                log::error!(
-                    "a deferred frame needs more than {} visibility ids (one per triangle per draw): some draws are left out",
-                    u32::MAX
-                );
-                self.warned = true;
-            }
-            return None;
-        }
-        self.next = end;
-        u32::try_from(first).ok()
-    }
-}
-
-/// The visibility buffer of one target, made on the first deferred frame and kept.
-#[derive(Debug)]
-pub(crate) struct VisibilityBuffer {
-    /// One [`VISIBILITY_BYTES_PER_PIXEL`] key per pixel, row by row (cleared before each
-    /// visibility pass: 0 is "no draw").
-    pub(crate) keys: wgpu::Buffer,
-    /// The [`RenderTarget::id`] it was made for.
-    pub(crate) target: u64,
-}
-
-impl VisibilityBuffer {
-    pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
-        let (width, height) = target.size();
-        Self {
-            keys: gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("visibility buffer"),
-                size: u64::from(width) * u64::from(height) * VISIBILITY_BYTES_PER_PIXEL,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
-            target: target.id(),
-        }
-    }
+    /// A plugin draws into the prepass outside any material: it would write depth but no
+    /// visibility key.
+    #[error(
+        "a prepass draw is no material's (RenderPhases::add_draw): it writes no visibility key"
+    )]
+    PrepassDrawWithoutVisibility,
+    /// A [`super::FragmentInvocationCounter`] counts fragment invocations; the deferred path
+    /// shades in compute.
+    #[error(
+        "a FragmentInvocationCounter counts fragment shading, which the deferred path moves to compute"
+    )]
+    FragmentCounter,
+    /// The target's visibility buffer would pass the device's buffer limits.
+    #[error("the target's visibility buffer ({bytes} bytes) passes the device's buffer limits")]
+    TargetTooLarge {
+        /// Its size.
+        bytes: u64,
+    },
 }
 
 /// The adapter features the deferred path needs: each pixel's triangle, and 64-bit atomic max
@@ -177,18 +128,6 @@ pub(crate) fn auto_picks_deferred(gpu: &GpuContext) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn visibility_ids_are_handed_out_in_runs_from_one_until_they_run_out() {
-        let mut ids = VisibilityIds::default();
-        ids.reset();
-        assert_eq!(ids.allocate(6), Some(1));
-        assert_eq!(ids.allocate(2), Some(7));
-        assert_eq!(ids.allocate(u64::from(u32::MAX)), None);
-        assert_eq!(ids.allocate(1), Some(9));
-        ids.reset();
-        assert_eq!(ids.allocate(1), Some(1));
-    }
 
     #[test]
     fn paths_read_back_their_names_and_an_unknown_one_is_an_error() {

@@ -52,6 +52,8 @@ pub const VISIBILITY: WgslFile = wgsl_file!("render/visibility.wgsl");
 /// The deferred resolve's inputs and `resolve_pixel()`, which rebuilds a pixel's vertex output
 /// and footprint from its visibility id.
 pub const DEFERRED_RESOLVE: WgslFile = wgsl_file!("render/deferred_resolve.wgsl");
+/// Reading the visibility keys from compute (`visible_id`).
+pub const VISIBILITY_READ: WgslFile = wgsl_file!("render/visibility_read.wgsl");
 /// The deferred resolve's tile classification (one pass per material with resolve batches).
 pub const DEFERRED_CLASSIFY: WgslFile = wgsl_file!("render/deferred_classify.wgsl");
 /// The Sobel compute pass of dynamic height fields.
@@ -59,15 +61,20 @@ pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
 /// the `primitive_index` extension the visibility pass needs, `SceneOutput`, the scene target as
-/// the resolve writes it (an `Rgba16Float` scene; [`for_scene_format`] adapts it), and
-/// `TILES_PER_ROW` of the resolve's tile lists.
+/// the resolve writes it (an `Rgba16Float` scene; [`for_scene_format`] adapts it),
+/// `TILES_PER_ROW` of the resolve's tile lists and `TILE_SIDE` of its tiles.
 pub fn deferred_header() -> String {
     format!(
-        "enable primitive_index;\n{}const TILES_PER_ROW: u32 = {}u;\n",
+        "enable primitive_index;\n{}const TILES_PER_ROW: u32 = {}u;\nconst TILE_SIDE: u32 = {}u;\n",
         scene_output_alias(wgpu::TextureFormat::Rgba16Float),
-        RESOLVE_TILES_PER_ROW
+        RESOLVE_TILES_PER_ROW,
+        DEFERRED_TILE_SIDE
     )
 }
+
+/// Pixels along each side of the deferred path's tiles and compute workgroups (`TILE_SIDE` in
+/// WGSL).
+pub(crate) const DEFERRED_TILE_SIDE: u32 = 8;
 
 /// Tiles per row of a resolve batch's indirect dispatch (`TILES_PER_ROW` in WGSL): a dispatch
 /// has at most 65535 workgroups a side, a 4K target 129,600 tiles of 8 × 8.

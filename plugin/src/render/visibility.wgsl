@@ -9,9 +9,11 @@
 // id). Cleared to 0 before the pass; outside it a one-key stand-in is bound.
 @group(0) @binding(8) var<storage, read_write> visibility_keys: array<atomic<u64>>;
 
-// The id a pixel of draw `object_index`, triangle `triangle`, keeps.
+// The id a pixel of draw `object_index`, triangle `triangle`, keeps: 0 for a draw the frame
+// had no ids left for (it then shows the background rather than another draw's triangle).
 fn visibility_id(object_index: u32, triangle: u32) -> u32 {
-    return transforms[object_index].first_visibility_id + triangle;
+    let first = transforms[object_index].first_visibility_id;
+    return select(first + triangle, 0u, first == 0u);
 }
 
 // Merges `id`, seen at framebuffer position `position` at clip depth `depth`, into the pixel's

@@ -1,0 +1,113 @@
+//! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
+//! hands out, and the buffer of one target.
+
+use super::{GpuContext, RenderTarget};
+
+/// Bytes per pixel of the visibility buffer: one 64-bit key, the pixel's depth above its
+/// visibility id, which every fragment of the visibility pass merges with `atomicMax`, so the
+/// nearest wins whatever the order fragments arrive in (each deferred draw owns a run of ids,
+/// one per triangle: [`VisibilityIds`]). A storage buffer, not a colour attachment: on the
+/// H200 a full-screen 4K pass that writes depth and an `R32Uint` attachment takes 2.39 ms,
+/// depth and a 64-bit atomic 1.23 ms (sandbox/BENCHMARKS.md).
+pub const VISIBILITY_BYTES_PER_PIXEL: u64 = 8;
+
+/// Hands out a frame's visibility ids: each batch of deferred draws a run of one id per
+/// triangle per draw, from 1 (0 marks no draw). At most `u32::MAX` ids a frame: past that a
+/// batch gets none (its pixels keep id 0 and show the background) and the frame says so once.
+#[derive(Debug, Default)]
+pub(crate) struct VisibilityIds {
+    next: u64,
+    warned: bool,
+}
+
+impl VisibilityIds {
+    /// Starts a frame.
+    pub(crate) fn reset(&mut self) {
+        self.next = 1;
+    }
+
+    /// The first of `count` consecutive ids, or `None` when the frame has run out.
+    pub(crate) fn allocate(&mut self, count: u64) -> Option<u32> {
+        let first = self.next.max(1);
+        let end = first + count;
+        if end > u64::from(u32::MAX) {
+            if !self.warned {
+                log::error!(
+                    "a deferred frame needs more than {} visibility ids (one per triangle per draw): some draws are left out",
+                    u32::MAX
+                );
+                self.warned = true;
+            }
+            return None;
+        }
+        self.next = end;
+        u32::try_from(first).ok()
+    }
+}
+
+/// The visibility buffer of one target, made on the first deferred frame and kept.
+#[derive(Debug)]
+pub(crate) struct VisibilityBuffer {
+    /// One [`VISIBILITY_BYTES_PER_PIXEL`] key per pixel, row by row (cleared before each
+    /// visibility pass: 0 is "no draw").
+    pub(crate) keys: wgpu::Buffer,
+    /// The [`RenderTarget::id`] it was made for.
+    pub(crate) target: u64,
+}
+
+impl VisibilityBuffer {
+    pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
+        Self {
+            keys: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("visibility buffer"),
+                size: visibility_bytes(target),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            target: target.id(),
+        }
+    }
+
+    /// Serves `target` too: a target of the same size (the split view swaps two each frame)
+    /// reuses the buffer instead of a new allocation.
+    pub(crate) fn follow(&mut self, gpu: &GpuContext, target: &RenderTarget) {
+        if self.target == target.id() {
+            return;
+        }
+        if self.keys.size() == visibility_bytes(target) {
+            self.target = target.id();
+        } else {
+            *self = Self::new(gpu, target);
+        }
+    }
+}
+
+/// The bytes of `target`'s visibility buffer.
+pub(crate) fn visibility_bytes(target: &RenderTarget) -> u64 {
+    let (width, height) = target.size();
+    u64::from(width) * u64::from(height) * VISIBILITY_BYTES_PER_PIXEL
+}
+
+/// Whether the device can hold and bind `target`'s visibility buffer.
+pub(crate) fn visibility_fits(gpu: &GpuContext, target: &RenderTarget) -> bool {
+    let limits = gpu.device.limits();
+    let bytes = visibility_bytes(target);
+    bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn visibility_ids_are_handed_out_in_runs_from_one_until_they_run_out() {
+        let mut ids = VisibilityIds::default();
+        ids.reset();
+        assert_eq!(ids.allocate(6), Some(1));
+        assert_eq!(ids.allocate(2), Some(7));
+        assert_eq!(ids.allocate(u64::from(u32::MAX)), None);
+        assert_eq!(ids.allocate(1), Some(9));
+        ids.reset();
+        assert_eq!(ids.allocate(1), Some(1));
+    }
+}
