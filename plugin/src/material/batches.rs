@@ -8,6 +8,7 @@ use std::ops::Range;
 use glam::Mat4;
 
 use super::deferred::{DeferredResolve, ResolveTargets};
+use super::frame_bindings::{DepthBindings, DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
 use crate::render::layout::MeshPass;
@@ -79,34 +80,6 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) deferred: Option<ResolveTargets<'a>>,
 }
 
-/// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
-/// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
-/// (the prepass and the shadow maps themselves); and the visibility keys (binding 8) the other
-/// way round: the real ones in the prepass, which writes them, a stand-in elsewhere (the
-/// deferred resolve reads them through a binding of its own).
-pub(crate) struct DepthBindings<'a> {
-    /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
-    pub(crate) opaque: &'a wgpu::TextureView,
-    /// The 1 × 1 dummy.
-    pub(crate) dummy: &'a wgpu::TextureView,
-    /// Every shadow map, for receivers.
-    pub(crate) shadow_maps: &'a wgpu::TextureView,
-    /// Their 1 × 1 × 1 stand-in.
-    pub(crate) dummy_shadow_maps: &'a wgpu::TextureView,
-    /// What receivers read of each map.
-    pub(crate) shadow_views: &'a wgpu::Buffer,
-    /// The shadow maps' comparison sampler.
-    pub(crate) shadow_sampler: &'a wgpu::Sampler,
-    /// The visibility keys the deferred path's prepass merges into (or the stand-in).
-    pub(crate) visibility: &'a wgpu::Buffer,
-    /// The one-key stand-in, bound where the keys are not written.
-    pub(crate) dummy_visibility: &'a wgpu::Buffer,
-    /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
-    /// belong to, and whether the target's visibility buffer exists: bind groups follow when
-    /// any changes.
-    pub(crate) bound: (u64, u64, bool),
-}
-
 /// The shader a material compiles: its deferred shader where it has one and the adapter can
 /// run the visibility pass, else its forward one.
 #[derive(Clone, Copy, Debug)]
@@ -119,15 +92,9 @@ pub(crate) struct MaterialShader {
 /// Material `M`'s GPU state. A resource.
 pub(crate) struct MaterialBatches<M: Material> {
     pub(crate) pipelines: MaterialPipelines<M>,
-    frame_layout: wgpu::BindGroupLayout,
     transforms: ObjectBuffer<MeshTransform>,
     uniforms: ObjectBuffer<M::Uniform>,
-    // Group 0 of the prepass and of the opaque phase, and the target they were made for.
-    prepass_bind_group: wgpu::BindGroup,
-    frame_bind_group: wgpu::BindGroup,
-    bound: (u64, u64, bool),
-    // The fragment invocation counter (tests), bound at binding 4 when present.
-    counter: Option<wgpu::Buffer>,
+    frame_groups: FrameBindGroups,
     textures: TextureBindGroups,
     /// The deferred resolve's inputs, where the material compiled its deferred shader.
     resolve: Option<DeferredResolve>,
@@ -142,142 +109,11 @@ pub(crate) struct MaterialBatches<M: Material> {
     sorted_uniforms: Vec<M::Uniform>,
 }
 
-/// The buffers and textures group 0 binds.
-struct FrameBindings<'a> {
-    frame: &'a FrameUniformBuffer,
-    transforms: &'a wgpu::Buffer,
-    uniforms: &'a wgpu::Buffer,
-    counter: Option<&'a wgpu::Buffer>,
-    /// Whether the layout has the visibility keys (only a deferred shader's does: a writable
-    /// fragment-stage buffer is an optional capability the forward path must not need).
-    visibility_keys: bool,
-}
-
-/// Which depth textures a group 0 binds: the real ones where they are read, or the dummies
-/// where they are being written.
-#[derive(Clone, Copy, PartialEq)]
-enum DepthUse {
-    Shading,
-    Writing,
-}
-
-fn frame_bind_group(
-    gpu: &GpuContext,
-    label: &str,
-    layout: &wgpu::BindGroupLayout,
-    bindings: &FrameBindings<'_>,
-    depth: &DepthBindings<'_>,
-    depth_use: DepthUse,
-) -> wgpu::BindGroup {
-    let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
-    let (prepass_depth, shadow_maps, visibility) = match depth_use {
-        DepthUse::Shading => (depth.opaque, depth.shadow_maps, depth.dummy_visibility),
-        DepthUse::Writing => (depth.dummy, depth.dummy_shadow_maps, depth.visibility),
-    };
-    let mut entries = vec![
-        entry(0, bindings.frame.binding()),
-        entry(1, bindings.transforms.as_entire_binding()),
-        entry(2, bindings.uniforms.as_entire_binding()),
-        entry(3, wgpu::BindingResource::TextureView(prepass_depth)),
-        entry(5, depth.shadow_views.as_entire_binding()),
-        entry(6, wgpu::BindingResource::TextureView(shadow_maps)),
-        entry(7, wgpu::BindingResource::Sampler(depth.shadow_sampler)),
-    ];
-    if bindings.visibility_keys {
-        entries.push(entry(8, visibility.as_entire_binding()));
-    }
-    if let Some(counter) = bindings.counter {
-        entries.push(entry(4, counter.as_entire_binding()));
-    }
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout,
-        entries: &entries,
-    })
-}
-
-/// Binding 3 of group 0: the prepass depth, read by materials that test their own depth.
-fn prepass_depth_entry() -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding: 3,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Depth,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-/// Bindings 5 to 7 of group 0: what receivers read of each shadow map, the maps, their
-/// comparison sampler.
-fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
-    let visibility = wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
-    [
-        wgpu::BindGroupLayoutEntry {
-            binding: 5,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 6,
-            visibility,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Depth,
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 7,
-            visibility,
-            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-            count: None,
-        },
-    ]
-}
-
-/// Binding 8 of group 0: the visibility keys the deferred path's prepass merges into.
-fn visibility_keys_entry() -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding: 8,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: wgpu::BufferSize::new(crate::render::VISIBILITY_BYTES_PER_PIXEL),
-        },
-        count: None,
-    }
-}
-
-/// Binding 4 of group 0: the fragment invocation counter.
-fn counter_entry() -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding: 4,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: wgpu::BufferSize::new(4),
-        },
-        count: None,
-    }
-}
-
 impl<M: Material> MaterialBatches<M> {
     /// Compiles `shader` (`M`'s, or its deferred one where `deferred`)
     /// for scene targets of `color_format`, in frames with or without a depth `prepass`;
     /// pipelines follow on first use. With a `counter` the shader counts its fragment
     /// invocations into it.
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         gpu: &GpuContext,
         frame: &FrameUniformBuffer,
@@ -297,27 +133,24 @@ impl<M: Material> MaterialBatches<M> {
         };
         let source = crate::render::shaders::for_scene_format(source, color_format);
         let module = crate::render::shaders::create_module(device, shader.name, source.clone());
-        let mut layout_entries = vec![
-            FrameUniformBuffer::layout_entry(),
-            ObjectBuffer::<MeshTransform>::layout_entry(1),
+        let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
+        let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
+        let frame_groups = FrameBindGroups::new(
+            gpu,
+            M::NAME,
             ObjectBuffer::<M::Uniform>::layout_entry(2),
-            prepass_depth_entry(),
-        ];
-        layout_entries.extend(shadow_entries());
-        if deferred {
-            layout_entries.push(visibility_keys_entry());
-        }
-        if counter.is_some() {
-            layout_entries.push(counter_entry());
-        }
-        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(&format!("{} frame layout", M::NAME)),
-            entries: &layout_entries,
-        });
+            (deferred, counter),
+            &DrawBuffers {
+                frame,
+                transforms: transforms.buffer(),
+                uniforms: uniforms.buffer(),
+            },
+            depth,
+        );
         let textures = TextureBindGroups::new(gpu, M::NAME, M::TEXTURE_SLOTS);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&format!("{} pipeline layout", M::NAME)),
-            bind_group_layouts: &[Some(&frame_layout), Some(textures.layout())],
+            bind_group_layouts: &[Some(frame_groups.layout()), Some(textures.layout())],
             immediate_size: 0,
         });
         let resolve = deferred.then(|| DeferredResolve::new(gpu, M::NAME, color_format));
@@ -325,38 +158,13 @@ impl<M: Material> MaterialBatches<M> {
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(&format!("{} deferred resolve layout", M::NAME)),
                 bind_group_layouts: &[
-                    Some(&frame_layout),
+                    Some(frame_groups.layout()),
                     Some(textures.layout()),
                     Some(resolve.layout()),
                 ],
                 immediate_size: 0,
             })
         });
-        let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
-        let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
-        let bindings = FrameBindings {
-            frame,
-            transforms: transforms.buffer(),
-            uniforms: uniforms.buffer(),
-            counter: counter.as_ref(),
-            visibility_keys: deferred,
-        };
-        let prepass_bind_group = frame_bind_group(
-            gpu,
-            &format!("{} prepass", M::NAME),
-            &frame_layout,
-            &bindings,
-            depth,
-            DepthUse::Writing,
-        );
-        let frame_bind_group = frame_bind_group(
-            gpu,
-            M::NAME,
-            &frame_layout,
-            &bindings,
-            depth,
-            DepthUse::Shading,
-        );
         Self {
             pipelines: MaterialPipelines::new(PipelineSetup {
                 shader: module,
@@ -367,13 +175,9 @@ impl<M: Material> MaterialBatches<M> {
                 prepass,
             }),
             resolve,
-            frame_layout,
+            frame_groups,
             transforms,
             uniforms,
-            prepass_bind_group,
-            frame_bind_group,
-            bound: depth.bound,
-            counter,
             textures,
             batches: Vec::new(),
             order: Vec::new(),
@@ -508,32 +312,16 @@ impl<M: Material> MaterialBatches<M> {
         let (transform_bytes, transforms_grew) = self.transforms.upload(gpu, &self.transform_data);
         let (uniform_bytes, uniforms_grew) = self.uniforms.upload(gpu, &self.sorted_uniforms);
         stats.uniform_bytes += transform_bytes + uniform_bytes;
-        if transforms_grew || uniforms_grew || self.bound != inputs.depth.bound {
-            let bindings = FrameBindings {
+        self.frame_groups.refresh(
+            gpu,
+            &DrawBuffers {
                 frame: inputs.frame,
                 transforms: self.transforms.buffer(),
                 uniforms: self.uniforms.buffer(),
-                counter: self.counter.as_ref(),
-                visibility_keys: self.resolve.is_some(),
-            };
-            self.prepass_bind_group = frame_bind_group(
-                gpu,
-                &format!("{} prepass", M::NAME),
-                &self.frame_layout,
-                &bindings,
-                inputs.depth,
-                DepthUse::Writing,
-            );
-            self.frame_bind_group = frame_bind_group(
-                gpu,
-                M::NAME,
-                &self.frame_layout,
-                &bindings,
-                inputs.depth,
-                DepthUse::Shading,
-            );
-            self.bound = inputs.depth.bound;
-        }
+            },
+            inputs.depth,
+            transforms_grew || uniforms_grew,
+        );
 
         self.textures
             .prepare(gpu, assets, self.batches.iter().map(|batch| batch.textures));
@@ -598,7 +386,7 @@ impl<M: Material> MaterialBatches<M> {
         };
         resolve.classify(pass);
         // Slot 0 of the frame uniform: the camera's view.
-        pass.set_bind_group(0, &self.frame_bind_group, &[0]);
+        pass.set_bind_group(0, self.frame_groups.shading(), &[0]);
         let mut bound_key = None;
         let mut bound_textures = None;
         resolve.dispatch(pass, &self.batches, |pass, batch| {
@@ -641,9 +429,9 @@ impl<M: Material> MaterialBatches<M> {
         assets: &GpuAssets,
     ) {
         let frame_bind_group = if phase == DrawPhase::Prepass {
-            &self.prepass_bind_group
+            self.frame_groups.writing()
         } else {
-            &self.frame_bind_group
+            self.frame_groups.shading()
         };
         // Slot 0 of the frame uniform: the camera's view.
         pass.set_bind_group(0, frame_bind_group, &[0]);
@@ -663,7 +451,7 @@ impl<M: Material> MaterialBatches<M> {
         if !self.batches.iter().any(|batch| batch.casts_shadows) {
             return;
         }
-        pass.set_bind_group(0, &self.prepass_bind_group, &[frame_offset]);
+        pass.set_bind_group(0, self.frame_groups.writing(), &[frame_offset]);
         self.draw_batches(pass, assets, |batch| {
             (batch.casts_shadows && !M::blends(batch.key)).then_some(MeshPass::Shadow)
         });

@@ -2,7 +2,7 @@
 //! `deferred_resolve.wgsl`), a uniform slot per resolved batch, a bind group per mesh, and the
 //! dispatches. The pipelines are [`super::pipelines::MaterialPipelines`]'.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use bytemuck::{Pod, Zeroable};
 use glam::Mat4;
@@ -216,7 +216,7 @@ impl DeferredResolve {
             self.bound = bound;
         }
         let (width, height) = targets.size;
-        let mut used = Vec::new();
+        let mut used = HashSet::new();
         for (place, (index, batch)) in resolved.into_iter().enumerate() {
             let Some(mesh) = assets.mesh(batch.mesh) else {
                 continue;
@@ -247,7 +247,7 @@ impl DeferredResolve {
                 place: place as u32,
                 offset: offset as u32,
             });
-            used.push(batch.mesh);
+            used.insert(batch.mesh);
             let current = self.meshes.get(&batch.mesh).is_some_and(|bound| {
                 bound.vertices == mesh.vertices && bound.indices == mesh.indices
             });

@@ -5,6 +5,7 @@
 mod batches;
 mod declare;
 mod deferred;
+mod frame_bindings;
 mod layout_check;
 mod param_types;
 mod params;
@@ -25,7 +26,7 @@ pub use plugin::{
     draw_meshes_without_material, drawn_keys,
 };
 
-pub(crate) use batches::DepthBindings;
+pub(crate) use frame_bindings::DepthBindings;
 #[cfg(feature = "dev-tools")]
 pub(crate) use plugin::MaterialRegistry;
 pub(crate) use plugin::{is_deferred_material, material_without_deferred_shader};

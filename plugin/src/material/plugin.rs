@@ -9,10 +9,9 @@ use std::marker::PhantomData;
 
 use hecs::{Entity, World};
 
+use super::DepthBindings;
 use super::Material;
-use super::batches::{
-    DepthBindings, ExtractedDraw, MaterialBatches, MaterialShader, PrepareInputs,
-};
+use super::batches::{ExtractedDraw, MaterialBatches, MaterialShader, PrepareInputs};
 use super::deferred::ResolveTargets;
 #[cfg(feature = "dev-tools")]
 use crate::render::shaders::ComposedShader;

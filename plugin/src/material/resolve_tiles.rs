@@ -5,7 +5,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::render::GpuContext;
-use crate::render::layout::compute_storage_buffer;
+use crate::render::layout::{compute_storage_buffer, compute_uniform_buffer};
 use crate::render::shaders::{self, ComposedShader};
 
 /// The classification's shader.
@@ -89,8 +89,10 @@ impl TileBuffers {
 /// target and buffers.
 pub(crate) struct ResolveTiles {
     layout: wgpu::BindGroupLayout,
-    classify: wgpu::ComputePipeline,
-    dispatch_args_pipeline: wgpu::ComputePipeline,
+    pipeline_layout: wgpu::PipelineLayout,
+    /// `cs_classify` and `cs_dispatch_args`, compiled on the first frame that classifies (most
+    /// materials never do: one resolve batch, or none).
+    pipelines: Option<(wgpu::ComputePipeline, wgpu::ComputePipeline)>,
     params: wgpu::Buffer,
     buffers: TileBuffers,
     /// Bumped whenever the buffers are made anew (the resolve's bind groups hold them).
@@ -107,16 +109,7 @@ impl ResolveTiles {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("resolve classification layout"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                compute_uniform_buffer(0, false),
                 storage(1, true),
                 storage(2, true),
                 storage(3, false),
@@ -129,21 +122,10 @@ impl ResolveTiles {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let module = DEFERRED_CLASSIFY_SHADER.create_module(device);
-        let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
         Self {
-            classify: pipeline("cs_classify"),
-            dispatch_args_pipeline: pipeline("cs_dispatch_args"),
             layout,
+            pipeline_layout,
+            pipelines: None,
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("resolve classification params"),
                 size: std::mem::size_of::<ClassifyParams>() as u64,
@@ -177,6 +159,21 @@ impl ResolveTiles {
         self.batch_count = ranges.len() as u32;
         if ranges.is_empty() {
             return;
+        }
+        if self.pipelines.is_none() {
+            let module = DEFERRED_CLASSIFY_SHADER.create_module(&gpu.device);
+            let pipeline = |entry: &str| {
+                gpu.device
+                    .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                        label: Some(entry),
+                        layout: Some(&self.pipeline_layout),
+                        module: &module,
+                        entry_point: Some(entry),
+                        compilation_options: Default::default(),
+                        cache: None,
+                    })
+            };
+            self.pipelines = Some((pipeline("cs_classify"), pipeline("cs_dispatch_args")));
         }
         let batches = ranges.len() as u64;
         if batches > self.buffers.batches || tile_count != self.buffers.tiles {
@@ -223,16 +220,18 @@ impl ResolveTiles {
     /// Records the classification and the indirect arguments into `pass` (before the batches'
     /// dispatches; each dispatch of a compute pass sees the writes of the ones before).
     pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        let Some((_, bind_group)) = &self.bind_group else {
+        let (Some((_, bind_group)), Some((classify, dispatch_args))) =
+            (&self.bind_group, &self.pipelines)
+        else {
             return;
         };
         if self.batch_count == 0 {
             return;
         }
         pass.set_bind_group(0, bind_group, &[]);
-        pass.set_pipeline(&self.classify);
+        pass.set_pipeline(classify);
         pass.dispatch_workgroups(self.tiles.0, self.tiles.1, 1);
-        pass.set_pipeline(&self.dispatch_args_pipeline);
+        pass.set_pipeline(dispatch_args);
         pass.dispatch_workgroups(self.batch_count.div_ceil(64), 1, 1);
     }
 

@@ -17,7 +17,9 @@ use glam::{Vec2, Vec3};
 use super::{RayHit, ray_offset};
 use crate::HeightField;
 
-/// A height field with the maximum heights of its cells, level by level.
+/// A height field with the maximum heights of its cells, level by level. Not
+/// [`crate::Image::max_mip_chain`]: that reduces texels, while the bilinear surface between
+/// texel centres needs level 0 to hold each cell's four corners.
 #[derive(Clone, Debug)]
 pub struct MaxPyramid {
     field: HeightField,

@@ -1,10 +1,11 @@
-//! Reading a texture back from the GPU into CPU memory.
+//! Reading a texture back from the GPU into CPU memory, and an app's last frame.
 
 use std::time::Duration;
 
 use image::{Rgba32FImage, RgbaImage};
 
-use super::GpuContext;
+use super::{GpuContext, RenderError, RenderTarget};
+use crate::App;
 
 /// What went wrong reading a texture back.
 #[derive(Debug, thiserror::Error)]
@@ -130,4 +131,51 @@ pub fn read_rgba32f(
     let floats: Vec<f32> = bytemuck::pod_collect_to_vec(&texels);
     Rgba32FImage::from_raw(texture.width(), texture.height(), floats)
         .ok_or_else(|| CaptureError::Map("readback returned the wrong number of bytes".into()))
+}
+
+/// Reads the last rendered frame back as sRGB-encoded RGBA8 pixels.
+///
+/// # Example
+/// ```no_run
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let mut app = pom::App::new();
+/// app.add_plugin(pom::RenderPlugin::headless(64, 64));
+/// app.update()?;
+/// let image = pom::capture(&app)?;
+/// assert_eq!(image.dimensions(), (64, 64));
+/// # Ok(()) }
+/// ```
+pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
+    let (Some(gpu), Some(target)) = (
+        app.resources.get::<GpuContext>(),
+        app.resources.get::<RenderTarget>(),
+    ) else {
+        return Err(RenderError::NotRendered);
+    };
+    Ok(read_rgba8(gpu, &target.color)?)
+}
+
+/// Reads the last rendered frame of a [`super::TargetFormat::Float32`] target back as floats: linear
+/// display values after exposure and tonemapping (debug views' data as the shader wrote it).
+pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
+    let (Some(gpu), Some(target)) = (
+        app.resources.get::<GpuContext>(),
+        app.resources.get::<RenderTarget>(),
+    ) else {
+        return Err(RenderError::NotRendered);
+    };
+    Ok(read_rgba32f(gpu, &target.color)?)
+}
+
+/// Reads the HDR scene of the last frame of a [`super::TargetFormat::Float32`] target back: the light
+/// the materials computed, already exposed (the lights carry the camera's exposure), before
+/// tonemapping.
+pub fn capture_scene(app: &App) -> Result<Rgba32FImage, RenderError> {
+    let (Some(gpu), Some(target)) = (
+        app.resources.get::<GpuContext>(),
+        app.resources.get::<RenderTarget>(),
+    ) else {
+        return Err(RenderError::NotRendered);
+    };
+    Ok(read_rgba32f(gpu, &target.scene)?)
 }

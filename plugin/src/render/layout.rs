@@ -24,6 +24,23 @@ pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A uniform buffer of the deferred path's compute passes, at a dynamic offset or not.
+pub(crate) fn compute_uniform_buffer(
+    binding: u32,
+    dynamic_offset: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: dynamic_offset,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// A storage buffer of the deferred path's compute passes, read-only or not.
 pub(crate) fn compute_storage_buffer(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {

@@ -26,8 +26,7 @@ mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
 mod visibility;
 
-pub(crate) use capture::read_rgba32f;
-pub use capture::{CaptureError, read_rgba8, read_texture};
+pub use capture::{CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture};
 pub use context::{GpuContext, GpuError};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
@@ -57,8 +56,6 @@ pub use target::{RenderTarget, TargetFormat, clearing_attachment};
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};
-
-use image::{Rgba32FImage, RgbaImage};
 
 use crate::{
     AmbientLight, App, AppError, Assets, BoxedError, Image, Mesh, Plugin, Resources, Stage,
@@ -249,18 +246,13 @@ impl Renderer {
             RenderPath::Deferred => true,
             RenderPath::Auto => render_path::auto_picks_deferred(gpu),
         };
-        let support = render_path::deferred_support(gpu, self.depth_prepass)
-            .and_then(|()| blocker.map_or(Ok(()), Err))
-            .and_then(|()| {
-                if visibility::visibility_fits(gpu, target) {
-                    Ok(())
-                } else {
-                    Err(DeferredUnavailable::TargetTooLarge {
-                        bytes: visibility::visibility_bytes(target),
-                    })
-                }
-            });
-        let unavailable = if wants { support.err() } else { None };
+        let unavailable = if wants {
+            render_path::deferred_support(gpu, self.depth_prepass, target)
+                .and_then(|()| blocker.map_or(Ok(()), Err))
+                .err()
+        } else {
+            None
+        };
         let deferred = wants && unavailable.is_none();
         if (deferred, unavailable) != (self.deferred, self.deferred_unavailable) || self.first_frame
         {
@@ -412,7 +404,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let meshes = resources.require::<Assets<Mesh>>()?;
             let images = resources.require::<Assets<Image>>()?;
             let target = resources.require::<RenderTarget>()?;
-            renderer.choose_path(gpu, target, deferred_blocker(resources));
+            renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
             renderer.visibility_ids.reset();
             if let (true, Some(background), Some(visibility)) = (
                 renderer.deferred,
@@ -655,73 +647,9 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
 }
 
-/// What of the app keeps frames from the deferred path: a material without a deferred shader,
-/// a prepass draw that is no material's (it would write depth but no visibility key), or a
-/// [`FragmentInvocationCounter`] (the deferred path shades in compute, where it counts nothing).
-fn deferred_blocker(resources: &Resources) -> Option<DeferredUnavailable> {
-    if resources.contains::<FragmentInvocationCounter>() {
-        return Some(DeferredUnavailable::FragmentCounter);
-    }
-    if let Some(name) = crate::material::material_without_deferred_shader(resources) {
-        return Some(DeferredUnavailable::MaterialWithoutDeferredShader(name));
-    }
-    let phases = resources.get::<RenderPhases>()?;
-    phases
-        .draw_owners(DrawPhase::Prepass)
-        .any(|owner| !crate::material::is_deferred_material(resources, owner))
-        .then_some(DeferredUnavailable::PrepassDrawWithoutVisibility)
-}
-
 /// What the scene is cleared to: the clear colour as set, its negative alpha marking it
 /// display-referred (post_process.wgsl), so neither exposure nor tonemapping changes the
 /// background.
 fn clear_value(clear: crate::Color) -> [f32; 4] {
     [clear.r, clear.g, clear.b, -1.0 - clear.a.clamp(0.0, 1.0)]
-}
-
-/// Reads the last rendered frame back as sRGB-encoded RGBA8 pixels.
-///
-/// # Example
-/// ```no_run
-/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
-/// let mut app = pom::App::new();
-/// app.add_plugin(pom::RenderPlugin::headless(64, 64));
-/// app.update()?;
-/// let image = pom::capture(&app)?;
-/// assert_eq!(image.dimensions(), (64, 64));
-/// # Ok(()) }
-/// ```
-pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
-    let (Some(gpu), Some(target)) = (
-        app.resources.get::<GpuContext>(),
-        app.resources.get::<RenderTarget>(),
-    ) else {
-        return Err(RenderError::NotRendered);
-    };
-    Ok(read_rgba8(gpu, &target.color)?)
-}
-
-/// Reads the last rendered frame of a [`TargetFormat::Float32`] target back as floats: linear
-/// display values after exposure and tonemapping (debug views' data as the shader wrote it).
-pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
-    let (Some(gpu), Some(target)) = (
-        app.resources.get::<GpuContext>(),
-        app.resources.get::<RenderTarget>(),
-    ) else {
-        return Err(RenderError::NotRendered);
-    };
-    Ok(read_rgba32f(gpu, &target.color)?)
-}
-
-/// Reads the HDR scene of the last frame of a [`TargetFormat::Float32`] target back: the light
-/// the materials computed, already exposed (the lights carry the camera's exposure), before
-/// tonemapping.
-pub fn capture_scene(app: &App) -> Result<Rgba32FImage, RenderError> {
-    let (Some(gpu), Some(target)) = (
-        app.resources.get::<GpuContext>(),
-        app.resources.get::<RenderTarget>(),
-    ) else {
-        return Err(RenderError::NotRendered);
-    };
-    Ok(read_rgba32f(gpu, &target.scene)?)
 }

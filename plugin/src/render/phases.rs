@@ -92,7 +92,7 @@ pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 
 /// Records shadow casters into one shadow map's open render pass, given the resources and
 /// the frame-uniform slot that holds the map's view (bind it with
-/// [`super::FrameUniformBuffer::offset`]).
+/// the frame uniform buffer's `offset`).
 pub type ShadowDraw = fn(&Resources, &mut wgpu::RenderPass<'_>, u32);
 
 /// Records the dispatches of the deferred resolve into its open compute pass, given the

@@ -8,7 +8,10 @@
 
 use std::str::FromStr;
 
-use super::GpuContext;
+use super::{
+    DrawPhase, FragmentInvocationCounter, GpuContext, RenderPhases, RenderTarget, visibility,
+};
+use crate::Resources;
 
 /// How opaque surfaces are shaded: [`super::RenderPlugin::path`], switchable at run time with
 /// [`super::Renderer::set_path`].
@@ -105,10 +108,11 @@ pub(crate) const DEFERRED_FEATURES: wgpu::Features = wgpu::Features::PRIMITIVE_I
     .union(wgpu::Features::SHADER_INT64)
     .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
-/// Whether the adapter and the renderer's settings allow the deferred path.
+/// Whether the adapter, the renderer's settings and `target`'s size allow the deferred path.
 pub(crate) fn deferred_support(
     gpu: &GpuContext,
     depth_prepass: bool,
+    target: &RenderTarget,
 ) -> Result<(), DeferredUnavailable> {
     if !gpu.device.features().contains(DEFERRED_FEATURES) {
         return Err(DeferredUnavailable::MissingFeatures);
@@ -116,7 +120,29 @@ pub(crate) fn deferred_support(
     if !depth_prepass {
         return Err(DeferredUnavailable::NoDepthPrepass);
     }
+    if !visibility::visibility_fits(gpu, target) {
+        return Err(DeferredUnavailable::TargetTooLarge {
+            bytes: visibility::visibility_bytes(target),
+        });
+    }
     Ok(())
+}
+
+/// What of the app keeps frames from the deferred path: a material without a deferred shader,
+/// a prepass draw that is no material's (it would write depth but no visibility key), or a
+/// [`FragmentInvocationCounter`] (the deferred path shades in compute, where it counts nothing).
+pub(crate) fn deferred_blocker(resources: &Resources) -> Option<DeferredUnavailable> {
+    if resources.contains::<FragmentInvocationCounter>() {
+        return Some(DeferredUnavailable::FragmentCounter);
+    }
+    if let Some(name) = crate::material::material_without_deferred_shader(resources) {
+        return Some(DeferredUnavailable::MaterialWithoutDeferredShader(name));
+    }
+    let phases = resources.get::<RenderPhases>()?;
+    phases
+        .draw_owners(DrawPhase::Prepass)
+        .any(|owner| !crate::material::is_deferred_material(resources, owner))
+        .then_some(DeferredUnavailable::PrepassDrawWithoutVisibility)
 }
 
 /// Whether [`RenderPath::Auto`] picks deferred on this adapter: on any GPU, not on a CPU

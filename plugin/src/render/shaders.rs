@@ -61,7 +61,7 @@ pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
 /// the `primitive_index` extension the visibility pass needs, `SceneOutput`, the scene target as
-/// the resolve writes it (an `Rgba16Float` scene; [`for_scene_format`] adapts it),
+/// the resolve writes it (an `Rgba16Float` scene, adapted to the target's format at compile time),
 /// `TILES_PER_ROW` of the resolve's tile lists and `TILE_SIDE` of its tiles.
 pub fn deferred_header() -> String {
     format!(

@@ -6,7 +6,7 @@ use super::{GpuContext, RenderTarget};
 /// Bytes per pixel of the visibility buffer: one 64-bit key, the pixel's depth above its
 /// visibility id, which every fragment of the visibility pass merges with `atomicMax`, so the
 /// nearest wins whatever the order fragments arrive in (each deferred draw owns a run of ids,
-/// one per triangle: [`VisibilityIds`]). A storage buffer, not a colour attachment: on the
+/// one per triangle, handed out per frame). A storage buffer, not a colour attachment: on the
 /// H200 a full-screen 4K pass that writes depth and an `R32Uint` attachment takes 2.39 ms,
 /// depth and a 64-bit atomic 1.23 ms (sandbox/BENCHMARKS.md).
 pub const VISIBILITY_BYTES_PER_PIXEL: u64 = 8;

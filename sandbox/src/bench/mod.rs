@@ -5,6 +5,7 @@
 //! (`--path`, repeatable); prints a table and writes JSON, CSV and a PNG chart. See
 //! sandbox/BENCHMARKS.md.
 
+mod args;
 mod chart;
 mod cpu_side;
 mod report;
@@ -15,22 +16,19 @@ mod stats;
 mod texel_rate;
 mod versus_mesh;
 
-use std::path::PathBuf;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use anyhow::{Context, Result};
-use clap::Args;
 use pom::material::Choice;
 use pom::preview::PreviewView;
 use pom::{ParallaxMethod, ParallaxOcclusionMaterial, RenderPath, ShadowMode};
 
-use crate::cli_types::{BenchPathArgs, parse_size};
-use crate::material_args::MaterialArgs;
 use crate::preview_textures::PreviewTextures;
-use crate::render_command::{TextureArgs, ViewArgs};
 use report::{AdapterReport, BenchReport, CaseResult, Ratio};
 use sample_count::{ProbeResult, SampleRate};
 use scene::{BenchScene, SceneOptions, Warmup};
+
+pub use args::{BenchArgs, Measurement};
 
 /// Exit message when the adapter cannot time passes (exit status 0).
 pub const NO_TIMESTAMPS: &str = "GPU timestamps are not available";
@@ -54,77 +52,10 @@ const SHADOWS: [ShadowMode; 3] = [ShadowMode::Off, ShadowMode::Hard, ShadowMode:
 // Far field: so many repeats that every pixel covers 2^(lod_threshold + 3) texels or more.
 const FAR_FIELD_MIP_MARGIN: f32 = 3.0;
 
-/// One measurement of the bench, for `--only`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Measurement {
-    /// Every method × shadow mode.
-    Methods,
-    /// POM's `max_samples` sweep.
-    Samples,
-    /// POM's `lod_threshold` sweep.
-    LodSweep,
-    /// Normal mapping and POM where every pixel is past the LOD threshold.
-    FarField,
-    /// POM's height samples per second against the texel-rate limits.
-    TexelRate,
-    /// POM against displaced grids at equal FLIP error.
-    VersusMesh,
-    /// Extract, prepare and render times of many entities on the CPU.
-    CpuSide,
-    /// The base material's frame phase by phase: prepass, opaque, post-processing.
-    Phases,
-    /// Four planes stacked along the view (drawn back to front) against one.
-    Overdraw,
-    /// The street corner with and without scene shadows, per light type.
-    SceneShadows,
-    /// Tatarchuk's listing 2 transliterated to WGSL on the same plane, beside our POM.
-    SeedPort,
-}
-
 /// Planes stacked by the overdraw measurement, and how far apart (in plane sizes: several
 /// times any relief's depth, so each plane hides the next).
 const OVERDRAW_PLANES: usize = 4;
 const OVERDRAW_SPACING: f32 = 0.1 * pom::preview::PLANE_SIZE;
-
-/// Options of `sandbox bench`.
-#[derive(Debug, Args)]
-pub struct BenchArgs {
-    /// Tiny images and few frames: checks the harness, measures nothing useful.
-    #[arg(long)]
-    pub quick: bool,
-    /// Folder for bench.json, bench.csv and bench.png (created).
-    #[arg(long, value_name = "DIR", default_value = "bench-results")]
-    pub out: PathBuf,
-    /// Image size WIDTHxHEIGHT to time, repeatable [default: 1920x1080 and 3840x2160].
-    #[arg(long = "size", value_name = "WxH", value_parser = parse_size)]
-    pub sizes: Vec<(u32, u32)>,
-    /// Timed frames per case, at least 20 (--quick uses 5).
-    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(20..=10_000))]
-    pub frames: u32,
-    /// Untimed frames before each case (rendering for at least 0.3 s without --quick).
-    #[arg(long, value_name = "N", default_value_t = 5)]
-    pub warmup: u32,
-    /// Bilinear texel rate of the GPU in G texels/s, for an adapter not in the built-in table.
-    #[arg(long, value_name = "GTEXELS", value_parser = crate::cli_types::parse_positive)]
-    pub texel_rate: Option<f32>,
-    /// Entities in the CPU-side measurement.
-    #[arg(long, value_name = "N", default_value_t = 10_000)]
-    pub entities: usize,
-    /// Make only this measurement, repeatable [default: all of them].
-    #[arg(long = "only", value_enum, value_name = "MEASUREMENT")]
-    pub only: Vec<Measurement>,
-    /// Behave as on an adapter without timestamp queries (tests the message and exit path).
-    #[arg(long)]
-    pub no_timestamps: bool,
-    #[command(flatten)]
-    pub textures: TextureArgs,
-    #[command(flatten)]
-    pub material: MaterialArgs,
-    #[command(flatten)]
-    pub view: ViewArgs,
-    #[command(flatten)]
-    pub path: BenchPathArgs,
-}
 
 /// A case's median milliseconds, and the path its frames ran.
 #[derive(Clone, Copy, Debug)]

@@ -1,0 +1,299 @@
+//! Group 0 of a material's pipelines: its layout (frame, transforms, uniforms, prepass depth,
+//! shadow maps, visibility keys, the test counter) and the two bind groups made from it, one
+//! for the passes that write depth (prepass, shadow maps) and one for those that shade.
+
+use crate::render::object_buffer::ObjectBuffer;
+use crate::render::{FrameUniformBuffer, GpuContext, MeshTransform};
+
+/// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
+/// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
+/// (the prepass and the shadow maps themselves); and the visibility keys (binding 8) the other
+/// way round: the real ones in the prepass, which writes them, a stand-in elsewhere (the
+/// deferred resolve reads them through a binding of its own).
+pub(crate) struct DepthBindings<'a> {
+    /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
+    pub(crate) opaque: &'a wgpu::TextureView,
+    /// The 1 × 1 dummy.
+    pub(crate) dummy: &'a wgpu::TextureView,
+    /// Every shadow map, for receivers.
+    pub(crate) shadow_maps: &'a wgpu::TextureView,
+    /// Their 1 × 1 × 1 stand-in.
+    pub(crate) dummy_shadow_maps: &'a wgpu::TextureView,
+    /// What receivers read of each map.
+    pub(crate) shadow_views: &'a wgpu::Buffer,
+    /// The shadow maps' comparison sampler.
+    pub(crate) shadow_sampler: &'a wgpu::Sampler,
+    /// The visibility keys the deferred path's prepass merges into (or the stand-in).
+    pub(crate) visibility: &'a wgpu::Buffer,
+    /// The one-key stand-in, bound where the keys are not written.
+    pub(crate) dummy_visibility: &'a wgpu::Buffer,
+    /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
+    /// belong to, and whether the target's visibility buffer exists: bind groups follow when
+    /// any changes.
+    pub(crate) bound: (u64, u64, bool),
+}
+
+/// The buffers and textures group 0 binds.
+struct FrameBindings<'a> {
+    frame: &'a FrameUniformBuffer,
+    transforms: &'a wgpu::Buffer,
+    uniforms: &'a wgpu::Buffer,
+    counter: Option<&'a wgpu::Buffer>,
+    /// Whether the layout has the visibility keys (only a deferred shader's does: a writable
+    /// fragment-stage buffer is an optional capability the forward path must not need).
+    visibility_keys: bool,
+}
+
+/// Which depth textures a group 0 binds: the real ones where they are read, or the dummies
+/// where they are being written.
+#[derive(Clone, Copy, PartialEq)]
+enum DepthUse {
+    Shading,
+    Writing,
+}
+
+fn frame_bind_group(
+    gpu: &GpuContext,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    bindings: &FrameBindings<'_>,
+    depth: &DepthBindings<'_>,
+    depth_use: DepthUse,
+) -> wgpu::BindGroup {
+    let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+    let (prepass_depth, shadow_maps, visibility) = match depth_use {
+        DepthUse::Shading => (depth.opaque, depth.shadow_maps, depth.dummy_visibility),
+        DepthUse::Writing => (depth.dummy, depth.dummy_shadow_maps, depth.visibility),
+    };
+    let mut entries = vec![
+        entry(0, bindings.frame.binding()),
+        entry(1, bindings.transforms.as_entire_binding()),
+        entry(2, bindings.uniforms.as_entire_binding()),
+        entry(3, wgpu::BindingResource::TextureView(prepass_depth)),
+        entry(5, depth.shadow_views.as_entire_binding()),
+        entry(6, wgpu::BindingResource::TextureView(shadow_maps)),
+        entry(7, wgpu::BindingResource::Sampler(depth.shadow_sampler)),
+    ];
+    if bindings.visibility_keys {
+        entries.push(entry(8, visibility.as_entire_binding()));
+    }
+    if let Some(counter) = bindings.counter {
+        entries.push(entry(4, counter.as_entire_binding()));
+    }
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// Binding 3 of group 0: the prepass depth, read by materials that test their own depth.
+fn prepass_depth_entry() -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 3,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Depth,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// Bindings 5 to 7 of group 0: what receivers read of each shadow map, the maps, their
+/// comparison sampler.
+fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
+    let visibility = wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
+    [
+        wgpu::BindGroupLayoutEntry {
+            binding: 5,
+            visibility,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 6,
+            visibility,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 7,
+            visibility,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+    ]
+}
+
+/// Binding 8 of group 0: the visibility keys the deferred path's prepass merges into.
+fn visibility_keys_entry() -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 8,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(crate::render::VISIBILITY_BYTES_PER_PIXEL),
+        },
+        count: None,
+    }
+}
+
+/// Binding 4 of group 0: the fragment invocation counter.
+fn counter_entry() -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding: 4,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(4),
+        },
+        count: None,
+    }
+}
+
+/// A material's group-0 layout and its two bind groups, remade when a buffer they hold grows or
+/// the target, shadow maps or visibility buffer change.
+pub(crate) struct FrameBindGroups {
+    label: &'static str,
+    layout: wgpu::BindGroupLayout,
+    /// For the prepass and the shadow maps (the depth textures being written are dummies).
+    writing: wgpu::BindGroup,
+    /// For the shading passes and the deferred resolve.
+    shading: wgpu::BindGroup,
+    bound: (u64, u64, bool),
+    /// The fragment invocation counter (tests), bound at binding 4 when present.
+    counter: Option<wgpu::Buffer>,
+    visibility_keys: bool,
+}
+
+/// The per-draw buffers group 0 binds besides the frame's.
+pub(crate) struct DrawBuffers<'a> {
+    pub(crate) frame: &'a FrameUniformBuffer,
+    pub(crate) transforms: &'a wgpu::Buffer,
+    pub(crate) uniforms: &'a wgpu::Buffer,
+}
+
+impl FrameBindGroups {
+    /// The layout for a material whose per-draw uniforms are laid out by `uniforms_entry`
+    /// (binding 2), with the visibility keys where its shader is the `deferred` one, and the
+    /// bind groups for `buffers` and `depth`.
+    pub(crate) fn new(
+        gpu: &GpuContext,
+        label: &'static str,
+        uniforms_entry: wgpu::BindGroupLayoutEntry,
+        (deferred, counter): (bool, Option<wgpu::Buffer>),
+        buffers: &DrawBuffers<'_>,
+        depth: &DepthBindings<'_>,
+    ) -> Self {
+        let mut entries = vec![
+            FrameUniformBuffer::layout_entry(),
+            ObjectBuffer::<MeshTransform>::layout_entry(1),
+            uniforms_entry,
+            prepass_depth_entry(),
+        ];
+        entries.extend(shadow_entries());
+        if deferred {
+            entries.push(visibility_keys_entry());
+        }
+        if counter.is_some() {
+            entries.push(counter_entry());
+        }
+        let layout = gpu
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(&format!("{label} frame layout")),
+                entries: &entries,
+            });
+        let make = |depth_use| {
+            frame_bind_group(
+                gpu,
+                label,
+                &layout,
+                &FrameBindings {
+                    frame: buffers.frame,
+                    transforms: buffers.transforms,
+                    uniforms: buffers.uniforms,
+                    counter: counter.as_ref(),
+                    visibility_keys: deferred,
+                },
+                depth,
+                depth_use,
+            )
+        };
+        let (writing, shading) = (make(DepthUse::Writing), make(DepthUse::Shading));
+        Self {
+            label,
+            layout,
+            writing,
+            shading,
+            bound: depth.bound,
+            counter,
+            visibility_keys: deferred,
+        }
+    }
+
+    /// Remakes both bind groups when `grew` (a buffer was replaced) or `depth` belongs to
+    /// another target, shadow-map texture or visibility buffer.
+    pub(crate) fn refresh(
+        &mut self,
+        gpu: &GpuContext,
+        buffers: &DrawBuffers<'_>,
+        depth: &DepthBindings<'_>,
+        grew: bool,
+    ) {
+        if !grew && self.bound == depth.bound {
+            return;
+        }
+        let bindings = FrameBindings {
+            frame: buffers.frame,
+            transforms: buffers.transforms,
+            uniforms: buffers.uniforms,
+            counter: self.counter.as_ref(),
+            visibility_keys: self.visibility_keys,
+        };
+        self.writing = frame_bind_group(
+            gpu,
+            self.label,
+            &self.layout,
+            &bindings,
+            depth,
+            DepthUse::Writing,
+        );
+        self.shading = frame_bind_group(
+            gpu,
+            self.label,
+            &self.layout,
+            &bindings,
+            depth,
+            DepthUse::Shading,
+        );
+        self.bound = depth.bound;
+    }
+
+    /// The layout, for pipeline layouts.
+    pub(crate) fn layout(&self) -> &wgpu::BindGroupLayout {
+        &self.layout
+    }
+
+    /// The group of the passes that write depth: the prepass and the shadow maps.
+    pub(crate) fn writing(&self) -> &wgpu::BindGroup {
+        &self.writing
+    }
+
+    /// The group of the passes that shade, and of the deferred resolve.
+    pub(crate) fn shading(&self) -> &wgpu::BindGroup {
+        &self.shading
+    }
+}
