@@ -187,6 +187,11 @@ pub fn march_view_with(
                 samples: 1,
             };
         }
+        // Builds the pyramid for this one ray: loops over many rays keep a `MaxPyramid` and
+        // call `march_max_mip`.
+        ParallaxMethod::MaxMip => {
+            return march_max_mip(&MaxPyramid::new(field), uv, to_eye_ts, height_scale);
+        }
         _ => {}
     }
     let surface = field.sample(uv.x, uv.y);

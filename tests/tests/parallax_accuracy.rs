@@ -43,6 +43,7 @@ fn wrapped(difference: f32) -> f32 {
 fn gpu_march_matches_the_cpu_reference_within_a_quarter_texel() {
     let field = patterns::cobblestones(64, 4).quantized();
     let size = Vec2::splat(64.0);
+    let pyramid = reference::MaxPyramid::new(&field);
     let textures = HeightMaterial {
         field: field.clone(),
         height_scale: HEIGHT_SCALE,
@@ -57,13 +58,17 @@ fn gpu_march_matches_the_cpu_reference_within_a_quarter_texel() {
             ParallaxMethod::Steep,
             ParallaxMethod::Occlusion,
             ParallaxMethod::Relief,
+            ParallaxMethod::MaxMip,
         ] {
             let gpu = gpu_uv(&textures, method, angle);
             let (mut total, mut count) = (0.0, 0);
             for (x, y, entry_pixel) in entry.enumerate_pixels() {
                 let uv0 = Vec2::new(entry_pixel.0[0], entry_pixel.0[1]);
-                let cpu =
-                    reference::march_view(&field, method, uv0, to_eye_ts, HEIGHT_SCALE, steps).uv;
+                let cpu = if method == ParallaxMethod::MaxMip {
+                    reference::march_max_mip(&pyramid, uv0, to_eye_ts, HEIGHT_SCALE).uv
+                } else {
+                    reference::march_view(&field, method, uv0, to_eye_ts, HEIGHT_SCALE, steps).uv
+                };
                 let gpu_pixel = gpu.get_pixel(x, y).0;
                 assert_eq!(gpu_pixel[2], 1.0, "the full march ran at ({x}, {y})");
                 let difference =

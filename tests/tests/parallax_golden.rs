@@ -1,7 +1,8 @@
 //! Reference contact sheets of the parallax material: every method and every debug view on the
-//! bricks, cobblestone and cone height maps. Each sheet is a 4×3 grid of 128² tiles, in reading
-//! order: normal mapping, parallax offset, steep, POM, relief, POM with hard shadows, then the
-//! debug views lod, mip, samples, uv, shadow, normal.
+//! bricks, cobblestone and cone height maps. Each sheet is a grid of 128² tiles, four a row, in
+//! reading order: normal mapping, parallax offset, steep, POM, relief, POM with hard shadows,
+//! then POM's debug views lod, mip, samples, uv, shadow, normal, then max-mip and its samples
+//! view (texel fetches).
 
 use image::RgbaImage;
 use pom::preview::{PreviewProjection, PreviewView};
@@ -35,6 +36,8 @@ fn tiles() -> Vec<(ParallaxMethod, ShadowMode, DebugView)> {
     ] {
         tiles.push((pom, soft, view));
     }
+    tiles.push((ParallaxMethod::MaxMip, soft, DebugView::None));
+    tiles.push((ParallaxMethod::MaxMip, soft, DebugView::Samples));
     tiles
 }
 
@@ -53,8 +56,10 @@ fn contact_sheet(field: HeightField, height_scale: f32) -> RgbaImage {
         tiling: 3.0,
         ..PreviewView::default()
     };
-    let mut sheet = RgbaImage::new(TILE * 4, TILE * 3);
-    for (index, (method, shadows, debug_view)) in tiles().into_iter().enumerate() {
+    let tiles = tiles();
+    let rows = tiles.len().div_ceil(4) as u32;
+    let mut sheet = RgbaImage::new(TILE * 4, TILE * rows);
+    for (index, (method, shadows, debug_view)) in tiles.into_iter().enumerate() {
         let mut app = preview_app(TILE, TargetFormat::Srgb8, &textures, &view, |material| {
             ParallaxOcclusionMaterial {
                 method,

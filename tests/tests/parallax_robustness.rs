@@ -52,6 +52,7 @@ fn every_method_and_shadow_mode_stays_finite_at_every_angle() {
         ParallaxMethod::Steep,
         ParallaxMethod::Occlusion,
         ParallaxMethod::Relief,
+        ParallaxMethod::MaxMip,
     ];
     let view_angles = [0.0, 20.0, 45.0, 70.0, 85.0, 89.0, 89.9];
     // Including exactly the horizon (90) and below it.
@@ -253,6 +254,7 @@ fn numerical_sweep_has_no_nan_and_no_black_where_light_reaches() {
         ParallaxMethod::Steep,
         ParallaxMethod::Occlusion,
         ParallaxMethod::Relief,
+        ParallaxMethod::MaxMip,
     ];
     let view_angles = [0.0, 30.0, 60.0, 80.0, 89.0, pom::preview::MAX_VIEW_ANGLE];
     let sun_angles = [0.0, 45.0, 89.9, 90.0, 100.0, 180.0];

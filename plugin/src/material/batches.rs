@@ -10,11 +10,11 @@ use glam::Mat4;
 use super::deferred::{DeferredResolve, ResolveTargets};
 use super::frame_bindings::{DepthBindings, DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
-use super::{MAX_MATERIAL_TEXTURES, Material, MaterialTextures, TextureFacts};
+use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::render::layout::MeshPass;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;
-use crate::render::texture_bind_groups::TextureBindGroups;
+use crate::render::texture_bind_groups::{BoundTextures, TextureBindGroups};
 use crate::render::{
     DrawPhase, DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
     PixelFootprint, UploadStats, VisibilityIds,
@@ -38,7 +38,7 @@ pub(crate) struct ExtractedDraw<M> {
 pub(crate) struct Batch<K> {
     pub(crate) key: K,
     pub(crate) casts_shadows: bool,
-    pub(crate) textures: MaterialTextures,
+    pub(crate) textures: BoundTextures,
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) instances: Range<u32>,
     /// On deferred frames, the visibility id of the first instance's first triangle (0: none).
@@ -51,7 +51,7 @@ pub(crate) struct Batch<K> {
 struct SortEntry<K> {
     key: K,
     casts_shadows: bool,
-    textures: MaterialTextures,
+    textures: BoundTextures,
     mesh: AssetId<Mesh>,
     /// Distance from the eye to the object's origin along the view, as ordered bits: the
     /// instances of one batch are drawn nearest first.
@@ -147,7 +147,8 @@ impl<M: Material> MaterialBatches<M> {
             },
             depth,
         );
-        let textures = TextureBindGroups::new(gpu, M::NAME, M::TEXTURE_SLOTS);
+        let textures =
+            TextureBindGroups::new(gpu, M::NAME, M::TEXTURE_SLOTS, M::DERIVED_TEXTURE_SLOTS);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&format!("{} pipeline layout", M::NAME)),
             bind_group_layouts: &[Some(frame_groups.layout()), Some(textures.layout())],
@@ -215,13 +216,20 @@ impl<M: Material> MaterialBatches<M> {
                 bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
                 last_mesh = Some(draw.mesh);
             }
-            let textures = draw.material.textures();
+            let textures = BoundTextures {
+                images: draw.material.textures(),
+                derived: draw.material.derived_textures(),
+            };
             if last_textures != Some(textures) {
-                for (slot, image) in textures.iter().enumerate() {
+                for (slot, image) in textures.images.iter().enumerate() {
                     facts[slot] = image.and_then(|image| {
                         stats.images += u32::from(assets.prepare_image(gpu, inputs.images, image));
                         assets.image(image).map(|image| image.facts())
                     });
+                }
+                for derived in textures.derived.iter().flatten() {
+                    // Its source is one of the images: uploaded (or re-uploaded) just above.
+                    stats.images += u32::from(assets.prepare_derived(gpu, *derived));
                 }
                 last_textures = Some(textures);
             }

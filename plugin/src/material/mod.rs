@@ -22,8 +22,8 @@ pub use params::{
     every_parameter_changed,
 };
 pub use plugin::{
-    MaterialPlugin, MaterialWarnings, MissingRenderPlugin, TooManyTextureSlots,
-    draw_meshes_without_material, drawn_keys,
+    MaterialPlugin, MaterialWarnings, MissingRenderPlugin, TooManyDerivedTextureSlots,
+    TooManyTextureSlots, draw_meshes_without_material, drawn_keys,
 };
 
 pub(crate) use frame_bindings::DepthBindings;
@@ -36,7 +36,7 @@ use std::fmt::Debug;
 use std::hash::Hash;
 
 use crate::render::shaders::ComposedShader;
-use crate::render::{DefaultTexture, DrawView};
+use crate::render::{DefaultTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES};
 use crate::{AssetId, Image};
 
 /// Most texture slots one material binds.
@@ -119,6 +119,17 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// (double-sided surfaces, whose shaders then see `front_facing` false on the back).
     fn cull_mode(_key: Self::Key) -> Option<wgpu::Face> {
         Some(wgpu::Face::Back)
+    }
+    /// How many textures the GPU derives for the material from its images
+    /// ([`Material::derived_textures`]; at most [`MAX_DERIVED_TEXTURES`]). They are bound at
+    /// group 1 after the sampler, bindings `TEXTURE_SLOTS.len() + 1 ..`, as unfilterable float
+    /// textures (`textureLoad`). 0 by default.
+    const DERIVED_TEXTURE_SLOTS: usize = 0;
+    /// The textures derived from the material's images, one per derived slot: built on the GPU
+    /// when first used and after every re-upload of their source; `None` binds one texel of
+    /// 1.0. None by default.
+    fn derived_textures(&self) -> DerivedTextures {
+        [None; MAX_DERIVED_TEXTURES]
     }
     /// The fragment stage of `key` in the depth prepass: `None` (the default) writes the
     /// rasterized depth with no fragment shader at all; a material whose fragments move their

@@ -78,6 +78,16 @@ pub struct TooManyTextureSlots {
     pub slots: usize,
 }
 
+/// A material declares more derived texture slots than a material can bind.
+#[derive(Debug, thiserror::Error)]
+#[error("material {material} declares {slots} derived texture slots; at most {max} are bound", max = crate::render::MAX_DERIVED_TEXTURES)]
+pub struct TooManyDerivedTextureSlots {
+    /// The material's name.
+    pub material: &'static str,
+    /// Its derived slot count.
+    pub slots: usize,
+}
+
 /// Makes material `M`'s plugin (added already) also draw meshes that have no registered
 /// material, with `M::default()`. Plugin groups call it, since adding the same plugin type twice
 /// is ignored.
@@ -271,6 +281,13 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             return Err(TooManyTextureSlots {
                 material: M::NAME,
                 slots: M::TEXTURE_SLOTS.len(),
+            }
+            .into());
+        }
+        if M::DERIVED_TEXTURE_SLOTS > crate::render::MAX_DERIVED_TEXTURES {
+            return Err(TooManyDerivedTextureSlots {
+                material: M::NAME,
+                slots: M::DERIVED_TEXTURE_SLOTS,
             }
             .into());
         }

@@ -5,7 +5,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::material::{HeightSource, ParallaxOcclusionMaterial, PomParams};
+use super::material::{ParallaxOcclusionMaterial, PomParams};
 use crate::material::TextureFacts;
 
 /// Per-draw data of a parallax material.
@@ -50,10 +50,10 @@ impl PomUniform {
             height_texture_height: height.height as f32,
             height_mip_levels: height.mip_levels as f32,
             has_height_map: u32::from(material.height_map.is_some()),
-            height_channel: match material.height_map {
-                Some(HeightSource::NormalMapAlpha) => 3,
-                _ => 0,
-            },
+            height_channel: material
+                .height_map
+                .as_ref()
+                .map_or(0, |source| u32::from(source.channel())),
         }
     }
 }

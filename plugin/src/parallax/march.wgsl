@@ -172,10 +172,12 @@ fn binary_refinement(
 }
 
 // The visible point for the view ray entering at `uv` with parallax offset vector `offset` (P),
-// by `method`. `to_eye_ts` is only used by parallax offset mapping.
+// by `method`. `to_eye_ts` is only used by parallax offset mapping, `pyramid` (the height's
+// maximum pyramid, max_mip.wgsl) only by MaxMip.
 fn march_view(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
+    pyramid: texture_2d<f32>,
     field: HeightField,
     method: u32,
     uv: vec2<f32>,
@@ -187,6 +189,9 @@ fn march_view(
 ) -> RayHit {
     if method == METHOD_NORMAL_MAPPING {
         return RayHit(uv, 1.0, 0u);
+    }
+    if method == METHOD_MAX_MIP {
+        return march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
     }
     let surface = sample_height(height_texture, height_sampler, field, uv);
     if method == METHOD_PARALLAX_OFFSET {

@@ -18,6 +18,8 @@ crate::choice_enum! {
         Occlusion = "pom",
         /// Relief mapping (Policarpo 2005): linear search, then relief_binary_steps bisections.
         Relief = "relief",
+        /// Exact intersection over a maximum-height pyramid (Tevs et al. 2008): no missed peaks.
+        MaxMip = "maxmip",
     }
 }
 
@@ -104,6 +106,16 @@ pub enum HeightSource {
     Texture(Handle<Image>),
     /// The alpha channel of the normal map, as McGuire and Tatarchuk pack it.
     NormalMapAlpha,
+}
+
+impl HeightSource {
+    /// The texture channel holding the height: 0 = red (own texture), 3 = alpha.
+    pub fn channel(&self) -> u8 {
+        match self {
+            HeightSource::Texture(_) => 0,
+            HeightSource::NormalMapAlpha => 3,
+        }
+    }
 }
 
 /// Most height samples one march may take; larger `max_samples` are clamped to it.

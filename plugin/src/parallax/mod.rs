@@ -19,11 +19,16 @@ use crate::material::{
     TextureFacts,
 };
 use crate::render::shaders::{self, ComposedShader, WgslFile};
-use crate::render::{DefaultTexture, DrawView};
+use crate::render::{
+    DefaultTexture, DerivedTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES,
+    TextureDerivation,
+};
 use crate::{App, Handle, Plugin};
 
 /// The ray march, LOD and self-shadow functions of the parallax material.
 pub const PARALLAX_MARCH: WgslFile = crate::wgsl_file!("parallax/march.wgsl");
+/// The MaxMip method's traversal of the maximum pyramid.
+pub const PARALLAX_MAX_MIP: WgslFile = crate::wgsl_file!("parallax/max_mip.wgsl");
 /// The parallax material's entry points.
 pub const PARALLAX_ENTRY: WgslFile = crate::wgsl_file!("parallax/pom.wgsl");
 
@@ -53,6 +58,7 @@ macro_rules! parallax_shader {
                 shaders::TANGENT_SPACE,
                 shaders::LIGHTING,
                 PARALLAX_MARCH,
+                PARALLAX_MAX_MIP,
                 PARALLAX_ENTRY,
                 $($more,)*
             ],
@@ -111,6 +117,26 @@ impl Material for ParallaxOcclusionMaterial {
         textures[1] = self.normal_map.as_ref().map(Handle::id);
         textures[HEIGHT_SLOT] = height;
         textures
+    }
+
+    /// MaxMip's maximum pyramid of the height map, as the shader reads it (channel and
+    /// convention applied), at binding 4.
+    const DERIVED_TEXTURE_SLOTS: usize = 1;
+
+    fn derived_textures(&self) -> DerivedTextures {
+        let mut derived = [None; MAX_DERIVED_TEXTURES];
+        if self.method == ParallaxMethod::MaxMip
+            && let (Some(source), Some(image)) = (&self.height_map, self.textures()[HEIGHT_SLOT])
+        {
+            derived[0] = Some(DerivedTexture {
+                source: image,
+                derivation: TextureDerivation::MaxHeightPyramid {
+                    channel: source.channel(),
+                    depth_convention: self.height_convention == HeightConvention::Depth,
+                },
+            });
+        }
+        derived
     }
 
     fn key(&self) -> PomPipelineKey {

@@ -32,6 +32,8 @@ struct PomUniform {
 @group(1) @binding(1) var normal_map: texture_2d<f32>;
 @group(1) @binding(2) var height_texture: texture_2d<f32>;
 @group(1) @binding(3) var material_sampler: sampler;
+// The height's maximum pyramid (derived by the core, bound for MaxMip; one texel of 1 otherwise).
+@group(1) @binding(4) var height_pyramid: texture_2d<f32>;
 
 // Where the view ray meets the height field, with what shading and depth need of the surface.
 struct SurfacePoint {
@@ -91,7 +93,7 @@ fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) ->
         let offset = -ray_offset(to_eye_ts, point.height_scale);
         let texels = length(offset * texture_size) / exp2(point.mip);
         let steps = march_steps(params.min_samples, params.max_samples, dot(point.surface_frame.normal, point.to_eye), texels);
-        let hit = march_view(height_texture, material_sampler, point.field, method, in.uv, offset, to_eye_ts,
+        let hit = march_view(height_texture, material_sampler, height_pyramid, point.field, method, in.uv, offset, to_eye_ts,
             point.height_scale, steps, params.relief_binary_steps);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
         point.uv = mix(hit.uv, in.uv, point.fade);

@@ -1,7 +1,6 @@
 //! The exact hierarchical march over a pyramid of maximum heights (Tevs, Ihrke and Seidel,
 //! "Maximum mipmaps for fast, accurate, and scalable dynamic height field rendering", I3D 2008):
-//! the CPU reference of the `MaxMip` method (issue 20; the GPU version follows it step for
-//! step).
+//! the CPU reference of the `MaxMip` method (`parallax/max_mip.wgsl` follows it step for step).
 //!
 //! The surface is the bilinear height field the GPU filters (texel centres at (i + ½) / size,
 //! wrapping). Between four neighbouring texel centres it is one bilinear patch, which never rises
@@ -90,6 +89,8 @@ impl MaxPyramid {
 
 /// How far past a cell's edge a march steps to be in the next cell, in level-0 cells.
 const EDGE_NUDGE: f32 = 1e-4;
+/// Most traversal steps one ray takes (`MAX_MIP_STEPS` in WGSL).
+const MAX_MIP_STEPS: u32 = 2048;
 
 /// The first t in `[from, to]` where `c2 t² + c1 t + c0` reaches 0 from below, if any.
 fn first_root(c2: f32, c1: f32, c0: f32, from: f32, to: f32) -> Option<f32> {
@@ -162,8 +163,8 @@ pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_sca
     let mut t = 0.0_f32;
     let mut samples = 0;
     // Each step skips a cell, climbs or descends: bounded by the cells the ray crosses at
-    // level 0 and the levels, with room to spare.
-    let bound = 4 * (u64::from(crossed) + 2) * (top as u64 + 2);
+    // level 0 and the levels, with room to spare, and by the GPU's per-pixel cap.
+    let bound = (4 * (crossed.min(MAX_MIP_STEPS) + 2) * (top as u32 + 2)).min(MAX_MIP_STEPS);
     for _ in 0..bound {
         if t >= 1.0 {
             break;

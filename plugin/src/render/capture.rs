@@ -38,12 +38,22 @@ const READBACK_TIMEOUT: Duration = Duration::from_secs(120);
 ///
 /// The copy pads each row to `COPY_BYTES_PER_ROW_ALIGNMENT` as wgpu requires, so any width works.
 pub fn read_texture(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>, CaptureError> {
+    read_texture_level(gpu, texture, 0)
+}
+
+/// [`read_texture`] of mip level `level` (`UnsupportedFormat` past the last level, too).
+pub fn read_texture_level(
+    gpu: &GpuContext,
+    texture: &wgpu::Texture,
+    level: u32,
+) -> Result<Vec<u8>, CaptureError> {
     let format = texture.format();
     let texel_bytes = format
         .block_copy_size(None)
-        .filter(|_| format.block_dimensions() == (1, 1))
+        .filter(|_| format.block_dimensions() == (1, 1) && level < texture.mip_level_count())
         .ok_or(CaptureError::UnsupportedFormat(format))?;
-    let (width, height) = (texture.width(), texture.height());
+    let size = texture.size().mip_level_size(level, texture.dimension());
+    let (width, height) = (size.width, size.height);
     let row_bytes = width * texel_bytes;
     let padded_row_bytes =
         row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
@@ -59,7 +69,10 @@ pub fn read_texture(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
             label: Some("readback encoder"),
         });
     encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
+        wgpu::TexelCopyTextureInfo {
+            mip_level: level,
+            ..texture.as_image_copy()
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &staging,
             layout: wgpu::TexelCopyBufferLayout {
@@ -68,7 +81,7 @@ pub fn read_texture(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
                 rows_per_image: Some(height),
             },
         },
-        texture.size(),
+        size,
     );
     let submission = gpu.queue.submit([encoder.finish()]);
 

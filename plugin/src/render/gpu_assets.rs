@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
 use super::GpuContext;
+use super::derived_textures::{DerivedTexture, DerivedTextureCache, GpuDerivedTexture};
 use super::gpu_types::Vertex;
 use crate::{AssetId, Assets, Image, Mesh, Pixels, TextureKind};
 
@@ -140,6 +141,7 @@ pub struct GpuAssets {
     pub defaults: DefaultTextures,
     meshes: HashMap<AssetId<Mesh>, Cached<GpuMesh>>,
     images: HashMap<AssetId<Image>, Cached<GpuImage>>,
+    derived: DerivedTextureCache,
     next_upload_serial: u64,
 }
 
@@ -161,6 +163,7 @@ impl GpuAssets {
             },
             meshes: HashMap::new(),
             images: HashMap::new(),
+            derived: DerivedTextureCache::new(gpu),
             next_upload_serial: 0,
         }
     }
@@ -257,10 +260,35 @@ impl GpuAssets {
         }
     }
 
-    /// Drops GPU copies of assets that no longer exist.
+    /// Derives `derived` from its (uploaded) source if it is missing or older than the
+    /// source's last upload; returns whether it did.
+    pub(crate) fn prepare_derived(&mut self, gpu: &GpuContext, derived: DerivedTexture) -> bool {
+        let Some(Cached::Ready { gpu: source, .. }) = self.images.get(&derived.source) else {
+            return false;
+        };
+        let serial = self.next_upload_serial + 1;
+        let built = self.derived.prepare(gpu, derived, source, serial);
+        if built {
+            self.next_upload_serial = serial;
+        }
+        built
+    }
+
+    /// The derived texture, if its source is on the GPU and it was prepared.
+    pub(crate) fn derived(&self, derived: &DerivedTexture) -> Option<&GpuDerivedTexture> {
+        self.derived.get(derived)
+    }
+
+    /// The view bound in a derived slot a draw leaves empty.
+    pub(crate) fn default_derived_view(&self) -> &wgpu::TextureView {
+        &self.derived.default_view
+    }
+
+    /// Drops GPU copies of assets that no longer exist, and what was derived from them.
     pub fn release_freed(&mut self, meshes: &Assets<Mesh>, images: &Assets<Image>) {
         self.meshes.retain(|id, _| meshes.contains(*id));
         self.images.retain(|id, _| images.contains(*id));
+        self.derived.retain_sources(|id| images.contains(id));
     }
 }
 

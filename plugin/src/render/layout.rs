@@ -14,6 +14,19 @@ pub(crate) fn texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A float 2D texture read with `textureLoad` (no sampler), visible to the fragment stage and
+/// compute: `R32Float` and other unfilterable formats bind here.
+pub(crate) fn unfilterable_texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        ..texture_2d(binding)
+    }
+}
+
 /// A filtering sampler visible to the fragment stage and the deferred resolve.
 pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {

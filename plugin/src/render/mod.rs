@@ -4,6 +4,7 @@
 mod capture;
 mod context;
 mod deferred_background;
+mod derived_textures;
 mod draw_view;
 mod extract;
 mod fragment_counter;
@@ -13,6 +14,7 @@ mod gpu_timing;
 pub(crate) mod gpu_types;
 pub(crate) mod layout;
 mod lowest_mip;
+mod max_pyramid;
 pub(crate) mod object_buffer;
 mod phases;
 mod post_process;
@@ -26,10 +28,15 @@ mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
 mod visibility;
 
-pub use capture::{CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture};
+pub use capture::{
+    CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture, read_texture_level,
+};
 pub use context::{GpuContext, GpuError};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
+pub use derived_textures::{
+    DerivedTexture, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
+};
 pub use draw_view::DrawView;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use fragment_counter::FragmentInvocationCounter;
@@ -41,6 +48,9 @@ pub use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
+pub use max_pyramid::MAX_PYRAMID_SHADER;
+#[cfg(feature = "scene-tests")]
+pub use max_pyramid::read_max_pyramid;
 pub use phases::{
     DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
     ShadowDraw,

@@ -1,0 +1,188 @@
+// The MaxMip method: the exact ray / height-field intersection by hierarchical traversal of a
+// pyramid of maximum heights (Tevs, Ihrke and Seidel, I3D 2008). The CPU reference
+// `pom::reference::max_mip` mirrors this file step by step; change both together.
+//
+// The surface is the bilinear field the sampler filters at level 0. Between four neighbouring
+// texel centres it is one bilinear patch, never higher than its highest corner: pyramid level 0
+// holds that maximum per *cell* (cell (i, j) spans texel centres i..i+1, j..j+1), each level
+// above the maximum of 2 × 2 cells, in Tatarchuk's convention (1 = top) whatever the channel and
+// convention (the core builds it: render/max_pyramid.wgsl). Positions are in level-0 cells.
+
+// How far past a cell's edge a march steps to be in the next cell, in level-0 cells.
+const MAX_MIP_EDGE_NUDGE: f32 = 1e-4;
+// Most traversal steps (skip, climb or descend) one ray takes: a bound on the GPU's time per
+// pixel; a 2,000-texel grazing ray over the cones needs about 300.
+const MAX_MIP_STEPS: u32 = 2048u;
+
+// A view ray in level-0 cell coordinates: at(t) = start + travel × t, t = 0 at the top.
+struct CellRay {
+    start: vec2<f32>,
+    travel: vec2<f32>,
+}
+
+fn cell_ray_at(ray: CellRay, t: f32) -> vec2<f32> {
+    return ray.start + ray.travel * t;
+}
+
+// The pyramid's maximum for `cell` of `level`, wrapping (every level repeats with the map).
+fn pyramid_maximum(pyramid: texture_2d<f32>, level: u32, cell: vec2<f32>) -> f32 {
+    // Levels halve exactly. (Not textureDimensions(pyramid, level): lavapipe answers a size
+    // query with a level that differs between invocations with one invocation's level.)
+    let size = vec2<i32>(textureDimensions(pyramid) >> vec2<u32>(level));
+    let wrapped = ((vec2<i32>(cell) % size) + size) % size;
+    return textureLoad(pyramid, wrapped, level).r;
+}
+
+// The four corner heights of the patch of level-0 cell `cell` (unwrapped: the sampler wraps as
+// the other methods see it), as (h00, h10, h01, h11). One gather: the texel fetch of a patch.
+fn patch_corners(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, cell: vec2<f32>) -> vec4<f32> {
+    let size = vec2<f32>(textureDimensions(height_texture));
+    // The shared corner of the four texels: gather returns (i, j+1), (i+1, j+1), (i+1, j), (i, j).
+    let uv = (cell + 1.0) / size;
+    var gathered: vec4<f32>;
+    switch field.channel {
+        case 0u: { gathered = textureGather(0, height_texture, height_sampler, uv); }
+        case 1u: { gathered = textureGather(1, height_texture, height_sampler, uv); }
+        case 2u: { gathered = textureGather(2, height_texture, height_sampler, uv); }
+        default: { gathered = textureGather(3, height_texture, height_sampler, uv); }
+    }
+    let heights = select(gathered, 1.0 - gathered, field.depth_convention != 0u);
+    return heights.wzxy;
+}
+
+// Where the ray leaves `cell` (of side `cell_size`) along one axis; infinite if it does not move.
+fn axis_exit(axis_start: f32, axis_travel: f32, axis_cell: f32, cell_size: f32) -> f32 {
+    if abs(axis_travel) < 1e-9 {
+        return 3.4e38;
+    }
+    let edge = (axis_cell + select(0.0, 1.0, axis_travel > 0.0)) * cell_size;
+    return (edge - axis_start) / axis_travel;
+}
+
+// Past `exit`, into the next cell: a nudge that doubles until the position has left `cell` (far
+// along a long ray one step of t moves it by more than the nudge).
+fn past_cell(ray: CellRay, exit: f32, cell: vec2<f32>, cell_size: f32, nudge: f32) -> f32 {
+    var step = nudge;
+    while step < 1.0 && all(floor(cell_ray_at(ray, exit + step) / cell_size) == cell) {
+        step *= 2.0;
+    }
+    return exit + step;
+}
+
+// After leaving `cell` of `level` for position `t`: one level up when the ray also left the
+// cell's parent (whose cells the ray has not reached may then be skipped whole).
+fn level_after_leaving(ray: CellRay, level: u32, top: u32, cell: vec2<f32>, t: f32) -> u32 {
+    if level == top {
+        return level;
+    }
+    let parent_size = f32(2u << level);
+    let left = any(floor(cell_ray_at(ray, t) / parent_size) != floor(cell / 2.0));
+    return level + select(0u, 1u, left);
+}
+
+// The first t in [earliest, latest] where c2 t² + c1 t + c0 reaches 0 from below, or −1.
+fn first_root(c2: f32, c1: f32, c0: f32, earliest: f32, latest: f32) -> f32 {
+    if (c2 * earliest + c1) * earliest + c0 >= 0.0 {
+        return earliest;
+    }
+    var low: f32;
+    var high: f32;
+    if abs(c2) < 1e-9 {
+        if abs(c1) < 1e-9 {
+            return -1.0;
+        }
+        low = -c0 / c1;
+        high = 3.4e38;
+    } else {
+        let discriminant = c1 * c1 - 4.0 * c2 * c0;
+        if discriminant < 0.0 {
+            return -1.0;
+        }
+        // The stable pair: no cancellation between c1 and the square root.
+        let sign_c1 = select(-1.0, 1.0, c1 >= 0.0);
+        let q = -0.5 * (c1 + sign_c1 * sqrt(discriminant));
+        let a = q / c2;
+        let b = select(a, c0 / q, q != 0.0);
+        low = min(a, b);
+        high = max(a, b);
+    }
+    if low >= earliest && low <= latest {
+        return low;
+    }
+    if high >= earliest && high <= latest {
+        return high;
+    }
+    return -1.0;
+}
+
+// The visible point of the view ray entering at `uv` with parallax offset vector `offset`;
+// `samples` counts texel fetches: one per pyramid maximum read, one per patch gathered.
+fn march_max_mip(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    pyramid: texture_2d<f32>,
+    field: HeightField,
+    uv: vec2<f32>,
+    offset: vec2<f32>,
+) -> RayHit {
+    let size = vec2<f32>(textureDimensions(height_texture));
+    // Starting inside the first repetition keeps positions small and precise; `shift` (whole
+    // repetitions) takes a cell back to where the sampler sees it.
+    let unwrapped = uv * size - 0.5;
+    let start = unwrapped - floor(unwrapped / size) * size;
+    let shift = unwrapped - start;
+    let ray = CellRay(start, offset * size);
+    let top = textureNumLevels(pyramid) - 1u;
+    // Start at the level whose cells are about as long as the ray's whole path.
+    let crossed = u32(min(ceil(abs(ray.travel.x) + abs(ray.travel.y)), 1e9));
+    var level = min(32u - countLeadingZeros(max(crossed, 1u)), top);
+    let nudge = MAX_MIP_EDGE_NUDGE / max(max(abs(ray.travel.x), abs(ray.travel.y)), 1e-9);
+    let bound = min(4u * (min(crossed, MAX_MIP_STEPS) + 2u) * (top + 2u), MAX_MIP_STEPS);
+    var t = 0.0;
+    var samples = 0u;
+    for (var i = 0u; i < bound; i += 1u) {
+        if t >= 1.0 {
+            break;
+        }
+        let cell_size = f32(1u << level);
+        let cell = floor(cell_ray_at(ray, t) / cell_size);
+        // At level 0 the patch itself is tested: its maximum would cost a fetch for nothing.
+        var maximum = 1.0;
+        if level > 0u {
+            maximum = pyramid_maximum(pyramid, level, cell);
+            samples += 1u;
+        }
+        let exit = min(min(axis_exit(ray.start.x, ray.travel.x, cell.x, cell_size),
+            axis_exit(ray.start.y, ray.travel.y, cell.y, cell_size)), 1.0);
+        if 1.0 - exit > maximum {
+            t = past_cell(ray, exit, cell, cell_size, nudge);
+            level = level_after_leaving(ray, level, top, cell, t);
+            continue;
+        }
+        // Down to the cell's highest point before anything can be hit.
+        t = max(t, 1.0 - maximum);
+        if level > 0u {
+            level -= 1u;
+            continue;
+        }
+        // A level-0 cell: the bilinear patch along the ray is quadratic in t.
+        let corners = patch_corners(height_texture, height_sampler, field, cell + shift);
+        samples += 1u;
+        let a = ray.start - cell;
+        let b = ray.travel;
+        let du = corners.y - corners.x;
+        let dv = corners.z - corners.x;
+        let duv = corners.x - corners.y - corners.z + corners.w;
+        let c2 = duv * b.x * b.y;
+        let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
+        let c0 = corners.x + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
+        let root = first_root(c2, c1, c0, t, exit);
+        if root >= 0.0 {
+            return RayHit(uv + offset * root, 1.0 - root, samples);
+        }
+        t = past_cell(ray, exit, cell, cell_size, nudge);
+        level = level_after_leaving(ray, level, top, cell, t);
+    }
+    // Through every cell: the ray reaches the bottom.
+    return RayHit(uv + offset, 0.0, samples);
+}

@@ -1,0 +1,149 @@
+//! Textures the GPU derives from an uploaded image (a height map's maximum pyramid), cached
+//! per image and derivation and rebuilt whenever the image is re-uploaded (a dynamic height
+//! field's every change).
+
+use std::collections::HashMap;
+
+use wgpu::util::DeviceExt;
+
+use super::GpuContext;
+use super::gpu_assets::GpuImage;
+use super::max_pyramid::MaxPyramidBuilder;
+use crate::{AssetId, Image};
+
+/// Most derived textures one material binds.
+pub const MAX_DERIVED_TEXTURES: usize = 2;
+
+/// The derived texture in each of a draw's derived slots; `None` binds the default (one texel
+/// of 1.0: the pyramid of a field at the top everywhere).
+pub type DerivedTextures = [Option<DerivedTexture>; MAX_DERIVED_TEXTURES];
+
+/// A texture the GPU derives from an image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct DerivedTexture {
+    /// The image it is derived from.
+    pub source: AssetId<Image>,
+    /// What is derived.
+    pub derivation: TextureDerivation,
+}
+
+/// What a [`DerivedTexture`] holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum TextureDerivation {
+    /// The maximum-height pyramid (`R32Float`, read with `textureLoad`): level 0 holds, per cell
+    /// between four texel centres (wrapping), the highest corner with 1 = top; each level above
+    /// the maximum of 2 × 2 cells, while both sides stay even.
+    MaxHeightPyramid {
+        /// Channel of the source holding the height: 0 = red .. 3 = alpha.
+        channel: u8,
+        /// Whether white in the source means deepest (depth maps): the pyramid inverts it.
+        depth_convention: bool,
+    },
+}
+
+/// A derived texture on the GPU.
+#[derive(Debug)]
+pub(crate) struct GpuDerivedTexture {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// A view of every level.
+    pub view: wgpu::TextureView,
+    /// Upload serial of the source it was built from.
+    source_serial: u64,
+    /// Distinguishes rebuilds, so bind groups that use it are rebuilt.
+    pub serial: u64,
+}
+
+/// The derived textures of every image, and the default bound where a draw has none.
+pub(crate) struct DerivedTextureCache {
+    builder: Option<MaxPyramidBuilder>,
+    textures: HashMap<DerivedTexture, GpuDerivedTexture>,
+    /// One texel of 1.0 in `R32Float`.
+    pub(crate) default_view: wgpu::TextureView,
+}
+
+impl std::fmt::Debug for DerivedTextureCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DerivedTextureCache")
+            .field("textures", &self.textures.len())
+            .finish()
+    }
+}
+
+impl DerivedTextureCache {
+    /// An empty cache; the builder is compiled when something is first derived.
+    pub(crate) fn new(gpu: &GpuContext) -> Self {
+        let default = gpu.device.create_texture_with_data(
+            &gpu.queue,
+            &wgpu::TextureDescriptor {
+                label: Some("default derived texture"),
+                size: wgpu::Extent3d {
+                    width: 1,
+                    height: 1,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::R32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            &1.0_f32.to_le_bytes(),
+        );
+        Self {
+            builder: None,
+            textures: HashMap::new(),
+            default_view: default.create_view(&Default::default()),
+        }
+    }
+
+    /// Builds `derived` from `source` if it is missing or older than the source's upload;
+    /// `next_serial` numbers the build. Returns whether it built.
+    pub(crate) fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        derived: DerivedTexture,
+        source: &GpuImage,
+        next_serial: u64,
+    ) -> bool {
+        if self
+            .textures
+            .get(&derived)
+            .is_some_and(|cached| cached.source_serial == source.upload_serial)
+        {
+            return false;
+        }
+        let TextureDerivation::MaxHeightPyramid {
+            channel,
+            depth_convention,
+        } = derived.derivation;
+        let builder = self
+            .builder
+            .get_or_insert_with(|| MaxPyramidBuilder::new(gpu));
+        let texture = builder.build(gpu, &source.texture, channel, depth_convention);
+        let view = texture.create_view(&Default::default());
+        self.textures.insert(
+            derived,
+            GpuDerivedTexture {
+                texture,
+                view,
+                source_serial: source.upload_serial,
+                serial: next_serial,
+            },
+        );
+        true
+    }
+
+    /// The derived texture, if built.
+    pub(crate) fn get(&self, derived: &DerivedTexture) -> Option<&GpuDerivedTexture> {
+        self.textures.get(derived)
+    }
+
+    /// Drops what was derived from images that are gone.
+    pub(crate) fn retain_sources(&mut self, mut keep: impl FnMut(AssetId<Image>) -> bool) {
+        self.textures.retain(|derived, _| keep(derived.source));
+    }
+}

@@ -1,0 +1,239 @@
+//! Builds a height texture's maximum pyramid on the GPU (`max_pyramid.wgsl`): one compute pass
+//! per level, at upload and after every change of the height.
+
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use super::shaders::{ComposedShader, WgslFile};
+use super::{GpuContext, layout};
+
+/// The pyramid build's shader.
+pub const MAX_PYRAMID_SHADER: ComposedShader = ComposedShader {
+    name: "max_pyramid.wgsl",
+    constants: &[],
+    files: &[MAX_PYRAMID],
+};
+
+const MAX_PYRAMID: WgslFile = crate::wgsl_file!("render/max_pyramid.wgsl");
+
+/// Mirrors `PyramidLevel` in max_pyramid.wgsl (checked by a test).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct PyramidLevel {
+    size: [u32; 2],
+    channel: u32,
+    depth_convention: u32,
+}
+
+crate::wgsl_layout!(PyramidLevel {
+    size,
+    channel,
+    depth_convention
+});
+
+/// Levels of the pyramid of a `width` × `height` map: they halve while both sides stay even,
+/// so that every level repeats with the texture (1024² → 11, 96 × 64 → 6, 1000 × 600 → 4).
+pub(crate) fn pyramid_levels(width: u32, height: u32) -> u32 {
+    let (mut width, mut height, mut levels) = (width.max(1), height.max(1), 1);
+    while width % 2 == 0 && height % 2 == 0 {
+        width /= 2;
+        height /= 2;
+        levels += 1;
+    }
+    levels
+}
+
+/// The two pipelines (level 0 from the height texture, each level above from the one below).
+pub(crate) struct MaxPyramidBuilder {
+    layout: wgpu::BindGroupLayout,
+    cell_maxima: wgpu::ComputePipeline,
+    reduce_level: wgpu::ComputePipeline,
+}
+
+impl MaxPyramidBuilder {
+    pub(crate) fn new(gpu: &GpuContext) -> Self {
+        let device = &gpu.device;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("max pyramid layout"),
+            entries: &[
+                layout::unfilterable_texture_2d(0),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: wgpu::TextureFormat::R32Float,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+                layout::compute_uniform_buffer(2, false),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("max pyramid pipeline layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let module = MAX_PYRAMID_SHADER.create_module(device);
+        let pipeline = |entry_point: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry_point),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        Self {
+            cell_maxima: pipeline("cell_maxima"),
+            reduce_level: pipeline("reduce_level"),
+            layout,
+        }
+    }
+
+    /// Records and submits the build of `heights`' pyramid (from its level 0).
+    pub(crate) fn build(
+        &self,
+        gpu: &GpuContext,
+        heights: &wgpu::Texture,
+        channel: u8,
+        depth_convention: bool,
+    ) -> wgpu::Texture {
+        let device = &gpu.device;
+        let (width, height) = (heights.width(), heights.height());
+        let levels = pyramid_levels(width, height);
+        let pyramid = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("max pyramid"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: levels,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            // Copied from by tests that read it back.
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let level_view = |texture: &wgpu::Texture, level: u32| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                base_mip_level: level,
+                mip_level_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("max pyramid encoder"),
+        });
+        for level in 0..levels {
+            let (below, pipeline) = if level == 0 {
+                (level_view(heights, 0), &self.cell_maxima)
+            } else {
+                (level_view(&pyramid, level - 1), &self.reduce_level)
+            };
+            let size = [(width >> level).max(1), (height >> level).max(1)];
+            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("max pyramid level"),
+                contents: bytemuck::bytes_of(&PyramidLevel {
+                    size,
+                    channel: u32::from(channel),
+                    depth_convention: u32::from(depth_convention),
+                }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("max pyramid level"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&below),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&level_view(&pyramid, level)),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: params.as_entire_binding(),
+                    },
+                ],
+            });
+            // One pass per level: the next level reads what this one wrote.
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("max pyramid level"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(size[0].div_ceil(8), size[1].div_ceil(8), 1);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        pyramid
+    }
+}
+
+/// The maximum pyramid the renderer derives from `image` for `channel` and the convention,
+/// read back: (width, height, maxima row by row) per level, finest first. For tests against
+/// the CPU reference (`pom::reference::MaxPyramid`).
+#[cfg(feature = "scene-tests")]
+pub fn read_max_pyramid(
+    gpu: &GpuContext,
+    image: crate::Image,
+    channel: u8,
+    depth_convention: bool,
+) -> Result<Vec<(u32, u32, Vec<f32>)>, super::CaptureError> {
+    let mut images = crate::Assets::default();
+    let source = images.add(image).id();
+    let mut assets = super::GpuAssets::new(gpu);
+    assets.prepare_image(gpu, &images, source);
+    let derived = super::DerivedTexture {
+        source,
+        derivation: super::TextureDerivation::MaxHeightPyramid {
+            channel,
+            depth_convention,
+        },
+    };
+    assets.prepare_derived(gpu, derived);
+    let pyramid = &assets
+        .derived(&derived)
+        .ok_or_else(|| super::CaptureError::Map("the image was not uploaded".into()))?
+        .texture;
+    (0..pyramid.mip_level_count())
+        .map(|level| {
+            let texels = super::read_texture_level(gpu, pyramid, level)?;
+            let size = pyramid.size().mip_level_size(level, pyramid.dimension());
+            let maxima = bytemuck::pod_collect_to_vec::<u8, f32>(&texels);
+            Ok((size.width, size.height, maxima))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_halve_while_both_sides_are_even() {
+        assert_eq!(pyramid_levels(1024, 1024), 11);
+        assert_eq!(pyramid_levels(96, 64), 6);
+        assert_eq!(pyramid_levels(1000, 600), 4);
+        assert_eq!(pyramid_levels(1, 1), 1);
+        assert_eq!(pyramid_levels(0, 0), 1);
+    }
+
+    #[test]
+    fn pyramid_level_matches_its_wgsl() {
+        let source = MAX_PYRAMID_SHADER.source();
+        assert_eq!(
+            crate::material::check_wgsl_layout::<PyramidLevel>(&source, "PyramidLevel"),
+            Ok(())
+        );
+    }
+}
