@@ -30,13 +30,23 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     );
     assert_eq!(json["quick"], true);
     let cases = json["cases"].as_array().unwrap();
-    // Two sizes: 15 method × shadow cases, 5 sample counts, 6 LOD thresholds, POM for the
+    // Two sizes: 18 method × shadow cases, 5 sample counts, 6 LOD thresholds, POM for the
     // texel rate, 3 phases, 2 far-field, 6 overdraw (1 plane, 4 back to front, 4 copies of one
     // mesh; with and without depth offset), 19 scene-shadow figures (the street corner without
     // shadows: 3 phases and the frame; with a sun, a spot, a point light: 4 phases and the
     // frame each), 4 seed-port figures (ours and the seed's listing 2 on the same plane, near
-    // and far).
-    assert_eq!(cases.len(), 2 * (15 + 5 + 6 + 1 + 3 + 2 + 6 + 19 + 4));
+    // and far), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip).
+    assert_eq!(cases.len(), 2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 19 + 4 + 13));
+    let table = json["method_table"].as_array().unwrap();
+    assert_eq!(table.len(), 2 * 13);
+    for row in table {
+        let fetches = row["fetches_per_pixel"].as_f64().unwrap();
+        assert!(fetches > 0.0, "{row}");
+        // The error columns come from the CPU reference: max-mip's is the exact answer.
+        if row["method"] == "maxmip" {
+            assert!(row["mean_error_texels"].as_f64().unwrap() < 0.05, "{row}");
+        }
+    }
     for variant in [
         "ours",
         "seed port",

@@ -98,6 +98,30 @@ fn height_packed_in_the_normal_maps_alpha_and_depth_maps() {
 }
 
 #[test]
+fn max_mip_from_extras_on_a_packed_depth_map_and_a_16_bit_npot_map() {
+    for (name, extras) in [
+        (
+            "maxmip-packed",
+            json!({"height_in_normal_alpha": true, "height_convention": "depth", "method": "maxmip"}),
+        ),
+        (
+            "maxmip-npot",
+            json!({"height_texture": "HEIGHT", "method": "maxmip", "height_units": "world"}),
+        ),
+    ] {
+        let dir = scratch_dir(name);
+        let fixture = pom_quad(extras);
+        let mut app = app();
+        let scene = load_gltf(&mut app, fixture.write(&dir, name)).unwrap();
+        assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+        let material: ParallaxOcclusionMaterial = only(&app);
+        assert_eq!(material.method, ParallaxMethod::MaxMip);
+        // Its pyramid is derived and the frame renders without a validation error.
+        run_frames(&mut app, 2).unwrap();
+    }
+}
+
+#[test]
 fn a_material_without_extras_is_normal_mapped() {
     let dir = scratch_dir("plain");
     let mut fixture = GltfFixture::quad(1.0);

@@ -33,6 +33,8 @@ pub enum Measurement {
     SceneShadows,
     /// Tatarchuk's listing 2 transliterated to WGSL on the same plane, beside our POM.
     SeedPort,
+    /// Steep, POM and relief at 8–64 samples and MaxMip: error, fetches per pixel and time.
+    MethodTable,
 }
 
 /// Options of `sandbox bench`.

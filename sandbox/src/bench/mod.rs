@@ -8,6 +8,7 @@
 mod args;
 mod chart;
 mod cpu_side;
+mod method_table;
 mod report;
 mod sample_count;
 mod scene;
@@ -41,12 +42,13 @@ const QUICK_SIZES: [(u32, u32); 2] = [(64, 36), (96, 54)];
 const PROBE_TAPS: u32 = 64;
 const SAMPLE_SWEEP: [u32; 5] = [8, 16, 32, 64, 128];
 const LOD_SWEEP: [f32; 6] = [0.0, 1.0, 2.0, 4.0, 6.0, 8.0];
-const METHODS: [ParallaxMethod; 5] = [
+const METHODS: [ParallaxMethod; 6] = [
     ParallaxMethod::NormalMapping,
     ParallaxMethod::ParallaxOffset,
     ParallaxMethod::Steep,
     ParallaxMethod::Occlusion,
     ParallaxMethod::Relief,
+    ParallaxMethod::MaxMip,
 ];
 const SHADOWS: [ShadowMode; 3] = [ShadowMode::Off, ShadowMode::Hard, ShadowMode::Soft];
 // Far field: so many repeats that every pixel covers 2^(lod_threshold + 3) texels or more.
@@ -79,6 +81,7 @@ struct Runner<'a> {
     sample_rates: Vec<SampleRate>,
     versus_mesh: Vec<versus_mesh::VersusMesh>,
     cpu_side: Vec<cpu_side::CpuSide>,
+    method_rows: Vec<method_table::MethodRow>,
 }
 
 impl Runner<'_> {
@@ -116,6 +119,9 @@ impl Runner<'_> {
             }
             if wanted(Measurement::Phases) {
                 self.phases(&mut scene, size)?;
+            }
+            if wanted(Measurement::MethodTable) {
+                self.method_table(&mut scene, size)?;
             }
             drop(scene);
             if wanted(Measurement::FarField) {
@@ -565,6 +571,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         sample_rates: Vec::new(),
         versus_mesh: Vec::new(),
         cpu_side: Vec::new(),
+        method_rows: Vec::new(),
     };
     let texel_rate = texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from));
     let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);
@@ -587,6 +594,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         sample_rates: runner.sample_rates,
         versus_mesh: runner.versus_mesh,
         cpu_side: runner.cpu_side,
+        method_table: runner.method_rows,
     };
     print!("{}", report.table());
     std::fs::create_dir_all(&args.out)

@@ -8,6 +8,7 @@ use pom::RenderPath;
 use serde::Serialize;
 
 use super::cpu_side::CpuSide;
+use super::method_table::MethodRow;
 use super::sample_count::SampleRate;
 use super::stats::Spread;
 use super::texel_rate::TexelRate;
@@ -119,6 +120,8 @@ pub struct BenchReport {
     pub versus_mesh: Vec<VersusMesh>,
     /// The CPU side, once per path asked for (none when left out by `--only`).
     pub cpu_side: Vec<CpuSide>,
+    /// Each method's error, fetches and time (none when left out by `--only`).
+    pub method_table: Vec<MethodRow>,
 }
 
 /// CSV columns, in order.
@@ -272,6 +275,7 @@ impl BenchReport {
                 cpu.total.median_ms
             );
         }
+        out.push_str(&super::method_table::table(&self.method_table));
         out.push_str(&self.phases_side_by_side());
         out
     }
@@ -375,6 +379,7 @@ mod tests {
             sample_rates: Vec::new(),
             versus_mesh: Vec::new(),
             cpu_side: Vec::new(),
+            method_table: Vec::new(),
         }
     }
 
