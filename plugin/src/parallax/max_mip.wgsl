@@ -8,28 +8,16 @@
 // above the maximum of 2 × 2 cells, in Tatarchuk's convention (1 = top) whatever the channel and
 // convention (the core builds it: render/max_pyramid.wgsl). Positions are in level-0 cells.
 
-// How far past a cell's edge a march steps to be in the next cell, in level-0 cells.
-const MAX_MIP_EDGE_NUDGE: f32 = 1e-4;
 // Most traversal steps (skip, climb or descend) one ray takes: a bound on the GPU's time per
 // pixel; a 2,000-texel grazing ray over the cones needs about 300.
 const MAX_MIP_STEPS: u32 = 2048u;
 
-// A view ray in level-0 cell coordinates: at(t) = start + travel × t, t = 0 at the top.
-struct CellRay {
-    start: vec2<f32>,
-    travel: vec2<f32>,
-}
-
-fn cell_ray_at(ray: CellRay, t: f32) -> vec2<f32> {
-    return ray.start + ray.travel * t;
-}
-
 // The pyramid's maximum for `cell` of `level`, wrapping (every level repeats with the map).
-fn pyramid_maximum(pyramid: texture_2d<f32>, level: u32, cell: vec2<f32>) -> f32 {
+fn pyramid_maximum(pyramid: texture_2d<f32>, level: u32, cell: vec2<i32>) -> f32 {
     // Levels halve exactly. (Not textureDimensions(pyramid, level): lavapipe answers a size
     // query with a level that differs between invocations with one invocation's level.)
     let size = vec2<i32>(textureDimensions(pyramid) >> vec2<u32>(level));
-    let wrapped = ((vec2<i32>(cell) % size) + size) % size;
+    let wrapped = ((cell % size) + size) % size;
     return textureLoad(pyramid, wrapped, level).r;
 }
 
@@ -50,34 +38,14 @@ fn patch_corners(height_texture: texture_2d<f32>, height_sampler: sampler, field
     return heights.wzxy;
 }
 
-// Where the ray leaves `cell` (of side `cell_size`) along one axis; infinite if it does not move.
-fn axis_exit(axis_start: f32, axis_travel: f32, axis_cell: f32, cell_size: f32) -> f32 {
+// Where a ray along `axis_travel` (cells per unit of t) from `axis_start` leaves cell
+// `axis_cell` of side `cell_size` on one axis; infinite where it does not move on that axis.
+fn axis_exit(axis_start: f32, axis_travel: f32, axis_cell: i32, cell_size: f32) -> f32 {
     if abs(axis_travel) < 1e-9 {
         return 3.4e38;
     }
-    let edge = (axis_cell + select(0.0, 1.0, axis_travel > 0.0)) * cell_size;
+    let edge = f32(axis_cell + select(0, 1, axis_travel > 0.0)) * cell_size;
     return (edge - axis_start) / axis_travel;
-}
-
-// Past `exit`, into the next cell: a nudge that doubles until the position has left `cell` (far
-// along a long ray one step of t moves it by more than the nudge).
-fn past_cell(ray: CellRay, exit: f32, cell: vec2<f32>, cell_size: f32, nudge: f32) -> f32 {
-    var step = nudge;
-    while step < 1.0 && all(floor(cell_ray_at(ray, exit + step) / cell_size) == cell) {
-        step *= 2.0;
-    }
-    return exit + step;
-}
-
-// After leaving `cell` of `level` for position `t`: one level up when the ray also left the
-// cell's parent (whose cells the ray has not reached may then be skipped whole).
-fn level_after_leaving(ray: CellRay, level: u32, top: u32, cell: vec2<f32>, t: f32) -> u32 {
-    if level == top {
-        return level;
-    }
-    let parent_size = f32(2u << level);
-    let left = any(floor(cell_ray_at(ray, t) / parent_size) != floor(cell / 2.0));
-    return level + select(0u, 1u, left);
 }
 
 // The first t in [earliest, latest] where c2 t² + c1 t + c0 reaches 0 from below, or −1.
@@ -117,6 +85,9 @@ fn first_root(c2: f32, c1: f32, c0: f32, earliest: f32, latest: f32) -> f32 {
 
 // The visible point of the view ray entering at `uv` with parallax offset vector `offset`;
 // `samples` counts texel fetches: one per pyramid maximum read, one per patch gathered.
+// A digital-differential-analyser walk over integer cells: leaving a cell steps its index along
+// the axis the ray leaves by, climbing a level when that also leaves the parent; descending
+// picks the child under the ray, kept inside the parent.
 fn march_max_mip(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -131,12 +102,13 @@ fn march_max_mip(
     let unwrapped = uv * size - 0.5;
     let start = unwrapped - floor(unwrapped / size) * size;
     let shift = unwrapped - start;
-    let ray = CellRay(start, offset * size);
+    let travel = offset * size;
     let top = textureNumLevels(pyramid) - 1u;
     // Start at the level whose cells are about as long as the ray's whole path.
-    let crossed = u32(min(ceil(abs(ray.travel.x) + abs(ray.travel.y)), 1e9));
+    let crossed = u32(min(ceil(abs(travel.x) + abs(travel.y)), 1e9));
     var level = min(32u - countLeadingZeros(max(crossed, 1u)), top);
-    let nudge = MAX_MIP_EDGE_NUDGE / max(max(abs(ray.travel.x), abs(ray.travel.y)), 1e-9);
+    let direction = vec2<i32>(sign(travel));
+    var cell = vec2<i32>(floor(start / f32(1u << level)));
     let bound = min(4u * (min(crossed, MAX_MIP_STEPS) + 2u) * (top + 2u), MAX_MIP_STEPS);
     var t = 0.0;
     var samples = 0u;
@@ -145,43 +117,53 @@ fn march_max_mip(
             break;
         }
         let cell_size = f32(1u << level);
-        let cell = floor(cell_ray_at(ray, t) / cell_size);
         // At level 0 the patch itself is tested: its maximum would cost a fetch for nothing.
         var maximum = 1.0;
         if level > 0u {
             maximum = pyramid_maximum(pyramid, level, cell);
             samples += 1u;
         }
-        let exit = min(min(axis_exit(ray.start.x, ray.travel.x, cell.x, cell_size),
-            axis_exit(ray.start.y, ray.travel.y, cell.y, cell_size)), 1.0);
-        if 1.0 - exit > maximum {
-            t = past_cell(ray, exit, cell, cell_size, nudge);
-            level = level_after_leaving(ray, level, top, cell, t);
-            continue;
+        let exit_x = axis_exit(start.x, travel.x, cell.x, cell_size);
+        let exit_y = axis_exit(start.y, travel.y, cell.y, cell_size);
+        let exit = min(min(exit_x, exit_y), 1.0);
+        if 1.0 - exit <= maximum {
+            // Down to the cell's highest point before anything can be hit.
+            t = max(t, 1.0 - maximum);
+            if level > 0u {
+                level -= 1u;
+                let child = vec2<i32>(floor((start + travel * t) / (cell_size * 0.5)));
+                cell = clamp(child, cell * 2, cell * 2 + 1);
+                continue;
+            }
+            // A level-0 cell: the bilinear patch along the ray is quadratic in t.
+            let corners = patch_corners(height_texture, height_sampler, field, vec2<f32>(cell) + shift);
+            samples += 1u;
+            let a = start - vec2<f32>(cell);
+            let b = travel;
+            let du = corners.y - corners.x;
+            let dv = corners.z - corners.x;
+            let duv = corners.x - corners.y - corners.z + corners.w;
+            let c2 = duv * b.x * b.y;
+            let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
+            let c0 = corners.x + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
+            let root = first_root(c2, c1, c0, t, exit);
+            if root >= 0.0 {
+                return RayHit(uv + offset * root, 1.0 - root, samples);
+            }
         }
-        // Down to the cell's highest point before anything can be hit.
-        t = max(t, 1.0 - maximum);
-        if level > 0u {
-            level -= 1u;
-            continue;
+        // Into the next cell along the axis the ray leaves by; up a level where that also
+        // leaves the parent (whose cells the ray has not reached may then be skipped whole).
+        t = max(t, exit);
+        let parent = cell >> vec2<u32>(1u);
+        if exit_x <= exit_y {
+            cell.x += direction.x;
+        } else {
+            cell.y += direction.y;
         }
-        // A level-0 cell: the bilinear patch along the ray is quadratic in t.
-        let corners = patch_corners(height_texture, height_sampler, field, cell + shift);
-        samples += 1u;
-        let a = ray.start - cell;
-        let b = ray.travel;
-        let du = corners.y - corners.x;
-        let dv = corners.z - corners.x;
-        let duv = corners.x - corners.y - corners.z + corners.w;
-        let c2 = duv * b.x * b.y;
-        let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
-        let c0 = corners.x + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
-        let root = first_root(c2, c1, c0, t, exit);
-        if root >= 0.0 {
-            return RayHit(uv + offset * root, 1.0 - root, samples);
+        if level < top && any(cell >> vec2<u32>(1u) != parent) {
+            level += 1u;
+            cell = cell >> vec2<u32>(1u);
         }
-        t = past_cell(ray, exit, cell, cell_size, nudge);
-        level = level_after_leaving(ray, level, top, cell, t);
     }
     // Through every cell: the ray reaches the bottom.
     return RayHit(uv + offset, 0.0, samples);

@@ -87,8 +87,6 @@ impl MaxPyramid {
     }
 }
 
-/// How far past a cell's edge a march steps to be in the next cell, in level-0 cells.
-const EDGE_NUDGE: f32 = 1e-4;
 /// Most traversal steps one ray takes (`MAX_MIP_STEPS` in WGSL).
 const MAX_MIP_STEPS: u32 = 2048;
 
@@ -118,8 +116,23 @@ fn first_root(c2: f32, c1: f32, c0: f32, from: f32, to: f32) -> Option<f32> {
     roots.into_iter().find(|t| (from..=to).contains(t))
 }
 
+/// Where a ray along `axis_travel` (cells per unit of t) from `axis_start` leaves the cell
+/// `axis_cell` of side `cell_size` on one axis; infinite where it does not move on that axis.
+fn axis_exit(axis_start: f32, axis_travel: f32, axis_cell: i32, cell_size: f32) -> f32 {
+    if axis_travel.abs() < 1e-9 {
+        return f32::INFINITY;
+    }
+    let edge = (axis_cell + i32::from(axis_travel > 0.0)) as f32 * cell_size;
+    (edge - axis_start) / axis_travel
+}
+
 /// The visible point of the view ray entering at `uv` (heights 1 = top, 0 = deepest), with
 /// `samples` counting texel fetches: one per cell maximum read, one per patch gathered.
+///
+/// A digital-differential-analyser walk over integer cells: leaving a cell steps its index
+/// along the axis the ray leaves by (no position is rounded back into a cell, so no ray stalls
+/// on an edge), climbing a level when that also leaves the parent; descending picks the child
+/// under the ray, kept inside the parent.
 pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_scale: f32) -> RayHit {
     let field = pyramid.field();
     let (width, height) = field.size();
@@ -135,94 +148,77 @@ pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_sca
         height: 1.0 - t,
         samples,
     };
-    let top = pyramid.level_count() - 1;
+    let top = pyramid.level_count() as u32 - 1;
     // Start at the level whose cells are about as long as the ray's whole path: coarser
     // cells hold nothing the ray could skip that these do not.
     let crossed = (travel.x.abs() + travel.y.abs()).ceil().min(1e9) as u32;
-    let mut level = (u32::BITS - crossed.max(1).leading_zeros()).min(top as u32) as usize;
-    // Past a cell's far edge, into the next cell: a nudge that grows until the position has
-    // left the cell (far along a long ray, one step of t moves it by more than the nudge).
-    let nudge = EDGE_NUDGE / travel.abs().max_element().max(1e-9);
-    let skip = |exit: f32, cell: Vec2, cell_size: f32| {
-        let mut step = nudge;
-        while step < 1.0 && (at(exit + step) / cell_size).floor() == cell {
-            step *= 2.0;
-        }
-        exit + step
-    };
-    // After leaving `cell` of `level` for position `t`: one level up when the ray left the
-    // cell's parent too (whose cells the ray has not reached may then be skipped whole).
-    let climbed = |level: usize, cell: Vec2, t: f32| {
-        if level == top {
-            return level;
-        }
-        let parent_size = (2u32 << level) as f32;
-        let left = (at(t) / parent_size).floor() != (cell / 2.0).floor();
-        if left { level + 1 } else { level }
-    };
+    let mut level = (u32::BITS - crossed.max(1).leading_zeros()).min(top);
+    let direction = [travel.x, travel.y].map(|axis| i32::from(axis > 0.0) - i32::from(axis < 0.0));
+    let first = (start / (1u32 << level) as f32).floor();
+    let mut cell = [first.x as i32, first.y as i32];
     let mut t = 0.0_f32;
     let mut samples = 0;
     // Each step skips a cell, climbs or descends: bounded by the cells the ray crosses at
     // level 0 and the levels, with room to spare, and by the GPU's per-pixel cap.
-    let bound = (4 * (crossed.min(MAX_MIP_STEPS) + 2) * (top as u32 + 2)).min(MAX_MIP_STEPS);
+    let bound = (4 * (crossed.min(MAX_MIP_STEPS) + 2) * (top + 2)).min(MAX_MIP_STEPS);
     for _ in 0..bound {
         if t >= 1.0 {
             break;
         }
         let cell_size = (1u32 << level) as f32;
-        let position = at(t);
-        let cell = (position / cell_size).floor();
         // At level 0 the patch itself is tested: its maximum would cost a fetch for nothing.
         let maximum = if level == 0 {
             1.0
         } else {
             samples += 1;
-            pyramid.max_at(level, cell.x as i64, cell.y as i64)
+            pyramid.max_at(level as usize, i64::from(cell[0]), i64::from(cell[1]))
         };
-        // Where the ray leaves the cell (the far side along each axis it moves on).
-        let exit_along = |axis_start: f32, axis_travel: f32, axis_cell: f32| {
-            if axis_travel.abs() < 1e-9 {
-                f32::INFINITY
-            } else {
-                let edge = (axis_cell + if axis_travel > 0.0 { 1.0 } else { 0.0 }) * cell_size;
-                (edge - axis_start) / axis_travel
+        let exit_x = axis_exit(start.x, travel.x, cell[0], cell_size);
+        let exit_y = axis_exit(start.y, travel.y, cell[1], cell_size);
+        let exit = exit_x.min(exit_y).min(1.0);
+        let below_maximum = 1.0 - exit <= maximum;
+        if below_maximum {
+            // Down to the cell's highest point before anything can be hit.
+            t = t.max(1.0 - maximum);
+            if level > 0 {
+                level -= 1;
+                let child = (at(t) / (cell_size * 0.5)).floor();
+                cell = [
+                    (child.x as i32).clamp(cell[0] * 2, cell[0] * 2 + 1),
+                    (child.y as i32).clamp(cell[1] * 2, cell[1] * 2 + 1),
+                ];
+                continue;
             }
-        };
-        let exit = exit_along(start.x, travel.x, cell.x)
-            .min(exit_along(start.y, travel.y, cell.y))
-            .min(1.0);
-        if 1.0 - exit > maximum {
-            t = skip(exit, cell, cell_size);
-            level = climbed(level, cell, t);
-            continue;
+            // A level-0 cell: the bilinear patch along the ray is quadratic in t.
+            let (x, y) = (i64::from(cell[0]), i64::from(cell[1]));
+            let (h00, h10, h01, h11) = (
+                field.texel(x, y),
+                field.texel(x + 1, y),
+                field.texel(x, y + 1),
+                field.texel(x + 1, y + 1),
+            );
+            samples += 1;
+            // Patch coordinates f(t) = a + b t; surface − ray = c2 t² + c1 t + c0.
+            let a = start - Vec2::new(cell[0] as f32, cell[1] as f32);
+            let b = travel;
+            let (du, dv, duv) = (h10 - h00, h01 - h00, h00 - h10 - h01 + h11);
+            let c2 = duv * b.x * b.y;
+            let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
+            let c0 = h00 + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
+            if let Some(root) = first_root(c2, c1, c0, t, exit) {
+                return hit(root, samples);
+            }
         }
-        // Down to the cell's highest point before anything can be hit.
-        t = t.max(1.0 - maximum);
-        if level > 0 {
-            level -= 1;
-            continue;
+        // Into the next cell along the axis the ray leaves by; up a level where that also
+        // leaves the parent (whose cells the ray has not reached may then be skipped whole).
+        t = t.max(exit);
+        let parent = cell.map(|index| index >> 1);
+        let axis = usize::from(exit_x > exit_y);
+        cell[axis] += direction[axis];
+        if level < top && cell.map(|index| index >> 1) != parent {
+            level += 1;
+            cell = cell.map(|index| index >> 1);
         }
-        // A level-0 cell: the bilinear patch along the ray is quadratic in t.
-        let (x, y) = (cell.x as i64, cell.y as i64);
-        let (h00, h10, h01, h11) = (
-            field.texel(x, y),
-            field.texel(x + 1, y),
-            field.texel(x, y + 1),
-            field.texel(x + 1, y + 1),
-        );
-        samples += 1;
-        // Patch coordinates f(t) = a + b t; surface − ray = c2 t² + c1 t + c0.
-        let a = start - cell;
-        let b = travel;
-        let (du, dv, duv) = (h10 - h00, h01 - h00, h00 - h10 - h01 + h11);
-        let c2 = duv * b.x * b.y;
-        let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
-        let c0 = h00 + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
-        if let Some(root) = first_root(c2, c1, c0, t, exit) {
-            return hit(root, samples);
-        }
-        t = skip(exit, cell, cell_size);
-        level = climbed(level, cell, t);
     }
     // Through every cell: the ray reaches the bottom.
     hit(1.0, samples)
