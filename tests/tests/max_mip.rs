@@ -34,8 +34,12 @@ fn the_gpu_pyramid_equals_the_cpu_reference_for_every_channel_and_convention() {
     assert_pyramid_matches(&gpu, cobbles.to_image(), 0, true);
     // A 16-bit map whose sides are not powers of two: 48 × 40 halves three times.
     let cones = patterns::cones(48, 3.0);
-    let npot = HeightField::new(48, 40, (0..48 * 40).map(|i| cones.texel(i % 48, i / 48)).collect())
-        .unwrap();
+    let npot = HeightField::new(
+        48,
+        40,
+        (0..48 * 40).map(|i| cones.texel(i % 48, i / 48)).collect(),
+    )
+    .unwrap();
     assert_pyramid_matches(&gpu, npot.to_image_16(), 0, false);
     // Height in the alpha of a normal map, as a depth map; red, green and blue hold other
     // values that must not leak in.
@@ -98,11 +102,22 @@ fn the_pyramid_follows_rewritten_heights() {
     set_method(&mut app, ParallaxMethod::NormalMapping);
     let entry = pom_tests::render_and_capture_f32(&mut app).unwrap();
     let mut moved = 0;
-    for ((top, floor), entry) in at_the_top.pixels().zip(on_the_floor.pixels()).zip(entry.pixels()) {
-        assert_eq!(top.0[..2], entry.0[..2], "at the top the ray stops where it enters");
+    for ((top, floor), entry) in at_the_top
+        .pixels()
+        .zip(on_the_floor.pixels())
+        .zip(entry.pixels())
+    {
+        assert_eq!(
+            top.0[..2],
+            entry.0[..2],
+            "at the top the ray stops where it enters"
+        );
         moved += usize::from(floor.0[..2] != entry.0[..2]);
     }
-    assert!(moved > 32 * 32 / 2, "on the floor the rays travel ({moved} pixels moved)");
+    assert!(
+        moved > 32 * 32 / 2,
+        "on the floor the rays travel ({moved} pixels moved)"
+    );
 }
 
 fn set_method(app: &mut pom::App, method: pom::ParallaxMethod) {

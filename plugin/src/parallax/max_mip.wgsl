@@ -104,9 +104,10 @@ fn march_max_mip(
     let shift = unwrapped - start;
     let travel = offset * size;
     let top = textureNumLevels(pyramid) - 1u;
-    // Start at the level whose cells are about as long as the ray's whole path.
+    // Start at the level whose cells are about the square root of the ray's length (fewest
+    // fetches: see the reference).
     let crossed = u32(min(ceil(abs(travel.x) + abs(travel.y)), 1e9));
-    var level = min(32u - countLeadingZeros(max(crossed, 1u)), top);
+    var level = min((32u - countLeadingZeros(max(crossed, 1u))) / 2u, top);
     let direction = vec2<i32>(sign(travel));
     var cell = vec2<i32>(floor(start / f32(1u << level)));
     let bound = min(4u * (min(crossed, MAX_MIP_STEPS) + 2u) * (top + 2u), MAX_MIP_STEPS);

@@ -149,10 +149,13 @@ pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_sca
         samples,
     };
     let top = pyramid.level_count() as u32 - 1;
-    // Start at the level whose cells are about as long as the ray's whole path: coarser
-    // cells hold nothing the ray could skip that these do not.
+    // Start at the level whose cells are about the square root of the ray's length: higher
+    // costs a fetch per level on the way down to a ray that hits early (most rays over
+    // cobblestones), lower costs climbing on a long empty ray. Measured at 70° (the test
+    // below): 12.6 / 16.7 fetches on cobblestones / cones, against 15.9 / 19.3 starting at the
+    // ray's length and 13.8 / 20.7 at level 0.
     let crossed = (travel.x.abs() + travel.y.abs()).ceil().min(1e9) as u32;
-    let mut level = (u32::BITS - crossed.max(1).leading_zeros()).min(top);
+    let mut level = ((u32::BITS - crossed.max(1).leading_zeros()) / 2).min(top);
     let direction = [travel.x, travel.y].map(|axis| i32::from(axis > 0.0) - i32::from(axis < 0.0));
     let first = (start / (1u32 << level) as f32).floor();
     let mut cell = [first.x as i32, first.y as i32];
@@ -364,7 +367,7 @@ mod tests {
             assert!(mean(&ours) <= 0.05, "{name}: mean {}", mean(&ours));
             assert!(p99(&ours) <= 0.5, "{name}: p99 {}", p99(&ours));
             assert!(p99(&pom) > p99(&ours), "{name}: POM's p99 {}", p99(&pom));
-            // Not on the cobblestones (measured 15.9 against 12.4): there the ray meets relief
+            // Not on the cobblestones (measured 12.6 against 12.4): there the ray meets relief
             // near the top within a few texels, where an exact march tests every patch it
             // crosses and POM strides 2.8 texels a sample.
             if name == "cones" {

@@ -11,10 +11,7 @@ use pom::glam::{Vec2, Vec3};
 use pom::material::Choice;
 use pom::parallax::MAX_SAMPLES_LIMIT;
 use pom::reference::{MaxPyramid, exact_intersection, march_max_mip, march_view};
-use pom::{
-    HeightConvention, HeightField, ParallaxMethod, ParallaxOcclusionMaterial,
-    ShadowMode,
-};
+use pom::{HeightConvention, HeightField, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode};
 use serde::Serialize;
 
 use super::Runner;
