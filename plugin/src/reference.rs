@@ -83,7 +83,11 @@ fn linear_search(
         samples: 0,
     };
     for i in 1..=steps {
-        let t = i as f32 / steps as f32;
+        let t = if i == steps {
+            1.0
+        } else {
+            i as f32 * (1.0 / steps as f32)
+        };
         let uv = start_uv + uv_span * t;
         let ray = start_ray + ray_span * t;
         let surface = field.sample(uv.x, uv.y);

@@ -1,7 +1,7 @@
 //! The material as the shader reads it: one `PomUniform` per draw, laid out as in `pom.wgsl`:
 //! the parameters as declared (`PomParams`, generated with its WGSL from the declarations) and
-//! the facts of the height texture as bound. The modes that pick code paths are pipeline
-//! constants as well: see `pipelines.rs`.
+//! the facts of the height texture as bound. The modes that pick code paths, and the height's
+//! channel and convention, are pipeline constants: see `pipelines.rs`.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -22,8 +22,6 @@ pub struct PomUniform {
     pub height_mip_levels: f32,
     /// 1 when the material has a height map (0: flat, no parallax).
     pub has_height_map: u32,
-    /// Channel of the height texture holding the height: 0 = red, 3 = alpha.
-    pub height_channel: u32,
 }
 
 crate::wgsl_layout!(PomUniform {
@@ -31,8 +29,7 @@ crate::wgsl_layout!(PomUniform {
     height_texture_width,
     height_texture_height,
     height_mip_levels,
-    has_height_map,
-    height_channel
+    has_height_map
 });
 
 impl PomUniform {
@@ -50,10 +47,6 @@ impl PomUniform {
             height_texture_height: height.height as f32,
             height_mip_levels: height.mip_levels as f32,
             has_height_map: u32::from(material.height_map.is_some()),
-            height_channel: material
-                .height_map
-                .as_ref()
-                .map_or(0, |source| u32::from(source.channel())),
         }
     }
 }

@@ -102,9 +102,10 @@ fn linear_search(
     steps: u32,
 ) -> Crossing {
     var crossing = Crossing(start_uv, start_ray, start_surface, start_uv, start_ray, start_surface, false, 0u);
+    let step = 1.0 / f32(steps);
     for (var i = 1u; i <= steps; i += 1u) {
-        // From the start each time, not accumulated, so the last step lands exactly on the end.
-        let t = f32(i) / f32(steps);
+        // From the start each time, not accumulated, and the last step exactly on the end.
+        let t = select(f32(i) * step, 1.0, i == steps);
         let uv = start_uv + uv_span * t;
         let ray = start_ray + ray_span * t;
         let surface = sample_height(height_texture, height_sampler, field, uv);

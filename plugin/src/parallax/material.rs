@@ -85,7 +85,7 @@ crate::choice_enum! {
         Lod = "lod",
         /// The mip level as grey: black = level 0, white = the smallest level.
         Mip = "mip",
-        /// March samples as a heat map, black (none) through red and yellow to white (max).
+        /// Height fetches as a heat map, black (none) through red and yellow to white (max).
         Samples = "samples",
         /// Raw: R, G = fract(u, v) of the final coordinate; B = 1 full march, 0.5 band, 0 none.
         Uv = "uv",

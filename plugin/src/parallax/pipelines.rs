@@ -1,11 +1,15 @@
-//! What picks a parallax pipeline: method, shadow mode, lighting model, debug view and depth
-//! offset. `pom.wgsl` reads the first four as pipeline-overridable constants, so each pipeline
-//! holds only its own code path: on the H100 the single pipeline that branched on them per
-//! pixel took 27 % longer on POM without shadows and 52 % longer on normal mapping
+//! What picks a parallax pipeline: method, shadow mode, lighting model, debug view, depth
+//! offset, and the height's channel and convention. `pom.wgsl` reads all but depth offset (an
+//! entry point) and double-sidedness (culling) as pipeline-overridable constants, so each
+//! pipeline holds only its own code path: on the H100 the single pipeline that branched on them
+//! per pixel took 27 % longer on POM without shadows and 52 % longer on normal mapping; on the
+//! H200, folding the channel pick out of every height sample (with a multiplication for the
+//! division per step) took forward POM from 11.14 / 15.18 / 16.69 to 10.59 / 13.85 / 15.41 ms
 //! (sandbox/BENCHMARKS.md).
 
 use super::material::{
-    DebugView, LightingModel, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode,
+    DebugView, HeightConvention, HeightSource, LightingModel, ParallaxMethod,
+    ParallaxOcclusionMaterial, ShadowMode,
 };
 use crate::material::{Choice, FragmentVariant};
 
@@ -24,6 +28,10 @@ pub struct PomPipelineKey {
     pub depth_offset: bool,
     /// Both sides drawn (no culling).
     pub double_sided: bool,
+    /// `HEIGHT_CHANNEL`: the height's channel (0 = red, 3 = alpha).
+    pub height_channel: u8,
+    /// `HEIGHT_IS_DEPTH`: white is deepest.
+    pub height_is_depth: bool,
 }
 
 impl PomPipelineKey {
@@ -36,6 +44,11 @@ impl PomPipelineKey {
             debug_view: material.debug_view,
             depth_offset: material.depth_offset,
             double_sided: material.double_sided,
+            height_channel: material
+                .height_map
+                .as_ref()
+                .map_or(0, HeightSource::channel),
+            height_is_depth: material.height_convention == HeightConvention::Depth,
         }
     }
 
@@ -106,6 +119,8 @@ impl PomPipelineKey {
                 ("SHADOW_MODE", f64::from(self.shadows.code())),
                 ("LIGHTING_MODEL", f64::from(self.lighting.code())),
                 ("DEBUG_VIEW", f64::from(self.debug_view.code())),
+                ("HEIGHT_CHANNEL", f64::from(self.height_channel)),
+                ("HEIGHT_IS_DEPTH", f64::from(u8::from(self.height_is_depth))),
             ],
         }
     }
@@ -144,12 +159,20 @@ mod tests {
                 double_sided: true,
                 ..base.clone()
             },
+            ParallaxOcclusionMaterial {
+                height_map: Some(HeightSource::NormalMapAlpha),
+                ..base.clone()
+            },
+            ParallaxOcclusionMaterial {
+                height_convention: HeightConvention::Depth,
+                ..base.clone()
+            },
         ];
         let mut keys: Vec<PomPipelineKey> = variants.iter().map(PomPipelineKey::of).collect();
         keys.push(key);
         keys.sort();
         keys.dedup();
-        assert_eq!(keys.len(), 7, "{keys:?}");
+        assert_eq!(keys.len(), 9, "{keys:?}");
         // Parameters that are not modes share a pipeline.
         let tuned = ParallaxOcclusionMaterial {
             height_scale: 0.2,

@@ -12,6 +12,10 @@ override DEBUG_VIEW: u32 = DEBUG_NONE;
 // surface, or at a grazing angle, would otherwise leave the flat polygon in the map, above every
 // receiver's relief, which would then read as shadowed).
 override SHADOW_CASTER: bool = false;
+// The height's channel (0 = red .. 3 = alpha) and whether white is deepest, set per pipeline
+// from the material: the per-sample channel pick and inversion fold away.
+override HEIGHT_CHANNEL: u32 = 0u;
+override HEIGHT_IS_DEPTH: bool = false;
 
 // `PomParams` (every declared parameter, in declaration order) is generated from the Rust
 // declarations and prepended, like the enum codes.
@@ -23,8 +27,6 @@ struct PomUniform {
     height_mip_levels: f32,
     // 1 when the material has a height map.
     has_height_map: u32,
-    // Channel of the height texture holding the height: 0 = red .. 3 = alpha.
-    height_channel: u32,
 }
 
 @group(0) @binding(2) var<storage, read> materials: array<PomUniform>;
@@ -80,7 +82,7 @@ fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) ->
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
     point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 
-    point.field = HeightField(material.height_channel, u32(params.height_convention == CONVENTION_DEPTH), point.ddx_uv, point.ddy_uv);
+    point.field = HeightField(HEIGHT_CHANNEL, u32(HEIGHT_IS_DEPTH), point.ddx_uv, point.ddy_uv);
     let method = METHOD;
     point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
