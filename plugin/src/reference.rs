@@ -7,7 +7,7 @@
 
 mod max_mip;
 
-pub use max_mip::{MaxPyramid, march_max_mip};
+pub use max_mip::{MaxPyramid, march_max_mip, max_mip_hard_shadow};
 
 use glam::{Vec2, Vec3};
 

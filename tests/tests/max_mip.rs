@@ -129,3 +129,70 @@ fn set_method(app: &mut pom::App, method: pom::ParallaxMethod) {
         material.method = method;
     }
 }
+
+/// Max-mip's hard shadows on the GPU against the CPU reference: thin spikes (one texel at the
+/// top every 16 over a floor at 0.2), seen from straight above, lit from 75° along −u.
+#[test]
+fn gpu_hard_shadows_match_the_cpu_reference_on_thin_spikes() {
+    use pom::glam::{Vec2, Vec3};
+    use pom::preview::{PreviewProjection, PreviewView};
+    use pom::{DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, TargetFormat};
+    use pom_tests::pom_scene::{HeightMaterial, preview_app};
+
+    const SIZE: u32 = 64;
+    const HEIGHT_SCALE: f32 = 0.05;
+    let values = (0..64 * 64)
+        .map(|i| {
+            if i % 16 == 8 && (i / 64) % 16 == 8 {
+                1.0
+            } else {
+                0.2
+            }
+        })
+        .collect();
+    let field = HeightField::new(64, 64, values).unwrap();
+    let textures = HeightMaterial {
+        field: field.clone(),
+        height_scale: HEIGHT_SCALE,
+    };
+    let view = PreviewView {
+        view_angle: 0.0,
+        light_angle: 75.0,
+        light_azimuth: 0.0,
+        projection: PreviewProjection::Orthographic,
+        ..PreviewView::default()
+    };
+    let render = |method, debug_view| {
+        let mut app = preview_app(SIZE, TargetFormat::Float32, &textures, &view, |material| {
+            ParallaxOcclusionMaterial {
+                method,
+                shadows: ShadowMode::Hard,
+                debug_view,
+                lod_threshold: 16.0,
+                ..material
+            }
+        })
+        .unwrap();
+        pom_tests::render_and_capture_f32(&mut app).unwrap()
+    };
+    let shadow = render(ParallaxMethod::MaxMip, DebugView::Shadow);
+    let uv = render(ParallaxMethod::MaxMip, DebugView::Uv);
+    let pyramid = MaxPyramid::new(&field);
+    let radians = 75.0_f32.to_radians();
+    let to_light = Vec3::new(-radians.sin(), 0.0, radians.cos());
+    let light_offset = pom::reference::ray_offset(to_light, HEIGHT_SCALE);
+    let (mut agree, mut shadowed) = (0, 0);
+    for (gpu_shadow, gpu_uv) in shadow.pixels().zip(uv.pixels()) {
+        let at = Vec2::new(gpu_uv.0[0], gpu_uv.0[1]);
+        let cpu = pom::reference::max_mip_hard_shadow(&pyramid, at, light_offset);
+        agree += usize::from(gpu_shadow.0[0] == cpu);
+        shadowed += usize::from(cpu == 0.0);
+    }
+    let pixels = (SIZE * SIZE) as usize;
+    eprintln!("max-mip hard shadows: GPU = CPU at {agree} of {pixels} pixels, {shadowed} shadowed");
+    assert!(shadowed > 64, "{shadowed} shadowed pixels");
+    assert!(
+        agree * 100 >= pixels * 99,
+        "GPU = CPU at {agree} of {pixels}"
+    );
+}

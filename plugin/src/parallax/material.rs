@@ -28,7 +28,7 @@ crate::choice_enum! {
     pub enum ShadowMode: "SHADOWS" {
         /// No self-shadowing.
         Off = "off",
-        /// March towards the light; any blocker makes the point fully dark (McGuire).
+        /// March towards the light; any blocker makes the point fully dark (McGuire; exact with MaxMip).
         Hard = "hard",
         /// Tatarchuk's penumbra estimate from weighted height samples along the light ray.
         Soft = "soft",

@@ -83,11 +83,23 @@ fn first_root(c2: f32, c1: f32, c0: f32, earliest: f32, latest: f32) -> f32 {
     return -1.0;
 }
 
-// The visible point of the view ray entering at `uv` with parallax offset vector `offset`;
-// `samples` counts texel fetches: one per pyramid maximum read, one per patch gathered.
-// A digital-differential-analyser walk over integer cells: leaving a cell steps its index along
-// the axis the ray leaves by, climbing a level when that also leaves the parent; descending
-// picks the child under the ray, kept inside the parent.
+// A straight ray over the field: at t ∈ [0, 1] it is at uv + offset × t, at height
+// start_height + rise × t (the view ray descends from the top, a shadow ray rises).
+struct FieldRay {
+    uv: vec2<f32>,
+    offset: vec2<f32>,
+    start_height: f32,
+    rise: f32,
+}
+
+// Where the surface first reaches a ray (t, −1 if nowhere in [0, 1]) and the texel fetches
+// taken: one per pyramid maximum read, one per patch gathered.
+struct FieldHit {
+    t: f32,
+    samples: u32,
+}
+
+// The visible point of the view ray entering at `uv` with parallax offset vector `offset`.
 fn march_max_mip(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -96,13 +108,51 @@ fn march_max_mip(
     uv: vec2<f32>,
     offset: vec2<f32>,
 ) -> RayHit {
+    let found = max_mip_first_hit(height_texture, height_sampler, pyramid, field, FieldRay(uv, offset, 1.0, -1.0));
+    // Through every cell: the ray reaches the bottom.
+    let t = select(found.t, 1.0, found.t < 0.0);
+    return RayHit(uv + offset * t, 1.0 - t, found.samples);
+}
+
+// Hard self-shadow, exactly (no blocker stepped over): 0 if the height field blocks the light
+// ray from the visible point at `uv`, else 1. Like `hard_shadow` the ray starts HARD_SHADOW_BIAS
+// above the surface (bilinear at level 0, the surface the view ray met) and rises to the top
+// along `light_offset` = ray_offset(L_ts, H).
+fn max_mip_hard_shadow(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    pyramid: texture_2d<f32>,
+    field: HeightField,
+    uv: vec2<f32>,
+    light_offset: vec2<f32>,
+) -> f32 {
+    let level_zero = HeightField(field.channel, field.depth_convention, vec2<f32>(0.0), vec2<f32>(0.0));
+    let start = sample_height(height_texture, height_sampler, level_zero, uv) + HARD_SHADOW_BIAS;
+    let rise = 1.0 - start;
+    if rise <= 0.0 {
+        return 1.0;
+    }
+    let ray = FieldRay(uv, light_offset * rise, start, rise);
+    return select(1.0, 0.0, max_mip_first_hit(height_texture, height_sampler, pyramid, field, ray).t >= 0.0);
+}
+
+// A digital-differential-analyser walk over integer cells: leaving a cell steps its index along
+// the axis the ray leaves by, climbing a level when that also leaves the parent; descending
+// picks the child under the ray, kept inside the parent.
+fn max_mip_first_hit(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    pyramid: texture_2d<f32>,
+    field: HeightField,
+    ray: FieldRay,
+) -> FieldHit {
     let size = vec2<f32>(textureDimensions(height_texture));
     // Starting inside the first repetition keeps positions small and precise; `shift` (whole
     // repetitions) takes a cell back to where the sampler sees it.
-    let unwrapped = uv * size - 0.5;
+    let unwrapped = ray.uv * size - 0.5;
     let start = unwrapped - floor(unwrapped / size) * size;
     let shift = unwrapped - start;
-    let travel = offset * size;
+    let travel = ray.offset * size;
     let top = textureNumLevels(pyramid) - 1u;
     // Start at the level whose cells are about the square root of the ray's length (fewest
     // fetches: see the reference).
@@ -127,9 +177,13 @@ fn march_max_mip(
         let exit_x = axis_exit(start.x, travel.x, cell.x, cell_size);
         let exit_y = axis_exit(start.y, travel.y, cell.y, cell_size);
         let exit = min(min(exit_x, exit_y), 1.0);
-        if 1.0 - exit <= maximum {
-            // Down to the cell's highest point before anything can be hit.
-            t = max(t, 1.0 - maximum);
+        // The ray's lowest point in the cell: where it leaves if it descends, else where it
+        // entered.
+        if min(ray.start_height + ray.rise * exit, ray.start_height + ray.rise * t) <= maximum {
+            if ray.rise < 0.0 {
+                // Down to the cell's highest point before anything can be hit.
+                t = max(t, (maximum - ray.start_height) / ray.rise);
+            }
             if level > 0u {
                 level -= 1u;
                 let child = vec2<i32>(floor((start + travel * t) / (cell_size * 0.5)));
@@ -145,11 +199,11 @@ fn march_max_mip(
             let dv = corners.z - corners.x;
             let duv = corners.x - corners.y - corners.z + corners.w;
             let c2 = duv * b.x * b.y;
-            let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
-            let c0 = corners.x + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
+            let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) - ray.rise;
+            let c0 = corners.x + du * a.x + dv * a.y + duv * a.x * a.y - ray.start_height;
             let root = first_root(c2, c1, c0, t, exit);
             if root >= 0.0 {
-                return RayHit(uv + offset * root, 1.0 - root, samples);
+                return FieldHit(root, samples);
             }
         }
         // Into the next cell along the axis the ray leaves by; up a level where that also
@@ -166,6 +220,5 @@ fn march_max_mip(
             cell = cell >> vec2<u32>(1u);
         }
     }
-    // Through every cell: the ray reaches the bottom.
-    return RayHit(uv + offset, 0.0, samples);
+    return FieldHit(-1.0, samples);
 }

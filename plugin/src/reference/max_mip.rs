@@ -126,28 +126,78 @@ fn axis_exit(axis_start: f32, axis_travel: f32, axis_cell: i32, cell_size: f32) 
     (edge - axis_start) / axis_travel
 }
 
+/// A straight ray over the field: at t ∈ [0, 1] it is at `uv + offset × t`, at height
+/// `start_height + rise × t` (the view ray descends from the top, a shadow ray rises).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldRay {
+    /// Texture coordinate at t = 0.
+    pub uv: Vec2,
+    /// Change of texture coordinate over the ray.
+    pub offset: Vec2,
+    /// Height at t = 0.
+    pub start_height: f32,
+    /// Change of height over the ray.
+    pub rise: f32,
+}
+
 /// The visible point of the view ray entering at `uv` (heights 1 = top, 0 = deepest), with
 /// `samples` counting texel fetches: one per cell maximum read, one per patch gathered.
+pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_scale: f32) -> RayHit {
+    let ray = FieldRay {
+        uv,
+        offset: -ray_offset(to_eye_ts, height_scale),
+        start_height: 1.0,
+        rise: -1.0,
+    };
+    let (t, samples) = first_hit(pyramid, &ray);
+    // Through every cell: the ray reaches the bottom.
+    let t = t.unwrap_or(1.0);
+    RayHit {
+        uv: uv + ray.offset * t,
+        height: 1.0 - t,
+        samples,
+    }
+}
+
+/// `max_mip_hard_shadow` of max_mip.wgsl: 0 if the height field blocks the light ray from the
+/// visible point at `uv`, else 1, exactly (no blocker stepped over). Like [`super::hard_shadow`]
+/// the ray starts [`super::HARD_SHADOW_BIAS`] above the surface and rises to the top along
+/// `light_offset` = [`ray_offset`]`(to_light_ts, height_scale)`.
+pub fn max_mip_hard_shadow(pyramid: &MaxPyramid, uv: Vec2, light_offset: Vec2) -> f32 {
+    let start = pyramid.field().sample(uv.x, uv.y) + super::HARD_SHADOW_BIAS;
+    let rise = 1.0 - start;
+    if rise <= 0.0 {
+        return 1.0;
+    }
+    let ray = FieldRay {
+        uv,
+        offset: light_offset * rise,
+        start_height: start,
+        rise,
+    };
+    if first_hit(pyramid, &ray).0.is_some() {
+        0.0
+    } else {
+        1.0
+    }
+}
+
+/// The first t ∈ [0, 1] where the surface reaches `ray`, if any, and the texel fetches taken.
 ///
 /// A digital-differential-analyser walk over integer cells: leaving a cell steps its index
 /// along the axis the ray leaves by (no position is rounded back into a cell, so no ray stalls
 /// on an edge), climbing a level when that also leaves the parent; descending picks the child
 /// under the ray, kept inside the parent.
-pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_scale: f32) -> RayHit {
+fn first_hit(pyramid: &MaxPyramid, ray: &FieldRay) -> (Option<f32>, u32) {
     let field = pyramid.field();
     let (width, height) = field.size();
     let size = Vec2::new(width as f32, height as f32);
-    let offset = -ray_offset(to_eye_ts, height_scale);
     // In level-0 cell coordinates: cell (i, j) spans texel centres i..i+1, j..j+1. The field
     // repeats: starting inside the first repetition keeps positions small and precise.
-    let start = (uv * size - 0.5).rem_euclid(size);
-    let travel = offset * size;
+    let start = (ray.uv * size - 0.5).rem_euclid(size);
+    let travel = ray.offset * size;
     let at = |t: f32| start + travel * t;
-    let hit = |t: f32, samples: u32| RayHit {
-        uv: uv + offset * t,
-        height: 1.0 - t,
-        samples,
-    };
+    let height_at = |t: f32| ray.start_height + ray.rise * t;
     let top = pyramid.level_count() as u32 - 1;
     // Start at the level whose cells are about the square root of the ray's length: higher
     // costs a fetch per level on the way down to a ray that hits early (most rays over
@@ -179,10 +229,13 @@ pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_sca
         let exit_x = axis_exit(start.x, travel.x, cell[0], cell_size);
         let exit_y = axis_exit(start.y, travel.y, cell[1], cell_size);
         let exit = exit_x.min(exit_y).min(1.0);
-        let below_maximum = 1.0 - exit <= maximum;
-        if below_maximum {
-            // Down to the cell's highest point before anything can be hit.
-            t = t.max(1.0 - maximum);
+        // The ray's lowest point in the cell: where it leaves if it descends, else where it
+        // entered.
+        if height_at(exit).min(height_at(t)) <= maximum {
+            if ray.rise < 0.0 {
+                // Down to the cell's highest point before anything can be hit.
+                t = t.max((maximum - ray.start_height) / ray.rise);
+            }
             if level > 0 {
                 level -= 1;
                 let child = (at(t) / (cell_size * 0.5)).floor();
@@ -206,10 +259,10 @@ pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_sca
             let b = travel;
             let (du, dv, duv) = (h10 - h00, h01 - h00, h00 - h10 - h01 + h11);
             let c2 = duv * b.x * b.y;
-            let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) + 1.0;
-            let c0 = h00 + du * a.x + dv * a.y + duv * a.x * a.y - 1.0;
+            let c1 = du * b.x + dv * b.y + duv * (a.x * b.y + a.y * b.x) - ray.rise;
+            let c0 = h00 + du * a.x + dv * a.y + duv * a.x * a.y - ray.start_height;
             if let Some(root) = first_root(c2, c1, c0, t, exit) {
-                return hit(root, samples);
+                return (Some(root), samples);
             }
         }
         // Into the next cell along the axis the ray leaves by; up a level where that also
@@ -223,8 +276,7 @@ pub fn march_max_mip(pyramid: &MaxPyramid, uv: Vec2, to_eye_ts: Vec3, height_sca
             cell = cell.map(|index| index >> 1);
         }
     }
-    // Through every cell: the ray reaches the bottom.
-    hit(1.0, samples)
+    (None, samples)
 }
 
 #[cfg(test)]
@@ -394,6 +446,59 @@ mod tests {
             let (ours, _, _, _) = errors_along(field, to_eye, height_scale, 32, 12);
             assert!(mean(&ours) <= 0.05, "{to_eye}: mean {}", mean(&ours));
         }
+    }
+
+    /// Whether anything blocks the light ray from `uv`, by a march of a twentieth of a texel.
+    fn densely_blocked(field: &HeightField, uv: Vec2, light_offset: Vec2) -> bool {
+        let start = field.sample(uv.x, uv.y) + crate::reference::HARD_SHADOW_BIAS;
+        let rise = 1.0 - start;
+        let (width, _) = field.size();
+        let steps = ((light_offset * rise * width as f32).length() * 20.0)
+            .ceil()
+            .max(64.0) as u32;
+        (1..=steps).any(|i| {
+            let t = i as f32 / steps as f32;
+            let at = uv + light_offset * rise * t;
+            field.sample(at.x, at.y) >= start + rise * t
+        })
+    }
+
+    #[test]
+    fn max_mip_hard_shadows_miss_no_blocker_the_linear_march_steps_over() {
+        // Thin spikes: one texel at the top every 16 texels, over a floor at 0.2.
+        let values = (0..128 * 128)
+            .map(|i| {
+                if i % 16 == 8 && (i / 128) % 16 == 8 {
+                    1.0
+                } else {
+                    0.2
+                }
+            })
+            .collect();
+        let field = HeightField::new(128, 128, values).unwrap();
+        let pyramid = MaxPyramid::new(&field);
+        let (mut wrong, mut linear_wrong, mut shadowed, count) = (0, 0, 0, 48 * 48);
+        for index in 0..count {
+            let uv = (Vec2::new((index % 48) as f32, (index / 48) as f32) + 0.5) / 48.0;
+            let to_light = Vec3::new(0.9, 0.35, 0.25).normalize();
+            let light_offset = ray_offset(to_light, 0.06);
+            let blocked = densely_blocked(&field, uv, light_offset);
+            let ours = max_mip_hard_shadow(&pyramid, uv, light_offset) == 0.0;
+            let linear = crate::reference::hard_shadow(&field, uv, light_offset, 8) == 0.0;
+            wrong += usize::from(ours != blocked);
+            linear_wrong += usize::from(linear != blocked);
+            shadowed += usize::from(blocked);
+        }
+        eprintln!(
+            "hard shadows over {count} points ({shadowed} shadowed): max-mip wrong at {wrong}, linear (8 steps) at {linear_wrong}"
+        );
+        // A dense march can itself step over a blocker thinner than a twentieth of a texel.
+        assert!(wrong <= count / 500, "max-mip wrong at {wrong} of {count}");
+        assert!(
+            linear_wrong > 10 * wrong.max(1),
+            "linear wrong at {linear_wrong}"
+        );
+        assert!(shadowed > count / 50, "{shadowed} shadowed");
     }
 
     #[test]
