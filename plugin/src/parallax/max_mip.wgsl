@@ -17,7 +17,9 @@ fn pyramid_maximum(pyramid: texture_2d<f32>, level: u32, cell: vec2<i32>) -> f32
     // Levels halve exactly. (Not textureDimensions(pyramid, level): lavapipe answers a size
     // query with a level that differs between invocations with one invocation's level.)
     let size = vec2<i32>(textureDimensions(pyramid) >> vec2<u32>(level));
-    let wrapped = ((cell % size) + size) % size;
+    // One integer remainder per axis (they are slow on GPUs), then into [0, size).
+    let remainder = cell % size;
+    let wrapped = select(remainder, remainder + size, remainder < vec2<i32>(0));
     return textureLoad(pyramid, wrapped, level).r;
 }
 
