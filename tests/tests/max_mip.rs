@@ -196,3 +196,42 @@ fn gpu_hard_shadows_match_the_cpu_reference_on_thin_spikes() {
         "GPU = CPU at {agree} of {pixels}"
     );
 }
+
+/// A pyramid lives while draws use it: built when max-mip is chosen, freed a while after the
+/// last draw that used it switched to another method.
+#[test]
+fn an_unused_pyramid_is_freed() {
+    use pom::preview::PreviewView;
+    use pom::render::Renderer;
+    use pom::{ParallaxMethod, ParallaxOcclusionMaterial, TargetFormat};
+    use pom_tests::pom_scene::{HeightMaterial, preview_app};
+
+    let textures = HeightMaterial {
+        field: patterns::cones(32, 2.0),
+        height_scale: 0.05,
+    };
+    let mut app = preview_app(
+        16,
+        TargetFormat::Srgb8,
+        &textures,
+        &PreviewView::default(),
+        |m| ParallaxOcclusionMaterial {
+            method: ParallaxMethod::MaxMip,
+            ..m
+        },
+    )
+    .unwrap();
+    let held = |app: &pom::App| {
+        app.resources
+            .get::<Renderer>()
+            .unwrap()
+            .derived_texture_count()
+    };
+    pom_tests::run_frames(&mut app, 1).unwrap();
+    assert_eq!(held(&app), 1);
+    set_method(&mut app, ParallaxMethod::Occlusion);
+    pom_tests::run_frames(&mut app, 60).unwrap();
+    assert_eq!(held(&app), 1, "kept a while: the method may come back");
+    pom_tests::run_frames(&mut app, 100).unwrap();
+    assert_eq!(held(&app), 0);
+}

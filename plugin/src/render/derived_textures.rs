@@ -51,14 +51,22 @@ pub(crate) struct GpuDerivedTexture {
     pub view: wgpu::TextureView,
     /// Upload serial of the source it was built from.
     source_serial: u64,
+    /// The last sweep before which a draw used it.
+    last_used: u64,
     /// Distinguishes rebuilds, so bind groups that use it are rebuilt.
     pub serial: u64,
 }
+
+/// Frames a derived texture no draw uses is kept (a draw culled for a moment, a parameter
+/// switched back) before its memory is freed: a 4096² pyramid holds 89 MB.
+const UNUSED_FRAMES_KEPT: u64 = 120;
 
 /// The derived textures of every image, and the default bound where a draw has none.
 pub(crate) struct DerivedTextureCache {
     builder: Option<MaxPyramidBuilder>,
     textures: HashMap<DerivedTexture, GpuDerivedTexture>,
+    /// Sweeps so far: one per frame.
+    sweeps: u64,
     /// One texel of 1.0 in `R32Float`.
     pub(crate) default_view: wgpu::TextureView,
 }
@@ -96,6 +104,7 @@ impl DerivedTextureCache {
         Self {
             builder: None,
             textures: HashMap::new(),
+            sweeps: 0,
             default_view: default.create_view(&Default::default()),
         }
     }
@@ -109,11 +118,10 @@ impl DerivedTextureCache {
         source: &GpuImage,
         next_serial: u64,
     ) -> bool {
-        if self
-            .textures
-            .get(&derived)
-            .is_some_and(|cached| cached.source_serial == source.upload_serial)
+        if let Some(cached) = self.textures.get_mut(&derived)
+            && cached.source_serial == source.upload_serial
         {
+            cached.last_used = self.sweeps;
             return false;
         }
         let TextureDerivation::MaxHeightPyramid {
@@ -131,6 +139,7 @@ impl DerivedTextureCache {
                 texture,
                 view,
                 source_serial: source.upload_serial,
+                last_used: self.sweeps,
                 serial: next_serial,
             },
         );
@@ -142,8 +151,18 @@ impl DerivedTextureCache {
         self.textures.get(derived)
     }
 
-    /// Drops what was derived from images that are gone.
-    pub(crate) fn retain_sources(&mut self, mut keep: impl FnMut(AssetId<Image>) -> bool) {
-        self.textures.retain(|derived, _| keep(derived.source));
+    /// Once a frame: drops what was derived from images that are gone, and what no draw has
+    /// used for [`UNUSED_FRAMES_KEPT`] frames.
+    pub(crate) fn sweep(&mut self, mut source_exists: impl FnMut(AssetId<Image>) -> bool) {
+        self.sweeps += 1;
+        let oldest_kept = self.sweeps.saturating_sub(UNUSED_FRAMES_KEPT);
+        self.textures.retain(|derived, texture| {
+            source_exists(derived.source) && texture.last_used >= oldest_kept
+        });
+    }
+
+    /// How many derived textures are held.
+    pub(crate) fn len(&self) -> usize {
+        self.textures.len()
     }
 }

@@ -284,11 +284,17 @@ impl GpuAssets {
         &self.derived.default_view
     }
 
-    /// Drops GPU copies of assets that no longer exist, and what was derived from them.
+    /// Once a frame: drops GPU copies of assets that no longer exist, what was derived from
+    /// them, and derived textures no draw has used for a while.
     pub fn release_freed(&mut self, meshes: &Assets<Mesh>, images: &Assets<Image>) {
         self.meshes.retain(|id, _| meshes.contains(*id));
         self.images.retain(|id, _| images.contains(*id));
-        self.derived.retain_sources(|id| images.contains(id));
+        self.derived.sweep(|id| images.contains(id));
+    }
+
+    /// How many derived textures (maximum pyramids) the GPU holds.
+    pub fn derived_count(&self) -> usize {
+        self.derived.len()
     }
 }
 

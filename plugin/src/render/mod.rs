@@ -331,6 +331,12 @@ impl Renderer {
     pub fn has_gpu_mesh(&self, mesh: crate::AssetId<Mesh>) -> bool {
         self.assets.mesh(mesh).is_some()
     }
+
+    /// How many textures derived from images (maximum pyramids) the GPU holds: one per image
+    /// and derivation some draw used in the last 120 frames.
+    pub fn derived_texture_count(&self) -> usize {
+        self.assets.derived_count()
+    }
 }
 
 impl Plugin for RenderPlugin {
