@@ -45,7 +45,8 @@ pub enum TextureDerivation {
 /// A derived texture on the GPU.
 #[derive(Debug)]
 pub(crate) struct GpuDerivedTexture {
-    /// The texture.
+    /// The texture (read back by `read_max_pyramid`; the view keeps it alive otherwise).
+    #[cfg_attr(not(feature = "scene-tests"), allow(dead_code))]
     pub texture: wgpu::Texture,
     /// A view of every level.
     pub view: wgpu::TextureView,
