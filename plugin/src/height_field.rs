@@ -221,6 +221,21 @@ pub mod patterns {
         })
     }
 
+    /// Thin spikes: one texel at the top every `spacing` texels (at offset `spacing` / 2 on
+    /// both axes), on a floor at `floor`: blockers a march with long steps walks past.
+    pub fn spikes(size: u32, spacing: u32, floor: f32) -> HeightField {
+        let spacing = spacing.max(1);
+        let texel = move |coordinate: f32| (coordinate * size as f32) as u32;
+        HeightField::from_fn(size, size, move |u, v| {
+            let on_spike = |texel: u32| texel % spacing == spacing / 2;
+            if on_spike(texel(u)) && on_spike(texel(v)) {
+                1.0
+            } else {
+                floor
+            }
+        })
+    }
+
     /// One square block of side `side` (in tile units) centred in the tile, at height 1, on a
     /// floor at 0: for measuring parallax and shadows.
     pub fn raised_block(size: u32, side: f32) -> HeightField {

@@ -141,16 +141,7 @@ fn gpu_hard_shadows_match_the_cpu_reference_on_thin_spikes() {
 
     const SIZE: u32 = 64;
     const HEIGHT_SCALE: f32 = 0.05;
-    let values = (0..64 * 64)
-        .map(|i| {
-            if i % 16 == 8 && (i / 64) % 16 == 8 {
-                1.0
-            } else {
-                0.2
-            }
-        })
-        .collect();
-    let field = HeightField::new(64, 64, values).unwrap();
+    let field = patterns::spikes(64, 16, 0.2);
     let textures = HeightMaterial {
         field: field.clone(),
         height_scale: HEIGHT_SCALE,

@@ -465,17 +465,7 @@ mod tests {
 
     #[test]
     fn max_mip_hard_shadows_miss_no_blocker_the_linear_march_steps_over() {
-        // Thin spikes: one texel at the top every 16 texels, over a floor at 0.2.
-        let values = (0..128 * 128)
-            .map(|i| {
-                if i % 16 == 8 && (i / 128) % 16 == 8 {
-                    1.0
-                } else {
-                    0.2
-                }
-            })
-            .collect();
-        let field = HeightField::new(128, 128, values).unwrap();
+        let field = patterns::spikes(128, 16, 0.2);
         let pyramid = MaxPyramid::new(&field);
         let (mut wrong, mut linear_wrong, mut shadowed, count) = (0, 0, 0, 48 * 48);
         for index in 0..count {
