@@ -310,6 +310,21 @@ pub fn mean_error_in_texels(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The constants this reference shares with march.wgsl and max_mip.wgsl have the same
+    /// values in both.
+    #[test]
+    fn constants_match_their_wgsl_twins() {
+        let source = crate::parallax::PARALLAX_SHADER.source();
+        for declaration in [
+            format!("const MAX_PARALLAX_RATIO: f32 = {MAX_PARALLAX_RATIO:?};"),
+            format!("const HARD_SHADOW_BIAS: f32 = {HARD_SHADOW_BIAS:?};"),
+            format!("const SEED_SHADOW_SOFTENING: f32 = {SEED_SHADOW_SOFTENING:?};"),
+            format!("const MAX_MIP_STEPS: u32 = {}u;", max_mip::MAX_MIP_STEPS),
+        ] {
+            assert!(source.contains(&declaration), "WGSL lacks `{declaration}`");
+        }
+    }
     use crate::patterns;
 
     #[test]

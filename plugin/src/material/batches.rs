@@ -11,6 +11,7 @@ use super::deferred::{DeferredResolve, ResolveTargets};
 use super::frame_bindings::{DepthBindings, DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
+use crate::render::MAX_DERIVED_TEXTURES;
 use crate::render::layout::MeshPass;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;
@@ -208,6 +209,7 @@ impl<M: Material> MaterialBatches<M> {
         let mut last_mesh = None;
         let mut bounds = None;
         let mut last_textures = None;
+        let derived_slots = M::DERIVED_TEXTURE_SLOTS.min(MAX_DERIVED_TEXTURES);
         let mut facts: [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] =
             [None; MAX_MATERIAL_TEXTURES];
         for (index, draw) in draws.iter().enumerate() {
@@ -216,9 +218,12 @@ impl<M: Material> MaterialBatches<M> {
                 bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
                 last_mesh = Some(draw.mesh);
             }
+            let mut derived = draw.material.derived_textures();
+            // Entries past the declared slots are not bound: they must not split batches.
+            derived[derived_slots..].fill(None);
             let textures = BoundTextures {
                 images: draw.material.textures(),
-                derived: draw.material.derived_textures(),
+                derived,
             };
             if last_textures != Some(textures) {
                 for (slot, image) in textures.images.iter().enumerate() {
@@ -227,9 +232,9 @@ impl<M: Material> MaterialBatches<M> {
                         assets.image(image).map(|image| image.facts())
                     });
                 }
+                // Their sources are among the images: uploaded (or re-uploaded) just above.
                 for derived in textures.derived.iter().flatten() {
-                    // Its source is one of the images: uploaded (or re-uploaded) just above.
-                    stats.images += u32::from(assets.prepare_derived(gpu, *derived));
+                    stats.derived += u32::from(assets.prepare_derived(gpu, *derived));
                 }
                 last_textures = Some(textures);
             }

@@ -540,6 +540,7 @@ fn prepare_materials<M: Material>(
                             lod_cache.retain_existing(inputs.meshes);
                             renderer.last_upload.meshes += stats.meshes;
                             renderer.last_upload.images += stats.images;
+                            renderer.last_upload.derived += stats.derived;
                             renderer.last_upload.uniform_bytes += stats.uniform_bytes;
                             Ok(())
                         })

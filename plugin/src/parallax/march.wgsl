@@ -37,8 +37,7 @@ struct HeightField {
 
 fn sample_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, uv: vec2<f32>) -> f32 {
     let texel = textureSampleGrad(height_texture, height_sampler, uv, field.ddx, field.ddy);
-    let value = texel[min(field.channel, 3u)];
-    return select(value, 1.0 - value, field.depth_convention != 0u);
+    return height_in_channel(texel, field.channel, field.depth_convention);
 }
 
 // How far, in texture coordinates, a ray along `direction_ts` (tangent space, pointing away from

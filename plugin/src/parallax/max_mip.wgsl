@@ -1,34 +1,39 @@
 // The MaxMip method: the exact ray / height-field intersection by hierarchical traversal of a
 // pyramid of maximum heights (Tevs, Ihrke and Seidel, I3D 2008). The CPU reference
-// `pom::reference::max_mip` mirrors this file step by step; change both together.
+// (reference/max_mip.rs) mirrors this file step by step; change both together.
 //
-// The surface is the bilinear field the sampler filters at level 0. Between four neighbouring
-// texel centres it is one bilinear patch, never higher than its highest corner: pyramid level 0
-// holds that maximum per *cell* (cell (i, j) spans texel centres i..i+1, j..j+1), each level
-// above the maximum of 2 × 2 cells, in Tatarchuk's convention (1 = top) whatever the channel and
-// convention (the core builds it: render/max_pyramid.wgsl). Positions are in level-0 cells.
+// The surface is the bilinear field at level 0, repeating (whatever the sampler's address mode:
+// the pyramid wraps). Between four neighbouring texel centres it is one bilinear patch, never
+// higher than its highest corner: pyramid level 0 holds that maximum per *cell* (cell (i, j)
+// spans texel centres i..i+1, j..j+1), each level above the maximum of 2 × 2 cells, in
+// Tatarchuk's convention (1 = top) whatever the channel and convention (the core builds it:
+// render/max_pyramid.wgsl). Positions are in level-0 cells.
 
 // Most traversal steps (skip, climb or descend) one ray takes: a bound on the GPU's time per
-// pixel; a 2,000-texel grazing ray over the cones needs about 300.
+// pixel. A ray that runs out stops where it is known to be free (the reference's tests count how
+// often: never on 2,000-texel grazing rays over 1024² maps).
 const MAX_MIP_STEPS: u32 = 2048u;
+
+// `cell` wrapped into [0, size): one integer remainder per axis (they are slow on GPUs).
+fn wrapped_cell(cell: vec2<i32>, size: vec2<i32>) -> vec2<i32> {
+    let remainder = cell % size;
+    return select(remainder, remainder + size, remainder < vec2<i32>(0));
+}
 
 // The pyramid's maximum for `cell` of `level`, wrapping (every level repeats with the map).
 fn pyramid_maximum(pyramid: texture_2d<f32>, level: u32, cell: vec2<i32>) -> f32 {
     // Levels halve exactly. (Not textureDimensions(pyramid, level): lavapipe answers a size
     // query with a level that differs between invocations with one invocation's level.)
     let size = vec2<i32>(textureDimensions(pyramid) >> vec2<u32>(level));
-    // One integer remainder per axis (they are slow on GPUs), then into [0, size).
-    let remainder = cell % size;
-    let wrapped = select(remainder, remainder + size, remainder < vec2<i32>(0));
-    return textureLoad(pyramid, wrapped, level).r;
+    return textureLoad(pyramid, wrapped_cell(cell, size), level).r;
 }
 
-// The four corner heights of the patch of level-0 cell `cell` (unwrapped: the sampler wraps as
-// the other methods see it), as (h00, h10, h01, h11). One gather: the texel fetch of a patch.
-fn patch_corners(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, cell: vec2<f32>) -> vec4<f32> {
-    let size = vec2<f32>(textureDimensions(height_texture));
+// The four corner heights of the patch of level-0 cell `cell`, as (h00, h10, h01, h11). One
+// gather: the texel fetch of a patch.
+fn patch_corners(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, cell: vec2<i32>) -> vec4<f32> {
+    let size = vec2<i32>(textureDimensions(height_texture));
     // The shared corner of the four texels: gather returns (i, j+1), (i+1, j+1), (i+1, j), (i, j).
-    let uv = (cell + 1.0) / size;
+    let uv = (vec2<f32>(wrapped_cell(cell, size)) + 1.0) / vec2<f32>(size);
     var gathered: vec4<f32>;
     switch field.channel {
         case 0u: { gathered = textureGather(0, height_texture, height_sampler, uv); }
@@ -36,8 +41,16 @@ fn patch_corners(height_texture: texture_2d<f32>, height_sampler: sampler, field
         case 2u: { gathered = textureGather(2, height_texture, height_sampler, uv); }
         default: { gathered = textureGather(3, height_texture, height_sampler, uv); }
     }
-    let heights = select(gathered, 1.0 - gathered, field.depth_convention != 0u);
-    return heights.wzxy;
+    return heights_in_convention(gathered, field.depth_convention).wzxy;
+}
+
+// The bilinear surface at level 0 (the one the patches form) at `uv`.
+fn bilinear_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, uv: vec2<f32>) -> f32 {
+    let position = uv * vec2<f32>(textureDimensions(height_texture)) - 0.5;
+    let cell = floor(position);
+    let along = position - cell;
+    let corners = patch_corners(height_texture, height_sampler, field, vec2<i32>(cell));
+    return mix(mix(corners.x, corners.y, along.x), mix(corners.z, corners.w, along.x), along.y);
 }
 
 // Where a ray along `axis_travel` (cells per unit of t) from `axis_start` leaves cell
@@ -94,10 +107,12 @@ struct FieldRay {
     rise: f32,
 }
 
-// Where the surface first reaches a ray (t, −1 if nowhere in [0, 1]) and the texel fetches
-// taken: one per pyramid maximum read, one per patch gathered.
+// Where the surface first reaches a ray (`hit`: at t), or (not `hit`) how far the ray is known
+// to be free: 1 through every cell, less if it ran out of steps. `samples` counts texel fetches:
+// one per pyramid maximum read, one per patch gathered.
 struct FieldHit {
     t: f32,
+    hit: bool,
     samples: u32,
 }
 
@@ -110,16 +125,15 @@ fn march_max_mip(
     uv: vec2<f32>,
     offset: vec2<f32>,
 ) -> RayHit {
+    // A miss reaches the bottom (t = 1); a ray that ran out of steps stops where it is free.
     let found = max_mip_first_hit(height_texture, height_sampler, pyramid, field, FieldRay(uv, offset, 1.0, -1.0));
-    // Through every cell: the ray reaches the bottom.
-    let t = select(found.t, 1.0, found.t < 0.0);
-    return RayHit(uv + offset * t, 1.0 - t, found.samples);
+    return RayHit(uv + offset * found.t, 1.0 - found.t, found.samples);
 }
 
 // Hard self-shadow, exactly (no blocker stepped over): 0 if the height field blocks the light
-// ray from the visible point at `uv`, else 1. Like `hard_shadow` the ray starts HARD_SHADOW_BIAS
-// above the surface (bilinear at level 0, the surface the view ray met) and rises to the top
-// along `light_offset` = ray_offset(L_ts, H).
+// ray from the visible point at `uv`, else 1 (also where the ray ran out of steps). Like
+// `hard_shadow` the ray starts HARD_SHADOW_BIAS above the surface (the patches' bilinear
+// surface, which the view ray met) and rises to the top along `light_offset` = ray_offset(L_ts, H).
 fn max_mip_hard_shadow(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -128,14 +142,13 @@ fn max_mip_hard_shadow(
     uv: vec2<f32>,
     light_offset: vec2<f32>,
 ) -> f32 {
-    let level_zero = HeightField(field.channel, field.depth_convention, vec2<f32>(0.0), vec2<f32>(0.0));
-    let start = sample_height(height_texture, height_sampler, level_zero, uv) + HARD_SHADOW_BIAS;
+    let start = bilinear_height(height_texture, height_sampler, field, uv) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {
         return 1.0;
     }
     let ray = FieldRay(uv, light_offset * rise, start, rise);
-    return select(1.0, 0.0, max_mip_first_hit(height_texture, height_sampler, pyramid, field, ray).t >= 0.0);
+    return select(1.0, 0.0, max_mip_first_hit(height_texture, height_sampler, pyramid, field, ray).hit);
 }
 
 // A digital-differential-analyser walk over integer cells: leaving a cell steps its index along
@@ -149,11 +162,9 @@ fn max_mip_first_hit(
     ray: FieldRay,
 ) -> FieldHit {
     let size = vec2<f32>(textureDimensions(height_texture));
-    // Starting inside the first repetition keeps positions small and precise; `shift` (whole
-    // repetitions) takes a cell back to where the sampler sees it.
+    // Starting inside the first repetition keeps positions small and precise.
     let unwrapped = ray.uv * size - 0.5;
     let start = unwrapped - floor(unwrapped / size) * size;
-    let shift = unwrapped - start;
     let travel = ray.offset * size;
     let top = textureNumLevels(pyramid) - 1u;
     // Start at the level whose cells are about the square root of the ray's length (fewest
@@ -193,7 +204,7 @@ fn max_mip_first_hit(
                 continue;
             }
             // A level-0 cell: the bilinear patch along the ray is quadratic in t.
-            let corners = patch_corners(height_texture, height_sampler, field, vec2<f32>(cell) + shift);
+            let corners = patch_corners(height_texture, height_sampler, field, cell);
             samples += 1u;
             let a = start - vec2<f32>(cell);
             let b = travel;
@@ -205,7 +216,7 @@ fn max_mip_first_hit(
             let c0 = corners.x + du * a.x + dv * a.y + duv * a.x * a.y - ray.start_height;
             let root = first_root(c2, c1, c0, t, exit);
             if root >= 0.0 {
-                return FieldHit(root, samples);
+                return FieldHit(root, true, samples);
             }
         }
         // Into the next cell along the axis the ray leaves by; up a level where that also
@@ -222,5 +233,5 @@ fn max_mip_first_hit(
             cell = cell >> vec2<u32>(1u);
         }
     }
-    return FieldHit(-1.0, samples);
+    return FieldHit(min(t, 1.0), false, samples);
 }

@@ -42,7 +42,6 @@ macro_rules! parallax_shader {
                 $($first,)*
                 ParallaxMethod::wgsl_constants,
                 ShadowMode::wgsl_constants,
-                HeightConvention::wgsl_constants,
                 HeightUnits::wgsl_constants,
                 LightingModel::wgsl_constants,
                 DebugView::wgsl_constants,
@@ -57,6 +56,7 @@ macro_rules! parallax_shader {
                 shaders::FRAGMENT_COUNTER,
                 shaders::TANGENT_SPACE,
                 shaders::LIGHTING,
+                shaders::HEIGHT_CHANNEL,
                 PARALLAX_MARCH,
                 PARALLAX_MAX_MIP,
                 PARALLAX_ENTRY,

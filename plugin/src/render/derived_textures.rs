@@ -8,7 +8,7 @@ use wgpu::util::DeviceExt;
 
 use super::GpuContext;
 use super::gpu_assets::GpuImage;
-use super::max_pyramid::MaxPyramidBuilder;
+use super::max_pyramid::{MaxPyramidBuilder, create_pyramid};
 use crate::{AssetId, Image};
 
 /// Most derived textures one material binds.
@@ -111,7 +111,7 @@ impl DerivedTextureCache {
     }
 
     /// Builds `derived` from `source` if it is missing or older than the source's upload;
-    /// `next_serial` numbers the build. Returns whether it built.
+    /// `next_serial` numbers a new texture. Returns whether it built.
     pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
@@ -132,18 +132,36 @@ impl DerivedTextureCache {
         let builder = self
             .builder
             .get_or_insert_with(|| MaxPyramidBuilder::new(gpu));
-        let texture = builder.build(gpu, &source.texture, channel, depth_convention);
-        let view = texture.create_view(&Default::default());
-        self.textures.insert(
-            derived,
-            GpuDerivedTexture {
-                texture,
-                view,
-                source_serial: source.upload_serial,
-                last_used: self.sweeps,
-                serial: next_serial,
-            },
+        let (width, height) = (source.texture.width(), source.texture.height());
+        let reusable = self
+            .textures
+            .get_mut(&derived)
+            .filter(|cached| (cached.texture.width(), cached.texture.height()) == (width, height));
+        // A rewritten source of the same size (a dynamic height field's every change) is built
+        // into the same texture: nothing reallocated, no bind group remade.
+        let cached = match reusable {
+            Some(cached) => cached,
+            None => {
+                let texture = create_pyramid(gpu, width, height);
+                let view = texture.create_view(&Default::default());
+                let fresh = GpuDerivedTexture {
+                    texture,
+                    view,
+                    source_serial: 0,
+                    last_used: 0,
+                    serial: next_serial,
+                };
+                self.textures.entry(derived).insert_entry(fresh).into_mut()
+            }
+        };
+        builder.build(
+            gpu,
+            &source.texture,
+            (channel, depth_convention),
+            &cached.texture,
         );
+        cached.source_serial = source.upload_serial;
+        cached.last_used = self.sweeps;
         true
     }
 

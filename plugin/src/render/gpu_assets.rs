@@ -68,6 +68,8 @@ pub struct UploadStats {
     pub meshes: u32,
     /// Images uploaded (new or changed).
     pub images: u32,
+    /// Textures derived from images (maximum pyramids) built or rebuilt.
+    pub derived: u32,
     /// Bytes written to uniform and storage buffers.
     pub uniform_bytes: u64,
 }

@@ -1,5 +1,6 @@
-//! Builds a height texture's maximum pyramid on the GPU (`max_pyramid.wgsl`): one compute pass
-//! per level, at upload and after every change of the height.
+//! Builds a height texture's maximum pyramid on the GPU (`max_pyramid.wgsl`), for hierarchical
+//! ray marching over the height field: one compute pass per level, when first used and after
+//! every change of the height.
 
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
@@ -11,7 +12,7 @@ use super::{GpuContext, layout};
 pub const MAX_PYRAMID_SHADER: ComposedShader = ComposedShader {
     name: "max_pyramid.wgsl",
     constants: &[],
-    files: &[MAX_PYRAMID],
+    files: &[super::shaders::HEIGHT_CHANNEL, MAX_PYRAMID],
 };
 
 const MAX_PYRAMID: WgslFile = crate::wgsl_file!("render/max_pyramid.wgsl");
@@ -93,34 +94,18 @@ impl MaxPyramidBuilder {
         }
     }
 
-    /// Records and submits the build of `heights`' pyramid (from its level 0).
+    /// Records and submits the build of `heights`' pyramid (from its level 0) into `pyramid`,
+    /// made by [`create_pyramid`] for a texture of the same size.
     pub(crate) fn build(
         &self,
         gpu: &GpuContext,
         heights: &wgpu::Texture,
-        channel: u8,
-        depth_convention: bool,
-    ) -> wgpu::Texture {
+        (channel, depth_convention): (u8, bool),
+        pyramid: &wgpu::Texture,
+    ) {
         let device = &gpu.device;
         let (width, height) = (heights.width(), heights.height());
-        let levels = pyramid_levels(width, height);
-        let pyramid = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("max pyramid"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: levels,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Float,
-            // Copied from by tests that read it back.
-            usage: wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let levels = pyramid.mip_level_count();
         let level_view = |texture: &wgpu::Texture, level: u32| {
             texture.create_view(&wgpu::TextureViewDescriptor {
                 base_mip_level: level,
@@ -135,7 +120,7 @@ impl MaxPyramidBuilder {
             let (below, pipeline) = if level == 0 {
                 (level_view(heights, 0), &self.cell_maxima)
             } else {
-                (level_view(&pyramid, level - 1), &self.reduce_level)
+                (level_view(pyramid, level - 1), &self.reduce_level)
             };
             let size = [(width >> level).max(1), (height >> level).max(1)];
             let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -157,7 +142,7 @@ impl MaxPyramidBuilder {
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&level_view(&pyramid, level)),
+                        resource: wgpu::BindingResource::TextureView(&level_view(pyramid, level)),
                     },
                     wgpu::BindGroupEntry {
                         binding: 2,
@@ -175,13 +160,43 @@ impl MaxPyramidBuilder {
             pass.dispatch_workgroups(size[0].div_ceil(8), size[1].div_ceil(8), 1);
         }
         gpu.queue.submit([encoder.finish()]);
-        pyramid
     }
 }
 
+/// An empty pyramid for a `width` × `height` height texture: [`pyramid_levels`] levels of
+/// `R32Float`. A pyramid with few levels for its size is logged: its cells are large, and a
+/// hierarchical march over it tests many of them.
+pub(crate) fn create_pyramid(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
+    let levels = pyramid_levels(width, height);
+    let (coarsest_width, coarsest_height) = (width >> (levels - 1), height >> (levels - 1));
+    if coarsest_width.max(coarsest_height) > 16 {
+        log::warn!(
+            "a {width}×{height} height map's maximum pyramid stops at {coarsest_width}×{coarsest_height} \
+             cells (levels halve while both sides are even): hierarchical marches over it are slow"
+        );
+    }
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("max pyramid"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::R32Float,
+        // Copied from by tests that read it back.
+        usage: wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
 /// The maximum pyramid the renderer derives from `image` for `channel` and the convention,
-/// read back: (width, height, maxima row by row) per level, finest first. For tests against
-/// the CPU reference (`pom::reference::MaxPyramid`).
+/// read back: (width, height, maxima row by row) per level, finest first. For tests against a
+/// CPU reference.
 #[cfg(feature = "scene-tests")]
 pub fn read_max_pyramid(
     gpu: &GpuContext,

@@ -1,5 +1,6 @@
-// The maximum-height pyramid of a height texture, for hierarchical ray marching (the MaxMip
-// method; Tevs, Ihrke and Seidel 2008). Mirrors `MaxPyramid::new` in reference/max_mip.rs.
+// The maximum-height pyramid of a height texture, for hierarchical ray marching over the
+// height field (Tevs, Ihrke and Seidel 2008). Mirrors `MaxPyramid::new` in
+// reference/max_mip.rs. Composed after height_channel.wgsl.
 //
 // Level 0 holds, per cell (the bilinear patch between texel centres i..i+1, j..j+1, wrapping),
 // its highest corner in Tatarchuk's convention (1 = top) after picking the channel and the
@@ -22,8 +23,7 @@ struct PyramidLevel {
 fn source_height(texel: vec2<i32>) -> f32 {
     let size = vec2<i32>(params.size);
     let wrapped = ((texel % size) + size) % size;
-    let value = textureLoad(below, wrapped, 0)[min(params.channel, 3u)];
-    return select(value, 1.0 - value, params.depth_convention != 0u);
+    return height_in_channel(textureLoad(below, wrapped, 0), params.channel, params.depth_convention);
 }
 
 @compute @workgroup_size(8, 8)

@@ -58,6 +58,8 @@ pub const VISIBILITY_READ: WgslFile = wgsl_file!("render/visibility_read.wgsl");
 pub const DEFERRED_CLASSIFY: WgslFile = wgsl_file!("render/deferred_classify.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
+/// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
+pub const HEIGHT_CHANNEL: WgslFile = wgsl_file!("render/height_channel.wgsl");
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
 /// the `primitive_index` extension the visibility pass needs, `SceneOutput`, the scene target as

@@ -41,10 +41,15 @@ pub struct MethodRow {
     pub height: u32,
     /// The path the timed frames ran.
     pub path: &'static str,
-    /// Median milliseconds of the timed pass (the bench's material otherwise: its shadows).
+    /// Median milliseconds of the material's phases, with the bench material's other settings
+    /// (its shadow mode among them).
     pub ms: f64,
     /// View-ray height fetches per surface pixel.
     pub fetches_per_pixel: f64,
+    /// Max-mip's surface pixels whose fetches reached the count's ceiling (256): counted at the
+    /// ceiling, so `fetches_per_pixel` is a lower bound where this is not 0. Always 0 for the
+    /// other methods, which cannot take more than their `max_samples`.
+    pub saturated_pixels: u64,
     /// Mean distance in texels from the exact intersection (CPU reference).
     pub mean_error_texels: f32,
     /// 99th percentile of that distance.
@@ -132,6 +137,11 @@ impl Runner<'_> {
                 path: timed.path,
                 ms: timed.ms,
                 fetches_per_pixel: count.total as f64 / count.surface_pixels.max(1) as f64,
+                saturated_pixels: if samples.is_none() {
+                    count.saturated_pixels
+                } else {
+                    0
+                },
                 mean_error_texels: mean,
                 p99_error_texels: p99,
             });
@@ -147,14 +157,15 @@ pub fn table(rows: &[MethodRow]) -> String {
     }
     let mut out = format!(
         "\nmethods against the exact intersection ({ERROR_ANGLE_DEGREES}°, {ERROR_GRID}² entry \
-         points):\n| method | samples | size | path | mean error (texel) | p99 error (texel) | \
-         fetches / pixel | ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n"
+         points; fetches: at the ceiling in `saturated` pixels):\n| method | samples | size | \
+         path | mean error (texel) | p99 error (texel) | fetches / pixel | saturated | ms |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n"
     );
     for row in rows {
         let samples = row.samples.map_or("pyramid".to_owned(), |n| n.to_string());
         let _ = writeln!(
             out,
-            "| {} | {samples} | {}x{} | {} | {:.3} | {:.3} | {:.1} | {:.3} |",
+            "| {} | {samples} | {}x{} | {} | {:.3} | {:.3} | {:.1} | {} | {:.3} |",
             row.method,
             row.width,
             row.height,
@@ -162,6 +173,7 @@ pub fn table(rows: &[MethodRow]) -> String {
             row.mean_error_texels,
             row.p99_error_texels,
             row.fetches_per_pixel,
+            row.saturated_pixels,
             row.ms
         );
     }

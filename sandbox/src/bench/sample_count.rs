@@ -18,6 +18,9 @@ pub struct SampleCount {
     pub surface_pixels: u64,
     /// Of those, pixels where a march ran (not past the LOD threshold).
     pub marching_pixels: u64,
+    /// Of those, pixels whose count reached the heat map's maximum (`max_samples`): a method
+    /// that can take more (max-mip) is counted at that maximum there.
+    pub saturated_pixels: u64,
 }
 
 /// Height samples per second of the POM pass, against the texel-rate limits.
@@ -117,6 +120,7 @@ pub fn count_view_samples(
         total: 0,
         surface_pixels: 0,
         marching_pixels: 0,
+        saturated_pixels: 0,
     };
     for pixel in image.pixels() {
         let Some(samples) = decode_heat(pixel.0, max_samples) else {
@@ -125,6 +129,7 @@ pub fn count_view_samples(
         count.surface_pixels += 1;
         count.total += u64::from(samples);
         count.marching_pixels += u64::from(samples > 0);
+        count.saturated_pixels += u64::from(samples >= max_samples);
     }
     if count.surface_pixels == 0 {
         bail!("the samples view drew nothing: the surface is out of view");
@@ -170,6 +175,7 @@ mod tests {
             total: 4_000_000,
             surface_pixels: 1_000_000,
             marching_pixels: 500_000,
+            saturated_pixels: 0,
         };
         let probe = ProbeResult {
             taps: 64,
