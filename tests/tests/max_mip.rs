@@ -226,3 +226,69 @@ fn an_unused_pyramid_is_freed() {
     pom_tests::run_frames(&mut app, 100).unwrap();
     assert_eq!(held(&app), 0);
 }
+
+/// Rays that cross the map several times (85°, height scale 0.25: about 3 repetitions): the
+/// GPU's wrapping of far cells agrees with the CPU reference.
+#[test]
+fn long_rays_across_several_repetitions_match_the_cpu_reference() {
+    use pom::glam::{Vec2, Vec3};
+    use pom::preview::{PreviewProjection, PreviewView};
+    use pom::{DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, TargetFormat};
+    use pom_tests::pom_scene::{HeightMaterial, preview_app};
+
+    const HEIGHT_SCALE: f32 = 0.25;
+    // A wall across u at height 0.6 on a floor: the rays (91 texels long) pass over its first
+    // copies and meet it one to three repetitions on, where only wrapping finds it.
+    let field = HeightField::from_fn(32, 32, |u, _| {
+        if (20.0..22.0).contains(&(u * 32.0)) {
+            0.6
+        } else {
+            0.0
+        }
+    });
+    let textures = HeightMaterial {
+        field: field.clone(),
+        height_scale: HEIGHT_SCALE,
+    };
+    let view = PreviewView {
+        view_angle: 85.0,
+        projection: PreviewProjection::Orthographic,
+        ..PreviewView::default()
+    };
+    let render = |method| {
+        let mut app = preview_app(48, TargetFormat::Float32, &textures, &view, |material| {
+            ParallaxOcclusionMaterial {
+                method,
+                debug_view: DebugView::Uv,
+                shadows: ShadowMode::Off,
+                lod_threshold: 16.0,
+                ..material
+            }
+        })
+        .unwrap();
+        pom_tests::render_and_capture_f32(&mut app).unwrap()
+    };
+    let entry = render(ParallaxMethod::NormalMapping);
+    let marched = render(ParallaxMethod::MaxMip);
+    let pyramid = MaxPyramid::new(&field);
+    let radians = 85.0_f32.to_radians();
+    let to_eye = Vec3::new(-radians.sin(), 0.0, radians.cos());
+    let size = Vec2::splat(32.0);
+    let wrapped = |d: f32| d - d.round();
+    let (mut total, mut count, mut travelled) = (0.0, 0, 0.0_f32);
+    for (entry, gpu) in entry.pixels().zip(marched.pixels()) {
+        let uv = Vec2::new(entry.0[0], entry.0[1]);
+        let cpu = pom::reference::march_max_mip(&pyramid, uv, to_eye, HEIGHT_SCALE).uv;
+        let difference = Vec2::new(wrapped(gpu.0[0] - cpu.x), wrapped(gpu.0[1] - cpu.y));
+        total += (difference * size).length();
+        count += 1;
+        travelled = travelled.max(((cpu - uv) * size).length());
+    }
+    let mean = total / count as f32;
+    eprintln!("long rays: mean |GPU − CPU| {mean:.4} texel, longest {travelled:.0} texels");
+    assert!(
+        travelled > 64.0,
+        "some rays cross the map twice ({travelled})"
+    );
+    assert!(mean <= 0.25, "{mean} texels");
+}
