@@ -58,9 +58,10 @@ pub(crate) struct GpuDerivedTexture {
     pub serial: u64,
 }
 
-/// Frames a derived texture no draw uses is kept (a draw culled for a moment, a parameter
-/// switched back) before its memory is freed: a 4096² pyramid holds 89 MB.
-const UNUSED_FRAMES_KEPT: u64 = 120;
+/// Frames a derived texture no draw used is kept before its memory is freed (a 4096² pyramid
+/// holds 89 MB). Every draw is prepared every frame, so one frame without a user means no
+/// material uses it any more; switching back rebuilds it (a few compute passes).
+const UNUSED_FRAMES_KEPT: u64 = 1;
 
 /// The derived textures of every image, and the default bound where a draw has none.
 pub(crate) struct DerivedTextureCache {

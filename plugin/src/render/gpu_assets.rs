@@ -287,7 +287,7 @@ impl GpuAssets {
     }
 
     /// Once a frame: drops GPU copies of assets that no longer exist, what was derived from
-    /// them, and derived textures no draw has used for a while.
+    /// them, and derived textures no draw used in the last frame.
     pub fn release_freed(&mut self, meshes: &Assets<Mesh>, images: &Assets<Image>) {
         self.meshes.retain(|id, _| meshes.contains(*id));
         self.images.retain(|id, _| images.contains(*id));

@@ -333,7 +333,7 @@ impl Renderer {
     }
 
     /// How many textures derived from images (maximum pyramids) the GPU holds: one per image
-    /// and derivation some draw used in the last 120 frames.
+    /// and derivation some draw used in the last frame.
     pub fn derived_texture_count(&self) -> usize {
         self.assets.derived_count()
     }
