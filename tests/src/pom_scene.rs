@@ -2,8 +2,8 @@
 
 use pom::preview::{PreviewView, spawn_preview};
 use pom::{
-    App, Assets, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPlugin, TargetFormat, TextureKind,
+    App, Assets, DebugView, HeightField, HeightSource, Image, ParallaxMethod,
+    ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShadowMode, TargetFormat, TextureKind,
 };
 
 use crate::HarnessError;
@@ -58,4 +58,25 @@ pub fn preview_app(
     let material = configure(textures.material(&mut app));
     spawn_preview(&mut app, material, view)?;
     Ok(app)
+}
+
+/// The raw `uv` debug view (R, G = the final texture coordinate) of `method` on a `size`² float
+/// target, shadows off and the full march everywhere (LOD threshold 16): what the GPU's march
+/// found, to set beside the CPU reference.
+pub fn uv_view(
+    size: u32,
+    textures: &HeightMaterial,
+    view: &PreviewView,
+    method: ParallaxMethod,
+) -> Result<image::Rgba32FImage, HarnessError> {
+    let mut app = preview_app(size, TargetFormat::Float32, textures, view, |material| {
+        ParallaxOcclusionMaterial {
+            method,
+            debug_view: DebugView::Uv,
+            shadows: ShadowMode::Off,
+            lod_threshold: 16.0,
+            ..material
+        }
+    })?;
+    crate::render_and_capture_f32(&mut app)
 }

@@ -232,10 +232,10 @@ fn an_unused_pyramid_is_freed() {
 /// GPU's wrapping of far cells agrees with the CPU reference.
 #[test]
 fn long_rays_across_several_repetitions_match_the_cpu_reference() {
+    use pom::ParallaxMethod;
     use pom::glam::{Vec2, Vec3};
     use pom::preview::{PreviewProjection, PreviewView};
-    use pom::{DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, TargetFormat};
-    use pom_tests::pom_scene::{HeightMaterial, preview_app};
+    use pom_tests::pom_scene::{HeightMaterial, uv_view};
 
     const HEIGHT_SCALE: f32 = 0.25;
     // A wall across u at height 0.6 on a floor: the rays (91 texels long) pass over its first
@@ -256,21 +256,8 @@ fn long_rays_across_several_repetitions_match_the_cpu_reference() {
         projection: PreviewProjection::Orthographic,
         ..PreviewView::default()
     };
-    let render = |method| {
-        let mut app = preview_app(48, TargetFormat::Float32, &textures, &view, |material| {
-            ParallaxOcclusionMaterial {
-                method,
-                debug_view: DebugView::Uv,
-                shadows: ShadowMode::Off,
-                lod_threshold: 16.0,
-                ..material
-            }
-        })
-        .unwrap();
-        pom_tests::render_and_capture_f32(&mut app).unwrap()
-    };
-    let entry = render(ParallaxMethod::NormalMapping);
-    let marched = render(ParallaxMethod::MaxMip);
+    let entry = uv_view(48, &textures, &view, ParallaxMethod::NormalMapping).unwrap();
+    let marched = uv_view(48, &textures, &view, ParallaxMethod::MaxMip).unwrap();
     let pyramid = MaxPyramid::new(&field);
     let radians = 85.0_f32.to_radians();
     let to_eye = Vec3::new(-radians.sin(), 0.0, radians.cos());

@@ -3,12 +3,8 @@
 use glam::{Vec2, Vec3};
 use pom::preview::PreviewView;
 use pom::reference::{self, mean_error_in_texels};
-use pom::{
-    DebugView, HeightField, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, TargetFormat,
-    patterns,
-};
-use pom_tests::pom_scene::{HeightMaterial, preview_app};
-use pom_tests::render_and_capture_f32;
+use pom::{HeightField, ParallaxMethod, patterns};
+use pom_tests::pom_scene::{HeightMaterial, uv_view};
 
 const IMAGE: u32 = 64;
 const HEIGHT_SCALE: f32 = 0.04;
@@ -20,18 +16,7 @@ fn gpu_uv(textures: &HeightMaterial, method: ParallaxMethod, angle: f32) -> imag
         view_angle: angle,
         ..PreviewView::default()
     };
-    let mut app = preview_app(IMAGE, TargetFormat::Float32, textures, &view, |material| {
-        ParallaxOcclusionMaterial {
-            method,
-            debug_view: DebugView::Uv,
-            shadows: ShadowMode::Off,
-            // Keep the full march everywhere; the texture is magnified anyway.
-            lod_threshold: 16.0,
-            ..material
-        }
-    })
-    .unwrap();
-    render_and_capture_f32(&mut app).unwrap()
+    uv_view(IMAGE, textures, &view, method).unwrap()
 }
 
 /// Shortest difference between two coordinates on a repeating texture.
