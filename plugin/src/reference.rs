@@ -280,8 +280,37 @@ pub fn soft_shadow(field: &HeightField, uv: Vec2, light_offset: Vec2, softening:
     (1.0 - strongest * sharpness).clamp(0.0, 1.0)
 }
 
-/// Mean distance, in texels, between each method's answer and the exact intersection, over a
-/// grid of `grid`×`grid` entry points, for a view `angle` degrees from the normal along +u.
+/// Distance, in texels, between `method`'s answer at `steps` samples and the exact
+/// intersection at each entry point of a `grid`×`grid` grid (row by row), for a view `angle`
+/// degrees from the normal along +u. MaxMip walks one pyramid built for the whole grid.
+pub fn errors_in_texels(
+    field: &HeightField,
+    method: ParallaxMethod,
+    angle_degrees: f32,
+    height_scale: f32,
+    steps: u32,
+    grid: u32,
+) -> Vec<f32> {
+    let angle = angle_degrees.to_radians();
+    // Looking along +u, as the preview camera at azimuth 0 does: the eye is on the −u side.
+    let to_eye_ts = Vec3::new(-angle.sin(), 0.0, angle.cos());
+    let (width, height) = field.size();
+    let size = Vec2::new(width as f32, height as f32);
+    let pyramid = (method == ParallaxMethod::MaxMip).then(|| MaxPyramid::new(field));
+    (0..grid)
+        .flat_map(|y| (0..grid).map(move |x| (Vec2::new(x as f32, y as f32) + 0.5) / grid as f32))
+        .map(|uv| {
+            let approximate = match &pyramid {
+                Some(pyramid) => march_max_mip(pyramid, uv, to_eye_ts, height_scale),
+                None => march_view(field, method, uv, to_eye_ts, height_scale, steps),
+            };
+            let exact = exact_intersection(field, uv, to_eye_ts, height_scale);
+            ((approximate.uv - exact) * size).length()
+        })
+        .collect()
+}
+
+/// The mean of [`errors_in_texels`].
 pub fn mean_error_in_texels(
     field: &HeightField,
     method: ParallaxMethod,
@@ -290,21 +319,8 @@ pub fn mean_error_in_texels(
     steps: u32,
     grid: u32,
 ) -> f32 {
-    let angle = angle_degrees.to_radians();
-    // Looking along +u, as the preview camera at azimuth 0 does: the eye is on the −u side.
-    let to_eye_ts = Vec3::new(-angle.sin(), 0.0, angle.cos());
-    let (width, height) = field.size();
-    let size = Vec2::new(width as f32, height as f32);
-    let mut total = 0.0;
-    for y in 0..grid {
-        for x in 0..grid {
-            let uv = (Vec2::new(x as f32, y as f32) + 0.5) / grid as f32;
-            let approximate = march_view(field, method, uv, to_eye_ts, height_scale, steps).uv;
-            let exact = exact_intersection(field, uv, to_eye_ts, height_scale);
-            total += ((approximate - exact) * size).length();
-        }
-    }
-    total / (grid * grid) as f32
+    let errors = errors_in_texels(field, method, angle_degrees, height_scale, steps, grid);
+    errors.iter().sum::<f32>() / errors.len() as f32
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use bytemuck::{Pod, Zeroable};
 use hecs::{Entity, World};
 use wgpu::util::DeviceExt;
 
-use crate::render::{GpuContext, PassTimestamps, Renderer, shaders, time_pass};
+use crate::render::{GpuContext, PassTimestamps, Renderer, layout, shaders, time_pass};
 use crate::{AppError, Assets, Handle, HeightField, Image, ImageError, Resources, TextureKind};
 
 /// A height field that changes while the game runs. User code rewrites the `height` image (through
@@ -82,36 +82,9 @@ impl SobelPass {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("sobel layout"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: wgpu::TextureFormat::Rgba8Unorm,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                layout::unfilterable_texture_2d(0),
+                layout::compute_storage_texture(1, wgpu::TextureFormat::Rgba8Unorm),
+                layout::compute_uniform_buffer(2, false),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

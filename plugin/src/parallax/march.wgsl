@@ -216,11 +216,14 @@ fn march_view(
 // of the height field rises above the light ray, else 1. `light_offset` is ray_offset(L_ts, H);
 // `texels_per_rise` the texels a ray rising the whole height range crosses. The ray only rises
 // from the visible point to the top, so it takes T eq. 1's count for N·L capped by the texels
-// that shorter ray crosses: a point near the top needs few steps.
+// that shorter ray crosses: a point near the top needs few steps. MaxMip walks its `pyramid`
+// instead, exactly (max_mip.wgsl).
 fn hard_shadow(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
+    pyramid: texture_2d<f32>,
     field: HeightField,
+    method: u32,
     uv: vec2<f32>,
     light_offset: vec2<f32>,
     min_samples: u32,
@@ -228,6 +231,9 @@ fn hard_shadow(
     n_dot_l: f32,
     texels_per_rise: f32,
 ) -> f32 {
+    if method == METHOD_MAX_MIP {
+        return max_mip_hard_shadow(height_texture, height_sampler, pyramid, field, uv, light_offset);
+    }
     let start = sample_height(height_texture, height_sampler, field, uv) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {

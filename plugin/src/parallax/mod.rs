@@ -23,7 +23,7 @@ use crate::render::{
     DefaultTexture, DerivedTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES,
     TextureDerivation,
 };
-use crate::{App, Handle, Plugin};
+use crate::{App, AssetId, Handle, Image, Plugin};
 
 /// The ray march, LOD and self-shadow functions of the parallax material.
 pub const PARALLAX_MARCH: WgslFile = crate::wgsl_file!("parallax/march.wgsl");
@@ -107,15 +107,10 @@ impl Material for ParallaxOcclusionMaterial {
     }
 
     fn textures(&self) -> MaterialTextures {
-        let height = match &self.height_map {
-            Some(HeightSource::Texture(handle)) => Some(handle.id()),
-            Some(HeightSource::NormalMapAlpha) => self.normal_map.as_ref().map(Handle::id),
-            None => None,
-        };
         let mut textures = [None; MAX_MATERIAL_TEXTURES];
         textures[0] = self.base_color_texture.as_ref().map(Handle::id);
         textures[1] = self.normal_map.as_ref().map(Handle::id);
-        textures[HEIGHT_SLOT] = height;
+        textures[HEIGHT_SLOT] = self.height_image();
         textures
     }
 
@@ -126,7 +121,7 @@ impl Material for ParallaxOcclusionMaterial {
     fn derived_textures(&self) -> DerivedTextures {
         let mut derived = [None; MAX_DERIVED_TEXTURES];
         if self.method == ParallaxMethod::MaxMip
-            && let (Some(source), Some(image)) = (&self.height_map, self.textures()[HEIGHT_SLOT])
+            && let (Some(source), Some(image)) = (&self.height_map, self.height_image())
         {
             derived[0] = Some(DerivedTexture {
                 source: image,
@@ -222,6 +217,17 @@ impl Material for ParallaxOcclusionMaterial {
             normal_mapping
         } else {
             key
+        }
+    }
+}
+
+impl ParallaxOcclusionMaterial {
+    /// The image the height is read from: its own texture, or the normal map (alpha).
+    fn height_image(&self) -> Option<AssetId<Image>> {
+        match &self.height_map {
+            Some(HeightSource::Texture(handle)) => Some(handle.id()),
+            Some(HeightSource::NormalMapAlpha) => self.normal_map.as_ref().map(Handle::id),
+            None => None,
         }
     }
 }

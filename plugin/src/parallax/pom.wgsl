@@ -157,13 +157,11 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
             let light_offset = ray_offset(to_light_ts, point.height_scale);
             if SHADOW_MODE == SHADOWS_SOFT {
                 visibility = soft_shadow(height_texture, material_sampler, point.field, uv, light_offset, params.shadow_softening);
-            } else if METHOD == METHOD_MAX_MIP {
-                visibility = max_mip_hard_shadow(height_texture, material_sampler, height_pyramid, point.field, uv,
-                    light_offset);
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(point.mip);
-                visibility = hard_shadow(height_texture, material_sampler, point.field, uv, light_offset,
-                    params.min_samples, params.max_samples, dot(surface_frame.normal, light.to_light), texels_per_rise);
+                visibility = hard_shadow(height_texture, material_sampler, height_pyramid, point.field, METHOD, uv,
+                    light_offset, params.min_samples, params.max_samples, dot(surface_frame.normal, light.to_light),
+                    texels_per_rise);
             }
             visibility = mix(visibility, 1.0, fade);
         }

@@ -4,10 +4,8 @@
 
 use std::collections::HashMap;
 
-use wgpu::util::DeviceExt;
-
 use super::GpuContext;
-use super::gpu_assets::GpuImage;
+use super::gpu_assets::{GpuImage, solid_texture};
 use super::max_pyramid::{MaxPyramidBuilder, create_pyramid};
 use crate::{AssetId, Image};
 
@@ -84,30 +82,16 @@ impl std::fmt::Debug for DerivedTextureCache {
 impl DerivedTextureCache {
     /// An empty cache; the builder is compiled when something is first derived.
     pub(crate) fn new(gpu: &GpuContext) -> Self {
-        let default = gpu.device.create_texture_with_data(
-            &gpu.queue,
-            &wgpu::TextureDescriptor {
-                label: Some("default derived texture"),
-                size: wgpu::Extent3d {
-                    width: 1,
-                    height: 1,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::R32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            &1.0_f32.to_le_bytes(),
-        );
         Self {
             builder: None,
             textures: HashMap::new(),
             sweeps: 0,
-            default_view: default.create_view(&Default::default()),
+            default_view: solid_texture(
+                gpu,
+                "default derived texture",
+                1.0_f32.to_le_bytes(),
+                wgpu::TextureFormat::R32Float,
+            ),
         }
     }
 

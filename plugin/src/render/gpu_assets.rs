@@ -108,10 +108,11 @@ impl DefaultTextures {
     }
 }
 
-fn solid_texture(
+/// A 1×1 texture of `format` holding the 4 bytes of `texel` (RGBA8, or one 32-bit float).
+pub(super) fn solid_texture(
     gpu: &GpuContext,
     label: &str,
-    rgba: [u8; 4],
+    texel: [u8; 4],
     format: wgpu::TextureFormat,
 ) -> wgpu::TextureView {
     gpu.device
@@ -128,7 +129,7 @@ fn solid_texture(
                 view_formats: &[],
             },
             wgpu::util::TextureDataOrder::LayerMajor,
-            &rgba,
+            &texel,
         )
         .create_view(&wgpu::TextureViewDescriptor {
             label: Some(&format!("{label} view")),

@@ -27,6 +27,23 @@ pub(crate) fn unfilterable_texture_2d(binding: u32) -> wgpu::BindGroupLayoutEntr
     }
 }
 
+/// A write-only 2D storage texture of `format` for a compute pass.
+pub(crate) fn compute_storage_texture(
+    binding: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+        count: None,
+    }
+}
+
 /// A filtering sampler visible to the fragment stage and the deferred resolve.
 pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {

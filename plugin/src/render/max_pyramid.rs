@@ -58,16 +58,7 @@ impl MaxPyramidBuilder {
             label: Some("max pyramid layout"),
             entries: &[
                 layout::unfilterable_texture_2d(0),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: wgpu::TextureFormat::R32Float,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                    count: None,
-                },
+                layout::compute_storage_texture(1, wgpu::TextureFormat::R32Float),
                 layout::compute_uniform_buffer(2, false),
             ],
         });

@@ -210,24 +210,9 @@ pub fn check_written(path: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::stats::Spread;
 
     fn case(size: (u32, u32), path: &'static str) -> CaseResult {
-        CaseResult {
-            group: "methods",
-            method: "pom".into(),
-            shadows: "off".into(),
-            width: size.0,
-            height: size.1,
-            min_samples: 8,
-            max_samples: 50,
-            lod_threshold: 4.0,
-            tiling: 1.0,
-            path,
-            pass: "prepass+opaque",
-            variant: String::new(),
-            spread: Spread::of(&[1.0]).unwrap(),
-        }
+        CaseResult::example("methods", size, path, "prepass+opaque", 1.0)
     }
 
     #[test]

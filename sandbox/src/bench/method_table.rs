@@ -7,10 +7,9 @@
 use std::fmt::Write as _;
 
 use anyhow::Result;
-use pom::glam::{Vec2, Vec3};
 use pom::material::Choice;
 use pom::parallax::MAX_SAMPLES_LIMIT;
-use pom::reference::{MaxPyramid, exact_intersection, march_max_mip, march_view};
+use pom::reference::errors_in_texels;
 use pom::{HeightConvention, HeightField, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode};
 use serde::Serialize;
 
@@ -60,30 +59,20 @@ pub struct MethodRow {
 /// intersection, over a grid of entry points seen along +u at [`ERROR_ANGLE_DEGREES`].
 fn errors(
     field: &HeightField,
-    pyramid: &MaxPyramid,
     method: ParallaxMethod,
     samples: u32,
     height_scale: f32,
 ) -> (f32, f32) {
-    let angle = ERROR_ANGLE_DEGREES.to_radians();
-    let to_eye = Vec3::new(-angle.sin(), 0.0, angle.cos());
-    let (width, height) = field.size();
-    let size = Vec2::new(width as f32, height as f32);
-    let mut distances: Vec<f32> = (0..ERROR_GRID * ERROR_GRID)
-        .map(|index| {
-            let cell = Vec2::new((index % ERROR_GRID) as f32, (index / ERROR_GRID) as f32);
-            let uv = (cell + 0.5) / ERROR_GRID as f32;
-            let hit = if method == ParallaxMethod::MaxMip {
-                march_max_mip(pyramid, uv, to_eye, height_scale)
-            } else {
-                march_view(field, method, uv, to_eye, height_scale, samples)
-            };
-            let exact = exact_intersection(field, uv, to_eye, height_scale);
-            ((hit.uv - exact) * size).length()
-        })
-        .collect();
-    distances.sort_by(f32::total_cmp);
+    let mut distances = errors_in_texels(
+        field,
+        method,
+        ERROR_ANGLE_DEGREES,
+        height_scale,
+        samples,
+        ERROR_GRID,
+    );
     let mean = distances.iter().sum::<f32>() / distances.len() as f32;
+    distances.sort_by(f32::total_cmp);
     let p99 = distances[(distances.len() * 99 / 100).min(distances.len() - 1)];
     (mean, p99)
 }
@@ -93,7 +82,6 @@ impl Runner<'_> {
     pub(super) fn method_table(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
         let depth = self.base.height_convention == HeightConvention::Depth;
         let field = HeightField::from_image(&self.textures.height, 0, depth);
-        let pyramid = MaxPyramid::new(&field);
         let rows = MARCHING
             .iter()
             .flat_map(|&method| SAMPLES.map(|samples| (method, Some(samples))))
@@ -122,13 +110,7 @@ impl Runner<'_> {
                 &self.view,
                 self.path,
             )?;
-            let (mean, p99) = errors(
-                &field,
-                &pyramid,
-                method,
-                samples.unwrap_or(0),
-                self.base.height_scale,
-            );
+            let (mean, p99) = errors(&field, method, samples.unwrap_or(0), self.base.height_scale);
             self.method_rows.push(MethodRow {
                 method: method.name(),
                 samples,

@@ -337,12 +337,18 @@ impl BenchReport {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn phase(size: (u32, u32), path: &'static str, pass: &'static str, ms: f64) -> CaseResult {
+impl CaseResult {
+    /// A case of the default POM material for tests: `pass` of `group` on `path` at `size`,
+    /// one frame of `ms`.
+    pub(super) fn example(
+        group: &'static str,
+        size: (u32, u32),
+        path: &'static str,
+        pass: &'static str,
+        ms: f64,
+    ) -> Self {
         CaseResult {
-            group: "phases",
+            group,
             method: "pom".into(),
             shadows: "soft".into(),
             width: size.0,
@@ -354,8 +360,17 @@ mod tests {
             path,
             pass,
             variant: String::new(),
-            spread: Spread::of(&[ms]).unwrap(),
+            spread: Spread::of(&[ms]).expect("one finite frame time"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn phase(size: (u32, u32), path: &'static str, pass: &'static str, ms: f64) -> CaseResult {
+        CaseResult::example("phases", size, path, pass, ms)
     }
 
     fn report(cases: Vec<CaseResult>) -> BenchReport {
