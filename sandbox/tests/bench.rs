@@ -35,8 +35,21 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // mesh; with and without depth offset), 19 scene-shadow figures (the street corner without
     // shadows: 3 phases and the frame; with a sun, a spot, a point light: 4 phases and the
     // frame each), 4 seed-port figures (ours and the seed's listing 2 on the same plane, near
-    // and far), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip).
-    assert_eq!(cases.len(), 2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 19 + 4 + 13));
+    // and far), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip);
+    // once, at the first size, max-mip's pyramid rebuilt every frame for two map sizes.
+    assert_eq!(
+        cases.len(),
+        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 19 + 4 + 13) + 2
+    );
+    // The quick bench's own map is 256², its large map 2048².
+    for map in ["256x256 map", "2048x2048 map"] {
+        assert!(
+            cases.iter().any(|c| c["group"] == "pyramid_build"
+                && c["pass"] == "derived textures"
+                && c["variant"] == map),
+            "no pyramid build for the {map}"
+        );
+    }
     let table = json["method_table"].as_array().unwrap();
     assert_eq!(table.len(), 2 * 13);
     for row in table {

@@ -71,6 +71,45 @@ fn blocking_timings_cover_the_phases_and_the_sobel_pass_from_the_first_frame() {
 }
 
 #[test]
+fn frames_that_build_a_max_pyramid_time_the_build_and_only_those() {
+    use pom::render::DERIVED_TEXTURES_PASS;
+    let mut app = timed_app(TimingMode::Blocking);
+    for material in app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+        material.method = pom::ParallaxMethod::MaxMip;
+    }
+    run_frames(&mut app, 1).unwrap();
+    assert_plausible(
+        app.resources.get::<GpuTimings>().unwrap(),
+        DERIVED_TEXTURES_PASS,
+    );
+    run_frames(&mut app, 1).unwrap();
+    let unchanged = app.resources.get::<GpuTimings>().unwrap();
+    assert_eq!(
+        unchanged.pass_ms(DERIVED_TEXTURES_PASS),
+        None,
+        "nothing to build while the heights stay: {unchanged:?}"
+    );
+    let height = app
+        .world
+        .query::<&DynamicHeightField>()
+        .iter()
+        .map(|field| field.height.clone())
+        .next()
+        .unwrap();
+    let rewritten = HeightField::from_fn(32, 32, |u, v| u * v).to_image_16();
+    *app.resources
+        .get_mut::<Assets<Image>>()
+        .unwrap()
+        .get_mut(&height)
+        .unwrap() = rewritten;
+    run_frames(&mut app, 1).unwrap();
+    assert_plausible(
+        app.resources.get::<GpuTimings>().unwrap(),
+        DERIVED_TEXTURES_PASS,
+    );
+}
+
+#[test]
 fn non_blocking_timings_appear_after_a_few_frames_and_keep_coming() {
     let mut app = timed_app(TimingMode::NonBlocking);
     run_frames(&mut app, 8).unwrap();

@@ -1,13 +1,18 @@
 //! Textures the GPU derives from an uploaded image (a height map's maximum pyramid), cached
 //! per image and derivation and rebuilt whenever the image is re-uploaded (a dynamic height
-//! field's every change).
+//! field's every change). The Prepare stage makes the builds ready; the frame records them in
+//! one compute pass before its phases ([`DERIVED_TEXTURES_PASS`]).
 
 use std::collections::HashMap;
 
-use super::GpuContext;
 use super::gpu_assets::{GpuImage, solid_texture};
-use super::max_pyramid::{MaxPyramidBuilder, create_pyramid};
+use super::max_pyramid::{MaxPyramidBuilder, PyramidBuild, create_pyramid};
+use super::{GpuContext, PassTimestamps};
 use crate::{AssetId, Image};
+
+/// The name under which [`crate::GpuTimings`] reports the frame's builds of derived textures
+/// (present only in frames that build one).
+pub const DERIVED_TEXTURES_PASS: &str = "derived textures";
 
 /// Most derived textures one material binds.
 pub const MAX_DERIVED_TEXTURES: usize = 2;
@@ -65,6 +70,8 @@ const UNUSED_FRAMES_KEPT: u64 = 1;
 pub(crate) struct DerivedTextureCache {
     builder: Option<MaxPyramidBuilder>,
     textures: HashMap<DerivedTexture, GpuDerivedTexture>,
+    /// Builds prepared since the frame last recorded them.
+    pending: Vec<PyramidBuild>,
     /// Sweeps so far: one per frame.
     sweeps: u64,
     /// One texel of 1.0 in `R32Float`.
@@ -85,6 +92,7 @@ impl DerivedTextureCache {
         Self {
             builder: None,
             textures: HashMap::new(),
+            pending: Vec::new(),
             sweeps: 0,
             default_view: solid_texture(
                 gpu,
@@ -139,15 +147,20 @@ impl DerivedTextureCache {
                 self.textures.entry(derived).insert_entry(fresh).into_mut()
             }
         };
-        builder.build(
+        self.pending.push(builder.prepare(
             gpu,
             &source.texture,
             (channel, depth_convention),
             &cached.texture,
-        );
+        ));
         cached.source_serial = source.upload_serial;
         cached.last_used = self.sweeps;
         true
+    }
+
+    /// The builds prepared since the last call, for the frame to record.
+    pub(crate) fn take_builds(&mut self) -> DerivedTextureBuilds {
+        DerivedTextureBuilds(std::mem::take(&mut self.pending))
     }
 
     /// The derived texture, if built.
@@ -168,5 +181,47 @@ impl DerivedTextureCache {
     /// How many derived textures are held.
     pub(crate) fn len(&self) -> usize {
         self.textures.len()
+    }
+}
+
+/// Builds of derived textures made ready in the Prepare stage, recorded by the frame before
+/// any phase reads them.
+#[derive(Default)]
+pub(crate) struct DerivedTextureBuilds(Vec<PyramidBuild>);
+
+impl DerivedTextureBuilds {
+    /// Whether there is nothing to build.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Records every build in one compute pass, timed by `timestamps`.
+    pub(crate) fn record(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<&PassTimestamps>,
+    ) {
+        if self.is_empty() {
+            return;
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(DERIVED_TEXTURES_PASS),
+            timestamp_writes: timestamps.map(PassTimestamps::compute),
+        });
+        for build in &self.0 {
+            build.record(&mut pass);
+        }
+    }
+
+    /// Records and submits the builds on their own, outside a frame.
+    #[cfg(feature = "scene-tests")]
+    pub(crate) fn submit(&self, gpu: &GpuContext) {
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some(DERIVED_TEXTURES_PASS),
+            });
+        self.record(&mut encoder, None);
+        gpu.queue.submit([encoder.finish()]);
     }
 }

@@ -5,7 +5,9 @@ use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
 use super::GpuContext;
-use super::derived_textures::{DerivedTexture, DerivedTextureCache, GpuDerivedTexture};
+use super::derived_textures::{
+    DerivedTexture, DerivedTextureBuilds, DerivedTextureCache, GpuDerivedTexture,
+};
 use super::gpu_types::Vertex;
 use crate::{AssetId, Assets, Image, Mesh, Pixels, TextureKind};
 
@@ -275,6 +277,12 @@ impl GpuAssets {
             self.next_upload_serial = serial;
         }
         built
+    }
+
+    /// The derived textures' builds prepared since the last call, for the frame to record
+    /// before its phases.
+    pub(crate) fn take_derived_builds(&mut self) -> DerivedTextureBuilds {
+        self.derived.take_builds()
     }
 
     /// The derived texture, if its source is on the GPU and it was prepared.

@@ -1,6 +1,6 @@
 //! Builds a height texture's maximum pyramid on the GPU (`max_pyramid.wgsl`), for hierarchical
-//! ray marching over the height field: one compute pass per level, when first used and after
-//! every change of the height.
+//! ray marching over the height field: one dispatch per level, recorded at the start of the
+//! frame that first uses it and of every frame after a change of the height.
 
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
@@ -85,18 +85,18 @@ impl MaxPyramidBuilder {
         }
     }
 
-    /// Records and submits the build of `heights`' pyramid (from its level 0) into `pyramid`,
-    /// made by [`create_pyramid`] for a texture of the same size.
-    pub(crate) fn build(
+    /// Makes ready the build of `heights`' pyramid (from its level 0) into `pyramid`, made by
+    /// [`create_pyramid`] for a texture of the same size; the frame records it before any phase
+    /// that may read the pyramid.
+    pub(crate) fn prepare(
         &self,
         gpu: &GpuContext,
         heights: &wgpu::Texture,
         (channel, depth_convention): (u8, bool),
         pyramid: &wgpu::Texture,
-    ) {
+    ) -> PyramidBuild {
         let device = &gpu.device;
         let (width, height) = (heights.width(), heights.height());
-        let levels = pyramid.mip_level_count();
         let level_view = |texture: &wgpu::Texture, level: u32| {
             texture.create_view(&wgpu::TextureViewDescriptor {
                 base_mip_level: level,
@@ -104,53 +104,76 @@ impl MaxPyramidBuilder {
                 ..Default::default()
             })
         };
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("max pyramid encoder"),
-        });
-        for level in 0..levels {
-            let (below, pipeline) = if level == 0 {
-                (level_view(heights, 0), &self.cell_maxima)
-            } else {
-                (level_view(pyramid, level - 1), &self.reduce_level)
-            };
-            let size = [(width >> level).max(1), (height >> level).max(1)];
-            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("max pyramid level"),
-                contents: bytemuck::bytes_of(&PyramidLevel {
+        let levels = (0..pyramid.mip_level_count())
+            .map(|level| {
+                let (below, pipeline) = if level == 0 {
+                    (level_view(heights, 0), &self.cell_maxima)
+                } else {
+                    (level_view(pyramid, level - 1), &self.reduce_level)
+                };
+                let size = [(width >> level).max(1), (height >> level).max(1)];
+                let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("max pyramid level"),
+                    contents: bytemuck::bytes_of(&PyramidLevel {
+                        size,
+                        channel: u32::from(channel),
+                        depth_convention: u32::from(depth_convention),
+                    }),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("max pyramid level"),
+                    layout: &self.layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(&below),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(&level_view(
+                                pyramid, level,
+                            )),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: params.as_entire_binding(),
+                        },
+                    ],
+                });
+                LevelBuild {
+                    pipeline: pipeline.clone(),
+                    bind_group,
                     size,
-                    channel: u32::from(channel),
-                    depth_convention: u32::from(depth_convention),
-                }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("max pyramid level"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&below),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&level_view(pyramid, level)),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: params.as_entire_binding(),
-                    },
-                ],
-            });
-            // One pass per level: the next level reads what this one wrote.
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("max pyramid level"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(size[0].div_ceil(8), size[1].div_ceil(8), 1);
+                }
+            })
+            .collect();
+        PyramidBuild { levels }
+    }
+}
+
+/// One level's dispatch.
+struct LevelBuild {
+    pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    size: [u32; 2],
+}
+
+/// A pyramid's build, ready to record: its bind groups keep the height texture and the pyramid
+/// alive until then.
+pub(crate) struct PyramidBuild {
+    levels: Vec<LevelBuild>,
+}
+
+impl PyramidBuild {
+    /// Records the build's dispatches, finest level first. wgpu puts a barrier between
+    /// dispatches of one pass where a level written becomes the level read.
+    pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        for level in &self.levels {
+            pass.set_pipeline(&level.pipeline);
+            pass.set_bind_group(0, &level.bind_group, &[]);
+            pass.dispatch_workgroups(level.size[0].div_ceil(8), level.size[1].div_ceil(8), 1);
         }
-        gpu.queue.submit([encoder.finish()]);
     }
 }
 
@@ -207,6 +230,7 @@ pub fn read_max_pyramid(
         },
     };
     assets.prepare_derived(gpu, derived);
+    assets.take_derived_builds().submit(gpu);
     let pyramid = &assets
         .derived(&derived)
         .ok_or_else(|| super::CaptureError::Map("the image was not uploaded".into()))?

@@ -35,7 +35,7 @@ pub use context::{GpuContext, GpuError};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
 pub use derived_textures::{
-    DerivedTexture, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
+    DERIVED_TEXTURES_PASS, DerivedTexture, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
 };
 pub use draw_view::DrawView;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
@@ -456,9 +456,9 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
         .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
 }
 
-/// The Render stage's system: runs the phases in order (prepass, shadows, opaque,
-/// transparent, post-processing; the overlay belongs to the application) in one submission,
-/// each timed under its name.
+/// The Render stage's system: builds the textures derived this frame, then runs the phases in
+/// order (prepass, shadows, opaque, transparent, post-processing; the overlay belongs to the
+/// application) in one submission, each timed under its name.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
     let prepass = resources.require::<Renderer>()?.depth_prepass;
@@ -481,7 +481,15 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     // A deferred frame whose opaque phase draws nothing writes the background from compute
     // instead of clearing the scene in an empty render pass (a full-screen fragment pass).
     let background_in_compute = run_resolve && !has(DrawPhase::Opaque);
+    // Textures derived in the Prepare stage are built before every phase that may read them.
+    let derived_builds = resources
+        .get_mut::<Renderer>()
+        .map(|renderer| renderer.assets.take_derived_builds())
+        .unwrap_or_default();
     // Reserve the timestamps first: the timer is borrowed mutably.
+    let derived_time = (!derived_builds.is_empty())
+        .then(|| time_pass(resources, DERIVED_TEXTURES_PASS))
+        .flatten();
     let mut time = |run: bool, phase: RenderPhase| {
         if run {
             time_pass(resources, phase.name())
@@ -505,6 +513,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("frame encoder"),
         });
+    derived_builds.record(&mut encoder, derived_time.as_ref());
     let draw_phase = |phase: DrawPhase, pass: &mut wgpu::RenderPass<'_>| {
         if let (true, Some(phases)) = (has_camera, phases) {
             for draw in phases.draws(phase) {

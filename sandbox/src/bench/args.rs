@@ -35,6 +35,8 @@ pub enum Measurement {
     SeedPort,
     /// Steep, POM and relief at 8–64 samples and MaxMip: error, fetches per pixel and time.
     MethodTable,
+    /// MaxMip's pyramid rebuilt every frame (a dynamic height field): the build's GPU time.
+    PyramidBuild,
 }
 
 /// Options of `sandbox bench`.

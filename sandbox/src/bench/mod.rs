@@ -9,6 +9,7 @@ mod args;
 mod chart;
 mod cpu_side;
 mod method_table;
+mod pyramid_build;
 mod report;
 mod sample_count;
 mod scene;
@@ -156,6 +157,10 @@ impl Runner<'_> {
                     quick: args.quick,
                     frames: (self.warmup, self.frames),
                 })?);
+        }
+        if wanted(Measurement::PyramidBuild) {
+            eprintln!("timing max-mip's pyramid rebuilt every frame{on_path} ...");
+            self.pyramid_builds(sizes[0], args.quick)?;
         }
         if wanted(Measurement::CpuSide) {
             eprintln!(

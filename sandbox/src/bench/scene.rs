@@ -6,10 +6,13 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result, bail};
 use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewView, spawn_preview, spawn_preview_mesh};
-use pom::render::{PROBE_PASS, RenderTarget, Renderer, TexelRateProbe, resolve_gpu_timings};
+use pom::render::{
+    DERIVED_TEXTURES_PASS, PROBE_PASS, RenderTarget, Renderer, TexelRateProbe, resolve_gpu_timings,
+};
 use pom::{
-    App, Assets, Camera, GpuContext, GpuTimings, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPath, RenderPhase, RenderPlugin, TargetFormat, TimingMode,
+    App, Assets, Camera, GpuContext, GpuTimings, Handle, HeightSource, Image, Mesh,
+    ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPhase, RenderPlugin, TargetFormat,
+    TimingMode,
 };
 
 use crate::preview_textures::PreviewTextures;
@@ -287,6 +290,40 @@ impl BenchScene {
             },
             |app| Ok(app.update()?),
         )
+    }
+
+    /// Like [`BenchScene::time`], with every parallax material's height image marked changed
+    /// before each frame, as a dynamic height field's are: re-uploaded, and what is derived
+    /// from it rebuilt. Returns the milliseconds of that rebuild ([`DERIVED_TEXTURES_PASS`])
+    /// per timed frame.
+    pub fn time_rewritten_heights(&mut self, warmup: Warmup, frames: usize) -> Result<Vec<f64>> {
+        let heights: Vec<Handle<Image>> = self
+            .app
+            .world
+            .query::<&ParallaxOcclusionMaterial>()
+            .iter()
+            .filter_map(|material| match &material.height_map {
+                Some(HeightSource::Texture(height)) => Some(height.clone()),
+                _ => None,
+            })
+            .collect();
+        if heights.is_empty() {
+            bail!("no parallax material with a height texture to rewrite");
+        }
+        let mut times = self.time_frames(
+            warmup,
+            frames,
+            |_| vec![DERIVED_TEXTURES_PASS],
+            |app| {
+                let images = app.resources.require_mut::<Assets<Image>>()?;
+                for height in &heights {
+                    // Borrowing it mutably is what marks it changed.
+                    images.get_mut(height);
+                }
+                Ok(app.update()?)
+            },
+        )?;
+        Ok(times.pop().map(|(_, times)| times).unwrap_or_default())
     }
 
     /// Whether the last frame ran the deferred path (the renderer decides per frame: a material
