@@ -63,15 +63,15 @@ pub(crate) struct GpuDerivedTexture {
 
 /// Frames a derived texture no draw used is kept before its memory is freed (a 4096² pyramid
 /// holds 89 MB). Every draw is prepared every frame, so one frame without a user means no
-/// material uses it any more; switching back rebuilds it (a few compute passes).
+/// material uses it any more; switching back rebuilds it (a few dispatches).
 const UNUSED_FRAMES_KEPT: u64 = 1;
 
 /// The derived textures of every image, and the default bound where a draw has none.
 pub(crate) struct DerivedTextureCache {
     builder: Option<MaxPyramidBuilder>,
     textures: HashMap<DerivedTexture, GpuDerivedTexture>,
-    /// Builds prepared since the frame last recorded them.
-    pending: Vec<PyramidBuild>,
+    /// Builds prepared and not yet submitted in a frame.
+    pending: DerivedTextureBuilds,
     /// Sweeps so far: one per frame.
     sweeps: u64,
     /// One texel of 1.0 in `R32Float`.
@@ -92,7 +92,7 @@ impl DerivedTextureCache {
         Self {
             builder: None,
             textures: HashMap::new(),
-            pending: Vec::new(),
+            pending: DerivedTextureBuilds::default(),
             sweeps: 0,
             default_view: solid_texture(
                 gpu,
@@ -103,8 +103,9 @@ impl DerivedTextureCache {
         }
     }
 
-    /// Builds `derived` from `source` if it is missing or older than the source's upload;
-    /// `next_serial` numbers a new texture. Returns whether it built.
+    /// Queues the build of `derived` from `source` if it is missing or older than the source's
+    /// upload (the frame records it); `next_serial` numbers a new texture. Returns whether it
+    /// queued one.
     pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
@@ -147,7 +148,7 @@ impl DerivedTextureCache {
                 self.textures.entry(derived).insert_entry(fresh).into_mut()
             }
         };
-        self.pending.push(builder.prepare(
+        self.pending.0.push(builder.prepare(
             gpu,
             &source.texture,
             (channel, depth_convention),
@@ -158,9 +159,15 @@ impl DerivedTextureCache {
         true
     }
 
-    /// The builds prepared since the last call, for the frame to record.
-    pub(crate) fn take_builds(&mut self) -> DerivedTextureBuilds {
-        DerivedTextureBuilds(std::mem::take(&mut self.pending))
+    /// The builds queued and not yet submitted, for the frame to record.
+    pub(crate) fn pending_builds(&self) -> &DerivedTextureBuilds {
+        &self.pending
+    }
+
+    /// Forgets the queued builds once the frame that recorded them is submitted: a frame that
+    /// fails before that leaves them for the next.
+    pub(crate) fn builds_submitted(&mut self) {
+        self.pending.0.clear();
     }
 
     /// The derived texture, if built.

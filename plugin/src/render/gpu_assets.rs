@@ -70,7 +70,7 @@ pub struct UploadStats {
     pub meshes: u32,
     /// Images uploaded (new or changed).
     pub images: u32,
-    /// Textures derived from images (maximum pyramids) built or rebuilt.
+    /// Textures derived from images (maximum pyramids) queued to be built or rebuilt.
     pub derived: u32,
     /// Bytes written to uniform and storage buffers.
     pub uniform_bytes: u64,
@@ -265,7 +265,7 @@ impl GpuAssets {
         }
     }
 
-    /// Derives `derived` from its (uploaded) source if it is missing or older than the
+    /// Queues the derivation of `derived` from its (uploaded) source if it is missing or older than the
     /// source's last upload; returns whether it did.
     pub(crate) fn prepare_derived(&mut self, gpu: &GpuContext, derived: DerivedTexture) -> bool {
         let Some(Cached::Ready { gpu: source, .. }) = self.images.get(&derived.source) else {
@@ -279,10 +279,15 @@ impl GpuAssets {
         built
     }
 
-    /// The derived textures' builds prepared since the last call, for the frame to record
+    /// The derived textures' builds queued and not yet submitted, for the frame to record
     /// before its phases.
-    pub(crate) fn take_derived_builds(&mut self) -> DerivedTextureBuilds {
-        self.derived.take_builds()
+    pub(crate) fn pending_derived_builds(&self) -> &DerivedTextureBuilds {
+        self.derived.pending_builds()
+    }
+
+    /// Forgets the queued builds: the frame that recorded them was submitted.
+    pub(crate) fn derived_builds_submitted(&mut self) {
+        self.derived.builds_submitted();
     }
 
     /// The derived texture, if its source is on the GPU and it was prepared.

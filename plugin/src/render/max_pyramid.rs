@@ -230,7 +230,8 @@ pub fn read_max_pyramid(
         },
     };
     assets.prepare_derived(gpu, derived);
-    assets.take_derived_builds().submit(gpu);
+    assets.pending_derived_builds().submit(gpu);
+    assets.derived_builds_submitted();
     let pyramid = &assets
         .derived(&derived)
         .ok_or_else(|| super::CaptureError::Map("the image was not uploaded".into()))?

@@ -457,8 +457,8 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
 }
 
 /// The Render stage's system: builds the textures derived this frame, then runs the phases in
-/// order (prepass, shadows, opaque, transparent, post-processing; the overlay belongs to the
-/// application) in one submission, each timed under its name.
+/// order (prepass, shadows, opaque, transparent; then post-processing in a second submission;
+/// the overlay belongs to the application), each timed under its name.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
     let prepass = resources.require::<Renderer>()?.depth_prepass;
@@ -481,15 +481,12 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     // A deferred frame whose opaque phase draws nothing writes the background from compute
     // instead of clearing the scene in an empty render pass (a full-screen fragment pass).
     let background_in_compute = run_resolve && !has(DrawPhase::Opaque);
-    // Textures derived in the Prepare stage are built before every phase that may read them.
-    let derived_builds = resources
-        .get_mut::<Renderer>()
-        .map(|renderer| renderer.assets.take_derived_builds())
-        .unwrap_or_default();
+    let builds_derived_textures = !resources
+        .require::<Renderer>()?
+        .assets
+        .pending_derived_builds()
+        .is_empty();
     // Reserve the timestamps first: the timer is borrowed mutably.
-    let derived_time = (!derived_builds.is_empty())
-        .then(|| time_pass(resources, DERIVED_TEXTURES_PASS))
-        .flatten();
     let mut time = |run: bool, phase: RenderPhase| {
         if run {
             time_pass(resources, phase.name())
@@ -503,6 +500,10 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     let resolve_time = time(run_resolve, RenderPhase::Resolve);
     let transparent_time = time(run_transparent, RenderPhase::Transparent);
     let post_time = time(true, RenderPhase::PostProcess);
+    // Reserved last: where a frame times more passes than the timer holds, the phases keep theirs.
+    let derived_time = builds_derived_textures
+        .then(|| time_pass(resources, DERIVED_TEXTURES_PASS))
+        .flatten();
 
     let gpu = resources.require::<GpuContext>()?;
     let target = resources.require::<RenderTarget>()?;
@@ -513,7 +514,12 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("frame encoder"),
         });
-    derived_builds.record(&mut encoder, derived_time.as_ref());
+    // Textures derived in the Prepare stage are built before every phase that may read them.
+    resources
+        .require::<Renderer>()?
+        .assets
+        .pending_derived_builds()
+        .record(&mut encoder, derived_time.as_ref());
     let draw_phase = |phase: DrawPhase, pass: &mut wgpu::RenderPass<'_>| {
         if let (true, Some(phases)) = (has_camera, phases) {
             for draw in phases.draws(phase) {
@@ -651,6 +657,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     gpu.queue.submit([encoder.finish()]);
     resources
         .scope(|resources, renderer: &mut Renderer| {
+            renderer.assets.derived_builds_submitted();
             let gpu = resources.require::<GpuContext>()?;
             let target = resources.require::<RenderTarget>()?;
             let mut encoder = gpu
