@@ -42,8 +42,9 @@ pub(crate) struct Batch<K> {
     pub(crate) textures: BoundTextures,
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) instances: Range<u32>,
-    /// On deferred frames, the visibility id of the first instance's first triangle (0: none).
-    pub(crate) first_id: u32,
+    /// On deferred frames, the visibility ids of its triangles, instance after instance,
+    /// starting at the first instance's first triangle (starting at 0: none; 0 is no draw's id).
+    pub(crate) visibility_ids: Range<u32>,
     /// The mesh's triangles: each instance owns that many ids.
     pub(crate) triangles: u32,
 }
@@ -316,7 +317,7 @@ impl<M: Material> MaterialBatches<M> {
                     textures: entry.textures,
                     mesh: entry.mesh,
                     instances: instance..instance + 1,
-                    first_id: 0,
+                    visibility_ids: 0..0,
                     triangles: 0,
                 }),
             }
@@ -376,12 +377,16 @@ impl<M: Material> MaterialBatches<M> {
                 .map_or(0, |mesh| mesh.index_count / 3);
             let count =
                 u64::from(batch.instances.end - batch.instances.start) * u64::from(batch.triangles);
-            batch.first_id = ids.allocate(count).unwrap_or(0);
+            // `allocate` keeps the end within u32.
+            batch.visibility_ids = ids
+                .allocate(count)
+                .map_or(0..0, |first| first..first + count as u32);
+            let first_id = batch.visibility_ids.start;
             for (k, slot) in batch.instances.clone().enumerate() {
-                self.transform_data[slot as usize].first_visibility_id = if batch.first_id == 0 {
+                self.transform_data[slot as usize].first_visibility_id = if first_id == 0 {
                     0
                 } else {
-                    batch.first_id + k as u32 * batch.triangles
+                    first_id + k as u32 * batch.triangles
                 };
             }
         }

@@ -76,11 +76,6 @@ struct Dispatch {
     offset: u32,
 }
 
-/// The end (exclusive) of `batch`'s visibility ids.
-fn end_id<K>(batch: &Batch<K>) -> u32 {
-    batch.first_id + (batch.instances.end - batch.instances.start) * batch.triangles
-}
-
 /// Material `M`'s resolve inputs.
 pub(crate) struct DeferredResolve {
     label: &'static str,
@@ -186,23 +181,25 @@ impl DeferredResolve {
         if !inverse.is_finite() {
             return;
         }
-        let resolved: Vec<(usize, &Batch<K>)> = batches
+        let resolved: Vec<_> = batches
             .iter()
             .enumerate()
-            .filter(|(_, batch)| {
-                resolves(batch) && batch.first_id != 0 && assets.mesh(batch.mesh).is_some()
-            })
+            .filter(|(_, batch)| resolves(batch) && batch.visibility_ids.start != 0)
+            .filter_map(|(index, batch)| Some((index, batch, assets.mesh(batch.mesh)?)))
             .collect();
         // Classifying costs one read of the whole visibility buffer, as does each batch's
         // whole-target dispatch (its pixels of other batches return after one load): it pays
         // from two batches on, while the tile lists fit the device's buffers.
         let classified =
             resolved.len() >= 2 && ResolveTiles::fits(gpu, resolved.len(), targets.size);
-        let ranges: Vec<[u32; 2]> = resolved
-            .iter()
-            .filter(|_| classified)
-            .map(|(_, batch)| [batch.first_id, end_id(batch)])
-            .collect();
+        let ranges: Vec<[u32; 2]> = if classified {
+            resolved
+                .iter()
+                .map(|(_, batch, _)| [batch.visibility_ids.start, batch.visibility_ids.end])
+                .collect()
+        } else {
+            Vec::new()
+        };
         self.tiles.prepare(
             gpu,
             targets.visibility,
@@ -217,16 +214,13 @@ impl DeferredResolve {
         }
         let (width, height) = targets.size;
         let mut used = HashSet::new();
-        for (place, (index, batch)) in resolved.into_iter().enumerate() {
-            let Some(mesh) = assets.mesh(batch.mesh) else {
-                continue;
-            };
+        for (place, (index, batch, mesh)) in resolved.into_iter().enumerate() {
             let slot = ResolveBatch {
                 inverse_view_projection: inverse.to_cols_array_2d(),
                 target_width: width as f32,
                 target_height: height as f32,
-                first_id: batch.first_id,
-                end_id: end_id(batch),
+                first_id: batch.visibility_ids.start,
+                end_id: batch.visibility_ids.end,
                 first_object: batch.instances.start,
                 triangles: batch.triangles,
                 batch: if classified {

@@ -185,6 +185,19 @@ pub(crate) struct DrawBuffers<'a> {
     pub(crate) uniforms: &'a wgpu::Buffer,
 }
 
+/// The two groups of `layout` over `bindings`: for the passes that write depth, and for those
+/// that shade.
+fn writing_and_shading(
+    gpu: &GpuContext,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    bindings: &FrameBindings<'_>,
+    depth: &DepthBindings<'_>,
+) -> (wgpu::BindGroup, wgpu::BindGroup) {
+    let group = |depth_use| frame_bind_group(gpu, label, layout, bindings, depth, depth_use);
+    (group(DepthUse::Writing), group(DepthUse::Shading))
+}
+
 impl FrameBindGroups {
     /// The layout for a material whose per-draw uniforms are laid out by `uniforms_entry`
     /// (binding 2), with the visibility keys where its shader is the `deferred` one, and the
@@ -216,23 +229,14 @@ impl FrameBindGroups {
                 label: Some(&format!("{label} frame layout")),
                 entries: &entries,
             });
-        let make = |depth_use| {
-            frame_bind_group(
-                gpu,
-                label,
-                &layout,
-                &FrameBindings {
-                    frame: buffers.frame,
-                    transforms: buffers.transforms,
-                    uniforms: buffers.uniforms,
-                    counter: counter.as_ref(),
-                    visibility_keys: deferred,
-                },
-                depth,
-                depth_use,
-            )
+        let bindings = FrameBindings {
+            frame: buffers.frame,
+            transforms: buffers.transforms,
+            uniforms: buffers.uniforms,
+            counter: counter.as_ref(),
+            visibility_keys: deferred,
         };
-        let (writing, shading) = (make(DepthUse::Writing), make(DepthUse::Shading));
+        let (writing, shading) = writing_and_shading(gpu, label, &layout, &bindings, depth);
         Self {
             label,
             layout,
@@ -263,22 +267,8 @@ impl FrameBindGroups {
             counter: self.counter.as_ref(),
             visibility_keys: self.visibility_keys,
         };
-        self.writing = frame_bind_group(
-            gpu,
-            self.label,
-            &self.layout,
-            &bindings,
-            depth,
-            DepthUse::Writing,
-        );
-        self.shading = frame_bind_group(
-            gpu,
-            self.label,
-            &self.layout,
-            &bindings,
-            depth,
-            DepthUse::Shading,
-        );
+        (self.writing, self.shading) =
+            writing_and_shading(gpu, self.label, &self.layout, &bindings, depth);
         self.bound = depth.bound;
     }
 

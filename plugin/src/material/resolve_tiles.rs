@@ -151,10 +151,7 @@ impl ResolveTiles {
         size: (u32, u32),
         ranges: &[[u32; 2]],
     ) {
-        self.tiles = (
-            size.0.div_ceil(shaders::DEFERRED_TILE_SIDE),
-            size.1.div_ceil(shaders::DEFERRED_TILE_SIDE),
-        );
+        self.tiles = shaders::deferred_tiles(size);
         let tile_count = u64::from(self.tiles.0) * u64::from(self.tiles.1);
         self.batch_count = ranges.len() as u32;
         if ranges.is_empty() {
@@ -238,11 +235,9 @@ impl ResolveTiles {
     /// Whether the tile lists of `batches` batches over a target of `size` fit the device's
     /// buffer limits (one list of every tile per batch: 518 KB each at 4K).
     pub(crate) fn fits(gpu: &GpuContext, batches: usize, size: (u32, u32)) -> bool {
-        let side = shaders::DEFERRED_TILE_SIDE;
-        let tiles = u64::from(size.0.div_ceil(side)) * u64::from(size.1.div_ceil(side));
-        let bytes = (batches as u64).next_power_of_two() * tiles * 4;
-        let limits = gpu.device.limits();
-        bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
+        let (across, down) = shaders::deferred_tiles(size);
+        let tiles = u64::from(across) * u64::from(down);
+        gpu.storage_buffer_fits((batches as u64).next_power_of_two() * tiles * 4)
     }
 
     /// Tiles along the target's width.

@@ -159,24 +159,14 @@ pub fn read_rgba32f(
 /// # Ok(()) }
 /// ```
 pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
-    let (Some(gpu), Some(target)) = (
-        app.resources.get::<GpuContext>(),
-        app.resources.get::<RenderTarget>(),
-    ) else {
-        return Err(RenderError::NotRendered);
-    };
+    let (gpu, target) = rendered(app)?;
     Ok(read_rgba8(gpu, &target.color)?)
 }
 
 /// Reads the last rendered frame of a [`super::TargetFormat::Float32`] target back as floats: linear
 /// display values after exposure and tonemapping (debug views' data as the shader wrote it).
 pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
-    let (Some(gpu), Some(target)) = (
-        app.resources.get::<GpuContext>(),
-        app.resources.get::<RenderTarget>(),
-    ) else {
-        return Err(RenderError::NotRendered);
-    };
+    let (gpu, target) = rendered(app)?;
     Ok(read_rgba32f(gpu, &target.color)?)
 }
 
@@ -184,11 +174,17 @@ pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
 /// the materials computed, already exposed (the lights carry the camera's exposure), before
 /// tonemapping.
 pub fn capture_scene(app: &App) -> Result<Rgba32FImage, RenderError> {
-    let (Some(gpu), Some(target)) = (
+    let (gpu, target) = rendered(app)?;
+    Ok(read_rgba32f(gpu, &target.scene)?)
+}
+
+/// The GPU and the target an app renders into, or [`RenderError::NotRendered`] without them.
+fn rendered(app: &App) -> Result<(&GpuContext, &RenderTarget), RenderError> {
+    match (
         app.resources.get::<GpuContext>(),
         app.resources.get::<RenderTarget>(),
-    ) else {
-        return Err(RenderError::NotRendered);
-    };
-    Ok(read_rgba32f(gpu, &target.scene)?)
+    ) {
+        (Some(gpu), Some(target)) => Ok((gpu, target)),
+        _ => Err(RenderError::NotRendered),
+    }
 }

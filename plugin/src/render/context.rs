@@ -123,6 +123,12 @@ impl GpuContext {
         self.adapter.get_info()
     }
 
+    /// Whether the device can make a buffer of `bytes` and bind it whole as storage.
+    pub(crate) fn storage_buffer_fits(&self, bytes: u64) -> bool {
+        let limits = self.device.limits();
+        bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
+    }
+
     /// Returns and clears the errors no error scope caught since the last call.
     pub fn take_uncaptured_errors(&self) -> Vec<String> {
         self.uncaptured

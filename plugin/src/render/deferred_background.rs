@@ -89,10 +89,7 @@ impl DeferredBackground {
         };
         gpu.queue
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        self.workgroups = (
-            width.div_ceil(shaders::DEFERRED_TILE_SIDE),
-            height.div_ceil(shaders::DEFERRED_TILE_SIDE),
-        );
+        self.workgroups = shaders::deferred_tiles((width, height));
         if self.bind_group.as_ref().map(|(id, _)| *id) != Some(target.id()) {
             let layout = self.pipeline.get_bind_group_layout(0);
             let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use super::gpu_assets::{GpuImage, solid_texture};
-use super::max_pyramid::{MaxPyramidBuilder, PyramidBuild, create_pyramid};
+use super::max_pyramid::{MaxPyramidBuilder, PyramidBuild, PyramidLevels, create_pyramid};
 use super::{GpuContext, PassTimestamps};
 use crate::{AssetId, Image};
 
@@ -53,6 +53,8 @@ pub(crate) struct GpuDerivedTexture {
     pub texture: wgpu::Texture,
     /// A view of every level.
     pub view: wgpu::TextureView,
+    /// What every build into `texture` shares.
+    levels: PyramidLevels,
     /// Upload serial of the source it was built from.
     source_serial: u64,
     /// The last sweep before which a draw used it.
@@ -132,15 +134,17 @@ impl DerivedTextureCache {
             .get_mut(&derived)
             .filter(|cached| (cached.texture.width(), cached.texture.height()) == (width, height));
         // A rewritten source of the same size (a dynamic height field's every change) is built
-        // into the same texture: nothing reallocated, no bind group remade.
+        // into the same texture: nothing reallocated, only level 0's bind group remade.
         let cached = match reusable {
             Some(cached) => cached,
             None => {
                 let texture = create_pyramid(gpu, width, height);
                 let view = texture.create_view(&Default::default());
+                let levels = builder.levels(gpu, &texture, (channel, depth_convention));
                 let fresh = GpuDerivedTexture {
                     texture,
                     view,
+                    levels,
                     source_serial: 0,
                     last_used: 0,
                     serial: next_serial,
@@ -148,12 +152,9 @@ impl DerivedTextureCache {
                 self.textures.entry(derived).insert_entry(fresh).into_mut()
             }
         };
-        self.pending.0.push(builder.prepare(
-            gpu,
-            &source.texture,
-            (channel, depth_convention),
-            &cached.texture,
-        ));
+        self.pending
+            .0
+            .push(builder.build(gpu, &source.texture, &cached.texture, &cached.levels));
         cached.source_serial = source.upload_serial;
         cached.last_used = self.sweeps;
         true

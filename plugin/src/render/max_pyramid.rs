@@ -85,74 +85,131 @@ impl MaxPyramidBuilder {
         }
     }
 
-    /// Makes ready the build of `heights`' pyramid (from its level 0) into `pyramid`, made by
-    /// [`create_pyramid`] for a texture of the same size; the frame records it before any phase
-    /// that may read the pyramid.
-    pub(crate) fn prepare(
+    /// The dispatches of a pyramid's levels above 0 (they read only `pyramid`, so they are made
+    /// once per pyramid texture) and level 0's parameters, for [`MaxPyramidBuilder::build`].
+    pub(crate) fn levels(
         &self,
         gpu: &GpuContext,
-        heights: &wgpu::Texture,
-        (channel, depth_convention): (u8, bool),
         pyramid: &wgpu::Texture,
-    ) -> PyramidBuild {
-        let device = &gpu.device;
-        let (width, height) = (heights.width(), heights.height());
-        let level_view = |texture: &wgpu::Texture, level: u32| {
-            texture.create_view(&wgpu::TextureViewDescriptor {
-                base_mip_level: level,
-                mip_level_count: Some(1),
-                ..Default::default()
-            })
-        };
-        let levels = (0..pyramid.mip_level_count())
-            .map(|level| {
-                let (below, pipeline) = if level == 0 {
-                    (level_view(heights, 0), &self.cell_maxima)
-                } else {
-                    (level_view(pyramid, level - 1), &self.reduce_level)
-                };
-                let size = [(width >> level).max(1), (height >> level).max(1)];
-                let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        (channel, depth_convention): (u8, bool),
+    ) -> PyramidLevels {
+        let (width, height) = (pyramid.width(), pyramid.height());
+        let params = |level: u32| {
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("max pyramid level"),
                     contents: bytemuck::bytes_of(&PyramidLevel {
-                        size,
+                        size: [(width >> level).max(1), (height >> level).max(1)],
                         channel: u32::from(channel),
                         depth_convention: u32::from(depth_convention),
                     }),
                     usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("max pyramid level"),
-                    layout: &self.layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: wgpu::BindingResource::TextureView(&below),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(&level_view(
-                                pyramid, level,
-                            )),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: params.as_entire_binding(),
-                        },
-                    ],
-                });
-                LevelBuild {
-                    pipeline: pipeline.clone(),
-                    bind_group,
-                    size,
-                }
+                })
+        };
+        let upper = (1..pyramid.mip_level_count())
+            .map(|level| {
+                let below = level_view(pyramid, level - 1);
+                self.level_build(
+                    gpu,
+                    &self.reduce_level,
+                    level,
+                    &below,
+                    pyramid,
+                    params(level),
+                )
             })
             .collect();
-        PyramidBuild { levels }
+        PyramidLevels {
+            first_params: params(0),
+            upper,
+        }
+    }
+
+    /// The build of `heights`' pyramid into `pyramid`, whose `levels` are made by
+    /// [`MaxPyramidBuilder::levels`] for it: only level 0, which reads `heights` (a re-upload
+    /// replaces that texture), gets a new bind group. The frame records it before any phase
+    /// that may read the pyramid.
+    pub(crate) fn build(
+        &self,
+        gpu: &GpuContext,
+        heights: &wgpu::Texture,
+        pyramid: &wgpu::Texture,
+        levels: &PyramidLevels,
+    ) -> PyramidBuild {
+        let first = self.level_build(
+            gpu,
+            &self.cell_maxima,
+            0,
+            &level_view(heights, 0),
+            pyramid,
+            levels.first_params.clone(),
+        );
+        PyramidBuild {
+            levels: std::iter::once(first)
+                .chain(levels.upper.iter().cloned())
+                .collect(),
+        }
+    }
+
+    /// The dispatch writing `pyramid`'s `level` from `below` with `pipeline`.
+    fn level_build(
+        &self,
+        gpu: &GpuContext,
+        pipeline: &wgpu::ComputePipeline,
+        level: u32,
+        below: &wgpu::TextureView,
+        pyramid: &wgpu::Texture,
+        params: wgpu::Buffer,
+    ) -> LevelBuild {
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("max pyramid level"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(below),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&level_view(pyramid, level)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: params.as_entire_binding(),
+                },
+            ],
+        });
+        let size = [
+            (pyramid.width() >> level).max(1),
+            (pyramid.height() >> level).max(1),
+        ];
+        LevelBuild {
+            pipeline: pipeline.clone(),
+            bind_group,
+            size,
+        }
     }
 }
 
+/// A view of `texture`'s `level` alone.
+fn level_view(texture: &wgpu::Texture, level: u32) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        base_mip_level: level,
+        mip_level_count: Some(1),
+        ..Default::default()
+    })
+}
+
+/// What a pyramid texture's builds share: level 0's parameters and the dispatches of the
+/// levels above it.
+#[derive(Debug)]
+pub(crate) struct PyramidLevels {
+    first_params: wgpu::Buffer,
+    upper: Vec<LevelBuild>,
+}
+
 /// One level's dispatch.
+#[derive(Clone, Debug)]
 struct LevelBuild {
     pipeline: wgpu::ComputePipeline,
     bind_group: wgpu::BindGroup,

@@ -78,6 +78,14 @@ pub fn deferred_header() -> String {
 /// WGSL).
 pub(crate) const DEFERRED_TILE_SIDE: u32 = 8;
 
+/// The deferred tiles across and down a target of `size` pixels (edge tiles partly outside).
+pub(crate) fn deferred_tiles((width, height): (u32, u32)) -> (u32, u32) {
+    (
+        width.div_ceil(DEFERRED_TILE_SIDE),
+        height.div_ceil(DEFERRED_TILE_SIDE),
+    )
+}
+
 /// Tiles per row of a resolve batch's indirect dispatch (`TILES_PER_ROW` in WGSL): a dispatch
 /// has at most 65535 workgroups a side, a 4K target 129,600 tiles of 8 × 8.
 pub(crate) const RESOLVE_TILES_PER_ROW: u32 = 256;

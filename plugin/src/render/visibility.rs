@@ -90,9 +90,7 @@ pub(crate) fn visibility_bytes(target: &RenderTarget) -> u64 {
 
 /// Whether the device can hold and bind `target`'s visibility buffer.
 pub(crate) fn visibility_fits(gpu: &GpuContext, target: &RenderTarget) -> bool {
-    let limits = gpu.device.limits();
-    let bytes = visibility_bytes(target);
-    bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
+    gpu.storage_buffer_fits(visibility_bytes(target))
 }
 
 #[cfg(test)]
