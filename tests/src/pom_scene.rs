@@ -69,7 +69,17 @@ pub fn uv_view(
     view: &PreviewView,
     method: ParallaxMethod,
 ) -> Result<image::Rgba32FImage, HarnessError> {
-    let mut app = preview_app(size, TargetFormat::Float32, textures, view, |material| {
+    crate::render_and_capture_f32(&mut uv_app(size, textures, view, method)?)
+}
+
+/// The app [`uv_view`] renders, for tests that change it between frames.
+pub fn uv_app(
+    size: u32,
+    textures: &HeightMaterial,
+    view: &PreviewView,
+    method: ParallaxMethod,
+) -> Result<App, HarnessError> {
+    preview_app(size, TargetFormat::Float32, textures, view, |material| {
         ParallaxOcclusionMaterial {
             method,
             debug_view: DebugView::Uv,
@@ -77,6 +87,18 @@ pub fn uv_view(
             lod_threshold: 16.0,
             ..material
         }
-    })?;
-    crate::render_and_capture_f32(&mut app)
+    })
+}
+
+/// Applies `change` to every parallax material of `app`.
+pub fn set_material(app: &mut App, change: impl Fn(&mut ParallaxOcclusionMaterial)) {
+    for material in app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+        change(material);
+    }
+}
+
+/// The shortest difference between two coordinates on a repeating texture, from their plain
+/// difference.
+pub fn wrapped(difference: f32) -> f32 {
+    difference - difference.round()
 }

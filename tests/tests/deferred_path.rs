@@ -10,7 +10,7 @@ use pom::{
     Assets, DebugView, LitMaterial, Mesh, ParallaxOcclusionMaterial, RenderPath, TargetFormat,
     Transform, patterns,
 };
-use pom_tests::pom_scene::{HeightMaterial, preview_app};
+use pom_tests::pom_scene::{HeightMaterial, preview_app, wrapped};
 use pom_tests::{render_both_paths, render_on_path, render_on_path_f32};
 
 /// Side of the test height map in texels.
@@ -42,11 +42,6 @@ fn a_parallax_plane_looks_the_same_on_both_paths() {
     )
     .unwrap();
     render_both_paths(&mut app, "parallax_plane").unwrap();
-}
-
-/// Shortest difference between two coordinates on a repeating texture.
-fn wrapped(difference: f32) -> f32 {
-    difference - difference.round()
 }
 
 #[test]

@@ -74,9 +74,9 @@ fn blocking_timings_cover_the_phases_and_the_sobel_pass_from_the_first_frame() {
 fn frames_that_build_a_max_pyramid_time_the_build_and_only_those() {
     use pom::render::DERIVED_TEXTURES_PASS;
     let mut app = timed_app(TimingMode::Blocking);
-    for material in app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+    pom_tests::pom_scene::set_material(&mut app, |material| {
         material.method = pom::ParallaxMethod::MaxMip;
-    }
+    });
     run_frames(&mut app, 1).unwrap();
     assert_plausible(
         app.resources.get::<GpuTimings>().unwrap(),

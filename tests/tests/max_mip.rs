@@ -59,9 +59,8 @@ fn the_gpu_pyramid_equals_the_cpu_reference_for_every_channel_and_convention() {
 #[test]
 fn the_pyramid_follows_rewritten_heights() {
     use pom::preview::PreviewView;
-    use pom::{Assets, DebugView, HeightSource, ParallaxMethod, ParallaxOcclusionMaterial};
-    use pom::{ShadowMode, TargetFormat};
-    use pom_tests::pom_scene::{HeightMaterial, preview_app};
+    use pom::{Assets, HeightSource, ParallaxMethod, ParallaxOcclusionMaterial};
+    use pom_tests::pom_scene::{HeightMaterial, uv_app};
 
     let floor = HeightField::new(16, 16, vec![0.0; 256]).unwrap();
     let textures = HeightMaterial {
@@ -72,16 +71,7 @@ fn the_pyramid_follows_rewritten_heights() {
         view_angle: 50.0,
         ..PreviewView::default()
     };
-    let mut app = preview_app(32, TargetFormat::Float32, &textures, &view, |material| {
-        ParallaxOcclusionMaterial {
-            method: ParallaxMethod::MaxMip,
-            debug_view: DebugView::Uv,
-            shadows: ShadowMode::Off,
-            lod_threshold: 16.0,
-            ..material
-        }
-    })
-    .unwrap();
+    let mut app = uv_app(32, &textures, &view, ParallaxMethod::MaxMip).unwrap();
     let on_the_floor = pom_tests::render_and_capture_f32(&mut app).unwrap();
     // Raise the whole field to the top: a pyramid left at the floor's maxima would let every
     // ray fall through to the floor again.
@@ -121,13 +111,7 @@ fn the_pyramid_follows_rewritten_heights() {
 }
 
 fn set_method(app: &mut pom::App, method: pom::ParallaxMethod) {
-    for material in app
-        .world
-        .query_mut::<&mut pom::ParallaxOcclusionMaterial>()
-        .into_iter()
-    {
-        material.method = method;
-    }
+    pom_tests::pom_scene::set_material(app, |material| material.method = method);
 }
 
 /// Max-mip's hard shadows on the GPU against the CPU reference: thin spikes (one texel at the
@@ -262,7 +246,7 @@ fn long_rays_across_several_repetitions_match_the_cpu_reference() {
     let radians = 85.0_f32.to_radians();
     let to_eye = Vec3::new(-radians.sin(), 0.0, radians.cos());
     let size = Vec2::splat(32.0);
-    let wrapped = |d: f32| d - d.round();
+    let wrapped = pom_tests::pom_scene::wrapped;
     let (mut total, mut count, mut travelled) = (0.0, 0, 0.0_f32);
     for (entry, gpu) in entry.pixels().zip(marched.pixels()) {
         let uv = Vec2::new(entry.0[0], entry.0[1]);

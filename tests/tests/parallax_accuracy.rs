@@ -4,7 +4,7 @@ use glam::{Vec2, Vec3};
 use pom::preview::PreviewView;
 use pom::reference::{self, mean_error_in_texels};
 use pom::{HeightField, ParallaxMethod, patterns};
-use pom_tests::pom_scene::{HeightMaterial, uv_view};
+use pom_tests::pom_scene::{HeightMaterial, uv_view, wrapped};
 
 const IMAGE: u32 = 64;
 const HEIGHT_SCALE: f32 = 0.04;
@@ -17,11 +17,6 @@ fn gpu_uv(textures: &HeightMaterial, method: ParallaxMethod, angle: f32) -> imag
         ..PreviewView::default()
     };
     uv_view(IMAGE, textures, &view, method).unwrap()
-}
-
-/// Shortest difference between two coordinates on a repeating texture.
-fn wrapped(difference: f32) -> f32 {
-    difference - difference.round()
 }
 
 #[test]

@@ -6,7 +6,7 @@ use pom::{
     Camera, DebugView, DirectionalLight, LightingModel, ParallaxMethod, ParallaxOcclusionMaterial,
     ShadowMode, TargetFormat, Transform, patterns,
 };
-use pom_tests::pom_scene::{HeightMaterial, preview_app};
+use pom_tests::pom_scene::{HeightMaterial, preview_app, set_material};
 use pom_tests::{render_and_capture, render_and_capture_f32};
 
 /// A named edit of a material.
@@ -27,12 +27,6 @@ fn set_view(app: &mut pom::App, view: &PreviewView) {
     }
     for (_, transform) in app.world.query_mut::<(&DirectionalLight, &mut Transform)>() {
         *transform = view.light_transform();
-    }
-}
-
-fn set_material(app: &mut pom::App, change: impl Fn(&mut ParallaxOcclusionMaterial)) {
-    for material in app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
-        change(material);
     }
 }
 

@@ -8,11 +8,11 @@ use anyhow::{Context, Result};
 use pom::glam::Vec3;
 use pom::{
     App, Assets, Camera, DirectionalLight, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPlugin, Resources, Stage, Transform, render::Renderer,
+    RenderPlugin, Resources, Stage, Transform,
 };
 use serde::Serialize;
 
-use super::scene::path_name;
+use super::scene::{last_frame_deferred, path_name};
 use super::stats::Spread;
 use crate::preview_textures::PreviewTextures;
 
@@ -95,10 +95,7 @@ pub fn measure(
     for _ in 0..warmup.max(1) {
         app.update().context("rendering a warm-up frame")?;
     }
-    let deferred = app
-        .resources
-        .get::<Renderer>()
-        .is_some_and(Renderer::runs_deferred);
+    let deferred = last_frame_deferred(&app);
     let mut stages = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
     for _ in 0..frames {
         app.update().context("rendering a timed frame")?;

@@ -14,7 +14,7 @@ use pom::{HeightConvention, HeightField, ParallaxMethod, ParallaxOcclusionMateri
 use serde::Serialize;
 
 use super::Runner;
-use super::sample_count;
+use super::sample_count::SampleCounter;
 use super::scene::BenchScene;
 
 const SAMPLES: [u32; 4] = [8, 16, 32, 64];
@@ -55,6 +55,14 @@ pub struct MethodRow {
     pub p99_error_texels: f32,
 }
 
+/// The table's rows: each marching method at each sample count, then MaxMip (no count).
+fn table_rows() -> impl Iterator<Item = (ParallaxMethod, Option<u32>)> {
+    MARCHING
+        .iter()
+        .flat_map(|&method| SAMPLES.map(|samples| (method, Some(samples))))
+        .chain([(ParallaxMethod::MaxMip, None)])
+}
+
 /// The (mean, p99) error in texels of `method` at `samples` on `field`, against the exact
 /// intersection, over a grid of entry points seen along +u at [`ERROR_ANGLE_DEGREES`].
 fn errors(
@@ -80,13 +88,18 @@ fn errors(
 impl Runner<'_> {
     /// Every row of the table at `size`.
     pub(super) fn method_table(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
-        let depth = self.base.height_convention == HeightConvention::Depth;
-        let field = HeightField::from_image(&self.textures.height, 0, depth);
-        let rows = MARCHING
-            .iter()
-            .flat_map(|&method| SAMPLES.map(|samples| (method, Some(samples))))
-            .chain([(ParallaxMethod::MaxMip, None)]);
-        for (method, samples) in rows {
+        // The errors depend on neither the size nor the path: computed in the first table.
+        if self.method_errors.is_empty() {
+            let depth = self.base.height_convention == HeightConvention::Depth;
+            let field = HeightField::from_image(&self.textures.height, 0, depth);
+            self.method_errors = table_rows()
+                .map(|(method, samples)| {
+                    errors(&field, method, samples.unwrap_or(0), self.base.height_scale)
+                })
+                .collect();
+        }
+        let mut counter = SampleCounter::new(size, self.textures, &self.view, self.path)?;
+        for (row, (method, samples)) in table_rows().enumerate() {
             let material = ParallaxOcclusionMaterial {
                 method,
                 min_samples: samples.unwrap_or(self.base.min_samples),
@@ -103,14 +116,8 @@ impl Runner<'_> {
                 max_samples: samples.unwrap_or(MAX_SAMPLES_LIMIT),
                 ..material
             };
-            let count = sample_count::count_view_samples(
-                size,
-                self.textures,
-                &counted,
-                &self.view,
-                self.path,
-            )?;
-            let (mean, p99) = errors(&field, method, samples.unwrap_or(0), self.base.height_scale);
+            let count = counter.count(&counted)?;
+            let (mean, p99) = self.method_errors[row];
             self.method_rows.push(MethodRow {
                 method: method.name(),
                 samples,

@@ -83,6 +83,10 @@ struct Runner<'a> {
     versus_mesh: Vec<versus_mesh::VersusMesh>,
     cpu_side: Vec<cpu_side::CpuSide>,
     method_rows: Vec<method_table::MethodRow>,
+    /// The method table's (mean, p99) errors per row, computed once for the run.
+    method_errors: Vec<(f32, f32)>,
+    /// The bench's height map repeated to the pyramid build's large size, made once for the run.
+    large_height_map: Option<pom::Image>,
 }
 
 impl Runner<'_> {
@@ -577,6 +581,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         versus_mesh: Vec::new(),
         cpu_side: Vec::new(),
         method_rows: Vec::new(),
+        method_errors: Vec::new(),
+        large_height_map: None,
     };
     let texel_rate = texel_rate::texel_rate(&adapter.name, args.texel_rate.map(f64::from));
     let chip = texel_rate.as_ref().map(|rate| rate.gtexels_per_s);

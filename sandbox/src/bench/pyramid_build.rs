@@ -26,9 +26,12 @@ impl Runner<'_> {
         };
         let large_side = if quick { QUICK_LARGE_MAP } else { LARGE_MAP };
         let (own_width, own_height) = self.textures.height.size();
-        // A map already that large is timed on its own.
-        let large = (own_width.max(own_height) < large_side).then(|| PreviewTextures {
-            height: tiled(&self.textures.height, large_side),
+        // A map already that large is timed on its own. The large one is made once per run.
+        if own_width.max(own_height) < large_side && self.large_height_map.is_none() {
+            self.large_height_map = Some(tiled(&self.textures.height, large_side));
+        }
+        let large = self.large_height_map.clone().map(|height| PreviewTextures {
+            height,
             ..self.textures.clone()
         });
         for textures in std::iter::once(self.textures.clone()).chain(large) {

@@ -6,6 +6,7 @@ use pom::preview::PreviewView;
 use pom::{Color, DebugView, ParallaxOcclusionMaterial, TargetFormat};
 use serde::Serialize;
 
+use super::Runner;
 use super::scene::{BenchScene, SceneOptions};
 use crate::preview_textures::PreviewTextures;
 
@@ -99,42 +100,71 @@ pub fn count_view_samples(
     view: &PreviewView,
     path: pom::RenderPath,
 ) -> Result<SampleCount> {
-    let material = ParallaxOcclusionMaterial {
-        debug_view: DebugView::Samples,
-        ..material.clone()
-    };
-    // The shader scales the heat map by the clamped count, as the renderer uploads it.
-    let max_samples = material.sanitized().max_samples;
-    let options = SceneOptions {
-        timestamps: false,
-        format: TargetFormat::Float32,
-        ..SceneOptions::timed_plane(size, path)
-    };
-    let mut scene = BenchScene::new(options, textures, material, view)?;
-    scene.set_clear_color(Color {
-        a: 0.0,
-        ..Color::BLACK
-    });
-    let image = scene.capture_f32()?;
-    let mut count = SampleCount {
-        total: 0,
-        surface_pixels: 0,
-        marching_pixels: 0,
-        saturated_pixels: 0,
-    };
-    for pixel in image.pixels() {
-        let Some(samples) = decode_heat(pixel.0, max_samples) else {
-            continue;
+    SampleCounter::new(size, textures, view, path)?.count(material)
+}
+
+/// A scene for counting samples: a float target cleared to alpha 0, reused for every material
+/// counted at one size.
+pub struct SampleCounter {
+    scene: BenchScene,
+}
+
+impl SampleCounter {
+    /// The preview plane with `textures` seen from `view`, at `size`, on `path`.
+    pub fn new(
+        size: (u32, u32),
+        textures: &PreviewTextures,
+        view: &PreviewView,
+        path: pom::RenderPath,
+    ) -> Result<Self> {
+        let options = SceneOptions {
+            timestamps: false,
+            format: TargetFormat::Float32,
+            ..SceneOptions::timed_plane(size, path)
         };
-        count.surface_pixels += 1;
-        count.total += u64::from(samples);
-        count.marching_pixels += u64::from(samples > 0);
-        count.saturated_pixels += u64::from(samples >= max_samples);
+        let material = ParallaxOcclusionMaterial {
+            debug_view: DebugView::Samples,
+            ..ParallaxOcclusionMaterial::default()
+        };
+        let mut scene = BenchScene::new(options, textures, material, view)?;
+        scene.set_clear_color(Color {
+            a: 0.0,
+            ..Color::BLACK
+        });
+        Ok(Self { scene })
     }
-    if count.surface_pixels == 0 {
-        bail!("the samples view drew nothing: the surface is out of view");
+
+    /// Renders `material` (keeping the scene's textures) once with the `samples` debug view and
+    /// counts the view ray's samples. Shadow rays are not counted: measure with shadows off.
+    pub fn count(&mut self, material: &ParallaxOcclusionMaterial) -> Result<SampleCount> {
+        let material = ParallaxOcclusionMaterial {
+            debug_view: DebugView::Samples,
+            ..material.clone()
+        };
+        // The shader scales the heat map by the clamped count, as the renderer uploads it.
+        let max_samples = material.sanitized().max_samples;
+        Runner::configure(&mut self.scene, &material);
+        let image = self.scene.capture_f32()?;
+        let mut count = SampleCount {
+            total: 0,
+            surface_pixels: 0,
+            marching_pixels: 0,
+            saturated_pixels: 0,
+        };
+        for pixel in image.pixels() {
+            let Some(samples) = decode_heat(pixel.0, max_samples) else {
+                continue;
+            };
+            count.surface_pixels += 1;
+            count.total += u64::from(samples);
+            count.marching_pixels += u64::from(samples > 0);
+            count.saturated_pixels += u64::from(samples >= max_samples);
+        }
+        if count.surface_pixels == 0 {
+            bail!("the samples view drew nothing: the surface is out of view");
+        }
+        Ok(count)
     }
-    Ok(count)
 }
 
 /// The count behind one pixel of the `samples` view, or `None` where nothing was drawn

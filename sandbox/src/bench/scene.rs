@@ -329,10 +329,7 @@ impl BenchScene {
     /// Whether the last frame ran the deferred path (the renderer decides per frame: a material
     /// without a deferred shader, such as the seed port, sends a deferred frame forward).
     fn runs_deferred(&self) -> bool {
-        self.app
-            .resources
-            .get::<Renderer>()
-            .is_some_and(Renderer::runs_deferred)
+        last_frame_deferred(&self.app)
     }
 
     /// The path the frames of the last timing ran, `forward` or `deferred` (as the renderer
@@ -408,6 +405,13 @@ impl BenchScene {
         self.check_errors().context("while timing")?;
         Ok(times)
     }
+}
+
+/// Whether `app`'s last frame ran the deferred path.
+pub fn last_frame_deferred(app: &App) -> bool {
+    app.resources
+        .get::<Renderer>()
+        .is_some_and(Renderer::runs_deferred)
 }
 
 /// The name of the path a frame ran: [`RenderPath::Deferred`]'s or [`RenderPath::Forward`]'s.
