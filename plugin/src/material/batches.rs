@@ -1,7 +1,8 @@
 //! One material's draws of a frame on the GPU: per-draw transforms and uniforms in two storage
 //! buffers written by changed ranges, texture bind groups, pipelines, and the draws sorted and
-//! merged into instanced batches (consecutive draws of one pipeline, texture set and mesh are
-//! one `draw_indexed` over an instance range).
+//! merged into instanced batches (consecutive opaque draws of one pipeline, texture set and mesh
+//! are one `draw_indexed` over an instance range; blended draws are batches of one, which the
+//! frame's transparent phase orders among every material's).
 
 use std::ops::Range;
 
@@ -58,12 +59,41 @@ struct SortEntry<K> {
     /// Distance from the eye to the object's origin along the view, as ordered bits: the
     /// instances of one batch are drawn nearest first.
     view_depth: u32,
+    /// Whether the draw blends: blended draws come after the opaque ones, farthest first, each a
+    /// batch of its own (the frame's transparent phase orders them across materials).
+    blends: bool,
+    /// For a blended draw, `!` the ordered bits of its centre's view depth (farthest first);
+    /// 0 for an opaque one.
+    far_first: u32,
+    /// For a blended draw, its centre's view depth (behind the eye: 0).
+    centre_depth: f32,
     draw: usize,
 }
 
 /// `depth` as bits that order like the number (depths behind the eye count as 0).
 fn depth_order_bits(depth: f32) -> u32 {
     if depth > 0.0 { depth.to_bits() } else { 0 }
+}
+
+/// One `draw_indexed` of a run of instances with one pipeline, texture set and mesh.
+struct DrawCall<K> {
+    pass: MeshPass,
+    key: K,
+    textures: BoundTextures,
+    mesh: AssetId<Mesh>,
+    instances: Range<u32>,
+}
+
+impl<K: Copy> DrawCall<K> {
+    fn of(batch: &Batch<K>, pass: MeshPass) -> Self {
+        Self {
+            pass,
+            key: batch.key,
+            textures: batch.textures,
+            mesh: batch.mesh,
+            instances: batch.instances.clone(),
+        }
+    }
 }
 
 /// What preparing one material's draws reads besides its own state.
@@ -101,6 +131,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     /// The deferred resolve's inputs, where the material compiled its deferred shader.
     resolve: Option<DeferredResolve>,
     pub(crate) batches: Vec<Batch<M::Key>>,
+    /// The blended batches of the last prepared frame: (centre's view depth, batch index).
+    blended: Vec<(f32, u32)>,
     order: Vec<SortEntry<M::Key>>,
     // The model matrix (and whether it receives shadows) and transform of each sorted slot,
     // kept from frame to frame.
@@ -183,6 +215,7 @@ impl<M: Material> MaterialBatches<M> {
             uniforms,
             textures,
             batches: Vec::new(),
+            blended: Vec::new(),
             order: Vec::new(),
             models: Vec::new(),
             transform_data: Vec::new(),
@@ -251,22 +284,38 @@ impl<M: Material> MaterialBatches<M> {
             self.uniform_data.push(uniform);
             let (eye, forward) = inputs.eye;
             let view_depth = (draw.model.w_axis.truncate() - eye).dot(forward);
+            let blends = M::blends(key);
+            // Blended draws are ordered by their centre, as a mesh placed away from its origin
+            // (a glTF primitive with its vertices where it stands) has it elsewhere.
+            let centre_depth = if blends {
+                let centre = bounds.map_or(draw.model.w_axis.truncate(), |bounds| {
+                    draw.model.transform_point3(bounds.center)
+                });
+                f32::from_bits(depth_order_bits((centre - eye).dot(forward)))
+            } else {
+                0.0
+            };
             self.order.push(SortEntry {
                 key,
                 casts_shadows: draw.casts_shadows,
                 textures,
                 mesh: draw.mesh,
                 view_depth: depth_order_bits(view_depth),
+                blends,
+                far_first: if blends { !centre_depth.to_bits() } else { 0 },
+                centre_depth,
                 draw: index,
             });
         }
-        // Batches first (pipeline, textures, mesh), then nearest first within a batch: the
-        // prepass then rejects hidden copies early (measured in sandbox/BENCHMARKS.md,
-        // "overdraw"). Stable: draws that share everything keep the order of the world's
-        // query. Most frames come in the order the last one was sorted into (a still camera),
-        // which the check finds in one pass.
+        // Opaque batches first (pipeline, textures, mesh), then nearest first within a batch:
+        // the prepass then rejects hidden copies early (measured in sandbox/BENCHMARKS.md,
+        // "overdraw"). Blended draws after them, farthest first. Stable: draws that share
+        // everything keep the order of the world's query. Most frames come in the order the
+        // last one was sorted into (a still camera), which the check finds in one pass.
         let sort_key = |entry: &SortEntry<M::Key>| {
             (
+                entry.blends,
+                entry.far_first,
                 entry.key,
                 entry.casts_shadows,
                 entry.textures,
@@ -300,11 +349,19 @@ impl<M: Material> MaterialBatches<M> {
         self.sorted_uniforms
             .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));
         self.batches.clear();
+        self.blended.clear();
         for (index, entry) in self.order.iter().enumerate() {
             let instance = index as u32;
+            if entry.blends {
+                self.blended
+                    .push((entry.centre_depth, self.batches.len() as u32));
+            }
             match self.batches.last_mut() {
+                // A blended draw is a batch of its own: the transparent phase may draw another
+                // material's between two of them.
                 Some(batch)
-                    if batch.key == entry.key
+                    if !entry.blends
+                        && batch.key == entry.key
                         && batch.casts_shadows == entry.casts_shadows
                         && batch.textures == entry.textures
                         && batch.mesh == entry.mesh =>
@@ -433,9 +490,40 @@ impl<M: Material> MaterialBatches<M> {
             .any(|batch| self.pipelines.pass_in(phase, batch.key).is_some())
     }
 
-    /// Whether any batch of the last prepared frame blends (draws in the transparent phase).
-    pub(crate) fn blends_any(&self) -> bool {
-        self.batches.iter().any(|batch| M::blends(batch.key))
+    /// The blended batches of the last prepared frame, for the frame's transparent phase:
+    /// (view depth of the draw's centre, batch index).
+    pub(crate) fn blended(&self) -> impl Iterator<Item = (f32, u32)> + '_ {
+        self.blended.iter().copied()
+    }
+
+    /// Records the blended `batches` (indices into the last prepared frame's batches, in the
+    /// order the transparent phase sorted them) into `pass`; neighbours that continue one
+    /// another's instances with the same pipeline, textures and mesh are one draw.
+    pub(crate) fn draw_blended(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        assets: &GpuAssets,
+        batches: &[u32],
+    ) {
+        pass.set_bind_group(0, self.frame_groups.shading(), &[0]);
+        let mut calls: Vec<DrawCall<M::Key>> = Vec::with_capacity(batches.len());
+        for batch in batches
+            .iter()
+            .filter_map(|&index| self.batches.get(index as usize))
+        {
+            match calls.last_mut() {
+                Some(call)
+                    if call.key == batch.key
+                        && call.textures == batch.textures
+                        && call.mesh == batch.mesh
+                        && call.instances.end == batch.instances.start =>
+                {
+                    call.instances.end = batch.instances.end;
+                }
+                _ => calls.push(DrawCall::of(batch, MeshPass::Transparent)),
+            }
+        }
+        self.record_calls(pass, assets, calls);
     }
 
     /// Records the batches that draw in `phase` and whose mesh is on the GPU into `pass`,
@@ -453,9 +541,15 @@ impl<M: Material> MaterialBatches<M> {
         };
         // Slot 0 of the frame uniform: the camera's view.
         pass.set_bind_group(0, frame_bind_group, &[0]);
-        self.draw_batches(pass, assets, |batch| {
-            self.pipelines.pass_in(phase, batch.key)
-        });
+        self.record_calls(
+            pass,
+            assets,
+            self.batches.iter().filter_map(|batch| {
+                let mesh_pass = self.pipelines.pass_in(phase, batch.key)?;
+                // Blended batches draw in the frame's sorted transparent list instead.
+                (mesh_pass != MeshPass::Transparent).then(|| DrawCall::of(batch, mesh_pass))
+            }),
+        );
     }
 
     /// Records the shadow casters into one shadow map's `pass`, whose view is the frame
@@ -470,47 +564,49 @@ impl<M: Material> MaterialBatches<M> {
             return;
         }
         pass.set_bind_group(0, self.frame_groups.writing(), &[frame_offset]);
-        self.draw_batches(pass, assets, |batch| {
-            (batch.casts_shadows && !M::blends(batch.key)).then_some(MeshPass::Shadow)
-        });
+        self.record_calls(
+            pass,
+            assets,
+            self.batches
+                .iter()
+                .filter(|batch| batch.casts_shadows && !M::blends(batch.key))
+                .map(|batch| DrawCall::of(batch, MeshPass::Shadow)),
+        );
     }
 
-    /// Records the batches for which `pass_of` names a pass, with that pass's pipeline,
-    /// switching pipeline, textures and buffers only where they change.
-    fn draw_batches(
+    /// Records `calls` whose mesh is on the GPU, each with its pass's pipeline, switching
+    /// pipeline, textures and buffers only where they change.
+    fn record_calls(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         assets: &GpuAssets,
-        pass_of: impl Fn(&Batch<M::Key>) -> Option<MeshPass>,
+        calls: impl IntoIterator<Item = DrawCall<M::Key>>,
     ) {
         let mut bound_key = None;
         let mut bound_textures = None;
         let mut bound_mesh = None;
-        for batch in &self.batches {
-            let Some(mesh_pass) = pass_of(batch) else {
-                continue;
-            };
+        for call in calls {
             let (Some(mesh), Some(textures), Some(pipeline)) = (
-                assets.mesh(batch.mesh),
-                self.textures.get(&batch.textures),
-                self.pipelines.get(mesh_pass, &batch.key),
+                assets.mesh(call.mesh),
+                self.textures.get(&call.textures),
+                self.pipelines.get(call.pass, &call.key),
             ) else {
                 continue;
             };
-            if bound_key != Some((mesh_pass, batch.key)) {
+            if bound_key != Some((call.pass, call.key)) {
                 pass.set_pipeline(pipeline);
-                bound_key = Some((mesh_pass, batch.key));
+                bound_key = Some((call.pass, call.key));
             }
-            if bound_textures != Some(batch.textures) {
+            if bound_textures != Some(call.textures) {
                 pass.set_bind_group(1, textures, &[]);
-                bound_textures = Some(batch.textures);
+                bound_textures = Some(call.textures);
             }
-            if bound_mesh != Some(batch.mesh) {
+            if bound_mesh != Some(call.mesh) {
                 pass.set_vertex_buffer(0, mesh.vertices.slice(..));
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                bound_mesh = Some(batch.mesh);
+                bound_mesh = Some(call.mesh);
             }
-            pass.draw_indexed(0..mesh.index_count, 0, batch.instances.clone());
+            pass.draw_indexed(0..mesh.index_count, 0, call.instances);
         }
     }
 }

@@ -110,7 +110,8 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// the frame has no depth prepass (it tests and writes depth itself).
     fn fragment(key: Self::Key) -> FragmentVariant;
     /// Whether `key` blends over what is behind it: its draws then go to the transparent phase
-    /// (back to front, depth tested, not in the prepass) instead of the prepass and the opaque
+    /// (one list with every material's blended draws, farthest first by the view depth of each
+    /// draw's centre; depth tested, not in the prepass) instead of the prepass and the opaque
     /// phase. `false` by default.
     fn blends(_key: Self::Key) -> bool {
         false

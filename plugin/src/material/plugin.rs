@@ -242,15 +242,14 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                     .is_some_and(|batches| batches.draws_in(DrawPhase::Opaque))
             },
         );
-        phases.add_draw_when::<M>(
-            DrawPhase::Transparent,
-            |resources, pass| draw_materials::<M>(resources, pass, DrawPhase::Transparent),
-            |resources| {
-                resources
-                    .get::<MaterialBatches<M>>()
-                    .is_some_and(MaterialBatches::blends_any)
-            },
-        );
+        phases.add_transparent::<M>(|resources, pass, batches| {
+            if let (Some(material), Some(renderer)) = (
+                resources.get::<MaterialBatches<M>>(),
+                resources.get::<Renderer>(),
+            ) {
+                material.draw_blended(pass, &renderer.assets, batches);
+            }
+        });
         phases.add_resolve::<M>(
             |resources, pass| {
                 if let Some(batches) = resources.get::<MaterialBatches<M>>() {
@@ -537,6 +536,7 @@ fn prepare_materials<M: Material>(
                                 &mut stats,
                                 &mut renderer.visibility_ids,
                             );
+                            renderer.transparent.replace::<M>(batches.blended());
                             lod_cache.retain_existing(inputs.meshes);
                             renderer.last_upload.meshes += stats.meshes;
                             renderer.last_upload.images += stats.images;
@@ -590,7 +590,7 @@ mod tests {
         let phases = app.resources.get::<RenderPhases>().unwrap();
         assert_eq!(phases.draw_count(DrawPhase::Opaque), 2);
         assert_eq!(phases.draw_count(DrawPhase::Prepass), 2);
-        assert_eq!(phases.draw_count(DrawPhase::Transparent), 2);
+        assert_eq!(phases.transparent_draw_count(), 2);
         assert_eq!(
             app.resources
                 .get::<MaterialRegistry>()

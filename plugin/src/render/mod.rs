@@ -26,6 +26,7 @@ mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
+mod transparent;
 mod visibility;
 
 pub use capture::{
@@ -53,7 +54,7 @@ pub use max_pyramid::MAX_PYRAMID_SHADER;
 pub use max_pyramid::read_max_pyramid;
 pub use phases::{
     DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
-    ShadowDraw,
+    ShadowDraw, TransparentDraw,
 };
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
@@ -64,6 +65,7 @@ pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
+pub(crate) use transparent::TransparentPhase;
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};
 
@@ -203,6 +205,8 @@ pub struct Renderer {
     background: Option<DeferredBackground>,
     /// This frame's visibility ids, handed to the materials' batches as they prepare.
     pub(crate) visibility_ids: VisibilityIds,
+    /// This frame's blended draws of every material, drawn farthest first.
+    pub(crate) transparent: TransparentPhase,
     /// No frame has chosen its path yet (the first choice is always logged).
     first_frame: bool,
     /// Tonemapping (the lights carry the exposure).
@@ -395,6 +399,7 @@ impl Plugin for RenderPlugin {
             visibility: None,
             background: None,
             visibility_ids: VisibilityIds::default(),
+            transparent: TransparentPhase::default(),
             first_frame: true,
             post: PostProcess::new(
                 gpu,
@@ -460,6 +465,12 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
 /// order (prepass, shadows, opaque, transparent; then post-processing in a second submission;
 /// the overlay belongs to the application), each timed under its name.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+    // Every material has prepared its blended draws: order them across materials.
+    resources
+        .get_mut::<Renderer>()
+        .ok_or_else(AppError::missing::<Renderer>)?
+        .transparent
+        .sort();
     let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
     let prepass = resources.require::<Renderer>()?.depth_prepass;
     let deferred = resources.require::<Renderer>()?.deferred;
@@ -471,10 +482,11 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     let shadow_map_count = resources.require::<ExtractedFrame>()?.shadow_views.len();
     let run_shadow_maps =
         shadow_map_count > 0 && phases.is_some_and(|p| p.shadow_draws().next().is_some());
+    let has_blended = !resources.require::<Renderer>()?.transparent.is_empty();
     let (run_prepass, run_shadows, run_transparent) = (
         prepass && has(DrawPhase::Prepass),
         run_shadow_maps || has_work(RenderPhase::Shadows),
-        has(DrawPhase::Transparent),
+        has(DrawPhase::Transparent) || (has_camera && has_blended),
     );
     let run_resolve =
         deferred && run_prepass && has_camera && phases.is_some_and(|p| p.has_resolves(resources));
@@ -651,6 +663,14 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        if let Some(phases) = phases {
+            let blended = &resources.require::<Renderer>()?.transparent;
+            for (owner, draws) in blended.runs() {
+                if let Some(draw) = phases.transparent_draw(owner) {
+                    draw(resources, &mut pass, draws);
+                }
+            }
+        }
         draw_phase(DrawPhase::Transparent, &mut pass);
     }
     // Post-processing borrows the renderer mutably (its bind group follows the target).

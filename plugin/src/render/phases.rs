@@ -6,7 +6,7 @@
 //!              material draws its casters from the light's view
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! resolve      deferred path: materials shade their pixels of the visibility buffer in compute
-//! transparent  blended draws, sorted back to front by their plugin; depth read-only
+//! transparent  blended draws of every material in one list, farthest first; depth read-only
 //! post         tonemapping, HDR scene → display target (compute where allowed); the scene is
 //!              pre-exposed (the lights carry the camera's exposure)
 //! overlay      UI drawn over the result by the application (the sandbox's egui)
@@ -30,7 +30,7 @@ pub enum RenderPhase {
     /// The deferred path's compute resolve: materials shade the pixels the visibility pass
     /// gave them (see [`super::RenderPath`]).
     Resolve,
-    /// Blended materials, back to front.
+    /// Blended draws of every material in one list, farthest first.
     Transparent,
     /// Tonemapping into the display target.
     PostProcess,
@@ -90,6 +90,11 @@ impl From<DrawPhase> for RenderPhase {
 /// Records draws into a phase's open render pass, given the resources.
 pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 
+/// Records some of its owner's blended draws into the transparent phase's open render pass,
+/// given the resources and the draws' numbers (as the owner gave them to the frame's sorted
+/// list), in the order to draw them.
+pub type TransparentDraw = fn(&Resources, &mut wgpu::RenderPass<'_>, &[u32]);
+
 /// Records shadow casters into one shadow map's open render pass, given the resources and
 /// the frame-uniform slot that holds the map's view (bind it with
 /// the frame uniform buffer's `offset`).
@@ -111,6 +116,7 @@ pub type HasDraws = fn(&Resources) -> bool;
 #[derive(Debug, Default)]
 pub struct RenderPhases {
     draws: Vec<(DrawPhase, TypeId, PhaseDraw, HasDraws)>,
+    transparent_draws: Vec<(TypeId, TransparentDraw)>,
     shadow_draws: Vec<(TypeId, ShadowDraw)>,
     resolves: Vec<(TypeId, ResolveDispatch, HasDraws)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
@@ -138,6 +144,29 @@ impl RenderPhases {
         {
             self.draws.push((phase, owner, draw, has_draws));
         }
+    }
+
+    /// Adds `draw` as `Owner`'s drawer of blended draws unless `Owner` has one: the frame sorts
+    /// every owner's blended draws farthest first in one list and calls `draw` for each run of
+    /// `Owner`'s, before the transparent phase's [`RenderPhases::add_draw`] draws.
+    pub fn add_transparent<Owner: 'static>(&mut self, draw: TransparentDraw) {
+        let owner = TypeId::of::<Owner>();
+        if !self.transparent_draws.iter().any(|(id, _)| *id == owner) {
+            self.transparent_draws.push((owner, draw));
+        }
+    }
+
+    /// The drawer of `owner`'s blended draws, if it has one.
+    pub(crate) fn transparent_draw(&self, owner: TypeId) -> Option<TransparentDraw> {
+        self.transparent_draws
+            .iter()
+            .find(|(id, _)| *id == owner)
+            .map(|(_, draw)| *draw)
+    }
+
+    /// How many owners draw blended draws into the sorted transparent list.
+    pub fn transparent_draw_count(&self) -> usize {
+        self.transparent_draws.len()
     }
 
     /// Adds `draw` to every shadow map of the shadows phase for `Owner` unless `Owner` has one:
