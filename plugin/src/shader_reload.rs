@@ -56,11 +56,14 @@ pub struct ShaderHotReload {
 }
 
 impl ShaderHotReload {
-    /// Watches the plugin's own sources when they exist (run from the repository it was built
-    /// in); `None` for an installed binary.
-    pub fn from_repository() -> Option<Self> {
-        let source_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-        source_dir.is_dir().then_some(Self { source_dir })
+    /// Watches the plugin's sources of the repository `dir` lies in (`plugin/src` in `dir` or a
+    /// folder above it); `None` outside a checkout. A binary passes its working directory: no
+    /// path is baked in at build time, so a binary copied elsewhere watches nothing.
+    pub fn from_repository(dir: &Path) -> Option<Self> {
+        dir.ancestors()
+            .map(|folder| folder.join("plugin").join("src"))
+            .find(|sources| sources.join("render").join("frame.wgsl").is_file())
+            .map(|source_dir| Self { source_dir })
     }
 }
 

@@ -98,12 +98,16 @@ fn main() {
         Some(Command::RunScript(args)) => script_command::run(args),
         Some(Command::Bench(args)) => bench::run(args),
         Some(Command::GenerateAssets { out }) => {
-            let out = out.clone().unwrap_or_else(asset_generator::default_output);
-            asset_generator::generate(&out).map(|files| {
-                for file in files {
-                    println!("wrote {}", file.display());
-                }
-            })
+            let out = match out {
+                Some(out) => Ok(out.clone()),
+                None => asset_generator::default_output(),
+            };
+            out.and_then(|out| asset_generator::generate(&out))
+                .map(|files| {
+                    for file in files {
+                        println!("wrote {}", file.display());
+                    }
+                })
         }
     };
     if let Err(error) = result {

@@ -13,9 +13,19 @@ use anyhow::{Context, Result};
 
 pub use street_corner::STREET_CORNER_FILE;
 
-/// Where the generator writes by default: the repository's assets/ folder.
-pub fn default_output() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
+/// Where the generator writes by default: the assets/ folder of the repository the working
+/// directory lies in (found by its assets/README.md, in the working directory or above it).
+pub fn default_output() -> Result<PathBuf> {
+    let here = std::env::current_dir().context("reading the working directory")?;
+    here.ancestors()
+        .map(|folder| folder.join("assets"))
+        .find(|assets| assets.join("README.md").is_file())
+        .with_context(|| {
+            format!(
+                "no assets/README.md in {} or above it: run inside the repository or pass --out",
+                here.display()
+            )
+        })
 }
 
 /// PNG bytes of an 8-bit image.

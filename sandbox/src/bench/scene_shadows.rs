@@ -1,32 +1,15 @@
 //! The street corner with and without scene shadows: the shadow phase per light type (the
 //! scene's sun, a spot and a point light in its place) and the whole frame, phase by phase.
 
-use std::path::{Path, PathBuf};
-
 use anyhow::{Context, Result};
 use glam::Vec3;
 use pom::{
     App, DirectionalLight, GlobalTransform, LightShadows, PointLight, PomPlugin, RenderPath,
-    RenderPlugin, SpotLight, TimingMode, Transform, load_gltf,
+    RenderPlugin, SpotLight, TimingMode, Transform,
 };
 
 use super::scene::{BenchScene, PhaseTimes, Warmup};
-
-/// The shipped scene the measurement renders, relative to the repository's root.
-pub const STREET_CORNER: &str = "assets/street_corner.glb";
-
-/// The street corner: under the working directory (the repository's root, where the device
-/// runs the bench), else in the checkout the sandbox was built from.
-fn street_corner_path() -> PathBuf {
-    let here = PathBuf::from(STREET_CORNER);
-    if here.exists() {
-        here
-    } else {
-        Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("..")
-            .join(STREET_CORNER)
-    }
-}
+use crate::demo_scene;
 
 /// Which light lights the scene, and whether it casts scene shadows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,9 +57,8 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Re
     )
     .add_plugin(PomPlugin);
     app.finish().context("starting the GPU")?;
-    let path = street_corner_path();
-    let scene = load_gltf(&mut app, &path)
-        .with_context(|| format!("loading {} for the scene-shadows bench", path.display()))?;
+    // The scene embedded in the binary: the bench runs from any folder.
+    let scene = demo_scene::spawn(&mut app)?;
     let sun = *scene
         .lights
         .first()

@@ -135,7 +135,10 @@ impl WindowApp {
             size.height.max(1),
         ))
         .add_plugin(PomPlugin);
-        if let Some(hot_reload) = ShaderHotReload::from_repository() {
+        if let Some(hot_reload) = std::env::current_dir()
+            .ok()
+            .and_then(|dir| ShaderHotReload::from_repository(&dir))
+        {
             app.add_plugin(hot_reload);
         }
         let loaded = load_scene(&mut app, self.scene.as_deref(), self.camera);
