@@ -344,9 +344,13 @@ impl App {
         Ok(())
     }
 
-    /// Finishes any new plugins, then runs every stage once.
+    /// Finishes any new plugins, advances the [`crate::Time`] resource (inserting a real-time
+    /// one if the app has none), then runs every stage once.
     pub fn update(&mut self) -> Result<(), AppError> {
         self.finish()?;
+        self.resources
+            .get_or_default::<crate::Time>()
+            .advance(std::time::Instant::now());
         self.schedule.run(&mut self.world, &mut self.resources)
     }
 

@@ -61,6 +61,7 @@ mod shader_reload;
 mod shadows;
 #[cfg(feature = "dev-tools")]
 mod split_view;
+mod time;
 mod tonemapping;
 mod transform;
 
@@ -108,6 +109,7 @@ pub use shader_reload::{
 pub use shadows::{DIRECTIONAL_CASCADES, LightShadows, NotShadowCaster, NotShadowReceiver};
 #[cfg(feature = "dev-tools")]
 pub use split_view::{SplitView, SplitViewError, render_split_view};
+pub use time::{Time, TimeStep};
 pub use tonemapping::{Exposure, Tonemapping, set_camera_display_mapping};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
