@@ -64,6 +64,8 @@ mod split_view;
 mod time;
 mod tonemapping;
 mod transform;
+#[cfg(feature = "window")]
+pub mod window;
 
 pub use app::{
     App, AppError, BoxedError, Fallible, Infallible, IntoSystem, Plugin, Schedule, Stage, System,
@@ -129,6 +131,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::POST_SHADERS[0],
     render::POST_SHADERS[1],
     render::POST_SHADERS[2],
+    render::PRESENT_SHADER,
     #[cfg(feature = "dev-tools")]
     render::TEXEL_RATE_PROBE,
     #[cfg(feature = "dev-tools")]

@@ -18,6 +18,7 @@ mod max_pyramid;
 pub(crate) mod object_buffer;
 mod phases;
 mod post_process;
+mod present;
 mod render_path;
 pub mod shaders;
 mod shadow_maps;
@@ -58,6 +59,7 @@ pub use phases::{
 };
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
+pub use present::{PRESENT_SHADER, PresentError, Presenter};
 pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};

@@ -1,0 +1,366 @@
+//! [`App::run`]: the winit event loop of a windowed app. It opens the window on the first
+//! `resumed`, makes the GPU context for its surface before the plugins finish (so the renderer
+//! draws on the device that presents), then per redraw: fits the render target to the window,
+//! updates the app (errors and panics reported once), draws the display target into the
+//! swapchain and presents. Redraws run continuously while the window is visible; a window
+//! with no area (minimised) neither updates nor draws until it has one again.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Arc, Mutex, PoisonError};
+
+use glam::Vec2;
+use winit::application::ApplicationHandler;
+use winit::dpi::{LogicalSize, PhysicalSize};
+use winit::event::{DeviceEvent, DeviceId, ElementState, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop, OwnedDisplayHandle};
+use winit::keyboard::PhysicalKey;
+use winit::window::{Window, WindowId};
+
+use super::input::{InputEvent, PendingInput};
+use super::{AppExit, Automation, WindowError, WindowPlugin, WindowSurface};
+use crate::render::{Presenter, RenderTarget, TargetFormat};
+use crate::{App, GpuContext};
+
+impl App {
+    /// Opens the window its [`WindowPlugin`] describes and runs the app in it until the window
+    /// closes, a system inserts an [`AppExit`] resource, or `POM_EXIT_AFTER_FRAMES` frames were
+    /// presented. What goes wrong is printed as one line on standard error and ends the app
+    /// with a non-zero status; the app (its world and resources) is handed back afterwards.
+    pub fn run(&mut self) -> AppExit {
+        match self.run_window() {
+            Ok(exit) => exit,
+            Err(error) => {
+                eprintln!("error: {error}");
+                AppExit::error()
+            }
+        }
+    }
+
+    fn run_window(&mut self) -> Result<AppExit, WindowError> {
+        let settings = self
+            .resources
+            .get::<WindowPlugin>()
+            .cloned()
+            .ok_or(WindowError::NoWindowPlugin)?;
+        settings.validate()?;
+        let automation = Automation::from_env()?;
+        let event_loop =
+            EventLoop::new().map_err(|error| WindowError::NoDisplay(error.to_string()))?;
+        let mut runner = Runner {
+            app: std::mem::take(self),
+            settings,
+            automation,
+            display: event_loop.owned_display_handle(),
+            open: None,
+            frames: 0,
+            visible: true,
+            outcome: None,
+            reported: Vec::new(),
+        };
+        let ran = event_loop.run_app(&mut runner);
+        *self = std::mem::take(&mut runner.app);
+        ran.map_err(|error| WindowError::NoDisplay(error.to_string()))?;
+        runner.outcome.unwrap_or(Ok(AppExit::Success))
+    }
+}
+
+/// The event loop's handler.
+struct Runner {
+    app: App,
+    settings: WindowPlugin,
+    automation: Automation,
+    display: OwnedDisplayHandle,
+    open: Option<OpenWindow>,
+    /// Frames presented.
+    frames: u64,
+    visible: bool,
+    /// How the run ended, once it has.
+    outcome: Option<Result<AppExit, WindowError>>,
+    /// Failures already reported (each is reported once).
+    reported: Vec<String>,
+}
+
+/// Everything that exists once the window is open.
+struct OpenWindow {
+    window: Arc<Window>,
+    gpu: GpuContext,
+    surface: WindowSurface,
+    presenter: Presenter,
+    /// Why the device was lost, once it has been (set by wgpu's callback).
+    device_lost: Arc<Mutex<Option<String>>>,
+}
+
+impl Runner {
+    fn open_window(&mut self, event_loop: &ActiveEventLoop) -> Result<OpenWindow, WindowError> {
+        let attributes = Window::default_attributes()
+            .with_title(&self.settings.title)
+            .with_inner_size(LogicalSize::new(self.settings.width, self.settings.height))
+            .with_resizable(self.settings.resizable);
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|error| WindowError::CreateWindow(error.to_string()))?,
+        );
+        // A context the game made itself is kept; else one for this window's surface.
+        let (gpu, surface) = match self.app.resources.get::<GpuContext>() {
+            Some(gpu) => {
+                let surface = gpu
+                    .instance
+                    .create_surface(Arc::clone(&window))
+                    .map_err(|_| WindowError::CannotPresent)?;
+                if !gpu.adapter.is_surface_supported(&surface) {
+                    return Err(WindowError::CannotPresent);
+                }
+                (gpu.clone(), surface)
+            }
+            None => {
+                let instance = wgpu::Instance::new(
+                    wgpu::InstanceDescriptor::new_with_display_handle_from_env(Box::new(
+                        self.display.clone(),
+                    )),
+                );
+                let surface = instance
+                    .create_surface(Arc::clone(&window))
+                    .map_err(|_| WindowError::CannotPresent)?;
+                let gpu = GpuContext::for_surface(instance, &surface)?;
+                self.app.insert_resource(gpu.clone());
+                (gpu, surface)
+            }
+        };
+        let surface = WindowSurface::new(
+            surface,
+            &gpu,
+            Arc::clone(&window),
+            self.settings.present_mode,
+            false,
+        )?;
+        self.app.finish()?;
+        fit_target(&mut self.app, &gpu, window.inner_size());
+        let device_lost = Arc::new(Mutex::new(None));
+        let lost = Arc::clone(&device_lost);
+        gpu.device.set_device_lost_callback(move |reason, message| {
+            *lost.lock().unwrap_or_else(PoisonError::into_inner) =
+                Some(format!("{reason:?}: {message}"));
+        });
+        Ok(OpenWindow {
+            presenter: Presenter::new(&gpu),
+            window,
+            gpu,
+            surface,
+            device_lost,
+        })
+    }
+
+    /// Ends the run with `outcome`, writing the screenshot `POM_SCREENSHOT` asks for first.
+    fn end(&mut self, event_loop: &ActiveEventLoop, outcome: Result<AppExit, WindowError>) {
+        if self.outcome.is_some() {
+            return;
+        }
+        let screenshot = match (&outcome, &self.automation.screenshot) {
+            (Ok(_), Some(path)) if self.frames > 0 => self.write_screenshot(path),
+            _ => Ok(()),
+        };
+        self.outcome = Some(screenshot.and(outcome));
+        event_loop.exit();
+    }
+
+    fn write_screenshot(&self, path: &std::path::Path) -> Result<(), WindowError> {
+        let failed = |reason: String| WindowError::Screenshot {
+            path: path.to_owned(),
+            reason,
+        };
+        let image = crate::capture(&self.app).map_err(|error| failed(error.to_string()))?;
+        image.save(path).map_err(|error| failed(error.to_string()))
+    }
+
+    /// Reports a failed frame once; ends the run where the game asked for that.
+    fn frame_failed(&mut self, event_loop: &ActiveEventLoop, failure: String) {
+        if !self.reported.contains(&failure) {
+            eprintln!("error: {failure}");
+            self.reported.push(failure);
+        }
+        if self.settings.exit_on_error {
+            self.end(event_loop, Ok(AppExit::error()));
+        }
+    }
+
+    fn queue(&mut self, event: InputEvent) {
+        self.app
+            .resources
+            .get_or_default::<PendingInput>()
+            .0
+            .push(event);
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(open) = &self.open else {
+            return;
+        };
+        let lost = open
+            .device_lost
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .clone();
+        if let Some(reason) = lost {
+            return self.end(event_loop, Err(WindowError::DeviceLost(reason)));
+        }
+        let size = open.window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return;
+        }
+        let gpu = open.gpu.clone();
+        fit_target(&mut self.app, &gpu, size);
+        let app = &mut self.app;
+        match catch_unwind(AssertUnwindSafe(|| app.update())) {
+            Ok(Ok(())) => {}
+            Ok(Err(error)) => self.frame_failed(event_loop, error.to_string()),
+            Err(payload) => {
+                let message = panic_message(payload.as_ref());
+                self.frame_failed(event_loop, format!("a system panicked: {message}"));
+            }
+        }
+        if self.outcome.is_some() {
+            return;
+        }
+        let Some(open) = &mut self.open else {
+            return;
+        };
+        let Some(frame) = open.surface.acquire(&open.gpu) else {
+            return;
+        };
+        let view = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let mut encoder = open
+            .gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("present encoder"),
+            });
+        if let Some(target) = self.app.resources.get::<RenderTarget>()
+            && let Err(error) = open.presenter.record(
+                &open.gpu,
+                target,
+                &mut encoder,
+                &view,
+                open.surface.format(),
+            )
+        {
+            return self.end(event_loop, Err(WindowError::Present(error)));
+        }
+        open.gpu.queue.submit([encoder.finish()]);
+        open.window.pre_present_notify();
+        open.gpu.queue.present(frame);
+        self.frames += 1;
+        if let Some(exit) = self.app.resources.remove::<AppExit>() {
+            return self.end(event_loop, Ok(exit));
+        }
+        if self
+            .automation
+            .exit_after_frames
+            .is_some_and(|frames| self.frames >= frames)
+        {
+            self.end(event_loop, Ok(AppExit::Success));
+        }
+    }
+}
+
+/// Replaces the render target when the window's size in pixels changed (pipelines do not depend
+/// on the size, so only the target is new); a window with no area keeps the last one.
+fn fit_target(app: &mut App, gpu: &GpuContext, size: PhysicalSize<u32>) {
+    if size.width == 0 || size.height == 0 {
+        return;
+    }
+    let current = app.resources.get::<RenderTarget>().map(RenderTarget::size);
+    if current != Some((size.width, size.height)) {
+        let target = RenderTarget::new(gpu, size.width, size.height, TargetFormat::Srgb8);
+        app.insert_resource(target);
+    }
+}
+
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(text) = payload.downcast_ref::<&str>() {
+        (*text).to_owned()
+    } else if let Some(text) = payload.downcast_ref::<String>() {
+        text.clone()
+    } else {
+        "(no message)".to_owned()
+    }
+}
+
+impl ApplicationHandler for Runner {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.open.is_some() || self.outcome.is_some() {
+            return;
+        }
+        match self.open_window(event_loop) {
+            Ok(open) => {
+                open.window.request_redraw();
+                self.open = Some(open);
+            }
+            Err(error) => self.end(event_loop, Err(error)),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => {
+                self.queue(InputEvent::CloseRequested);
+                self.end(event_loop, Ok(AppExit::Success));
+            }
+            WindowEvent::Resized(size) => {
+                self.queue(InputEvent::Resized(size.width, size.height));
+                if let Some(open) = &mut self.open {
+                    open.surface.resize(&open.gpu, size.width, size.height);
+                    open.window.request_redraw();
+                }
+            }
+            WindowEvent::Focused(focused) => self.queue(InputEvent::Focused(focused)),
+            WindowEvent::Occluded(occluded) => {
+                self.visible = !occluded;
+                if let (true, Some(open)) = (self.visible, &self.open) {
+                    open.window.request_redraw();
+                }
+            }
+            WindowEvent::KeyboardInput { event, .. } => {
+                if let PhysicalKey::Code(key) = event.physical_key {
+                    let down = event.state == ElementState::Pressed;
+                    self.queue(InputEvent::Key { key, down });
+                }
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                let down = state == ElementState::Pressed;
+                self.queue(InputEvent::Mouse { button, down });
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                let position = Vec2::new(position.x as f32, position.y as f32);
+                self.queue(InputEvent::Cursor(Some(position)));
+            }
+            WindowEvent::CursorLeft { .. } => self.queue(InputEvent::Cursor(None)),
+            WindowEvent::MouseWheel { delta, .. } => {
+                let (lines, pixels) = match delta {
+                    MouseScrollDelta::LineDelta(x, y) => (Vec2::new(x, y), Vec2::ZERO),
+                    MouseScrollDelta::PixelDelta(p) => {
+                        (Vec2::ZERO, Vec2::new(p.x as f32, p.y as f32))
+                    }
+                };
+                self.queue(InputEvent::Scroll { lines, pixels });
+            }
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            _ => {}
+        }
+    }
+
+    fn device_event(&mut self, _: &ActiveEventLoop, _: DeviceId, event: DeviceEvent) {
+        if let DeviceEvent::MouseMotion { delta: (x, y) } = event {
+            self.queue(InputEvent::Motion(Vec2::new(x as f32, y as f32)));
+        }
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        // Continuous while visible: games animate whether or not an event came.
+        if let (true, Some(open)) = (self.visible, &self.open) {
+            open.window.request_redraw();
+        }
+    }
+}
