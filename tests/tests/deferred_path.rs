@@ -150,11 +150,9 @@ fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
 /// least 1.5 times each other one and not near black), or `None` for the grey plane and the
 /// black background.
 fn tint_of(pixel: &image::Rgba<u8>) -> Option<usize> {
-    let [r, g, b, _] = pixel.0.map(f32::from);
-    let channels = [r, g, b];
+    let channel = |c: usize| f32::from(pixel.0[c]);
     (0..3).find(|&c| {
-        let others = (0..3).filter(|&o| o != c).map(|o| channels[o]);
-        channels[c] >= 16.0 && others.into_iter().all(|o| channels[c] >= 1.5 * o)
+        channel(c) >= 16.0 && (0..3).all(|other| other == c || channel(c) >= 1.5 * channel(other))
     })
 }
 
