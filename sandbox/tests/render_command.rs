@@ -127,24 +127,77 @@ fn an_unknown_scene_shadows_switch_is_rejected_with_the_valid_ones() {
     assert!(!out.exists());
 }
 
+/// Runs `sandbox COMMAND --out DIR/NAME ARGS…`, checks it succeeded and returns the PNG it wrote.
+fn rendered(dir: &TempDir, name: &str, command: &str, args: &[&str]) -> image::RgbaImage {
+    let out = dir.join(name);
+    let mut all = vec![command, "--out", path_arg(&out)];
+    all.extend_from_slice(args);
+    assert_success(&sandbox(&all));
+    image::open(&out)
+        .unwrap_or_else(|error| panic!("{name}: {error}"))
+        .to_rgba8()
+}
+
+/// R + G + B of a pixel.
+fn brightness(pixel: &image::Rgba<u8>) -> i32 {
+    pixel.0[..3].iter().map(|&c| i32::from(c)).sum()
+}
+
 #[test]
-fn the_shadow_flags_render() {
+fn scene_shadows_darken_the_picture_and_the_map_size_changes_them() {
     let dir = TempDir::new("shadow-flags");
-    for command in ["render", "snapshot"] {
-        let out = dir.join(&format!("{command}.png"));
-        let output = sandbox(&[
-            command,
-            "--out",
-            path_arg(&out),
-            "--size",
-            "16x16",
-            "--scene-shadows",
-            "off",
-            "--shadow-map-size",
-            "512",
-        ]);
-        assert_success(&output);
-        assert!(out.exists(), "{command} wrote nothing");
+    // The preview with its self-shadows off and a low light, so the relief's shadows come from
+    // the shadow map alone; and the street corner, whose objects shadow each other.
+    for (command, size, view) in [
+        (
+            "render",
+            "64x64",
+            &["--shadows", "off", "--light-angle", "70"][..],
+        ),
+        ("snapshot", "96x54", &[][..]),
+    ] {
+        let render = |name: &str, switch: &str, map_size: &str| {
+            let mut args = vec![
+                "--size",
+                size,
+                "--scene-shadows",
+                switch,
+                "--shadow-map-size",
+                map_size,
+            ];
+            args.extend_from_slice(view);
+            rendered(&dir, &format!("{command}-{name}.png"), command, &args)
+        };
+        let off = render("off", "off", "512");
+        let on = render("on", "on", "512");
+        let coarse = render("coarse", "on", "64");
+        // Shadows only take light away: no pixel gets brighter (beyond rounding), and some get
+        // much darker.
+        let changes: Vec<i32> = on
+            .pixels()
+            .zip(off.pixels())
+            .map(|(on, off)| brightness(on) - brightness(off))
+            .collect();
+        let brighter = changes.iter().filter(|&&change| change > 6).count();
+        let darker = changes.iter().filter(|&&change| change < -30).count();
+        eprintln!("{command}: with scene shadows {darker} pixels darker, {brighter} brighter");
+        assert_eq!(brighter, 0, "{command}: scene shadows brightened pixels");
+        assert!(
+            darker >= 20,
+            "{command}: --scene-shadows on darkens only {darker} pixels"
+        );
+        // A 64-texel map places the shadows differently (coarser, and biased by its larger
+        // texels) from a 512-texel one.
+        let moved = on
+            .pixels()
+            .zip(coarse.pixels())
+            .filter(|(fine, coarse)| (brightness(fine) - brightness(coarse)).abs() > 30)
+            .count();
+        eprintln!("{command}: {moved} pixels differ between 512- and 64-texel maps");
+        assert!(
+            moved >= 20,
+            "{command}: --shadow-map-size 64 changes only {moved} pixels from 512"
+        );
     }
 }
 
@@ -161,11 +214,9 @@ fn an_unknown_tonemap_is_rejected_with_the_valid_ones() {
 fn exposure_darkens_the_render_and_tonemap_none_clips() {
     let dir = TempDir::new("exposure");
     let render = |name: &str, extra: &[&str]| {
-        let out = dir.join(name);
-        let mut args = vec!["render", "--out", path_arg(&out), "--size", "32x32"];
+        let mut args = vec!["--size", "32x32"];
         args.extend_from_slice(extra);
-        assert_success(&sandbox(&args));
-        let image = image::open(&out).unwrap().to_rgba8();
+        let image = rendered(&dir, name, "render", &args);
         image.pixels().map(|p| u64::from(p.0[1])).sum::<u64>()
     };
     let base = render("base.png", &[]);
@@ -230,10 +281,9 @@ fn the_uv_view_is_a_raw_16_bit_png_with_a_full_march_in_the_middle() {
 }
 
 #[test]
-fn a_depth_map_renders_with_normal_mapping() {
+fn a_depth_map_renders_with_normal_mapping_that_sinks_its_white() {
     let dir = TempDir::new("depth-map");
-    let out = dir.join("depth.png");
-    // A depth map: a white (deep) square in a black (top) tile.
+    // A depth map: a white (deep) square in a black (top) tile, so a pit.
     let depth = dir.join("depth-map.png");
     image::GrayImage::from_fn(32, 32, |x, y| {
         let inside = (8..24).contains(&x) && (8..24).contains(&y);
@@ -241,20 +291,43 @@ fn a_depth_map_renders_with_normal_mapping() {
     })
     .save(&depth)
     .unwrap();
-    let output = sandbox(&[
+    let image = rendered(
+        &dir,
+        "depth.png",
         "render",
-        "--method",
-        "normal",
-        "--height",
-        path_arg(&depth),
-        "--height-convention",
-        "depth",
-        "--out",
-        path_arg(&out),
-        "--size",
-        "32x32",
-    ]);
-    assert_success(&output);
-    let image = image::open(&out).expect("the preview is a readable image");
-    assert_eq!((image.width(), image.height()), (32, 32));
+        &[
+            "--method",
+            "normal",
+            "--height",
+            path_arg(&depth),
+            "--height-convention",
+            "depth",
+            "--size",
+            "32x32",
+        ],
+    );
+    assert_eq!(image.dimensions(), (32, 32));
+    // The preview's defaults (`render --help`): looking straight down at the tile filling the
+    // image, +u up it and +v to the right, the light 45° from the −u side. The pit's walls
+    // across u lie on rows 8 (u = ¾) and 24 (u = ¼); the middle columns cross neither v wall.
+    let row = |y: u32| {
+        (11..21)
+            .map(|x| brightness(image.get_pixel(x, y)))
+            .sum::<i32>()
+            / 10
+    };
+    let flat = row(16);
+    let darkest = |rows: std::ops::Range<u32>| rows.map(row).min().unwrap();
+    let (far_wall, near_wall) = (darkest(5..11), darkest(21..27));
+    eprintln!("flat {flat}, far wall {far_wall}, near wall {near_wall}");
+    // The wall nearer the light climbs out of the pit away from it, so it turns from the
+    // light; the far wall faces it. A raised square (white read as top) swaps them.
+    assert!(
+        near_wall * 10 < flat * 6,
+        "the pit's wall turned from the light is not dark: {near_wall} vs {flat} on the flat"
+    );
+    assert!(
+        far_wall * 10 > flat * 9,
+        "the pit's wall facing the light is dark: {far_wall} vs {flat} on the flat"
+    );
 }

@@ -146,10 +146,69 @@ fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
     );
 }
 
+/// The cube colour a pixel shows: the index of its one strong channel (red, green or blue, at
+/// least 1.5 times each other one and not near black), or `None` for the grey plane and the
+/// black background.
+fn tint_of(pixel: &image::Rgba<u8>) -> Option<usize> {
+    let channel = |c: usize| f32::from(pixel.0[c]);
+    (0..3).find(|&c| {
+        channel(c) >= 16.0 && (0..3).all(|other| other == c || channel(c) >= 1.5 * channel(other))
+    })
+}
+
+/// Checks that each of `cubes` (entity, index of its tint) shows its tint where a CPU ray cast
+/// through each pixel's centre against the entities' known transforms meets it, and that no
+/// other pixel shows a cube's tint.
+fn check_instance_placement(
+    app: &pom::App,
+    image: &image::RgbaImage,
+    cubes: &[(pom::hecs::Entity, usize)],
+    name: &str,
+) {
+    let viewport = pom::glam::Vec2::new(image.width() as f32, image.height() as f32);
+    // Per cube: the pixels the ray cast gives it, and how many of them show its tint.
+    let mut covered = vec![(0_u32, 0_u32); cubes.len()];
+    let mut stray = Vec::new();
+    for (x, y, pixel) in image.enumerate_pixels() {
+        let centre = pom::glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        let hit = pom::pick_at(&app.world, &app.resources, viewport, centre);
+        let cube = hit.and_then(|hit| cubes.iter().position(|(entity, _)| *entity == hit.entity));
+        match (cube, tint_of(pixel)) {
+            (Some(cube), tint) => {
+                covered[cube].0 += 1;
+                covered[cube].1 += u32::from(tint == Some(cubes[cube].1));
+            }
+            (None, Some(tint)) => stray.push(format!("({x}, {y}) shows tint {tint}")),
+            (None, None) => {}
+        }
+    }
+    for ((_, tint), (cast, tinted)) in cubes.iter().zip(covered) {
+        eprintln!("{name}: cube of tint {tint}: {tinted} of its {cast} pixels show it");
+        assert!(
+            cast >= 100,
+            "{name}: cube of tint {tint} covers only {cast} pixels"
+        );
+        // Shadowed crevices may be too dark to classify.
+        assert!(
+            tinted * 10 >= cast * 9,
+            "{name}: the cube of tint {tint} shows it on {tinted} of the {cast} pixels where its \
+             transform puts it"
+        );
+    }
+    // Silhouette pixels whose centre the ray cast and the rasterizer may round differently.
+    assert!(
+        stray.len() <= 8,
+        "{name}: {} pixels show a cube where none is, e.g. {:?}",
+        stray.len(),
+        &stray[..stray.len().min(10)]
+    );
+}
+
 #[test]
 fn instanced_parallax_cubes_resolve_each_instance_and_triangle() {
     // Three cubes of one mesh and material: one batch whose instances own consecutive runs of
-    // visibility ids (12 triangles each), beside the plane's batch.
+    // visibility ids (12 triangles each), beside the plane's batch. Each has its own colour
+    // (a per-draw uniform, so still one batch) to tell them apart on screen.
     let view = PreviewView {
         view_angle: 50.0,
         projection: PreviewProjection::Perspective,
@@ -164,14 +223,32 @@ fn instanced_parallax_cubes_resolve_each_instance_and_triangle() {
         .get_mut::<Assets<Mesh>>()
         .unwrap()
         .add(Mesh::cube(0.2));
-    for (i, x) in [-0.3_f32, 0.0, 0.3].into_iter().enumerate() {
+    let tints = [
+        pom::Color::linear_rgb(1.0, 0.12, 0.12),
+        pom::Color::linear_rgb(0.12, 1.0, 0.12),
+        pom::Color::linear_rgb(0.12, 0.12, 1.0),
+    ];
+    // Spawned farthest first (the camera is on the −X side), so the batch's nearest-first
+    // instance order is the reverse of the world's.
+    let mut cubes = Vec::new();
+    for (i, x) in [-0.3_f32, 0.0, 0.3].into_iter().enumerate().rev() {
         let transform = Transform {
             translation: Vec3::new(x, 0.1, x * (i as f32 - 0.5)),
             rotation: pom::glam::Quat::from_rotation_y(0.4 * i as f32),
             ..Transform::IDENTITY
         };
-        app.world.spawn((cube.clone(), transform, material.clone()));
+        let tinted = ParallaxOcclusionMaterial {
+            base_color: tints[i],
+            ..material.clone()
+        };
+        cubes.push((app.world.spawn((cube.clone(), transform, tinted)), i));
     }
+    // Where each instance is, first (agreeing paths could both be wrong), then the paths agree.
+    let forward = render_on_path(&mut app, RenderPath::Forward).unwrap();
+    check_instance_placement(&app, &forward, &cubes, "forward");
+    let deferred = render_on_path(&mut app, RenderPath::Deferred).unwrap();
+    assert!(app.resources.get::<Renderer>().unwrap().runs_deferred());
+    check_instance_placement(&app, &deferred, &cubes, "deferred");
     render_both_paths(&mut app, "instanced_cubes").unwrap();
 }
 

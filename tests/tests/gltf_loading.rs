@@ -3,12 +3,12 @@
 use glam::{Vec2, Vec3};
 use image::{GrayImage, ImageBuffer, Luma, RgbaImage};
 use pom::{
-    App, Assets, Camera, DirectionalLight, GlobalTransform, Handle, HeightConvention, HeightSource,
-    Image, LitMaterial, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Pixels, PomPlugin,
-    RenderPlugin, ShadowMode, Transform, load_gltf,
+    App, Assets, DirectionalLight, GlobalTransform, Handle, HeightConvention, HeightSource, Image,
+    LitMaterial, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Pixels, PomPlugin, RenderPlugin,
+    ShadowMode, load_gltf,
 };
 use pom_tests::gltf_fixture::{GltfFixture, png, scratch_dir};
-use pom_tests::{FlipTolerance, compare_images, render_and_capture, run_frames};
+use pom_tests::run_frames;
 use serde_json::json;
 
 fn app() -> App {
@@ -167,40 +167,6 @@ fn texture_transforms_are_baked_into_the_coordinates() {
         "{:?}",
         mesh.uvs
     );
-}
-
-#[test]
-fn missing_tangents_are_generated_to_match_the_files_convention() {
-    let dir = scratch_dir("tangents");
-    let render = |strip_tangents: bool, name: &str| {
-        let mut fixture = pom_quad(json!({"height_texture": "HEIGHT", "height_scale": 0.08}));
-        if strip_tangents {
-            fixture.json["meshes"][0]["primitives"][0]["attributes"]
-                .as_object_mut()
-                .unwrap()
-                .remove("TANGENT");
-        }
-        let mut app = app();
-        load_gltf(&mut app, fixture.write(&dir.join(name), "quad")).unwrap();
-        app.world.spawn((
-            Camera::perspective(50.0),
-            Transform::from_xyz(-0.8, 0.9, 0.3).looking_at(Vec3::ZERO, Vec3::Y),
-        ));
-        app.world.spawn((
-            DirectionalLight::default(),
-            Transform::IDENTITY.looking_at(Vec3::new(0.3, -1.0, 0.6), Vec3::Y),
-        ));
-        render_and_capture(&mut app).unwrap()
-    };
-    let supplied = render(false, "supplied");
-    let generated = render(true, "generated");
-    compare_images(
-        "file tangents vs generated",
-        &supplied,
-        &generated,
-        FlipTolerance::default(),
-    )
-    .unwrap();
 }
 
 #[test]
