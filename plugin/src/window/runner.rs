@@ -225,6 +225,13 @@ impl Runner {
         let Some(open) = &mut self.open else {
             return;
         };
+        // A system may retitle the window through the WindowPlugin resource.
+        if let Some(settings) = self.app.resources.get::<WindowPlugin>()
+            && settings.title != self.settings.title
+        {
+            open.window.set_title(&settings.title);
+            self.settings.title.clone_from(&settings.title);
+        }
         let Some(frame) = open.surface.acquire(&open.gpu) else {
             return;
         };
