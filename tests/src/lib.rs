@@ -1,6 +1,7 @@
 //! Helpers for the integration tests: a headless app whose GPU work runs inside validation
 //! error scopes, reference-image comparison with NVIDIA FLIP, and procedural test textures.
 
+mod finite;
 pub mod fixtures;
 pub mod fuzz_entry;
 pub mod gltf_fixture;
@@ -8,6 +9,7 @@ mod golden;
 pub mod parameters;
 pub mod pom_scene;
 
+pub use finite::{NonFinitePixels, non_finite_pixels, render_and_capture_finite};
 pub use golden::{
     FlipTolerance, GoldenError, ImagesDiffer, check_golden, compare_images, golden_dir,
 };
@@ -32,6 +34,9 @@ pub enum HarnessError {
     /// Capture failed.
     #[error(transparent)]
     Render(#[from] pom::RenderError),
+    /// A frame held NaN or ±∞ ([`render_and_capture_finite`]).
+    #[error("{0}")]
+    NonFinite(NonFinitePixels),
 }
 
 /// An app with the render plugin at `width`×`height`, finished (GPU created), with any setup

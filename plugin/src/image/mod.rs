@@ -293,13 +293,23 @@ impl Image {
         Self::from_decoded(decoded, kind, channel, name)
     }
 
-    /// Converts a decoded image for `kind`: heights keep `channel` at 8 or 16 bits.
+    /// Converts a decoded image for `kind`: heights keep `channel` at 8 or 16 bits. Float values
+    /// are clamped to 0..=1, NaN to 0.
     pub fn from_decoded(
-        decoded: DynamicImage,
+        mut decoded: DynamicImage,
         kind: TextureKind,
         channel: Channel,
         name: &str,
     ) -> Result<Self, ImageError> {
+        // The image crate's integer conversion turns NaN into the maximum, not 0.
+        let floats: Option<&mut [f32]> = match &mut decoded {
+            DynamicImage::ImageRgb32F(image) => Some(&mut **image),
+            DynamicImage::ImageRgba32F(image) => Some(&mut **image),
+            _ => None,
+        };
+        for value in floats.into_iter().flatten().filter(|v| v.is_nan()) {
+            *value = 0.0;
+        }
         if kind != TextureKind::Height {
             return Self::new(decoded.to_rgba8(), kind);
         }
