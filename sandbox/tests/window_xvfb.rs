@@ -1,130 +1,31 @@
 //! Starts the real sandbox window under Xvfb (on whatever Vulkan driver the environment pins:
 //! tests/run pins Mesa's software driver), lets it draw five frames, and checks the screenshot
 //! it writes: the window's size, a 3D scene in the viewport, and the side panel beside it.
-//!
-//! Installs nothing: tests/run installs Xvfb (see `ensure_xvfb` in tests/ensure-vulkan.sh).
 
-use std::collections::HashSet;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+
+use pom_tests::xvfb::{Xvfb, distinct_colours};
 
 /// The window's size in pixels (the sandbox opens at 1280×720 logical pixels; Xvfb's scale is 1).
 const WINDOW_SIZE: (u32, u32) = (1280, 720);
 /// How long the sandbox may take (a debug build drawing on a software GPU).
 const SANDBOX_TIMEOUT: Duration = Duration::from_secs(300);
 
-/// Held by each test while its Xvfb runs: two tests starting at once would both pick the
-/// first free display number.
-static ONE_XVFB_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-/// Kills the Xvfb server when the test ends, however it ends.
-struct XvfbGuard {
-    server: Child,
-    display: u32,
-}
-
-impl Drop for XvfbGuard {
-    fn drop(&mut self) {
-        // SIGTERM first: Xvfb then removes its lock file and socket, which a SIGKILL (all that
-        // `Child::kill` sends) leaves behind in /tmp.
-        let _ = Command::new("kill")
-            .args(["-TERM", &self.server.id().to_string()])
-            .status();
-        let deadline = Instant::now() + Duration::from_secs(5);
-        while Instant::now() < deadline {
-            if let Ok(Some(_)) = self.server.try_wait() {
-                return;
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        let _ = self.server.kill();
-        let _ = self.server.wait();
-    }
-}
-
-fn on_path(program: &str) -> bool {
-    std::env::var_os("PATH")
-        .is_some_and(|path| std::env::split_paths(&path).any(|dir| dir.join(program).is_file()))
-}
-
-fn socket(display: u32) -> PathBuf {
-    PathBuf::from(format!("/tmp/.X11-unix/X{display}"))
-}
-
-/// Starts `Xvfb` on the first free display number from 99 on and waits for its socket.
-fn start_xvfb() -> XvfbGuard {
-    assert!(
-        on_path("Xvfb"),
-        "Xvfb is not installed: run the tests with tests/run, which installs it (xvfb, xauth)"
+/// Runs the sandbox on `xvfb`, killing it if it overruns; returns its stderr.
+fn run_sandbox(xvfb: &Xvfb, args: &[&std::ffi::OsStr]) -> String {
+    let output = xvfb.run(
+        Command::new(env!("CARGO_BIN_EXE_sandbox")).args(args),
+        SANDBOX_TIMEOUT,
     );
-    let display = (99..400)
-        .find(|n| !socket(*n).exists() && !Path::new(&format!("/tmp/.X{n}-lock")).exists())
-        .expect("no free X display number between 99 and 399");
-    let server = Command::new("Xvfb")
-        .arg(format!(":{display}"))
-        .args(["-screen", "0", "1600x1000x24", "-nolisten", "tcp"])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("starting Xvfb");
-    let mut guard = XvfbGuard { server, display };
-    let deadline = Instant::now() + Duration::from_secs(20);
-    while !socket(display).exists() {
-        if let Ok(Some(status)) = guard.server.try_wait() {
-            panic!("Xvfb :{display} exited at start ({status})");
-        }
-        assert!(
-            Instant::now() < deadline,
-            "Xvfb :{display} did not start in 20 s"
-        );
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    guard
-}
-
-/// Runs the sandbox on `display`, killing it if it overruns; returns its stderr.
-fn run_sandbox(display: u32, args: &[&std::ffi::OsStr]) -> String {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_sandbox"))
-        .args(args)
-        .env("DISPLAY", format!(":{display}"))
-        .env_remove("WAYLAND_DISPLAY")
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("starting the sandbox");
-    let deadline = Instant::now() + SANDBOX_TIMEOUT;
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("waiting for the sandbox") {
-            break status;
-        }
-        if Instant::now() > deadline {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("the sandbox did not exit within {SANDBOX_TIMEOUT:?}");
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    };
-    let mut stderr = String::new();
-    if let Some(mut pipe) = child.stderr.take() {
-        let _ = std::io::Read::read_to_string(&mut pipe, &mut stderr);
-    }
-    assert!(status.success(), "the sandbox failed ({status}):\n{stderr}");
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(
+        output.status.success(),
+        "the sandbox failed ({}):\n{stderr}",
+        output.status
+    );
     stderr
-}
-
-fn distinct_colours(
-    image: &image::RgbaImage,
-    x: std::ops::Range<u32>,
-    y: std::ops::Range<u32>,
-) -> usize {
-    let mut colours = HashSet::new();
-    for y in y {
-        for x in x.clone() {
-            colours.insert(image.get_pixel(x, y).0);
-        }
-    }
-    colours.len()
 }
 
 fn mean_colour(
@@ -150,8 +51,7 @@ fn mean_colour(
 /// screenshot, kept under target/`folder`/ (overwritten by each run, so the last one is there
 /// to look at).
 fn window_screenshot(folder: &str, extra: &[&str]) -> image::RgbaImage {
-    let _serial = ONE_XVFB_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let xvfb = start_xvfb();
+    let xvfb = Xvfb::start();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(folder);
     std::fs::create_dir_all(&dir).unwrap();
     let screenshot = dir.join("window.png");
@@ -168,7 +68,7 @@ fn window_screenshot(folder: &str, extra: &[&str]) -> image::RgbaImage {
         state.as_os_str(),
     ];
     args.extend(extra.iter().map(std::ffi::OsStr::new));
-    let stderr = run_sandbox(xvfb.display, &args);
+    let stderr = run_sandbox(&xvfb, &args);
     let image = image::open(&screenshot)
         .unwrap_or_else(|error| {
             panic!(

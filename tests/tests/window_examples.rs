@@ -1,0 +1,124 @@
+//! The library's examples run as a game would: the windowed ones under Xvfb on the software
+//! driver (`POM_EXIT_AFTER_FRAMES` ends them with status 0 and `POM_SCREENSHOT` writes the last
+//! presented frame, which shows a scene; bad automation variables are one-line errors), the
+//! headless one writing its PNG.
+//!
+//! `cargo test` builds the examples (the `window` feature is on in this workspace) into
+//! target/<profile>/examples/, beside the test binaries' deps/ folder.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Duration;
+
+use pom_tests::xvfb::{Xvfb, distinct_colours};
+
+/// How long an example may take to draw its frames (a debug build on a software GPU).
+const EXAMPLE_TIMEOUT: Duration = Duration::from_secs(300);
+
+fn example(name: &str) -> PathBuf {
+    let deps = std::env::current_exe().expect("the test binary's path");
+    let profile = deps
+        .parent()
+        .and_then(Path::parent)
+        .expect("test binaries live in target/<profile>/deps");
+    let path = profile.join("examples").join(name);
+    assert!(
+        path.is_file(),
+        "{} is missing: `cargo test --workspace` builds the examples (a filtered run builds none: `cargo build -p pom --examples --features window`)",
+        path.display()
+    );
+    path
+}
+
+/// Runs example `name` for `frames` frames on a fresh Xvfb and returns its screenshot.
+fn screenshot_of(name: &str, frames: u32) -> image::RgbaImage {
+    let xvfb = Xvfb::start();
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    let screenshot = dir.join(format!("{name}.png"));
+    let _ = std::fs::remove_file(&screenshot);
+    let output = xvfb.run(
+        Command::new(example(name))
+            .env("POM_EXIT_AFTER_FRAMES", frames.to_string())
+            .env("POM_SCREENSHOT", &screenshot),
+        EXAMPLE_TIMEOUT,
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success(),
+        "{name} failed ({}):\n{stderr}",
+        output.status
+    );
+    image::open(&screenshot)
+        .unwrap_or_else(|error| panic!("{name} wrote no screenshot ({error}):\n{stderr}"))
+        .to_rgba8()
+}
+
+#[test]
+fn the_parallax_example_runs_thirty_frames_and_shows_its_scene() {
+    let image = screenshot_of("parallax", 30);
+    // WindowPlugin's default size; Xvfb's scale is 1.
+    assert_eq!(image.dimensions(), (1280, 720));
+    // The bricks are grey, lit and shadowed in many shades; the background is one colour.
+    let colours = distinct_colours(&image, 0..1280, 0..720);
+    assert!(colours > 100, "only {colours} distinct colours: no scene");
+    let (sky, floor) = (image.get_pixel(10, 10).0, image.get_pixel(640, 700).0);
+    assert_ne!(
+        sky, floor,
+        "the floor at the bottom looks like the background"
+    );
+}
+
+#[test]
+fn a_bad_automation_variable_is_a_one_line_error_and_a_failing_status() {
+    let xvfb = Xvfb::start();
+    for (variable, value, says) in [
+        (
+            "POM_EXIT_AFTER_FRAMES",
+            "abc",
+            "POM_EXIT_AFTER_FRAMES=\"abc\" is not a frame count",
+        ),
+        (
+            "POM_EXIT_AFTER_FRAMES",
+            "-1",
+            "POM_EXIT_AFTER_FRAMES=\"-1\" is not a frame count",
+        ),
+        (
+            "POM_SCREENSHOT",
+            "/no/such/folder/shot.png",
+            "the folder \"/no/such/folder\" does not exist",
+        ),
+    ] {
+        let output = xvfb.run(
+            Command::new(example("parallax"))
+                .env("POM_EXIT_AFTER_FRAMES", "1")
+                .env(variable, value),
+            EXAMPLE_TIMEOUT,
+        );
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{variable}={value}: exited 0");
+        assert_eq!(stderr.lines().count(), 1, "{variable}={value}: {stderr}");
+        assert!(
+            stderr.contains(says) && !stderr.contains("panicked"),
+            "{stderr}"
+        );
+    }
+}
+
+#[test]
+fn the_headless_example_writes_its_frame_without_a_display() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("headless-example.png");
+    let _ = std::fs::remove_file(&out);
+    let output = Command::new(example("headless"))
+        .arg(&out)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let image = image::open(&out).unwrap().to_rgba8();
+    assert_eq!(image.dimensions(), (512, 512));
+    let colours = distinct_colours(&image, 0..512, 0..512);
+    assert!(colours > 100, "only {colours} distinct colours: no bricks");
+}
