@@ -1,6 +1,6 @@
 //! The GPU context: instance, adapter, device and queue, with or without a window surface.
 
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// What went wrong setting up the GPU.
 #[derive(Debug, thiserror::Error)]
@@ -25,6 +25,28 @@ pub enum GpuError {
     },
 }
 
+/// The one instance of the process's headless contexts. With an instance per app, the Vulkan
+/// loader loaded the driver with each app and unloaded it with it, and a driver may not survive
+/// that: NVIDIA's takes a new piece of the process's static TLS with every load (glibc never
+/// gives it back) and, after about 30 apps, no longer loads at all. Kept only once a context was
+/// made on it, so a failed start is retried on a fresh instance.
+static HEADLESS_INSTANCE: Mutex<Option<wgpu::Instance>> = Mutex::new(None);
+
+fn kept_headless_instance() -> Option<wgpu::Instance> {
+    HEADLESS_INSTANCE
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .clone()
+}
+
+/// Keeps `instance` for later headless contexts unless one is kept already.
+fn keep_headless_instance(instance: &wgpu::Instance) {
+    HEADLESS_INSTANCE
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .get_or_insert_with(|| instance.clone());
+}
+
 /// Owns the wgpu device and queue every renderer in the app shares.
 ///
 /// Errors that no error scope catches are logged and kept (see
@@ -43,12 +65,18 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
-    /// A context for offscreen rendering. Honours wgpu's environment variables
-    /// (`WGPU_BACKEND`, `WGPU_ADAPTER_NAME`, `WGPU_POWER_PREF`).
+    /// A context for offscreen rendering, with a device and queue of its own. Honours wgpu's
+    /// environment variables (`WGPU_BACKEND`, `WGPU_ADAPTER_NAME`, `WGPU_POWER_PREF`).
+    ///
+    /// Every headless context of the process shares one `wgpu::Instance`, made by the first
+    /// (so `WGPU_BACKEND` is read then): dropping the app drops its device, not the driver.
     pub fn headless() -> Result<Self, GpuError> {
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        pollster::block_on(Self::from_instance(instance, None))
+        let instance = kept_headless_instance().unwrap_or_else(|| {
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
+        });
+        let context = pollster::block_on(Self::from_instance(instance, None))?;
+        keep_headless_instance(&context.instance);
+        Ok(context)
     }
 
     /// A context whose adapter can present to `surface`, created from the same `instance`.
