@@ -24,7 +24,9 @@ pub struct ScriptArgs {
     pub path: PathArgs,
 }
 
-/// Runs every script, prints one line per step, fails when any expectation or script failed.
+/// Runs every script, prints one line per step (a capture's names the path its frame was shaded
+/// on, so a deferred run that fell back to forward shows), fails when any expectation or script
+/// failed.
 pub fn run(args: &ScriptArgs) -> Result<()> {
     let options = pom::RunOptions {
         bless: args.bless,

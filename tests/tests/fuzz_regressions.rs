@@ -1,9 +1,13 @@
 //! Replays, without a fuzzer and on the stable toolchain, what the fuzz targets in `tests/fuzz`
-//! run: every input the fuzzer once failed on (`tests/fuzz/regressions/<target>/`) must now load
-//! or give an error without a panic; every seed (`tests/fuzz/seeds/<target>/`, valid files) must
-//! load; and a few hundred fixed-seed mutations of each seed must not panic.
+//! run: every input the fuzzer once failed on (`tests/fuzz/regressions/<target>/`) and every
+//! seed (`tests/fuzz/seeds/<target>/`) must load or give an error without a panic, each within
+//! the fuzzer's timeout; every seed (valid files) must load; and a few hundred fixed-seed
+//! mutations of each seed must not panic.
 
+use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::RecvTimeoutError;
+use std::time::{Duration, Instant};
 
 use pom_tests::fuzz_entry::{self, panic_during};
 
@@ -16,8 +20,18 @@ const TARGETS: [(&str, Entry); 4] = [
     ("script", fuzz_entry::script),
 ];
 
+/// The folders under `tests/fuzz/regressions/`: the targets the fuzzer has failed on (preset and
+/// script never have), and image inputs that panic inside a dependency. A folder not listed here
+/// would be replayed by no test.
+const REGRESSION_FOLDERS: [&str; 3] = ["gltf", "image", "image_dependency_panics"];
+
 /// Mutations of each seed file per run of [`mutated_seeds_never_panic`].
 const MUTATIONS_PER_SEED: usize = 200;
+
+/// Longest one replayed input may run before its test fails: the fuzzer's `-timeout=10`
+/// (tests/fuzz/README.md), past which it saved the `timeout-…` inputs. Every input takes
+/// milliseconds now; the bound turns a hang into a failure and measures no speed.
+const REPLAY_DEADLINE: Duration = Duration::from_secs(10);
 
 fn fuzz_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz")
@@ -44,14 +58,68 @@ fn entry(target: &str) -> Entry {
         .expect("known target")
 }
 
+/// What one input did when replayed.
+#[derive(Debug)]
+struct Replay {
+    /// The first panic raised while it ran, even one the loader caught and turned into an error.
+    panic: Option<String>,
+    /// What the entry returned; `None` when a panic escaped it.
+    outcome: Option<Result<(), String>>,
+}
+
+/// Runs `run` on the bytes of `file` in a thread of its own and waits for it at most
+/// [`REPLAY_DEADLINE`]: an input that hangs fails the test (its thread is left behind, and ends
+/// with the test process) instead of hanging the test run.
+fn replay(run: Entry, file: &Path) -> Replay {
+    let bytes = std::fs::read(file).unwrap_or_else(|error| panic!("{}: {error}", file.display()));
+    let (sender, receiver) = std::sync::mpsc::channel();
+    let started = Instant::now();
+    std::thread::Builder::new()
+        .name(format!("replay {}", file.display()))
+        .spawn(move || {
+            let mut outcome = None;
+            let panic = panic_during(AssertUnwindSafe(|| outcome = Some(run(&bytes))));
+            // The receiver is gone only after a timeout, which has failed the test already.
+            let _ = sender.send(Replay { panic, outcome });
+        })
+        .expect("a thread for the replay");
+    match receiver.recv_timeout(REPLAY_DEADLINE) {
+        Ok(replay) => {
+            eprintln!(
+                "{} in {:.0?}: {:?}",
+                file.display(),
+                started.elapsed(),
+                replay.outcome
+            );
+            replay
+        }
+        Err(RecvTimeoutError::Timeout) => panic!(
+            "{} still runs after {REPLAY_DEADLINE:?} (the fuzzer's timeout): it must load or fail without hanging",
+            file.display()
+        ),
+        Err(RecvTimeoutError::Disconnected) => {
+            panic!("the replay of {} ended without a result", file.display())
+        }
+    }
+}
+
+/// Every regression input and seed of `target`, none of which may panic or hang. The seeds make
+/// sure the replay runs on something for targets the fuzzer never failed on.
 fn replay_regressions(target: &str) {
     let run = entry(target);
-    for file in files("regressions", target) {
-        let bytes = std::fs::read(&file).unwrap();
-        let mut outcome = None;
-        let panic = panic_during(std::panic::AssertUnwindSafe(|| outcome = Some(run(&bytes))));
-        assert_eq!(panic, None, "{} panicked", file.display());
-        eprintln!("{}: {:?}", file.display(), outcome.expect("ran"));
+    let inputs: Vec<PathBuf> = files("regressions", target)
+        .into_iter()
+        .chain(files("seeds", target))
+        .collect();
+    assert!(
+        !inputs.is_empty(),
+        "nothing to replay for {target}: no file in {} or {}",
+        fuzz_dir().join("regressions").join(target).display(),
+        fuzz_dir().join("seeds").join(target).display()
+    );
+    for file in inputs {
+        let replay = replay(run, &file);
+        assert_eq!(replay.panic, None, "{} panicked", file.display());
     }
 }
 
@@ -64,13 +132,34 @@ fn seeds_load(target: &str) {
         fuzz_dir().join("seeds").join(target).display()
     );
     for seed in seeds {
-        let bytes = std::fs::read(&seed).unwrap();
-        let mut outcome = None;
-        let panic = panic_during(std::panic::AssertUnwindSafe(|| outcome = Some(run(&bytes))));
-        assert_eq!(panic, None, "{} panicked", seed.display());
-        if let Some(Err(error)) = outcome {
+        let replay = replay(run, &seed);
+        assert_eq!(replay.panic, None, "{} panicked", seed.display());
+        if let Some(Err(error)) = replay.outcome {
             panic!("seed {} must load: {error}", seed.display());
         }
+    }
+}
+
+/// Each folder of regression inputs is one a test replays, and holds inputs: a renamed or
+/// misspelt folder would otherwise be read by nothing.
+#[test]
+fn every_regression_folder_is_replayed() {
+    let mut folders: Vec<String> = std::fs::read_dir(fuzz_dir().join("regressions"))
+        .expect("tests/fuzz/regressions")
+        .map(|entry| entry.expect("readable folder entry"))
+        .filter(|entry| entry.path().is_dir())
+        .map(|entry| entry.file_name().to_string_lossy().into_owned())
+        .collect();
+    folders.sort();
+    assert_eq!(
+        folders, REGRESSION_FOLDERS,
+        "the folders under tests/fuzz/regressions/"
+    );
+    for folder in REGRESSION_FOLDERS {
+        assert!(
+            !files("regressions", folder).is_empty(),
+            "tests/fuzz/regressions/{folder}/ holds no file"
+        );
     }
 }
 
@@ -86,13 +175,30 @@ fn image_dependency_panics_become_errors() {
     let inputs = files("regressions", "image_dependency_panics");
     assert!(!inputs.is_empty());
     for file in inputs {
-        let bytes = std::fs::read(&file).unwrap();
-        let outcome = std::panic::catch_unwind(|| fuzz_entry::image(&bytes));
+        let replay = replay(fuzz_entry::image, &file);
         assert!(
-            matches!(outcome, Ok(Err(_))),
-            "{}: {outcome:?}",
+            matches!(replay.outcome, Some(Err(_))),
+            "{}: {replay:?}",
             file.display()
         );
+    }
+}
+
+/// The JPEG the fuzzer timed out on declares 65518×240 pixels in 484 bytes: the side limit must
+/// refuse it before decoding. Decoded, it loads, but slowly (2 s in this debug build, past the
+/// fuzzer's 10 s with its instrumentation), which the replay's deadline, a bound against hangs,
+/// does not catch.
+#[test]
+fn the_timed_out_jpeg_is_refused_by_its_declared_size() {
+    let file =
+        fuzz_dir().join("regressions/image/timeout-5e6d196a28681559b2aaba1cc8789807e5f02da3");
+    let replay = replay(fuzz_entry::image, &file);
+    match replay.outcome {
+        Some(Err(error)) => assert!(error.contains("65518×240"), "{error}"),
+        other => panic!(
+            "{}: expected an error naming its size, got {other:?}",
+            file.display()
+        ),
     }
 }
 
@@ -260,7 +366,7 @@ fn mutation_fuzz() {
         assert!(!corpus.is_empty(), "no seeds for {target}");
         let mut seen = std::collections::HashSet::new();
         let (mut executions, mut crashes, mut slow) = (0_u64, 0, 0);
-        let start = std::time::Instant::now();
+        let start = Instant::now();
         while start.elapsed().as_secs() < seconds {
             let parent = &corpus[rng.below(corpus.len())];
             let mut input = mutate(parent, &mut rng);
@@ -271,9 +377,9 @@ fn mutation_fuzz() {
                 input.truncate(cut);
                 input.extend_from_slice(&other[from..]);
             }
-            let began = std::time::Instant::now();
+            let began = Instant::now();
             let mut outcome = None;
-            let panic = panic_during(std::panic::AssertUnwindSafe(|| outcome = Some(run(&input))));
+            let panic = panic_during(AssertUnwindSafe(|| outcome = Some(run(&input))));
             let took = began.elapsed();
             executions += 1;
             let save = |kind: &str| {

@@ -1,10 +1,11 @@
-//! Every scene script under tests/scenes runs and passes, on the forward and the deferred path;
+//! Every scene script under tests/scenes runs and passes, on the forward and the deferred path
+//! (every capture of the deferred run shaded deferred, not on a silent forward fallback);
 //! a wrong expectation fails readably;
 //! the same script gives the same pixels twice. `UPDATE_GOLDENS=1` blesses missing references.
 
 use std::path::{Path, PathBuf};
 
-use pom::script::{Outcome, Report};
+use pom::script::{CapturePath, Outcome, Report};
 use pom::{RenderPath, RunOptions, ScriptError, run_script_with};
 use pom_tests::PATHS_AGREE_MEAN;
 
@@ -31,9 +32,13 @@ fn every_shipped_script_passes() {
         scenes().display()
     );
     let mut failures = Vec::new();
-    // Each script on both paths: the references (made forward on this driver) hold for the
-    // deferred frame too, within FLIP mean PATHS_AGREE_MEAN.
-    for path in [RenderPath::Forward, RenderPath::Deferred] {
+    // Each script on both paths, every capture shaded on the path asked for: the references
+    // (made forward on this driver) hold for the deferred frame too, within FLIP mean
+    // PATHS_AGREE_MEAN.
+    for (path, shaded_on) in [
+        (RenderPath::Forward, CapturePath::Forward),
+        (RenderPath::Deferred, CapturePath::Deferred),
+    ] {
         let options = RunOptions {
             bless: bless() && path == RenderPath::Forward,
             out_dir: None,
@@ -50,6 +55,7 @@ fn every_shipped_script_passes() {
                             report.failures()
                         ));
                     }
+                    failures.extend(captures_off_path(&report, path, shaded_on));
                     if path == RenderPath::Deferred {
                         failures.extend(
                             reference_means(&report)
@@ -68,6 +74,28 @@ fn every_shipped_script_passes() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// What of a script run on `path` was not shaded on `expected`: each capture whose frame ran on
+/// another path (a deferred request falls back to forward silently, with the same images), or
+/// the script itself if it captured nothing, so that no frame of it was checked.
+fn captures_off_path(report: &Report, path: RenderPath, expected: CapturePath) -> Vec<String> {
+    let script = report.script.display();
+    let mut captures = report.capture_paths().peekable();
+    if captures.peek().is_none() {
+        return vec![format!(
+            "{script} ({path}): no capture, so no frame checked"
+        )];
+    }
+    captures
+        .filter(|(_, ran)| *ran != expected)
+        .map(|(step, ran)| {
+            format!(
+                "{script} ({path}): step {} {} ran {ran}",
+                step.number, step.description
+            )
+        })
+        .collect()
 }
 
 /// The FLIP means of a report's reference comparisons ("FLIP mean 0.0012 (max ...").

@@ -45,6 +45,31 @@ pub enum Outcome {
     Blessed(String),
 }
 
+/// The render path a captured frame was shaded on (the renderer's decision for that frame, not
+/// the path asked for).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum CapturePath {
+    /// Forward, as asked for or as [`crate::RenderPath::Auto`] picked on this adapter.
+    Forward,
+    /// Deferred.
+    Deferred,
+    /// Forward although the deferred path was wanted, for this reason.
+    FellBackToForward(crate::render::DeferredUnavailable),
+}
+
+impl fmt::Display for CapturePath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CapturePath::Forward => f.write_str("forward"),
+            CapturePath::Deferred => f.write_str("deferred"),
+            CapturePath::FellBackToForward(reason) => {
+                write!(f, "forward, deferred unavailable: {reason}")
+            }
+        }
+    }
+}
+
 /// One line of a report.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StepReport {
@@ -54,6 +79,8 @@ pub struct StepReport {
     pub description: String,
     /// What happened.
     pub outcome: Outcome,
+    /// The path the captured frame ran on (capture steps only).
+    pub path: Option<CapturePath>,
 }
 
 /// The result of running one script.
@@ -78,15 +105,28 @@ impl Report {
     pub fn passed(&self) -> bool {
         self.failures() == 0
     }
+
+    /// The capture steps and the path each one's frame ran on, in order.
+    pub fn capture_paths(&self) -> impl Iterator<Item = (&StepReport, CapturePath)> {
+        self.steps
+            .iter()
+            .filter_map(|step| step.path.map(|path| (step, path)))
+    }
 }
 
 impl fmt::Display for Report {
-    /// One line per step: `name.ron step 4 ExpectMatch "grazing": pass (…)`.
+    /// One line per step: `name.ron step 4 ExpectMatch "grazing": pass (…)`; a capture says
+    /// its frame's path: `name.ron step 3 Capture "grazing": ok (deferred)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let name = self.script.display();
         for step in &self.steps {
             let (verdict, detail) = match &step.outcome {
-                Outcome::Done => ("ok", String::new()),
+                Outcome::Done => (
+                    "ok",
+                    step.path
+                        .map(|path| format!(" ({path})"))
+                        .unwrap_or_default(),
+                ),
                 Outcome::Passed(detail) => ("pass", format!(" ({detail})")),
                 Outcome::Failed(detail) => ("FAIL", format!(" ({detail})")),
                 Outcome::Blessed(detail) => ("blessed", format!(" ({detail})")),

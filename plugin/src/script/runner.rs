@@ -11,11 +11,12 @@ use super::check::check;
 use super::format::{CameraDesc, MaterialDesc, Script, ShapeDesc, Statistic, Step};
 use super::lights::{light_towards, spawn_light};
 use super::stats::{measure, required_view};
-use super::{Outcome, Report, RunOptions, ScriptError, StepReport};
+use super::{CapturePath, Outcome, Report, RunOptions, ScriptError, StepReport};
 use crate::{
     AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, Exposure, GpuContext,
     HeightSource, Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
     PomPreset, Projection, RenderPlugin, TextureKind, Transform, flip_compare, load_gltf,
+    render::Renderer,
 };
 
 /// Runs the script at `path` with default options (no blessing, failure images next to the
@@ -66,6 +67,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Script, ScriptError> {
 struct Capture {
     image: RgbaImage,
     view: Option<DebugView>,
+    path: CapturePath,
 }
 
 struct Runner<'a> {
@@ -318,10 +320,15 @@ impl<'a> Runner<'a> {
             let (description, outcome) = self
                 .execute(step)
                 .map_err(|reason| self.step_error(number, reason, &report))?;
+            let path = match step {
+                Step::Capture { name, .. } => Some(self.captures[name].path),
+                _ => None,
+            };
             report.steps.push(StepReport {
                 number,
                 description,
                 outcome,
+                path,
             });
         }
         Ok(report)
@@ -396,11 +403,13 @@ impl<'a> Runner<'a> {
             }
             Step::Capture { name, debug_view } => {
                 let image = self.capture(*debug_view)?;
+                let path = self.last_frame_path()?;
                 self.captures.insert(
                     name.clone(),
                     Capture {
                         image,
                         view: *debug_view,
+                        path,
                     },
                 );
                 Ok((format!("Capture {name:?}"), Outcome::Done))
@@ -489,6 +498,23 @@ impl<'a> Runner<'a> {
             }
         }
         result
+    }
+
+    /// The path the renderer ran the last frame on (a deferred request can fall back to
+    /// forward, which the images alone would not show).
+    fn last_frame_path(&self) -> Result<CapturePath, String> {
+        let renderer = self
+            .app
+            .resources
+            .get::<Renderer>()
+            .ok_or("the app has no renderer")?;
+        Ok(
+            match (renderer.runs_deferred(), renderer.deferred_unavailable()) {
+                (true, _) => CapturePath::Deferred,
+                (false, Some(reason)) => CapturePath::FellBackToForward(reason),
+                (false, None) => CapturePath::Forward,
+            },
+        )
     }
 
     fn statistic(
