@@ -12,7 +12,7 @@ pub use format::{
     CameraDesc, EntityDesc, LightDesc, MaterialDesc, MaterialPatch, Rect, Script, ShapeDesc,
     Statistic, Step, TransformDesc,
 };
-pub use runner::{parse_script, run_script, run_script_with};
+pub use runner::{SCRIPT_FRAME_TIME, parse_script, run_script, run_script_with};
 
 use std::fmt;
 use std::path::PathBuf;

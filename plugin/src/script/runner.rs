@@ -19,6 +19,9 @@ use crate::{
     render::Renderer,
 };
 
+/// The time between two frames of a scene script ([`crate::Time`] advances by it).
+pub const SCRIPT_FRAME_TIME: std::time::Duration = std::time::Duration::from_nanos(16_666_667);
+
 /// Runs the script at `path` with default options (no blessing, failure images next to the
 /// references).
 pub fn run_script(path: impl AsRef<Path>) -> Result<Report, ScriptError> {
@@ -134,6 +137,8 @@ impl<'a> Runner<'a> {
                 .with_path(options.path),
         )
         .add_plugin(PomPlugin);
+        // Scripts run with the fixed frame time their steps count in, so a run repeats exactly.
+        app.insert_resource(crate::Time::fixed(SCRIPT_FRAME_TIME));
         app.finish().map_err(|error| setup(error.to_string()))?;
         let camera = app.world.spawn((
             camera_component(&script.camera),
