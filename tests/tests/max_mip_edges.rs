@@ -3,7 +3,7 @@
 //! map's seam. On a map with a flat top at exactly 1 next to a drop and on a random map, at 60°,
 //! 80° and 88°, along ±u, ±v and the four diagonals, the CPU reference and the GPU's march
 //! (max_mip.wgsl, run by a compute pass on exactly these rays) both equal the exact
-//! intersection on every ray.
+//! intersection on every ray, whatever the height sampler's address mode.
 
 use pom::glam::{Vec2, Vec3};
 use pom::reference::{MaxPyramid, march_max_mip, ray_offset};
@@ -509,4 +509,12 @@ fn assert_gpu_matches_on_boundary_rays(address_mode: wgpu::AddressMode) {
 #[test]
 fn the_gpu_equals_the_cpu_reference_on_rays_entering_on_boundaries() {
     assert_gpu_matches_on_boundary_rays(wgpu::AddressMode::Repeat);
+}
+
+/// The field max-mip marches repeats whatever the height sampler does past the edge (a glTF
+/// sampler may clamp or mirror): the patches across the map's seam are the wrapped ones.
+#[test]
+fn the_gpu_wraps_across_the_seam_whatever_the_sampler() {
+    assert_gpu_matches_on_boundary_rays(wgpu::AddressMode::ClampToEdge);
+    assert_gpu_matches_on_boundary_rays(wgpu::AddressMode::MirrorRepeat);
 }
