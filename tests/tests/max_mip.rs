@@ -114,6 +114,36 @@ fn set_method(app: &mut pom::App, method: pom::ParallaxMethod) {
     pom_tests::pom_scene::set_material(app, |material| material.method = method);
 }
 
+/// For each pixel of the `uv` views `entry` (normal mapping: where the ray enters) and
+/// `marched` (max-mip), the GPU's hit, the CPU reference's from the same entry seen along
+/// +u at `angle` degrees, and the distance between them in texels (wrapping).
+fn gpu_and_cpu_hits(
+    field: &HeightField,
+    height_scale: f32,
+    angle: f32,
+    entry: &image::Rgba32FImage,
+    marched: &image::Rgba32FImage,
+) -> Vec<(pom::glam::Vec2, pom::glam::Vec2, f32)> {
+    use pom::glam::{Vec2, Vec3};
+    let pyramid = MaxPyramid::new(field);
+    let radians = angle.to_radians();
+    let to_eye = Vec3::new(-radians.sin(), 0.0, radians.cos());
+    let (width, height) = field.size();
+    let size = Vec2::new(width as f32, height as f32);
+    let wrapped = pom_tests::pom_scene::wrapped;
+    entry
+        .pixels()
+        .zip(marched.pixels())
+        .map(|(entry, gpu)| {
+            let uv = Vec2::new(entry.0[0], entry.0[1]);
+            let gpu = Vec2::new(gpu.0[0], gpu.0[1]);
+            let cpu = pom::reference::march_max_mip(&pyramid, uv, to_eye, height_scale).uv;
+            let difference = Vec2::new(wrapped(gpu.x - cpu.x), wrapped(gpu.y - cpu.y));
+            (uv, cpu, (difference * size).length())
+        })
+        .collect()
+}
+
 /// Max-mip's hard shadows on the GPU against the CPU reference: thin spikes (one texel at the
 /// top every 16 over a floor at 0.2), seen from straight above, lit from 75° along −u.
 #[test]
@@ -217,7 +247,6 @@ fn an_unused_pyramid_is_freed() {
 #[test]
 fn long_rays_across_several_repetitions_match_the_cpu_reference() {
     use pom::ParallaxMethod;
-    use pom::glam::{Vec2, Vec3};
     use pom::preview::{PreviewProjection, PreviewView};
     use pom_tests::pom_scene::{HeightMaterial, uv_view};
 
@@ -242,25 +271,56 @@ fn long_rays_across_several_repetitions_match_the_cpu_reference() {
     };
     let entry = uv_view(48, &textures, &view, ParallaxMethod::NormalMapping).unwrap();
     let marched = uv_view(48, &textures, &view, ParallaxMethod::MaxMip).unwrap();
-    let pyramid = MaxPyramid::new(&field);
-    let radians = 85.0_f32.to_radians();
-    let to_eye = Vec3::new(-radians.sin(), 0.0, radians.cos());
-    let size = Vec2::splat(32.0);
-    let wrapped = pom_tests::pom_scene::wrapped;
-    let (mut total, mut count, mut travelled) = (0.0, 0, 0.0_f32);
-    for (entry, gpu) in entry.pixels().zip(marched.pixels()) {
-        let uv = Vec2::new(entry.0[0], entry.0[1]);
-        let cpu = pom::reference::march_max_mip(&pyramid, uv, to_eye, HEIGHT_SCALE).uv;
-        let difference = Vec2::new(wrapped(gpu.0[0] - cpu.x), wrapped(gpu.0[1] - cpu.y));
-        total += (difference * size).length();
-        count += 1;
-        travelled = travelled.max(((cpu - uv) * size).length());
-    }
-    let mean = total / count as f32;
+    let hits = gpu_and_cpu_hits(&field, HEIGHT_SCALE, 85.0, &entry, &marched);
+    let mean = hits.iter().map(|(_, _, apart)| apart).sum::<f32>() / hits.len() as f32;
+    let travelled = hits
+        .iter()
+        .map(|(uv, cpu, _)| ((*cpu - *uv) * 32.0).length())
+        .fold(0.0_f32, f32::max);
     eprintln!("long rays: mean |GPU − CPU| {mean:.4} texel, longest {travelled:.0} texels");
     assert!(
         travelled > 64.0,
         "some rays cross the map twice ({travelled})"
     );
     assert!(mean <= 0.25, "{mean} texels");
+}
+
+/// A material whose textures' sampler clamps (as a glTF sampler may): max-mip still marches the
+/// repeating field across the map's seam, as the CPU reference and the pyramid do. The field
+/// rises along u, so the patch across the seam drops from 0.7 to 0.2, and a clamp would hold
+/// 0.7: seen at 80°, rays from the map's last texels hit that patch.
+#[test]
+fn a_clamping_height_sampler_still_wraps_across_the_seam() {
+    use pom::preview::{PreviewProjection, PreviewView};
+    use pom::{Assets, ImageSampler, ParallaxMethod, WrapMode};
+    use pom_tests::pom_scene::{HeightMaterial, uv_app};
+
+    const HEIGHT_SCALE: f32 = 0.1;
+    let field = HeightField::from_fn(64, 64, |u, v| 0.2 + 0.5 * u + 0.2 * v).quantized();
+    let textures = HeightMaterial {
+        field: field.clone(),
+        height_scale: HEIGHT_SCALE,
+    };
+    let view = PreviewView {
+        view_angle: 80.0,
+        projection: PreviewProjection::Orthographic,
+        ..PreviewView::default()
+    };
+    let clamp = ImageSampler {
+        wrap_u: WrapMode::ClampToEdge,
+        wrap_v: WrapMode::ClampToEdge,
+        ..ImageSampler::default()
+    };
+    let [entry, marched] = [ParallaxMethod::NormalMapping, ParallaxMethod::MaxMip].map(|method| {
+        let mut app = uv_app(64, &textures, &view, method).unwrap();
+        // The material samples with its first texture's sampler: clamp them all.
+        for (_, image) in app.resources.get_mut::<Assets<Image>>().unwrap().iter_mut() {
+            *image = image.clone().with_sampler(clamp);
+        }
+        pom_tests::render_and_capture_f32(&mut app).unwrap()
+    });
+    let hits = gpu_and_cpu_hits(&field, HEIGHT_SCALE, 80.0, &entry, &marched);
+    let largest = hits.iter().map(|(_, _, apart)| *apart).fold(0.0, f32::max);
+    eprintln!("clamping sampler: largest |GPU − CPU| {largest:.5} texel");
+    assert!(largest <= 0.05, "{largest} texels");
 }

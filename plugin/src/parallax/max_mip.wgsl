@@ -34,12 +34,29 @@ fn pyramid_maximum(pyramid: texture_2d<f32>, level: u32, cell: vec2<i32>) -> f32
     return textureLoad(pyramid, wrapped_cell(cell, size), level).r;
 }
 
-// The four corner heights of the patch of level-0 cell `cell`, as (h00, h10, h01, h11). One
-// gather: the texel fetch of a patch.
+// The height of texel `texel` (inside the texture) at level 0.
+fn texel_height(height_texture: texture_2d<f32>, field: HeightField, texel: vec2<i32>) -> f32 {
+    return height_in_channel(textureLoad(height_texture, texel, 0), field.channel, field.depth_convention);
+}
+
+// The four corner heights of the patch of level-0 cell `cell`, as (h00, h10, h01, h11), wrapping
+// whatever the sampler's address mode. One gather (the texel fetch of a patch), except on the
+// map's last column or row: that patch spans the seam, where a gather follows the sampler, which
+// may clamp or mirror (a glTF sampler can), so four loads of the wrapped texels (one fetch still).
 fn patch_corners(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, cell: vec2<i32>) -> vec4<f32> {
     let size = vec2<i32>(textureDimensions(height_texture));
+    let first = wrapped_cell(cell, size);
+    if any(first == size - 1) {
+        let next = select(first + 1, vec2<i32>(0), first == size - 1);
+        return vec4<f32>(
+            texel_height(height_texture, field, first),
+            texel_height(height_texture, field, vec2<i32>(next.x, first.y)),
+            texel_height(height_texture, field, vec2<i32>(first.x, next.y)),
+            texel_height(height_texture, field, next),
+        );
+    }
     // The shared corner of the four texels: gather returns (i, j+1), (i+1, j+1), (i+1, j), (i, j).
-    let uv = (vec2<f32>(wrapped_cell(cell, size)) + 1.0) / vec2<f32>(size);
+    let uv = (vec2<f32>(first) + 1.0) / vec2<f32>(size);
     var gathered: vec4<f32>;
     switch field.channel {
         case 0u: { gathered = textureGather(0, height_texture, height_sampler, uv); }

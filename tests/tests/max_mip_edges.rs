@@ -1,0 +1,520 @@
+//! Max-mip on rays that enter exactly on a boundary: a texel centre (a corner of level-0
+//! cells), a level-0 cell edge, the edge or corner of a cell of pyramid level 1, 2 or 3, or the
+//! map's seam. On a map with a flat top at exactly 1 next to a drop and on a random map, at 60°,
+//! 80° and 88°, along ±u, ±v and the four diagonals, the CPU reference and the GPU's march
+//! (max_mip.wgsl, run by a compute pass on exactly these rays) both equal the exact
+//! intersection on every ray, whatever the height sampler's address mode.
+
+use pom::glam::{Vec2, Vec3};
+use pom::reference::{MaxPyramid, march_max_mip, ray_offset};
+use pom::wgpu;
+use pom::{GpuContext, HeightField};
+
+/// Side of the maps, in texels: a power of two, so that texel centres are exact in uv.
+const SIZE: u32 = 64;
+/// Height range: at 88° a ray crosses 128 texels, two repetitions of the map.
+const HEIGHT_SCALE: f32 = 0.1;
+/// Largest distance, in texels, allowed between two answers for one ray.
+const TOLERANCE: f32 = 0.05;
+
+/// One view ray: it enters at `uv` and travels `offset` (the parallax offset vector) while it
+/// falls from the top to the bottom of the height range.
+#[derive(Clone, Copy, Debug)]
+struct ViewRay {
+    uv: Vec2,
+    to_eye: Vec3,
+    offset: Vec2,
+}
+
+impl ViewRay {
+    /// Its entry in level-0 cell coordinates (texel centre i at i), for messages.
+    fn entry_in_cells(&self) -> Vec2 {
+        self.uv * SIZE as f32 - 0.5
+    }
+}
+
+/// Entry points exactly on boundaries, in cell coordinates. For each level k in 0..=3, the
+/// edges of level-k cells that are no edge of level k + 1 (odd multiples of 2^k), and the
+/// seam (0): crossed by either axis with the other coordinate inside a cell, and corners
+/// where two such edges meet (at level 0: texel centres).
+fn boundary_entries() -> Vec<Vec2> {
+    let odd_multiples = |spacing: u32| -> Vec<f32> {
+        (1..SIZE / spacing)
+            .step_by(2)
+            .map(|index| (index * spacing) as f32)
+            .collect()
+    };
+    let mut entries = Vec::new();
+    for edges in (0..=3)
+        .map(|level| odd_multiples(1 << level))
+        .chain([vec![0.0]])
+    {
+        for (index, &edge) in edges.iter().enumerate() {
+            // Inside a cell, at a different place along each edge.
+            let inside = (index as f32 * 7.31 + 0.37) % SIZE as f32;
+            let crossing_edge = edges[(index * 5 + 3) % edges.len()];
+            entries.extend([
+                Vec2::new(edge, inside),
+                Vec2::new(inside, edge),
+                Vec2::new(edge, crossing_edge),
+            ]);
+        }
+    }
+    entries
+}
+
+/// The rays from every boundary entry at 60°, 80° and 88° from the normal, travelling along
+/// +u, −u, +v, −v and the four diagonals.
+fn boundary_rays() -> Vec<ViewRay> {
+    let travel_directions = [
+        Vec2::X,
+        -Vec2::X,
+        Vec2::Y,
+        -Vec2::Y,
+        Vec2::new(1.0, 1.0),
+        Vec2::new(-1.0, -1.0),
+        Vec2::new(1.0, -1.0),
+        Vec2::new(-1.0, 1.0),
+    ];
+    let mut rays = Vec::new();
+    for angle in [60.0_f32, 80.0, 88.0] {
+        let radians = angle.to_radians();
+        for travel in travel_directions {
+            // The eye is on the side the ray comes from.
+            let to_eye = (-travel.normalize() * radians.sin()).extend(radians.cos());
+            let offset = -ray_offset(to_eye, HEIGHT_SCALE);
+            rays.extend(boundary_entries().into_iter().map(|cell| ViewRay {
+                uv: (cell + 0.5) / SIZE as f32,
+                to_eye,
+                offset,
+            }));
+        }
+    }
+    rays
+}
+
+/// A flat top at exactly 1 over texels [16, 40) × [8, 40) (its rims on boundaries of levels
+/// 0, 3 and 4), and around it a floor sloping from 0.7 down to 0.1: rays that start on the
+/// rim at the top's height, and rays that leave the top over a drop or meet its side.
+fn flat_top_next_to_a_drop() -> HeightField {
+    HeightField::from_fn(SIZE, SIZE, |u, v| {
+        let (x, y) = (u * SIZE as f32, v * SIZE as f32);
+        if (16.0..40.0).contains(&x) && (8.0..40.0).contains(&y) {
+            1.0
+        } else {
+            0.7 - 0.6 * u
+        }
+    })
+    .quantized()
+}
+
+/// Heights from a fixed integer hash, in the 8-bit steps the GPU's texture holds.
+fn random_map() -> HeightField {
+    let hash = |index: u32| {
+        let mut state = index.wrapping_mul(0x9E37_79B9) ^ 0x85EB_CA6B;
+        state ^= state >> 15;
+        state = state.wrapping_mul(0x2C1B_3C6D);
+        state ^= state >> 12;
+        (state >> 8) as f32 / (1 << 24) as f32
+    };
+    HeightField::new(SIZE, SIZE, (0..SIZE * SIZE).map(hash).collect())
+        .expect("the values fill the map")
+        .quantized()
+}
+
+/// The exact first intersection of `ray` with the bilinear field (texel centres at
+/// (i + ½) / size, wrapping), found without the pyramid, its cells or its walk: in f64, along
+/// the ray cut where it crosses a row or column of texel centres. Within a piece the field is
+/// one bilinear patch, so the gap between field and ray is quadratic: from its values at both
+/// ends and the middle its highest point is known, and the first piece where it reaches 0 is
+/// bisected. (Not `pom::reference::exact_intersection`: its march of a tenth of a texel steps
+/// over a ray that only clips the tip of a ridge, where two patches meet at a texel centre.)
+fn exact_intersection(field: &HeightField, ray: &ViewRay) -> Vec2 {
+    let (width, height) = field.size();
+    let size = [f64::from(width), f64::from(height)];
+    let start = [
+        f64::from(ray.uv.x) * size[0] - 0.5,
+        f64::from(ray.uv.y) * size[1] - 0.5,
+    ];
+    let travel = [
+        f64::from(ray.offset.x) * size[0],
+        f64::from(ray.offset.y) * size[1],
+    ];
+    let texel = |x: f64, y: f64| f64::from(field.texel(x as i64, y as i64));
+    let gap = |t: f64| {
+        let (x, y) = (start[0] + travel[0] * t, start[1] + travel[1] * t);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let top = texel(x0, y0) * (1.0 - fx) + texel(x0 + 1.0, y0) * fx;
+        let bottom = texel(x0, y0 + 1.0) * (1.0 - fx) + texel(x0 + 1.0, y0 + 1.0) * fx;
+        top * (1.0 - fy) + bottom * fy - (1.0 - t)
+    };
+    let mut cuts = vec![0.0, 1.0];
+    for (axis_start, axis_travel) in start.into_iter().zip(travel) {
+        if axis_travel == 0.0 {
+            continue;
+        }
+        let end = axis_start + axis_travel;
+        let mut line = axis_start.min(end).ceil();
+        while line <= axis_start.max(end) {
+            cuts.push((line - axis_start) / axis_travel);
+            line += 1.0;
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    let first_hit = cuts.windows(2).find_map(|piece| {
+        let (from, to) = (piece[0], piece[1]);
+        let (at_from, at_middle, at_to) = (gap(from), gap(0.5 * (from + to)), gap(to));
+        if at_from >= 0.0 {
+            return Some(from);
+        }
+        // gap(from + s (to − from)) = at_from + linear s + quadratic s².
+        let linear = 4.0 * at_middle - 3.0 * at_from - at_to;
+        let quadratic = 2.0 * (at_from + at_to) - 4.0 * at_middle;
+        let highest = (quadratic < 0.0)
+            .then(|| -linear / (2.0 * quadratic))
+            .filter(|s| (0.0..1.0).contains(s))
+            .map(|s| from + (to - from) * s)
+            .filter(|&t| gap(t) >= 0.0);
+        let reached = highest.or((at_to >= 0.0).then_some(to))?;
+        let (mut below, mut above) = (from, reached);
+        for _ in 0..80 {
+            let middle = 0.5 * (below + above);
+            if gap(middle) >= 0.0 {
+                above = middle;
+            } else {
+                below = middle;
+            }
+        }
+        Some(above)
+    });
+    ray.uv + ray.offset * first_hit.unwrap_or(1.0) as f32
+}
+
+/// Distance in texels between two texture coordinates on the repeating map.
+fn texels_apart(a: Vec2, b: Vec2) -> f32 {
+    let wrapped = pom_tests::pom_scene::wrapped;
+    (Vec2::new(wrapped(a.x - b.x), wrapped(a.y - b.y)) * SIZE as f32).length()
+}
+
+/// Asserts that on every one of `rays` the hit of `method` is within [`TOLERANCE`] of the
+/// hit of `against` (both one per ray), saying how far apart they are at most.
+fn assert_hits_agree(
+    context: &str,
+    rays: &[ViewRay],
+    (method, hits): (&str, &[Vec2]),
+    (against, others): (&str, &[Vec2]),
+) {
+    let (largest, ray) = rays
+        .iter()
+        .zip(hits.iter().zip(others))
+        .map(|(ray, (hit, other))| (texels_apart(*hit, *other), ray))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("there are rays");
+    eprintln!(
+        "{context}: {} rays, largest |{method} − {against}| {largest:.5} texel",
+        rays.len()
+    );
+    assert!(
+        largest <= TOLERANCE,
+        "{context}: {method} {largest} texels from the {against} hit for the ray entering at {} \
+         along {}",
+        ray.entry_in_cells(),
+        ray.offset * SIZE as f32
+    );
+}
+
+/// The maps the tests march, by name.
+fn maps() -> [(&'static str, HeightField); 2] {
+    [
+        ("flat top next to a drop", flat_top_next_to_a_drop()),
+        ("random", random_map()),
+    ]
+}
+
+/// The CPU reference's hit for each ray, and the exact one.
+fn cpu_and_exact_hits(field: &HeightField, rays: &[ViewRay]) -> (Vec<Vec2>, Vec<Vec2>) {
+    let pyramid = MaxPyramid::new(field);
+    rays.iter()
+        .map(|ray| {
+            let cpu = march_max_mip(&pyramid, ray.uv, ray.to_eye, HEIGHT_SCALE).uv;
+            (cpu, exact_intersection(field, ray))
+        })
+        .unzip()
+}
+
+/// The ray from texel centre (0, 0) that travels `travel` texels along each axis (per unit of
+/// height) for which it falls.
+fn ray_from_the_first_texel(travel: Vec2) -> ViewRay {
+    ViewRay {
+        uv: Vec2::splat(0.5 / SIZE as f32),
+        // Only max-mip reads the view direction.
+        to_eye: Vec3::Z,
+        offset: travel / SIZE as f32,
+    }
+}
+
+/// The exact reference finds rays that only clip the field 10⁻⁴ below its top where a march
+/// of a tenth of a texel would step over them: at the tip of a ridge (a kink where two patches
+/// meet at a texel centre) and at the top of a saddle patch along its diagonal.
+#[test]
+fn the_exact_reference_finds_rays_that_only_clip_a_ridge_or_a_saddle() {
+    const BELOW_THE_TOP: f32 = 1e-4;
+    // A ridge 0.5 high at texel 10 on a floor at 0; the ray is 0.5 − 10⁻⁴ high over it.
+    let ridge = HeightField::from_fn(SIZE, SIZE, |u, _| {
+        if (u * SIZE as f32) as u32 == 10 {
+            0.5
+        } else {
+            0.0
+        }
+    });
+    let travel = 10.0 / (0.5 + BELOW_THE_TOP);
+    let hit = exact_intersection(&ridge, &ray_from_the_first_texel(Vec2::new(travel, 0.0)));
+    // The field rises 0.5 per texel towards the tip, the ray falls 1 / travel.
+    let expected = 10.0 - BELOW_THE_TOP / (0.5 + 1.0 / travel);
+    let found = hit.x * SIZE as f32 - 0.5;
+    assert!(
+        (found - expected).abs() < 1e-3,
+        "ridge: hit at {found}, expected {expected}"
+    );
+
+    // A checkerboard of 0 and 1: along the diagonal every patch is 2s − 2s², whose top (0.5,
+    // mid-patch) the ray passes 10⁻⁴ below in the fifth patch.
+    let checkerboard = HeightField::from_fn(SIZE, SIZE, |u, v| {
+        (((u * SIZE as f32) as u32 + (v * SIZE as f32) as u32) % 2) as f32
+    });
+    let travel = f64::from(4.5 / (0.5 + BELOW_THE_TOP));
+    let ray = ray_from_the_first_texel(Vec2::splat(travel as f32));
+    let hit = exact_intersection(&checkerboard, &ray);
+    // 2s − 2s² = 1 − (4 + s) / travel: the smaller root.
+    let (b, c) = (2.0 + 1.0 / travel, 1.0 - 4.0 / travel);
+    let expected = 4.0 + (b - (b * b - 8.0 * c).sqrt()) / 4.0;
+    let found = hit * SIZE as f32 - 0.5;
+    assert!(
+        (found - Vec2::splat(expected as f32)).length() < 1e-3,
+        "saddle: hit at {found}, expected {expected} on both axes"
+    );
+}
+
+#[test]
+fn the_cpu_reference_is_exact_on_rays_entering_on_boundaries() {
+    let rays = boundary_rays();
+    for (name, field) in maps() {
+        let (cpu, exact) = cpu_and_exact_hits(&field, &rays);
+        assert_hits_agree(name, &rays, ("CPU", &cpu), ("exact", &exact));
+    }
+}
+
+/// The compute entry point that runs max_mip.wgsl's `march_max_mip` on each of `rays` (entry
+/// uv, offset) and stores (hit uv, height, fetches) in `hits`, one texel per ray.
+const MARCH_RAYS: &str = "
+@group(0) @binding(0) var height_texture: texture_2d<f32>;
+@group(0) @binding(1) var height_sampler: sampler;
+@group(0) @binding(2) var pyramid: texture_2d<f32>;
+@group(0) @binding(3) var<storage, read> rays: array<vec4<f32>>;
+@group(0) @binding(4) var hits: texture_storage_2d<rgba32float, write>;
+
+@compute @workgroup_size(64)
+fn march_rays(@builtin(global_invocation_id) id: vec3<u32>) {
+    let index = id.y * textureDimensions(hits).x + id.x;
+    if index >= arrayLength(&rays) {
+        return;
+    }
+    let ray = rays[index];
+    let field = HeightField(0u, 0u, vec2<f32>(0.0), vec2<f32>(0.0));
+    let hit = march_max_mip(height_texture, height_sampler, pyramid, field, ray.xy, ray.zw);
+    textureStore(hits, id.xy, vec4<f32>(hit.uv, hit.height, f32(hit.samples)));
+}
+";
+
+/// Columns of the texture the compute pass stores its hits in (a multiple of 64).
+const HITS_WIDTH: u32 = 256;
+
+/// A texture of `format` for `usage`, `levels` mips of `width` × `height`, holding `data`
+/// level after level if any.
+fn texture(
+    gpu: &GpuContext,
+    (width, height, levels): (u32, u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    data: Option<&[u8]>,
+) -> wgpu::Texture {
+    use wgpu::util::DeviceExt;
+    let descriptor = wgpu::TextureDescriptor {
+        label: Some("max-mip edge test texture"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    };
+    match data {
+        Some(data) => gpu.device.create_texture_with_data(
+            &gpu.queue,
+            &descriptor,
+            wgpu::util::TextureDataOrder::LayerMajor,
+            data,
+        ),
+        None => gpu.device.create_texture(&descriptor),
+    }
+}
+
+/// Where the GPU's max-mip march meets `field` along each of `rays`: the field as an 8-bit
+/// texture read through a sampler with `address_mode`, the pyramid the GPU builds from it.
+fn gpu_hits(
+    gpu: &GpuContext,
+    field: &HeightField,
+    address_mode: wgpu::AddressMode,
+    rays: &[ViewRay],
+) -> Vec<Vec2> {
+    let device = &gpu.device;
+    let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let (width, height) = field.size();
+    let image = field.to_image();
+    let height_texture = texture(
+        gpu,
+        (width, height, 1),
+        wgpu::TextureFormat::R8Unorm,
+        wgpu::TextureUsages::TEXTURE_BINDING,
+        Some(&image.pixels().bytes()),
+    );
+    let levels = pom::render::read_max_pyramid(gpu, image, 0, false).unwrap();
+    let maxima: Vec<f32> = levels
+        .iter()
+        .flat_map(|(_, _, maxima)| maxima.iter().copied())
+        .collect();
+    let pyramid = texture(
+        gpu,
+        (width, height, levels.len() as u32),
+        wgpu::TextureFormat::R32Float,
+        wgpu::TextureUsages::TEXTURE_BINDING,
+        Some(bytemuck::cast_slice(&maxima)),
+    );
+    let rows = (rays.len() as u32).div_ceil(HITS_WIDTH);
+    let hits = texture(
+        gpu,
+        (HITS_WIDTH, rows, 1),
+        wgpu::TextureFormat::Rgba32Float,
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        None,
+    );
+    let ray_data: Vec<[f32; 4]> = rays
+        .iter()
+        .map(|ray| [ray.uv.x, ray.uv.y, ray.offset.x, ray.offset.y])
+        .collect();
+    let ray_buffer = wgpu::util::DeviceExt::create_buffer_init(
+        device,
+        &wgpu::util::BufferInitDescriptor {
+            label: Some("max-mip edge test rays"),
+            contents: bytemuck::cast_slice(&ray_data),
+            usage: wgpu::BufferUsages::STORAGE,
+        },
+    );
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        address_mode_u: address_mode,
+        address_mode_v: address_mode,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    });
+    let source = format!(
+        "{}{}\n{}\n{}\n{MARCH_RAYS}",
+        pom::parallax::PARALLAX_SHADER.generated(),
+        pom::render::shaders::HEIGHT_CHANNEL.source,
+        pom::parallax::PARALLAX_MARCH.source,
+        pom::parallax::PARALLAX_MAX_MIP.source,
+    );
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("max-mip edge test"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("max-mip edge test"),
+        layout: None,
+        module: &module,
+        entry_point: Some("march_rays"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let views =
+        [&height_texture, &pyramid, &hits].map(|texture| texture.create_view(&Default::default()));
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("max-mip edge test"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&views[0]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&views[1]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: ray_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: wgpu::BindingResource::TextureView(&views[2]),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups(HITS_WIDTH / 64, rows, 1);
+    }
+    gpu.queue.submit([encoder.finish()]);
+    let texels = pom::render::read_texture(gpu, &hits).unwrap();
+    for scope in [validation, out_of_memory] {
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            panic!("wgpu error while marching the rays: {error}");
+        }
+    }
+    assert_eq!(gpu.take_uncaptured_errors(), Vec::<String>::new());
+    bytemuck::cast_slice::<u8, [f32; 4]>(&texels)[..rays.len()]
+        .iter()
+        .map(|hit| Vec2::new(hit[0], hit[1]))
+        .collect()
+}
+
+/// On every boundary ray over both maps, the GPU's hit through a sampler with `address_mode`
+/// is the CPU reference's and the exact one.
+fn assert_gpu_matches_on_boundary_rays(address_mode: wgpu::AddressMode) {
+    let gpu = GpuContext::headless().unwrap();
+    let rays = boundary_rays();
+    for (name, field) in maps() {
+        let (cpu, exact) = cpu_and_exact_hits(&field, &rays);
+        let on_gpu = gpu_hits(&gpu, &field, address_mode, &rays);
+        let context = format!("{name}, {address_mode:?}");
+        assert_hits_agree(&context, &rays, ("GPU", &on_gpu), ("CPU", &cpu));
+        assert_hits_agree(&context, &rays, ("GPU", &on_gpu), ("exact", &exact));
+    }
+}
+
+#[test]
+fn the_gpu_equals_the_cpu_reference_on_rays_entering_on_boundaries() {
+    assert_gpu_matches_on_boundary_rays(wgpu::AddressMode::Repeat);
+}
+
+/// The field max-mip marches repeats whatever the height sampler does past the edge (a glTF
+/// sampler may clamp or mirror): the patches across the map's seam are the wrapped ones.
+#[test]
+fn the_gpu_wraps_across_the_seam_whatever_the_sampler() {
+    assert_gpu_matches_on_boundary_rays(wgpu::AddressMode::ClampToEdge);
+    assert_gpu_matches_on_boundary_rays(wgpu::AddressMode::MirrorRepeat);
+}
