@@ -25,6 +25,7 @@ pub use input::{
     ButtonInput, CursorPosition, KeyCode, MouseButton, MouseMotion, MouseScroll, WindowEvents,
     update_input,
 };
+pub use runner::panic_message;
 pub use surface::WindowSurface;
 
 use crate::{App, BoxedError, DefaultPlugins, Plugin, Stage};

@@ -285,7 +285,8 @@ fn fit_target(app: &mut App, gpu: &GpuContext, size: PhysicalSize<u32>) {
     }
 }
 
-fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+/// The message of a caught panic (`catch_unwind`'s payload): its text, or "(no message)".
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     if let Some(text) = payload.downcast_ref::<&str>() {
         (*text).to_owned()
     } else if let Some(text) = payload.downcast_ref::<String>() {

@@ -31,17 +31,9 @@ pub fn update_catching_panics(app: &mut App) -> Result<(), UpdateFailure> {
     };
     match catch_unwind(AssertUnwindSafe(frame)) {
         Ok(result) => result,
-        Err(payload) => Err(UpdateFailure::Panicked(panic_message(payload.as_ref()))),
-    }
-}
-
-fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(text) = payload.downcast_ref::<&str>() {
-        (*text).to_owned()
-    } else if let Some(text) = payload.downcast_ref::<String>() {
-        text.clone()
-    } else {
-        "(no message)".to_owned()
+        Err(payload) => Err(UpdateFailure::Panicked(pom::window::panic_message(
+            payload.as_ref(),
+        ))),
     }
 }
 

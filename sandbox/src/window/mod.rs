@@ -20,7 +20,6 @@ mod scene_open;
 mod screenshot;
 mod shader_status;
 mod split_controls;
-mod surface;
 mod window_app;
 
 #[cfg(test)]

@@ -11,6 +11,7 @@ use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
 use pom::render::{RenderTarget, TargetFormat};
+use pom::window::WindowSurface;
 use pom::{
     App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload, SplitView,
 };
@@ -28,7 +29,6 @@ use super::egui_painter::{EguiFrame, EguiPainter};
 use super::guarded_update::update_catching_panics;
 use super::panels::{PanelState, side_panel_contents};
 use super::screenshot::{ScreenshotTarget, save_png};
-use super::surface::WindowSurface;
 
 /// The window's size when it opens, in logical pixels.
 const INITIAL_SIZE: (f64, f64) = (1280.0, 720.0);
@@ -125,7 +125,14 @@ impl WindowApp {
         )?;
         // One device for the window and the plugin: RenderPlugin finds this context and uses it.
         let gpu = GpuContext::for_surface(instance, &surface)?;
-        let surface = WindowSurface::new(surface, &gpu, Arc::clone(&window))?;
+        // egui-wgpu writes gamma-encoded pixels itself: a non-sRGB swapchain.
+        let surface = WindowSurface::new(
+            surface,
+            &gpu,
+            Arc::clone(&window),
+            wgpu::PresentMode::AutoVsync,
+            true,
+        )?;
 
         let size = window.inner_size();
         let mut app = App::new();
