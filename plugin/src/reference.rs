@@ -5,8 +5,10 @@
 //! vectors are (u, v, normal) components. Sampling is bilinear with wrapping at mip level 0,
 //! which is what the GPU does when a texel covers at least a pixel.
 
+mod exact;
 mod max_mip;
 
+pub use exact::{exact_intersection, exact_intersection_along};
 pub use max_mip::{MaxPyramid, march_max_mip, max_mip_hard_shadow};
 
 use glam::{Vec2, Vec3};
@@ -231,27 +233,6 @@ pub fn view_steps(
     let offset = ray_offset(to_eye_ts, height_scale);
     let texels = (offset * texture_size).length();
     march_steps(min_samples, max_samples, to_eye_ts.z, texels)
-}
-
-/// The true first intersection of the view ray with the bilinear height field: a march with
-/// steps of at most a tenth of a texel sideways and 1/2048 of the height range, then 40
-/// bisections. `None` when the field is flat at the top there (the ray hits at `uv`).
-pub fn exact_intersection(
-    field: &HeightField,
-    uv: Vec2,
-    to_eye_ts: Vec3,
-    height_scale: f32,
-) -> Vec2 {
-    let offset = -ray_offset(to_eye_ts, height_scale);
-    let (width, height) = field.size();
-    let texels = (offset * Vec2::new(width as f32, height as f32)).length();
-    let steps = ((texels * 10.0).ceil() as u32).max(2048);
-    let surface = field.sample(uv.x, uv.y);
-    if surface >= 1.0 {
-        return uv;
-    }
-    let crossing = linear_search(field, uv, 1.0, surface, offset, -1.0, steps);
-    binary_refinement(field, &crossing, 40).uv
 }
 
 /// `hard_shadow` of march.wgsl: 0 if the height field blocks the light ray from `uv`, else 1.

@@ -3,10 +3,11 @@
 //! map's seam. On a map with a flat top at exactly 1 next to a drop and on a random map, at 60°,
 //! 80° and 88°, along ±u, ±v and the four diagonals, the CPU reference and the GPU's march
 //! (max_mip.wgsl, run by a compute pass on exactly these rays) both equal the exact
-//! intersection on every ray, whatever the height sampler's address mode.
+//! intersection (`pom::reference::exact_intersection_along`, piecewise along texel-centre
+//! lines, no pyramid) on every ray, whatever the height sampler's address mode.
 
 use pom::glam::{Vec2, Vec3};
-use pom::reference::{MaxPyramid, march_max_mip, ray_offset};
+use pom::reference::{MaxPyramid, exact_intersection_along, march_max_mip, ray_offset};
 use pom::wgpu;
 use pom::{GpuContext, HeightField};
 
@@ -122,75 +123,6 @@ fn random_map() -> HeightField {
         .quantized()
 }
 
-/// The exact first intersection of `ray` with the bilinear field (texel centres at
-/// (i + ½) / size, wrapping), found without the pyramid, its cells or its walk: in f64, along
-/// the ray cut where it crosses a row or column of texel centres. Within a piece the field is
-/// one bilinear patch, so the gap between field and ray is quadratic: from its values at both
-/// ends and the middle its highest point is known, and the first piece where it reaches 0 is
-/// bisected. (Not `pom::reference::exact_intersection`: its march of a tenth of a texel steps
-/// over a ray that only clips the tip of a ridge, where two patches meet at a texel centre.)
-fn exact_intersection(field: &HeightField, ray: &ViewRay) -> Vec2 {
-    let (width, height) = field.size();
-    let size = [f64::from(width), f64::from(height)];
-    let start = [
-        f64::from(ray.uv.x) * size[0] - 0.5,
-        f64::from(ray.uv.y) * size[1] - 0.5,
-    ];
-    let travel = [
-        f64::from(ray.offset.x) * size[0],
-        f64::from(ray.offset.y) * size[1],
-    ];
-    let texel = |x: f64, y: f64| f64::from(field.texel(x as i64, y as i64));
-    let gap = |t: f64| {
-        let (x, y) = (start[0] + travel[0] * t, start[1] + travel[1] * t);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let top = texel(x0, y0) * (1.0 - fx) + texel(x0 + 1.0, y0) * fx;
-        let bottom = texel(x0, y0 + 1.0) * (1.0 - fx) + texel(x0 + 1.0, y0 + 1.0) * fx;
-        top * (1.0 - fy) + bottom * fy - (1.0 - t)
-    };
-    let mut cuts = vec![0.0, 1.0];
-    for (axis_start, axis_travel) in start.into_iter().zip(travel) {
-        if axis_travel == 0.0 {
-            continue;
-        }
-        let end = axis_start + axis_travel;
-        let mut line = axis_start.min(end).ceil();
-        while line <= axis_start.max(end) {
-            cuts.push((line - axis_start) / axis_travel);
-            line += 1.0;
-        }
-    }
-    cuts.sort_by(f64::total_cmp);
-    let first_hit = cuts.windows(2).find_map(|piece| {
-        let (from, to) = (piece[0], piece[1]);
-        let (at_from, at_middle, at_to) = (gap(from), gap(0.5 * (from + to)), gap(to));
-        if at_from >= 0.0 {
-            return Some(from);
-        }
-        // gap(from + s (to − from)) = at_from + linear s + quadratic s².
-        let linear = 4.0 * at_middle - 3.0 * at_from - at_to;
-        let quadratic = 2.0 * (at_from + at_to) - 4.0 * at_middle;
-        let highest = (quadratic < 0.0)
-            .then(|| -linear / (2.0 * quadratic))
-            .filter(|s| (0.0..1.0).contains(s))
-            .map(|s| from + (to - from) * s)
-            .filter(|&t| gap(t) >= 0.0);
-        let reached = highest.or((at_to >= 0.0).then_some(to))?;
-        let (mut below, mut above) = (from, reached);
-        for _ in 0..80 {
-            let middle = 0.5 * (below + above);
-            if gap(middle) >= 0.0 {
-                above = middle;
-            } else {
-                below = middle;
-            }
-        }
-        Some(above)
-    });
-    ray.uv + ray.offset * first_hit.unwrap_or(1.0) as f32
-}
-
 /// Distance in texels between two texture coordinates on the repeating map.
 fn texels_apart(a: Vec2, b: Vec2) -> f32 {
     let wrapped = pom_tests::pom_scene::wrapped;
@@ -238,62 +170,9 @@ fn cpu_and_exact_hits(field: &HeightField, rays: &[ViewRay]) -> (Vec<Vec2>, Vec<
     rays.iter()
         .map(|ray| {
             let cpu = march_max_mip(&pyramid, ray.uv, ray.to_eye, HEIGHT_SCALE).uv;
-            (cpu, exact_intersection(field, ray))
+            (cpu, exact_intersection_along(field, ray.uv, ray.offset))
         })
         .unzip()
-}
-
-/// The ray from texel centre (0, 0) that travels `travel` texels along each axis (per unit of
-/// height) for which it falls.
-fn ray_from_the_first_texel(travel: Vec2) -> ViewRay {
-    ViewRay {
-        uv: Vec2::splat(0.5 / SIZE as f32),
-        // Only max-mip reads the view direction.
-        to_eye: Vec3::Z,
-        offset: travel / SIZE as f32,
-    }
-}
-
-/// The exact reference finds rays that only clip the field 10⁻⁴ below its top where a march
-/// of a tenth of a texel would step over them: at the tip of a ridge (a kink where two patches
-/// meet at a texel centre) and at the top of a saddle patch along its diagonal.
-#[test]
-fn the_exact_reference_finds_rays_that_only_clip_a_ridge_or_a_saddle() {
-    const BELOW_THE_TOP: f32 = 1e-4;
-    // A ridge 0.5 high at texel 10 on a floor at 0; the ray is 0.5 − 10⁻⁴ high over it.
-    let ridge = HeightField::from_fn(SIZE, SIZE, |u, _| {
-        if (u * SIZE as f32) as u32 == 10 {
-            0.5
-        } else {
-            0.0
-        }
-    });
-    let travel = 10.0 / (0.5 + BELOW_THE_TOP);
-    let hit = exact_intersection(&ridge, &ray_from_the_first_texel(Vec2::new(travel, 0.0)));
-    // The field rises 0.5 per texel towards the tip, the ray falls 1 / travel.
-    let expected = 10.0 - BELOW_THE_TOP / (0.5 + 1.0 / travel);
-    let found = hit.x * SIZE as f32 - 0.5;
-    assert!(
-        (found - expected).abs() < 1e-3,
-        "ridge: hit at {found}, expected {expected}"
-    );
-
-    // A checkerboard of 0 and 1: along the diagonal every patch is 2s − 2s², whose top (0.5,
-    // mid-patch) the ray passes 10⁻⁴ below in the fifth patch.
-    let checkerboard = HeightField::from_fn(SIZE, SIZE, |u, v| {
-        (((u * SIZE as f32) as u32 + (v * SIZE as f32) as u32) % 2) as f32
-    });
-    let travel = f64::from(4.5 / (0.5 + BELOW_THE_TOP));
-    let ray = ray_from_the_first_texel(Vec2::splat(travel as f32));
-    let hit = exact_intersection(&checkerboard, &ray);
-    // 2s − 2s² = 1 − (4 + s) / travel: the smaller root.
-    let (b, c) = (2.0 + 1.0 / travel, 1.0 - 4.0 / travel);
-    let expected = 4.0 + (b - (b * b - 8.0 * c).sqrt()) / 4.0;
-    let found = hit * SIZE as f32 - 0.5;
-    assert!(
-        (found - Vec2::splat(expected as f32)).length() < 1e-3,
-        "saddle: hit at {found}, expected {expected} on both axes"
-    );
 }
 
 #[test]
