@@ -99,12 +99,12 @@ ensure_any_vulkan() {
     fi
 }
 
-# Ensures the X virtual framebuffer exists, for the test that starts the real sandbox window.
+# Ensures the X virtual framebuffer and xdotool exist, for the tests that start real windows.
 ensure_xvfb() {
-    if command -v Xvfb >/dev/null; then return 0; fi
-    install_packages "the X virtual framebuffer" xvfb xauth || return 1
-    if ! command -v Xvfb >/dev/null; then
-        echo "error: Xvfb is still missing after installing xvfb" >&2
+    if command -v Xvfb >/dev/null && command -v xdotool >/dev/null; then return 0; fi
+    install_packages "the X virtual framebuffer" xvfb xauth xdotool || return 1
+    if ! command -v Xvfb >/dev/null || ! command -v xdotool >/dev/null; then
+        echo "error: Xvfb or xdotool is still missing after installing xvfb and xdotool" >&2
         return 1
     fi
 }

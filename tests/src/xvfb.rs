@@ -1,5 +1,5 @@
-//! Windows in tests: a private Xvfb server per test (tests/run installs Xvfb), and running a
-//! windowed program on it with a deadline.
+//! Windows in tests: a private Xvfb server per test (tests/run installs Xvfb and xdotool),
+//! running a windowed program on it with a deadline, and driving its windows with xdotool.
 //!
 //! Installs nothing: tests/run installs Xvfb (see `ensure_xvfb` in tests/ensure-vulkan.sh).
 
@@ -114,6 +114,38 @@ impl Xvfb {
             }
             std::thread::sleep(Duration::from_millis(50));
         }
+    }
+}
+
+impl Xvfb {
+    /// Starts `command` on this display (and no Wayland one), its output discarded.
+    pub fn spawn(&self, command: &mut Command) -> Child {
+        command
+            .env("DISPLAY", format!(":{}", self.display))
+            .env_remove("WAYLAND_DISPLAY")
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("starting the program")
+    }
+
+    /// Runs `xdotool` with `args` on this display, for at most a minute (`search --sync` waits
+    /// for a window that may never come), and returns what it printed, trimmed. Panics where it
+    /// fails, with what it said.
+    pub fn xdotool(&self, args: &[&str]) -> String {
+        let output = Command::new("timeout")
+            .arg("60")
+            .arg("xdotool")
+            .args(args)
+            .env("DISPLAY", format!(":{}", self.display))
+            .output()
+            .expect("running xdotool (tests/run installs it)");
+        assert!(
+            output.status.success(),
+            "xdotool {args:?} failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        String::from_utf8_lossy(&output.stdout).trim().to_owned()
     }
 }
 

@@ -20,6 +20,7 @@ struct Setup {
     /// A driver manifest already in the first ICD folder (e.g. a GPU's or lavapipe's).
     manifest: Option<&'static str>,
     loader: bool,
+    /// Xvfb and xdotool on the PATH.
     xvfb: bool,
     apt_get: bool,
     apt_get_fails: bool,
@@ -132,6 +133,7 @@ impl FakeMachine {
                      mesa-vulkan-drivers) : > {icd}/lvp_icd.x86_64.json ;;\n\
                      libvulkan1) : > {state}/loader ;;\n\
                      xvfb) printf '#!/bin/bash\\n' > {bin}/Xvfb; {chmod} +x {bin}/Xvfb ;;\n\
+                     xdotool) printf '#!/bin/bash\\n' > {bin}/xdotool; {chmod} +x {bin}/xdotool ;;\n\
                      esac; done\n",
                     state = state.display(),
                     icd = icd.display(),
@@ -145,6 +147,7 @@ impl FakeMachine {
         }
         if setup.xvfb {
             write_executable(&bin.join("Xvfb"), "#!/bin/bash\n");
+            write_executable(&bin.join("xdotool"), "#!/bin/bash\n");
         }
         if let Some(manifest) = setup.manifest {
             fs::write(icd.join(manifest), "{}").unwrap();
@@ -352,7 +355,7 @@ fn tests_run_installs_lavapipe_and_xvfb_on_a_bare_machine_and_pins_lavapipe() {
         outcome.apt_calls
     );
     assert!(
-        outcome.apt_calls.contains("xvfb xauth"),
+        outcome.apt_calls.contains("xvfb xauth xdotool"),
         "{}",
         outcome.apt_calls
     );

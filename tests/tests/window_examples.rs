@@ -8,7 +8,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use pom_tests::xvfb::{Xvfb, distinct_colours};
 
@@ -121,4 +121,82 @@ fn the_headless_example_writes_its_frame_without_a_display() {
     assert_eq!(image.dimensions(), (512, 512));
     let colours = distinct_colours(&image, 0..512, 0..512);
     assert!(colours > 100, "only {colours} distinct colours: no bricks");
+}
+
+/// The depth the parallax example's title shows.
+fn title_depth(title: &str) -> f32 {
+    title
+        .split("depth ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|depth| depth.parse().ok())
+        .unwrap_or_else(|| panic!("no depth in the title {title:?}"))
+}
+
+#[test]
+fn the_parallax_window_takes_keys_follows_resizes_and_exits_0_when_closed() {
+    let xvfb = Xvfb::start();
+    let screenshot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallax-resized.png");
+    let _ = std::fs::remove_file(&screenshot);
+    let mut child =
+        xvfb.spawn(Command::new(example("parallax")).env("POM_SCREENSHOT", &screenshot));
+    // Its first frame titles it with the values.
+    let found = xvfb.xdotool(&["search", "--sync", "--name", "^parallax: depth"]);
+    let window = found.lines().next().unwrap_or_default().to_owned();
+    let title = || xvfb.xdotool(&["getwindowname", &window]);
+    let before = title_depth(&title());
+    // Keys go to the focused window (xdotool's synthetic events to a window are ignored).
+    xvfb.xdotool(&["windowfocus", "--sync", &window]);
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while title_depth(&title()) <= before {
+        assert!(
+            Instant::now() < deadline,
+            "the key 2 never raised the depth: {}",
+            title()
+        );
+        xvfb.xdotool(&["key", "2"]);
+        std::thread::sleep(Duration::from_millis(500));
+    }
+    for (width, height) in [(900, 500), (640, 480), (1000, 700), (500, 500), (800, 450)] {
+        xvfb.xdotool(&[
+            "windowsize",
+            "--sync",
+            &window,
+            &width.to_string(),
+            &height.to_string(),
+        ]);
+        std::thread::sleep(Duration::from_millis(800));
+    }
+    // A frame or more at the last size, then the window goes away.
+    std::thread::sleep(Duration::from_secs(2));
+    xvfb.xdotool(&["windowclose", &window]);
+    let deadline = Instant::now() + EXAMPLE_TIMEOUT;
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "the example did not exit after its window closed"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let stderr = child
+        .wait_with_output()
+        .map(|o| String::from_utf8_lossy(&o.stderr).into_owned());
+    assert!(
+        status.success(),
+        "closing the window exited {status}: {stderr:?}"
+    );
+    let image = image::open(&screenshot).unwrap().to_rgba8();
+    assert_eq!(
+        image.dimensions(),
+        (800, 450),
+        "the last frame is the window's last size"
+    );
+    let colours = distinct_colours(&image, 0..800, 0..450);
+    assert!(
+        colours > 100,
+        "only {colours} distinct colours after the resizes"
+    );
 }

@@ -193,7 +193,7 @@ impl Runner {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
-        let Some(open) = &self.open else {
+        let (None, Some(open)) = (&self.outcome, &self.open) else {
             return;
         };
         let lost = open
@@ -204,10 +204,11 @@ impl Runner {
         if let Some(reason) = lost {
             return self.end(event_loop, Err(WindowError::DeviceLost(reason)));
         }
-        let size = open.window.inner_size();
-        if size.width == 0 || size.height == 0 {
+        let (width, height) = open.surface.window_size();
+        if width == 0 || height == 0 {
             return;
         }
+        let size = PhysicalSize::new(width, height);
         let gpu = open.gpu.clone();
         fit_target(&mut self.app, &gpu, size);
         let app = &mut self.app;
@@ -314,6 +315,11 @@ impl ApplicationHandler for Runner {
         match event {
             WindowEvent::CloseRequested => {
                 self.queue(InputEvent::CloseRequested);
+                self.end(event_loop, Ok(AppExit::Success));
+            }
+            // Destroyed from outside (not asked to close): nothing of it may be touched again.
+            WindowEvent::Destroyed => {
+                self.open = None;
                 self.end(event_loop, Ok(AppExit::Success));
             }
             WindowEvent::Resized(size) => {

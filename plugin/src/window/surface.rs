@@ -14,6 +14,9 @@ pub struct WindowSurface {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
     window: Arc<Window>,
+    /// The window's inner size in pixels as its last resize said (0 while minimised): asking
+    /// the window itself fails once something outside destroyed it.
+    window_size: (u32, u32),
     /// Set by a suboptimal frame: reconfigure before the next one (not while it is held).
     needs_configure: bool,
 }
@@ -69,6 +72,7 @@ impl WindowSurface {
             surface,
             config,
             window,
+            window_size: (size.width, size.height),
             needs_configure: false,
         })
     }
@@ -78,9 +82,16 @@ impl WindowSurface {
         self.config.format
     }
 
-    /// Follows the window's size; a zero size is kept for when it comes back.
+    /// The window's inner size in pixels, as the last [`WindowSurface::resize`] said.
+    pub fn window_size(&self) -> (u32, u32) {
+        self.window_size
+    }
+
+    /// Follows the window's size (call it on every resize event); a zero size skips frames and
+    /// keeps the configuration for when the window comes back.
     pub fn resize(&mut self, gpu: &GpuContext, width: u32, height: u32) {
-        if width == 0 || height == 0 {
+        self.window_size = (width, height);
+        if width == 0 || height == 0 || (width, height) == (self.config.width, self.config.height) {
             return;
         }
         self.config.width = width;
@@ -91,15 +102,13 @@ impl WindowSurface {
     /// The next image to draw into, or `None` when this frame should be skipped (minimised,
     /// occluded, timed out, or the surface had to be reconfigured or recreated).
     pub fn acquire(&mut self, gpu: &GpuContext) -> Option<wgpu::SurfaceTexture> {
-        let size = self.window.inner_size();
-        if size.width == 0 || size.height == 0 {
+        let (width, height) = self.window_size;
+        if width == 0 || height == 0 {
             return None;
         }
-        if (size.width, size.height) != (self.config.width, self.config.height)
-            || self.needs_configure
-        {
+        if self.needs_configure {
             self.needs_configure = false;
-            self.resize(gpu, size.width, size.height);
+            self.surface.configure(&gpu.device, &self.config);
         }
         match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame) => Some(frame),
