@@ -32,6 +32,11 @@ fn example(name: &str) -> PathBuf {
 
 /// Runs example `name` for `frames` frames on a fresh Xvfb and returns its screenshot.
 fn screenshot_of(name: &str, frames: u32) -> image::RgbaImage {
+    screenshot_of_with(name, &[], frames)
+}
+
+/// [`screenshot_of`] with arguments.
+fn screenshot_of_with(name: &str, args: &[&std::ffi::OsStr], frames: u32) -> image::RgbaImage {
     let xvfb = Xvfb::start();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_examples");
     std::fs::create_dir_all(&dir).unwrap();
@@ -39,6 +44,7 @@ fn screenshot_of(name: &str, frames: u32) -> image::RgbaImage {
     let _ = std::fs::remove_file(&screenshot);
     let output = xvfb.run(
         Command::new(example(name))
+            .args(args)
             .env("POM_EXIT_AFTER_FRAMES", frames.to_string())
             .env("POM_SCREENSHOT", &screenshot),
         EXAMPLE_TIMEOUT,
@@ -199,4 +205,33 @@ fn the_parallax_window_takes_keys_follows_resizes_and_exits_0_when_closed() {
         colours > 100,
         "only {colours} distinct colours after the resizes"
     );
+}
+
+#[test]
+fn the_gltf_viewer_shows_the_street_corner_and_names_a_bad_file() {
+    let street_corner = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
+    let image = screenshot_of_with("gltf_viewer", &[street_corner.as_os_str()], 30);
+    let colours = distinct_colours(&image, 0..1280, 0..720);
+    assert!(
+        colours > 1000,
+        "only {colours} distinct colours: no street corner"
+    );
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("window_examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    let broken = dir.join("broken.glb");
+    std::fs::write(&broken, "not a glTF file").unwrap();
+    let missing = dir.join("missing.glb");
+    for file in [&missing, &broken] {
+        let output = Command::new(example("gltf_viewer"))
+            .arg(file)
+            .env_remove("DISPLAY")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{}: exited 0", file.display());
+        assert!(
+            stderr.contains(&*file.to_string_lossy()) && !stderr.contains("panicked"),
+            "{stderr}"
+        );
+    }
 }

@@ -16,6 +16,7 @@
 mod app_exit;
 mod automation;
 mod input;
+mod orbit_camera;
 mod runner;
 mod surface;
 
@@ -25,6 +26,7 @@ pub use input::{
     ButtonInput, CursorPosition, KeyCode, MouseButton, MouseMotion, MouseScroll, WindowEvents,
     update_input,
 };
+pub use orbit_camera::{CameraInput, OrbitCamera, OrbitCameraPlugin, orbit_cameras};
 pub use runner::panic_message;
 pub use surface::WindowSurface;
 

@@ -23,7 +23,9 @@ use winit::window::{Window, WindowId};
 use super::WindowArgs;
 use super::app_state::{load_scene, material_entities, record_tuned, restore_tuned, spin};
 use super::autosave::{self, Autosave, TunedState};
-use super::camera_control::{CameraInput, OrbitCamera, active_camera_transform, write_to_camera};
+use pom::window::{CameraInput, OrbitCamera};
+
+use super::camera_control::{active_camera_transform, from_viewport, write_to_camera};
 use super::device_watch::DeviceWatch;
 use super::egui_painter::{EguiFrame, EguiPainter};
 use super::guarded_update::update_catching_panics;
@@ -292,7 +294,7 @@ impl Running {
                     if let Some(wipe) = wipe {
                         paint_split(ui, response.rect, split_texture, wipe);
                     }
-                    camera_input = CameraInput::from_viewport(ui, &response);
+                    camera_input = from_viewport(ui, &response);
                     click = clicked_pixel(&response, ui.ctx().pixels_per_point());
                 });
         });
