@@ -235,3 +235,21 @@ fn the_gltf_viewer_shows_the_street_corner_and_names_a_bad_file() {
         );
     }
 }
+
+#[test]
+fn the_custom_material_example_shows_the_readmes_material() {
+    let image = screenshot_of("custom_material", 30);
+    // The cube is unlit orange (linear 0.9, 0.35, 0.05, tonemapped): red over green over blue,
+    // where the lit floor is grey and the background a dark blue-grey.
+    let cube_pixels = image
+        .pixels()
+        .filter(|pixel| {
+            let [r, g, b, _] = pixel.0;
+            r > 200 && (100..200).contains(&g) && b < 80
+        })
+        .count();
+    assert!(
+        cube_pixels > 2000,
+        "only {cube_pixels} pixels of the cube's colour"
+    );
+}
