@@ -253,3 +253,20 @@ fn the_custom_material_example_shows_the_readmes_material() {
         "only {cube_pixels} pixels of the cube's colour"
     );
 }
+
+#[test]
+fn the_readmes_window_game_is_the_minimal_example_and_runs() {
+    let readme = include_str!("../../README.md");
+    let example = include_str!("../../plugin/examples/minimal.rs");
+    let code = &example[example.find("use pom::window").expect("the example's code")..];
+    let section = &readme[readme
+        .find("## A game in a window")
+        .expect("the README's section")..];
+    assert!(
+        section.contains(code),
+        "the README's window game and plugin/examples/minimal.rs differ"
+    );
+    let image = screenshot_of("minimal", 30);
+    let colours = distinct_colours(&image, 0..1280, 0..720);
+    assert!(colours > 100, "only {colours} distinct colours: no bricks");
+}
