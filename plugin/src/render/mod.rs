@@ -64,7 +64,7 @@ pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
-pub use target::{RenderTarget, TargetFormat, clearing_attachment};
+pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 pub(crate) use transparent::TransparentPhase;
@@ -468,14 +468,10 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
 /// the overlay belongs to the application), each timed under its name.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
     // Every material has prepared its blended draws: order them across materials.
-    resources
-        .get_mut::<Renderer>()
-        .ok_or_else(AppError::missing::<Renderer>)?
-        .transparent
-        .sort();
+    resources.require_mut::<Renderer>()?.transparent.sort();
     let has_camera = resources.require::<ExtractedFrame>()?.has_camera;
-    let prepass = resources.require::<Renderer>()?.depth_prepass;
-    let deferred = resources.require::<Renderer>()?.deferred;
+    let renderer = resources.require::<Renderer>()?;
+    let (prepass, deferred) = (renderer.depth_prepass, renderer.deferred);
     let phases = resources.get::<RenderPhases>();
     let has =
         |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.has_draws(phase, resources));
@@ -484,11 +480,10 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     let shadow_map_count = resources.require::<ExtractedFrame>()?.shadow_views.len();
     let run_shadow_maps =
         shadow_map_count > 0 && phases.is_some_and(|p| p.shadow_draws().next().is_some());
-    let has_blended = !resources.require::<Renderer>()?.transparent.is_empty();
     let (run_prepass, run_shadows, run_transparent) = (
         prepass && has(DrawPhase::Prepass),
         run_shadow_maps || has_work(RenderPhase::Shadows),
-        has(DrawPhase::Transparent) || (has_camera && has_blended),
+        has(DrawPhase::Transparent) || (has_camera && !renderer.transparent.is_empty()),
     );
     let run_resolve =
         deferred && run_prepass && has_camera && phases.is_some_and(|p| p.has_resolves(resources));
@@ -667,11 +662,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         });
         if let Some(phases) = phases {
             let blended = &resources.require::<Renderer>()?.transparent;
-            for (owner, draws) in blended.runs() {
-                if let Some(draw) = phases.transparent_draw(owner) {
-                    draw(resources, &mut pass, draws);
-                }
-            }
+            blended.record(phases, resources, &mut pass);
         }
         draw_phase(DrawPhase::Transparent, &mut pass);
     }

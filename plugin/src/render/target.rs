@@ -198,3 +198,20 @@ impl RenderTarget {
         width as f32 / height as f32
     }
 }
+
+/// Replaces the `resources`' render target with an `Srgb8` one of `width`×`height` when its
+/// size differs (a window was resized: pipelines do not depend on the size, so only the target
+/// is new); a size of 0 keeps the last one.
+pub fn fit_render_target(
+    resources: &mut crate::Resources,
+    gpu: &GpuContext,
+    width: u32,
+    height: u32,
+) {
+    if width == 0 || height == 0 {
+        return;
+    }
+    if resources.get::<RenderTarget>().map(RenderTarget::size) != Some((width, height)) {
+        resources.insert(RenderTarget::new(gpu, width, height, TargetFormat::Srgb8));
+    }
+}

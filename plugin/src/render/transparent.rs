@@ -7,6 +7,9 @@
 use std::any::TypeId;
 use std::ops::Range;
 
+use super::RenderPhases;
+use crate::Resources;
+
 /// One blended draw: who draws it, which of its draws, and how far it is along the view.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct TransparentItem {
@@ -67,6 +70,21 @@ impl TransparentPhase {
             match self.runs.last_mut() {
                 Some((owner, run)) if *owner == item.owner => run.end = index + 1,
                 _ => self.runs.push((item.owner, index..index + 1)),
+            }
+        }
+    }
+
+    /// Records the sorted draws into the transparent phase's `pass`, each run of one owner by
+    /// the owner's drawer in `phases`.
+    pub(crate) fn record(
+        &self,
+        phases: &RenderPhases,
+        resources: &Resources,
+        pass: &mut wgpu::RenderPass<'_>,
+    ) {
+        for (owner, draws) in self.runs() {
+            if let Some(draw) = phases.transparent_draw(owner) {
+                draw(resources, pass, draws);
             }
         }
     }

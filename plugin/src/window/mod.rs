@@ -15,6 +15,7 @@
 
 mod app_exit;
 mod automation;
+mod device_watch;
 mod input;
 mod orbit_camera;
 mod runner;
@@ -22,6 +23,7 @@ mod surface;
 
 pub use app_exit::AppExit;
 pub use automation::{Automation, AutomationError, EXIT_AFTER_FRAMES_VAR, SCREENSHOT_VAR};
+pub use device_watch::DeviceWatch;
 pub use input::{
     ButtonInput, CursorPosition, KeyCode, MouseButton, MouseMotion, MouseScroll, WindowEvents,
     update_input,

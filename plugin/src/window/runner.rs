@@ -6,19 +6,19 @@
 //! with no area (minimised) neither updates nor draws until it has one again.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::Arc;
 
 use glam::Vec2;
 use winit::application::ApplicationHandler;
-use winit::dpi::{LogicalSize, PhysicalSize};
+use winit::dpi::LogicalSize;
 use winit::event::{DeviceEvent, DeviceId, ElementState, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop, OwnedDisplayHandle};
 use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
 use super::input::{InputEvent, PendingInput};
-use super::{AppExit, Automation, WindowError, WindowPlugin, WindowSurface};
-use crate::render::{Presenter, RenderTarget, TargetFormat};
+use super::{AppExit, Automation, DeviceWatch, WindowError, WindowPlugin, WindowSurface};
+use crate::render::{Presenter, RenderTarget, fit_render_target};
 use crate::{App, GpuContext};
 
 impl App {
@@ -86,8 +86,7 @@ struct OpenWindow {
     gpu: GpuContext,
     surface: WindowSurface,
     presenter: Presenter,
-    /// Why the device was lost, once it has been (set by wgpu's callback).
-    device_lost: Arc<Mutex<Option<String>>>,
+    device: DeviceWatch,
 }
 
 impl Runner {
@@ -135,19 +134,14 @@ impl Runner {
             false,
         )?;
         self.app.finish()?;
-        fit_target(&mut self.app, &gpu, window.inner_size());
-        let device_lost = Arc::new(Mutex::new(None));
-        let lost = Arc::clone(&device_lost);
-        gpu.device.set_device_lost_callback(move |reason, message| {
-            *lost.lock().unwrap_or_else(PoisonError::into_inner) =
-                Some(format!("{reason:?}: {message}"));
-        });
+        let size = window.inner_size();
+        fit_render_target(&mut self.app.resources, &gpu, size.width, size.height);
         Ok(OpenWindow {
             presenter: Presenter::new(&gpu),
+            device: DeviceWatch::new(&gpu.device),
             window,
             gpu,
             surface,
-            device_lost,
         })
     }
 
@@ -196,21 +190,15 @@ impl Runner {
         let (None, Some(open)) = (&self.outcome, &self.open) else {
             return;
         };
-        let lost = open
-            .device_lost
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
-            .clone();
-        if let Some(reason) = lost {
+        if let Some(reason) = open.device.lost() {
             return self.end(event_loop, Err(WindowError::DeviceLost(reason)));
         }
         let (width, height) = open.surface.window_size();
         if width == 0 || height == 0 {
             return;
         }
-        let size = PhysicalSize::new(width, height);
         let gpu = open.gpu.clone();
-        fit_target(&mut self.app, &gpu, size);
+        fit_render_target(&mut self.app.resources, &gpu, width, height);
         let app = &mut self.app;
         match catch_unwind(AssertUnwindSafe(|| app.update())) {
             Ok(Ok(())) => {}
@@ -270,19 +258,6 @@ impl Runner {
         {
             self.end(event_loop, Ok(AppExit::Success));
         }
-    }
-}
-
-/// Replaces the render target when the window's size in pixels changed (pipelines do not depend
-/// on the size, so only the target is new); a window with no area keeps the last one.
-fn fit_target(app: &mut App, gpu: &GpuContext, size: PhysicalSize<u32>) {
-    if size.width == 0 || size.height == 0 {
-        return;
-    }
-    let current = app.resources.get::<RenderTarget>().map(RenderTarget::size);
-    if current != Some((size.width, size.height)) {
-        let target = RenderTarget::new(gpu, size.width, size.height, TargetFormat::Srgb8);
-        app.insert_resource(target);
     }
 }
 

@@ -5,7 +5,6 @@
 mod app_state;
 mod autosave;
 mod camera_control;
-mod device_watch;
 mod display_control;
 mod egui_painter;
 mod file_browser;

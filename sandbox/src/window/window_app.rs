@@ -10,8 +10,8 @@ use anyhow::{Context, Result, anyhow};
 use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
-use pom::render::{RenderTarget, TargetFormat};
-use pom::window::WindowSurface;
+use pom::render::RenderTarget;
+use pom::window::{DeviceWatch, WindowSurface};
 use pom::{
     App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload, SplitView,
 };
@@ -26,7 +26,6 @@ use super::autosave::{self, Autosave, TunedState};
 use pom::window::{CameraInput, OrbitCamera};
 
 use super::camera_control::{active_camera_transform, from_viewport, write_to_camera};
-use super::device_watch::DeviceWatch;
 use super::egui_painter::{EguiFrame, EguiPainter};
 use super::guarded_update::update_catching_panics;
 use super::panels::{PanelState, side_panel_contents};
@@ -302,7 +301,7 @@ impl Running {
             .handle_platform_output(&self.window, output.platform_output);
 
         if let Some((width, height)) = viewport_pixels {
-            self.fit_target(width, height);
+            pom::render::fit_render_target(&mut self.app.resources, &self.gpu, width, height);
         }
         if let Some(loaded) = self.panel.opened.take() {
             self.scene_opened(loaded);
@@ -396,23 +395,6 @@ impl Running {
         restore_tuned(&mut self.app, &self.scene_label, &self.tuned);
         self.orbit = active_camera_transform(&self.app.world)
             .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
-    }
-
-    /// Replaces the render target when the viewport's size in pixels changed (pipelines do not
-    /// depend on the size, so only the target is new).
-    fn fit_target(&mut self, width: u32, height: u32) {
-        if width == 0 || height == 0 {
-            return;
-        }
-        let current = self
-            .app
-            .resources
-            .get::<RenderTarget>()
-            .map(RenderTarget::size);
-        if current != Some((width, height)) {
-            let target = RenderTarget::new(&self.gpu, width, height, TargetFormat::Srgb8);
-            self.app.insert_resource(target);
-        }
     }
 
     /// Records the materials' values and writes them if they changed (at most once a second,

@@ -1,4 +1,4 @@
-//! Notices when the GPU device is lost (driver reset, GPU removed, device destroyed), so the
+//! Notices when the GPU device is lost (driver reset, GPU removed, device destroyed), so a
 //! window can close with one clear message instead of failing on every later GPU call.
 
 use std::sync::{Arc, Mutex};
@@ -35,7 +35,7 @@ mod tests {
 
     #[test]
     fn a_destroyed_device_is_reported_as_lost() {
-        let gpu = pom::GpuContext::headless().expect("a GPU or lavapipe for this test");
+        let gpu = crate::GpuContext::headless().expect("a GPU or lavapipe for this test");
         let watch = DeviceWatch::new(&gpu.device);
         assert_eq!(watch.lost(), None);
         gpu.device.destroy();
