@@ -1,13 +1,14 @@
 //! A spinning parallax cube on a parallax floor, in a window (the shape of Bevy's
 //! `parallax_mapping` example). Keys: 1 / 2 depth down / up, 3 / 4 max samples down / up,
-//! Space the next method, arrows move the light; the values are in the window's title.
+//! Space the next method, arrows move the light; the values are in the window's title. The
+//! camera flies (`FlyCameraPlugin`): W/A/S/D and Q/E, drag with a mouse button held to look.
 //!
 //! `cargo run --release -p pom --example parallax --features window`
 
 use pom::glam::{Quat, Vec3};
 use pom::hecs::World;
 use pom::material::Choice;
-use pom::window::{AppExit, ButtonInput, KeyCode, WindowPlugin};
+use pom::window::{AppExit, ButtonInput, FlyCamera, FlyCameraPlugin, KeyCode, WindowPlugin};
 use pom::*;
 
 /// Marks the cube that spins.
@@ -19,6 +20,7 @@ fn main() -> AppExit {
         title: "parallax".to_owned(),
         ..WindowPlugin::default()
     }))
+    .add_plugin(FlyCameraPlugin)
     .add_system(Stage::Startup, setup)
     .add_system(Stage::Update, controls)
     .add_system(Stage::Update, spin);
@@ -53,9 +55,11 @@ fn setup(world: &mut World, resources: &mut Resources) {
         Transform::from_xyz(0.0, 0.75, 0.0),
         Spinning,
     ));
+    let eye = Transform::from_xyz(1.8, 2.2, 3.2).looking_at(Vec3::new(0.0, 0.4, 0.0), Vec3::Y);
     world.spawn((
         Camera::perspective(45.0),
-        Transform::from_xyz(1.8, 2.2, 3.2).looking_at(Vec3::new(0.0, 0.4, 0.0), Vec3::Y),
+        FlyCamera::from_transform(&eye),
+        eye,
     ));
     world.spawn((
         DirectionalLight::default(),

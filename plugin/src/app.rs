@@ -260,6 +260,8 @@ pub struct App {
     pub schedule: Schedule,
     plugins: Vec<Box<dyn Plugin>>,
     finished_plugins: usize,
+    /// The resources [`Plugin::finish`] made: what [`App::redo_plugin_setup`] drops.
+    setup_resources: Vec<std::any::TypeId>,
 }
 
 impl fmt::Debug for App {
@@ -332,7 +334,10 @@ impl App {
                 &mut self.plugins[self.finished_plugins],
                 Box::new(|_: &mut App| {}),
             );
+            let before: std::collections::HashSet<_> = self.resources.type_ids().collect();
             let result = plugin.finish(self);
+            let made = self.resources.type_ids().filter(|id| !before.contains(id));
+            self.setup_resources.extend(made.collect::<Vec<_>>());
             let name = plugin.name().to_owned();
             self.plugins[self.finished_plugins] = plugin;
             self.finished_plugins += 1;
@@ -342,6 +347,20 @@ impl App {
             })?;
         }
         Ok(())
+    }
+
+    /// Drops the resources every [`Plugin::finish`] made, inserts `fresh`, and runs every
+    /// plugin's `finish` again. For a new GPU device after the old one was lost, `fresh` is its
+    /// [`crate::GpuContext`]: pipelines, targets and GPU copies of assets are then made on it,
+    /// while the assets themselves (CPU side), the world and every other resource stay. GPU
+    /// objects a game keeps must be made in a `finish` to survive this.
+    pub fn redo_plugin_setup<T: 'static>(&mut self, fresh: T) -> Result<(), AppError> {
+        for id in std::mem::take(&mut self.setup_resources) {
+            self.resources.remove_type_id(id);
+        }
+        self.resources.insert(fresh);
+        self.finished_plugins = 0;
+        self.finish()
     }
 
     /// Finishes any new plugins, advances the [`crate::Time`] resource (inserting a real-time
@@ -396,5 +415,36 @@ mod tests {
         let mut app = App::new();
         app.add_plugin(count).add_plugin(count);
         assert_eq!(app.resources.get::<u32>(), Some(&1));
+    }
+
+    #[test]
+    fn redoing_the_plugin_setup_remakes_what_finish_made_and_keeps_the_rest() {
+        /// Stands for a GPU device: `finish` builds its "pipeline" from it.
+        struct Device(u32);
+        struct Pipeline(u32);
+        struct Setup;
+        impl Plugin for Setup {
+            fn build(&self, app: &mut App) {
+                app.insert_resource(String::from("built"));
+            }
+            fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
+                let device = app.resources.require::<Device>()?.0;
+                app.insert_resource(Pipeline(device));
+                Ok(())
+            }
+        }
+        let mut app = App::new();
+        app.insert_resource(Device(1)).add_plugin(Setup);
+        app.update().unwrap();
+        app.insert_resource(7_u8);
+        assert_eq!(app.resources.get::<Pipeline>().map(|p| p.0), Some(1));
+        app.redo_plugin_setup(Device(2)).unwrap();
+        assert_eq!(app.resources.get::<Pipeline>().map(|p| p.0), Some(2));
+        assert_eq!(app.resources.get::<String>().unwrap(), "built");
+        assert_eq!(
+            app.resources.get::<u8>(),
+            Some(&7),
+            "resources made elsewhere stay"
+        );
     }
 }

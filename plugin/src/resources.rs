@@ -73,6 +73,16 @@ impl Resources {
         self.values.contains_key(&TypeId::of::<T>())
     }
 
+    /// The types of the values present.
+    pub(crate) fn type_ids(&self) -> impl Iterator<Item = TypeId> + '_ {
+        self.values.keys().copied()
+    }
+
+    /// Drops the value of the type `id`, if present.
+    pub(crate) fn remove_type_id(&mut self, id: TypeId) {
+        self.values.remove(&id);
+    }
+
     /// Runs `f` with `T` taken out of the map, so `f` may borrow other resources mutably at the
     /// same time; `T` is put back afterwards. Returns `None` when `T` is missing.
     ///

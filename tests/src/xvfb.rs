@@ -92,28 +92,34 @@ impl Xvfb {
     /// Runs `command` on this display (and no Wayland one), killing it if it runs past
     /// `timeout`; returns its status and output.
     pub fn run(&self, command: &mut Command, timeout: Duration) -> Output {
-        let mut child = command
+        let child = command
             .env("DISPLAY", format!(":{}", self.display))
             .env_remove("WAYLAND_DISPLAY")
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()
             .expect("starting the program");
-        let deadline = Instant::now() + timeout;
-        loop {
-            if child.try_wait().expect("waiting for the program").is_some() {
-                return child.wait_with_output().expect("reading its output");
-            }
-            if Instant::now() > deadline {
-                let _ = child.kill();
-                let output = child.wait_with_output().expect("reading its output");
-                panic!(
-                    "the program did not exit within {timeout:?}; stderr:\n{}",
-                    String::from_utf8_lossy(&output.stderr)
-                );
-            }
-            std::thread::sleep(Duration::from_millis(50));
+        wait_for(child, timeout)
+    }
+}
+
+/// Waits for `child` to exit and returns its status and output, killing it (and failing the
+/// test) if it runs past `timeout`.
+pub fn wait_for(mut child: Child, timeout: Duration) -> Output {
+    let deadline = Instant::now() + timeout;
+    loop {
+        if child.try_wait().expect("waiting for the program").is_some() {
+            return child.wait_with_output().expect("reading its output");
         }
+        if Instant::now() > deadline {
+            let _ = child.kill();
+            let output = child.wait_with_output().expect("reading its output");
+            panic!(
+                "the program did not exit within {timeout:?}; stderr:\n{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+        std::thread::sleep(Duration::from_millis(50));
     }
 }
 

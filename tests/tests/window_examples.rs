@@ -12,6 +12,9 @@ use std::time::{Duration, Instant};
 
 use pom_tests::xvfb::{Xvfb, distinct_colours};
 
+#[path = "support/close_request.rs"]
+mod close_request;
+
 /// How long an example may take to draw its frames (a debug build on a software GPU).
 const EXAMPLE_TIMEOUT: Duration = Duration::from_secs(300);
 
@@ -204,6 +207,61 @@ fn the_parallax_window_takes_keys_follows_resizes_and_exits_0_when_closed() {
     assert!(
         colours > 100,
         "only {colours} distinct colours after the resizes"
+    );
+}
+
+/// Mean absolute difference of the colour channels of `a` and `b` in the floor's front-left
+/// corner, clear of the spinning cube and its shadow.
+fn floor_difference(a: &image::RgbaImage, b: &image::RgbaImage) -> f64 {
+    let (mut sum, mut count) = (0_u64, 0_u64);
+    for y in 560..720 {
+        for x in 0..320 {
+            let (p, q) = (a.get_pixel(x, y).0, b.get_pixel(x, y).0);
+            for c in 0..3 {
+                sum += u64::from(p[c].abs_diff(q[c]));
+                count += 1;
+            }
+        }
+    }
+    sum as f64 / count as f64
+}
+
+#[test]
+fn a_key_press_changes_the_parallax_depth_on_screen_and_a_close_request_exits_0() {
+    let untouched = screenshot_of("parallax", 30);
+    let xvfb = Xvfb::start();
+    let screenshot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallax-deeper.png");
+    let _ = std::fs::remove_file(&screenshot);
+    let child = xvfb.spawn(Command::new(example("parallax")).env("POM_SCREENSHOT", &screenshot));
+    let found = xvfb.xdotool(&["search", "--sync", "--name", "^parallax: depth"]);
+    let window = found.lines().next().unwrap_or_default().to_owned();
+    let title = || xvfb.xdotool(&["getwindowname", &window]);
+    let before = title_depth(&title());
+    xvfb.xdotool(&["windowfocus", "--sync", &window]);
+    // Three steps of 0.01 deeper: the bricks' relief grows visibly.
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while title_depth(&title()) < before + 0.025 {
+        assert!(
+            Instant::now() < deadline,
+            "the key 2 stopped at {}",
+            title()
+        );
+        xvfb.xdotool(&["key", "2"]);
+        std::thread::sleep(Duration::from_millis(500));
+    }
+    close_request::request_close(&xvfb, window.parse().expect("a window id"));
+    let output = pom_tests::xvfb::wait_for(child, EXAMPLE_TIMEOUT);
+    assert!(
+        output.status.success(),
+        "the close request exited {}: {}",
+        output.status,
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let deeper = image::open(&screenshot).unwrap().to_rgba8();
+    let difference = floor_difference(&untouched, &deeper);
+    assert!(
+        difference > 2.0,
+        "the floor looks the same after the depth rose from {before}: mean difference {difference}"
     );
 }
 

@@ -16,14 +16,19 @@
 mod app_exit;
 mod automation;
 mod device_watch;
+mod fly_camera;
+mod frame_times;
 mod input;
 mod orbit_camera;
 mod runner;
 mod surface;
 
 pub use app_exit::AppExit;
-pub use automation::{Automation, AutomationError, EXIT_AFTER_FRAMES_VAR, SCREENSHOT_VAR};
+pub use automation::{
+    Automation, AutomationError, EXIT_AFTER_FRAMES_VAR, FRAME_TIMES_VAR, SCREENSHOT_VAR,
+};
 pub use device_watch::DeviceWatch;
+pub use fly_camera::{FlyCamera, FlyCameraPlugin, fly_cameras};
 pub use input::{
     ButtonInput, CursorPosition, KeyCode, MouseButton, MouseMotion, MouseScroll, WindowEvents,
     update_input,
@@ -79,9 +84,22 @@ pub enum WindowError {
     /// The frame could not be drawn into the window.
     #[error(transparent)]
     Present(#[from] crate::render::PresentError),
-    /// The GPU device was lost (a driver reset, the GPU removed).
-    #[error("the GPU device was lost ({0}); the app cannot go on drawing")]
-    DeviceLost(String),
+    /// The GPU device was lost (a driver reset, the GPU removed) and no new one could be made.
+    #[error("the GPU device was lost ({reason}) and could not be replaced: {replacing}")]
+    DeviceLost {
+        /// Why the device was lost.
+        reason: String,
+        /// Why no new one could be made.
+        replacing: String,
+    },
+    /// The frames' times could not be written where `POM_FRAME_TIMES` says.
+    #[error("writing the frame times {path}: {reason}")]
+    FrameTimes {
+        /// The file.
+        path: std::path::PathBuf,
+        /// Why it failed.
+        reason: String,
+    },
     /// The last frame could not be written where `POM_SCREENSHOT` says.
     #[error("writing the screenshot {path}: {reason}")]
     Screenshot {
@@ -94,6 +112,8 @@ pub enum WindowError {
 
 /// Opens a window for the app when [`App::run`] starts, sized and titled as its fields say
 /// (Bevy's names and defaults where they fit). The renderer's target follows the window's size.
+/// While the app runs it is also a resource that says the window's title and size: a system
+/// that changes `title`, `width` or `height` retitles or resizes the window.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WindowPlugin {
     /// The window's title.

@@ -3,10 +3,13 @@
 //! draws on the device that presents), then per redraw: fits the render target to the window,
 //! updates the app (errors and panics reported once), draws the display target into the
 //! swapchain and presents. Redraws run continuously while the window is visible; a window
-//! with no area (minimised) neither updates nor draws until it has one again.
+//! with no area (minimised) neither updates nor draws until it has one again. A lost GPU
+//! device is replaced: a new context for the window, every plugin's GPU setup redone on it
+//! ([`App::redo_plugin_setup`]), the assets uploaded again as the next frame draws them.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Arc;
+use std::time::Instant;
 
 use glam::Vec2;
 use winit::application::ApplicationHandler;
@@ -16,6 +19,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop, OwnedDisplayHandle};
 use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
+use super::frame_times::FrameTimes;
 use super::input::{InputEvent, PendingInput};
 use super::{AppExit, Automation, DeviceWatch, WindowError, WindowPlugin, WindowSurface};
 use crate::render::{Presenter, RenderTarget, fit_render_target};
@@ -49,6 +53,7 @@ impl App {
         let mut runner = Runner {
             app: std::mem::take(self),
             settings,
+            frame_times: FrameTimes::new(automation.frame_times.is_some()),
             automation,
             display: event_loop.owned_display_handle(),
             open: None,
@@ -78,6 +83,7 @@ struct Runner {
     outcome: Option<Result<AppExit, WindowError>>,
     /// Failures already reported (each is reported once).
     reported: Vec<String>,
+    frame_times: FrameTimes,
 }
 
 /// Everything that exists once the window is open.
@@ -126,6 +132,18 @@ impl Runner {
                 (gpu, surface)
             }
         };
+        self.app.finish()?;
+        self.present_on(window, gpu, surface)
+    }
+
+    /// What the window presents with on `gpu` (whose plugins are finished): the configured
+    /// swapchain, the present pass, the device watch, and a render target of the window's size.
+    fn present_on(
+        &mut self,
+        window: Arc<Window>,
+        gpu: GpuContext,
+        surface: wgpu::Surface<'static>,
+    ) -> Result<OpenWindow, WindowError> {
         let surface = WindowSurface::new(
             surface,
             &gpu,
@@ -133,9 +151,8 @@ impl Runner {
             self.settings.present_mode,
             false,
         )?;
-        self.app.finish()?;
-        let size = window.inner_size();
-        fit_render_target(&mut self.app.resources, &gpu, size.width, size.height);
+        let (width, height) = surface.window_size();
+        fit_render_target(&mut self.app.resources, &gpu, width, height);
         Ok(OpenWindow {
             presenter: Presenter::new(&gpu),
             device: DeviceWatch::new(&gpu.device),
@@ -143,6 +160,70 @@ impl Runner {
             gpu,
             surface,
         })
+    }
+
+    /// Goes on after the GPU device was lost: a new device for the window from the same
+    /// instance, every plugin's GPU setup made again on it; the world, the assets and the
+    /// game's resources stay as they are.
+    fn replace_lost_device(&mut self, reason: &str) -> Result<(), WindowError> {
+        let Some(OpenWindow { window, gpu, .. }) = self.open.take() else {
+            return Ok(());
+        };
+        eprintln!(
+            "warning: the GPU device was lost ({reason}); making a new one and uploading the assets again"
+        );
+        let instance = gpu.instance.clone();
+        // The old swapchain is gone with `open`; the window takes a surface again.
+        let surface = instance
+            .create_surface(Arc::clone(&window))
+            .map_err(|_| WindowError::CannotPresent)?;
+        let gpu = GpuContext::for_surface(instance, &surface)?;
+        self.app.redo_plugin_setup(gpu.clone())?;
+        // The split view's second target is the game's resource, made on the old device.
+        #[cfg(feature = "dev-tools")]
+        if let Some(split) = self.app.resources.get_mut::<crate::SplitView>() {
+            split.target = None;
+        }
+        let open = self.present_on(window, gpu, surface)?;
+        open.window.request_redraw();
+        self.open = Some(open);
+        eprintln!("warning: the app goes on on a new GPU device");
+        Ok(())
+    }
+
+    /// Asks the window for the size a system set in the [`WindowPlugin`] resource.
+    fn follow_size_request(&mut self) -> Result<(), WindowError> {
+        let Some(asked) = self.app.resources.get::<WindowPlugin>() else {
+            return Ok(());
+        };
+        if (asked.width, asked.height) == (self.settings.width, self.settings.height) {
+            return Ok(());
+        }
+        asked.validate()?;
+        (self.settings.width, self.settings.height) = (asked.width, asked.height);
+        if let Some(open) = &self.open {
+            // The answer, if any, comes as a resize event.
+            let _ = open
+                .window
+                .request_inner_size(LogicalSize::new(asked.width, asked.height));
+        }
+        Ok(())
+    }
+
+    /// Keeps the [`WindowPlugin`] resource's size at the window's, in logical pixels.
+    fn record_size(&mut self, width: u32, height: u32) {
+        let Some(open) = &self.open else {
+            return;
+        };
+        if width == 0 || height == 0 {
+            return;
+        }
+        let logical = winit::dpi::PhysicalSize::new(width, height)
+            .to_logical::<u32>(open.window.scale_factor());
+        (self.settings.width, self.settings.height) = (logical.width, logical.height);
+        if let Some(resource) = self.app.resources.get_mut::<WindowPlugin>() {
+            (resource.width, resource.height) = (logical.width, logical.height);
+        }
     }
 
     /// Ends the run with `outcome`, writing the screenshot `POM_SCREENSHOT` asks for first.
@@ -154,7 +235,18 @@ impl Runner {
             (Ok(_), Some(path)) if self.frames > 0 => self.write_screenshot(path),
             _ => Ok(()),
         };
-        self.outcome = Some(screenshot.and(outcome));
+        let times = match &self.automation.frame_times {
+            Some(path) => {
+                self.frame_times
+                    .write_csv(path)
+                    .map_err(|error| WindowError::FrameTimes {
+                        path: path.clone(),
+                        reason: error.to_string(),
+                    })
+            }
+            None => Ok(()),
+        };
+        self.outcome = Some(screenshot.and(times).and(outcome));
         event_loop.exit();
     }
 
@@ -187,18 +279,33 @@ impl Runner {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let start = Instant::now();
         let (None, Some(open)) = (&self.outcome, &self.open) else {
             return;
         };
-        if let Some(reason) = open.device.lost() {
-            return self.end(event_loop, Err(WindowError::DeviceLost(reason)));
+        if let Some(reason) = open.device.lost()
+            && let Err(error) = self.replace_lost_device(&reason)
+        {
+            let error = WindowError::DeviceLost {
+                reason,
+                replacing: error.to_string(),
+            };
+            return self.end(event_loop, Err(error));
         }
+        if let Err(error) = self.follow_size_request() {
+            self.frame_failed(event_loop, error.to_string());
+        }
+        let Some(open) = &self.open else {
+            return;
+        };
         let (width, height) = open.surface.window_size();
         if width == 0 || height == 0 {
             return;
         }
         let gpu = open.gpu.clone();
         fit_render_target(&mut self.app.resources, &gpu, width, height);
+        self.frame_times.add(start, |time| &mut time.fit);
+        let start = Instant::now();
         let app = &mut self.app;
         match catch_unwind(AssertUnwindSafe(|| app.update())) {
             Ok(Ok(())) => {}
@@ -208,12 +315,15 @@ impl Runner {
                 self.frame_failed(event_loop, format!("a system panicked: {message}"));
             }
         }
-        if self.outcome.is_some() {
-            return;
-        }
+        self.frame_times.add(start, |time| &mut time.update);
+        let start = Instant::now();
         let Some(open) = &mut self.open else {
             return;
         };
+        // Lost during the update: nothing more is drawn on it; the next redraw replaces it.
+        if self.outcome.is_some() || open.device.lost().is_some() {
+            return;
+        }
         // A system may retitle the window through the WindowPlugin resource.
         if let Some(settings) = self.app.resources.get::<WindowPlugin>()
             && settings.title != self.settings.title
@@ -224,6 +334,8 @@ impl Runner {
         let Some(frame) = open.surface.acquire(&open.gpu) else {
             return;
         };
+        self.frame_times.add(start, |time| &mut time.acquire);
+        let start = Instant::now();
         let view = frame
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
@@ -248,6 +360,8 @@ impl Runner {
         open.window.pre_present_notify();
         open.gpu.queue.present(frame);
         self.frames += 1;
+        self.frame_times.add(start, |time| &mut time.present);
+        self.frame_times.presented();
         if let Some(exit) = self.app.resources.remove::<AppExit>() {
             return self.end(event_loop, Ok(exit));
         }
@@ -287,6 +401,35 @@ impl ApplicationHandler for Runner {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        if let WindowEvent::RedrawRequested = event {
+            return self.redraw(event_loop);
+        }
+        let start = Instant::now();
+        self.handle(event_loop, event);
+        self.frame_times.add(start, |time| &mut time.events);
+    }
+
+    fn device_event(&mut self, _: &ActiveEventLoop, _: DeviceId, event: DeviceEvent) {
+        let start = Instant::now();
+        if let DeviceEvent::MouseMotion { delta: (x, y) } = event {
+            self.queue(InputEvent::Motion(Vec2::new(x as f32, y as f32)));
+        }
+        self.frame_times.add(start, |time| &mut time.events);
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        let start = Instant::now();
+        // Continuous while visible: games animate whether or not an event came.
+        if let (true, Some(open)) = (self.visible, &self.open) {
+            open.window.request_redraw();
+        }
+        self.frame_times.add(start, |time| &mut time.events);
+    }
+}
+
+impl Runner {
+    /// Handles a window event other than a redraw.
+    fn handle(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) {
         match event {
             WindowEvent::CloseRequested => {
                 self.queue(InputEvent::CloseRequested);
@@ -299,6 +442,7 @@ impl ApplicationHandler for Runner {
             }
             WindowEvent::Resized(size) => {
                 self.queue(InputEvent::Resized(size.width, size.height));
+                self.record_size(size.width, size.height);
                 if let Some(open) = &mut self.open {
                     open.surface.resize(&open.gpu, size.width, size.height);
                     open.window.request_redraw();
@@ -335,21 +479,7 @@ impl ApplicationHandler for Runner {
                 };
                 self.queue(InputEvent::Scroll { lines, pixels });
             }
-            WindowEvent::RedrawRequested => self.redraw(event_loop),
             _ => {}
-        }
-    }
-
-    fn device_event(&mut self, _: &ActiveEventLoop, _: DeviceId, event: DeviceEvent) {
-        if let DeviceEvent::MouseMotion { delta: (x, y) } = event {
-            self.queue(InputEvent::Motion(Vec2::new(x as f32, y as f32)));
-        }
-    }
-
-    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
-        // Continuous while visible: games animate whether or not an event came.
-        if let (true, Some(open)) = (self.visible, &self.open) {
-            open.window.request_redraw();
         }
     }
 }

@@ -1,0 +1,78 @@
+//! Where each presented frame's CPU time went, for `POM_FRAME_TIMES`: the runner's own work
+//! (window events and input, fitting the target, acquiring, presenting) apart from the app's
+//! stages, so the runner's cost can be measured on its own.
+
+use std::io::Write;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// One presented frame's times.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FrameTime {
+    /// Handling window and device events since the last frame (input queued, resizes).
+    pub events: Duration,
+    /// Checking the device and fitting the render target to the window.
+    pub fit: Duration,
+    /// The app's stages (`App::update`).
+    pub update: Duration,
+    /// Waiting for and getting the swapchain image.
+    pub acquire: Duration,
+    /// Recording and submitting the present pass, and presenting.
+    pub present: Duration,
+}
+
+/// The frames' times, kept only when `POM_FRAME_TIMES` asks for them.
+#[derive(Debug, Default)]
+pub(crate) struct FrameTimes {
+    /// Whether times are kept.
+    pub on: bool,
+    /// The frame being timed.
+    pub current: FrameTime,
+    rows: Vec<FrameTime>,
+}
+
+impl FrameTimes {
+    /// Times kept when `on`.
+    pub fn new(on: bool) -> Self {
+        Self {
+            on,
+            ..Self::default()
+        }
+    }
+
+    /// Adds the time since `start` to the part `part` picks of the current frame.
+    pub fn add(&mut self, start: Instant, part: fn(&mut FrameTime) -> &mut Duration) {
+        if self.on {
+            *part(&mut self.current) += start.elapsed();
+        }
+    }
+
+    /// Ends the current frame (it was presented).
+    pub fn presented(&mut self) {
+        if self.on {
+            self.rows.push(std::mem::take(&mut self.current));
+        }
+    }
+
+    /// Writes one row per presented frame, times in milliseconds.
+    pub fn write_csv(&self, path: &Path) -> std::io::Result<()> {
+        let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        writeln!(
+            file,
+            "frame,events_ms,fit_ms,update_ms,acquire_ms,present_ms"
+        )?;
+        let ms = |duration: Duration| duration.as_secs_f64() * 1000.0;
+        for (frame, row) in self.rows.iter().enumerate() {
+            writeln!(
+                file,
+                "{frame},{:.4},{:.4},{:.4},{:.4},{:.4}",
+                ms(row.events),
+                ms(row.fit),
+                ms(row.update),
+                ms(row.acquire),
+                ms(row.present)
+            )?;
+        }
+        file.flush()
+    }
+}

@@ -1,0 +1,208 @@
+//! A windowed program for the window runner's tests (tests/tests/window_runner.rs): the
+//! README's brick plane, still (nothing moves, so any two frames look the same), plus what a
+//! test asks for on the command line. It reports on standard error, in lines starting `probe:`.
+//!
+//! - `--frames N`: exits with status 0 after N updates (default 30);
+//! - `--lose-device-at N`: destroys the GPU device in update N, as a driver reset would;
+//! - `--resizes N`: asks for a new window size (through the `WindowPlugin` resource) in each of
+//!   N updates, then for the first size again, and reports the GPU's live objects before and
+//!   after (wgpu's counters);
+//! - `--hold-until FILE`: after the resizes, keeps running until FILE exists (a test minimises
+//!   and restores the window meanwhile);
+//! - always: `Time`'s smallest and largest delta and whether its elapsed time grew every frame.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use pom::hecs::World;
+use pom::window::{AppExit, WindowEvents, WindowPlugin};
+use pom::{glam::Vec3, *};
+
+/// The window's size before and after the resizes.
+const FIRST_SIZE: (u32, u32) = (320, 240);
+/// Updates drawn before the first count of live GPU objects (everything made and cached).
+const WARM_UP: u64 = 5;
+/// Updates at the first size again before the second count (the last resize has landed).
+const SETTLE: u64 = 20;
+
+/// What the command line asks for.
+#[derive(Debug, Default)]
+struct Plan {
+    frames: u64,
+    lose_device_at: Option<u64>,
+    resizes: u64,
+    hold_until: Option<PathBuf>,
+}
+
+/// What the probe saw, in updates.
+#[derive(Debug, Default)]
+struct Seen {
+    updates: u64,
+    /// `Time` at the previous update.
+    last_elapsed: Option<Duration>,
+    smallest_delta: Option<Duration>,
+    largest_delta: Duration,
+    elapsed_always_grew: bool,
+    /// Live GPU objects after the warm-up.
+    before_resizes: Option<String>,
+    /// When the resizes and the hold ended.
+    settle_from: Option<u64>,
+    /// Updates that saw the window resized.
+    resized_updates: u64,
+}
+
+/// Stands for the game's own state: it must survive a device loss unchanged.
+struct GameState(u32);
+
+fn parse(args: &[String]) -> Result<Plan, String> {
+    let mut plan = Plan {
+        frames: 30,
+        ..Plan::default()
+    };
+    let mut args = args.iter();
+    while let Some(flag) = args.next() {
+        let mut value = || args.next().ok_or(format!("{flag} needs a value"));
+        let number = |text: &String| {
+            text.parse::<u64>()
+                .map_err(|_| format!("{flag} {text}: not a whole number"))
+        };
+        match flag.as_str() {
+            "--frames" => plan.frames = number(value()?)?,
+            "--lose-device-at" => plan.lose_device_at = Some(number(value()?)?),
+            "--resizes" => plan.resizes = number(value()?)?,
+            "--hold-until" => plan.hold_until = Some(PathBuf::from(value()?)),
+            other => return Err(format!("unknown argument {other}")),
+        }
+    }
+    Ok(plan)
+}
+
+fn main() -> AppExit {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let plan = match parse(&args) {
+        Ok(plan) => plan,
+        Err(error) => {
+            eprintln!("error: {error}");
+            return AppExit::error();
+        }
+    };
+    let mut app = App::new();
+    app.add_plugin(DefaultPlugins::windowed(WindowPlugin {
+        title: "window probe".to_owned(),
+        width: FIRST_SIZE.0,
+        height: FIRST_SIZE.1,
+        ..WindowPlugin::default()
+    }));
+    let bricks = patterns::bricks(128, 4.0, 8.0);
+    let images = app.resources.get_or_default::<Assets<Image>>();
+    let material = ParallaxOcclusionMaterial {
+        normal_map: Some(images.add(bricks.normal_map(0.05))),
+        height_map: Some(HeightSource::Texture(images.add(bricks.to_image()))),
+        ..Default::default()
+    };
+    let meshes = app.resources.get_or_default::<Assets<Mesh>>();
+    let plane = meshes.add(Mesh::plane(2.0));
+    app.world.spawn((plane, material, Transform::IDENTITY));
+    let eye = Transform::from_xyz(0.0, 1.5, 2.0).looking_at(Vec3::ZERO, Vec3::Y);
+    app.world.spawn((Camera::perspective(45.0), eye));
+    let sun = Transform::IDENTITY.looking_at(Vec3::new(1.0, -1.0, -1.0), Vec3::Y);
+    app.world.spawn((DirectionalLight::default(), sun));
+    app.insert_resource(GameState(42))
+        .insert_resource(plan)
+        .insert_resource(Seen {
+            elapsed_always_grew: true,
+            ..Seen::default()
+        })
+        .add_system(Stage::Update, probe);
+    app.run()
+}
+
+/// The live GPU objects that could leak, as one line.
+fn live_objects(resources: &Resources) -> String {
+    let Some(gpu) = resources.get::<GpuContext>() else {
+        return "no GPU".to_owned();
+    };
+    let hal = gpu.device.get_internal_counters().hal;
+    format!(
+        "buffers={} texture_memory={} texture_views={} bind_groups={}",
+        hal.buffers.read(),
+        hal.texture_memory.read(),
+        hal.texture_views.read(),
+        hal.bind_groups.read()
+    )
+}
+
+fn probe(world: &mut World, resources: &mut Resources) {
+    let (Some(time), Some(plan)) = (resources.get::<Time>(), resources.get::<Plan>()) else {
+        return;
+    };
+    let (delta, elapsed) = (time.delta(), time.elapsed());
+    let (frames, lose_device_at, resizes) = (plan.frames, plan.lose_device_at, plan.resizes);
+    let held = plan.hold_until.as_ref().is_some_and(|file| !file.exists());
+    let live = live_objects(resources);
+    let resized = resources
+        .get::<WindowEvents>()
+        .is_some_and(|events| events.resized.is_some());
+    let Some(seen) = resources.get_mut::<Seen>() else {
+        return;
+    };
+    seen.updates += 1;
+    seen.resized_updates += u64::from(resized);
+    let update = seen.updates;
+    if update > 1 {
+        seen.smallest_delta = Some(seen.smallest_delta.map_or(delta, |d| d.min(delta)));
+        seen.largest_delta = seen.largest_delta.max(delta);
+    }
+    if seen.last_elapsed.is_some_and(|last| elapsed <= last) {
+        seen.elapsed_always_grew = false;
+    }
+    seen.last_elapsed = Some(elapsed);
+    if update == WARM_UP && resizes > 0 {
+        seen.before_resizes = Some(live.clone());
+    }
+    // The size asked for this update.
+    let resizing = resizes > 0 && update > WARM_UP && update <= WARM_UP + resizes;
+    let size = if resizing {
+        let step = (update - WARM_UP) as u32;
+        (200 + (step * 37) % 400, 150 + (step * 53) % 300)
+    } else {
+        FIRST_SIZE
+    };
+    if resizes > 0 && update > WARM_UP + resizes && !held && seen.settle_from.is_none() {
+        seen.settle_from = Some(update);
+    }
+    let done = match (resizes, seen.settle_from) {
+        (0, _) => update >= frames,
+        (_, Some(from)) => update >= from + SETTLE,
+        (_, None) => false,
+    };
+    if done {
+        let smallest = seen.smallest_delta.unwrap_or_default();
+        eprintln!(
+            "probe: time smallest_delta_s={:.6} largest_delta_s={:.6} elapsed_s={:.6} elapsed_always_grew={} updates={update}",
+            smallest.as_secs_f64(),
+            seen.largest_delta.as_secs_f64(),
+            elapsed.as_secs_f64(),
+            seen.elapsed_always_grew
+        );
+        if let Some(before) = &seen.before_resizes {
+            eprintln!("probe: live before {before}");
+            eprintln!("probe: live after {live}");
+            eprintln!("probe: resized updates={}", seen.resized_updates);
+        }
+        let state = resources.get::<GameState>().map_or(0, |state| state.0);
+        eprintln!("probe: game state {state}, {} entities", world.len());
+        resources.insert(AppExit::Success);
+    }
+    if let Some(window) = resources.get_mut::<WindowPlugin>() {
+        (window.width, window.height) = size;
+    }
+    if lose_device_at == Some(update)
+        && let Some(gpu) = resources.get::<GpuContext>()
+    {
+        eprintln!("probe: destroying the device in update {update}");
+        gpu.device.destroy();
+        // The device-lost callback runs when the device is next polled.
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+    }
+}
