@@ -1,9 +1,9 @@
-//! The README's own material (`Tinted`, an unlit colour: "Writing your own material") in a
-//! window, on a spinning cube over a lit floor, with the orbit camera.
+//! `Tinted`, the unlit material of "Writing your own material" (plugin/docs/custom-material.md),
+//! in a window, on a spinning cube over a lit floor, with the orbit camera.
 //!
 //! `cargo run --release -p pom --example custom_material --features window`
 
-// The README's code, kept identical to it by tests/tests/custom_material.rs.
+// The document's code, kept identical to it by tests/tests/custom_material.rs.
 #[rustfmt::skip]
 #[path = "../../tests/tests/custom_material/tinted.rs"]
 mod tinted;

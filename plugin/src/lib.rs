@@ -23,10 +23,22 @@
 // The crate's macros name `pom::…` paths; this makes them resolve inside the crate too.
 extern crate self as pom;
 
-// The README's examples compile as doctests, so they stay true.
+// The Rust blocks of the README and of plugin/docs/ compile as doctests, so they stay true.
 #[cfg(doctest)]
-#[doc = include_str!("../../README.md")]
-struct ReadmeDoctests;
+mod doc_tests {
+    #[doc = include_str!("../../README.md")]
+    struct Readme;
+    #[doc = include_str!("../docs/sandbox.md")]
+    struct Sandbox;
+    #[doc = include_str!("../docs/renderer.md")]
+    struct Renderer;
+    #[doc = include_str!("../docs/authoring-materials.md")]
+    struct AuthoringMaterials;
+    #[doc = include_str!("../docs/custom-material.md")]
+    struct CustomMaterial;
+    #[doc = include_str!("../docs/scene-tests.md")]
+    struct SceneTests;
+}
 
 mod app;
 mod assets;

@@ -1,5 +1,6 @@
-//! The material seam, proved from outside the `pom` crate: the README's "Writing your own
-//! material" example (`custom_material/tinted.rs`, kept identical to the README's code by a test)
+//! The material seam, proved from outside the `pom` crate: the example of "Writing your own
+//! material" (plugin/docs/custom-material.md; `custom_material/tinted.rs`, kept identical to the
+//! document's code by a test)
 //! renders beside the shipped materials, and its uniform matches its WGSL.
 
 #[rustfmt::skip]
@@ -83,19 +84,19 @@ fn the_example_uniform_matches_its_wgsl() {
 }
 
 #[test]
-fn the_readme_shows_this_example_verbatim() {
-    let readme = include_str!("../../README.md");
+fn the_custom_material_doc_shows_this_example_verbatim() {
+    let doc = include_str!("../../plugin/docs/custom-material.md");
     let example = include_str!("custom_material/tinted.rs");
-    let start = readme
-        .find("## Writing your own material")
-        .expect("the README has the section");
-    let section = &readme[start..];
+    let start = doc
+        .find("# Writing your own material")
+        .expect("the document has the section");
+    let section = &doc[start..];
     let code_start = section.find("```rust").expect("a Rust block") + "```rust".len();
     let code = &section[code_start..];
     let code = &code[code.find('\n').unwrap() + 1..code.find("```").unwrap()];
     assert!(
         code.contains(example.trim()),
-        "README's example and tests/tests/custom_material/tinted.rs differ"
+        "plugin/docs/custom-material.md's example and tests/tests/custom_material/tinted.rs differ"
     );
     assert!(
         example.lines().count() <= 40,

@@ -295,7 +295,7 @@ fn the_gltf_viewer_shows_the_street_corner_and_names_a_bad_file() {
 }
 
 #[test]
-fn the_custom_material_example_shows_the_readmes_material() {
+fn the_custom_material_example_shows_the_documented_material() {
     let image = screenshot_of("custom_material", 30);
     // The cube is unlit orange (linear 0.9, 0.35, 0.05, tonemapped): red over green over blue,
     // where the lit floor is grey and the background a dark blue-grey.
