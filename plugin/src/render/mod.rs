@@ -59,7 +59,7 @@ pub use phases::{
 };
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};
-pub use present::{PRESENT_SHADER, PresentError, Presenter};
+pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};

@@ -26,6 +26,34 @@ pub enum PresentError {
     TargetFormat(TargetFormat),
 }
 
+/// A rectangle of a window (or any image) in pixels, from its top-left corner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ScreenRect {
+    /// Left edge.
+    pub x: u32,
+    /// Top edge.
+    pub y: u32,
+    /// Width (at least 1 to show anything).
+    pub width: u32,
+    /// Height (at least 1 to show anything).
+    pub height: u32,
+}
+
+impl ScreenRect {
+    /// This rectangle cut to a `width` × `height` window; `None` where nothing is left.
+    pub fn within(self, width: u32, height: u32) -> Option<Self> {
+        let x = self.x.min(width);
+        let y = self.y.min(height);
+        let rect = Self {
+            x,
+            y,
+            width: self.width.min(width - x),
+            height: self.height.min(height - y),
+        };
+        (rect.width > 0 && rect.height > 0).then_some(rect)
+    }
+}
+
 /// Whether a swapchain of `format` must be given linear colour: it encodes itself (sRGB
 /// formats) or holds floats.
 fn takes_linear(format: wgpu::TextureFormat) -> bool {
@@ -72,7 +100,8 @@ impl Presenter {
     }
 
     /// Records into `encoder` the pass that draws `target`'s display colour into `view`, a
-    /// swapchain image of `format`.
+    /// swapchain image of `format` and `size` pixels, over `rect` of it (`None`: all of it;
+    /// the rest is cleared to black).
     ///
     /// # Errors
     /// [`PresentError::TargetFormat`] for a target that is not [`TargetFormat::Srgb8`].
@@ -82,7 +111,8 @@ impl Presenter {
         target: &RenderTarget,
         encoder: &mut wgpu::CommandEncoder,
         view: &wgpu::TextureView,
-        format: wgpu::TextureFormat,
+        (format, size): (wgpu::TextureFormat, (u32, u32)),
+        rect: Option<ScreenRect>,
     ) -> Result<(), PresentError> {
         if target.target_format() != TargetFormat::Srgb8 {
             return Err(PresentError::TargetFormat(target.target_format()));
@@ -133,6 +163,25 @@ impl Presenter {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        let Some(rect) = rect
+            .unwrap_or(ScreenRect {
+                x: 0,
+                y: 0,
+                width: size.0,
+                height: size.1,
+            })
+            .within(size.0, size.1)
+        else {
+            return Ok(());
+        };
+        pass.set_viewport(
+            rect.x as f32,
+            rect.y as f32,
+            rect.width as f32,
+            rect.height as f32,
+            0.0,
+            1.0,
+        );
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.draw(0..3, 0..1);
@@ -151,5 +200,25 @@ mod tests {
         assert!(takes_linear(wgpu::TextureFormat::Rgba16Float));
         assert!(!takes_linear(wgpu::TextureFormat::Bgra8Unorm));
         assert!(!takes_linear(wgpu::TextureFormat::Rgb10a2Unorm));
+    }
+
+    #[test]
+    fn a_rectangle_is_cut_to_the_window() {
+        let rect = ScreenRect {
+            x: 300,
+            y: 0,
+            width: 1000,
+            height: 720,
+        };
+        assert_eq!(
+            rect.within(1280, 720),
+            Some(ScreenRect {
+                x: 300,
+                y: 0,
+                width: 980,
+                height: 720
+            })
+        );
+        assert_eq!(rect.within(200, 720), None);
     }
 }

@@ -20,7 +20,9 @@ mod fly_camera;
 mod frame_times;
 mod input;
 mod orbit_camera;
+mod overlay;
 mod runner;
+mod screenshot;
 mod surface;
 
 pub use app_exit::AppExit;
@@ -34,7 +36,9 @@ pub use input::{
     update_input,
 };
 pub use orbit_camera::{CameraInput, OrbitCamera, OrbitCameraPlugin, orbit_cameras};
+pub use overlay::WindowOverlay;
 pub use runner::panic_message;
+pub use screenshot::{ScreenshotRequest, ScreenshotSaved};
 pub use surface::WindowSurface;
 
 use crate::{App, BoxedError, DefaultPlugins, Plugin, Stage};
@@ -92,6 +96,9 @@ pub enum WindowError {
         /// Why no new one could be made.
         replacing: String,
     },
+    /// The overlay could not start on the window.
+    #[error("the window's overlay could not start: {0}")]
+    Overlay(String),
     /// The frames' times could not be written where `POM_FRAME_TIMES` says.
     #[error("writing the frame times {path}: {reason}")]
     FrameTimes {

@@ -1,8 +1,8 @@
 //! [`App::run`]: the winit event loop of a windowed app. It opens the window on the first
 //! `resumed`, makes the GPU context for its surface before the plugins finish (so the renderer
-//! draws on the device that presents), then per redraw: fits the render target to the window,
-//! updates the app (errors and panics reported once), draws the display target into the
-//! swapchain and presents. Redraws run continuously while the window is visible; a window
+//! draws on the device that presents), then per redraw: fits the render target to the window
+//! (or to the part an overlay leaves the scene), updates the app (errors and panics reported
+//! once), draws the display target into the swapchain, then any overlay, and presents. Redraws run continuously while the window is visible; a window
 //! with no area (minimised) neither updates nor draws until it has one again. A lost GPU
 //! device is replaced: a new context for the window, every plugin's GPU setup redone on it
 //! ([`App::redo_plugin_setup`]), the assets uploaded again as the next frame draws them.
@@ -21,8 +21,12 @@ use winit::window::{Window, WindowId};
 
 use super::frame_times::FrameTimes;
 use super::input::{InputEvent, PendingInput};
-use super::{AppExit, Automation, DeviceWatch, WindowError, WindowPlugin, WindowSurface};
-use crate::render::{Presenter, RenderTarget, fit_render_target};
+use super::screenshot::ScreenshotTexture;
+use super::{
+    AppExit, Automation, DeviceWatch, ScreenshotRequest, ScreenshotSaved, WindowError,
+    WindowOverlay, WindowPlugin, WindowSurface,
+};
+use crate::render::{Presenter, RenderTarget, ScreenRect, fit_render_target};
 use crate::{App, GpuContext};
 
 impl App {
@@ -31,7 +35,7 @@ impl App {
     /// presented. What goes wrong is printed as one line on standard error and ends the app
     /// with a non-zero status; the app (its world and resources) is handed back afterwards.
     pub fn run(&mut self) -> AppExit {
-        match self.run_window() {
+        match self.try_run(None) {
             Ok(exit) => exit,
             Err(error) => {
                 eprintln!("error: {error}");
@@ -40,14 +44,26 @@ impl App {
         }
     }
 
-    fn run_window(&mut self) -> Result<AppExit, WindowError> {
+    /// [`App::run`] with `overlay` drawn over the scene and fed the window's events first (a
+    /// UI: the sandbox's egui panels), returning what went wrong instead of printing it.
+    /// The app's [`Automation`] resource, where it has one, replaces the environment's.
+    ///
+    /// # Errors
+    /// A [`WindowError`] that ended the run (or kept it from starting).
+    pub fn try_run(
+        &mut self,
+        overlay: Option<Box<dyn WindowOverlay>>,
+    ) -> Result<AppExit, WindowError> {
         let settings = self
             .resources
             .get::<WindowPlugin>()
             .cloned()
             .ok_or(WindowError::NoWindowPlugin)?;
         settings.validate()?;
-        let automation = Automation::from_env()?;
+        let automation = match self.resources.remove::<Automation>() {
+            Some(automation) => automation,
+            None => Automation::from_env()?,
+        };
         let event_loop =
             EventLoop::new().map_err(|error| WindowError::NoDisplay(error.to_string()))?;
         let mut runner = Runner {
@@ -61,6 +77,8 @@ impl App {
             visible: true,
             outcome: None,
             reported: Vec::new(),
+            overlay,
+            scene_rect: None,
         };
         let ran = event_loop.run_app(&mut runner);
         *self = std::mem::take(&mut runner.app);
@@ -84,6 +102,9 @@ struct Runner {
     /// Failures already reported (each is reported once).
     reported: Vec<String>,
     frame_times: FrameTimes,
+    overlay: Option<Box<dyn WindowOverlay>>,
+    /// Where the last frame put the scene (`None`: the whole window).
+    scene_rect: Option<ScreenRect>,
 }
 
 /// Everything that exists once the window is open.
@@ -144,15 +165,21 @@ impl Runner {
         gpu: GpuContext,
         surface: wgpu::Surface<'static>,
     ) -> Result<OpenWindow, WindowError> {
+        let encodes_srgb = self.overlay.as_ref().is_some_and(|o| o.encodes_srgb());
         let surface = WindowSurface::new(
             surface,
             &gpu,
             Arc::clone(&window),
             self.settings.present_mode,
-            false,
+            encodes_srgb,
         )?;
         let (width, height) = surface.window_size();
         fit_render_target(&mut self.app.resources, &gpu, width, height);
+        if let Some(overlay) = &mut self.overlay {
+            overlay
+                .opened(&mut self.app, &window, &gpu, surface.format())
+                .map_err(|error| WindowError::Overlay(error.to_string()))?;
+        }
         Ok(OpenWindow {
             presenter: Presenter::new(&gpu),
             device: DeviceWatch::new(&gpu.device),
@@ -231,10 +258,15 @@ impl Runner {
         if self.outcome.is_some() {
             return;
         }
-        let screenshot = match (&outcome, &self.automation.screenshot) {
-            (Ok(_), Some(path)) if self.frames > 0 => self.write_screenshot(path),
+        let screenshot = match (&outcome, self.automation.screenshot.clone()) {
+            (Ok(_), Some(path)) if self.frames > 0 => self
+                .write_screenshot(&path)
+                .map_err(|reason| WindowError::Screenshot { path, reason }),
             _ => Ok(()),
         };
+        if let Some(overlay) = &mut self.overlay {
+            overlay.exiting(&mut self.app);
+        }
         let times = match &self.automation.frame_times {
             Some(path) => {
                 self.frame_times
@@ -250,13 +282,51 @@ impl Runner {
         event_loop.exit();
     }
 
-    fn write_screenshot(&self, path: &std::path::Path) -> Result<(), WindowError> {
-        let failed = |reason: String| WindowError::Screenshot {
-            path: path.to_owned(),
-            reason,
+    /// Writes the window as the last frame showed it to `path`; once the window is gone, the
+    /// scene alone (the display target).
+    fn write_screenshot(&mut self, path: &std::path::Path) -> Result<(), String> {
+        let Some(open) = &self.open else {
+            let image = crate::capture(&self.app).map_err(|error| error.to_string())?;
+            return image.save(path).map_err(|error| error.to_string());
         };
-        let image = crate::capture(&self.app).map_err(|error| failed(error.to_string()))?;
-        image.save(path).map_err(|error| failed(error.to_string()))
+        let gpu = open.gpu.clone();
+        let (format, size) = (open.surface.format(), open.surface.window_size());
+        let shot = ScreenshotTexture::new(&gpu, size, format);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("window screenshot encoder"),
+            });
+        self.draw_frame(&mut encoder, &shot.view, (format, size))
+            .map_err(|error| error.to_string())?;
+        gpu.queue.submit([encoder.finish()]);
+        shot.save(&gpu, path)
+    }
+
+    /// Records the frame into `view` (`format`, `size` pixels): the scene, then the overlay.
+    fn draw_frame(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        (format, size): (wgpu::TextureFormat, (u32, u32)),
+    ) -> Result<(), crate::render::PresentError> {
+        let Some(open) = &mut self.open else {
+            return Ok(());
+        };
+        if let Some(target) = self.app.resources.get::<RenderTarget>() {
+            open.presenter.record(
+                &open.gpu,
+                target,
+                encoder,
+                view,
+                (format, size),
+                self.scene_rect,
+            )?;
+        }
+        if let Some(overlay) = &mut self.overlay {
+            overlay.draw(&mut self.app, &open.gpu, encoder, view, size);
+        }
+        Ok(())
     }
 
     /// Reports a failed frame once; ends the run where the game asked for that.
@@ -302,18 +372,32 @@ impl Runner {
         if width == 0 || height == 0 {
             return;
         }
-        let gpu = open.gpu.clone();
-        fit_render_target(&mut self.app.resources, &gpu, width, height);
+        let (gpu, window) = (open.gpu.clone(), Arc::clone(&open.window));
         self.frame_times.add(start, |time| &mut time.fit);
         let start = Instant::now();
+        self.scene_rect = self
+            .overlay
+            .as_mut()
+            .and_then(|overlay| overlay.before_update(&mut self.app, &window))
+            .and_then(|rect| rect.within(width, height));
+        let (scene_width, scene_height) = self
+            .scene_rect
+            .map_or((width, height), |rect| (rect.width, rect.height));
+        fit_render_target(&mut self.app.resources, &gpu, scene_width, scene_height);
         let app = &mut self.app;
-        match catch_unwind(AssertUnwindSafe(|| app.update())) {
-            Ok(Ok(())) => {}
-            Ok(Err(error)) => self.frame_failed(event_loop, error.to_string()),
-            Err(payload) => {
-                let message = panic_message(payload.as_ref());
-                self.frame_failed(event_loop, format!("a system panicked: {message}"));
-            }
+        let failure = match catch_unwind(AssertUnwindSafe(|| app.update())) {
+            Ok(Ok(())) => None,
+            Ok(Err(error)) => Some(error.to_string()),
+            Err(payload) => Some(format!(
+                "a system panicked: {}",
+                panic_message(payload.as_ref())
+            )),
+        };
+        if let Some(overlay) = &mut self.overlay {
+            overlay.after_update(&mut self.app, failure.as_deref());
+        }
+        if let Some(failure) = failure {
+            self.frame_failed(event_loop, failure);
         }
         self.frame_times.add(start, |time| &mut time.update);
         let start = Instant::now();
@@ -339,26 +423,22 @@ impl Runner {
         let view = frame
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
-        let mut encoder = open
-            .gpu
+        let format = (open.surface.format(), (width, height));
+        let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("present encoder"),
             });
-        if let Some(target) = self.app.resources.get::<RenderTarget>()
-            && let Err(error) = open.presenter.record(
-                &open.gpu,
-                target,
-                &mut encoder,
-                &view,
-                open.surface.format(),
-            )
-        {
+        if let Err(error) = self.draw_frame(&mut encoder, &view, format) {
             return self.end(event_loop, Err(WindowError::Present(error)));
         }
-        open.gpu.queue.submit([encoder.finish()]);
-        open.window.pre_present_notify();
-        open.gpu.queue.present(frame);
+        gpu.queue.submit([encoder.finish()]);
+        window.pre_present_notify();
+        gpu.queue.present(frame);
+        if let Some(ScreenshotRequest(path)) = self.app.resources.remove::<ScreenshotRequest>() {
+            let saved = self.write_screenshot(&path).map(|()| path);
+            self.app.insert_resource(ScreenshotSaved(saved));
+        }
         self.frames += 1;
         self.frame_times.add(start, |time| &mut time.present);
         self.frame_times.presented();
@@ -405,7 +485,11 @@ impl ApplicationHandler for Runner {
             return self.redraw(event_loop);
         }
         let start = Instant::now();
-        self.handle(event_loop, event);
+        let consumed = match (&mut self.overlay, &self.open) {
+            (Some(overlay), Some(open)) => overlay.window_event(&open.window, &event),
+            _ => false,
+        };
+        self.handle(event_loop, event, consumed);
         self.frame_times.add(start, |time| &mut time.events);
     }
 
@@ -428,8 +512,9 @@ impl ApplicationHandler for Runner {
 }
 
 impl Runner {
-    /// Handles a window event other than a redraw.
-    fn handle(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) {
+    /// Handles a window event other than a redraw; an overlay that `consumed` it keeps its
+    /// input from the app.
+    fn handle(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent, consumed: bool) {
         match event {
             WindowEvent::CloseRequested => {
                 self.queue(InputEvent::CloseRequested);
@@ -455,6 +540,10 @@ impl Runner {
                     open.window.request_redraw();
                 }
             }
+            WindowEvent::KeyboardInput { .. }
+            | WindowEvent::MouseInput { .. }
+            | WindowEvent::MouseWheel { .. }
+                if consumed => {}
             WindowEvent::KeyboardInput { event, .. } => {
                 if let PhysicalKey::Code(key) = event.physical_key {
                     let down = event.state == ElementState::Pressed;

@@ -1,6 +1,6 @@
-//! Paints egui's output with egui-wgpu into the window (and, for a screenshot, into an
-//! offscreen texture), with the plugin's rendered scene (and the split view's second image)
-//! registered as egui textures.
+//! Paints egui's output with egui-wgpu over the scene the window runner presented (into the
+//! swapchain image, or a screenshot's texture), with the plugin's rendered scene and the split
+//! view's second image registered as egui textures (the wipe shows the second).
 //!
 //! egui-wgpu samples user textures as gamma-encoded `Rgba8Unorm`; the plugin's targets offer
 //! such a view of their sRGB bytes (`RenderTarget::display_view`), so egui samples them directly.
@@ -9,8 +9,6 @@ use egui::TextureId;
 use egui_wgpu::{Renderer, RendererOptions, ScreenDescriptor};
 use pom::GpuContext;
 use pom::render::RenderTarget;
-
-use super::screenshot::ScreenshotTarget;
 
 /// The egui renderer and the textures through which it shows the scene.
 pub struct EguiPainter {
@@ -25,7 +23,7 @@ pub struct EguiPainter {
 pub struct EguiFrame<'a> {
     /// Tessellated shapes.
     pub paint_jobs: &'a [egui::ClippedPrimitive],
-    /// Font and image uploads and frees; drained by [`EguiPainter::paint`].
+    /// Font and image uploads and frees; drained by the first [`EguiPainter::paint`].
     pub textures: &'a mut egui::TexturesDelta,
     /// Window size in pixels and the scale.
     pub screen: ScreenDescriptor,
@@ -64,16 +62,15 @@ impl EguiPainter {
         }
     }
 
-    /// Paints `frame` into `view` and, when given, into `screenshot` too, showing `scene` and
-    /// `split` (the main target again when there is no split view), and submits. The pass into
-    /// `view` writes `overlay_time`'s timestamps.
+    /// Records into `encoder` the pass that paints `frame` over `view` (which holds the scene
+    /// already), showing `scene` and `split` (the main target again when there is no split
+    /// view). The pass writes `overlay_time`'s timestamps.
     pub fn paint(
         &mut self,
         gpu: &GpuContext,
         (scene, split): (&RenderTarget, &RenderTarget),
         frame: EguiFrame<'_>,
-        view: &wgpu::TextureView,
-        screenshot: Option<&ScreenshotTarget>,
+        (encoder, view): (&mut wgpu::CommandEncoder, &wgpu::TextureView),
         overlay_time: Option<&pom::render::PassTimestamps>,
     ) {
         self.show_targets(gpu, scene, split);
@@ -83,44 +80,38 @@ impl EguiPainter {
                     .update_texture(&gpu.device, &gpu.queue, id, delta);
             }
         }
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("sandbox egui encoder"),
-            });
         let callbacks = self.renderer.update_buffers(
             &gpu.device,
             &gpu.queue,
-            &mut encoder,
+            encoder,
             frame.paint_jobs,
             &frame.screen,
         );
-        let views = std::iter::once(view).chain(screenshot.map(|shot| &shot.view));
-        for (index, view) in views.enumerate() {
-            let mut pass = encoder
-                .begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some(if index == 0 {
-                        "egui pass"
-                    } else {
-                        "egui screenshot pass"
-                    }),
-                    color_attachments: &[Some(pom::render::clearing_attachment(
-                        view,
-                        wgpu::Color::BLACK,
-                    ))],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: overlay_time
-                        .filter(|_| index == 0)
-                        .map(pom::render::PassTimestamps::render),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                })
-                .forget_lifetime();
-            self.renderer
-                .render(&mut pass, frame.paint_jobs, &frame.screen);
+        // Paint callbacks' own command buffers (the sandbox has none) go first.
+        if !callbacks.is_empty() {
+            gpu.queue.submit(callbacks);
         }
-        gpu.queue
-            .submit(callbacks.into_iter().chain([encoder.finish()]));
+        let mut pass = encoder
+            .begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: overlay_time.map(pom::render::PassTimestamps::render),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            })
+            .forget_lifetime();
+        self.renderer
+            .render(&mut pass, frame.paint_jobs, &frame.screen);
+        drop(pass);
         for id in frame.textures.free.drain() {
             self.renderer.free_texture(&id);
         }

@@ -1,9 +1,10 @@
-//! One frame's `App::update` (and the split view's second image) with panics caught: a panicking user system must not take the
-//! window (and the unsaved tuned values) down; the panel reports it instead.
+//! Work on the app with panics caught (the split view's second image; the window runner
+//! catches the update's own): a panicking user system must not take the window (and the
+//! unsaved tuned values) down; the panel reports it instead.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use pom::{App, AppError};
+use pom::AppError;
 
 /// Why a frame's update did not complete.
 #[derive(Debug, thiserror::Error)]
@@ -19,18 +20,14 @@ pub enum UpdateFailure {
     Panicked(String),
 }
 
-/// Runs `app.update()` and then renders the split view's second image (when the app has a
-/// `pom::SplitView`), turning a panic inside either into [`UpdateFailure::Panicked`].
-pub fn update_catching_panics(app: &mut App) -> Result<(), UpdateFailure> {
+/// Runs `work`, turning a panic inside it into [`UpdateFailure::Panicked`].
+pub fn catching_panics<E: Into<UpdateFailure>>(
+    work: impl FnOnce() -> Result<(), E>,
+) -> Result<(), UpdateFailure> {
     // The world stays consistent across an unwind: hecs releases its borrows on drop, and a
     // half-run frame only means some systems skipped one frame.
-    let frame = || -> Result<(), UpdateFailure> {
-        app.update()?;
-        pom::render_split_view(app)?;
-        Ok(())
-    };
-    match catch_unwind(AssertUnwindSafe(frame)) {
-        Ok(result) => result,
+    match catch_unwind(AssertUnwindSafe(work)) {
+        Ok(result) => result.map_err(Into::into),
         Err(payload) => Err(UpdateFailure::Panicked(pom::window::panic_message(
             payload.as_ref(),
         ))),
@@ -42,7 +39,7 @@ mod tests {
     use std::time::Instant;
 
     use pom::hecs::World;
-    use pom::{ParallaxOcclusionMaterial, Resources, Stage};
+    use pom::{App, ParallaxOcclusionMaterial, Resources, Stage};
 
     use super::super::app_state::record_tuned;
     use super::super::autosave::{self, Autosave, TunedState};
@@ -72,7 +69,7 @@ mod tests {
         let mut tuned = TunedState::default();
         let mut failures = Vec::new();
         for _ in 0..5 {
-            if let Err(failure) = update_catching_panics(&mut app) {
+            if let Err(failure) = catching_panics(|| app.update()) {
                 failures.push(failure.to_string());
             }
             // What the window does after every frame, panicking or not.

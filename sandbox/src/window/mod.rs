@@ -1,6 +1,6 @@
-//! The live window: winit + egui on the plugin's device. The 3D scene is rendered by the plugin
-//! into its offscreen target and shown as an egui image; the side panel edits the components
-//! and resources of the `pom::App`. This module holds UI and input only.
+//! The live window: pom's window runner with egui over the scene. The plugin renders the scene
+//! and the runner presents it in the space the panels leave; the side panel edits the
+//! components and resources of the `pom::App`. This module holds UI only.
 
 mod app_state;
 mod autosave;
@@ -16,7 +16,6 @@ mod panels;
 mod presets;
 mod render_path_control;
 mod scene_open;
-mod screenshot;
 mod shader_status;
 mod split_controls;
 mod window_app;
@@ -26,9 +25,7 @@ mod panel_tests;
 
 use std::path::PathBuf;
 
-use anyhow::{Result, anyhow};
 use clap::Args;
-use winit::event_loop::EventLoop;
 
 /// The window's options (the automation flags let scripts and CI drive the real window).
 #[derive(Debug, Args)]
@@ -58,17 +55,4 @@ pub struct WindowArgs {
     pub split_method: Option<pom::ParallaxMethod>,
 }
 
-/// Opens the window and runs it until it is closed (or `--exit-after-frames` is reached).
-pub fn run(args: &WindowArgs) -> Result<()> {
-    let event_loop = EventLoop::new().map_err(|error| {
-        anyhow!(
-            "cannot open a window ({error}): no display? Render headless instead with \
-             `sandbox snapshot --out FILE.png` (this scene) or `sandbox render --help`"
-        )
-    })?;
-    let mut app = window_app::WindowApp::new(args, event_loop.owned_display_handle());
-    event_loop
-        .run_app(&mut app)
-        .map_err(|error| anyhow!("the window's event loop failed: {error}"))?;
-    app.finish()
-}
+pub use window_app::run;

@@ -1,160 +1,116 @@
-//! The winit application: creates the window, the surface and the shared GPU device, builds the
-//! `pom::App` on that device, and each frame runs the UI, updates the app (which renders the
-//! scene into its target) and paints egui to the window.
+//! The sandbox's window: pom's window runner (`App::try_run`) with egui as its overlay. Before
+//! each update the UI runs (its panels edit the `pom::App`'s components and resources) and
+//! says where the scene goes; the runner presents the scene there and egui paints the panels
+//! over it. Surface, resizes, time, input, device loss and screenshots are the runner's.
 
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow};
 use egui::{CentralPanel, Panel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
-use pom::render::RenderTarget;
-use pom::window::{DeviceWatch, WindowSurface};
-use pom::{
-    App, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShaderHotReload, SplitView,
+use pom::render::{RenderTarget, ScreenRect};
+use pom::window::{
+    Automation, CameraInput, OrbitCamera, ScreenshotRequest, ScreenshotSaved, WindowError,
+    WindowOverlay, WindowPlugin,
 };
-use winit::application::ApplicationHandler;
+use pom::{
+    App, BoxedError, GpuContext, ParallaxOcclusionMaterial, PomPlugin, RenderPlugin,
+    ShaderHotReload, SplitView, Time,
+};
 use winit::event::WindowEvent;
-use winit::event_loop::{ActiveEventLoop, OwnedDisplayHandle};
-use winit::window::{Window, WindowId};
+use winit::window::Window;
 
 use super::WindowArgs;
 use super::app_state::{load_scene, material_entities, record_tuned, restore_tuned, spin};
 use super::autosave::{self, Autosave, TunedState};
-use pom::window::{CameraInput, OrbitCamera};
-
 use super::camera_control::{active_camera_transform, from_viewport, write_to_camera};
 use super::egui_painter::{EguiFrame, EguiPainter};
-use super::guarded_update::update_catching_panics;
+use super::guarded_update::catching_panics;
 use super::panels::{PanelState, side_panel_contents};
-use super::screenshot::{ScreenshotTarget, save_png};
 
 /// The window's size when it opens, in logical pixels.
-const INITIAL_SIZE: (f64, f64) = (1280.0, 720.0);
+const INITIAL_SIZE: (u32, u32) = (1280, 720);
 /// Width of the side panel when it opens, in points.
 const PANEL_WIDTH: f32 = 380.0;
 
-/// The application handler; [`WindowApp::finish`] reports how it ended.
-pub struct WindowApp {
-    scene: Option<PathBuf>,
-    camera: Option<crate::cli_types::CameraArg>,
-    split_method: Option<pom::ParallaxMethod>,
-    exit_after_frames: Option<u64>,
-    screenshot: Option<PathBuf>,
-    state_path: PathBuf,
-    display: OwnedDisplayHandle,
-    running: Option<Running>,
-    error: Option<anyhow::Error>,
-    frames: u64,
+/// Opens the sandbox window on `args`' scene and runs it until it is closed (or
+/// `--exit-after-frames` is reached).
+pub fn run(args: &WindowArgs) -> Result<()> {
+    let mut app = App::new();
+    app.add_plugin(WindowPlugin {
+        title: "POM sandbox".to_owned(),
+        width: INITIAL_SIZE.0,
+        height: INITIAL_SIZE.1,
+        ..WindowPlugin::default()
+    })
+    .add_plugin(RenderPlugin::headless(INITIAL_SIZE.0, INITIAL_SIZE.1))
+    .add_plugin(PomPlugin);
+    if let Some(hot_reload) = std::env::current_dir()
+        .ok()
+        .and_then(|dir| ShaderHotReload::from_repository(&dir))
+    {
+        app.add_plugin(hot_reload);
+    }
+    let overlay = SandboxOverlay::new(&mut app, args);
+    app.insert_resource(Automation {
+        exit_after_frames: args.exit_after_frames,
+        screenshot: args.screenshot.clone(),
+        frame_times: None,
+    });
+    match app.try_run(Some(Box::new(overlay))) {
+        Ok(exit) if exit.is_success() => Ok(()),
+        Ok(exit) => Err(anyhow!("the sandbox ended with {exit:?}")),
+        Err(WindowError::NoDisplay(error)) => Err(anyhow!(
+            "cannot open a window ({error}): no display? Render headless instead with \
+             `sandbox snapshot --out FILE.png` (this scene) or `sandbox render --help`"
+        )),
+        Err(error) => Err(error.into()),
+    }
 }
 
-/// Everything that exists once the window is open.
-struct Running {
-    window: Arc<Window>,
-    gpu: GpuContext,
-    surface: WindowSurface,
+/// The egui side of the window, from the window opening on.
+struct OnWindow {
     painter: EguiPainter,
-    egui: egui::Context,
     egui_input: egui_winit::State,
-    app: App,
+}
+
+/// One frame of egui output between the UI run and the paint.
+struct PendingPaint {
+    paint_jobs: Vec<egui::ClippedPrimitive>,
+    textures: egui::TexturesDelta,
+    pixels_per_point: f32,
+}
+
+/// The sandbox's UI over the scene: panels, the orbit camera on the viewport, the split
+/// view's wipe, autosave of the tuned values.
+struct SandboxOverlay {
+    egui: egui::Context,
+    on_window: Option<OnWindow>,
+    output: Option<egui::FullOutput>,
+    pending: Option<PendingPaint>,
     panel: PanelState,
     orbit: Option<OrbitCamera>,
     scene_label: String,
     autosave: Autosave,
     tuned: TunedState,
-    last_frame: Instant,
-    device: DeviceWatch,
 }
 
-impl WindowApp {
-    /// A handler for `args`, using the event loop's display.
-    pub fn new(args: &WindowArgs, display: OwnedDisplayHandle) -> Self {
-        Self {
-            scene: args.scene.clone(),
-            camera: args.camera,
-            split_method: args.split_method,
-            exit_after_frames: args.exit_after_frames,
-            screenshot: args.screenshot.clone(),
-            state_path: args
-                .state
-                .clone()
-                .unwrap_or_else(autosave::default_state_path),
-            display,
-            running: None,
-            error: None,
-            frames: 0,
-        }
-    }
-
-    /// The error that closed the window, if any; saves the tuned values one last time.
-    pub fn finish(mut self) -> Result<()> {
-        if let Some(running) = &mut self.running
-            && let Err(error) = running.save_tuned(true)
-        {
-            log::warn!("{error:#}");
-        }
-        match self.error {
-            Some(error) => Err(error),
-            None => Ok(()),
-        }
-    }
-
-    fn fail(&mut self, event_loop: &ActiveEventLoop, error: anyhow::Error) {
-        self.error = Some(error);
-        event_loop.exit();
-    }
-
-    fn open(&self, event_loop: &ActiveEventLoop) -> Result<Running> {
-        let attributes = Window::default_attributes()
-            .with_title("POM sandbox")
-            .with_inner_size(winit::dpi::LogicalSize::new(INITIAL_SIZE.0, INITIAL_SIZE.1));
-        let window = Arc::new(
-            event_loop
-                .create_window(attributes)
-                .context("cannot create the window")?,
-        );
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
-                Box::new(self.display.clone()),
-            ));
-        let surface = instance.create_surface(Arc::clone(&window)).context(
-            "cannot draw into the window: no GPU driver can present to it (without a GPU, \
-                 install Mesa's software Vulkan driver: apt-get install mesa-vulkan-drivers \
-                 libvulkan1; or render headless with `sandbox snapshot`)",
-        )?;
-        // One device for the window and the plugin: RenderPlugin finds this context and uses it.
-        let gpu = GpuContext::for_surface(instance, &surface)?;
-        // egui-wgpu writes gamma-encoded pixels itself: a non-sRGB swapchain.
-        let surface = WindowSurface::new(
-            surface,
-            &gpu,
-            Arc::clone(&window),
-            wgpu::PresentMode::AutoVsync,
-            true,
-        )?;
-
-        let size = window.inner_size();
-        let mut app = App::new();
-        app.insert_resource(gpu.clone());
-        app.add_plugin(RenderPlugin::headless(
-            size.width.max(1),
-            size.height.max(1),
-        ))
-        .add_plugin(PomPlugin);
-        if let Some(hot_reload) = std::env::current_dir()
-            .ok()
-            .and_then(|dir| ShaderHotReload::from_repository(&dir))
-        {
-            app.add_plugin(hot_reload);
-        }
-        let loaded = load_scene(&mut app, self.scene.as_deref(), self.camera);
+impl SandboxOverlay {
+    /// Loads `args`' scene into `app` and restores its tuned values.
+    fn new(app: &mut App, args: &WindowArgs) -> Self {
+        let loaded = load_scene(app, args.scene.as_deref(), args.camera);
         let mut panel = PanelState {
             messages: loaded.messages,
             ..PanelState::default()
         };
-        let tuned = match autosave::load(&self.state_path) {
+        let state_path = args
+            .state
+            .clone()
+            .unwrap_or_else(autosave::default_state_path);
+        let tuned = match autosave::load(&state_path) {
             Ok(tuned) => tuned,
             Err(error) => {
                 panel
@@ -163,16 +119,16 @@ impl WindowApp {
                 TunedState::default()
             }
         };
-        restore_tuned(&mut app, &loaded.label, &tuned);
-        if let Some(method) = self.split_method {
+        restore_tuned(app, &loaded.label, &tuned);
+        if let Some(method) = args.split_method {
             panel.split.enabled = true;
-            let overrides = material_entities(&app)
+            let overrides = material_entities(app)
                 .into_iter()
                 .filter_map(|(entity, _)| {
                     let material = app.world.get::<&ParallaxOcclusionMaterial>(entity).ok()?;
                     Some((
                         entity,
-                        pom::ParallaxOcclusionMaterial {
+                        ParallaxOcclusionMaterial {
                             method,
                             ..(*material).clone()
                         },
@@ -184,97 +140,107 @@ impl WindowApp {
                 target: None,
             });
         }
-        app.finish().context("starting the renderer")?;
         let orbit = active_camera_transform(&app.world)
             .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
+        Self {
+            egui: egui::Context::default(),
+            on_window: None,
+            output: None,
+            pending: None,
+            panel,
+            orbit,
+            scene_label: loaded.label,
+            autosave: Autosave::new(state_path, tuned.clone()),
+            tuned,
+        }
+    }
 
+    /// Follows a scene opened from the panel: its label keys the tuned values, and the orbit
+    /// starts from its camera.
+    fn scene_opened(&mut self, app: &mut App, loaded: super::app_state::LoadedScene) {
+        self.scene_label = loaded.label;
+        self.panel.messages.extend(loaded.messages);
+        restore_tuned(app, &self.scene_label, &self.tuned);
+        self.orbit = active_camera_transform(&app.world)
+            .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
+    }
+
+    /// Records the materials' values and writes them if they changed (at most once a second,
+    /// unless `force`).
+    fn save_tuned(&mut self, app: &App, force: bool) -> Result<()> {
+        record_tuned(app, &self.scene_label, &mut self.tuned);
+        self.autosave
+            .maybe_write(&self.tuned, Instant::now(), force)
+            .map_err(|error| anyhow!("writing {}: {error:#}", self.autosave.path().display()))
+    }
+
+    /// Adds `message` to the panel's unless it is there already.
+    fn say_once(&mut self, message: String) {
+        if !self.panel.messages.contains(&message) {
+            self.panel.messages.push(message);
+        }
+    }
+}
+
+impl WindowOverlay for SandboxOverlay {
+    // egui-wgpu writes gamma-encoded pixels itself.
+    fn encodes_srgb(&self) -> bool {
+        true
+    }
+
+    fn opened(
+        &mut self,
+        app: &mut App,
+        window: &Arc<Window>,
+        gpu: &GpuContext,
+        format: wgpu::TextureFormat,
+    ) -> Result<(), BoxedError> {
         let target = app
             .resources
             .get::<RenderTarget>()
-            .ok_or_else(|| anyhow!("the render plugin made no render target"))?;
-        let painter = EguiPainter::new(&gpu, surface.format(), target);
-        let egui = egui::Context::default();
+            .ok_or("the render plugin made no render target")?;
+        // After a replaced device, egui starts over, so that its textures (the fonts) are sent
+        // to the new painter again.
+        if self.on_window.is_some() {
+            self.egui = egui::Context::default();
+            self.pending = None;
+        }
         let egui_input = egui_winit::State::new(
-            egui.clone(),
+            self.egui.clone(),
             egui::ViewportId::ROOT,
-            &window,
+            window,
             Some(window.scale_factor() as f32),
             None,
             Some(gpu.device.limits().max_texture_dimension_2d as usize),
         );
-        let device = DeviceWatch::new(&gpu.device);
-        Ok(Running {
-            window,
-            gpu,
-            surface,
-            painter,
-            egui,
+        self.on_window = Some(OnWindow {
+            painter: EguiPainter::new(gpu, format, target),
             egui_input,
-            app,
-            panel,
-            orbit,
-            scene_label: loaded.label,
-            autosave: Autosave::new(self.state_path.clone(), tuned.clone()),
-            tuned,
-            last_frame: Instant::now(),
-            device,
-        })
+        });
+        Ok(())
     }
 
-    /// Draws one frame; returns whether one was presented.
-    fn redraw(&mut self, force_screenshot: bool) -> Result<bool> {
-        let last_frame = self.exit_after_frames.is_some_and(|n| self.frames + 1 >= n);
-        let flag_screenshot = if last_frame || force_screenshot {
-            self.screenshot.clone()
-        } else {
-            None
-        };
-        let Some(running) = &mut self.running else {
-            return Ok(false);
-        };
-        if let Some(reason) = running.device.lost() {
-            // Nothing can be drawn on a lost device; save what was tuned and close clearly.
-            let saved = running.save_tuned(true);
-            return Err(anyhow!(
-                "the GPU device was lost ({reason}); the sandbox closed. Tuned values {}; \
-                 start it again to continue",
-                match saved {
-                    Ok(()) => format!("are saved in {}", running.autosave.path().display()),
-                    Err(error) => format!("could not be saved: {error:#}"),
-                }
-            ));
+    fn window_event(&mut self, window: &Window, event: &WindowEvent) -> bool {
+        self.on_window
+            .as_mut()
+            .is_some_and(|on_window| on_window.egui_input.on_window_event(window, event).consumed)
+    }
+
+    fn before_update(&mut self, app: &mut App, window: &Window) -> Option<ScreenRect> {
+        if let Some(ScreenshotSaved(saved)) = app.resources.remove::<ScreenshotSaved>() {
+            self.panel.messages.retain(|m| !m.starts_with("screenshot"));
+            self.panel.messages.push(match saved {
+                Ok(path) => format!("screenshot saved to {}", path.display()),
+                Err(error) => format!("screenshot failed: {error}"),
+            });
         }
-        let Some(frame) = running.surface.acquire(&running.gpu) else {
-            return Ok(false);
-        };
-        let button_screenshot = std::mem::take(&mut running.panel.screenshot_requested)
-            .then(|| PathBuf::from(&running.panel.screenshot_path));
-        let shots: Vec<PathBuf> = flag_screenshot
-            .into_iter()
-            .chain(button_screenshot)
-            .collect();
-        running.draw(frame, &shots)?;
-        self.frames += 1;
-        Ok(true)
-    }
-}
-
-impl Running {
-    /// Runs the UI, updates the app and paints; writes a screenshot to each of `shots`.
-    fn draw(&mut self, frame: wgpu::SurfaceTexture, shots: &[PathBuf]) -> Result<()> {
-        let now = Instant::now();
-        let frame_time = now.duration_since(self.last_frame).as_secs_f32();
-        let dt = frame_time.min(0.1);
-        self.last_frame = now;
-        self.panel.frame_times.push(frame_time);
-
-        let raw_input = self.egui_input.take_egui_input(&self.window);
-        let mut viewport_pixels = None;
+        let on_window = self.on_window.as_mut()?;
+        let raw_input = on_window.egui_input.take_egui_input(window);
+        let mut viewport = None;
         let mut camera_input = CameraInput::default();
         let mut click = None;
-        let (scene_texture, split_texture) =
-            (self.painter.scene_texture, self.painter.split_texture);
-        let (app, panel) = (&mut self.app, &mut self.panel);
+        let split_texture = on_window.painter.split_texture;
+        let panel = &mut self.panel;
         let output = self.egui.run_ui(raw_input, |ui| {
             Panel::left("controls")
                 .default_size(PANEL_WIDTH)
@@ -284,12 +250,10 @@ impl Running {
             CentralPanel::default()
                 .frame(egui::Frame::NONE)
                 .show(ui, |ui| {
-                    let size = ui.available_size();
-                    let pixels = size * ui.ctx().pixels_per_point();
-                    viewport_pixels = Some((pixels.x.round() as u32, pixels.y.round() as u32));
-                    let image =
-                        egui::Image::new((scene_texture, size)).sense(Sense::click_and_drag());
-                    let response = ui.add(image);
+                    // The runner presents the scene here, under the panels.
+                    let rect = ui.available_rect_before_wrap();
+                    let response = ui.allocate_rect(rect, Sense::click_and_drag());
+                    viewport = Some(rect * ui.ctx().pixels_per_point());
                     if let Some(wipe) = wipe {
                         paint_split(ui, response.rect, split_texture, wipe);
                     }
@@ -297,113 +261,103 @@ impl Running {
                     click = clicked_pixel(&response, ui.ctx().pixels_per_point());
                 });
         });
-        self.egui_input
-            .handle_platform_output(&self.window, output.platform_output);
-
-        if let Some((width, height)) = viewport_pixels {
-            pom::render::fit_render_target(&mut self.app.resources, &self.gpu, width, height);
-        }
+        on_window
+            .egui_input
+            .handle_platform_output(window, output.platform_output.clone());
+        self.output = Some(output);
         if let Some(loaded) = self.panel.opened.take() {
-            self.scene_opened(loaded);
+            self.scene_opened(app, loaded);
         }
         if let Some((viewport, pixel)) = click {
-            select_clicked(&self.app, &mut self.panel, viewport, pixel);
+            select_clicked(app, &mut self.panel, viewport, pixel);
         }
         if let Some(orbit) = &mut self.orbit
             && !camera_input.is_idle()
         {
             orbit.apply(&camera_input);
-            write_to_camera(&mut self.app.world, orbit);
+            write_to_camera(&mut app.world, orbit);
         }
+        if std::mem::take(&mut self.panel.screenshot_requested) {
+            let path = PathBuf::from(&self.panel.screenshot_path);
+            app.insert_resource(ScreenshotRequest(path));
+        }
+        let rect = viewport?;
+        Some(ScreenRect {
+            x: rect.min.x.round().max(0.0) as u32,
+            y: rect.min.y.round().max(0.0) as u32,
+            width: rect.width().round().max(0.0) as u32,
+            height: rect.height().round().max(0.0) as u32,
+        })
+    }
+
+    fn after_update(&mut self, app: &mut App, failure: Option<&str>) {
+        let dt = app.resources.get::<Time>().map_or(0.0, Time::delta_secs);
+        self.panel.frame_times.push(dt);
         if self.panel.spin_selected
             && let Some(entity) = self.panel.selected
         {
-            spin(&mut self.app.world, entity, dt);
+            spin(&mut app.world, entity, dt.min(0.1));
         }
-        if let Err(failure) = update_catching_panics(&mut self.app) {
-            // Keep the window (and the tuned values) alive; say what failed once.
-            let message = failure.to_string();
-            if !self.panel.messages.contains(&message) {
-                self.panel.messages.push(message);
-            }
+        // Keep the window (and the tuned values) alive; say what failed once.
+        if let Some(failure) = failure {
+            self.say_once(format!("updating the scene: {failure}"));
+        } else if let Err(failure) = catching_panics(|| pom::render_split_view(app)) {
+            self.say_once(failure.to_string());
         }
-        if let Err(error) = self.save_tuned(false) {
-            let message = format!("autosave failed: {error:#}");
-            if !self.panel.messages.contains(&message) {
-                self.panel.messages.push(message);
-            }
+        if let Err(error) = self.save_tuned(app, false) {
+            self.say_once(format!("autosave failed: {error:#}"));
         }
+        if let Some(output) = self.output.take() {
+            self.pending = Some(PendingPaint {
+                paint_jobs: self.egui.tessellate(output.shapes, output.pixels_per_point),
+                textures: output.textures_delta,
+                pixels_per_point: output.pixels_per_point,
+            });
+        }
+    }
 
-        let paint_jobs = self.egui.tessellate(output.shapes, output.pixels_per_point);
-        let mut textures = output.textures_delta;
-        let (width, height) = (frame.texture.width(), frame.texture.height());
-        let screen = ScreenDescriptor {
-            size_in_pixels: [width, height],
-            pixels_per_point: output.pixels_per_point,
+    fn draw(
+        &mut self,
+        app: &mut App,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        (width, height): (u32, u32),
+    ) {
+        let (Some(on_window), Some(pending)) = (&mut self.on_window, &mut self.pending) else {
+            return;
         };
-        let screenshot = (!shots.is_empty())
-            .then(|| ScreenshotTarget::new(&self.gpu, width, height, self.surface.format()));
-        let view = frame
-            .texture
-            .create_view(&wgpu::TextureViewDescriptor::default());
         // The overlay phase, timed like the others; its figure arrives with the next frame's.
         let overlay_time =
-            pom::render::time_pass(&mut self.app.resources, pom::RenderPhase::Overlay.name());
-        let target = self
-            .app
-            .resources
-            .get::<RenderTarget>()
-            .ok_or_else(|| anyhow!("the render target is gone"))?;
-        let split = self
-            .app
+            pom::render::time_pass(&mut app.resources, pom::RenderPhase::Overlay.name());
+        let Some(target) = app.resources.get::<RenderTarget>() else {
+            return;
+        };
+        let split = app
             .resources
             .get::<SplitView>()
             .and_then(|split| split.target.as_ref())
             .unwrap_or(target);
-        self.painter.paint(
-            &self.gpu,
+        on_window.painter.paint(
+            gpu,
             (target, split),
             EguiFrame {
-                paint_jobs: &paint_jobs,
-                textures: &mut textures,
-                screen,
+                paint_jobs: &pending.paint_jobs,
+                textures: &mut pending.textures,
+                screen: ScreenDescriptor {
+                    size_in_pixels: [width, height],
+                    pixels_per_point: pending.pixels_per_point,
+                },
             },
-            &view,
-            screenshot.as_ref(),
+            (encoder, view),
             overlay_time.as_ref(),
         );
-        self.window.pre_present_notify();
-        self.gpu.queue.present(frame);
-        if let Some(screenshot) = screenshot {
-            let image = screenshot.read(&self.gpu)?;
-            for path in shots {
-                save_png(image.clone(), path)?;
-                self.panel.messages.retain(|m| !m.starts_with("screenshot"));
-                self.panel
-                    .messages
-                    .push(format!("screenshot saved to {}", path.display()));
-            }
+    }
+
+    fn exiting(&mut self, app: &mut App) {
+        if let Err(error) = self.save_tuned(app, true) {
+            log::warn!("{error:#}");
         }
-        Ok(())
-    }
-
-    /// Follows a scene opened from the panel: its label keys the tuned values, and the orbit
-    /// starts from its camera.
-    fn scene_opened(&mut self, loaded: super::app_state::LoadedScene) {
-        self.scene_label = loaded.label;
-        self.panel.messages.extend(loaded.messages);
-        restore_tuned(&mut self.app, &self.scene_label, &self.tuned);
-        self.orbit = active_camera_transform(&self.app.world)
-            .map(|camera| OrbitCamera::from_transform(&camera, loaded.focus_distance));
-    }
-
-    /// Records the materials' values and writes them if they changed (at most once a second,
-    /// unless `force`).
-    fn save_tuned(&mut self, force: bool) -> Result<()> {
-        record_tuned(&self.app, &self.scene_label, &mut self.tuned);
-        self.autosave
-            .maybe_write(&self.tuned, Instant::now(), force)
-            .with_context(|| format!("writing {}", self.autosave.path().display()))
     }
 }
 
@@ -467,58 +421,6 @@ fn select_clicked(app: &App, panel: &mut PanelState, viewport: Vec2, pixel: Vec2
         panel
             .messages
             .push("clicked object has no parallax material".to_owned());
-    }
-}
-
-impl ApplicationHandler for WindowApp {
-    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
-        if self.running.is_some() {
-            return;
-        }
-        match self.open(event_loop) {
-            Ok(running) => {
-                running.window.request_redraw();
-                self.running = Some(running);
-            }
-            Err(error) => self.fail(event_loop, error),
-        }
-    }
-
-    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
-        let Some(running) = &mut self.running else {
-            return;
-        };
-        let _ = running.egui_input.on_window_event(&running.window, &event);
-        match event {
-            WindowEvent::CloseRequested => {
-                if self.screenshot.is_some()
-                    && let Err(error) = self.redraw(true)
-                {
-                    self.error = Some(error);
-                }
-                event_loop.exit();
-            }
-            WindowEvent::Resized(size) => {
-                running
-                    .surface
-                    .resize(&running.gpu, size.width, size.height);
-                running.window.request_redraw();
-            }
-            WindowEvent::RedrawRequested => {
-                match self.redraw(false) {
-                    Ok(_) if self.exit_after_frames.is_some_and(|n| self.frames >= n) => {
-                        event_loop.exit();
-                    }
-                    Ok(_) => {}
-                    Err(error) => return self.fail(event_loop, error),
-                }
-                // Redraw continuously: spinning, camera keys and autosave need frames.
-                if let Some(running) = &self.running {
-                    running.window.request_redraw();
-                }
-            }
-            _ => {}
-        }
     }
 }
 
