@@ -17,7 +17,9 @@ pub(crate) struct FrameTime {
     pub update: Duration,
     /// Waiting for and getting the swapchain image.
     pub acquire: Duration,
-    /// Recording and submitting the present pass, and presenting.
+    /// Recording the present pass (and any overlay's).
+    pub record: Duration,
+    /// Submitting it and presenting (on a software driver, also the rendering it waits for).
     pub present: Duration,
 }
 
@@ -59,20 +61,54 @@ impl FrameTimes {
         let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
         writeln!(
             file,
-            "frame,events_ms,fit_ms,update_ms,acquire_ms,present_ms"
+            "frame,events_ms,fit_ms,update_ms,acquire_ms,record_ms,present_ms"
         )?;
         let ms = |duration: Duration| duration.as_secs_f64() * 1000.0;
         for (frame, row) in self.rows.iter().enumerate() {
             writeln!(
                 file,
-                "{frame},{:.4},{:.4},{:.4},{:.4},{:.4}",
+                "{frame},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
                 ms(row.events),
                 ms(row.fit),
                 ms(row.update),
                 ms(row.acquire),
+                ms(row.record),
                 ms(row.present)
             )?;
         }
         file.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_row_has_a_value_under_each_heading() {
+        let mut times = FrameTimes::new(true);
+        times.add(Instant::now(), |time| &mut time.update);
+        times.presented();
+        times.presented();
+        let path = std::env::temp_dir().join(format!("frame-times-{}.csv", std::process::id()));
+        times.write_csv(&path).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 3, "a heading and one row per presented frame");
+        let columns = lines[0].split(',').count();
+        assert!(
+            lines.iter().all(|line| line.split(',').count() == columns),
+            "{text}"
+        );
+        assert!(lines[0].contains("record_ms"));
+    }
+
+    #[test]
+    fn nothing_is_kept_when_off() {
+        let mut times = FrameTimes::new(false);
+        times.add(Instant::now(), |time| &mut time.update);
+        times.presented();
+        assert!(times.rows.is_empty());
     }
 }

@@ -432,7 +432,10 @@ impl Runner {
         if let Err(error) = self.draw_frame(&mut encoder, &view, format) {
             return self.end(event_loop, Err(WindowError::Present(error)));
         }
-        gpu.queue.submit([encoder.finish()]);
+        let commands = encoder.finish();
+        self.frame_times.add(start, |time| &mut time.record);
+        let start = Instant::now();
+        gpu.queue.submit([commands]);
         window.pre_present_notify();
         gpu.queue.present(frame);
         if let Some(ScreenshotRequest(path)) = self.app.resources.remove::<ScreenshotRequest>() {
