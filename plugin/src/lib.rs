@@ -38,6 +38,9 @@ mod doc_tests {
     struct CustomMaterial;
     #[doc = include_str!("../docs/scene-tests.md")]
     struct SceneTests;
+    #[cfg(feature = "window")]
+    #[doc = include_str!("../docs/window.md")]
+    struct Window;
 }
 
 mod app;
