@@ -9,6 +9,8 @@
 //!   after (wgpu's counters);
 //! - `--hold-until FILE`: after the resizes, keeps running until FILE exists (a test minimises
 //!   and restores the window meanwhile);
+//! - `--panic-from N`: a system panics in every update from N on;
+//! - `--exit-on-error`: sets `WindowPlugin::exit_on_error`;
 //! - always: `Time`'s smallest and largest delta and whether its elapsed time grew every frame.
 
 use std::path::PathBuf;
@@ -32,6 +34,8 @@ struct Plan {
     lose_device_at: Option<u64>,
     resizes: u64,
     hold_until: Option<PathBuf>,
+    panic_from: Option<u64>,
+    exit_on_error: bool,
 }
 
 /// What the probe saw, in updates.
@@ -71,6 +75,8 @@ fn parse(args: &[String]) -> Result<Plan, String> {
             "--lose-device-at" => plan.lose_device_at = Some(number(value()?)?),
             "--resizes" => plan.resizes = number(value()?)?,
             "--hold-until" => plan.hold_until = Some(PathBuf::from(value()?)),
+            "--panic-from" => plan.panic_from = Some(number(value()?)?),
+            "--exit-on-error" => plan.exit_on_error = true,
             other => return Err(format!("unknown argument {other}")),
         }
     }
@@ -91,6 +97,7 @@ fn main() -> AppExit {
         title: "window probe".to_owned(),
         width: FIRST_SIZE.0,
         height: FIRST_SIZE.1,
+        exit_on_error: plan.exit_on_error,
         ..WindowPlugin::default()
     }));
     let bricks = patterns::bricks(128, 4.0, 8.0);
@@ -138,6 +145,7 @@ fn probe(world: &mut World, resources: &mut Resources) {
     };
     let (delta, elapsed) = (time.delta(), time.elapsed());
     let (frames, lose_device_at, resizes) = (plan.frames, plan.lose_device_at, plan.resizes);
+    let panic_from = plan.panic_from;
     let held = plan.hold_until.as_ref().is_some_and(|file| !file.exists());
     let live = live_objects(resources);
     let resized = resources
@@ -196,6 +204,12 @@ fn probe(world: &mut World, resources: &mut Resources) {
     }
     if let Some(window) = resources.get_mut::<WindowPlugin>() {
         (window.width, window.height) = size;
+    }
+    // The same message every time: the runner reports a repeated failure once.
+    if let Some(from) = panic_from
+        && update >= from
+    {
+        panic!("the probe panics from update {from} on");
     }
     if lose_device_at == Some(update)
         && let Some(gpu) = resources.get::<GpuContext>()

@@ -174,6 +174,40 @@ fn a_thousand_resizes_and_a_hundred_unmaps_leak_no_gpu_memory() {
 }
 
 #[test]
+fn a_panicking_system_is_reported_once_and_the_window_stays_unless_asked_to_exit() {
+    let report = run_probe(&["--frames", "12", "--panic-from", "3"], None);
+    assert_eq!(
+        report.matches("a system panicked").count(),
+        1,
+        "the runner's report:\n{report}"
+    );
+    assert_eq!(
+        report.matches("panicked at").count(),
+        1,
+        "the panic hook's report:\n{report}"
+    );
+    assert!(
+        report.contains("updates=12"),
+        "the window did not stay:\n{report}"
+    );
+
+    let xvfb = Xvfb::start();
+    let output = xvfb.run(
+        Command::new(probe()).args(["--frames", "12", "--panic-from", "3", "--exit-on-error"]),
+        PROBE_TIMEOUT,
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success(),
+        "exit_on_error exited 0:\n{stderr}"
+    );
+    assert!(
+        stderr.contains("a system panicked") && !stderr.contains("updates=12"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn a_close_request_ends_the_app_with_status_zero() {
     let xvfb = Xvfb::start();
     let child = xvfb.spawn(Command::new(probe()).args(["--frames", "100000"]));

@@ -66,6 +66,7 @@ impl App {
         };
         let event_loop =
             EventLoop::new().map_err(|error| WindowError::NoDisplay(error.to_string()))?;
+        let _hook = OncePanicHook::install();
         let mut runner = Runner {
             app: std::mem::take(self),
             settings,
@@ -455,6 +456,39 @@ impl Runner {
         {
             self.end(event_loop, Ok(AppExit::Success));
         }
+    }
+}
+
+/// While it lives, a panic prints (through the hook there was before) only the first time its
+/// message and place are seen: a system that panics every frame is reported once, as its
+/// error would be.
+struct OncePanicHook {
+    previous: Arc<PanicHook>,
+}
+
+type PanicHook = dyn Fn(&std::panic::PanicHookInfo<'_>) + Send + Sync + 'static;
+
+impl OncePanicHook {
+    fn install() -> Self {
+        let previous: Arc<PanicHook> = Arc::from(std::panic::take_hook());
+        let seen = std::sync::Mutex::new(std::collections::HashSet::new());
+        let print = Arc::clone(&previous);
+        std::panic::set_hook(Box::new(move |info| {
+            let first = seen
+                .lock()
+                .map_or(true, |mut seen| seen.insert(info.to_string()));
+            if first {
+                print(info);
+            }
+        }));
+        Self { previous }
+    }
+}
+
+impl Drop for OncePanicHook {
+    fn drop(&mut self) {
+        let previous = Arc::clone(&self.previous);
+        std::panic::set_hook(Box::new(move |info| previous(info)));
     }
 }
 
