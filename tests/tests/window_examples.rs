@@ -97,6 +97,11 @@ fn a_bad_automation_variable_is_a_one_line_error_and_a_failing_status() {
             "/no/such/folder/shot.png",
             "the folder \"/no/such/folder\" does not exist",
         ),
+        (
+            "POM_FRAME_TIMES",
+            "/no/such/folder/times.csv",
+            "POM_FRAME_TIMES=\"/no/such/folder/times.csv\": the folder",
+        ),
     ] {
         let output = xvfb.run(
             Command::new(example("parallax"))
