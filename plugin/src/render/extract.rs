@@ -154,192 +154,61 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let target = resources.require::<RenderTarget>()?;
     let (aspect, target_size) = (target.aspect(), target.size());
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
-
     let (camera, exposure, tonemapping) = active_camera_and_display(world);
-    let cascade_camera = camera.map(|(camera, transform)| {
-        let matrix = transform.to_mat4();
-        CascadeCamera {
-            position: transform.translation(),
-            forward: transform.forward(),
-            right: matrix.x_axis.truncate().normalize_or_zero(),
-            up: matrix.y_axis.truncate().normalize_or_zero(),
-            projection: camera.projection,
-            aspect,
-        }
-    });
-    let device_limit = resources
-        .get::<crate::GpuContext>()
-        .map_or(LightShadows::MAX_MAP_SIZE, |gpu| {
-            gpu.device.limits().max_texture_dimension_2d
-        });
-    let map_cap = shadow_map_cap(world, device_limit);
-    let mut shadow_views = ShadowViewList {
-        views: Vec::new(),
-        overflowed: false,
-    };
-    let (view_projection, camera_position, view_direction, clear_color) = match camera {
-        Some((camera, transform)) => {
-            let view = transform.to_mat4().inverse();
-            let orthographic = matches!(camera.projection, Projection::Orthographic { .. });
-            (
-                camera.projection.matrix(aspect) * view,
-                transform.translation(),
-                transform
-                    .forward()
-                    .extend(if orthographic { 1.0 } else { 0.0 }),
-                camera.clear_color,
-            )
-        }
-        None => (
-            Mat4::IDENTITY,
-            Vec3::ZERO,
-            Vec3::NEG_Z.extend(0.0),
-            Color::BLACK,
-        ),
-    };
-
+    let view = CameraView::of(camera.as_ref(), aspect);
     // Lux and candela to what the shaders multiply with the albedo: a Lambertian surface of
     // albedo ρ lit with illuminance E sends radiance ρ·E/π towards the eye (Lagarde & de
     // Rousiers §4.1), times the camera's exposure: the scene target holds pre-exposed values
     // (Frostbite's pre-exposure), because daylight radiance (≈ 30,000 cd/m²) would overflow
     // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
     let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
-    let ambient_intensity = if ambient.intensity.is_finite() {
-        ambient.intensity.max(0.0) * light_scale
-    } else {
-        0.0
+    let ambient_radiance = radiance(ambient.color, ambient.intensity, light_scale);
+    let mut lights = LightExtraction {
+        frame: FrameUniform {
+            view_projection: columns(view.view_projection),
+            camera_position: view.position.extend(1.0).into(),
+            view_direction: view.direction.into(),
+            ambient: [
+                ambient_radiance[0],
+                ambient_radiance[1],
+                ambient_radiance[2],
+                0.0,
+            ],
+            light_counts: [0; 4],
+            target_size: [target_size.0, target_size.1, 0, 0],
+            directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
+            point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
+        },
+        shadow_views: ShadowViewList {
+            views: Vec::new(),
+            overflowed: false,
+        },
+        map_cap: shadow_map_cap(world, device_texture_limit(resources)),
+        light_scale,
+        cascade_camera: camera
+            .map(|(camera, transform)| cascade_camera(&camera, &transform, aspect)),
     };
-    let mut frame = FrameUniform {
-        view_projection: columns(view_projection),
-        camera_position: camera_position.extend(1.0).into(),
-        view_direction: view_direction.into(),
-        ambient: (Vec3::new(ambient.color.r, ambient.color.g, ambient.color.b) * ambient_intensity)
-            .extend(0.0)
-            .into(),
-        light_counts: [0; 4],
-        target_size: [target_size.0, target_size.1, 0, 0],
-        directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
-        point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
-    };
-    let radiance = |color: Color, intensity: f32| {
-        let intensity = if intensity.is_finite() {
-            intensity.max(0.0) * light_scale
-        } else {
-            0.0
-        };
-        [
-            color.r * intensity,
-            color.g * intensity,
-            color.b * intensity,
-            0.0,
-        ]
-    };
-
-    let mut directional_count = 0;
-    for (light, transform, shadows) in world
-        .query::<(&DirectionalLight, &GlobalTransform, Option<&LightShadows>)>()
-        .iter()
-    {
-        if directional_count == MAX_DIRECTIONAL_LIGHTS {
-            log::warn!(
-                "more than {MAX_DIRECTIONAL_LIGHTS} directional lights: the rest are ignored"
-            );
-            break;
-        }
-        let (first_shadow_view, shadow_view_count) =
-            match (enabled_shadows(shadows, map_cap), &cascade_camera) {
-                (Some(shadows), Some(camera)) => {
-                    shadow_views.claim(&directional_views(camera, transform.forward(), &shadows))
-                }
-                _ => (0, 0),
-            };
-        frame.directional_lights[directional_count] = DirectionalLightGpu {
-            direction_to_light: (-transform.forward()).extend(0.0).into(),
-            radiance: radiance(light.color, light.intensity),
-            first_shadow_view,
-            shadow_view_count,
-            _padding: [0; 2],
-        };
-        directional_count += 1;
-    }
-    let mut point_count = 0;
-    for (light, transform, shadows) in world
-        .query::<(&PointLight, &GlobalTransform, Option<&LightShadows>)>()
-        .iter()
-    {
-        if point_count == MAX_POINT_LIGHTS {
-            log::warn!("more than {MAX_POINT_LIGHTS} point lights: the rest are ignored");
-            break;
-        }
-        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows, map_cap) {
-            Some(shadows) => {
-                shadow_views.claim(&point_views(transform.translation(), light.range, &shadows))
-            }
-            None => (0, 0),
-        };
-        frame.point_lights[point_count] = PointLightGpu {
-            position_range: transform.translation().extend(light.range.max(0.0)).into(),
-            radiance: radiance(light.color, light.intensity),
-            spot_direction: [0.0, 0.0, -1.0, 0.0],
-            // Scale 0, offset 1: full strength in every direction.
-            spot_cone: [0.0, 1.0, 0.0, 0.0],
-            first_shadow_view,
-            shadow_view_count,
-            _padding: [0; 2],
-        };
-        point_count += 1;
-    }
-    for (light, transform, shadows) in world
-        .query::<(&SpotLight, &GlobalTransform, Option<&LightShadows>)>()
-        .iter()
-    {
-        if point_count == MAX_POINT_LIGHTS {
-            log::warn!("more than {MAX_POINT_LIGHTS} point and spot lights: the rest are ignored");
-            break;
-        }
-        // glTF's cone: t = cos(angle to the axis) × scale + offset, clamped, squared.
-        let (inner, outer) = light.sanitized_cone();
-        let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
-        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows, map_cap) {
-            Some(shadows) => shadow_views.claim(&[spot_view(
-                transform.translation(),
-                transform.forward(),
-                outer,
-                light.range,
-                &shadows,
-            )]),
-            None => (0, 0),
-        };
-        frame.point_lights[point_count] = PointLightGpu {
-            position_range: transform.translation().extend(light.range.max(0.0)).into(),
-            radiance: radiance(light.color, light.intensity),
-            spot_direction: transform.forward().extend(0.0).into(),
-            spot_cone: [scale, -outer.cos() * scale, 0.0, 0.0],
-            first_shadow_view,
-            shadow_view_count,
-            _padding: [0; 2],
-        };
-        point_count += 1;
-    }
-    frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
+    let directional_count = lights.directional_lights(world);
+    let point_count = lights.point_and_spot_lights(world);
+    lights.frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
     // Once per episode, not every frame.
     let overflow_warned = resources
         .get::<ExtractedFrame>()
         .is_some_and(|last| last.shadow_maps_overflowed);
-    if shadow_views.overflowed && !overflow_warned {
+    let overflowed = lights.shadow_views.overflowed;
+    if overflowed && !overflow_warned {
         log::warn!(
             "the lights ask for more than {MAX_SHADOW_VIEWS} shadow maps: the rest cast no scene shadow"
         );
     }
-
     resources.insert(ExtractedFrame {
-        frame,
-        clear_color,
+        frame: lights.frame,
+        clear_color: view.clear_color,
         exposure,
         tonemapping,
-        shadow_maps_overflowed: shadow_views.overflowed,
+        shadow_maps_overflowed: overflowed,
         shadow_views: if camera.is_some() {
-            shadow_views.views
+            lights.shadow_views.views
         } else {
             Vec::new()
         },
@@ -348,4 +217,203 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target_size)),
     });
     Ok(())
+}
+
+/// The largest texture side the device allows (the shadow maps' cap), or the maps' own cap
+/// before there is a device.
+fn device_texture_limit(resources: &Resources) -> u32 {
+    resources
+        .get::<crate::GpuContext>()
+        .map_or(LightShadows::MAX_MAP_SIZE, |gpu| {
+            gpu.device.limits().max_texture_dimension_2d
+        })
+}
+
+/// The active camera as the frame uniform and the clear see it (a still default without one).
+struct CameraView {
+    view_projection: Mat4,
+    position: Vec3,
+    /// Where it looks, and 1 in `w` for an orthographic projection.
+    direction: glam::Vec4,
+    clear_color: Color,
+}
+
+impl CameraView {
+    fn of(camera: Option<&(Camera, GlobalTransform)>, aspect: f32) -> Self {
+        match camera {
+            Some((camera, transform)) => {
+                let view = transform.to_mat4().inverse();
+                let orthographic = matches!(camera.projection, Projection::Orthographic { .. });
+                Self {
+                    view_projection: camera.projection.matrix(aspect) * view,
+                    position: transform.translation(),
+                    direction: transform
+                        .forward()
+                        .extend(if orthographic { 1.0 } else { 0.0 }),
+                    clear_color: camera.clear_color,
+                }
+            }
+            None => Self {
+                view_projection: Mat4::IDENTITY,
+                position: Vec3::ZERO,
+                direction: Vec3::NEG_Z.extend(0.0),
+                clear_color: Color::BLACK,
+            },
+        }
+    }
+}
+
+/// The camera the directional lights fit their cascades to.
+fn cascade_camera(camera: &Camera, transform: &GlobalTransform, aspect: f32) -> CascadeCamera {
+    let matrix = transform.to_mat4();
+    CascadeCamera {
+        position: transform.translation(),
+        forward: transform.forward(),
+        right: matrix.x_axis.truncate().normalize_or_zero(),
+        up: matrix.y_axis.truncate().normalize_or_zero(),
+        projection: camera.projection,
+        aspect,
+    }
+}
+
+/// What the shaders multiply with the albedo for a light of `color` and `intensity` (lux or
+/// candela; not finite or negative: none), pre-exposed by `light_scale`.
+fn radiance(color: Color, intensity: f32, light_scale: f32) -> [f32; 4] {
+    let intensity = if intensity.is_finite() {
+        intensity.max(0.0) * light_scale
+    } else {
+        0.0
+    };
+    [
+        color.r * intensity,
+        color.g * intensity,
+        color.b * intensity,
+        0.0,
+    ]
+}
+
+/// The frame's lights being filled in, with the shadow maps they claim.
+struct LightExtraction {
+    frame: FrameUniform,
+    shadow_views: ShadowViewList,
+    /// The largest shadow map any light gets this frame.
+    map_cap: u32,
+    light_scale: f32,
+    cascade_camera: Option<CascadeCamera>,
+}
+
+impl LightExtraction {
+    /// Fills in the directional lights (with their cascades); returns how many.
+    fn directional_lights(&mut self, world: &World) -> usize {
+        let mut count = 0;
+        for (light, transform, shadows) in world
+            .query::<(&DirectionalLight, &GlobalTransform, Option<&LightShadows>)>()
+            .iter()
+        {
+            if count == MAX_DIRECTIONAL_LIGHTS {
+                log::warn!(
+                    "more than {MAX_DIRECTIONAL_LIGHTS} directional lights: the rest are ignored"
+                );
+                break;
+            }
+            let (first_shadow_view, shadow_view_count) =
+                match (enabled_shadows(shadows, self.map_cap), &self.cascade_camera) {
+                    (Some(shadows), Some(camera)) => self.shadow_views.claim(&directional_views(
+                        camera,
+                        transform.forward(),
+                        &shadows,
+                    )),
+                    _ => (0, 0),
+                };
+            self.frame.directional_lights[count] = DirectionalLightGpu {
+                direction_to_light: (-transform.forward()).extend(0.0).into(),
+                radiance: radiance(light.color, light.intensity, self.light_scale),
+                first_shadow_view,
+                shadow_view_count,
+                _padding: [0; 2],
+            };
+            count += 1;
+        }
+        count
+    }
+
+    /// Fills in the point lights, then the spot lights, which share their array; returns how
+    /// many.
+    fn point_and_spot_lights(&mut self, world: &World) -> usize {
+        let mut count = 0;
+        for (light, transform, shadows) in world
+            .query::<(&PointLight, &GlobalTransform, Option<&LightShadows>)>()
+            .iter()
+        {
+            if count == MAX_POINT_LIGHTS {
+                log::warn!("more than {MAX_POINT_LIGHTS} point lights: the rest are ignored");
+                break;
+            }
+            let (first_shadow_view, shadow_view_count) =
+                match enabled_shadows(shadows, self.map_cap) {
+                    Some(shadows) => self.shadow_views.claim(&point_views(
+                        transform.translation(),
+                        light.range,
+                        &shadows,
+                    )),
+                    None => (0, 0),
+                };
+            self.frame.point_lights[count] = PointLightGpu {
+                position_range: transform.translation().extend(light.range.max(0.0)).into(),
+                radiance: radiance(light.color, light.intensity, self.light_scale),
+                spot_direction: [0.0, 0.0, -1.0, 0.0],
+                // Scale 0, offset 1: full strength in every direction.
+                spot_cone: [0.0, 1.0, 0.0, 0.0],
+                first_shadow_view,
+                shadow_view_count,
+                _padding: [0; 2],
+            };
+            count += 1;
+        }
+        for (light, transform, shadows) in world
+            .query::<(&SpotLight, &GlobalTransform, Option<&LightShadows>)>()
+            .iter()
+        {
+            if count == MAX_POINT_LIGHTS {
+                log::warn!(
+                    "more than {MAX_POINT_LIGHTS} point and spot lights: the rest are ignored"
+                );
+                break;
+            }
+            self.frame.point_lights[count] = self.spot_light(light, transform, shadows);
+            count += 1;
+        }
+        count
+    }
+
+    /// A spot light as the shaders read it, claiming its shadow map.
+    fn spot_light(
+        &mut self,
+        light: &SpotLight,
+        transform: &GlobalTransform,
+        shadows: Option<&LightShadows>,
+    ) -> PointLightGpu {
+        // glTF's cone: t = cos(angle to the axis) × scale + offset, clamped, squared.
+        let (inner, outer) = light.sanitized_cone();
+        let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
+        let (first_shadow_view, shadow_view_count) = match enabled_shadows(shadows, self.map_cap) {
+            Some(shadows) => self.shadow_views.claim(&[spot_view(
+                transform.translation(),
+                transform.forward(),
+                outer,
+                light.range,
+                &shadows,
+            )]),
+            None => (0, 0),
+        };
+        PointLightGpu {
+            position_range: transform.translation().extend(light.range.max(0.0)).into(),
+            radiance: radiance(light.color, light.intensity, self.light_scale),
+            spot_direction: transform.forward().extend(0.0).into(),
+            spot_cone: [scale, -outer.cos() * scale, 0.0, 0.0],
+            first_shadow_view,
+            shadow_view_count,
+            _padding: [0; 2],
+        }
+    }
 }

@@ -120,78 +120,13 @@ impl PostProcess {
         let device = &gpu.device;
         let display = format.texture_format();
         let compute = !force_fragment && can_store(gpu, display);
-        let mut entries = vec![
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(
-                        std::mem::size_of::<PostSettings>() as u64
-                    ),
-                },
-                count: None,
-            },
-        ];
-        if compute {
-            entries.push(wgpu::BindGroupLayoutEntry {
-                binding: 2,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::StorageTexture {
-                    access: wgpu::StorageTextureAccess::WriteOnly,
-                    format: display,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                },
-                count: None,
-            });
-        }
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("post-process layout"),
-            entries: &entries,
-        });
+        let layout = bind_group_layout(device, display, compute);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("post-process pipeline layout"),
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = if compute {
-            let shader = match format {
-                TargetFormat::Float32 => POST_COMPUTE_RGBA32F,
-                _ => POST_COMPUTE_RGBA8,
-            }
-            .create_module(device);
-            PostPipeline::Compute(device.create_compute_pipeline(
-                &wgpu::ComputePipelineDescriptor {
-                    label: Some("post-process compute pipeline"),
-                    layout: Some(&pipeline_layout),
-                    module: &shader,
-                    entry_point: Some("post_main"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                },
-            ))
-        } else {
-            let shader = POST_FRAGMENT.create_module(device);
-            PostPipeline::Fragment(super::layout::fullscreen_pipeline(
-                device,
-                "post-process fragment pipeline",
-                Some(&pipeline_layout),
-                &shader,
-                "post_fragment",
-                display,
-            ))
-        };
+        let pipeline = pipeline(device, &pipeline_layout, format, compute);
         let settings = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("post-process settings"),
             size: std::mem::size_of::<PostSettings>() as u64,
@@ -306,6 +241,90 @@ impl PostProcess {
 /// Every post-processing shader, for validation.
 pub(crate) const POST_SHADERS: [ComposedShader; 3] =
     [POST_COMPUTE_RGBA8, POST_COMPUTE_RGBA32F, POST_FRAGMENT];
+
+/// The pass's bind group layout: the scene, the settings and, in compute, the display target.
+fn bind_group_layout(
+    device: &wgpu::Device,
+    display: wgpu::TextureFormat,
+    compute: bool,
+) -> wgpu::BindGroupLayout {
+    let mut entries = vec![
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<PostSettings>() as u64),
+            },
+            count: None,
+        },
+    ];
+    if compute {
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 2,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::WriteOnly,
+                format: display,
+                view_dimension: wgpu::TextureViewDimension::D2,
+            },
+            count: None,
+        });
+    }
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("post-process layout"),
+        entries: &entries,
+    })
+}
+
+/// The pass's pipeline: compute where it can store the display format, else a full-screen
+/// triangle.
+fn pipeline(
+    device: &wgpu::Device,
+    pipeline_layout: &wgpu::PipelineLayout,
+    format: TargetFormat,
+    compute: bool,
+) -> PostPipeline {
+    let display = format.texture_format();
+    if compute {
+        let shader = match format {
+            TargetFormat::Float32 => POST_COMPUTE_RGBA32F,
+            _ => POST_COMPUTE_RGBA8,
+        }
+        .create_module(device);
+        PostPipeline::Compute(
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("post-process compute pipeline"),
+                layout: Some(pipeline_layout),
+                module: &shader,
+                entry_point: Some("post_main"),
+                compilation_options: Default::default(),
+                cache: None,
+            }),
+        )
+    } else {
+        let shader = POST_FRAGMENT.create_module(device);
+        PostPipeline::Fragment(super::layout::fullscreen_pipeline(
+            device,
+            "post-process fragment pipeline",
+            Some(pipeline_layout),
+            &shader,
+            "post_fragment",
+            display,
+        ))
+    }
+}
 
 #[cfg(test)]
 mod tests {

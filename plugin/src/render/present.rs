@@ -99,26 +99,11 @@ impl Presenter {
         }
     }
 
-    /// Records into `encoder` the pass that draws `target`'s display colour into `view`, a
-    /// swapchain image of `format` and `size` pixels, over `rect` of it (`None`: all of it;
-    /// the rest is cleared to black).
-    ///
-    /// # Errors
-    /// [`PresentError::TargetFormat`] for a target that is not [`TargetFormat::Srgb8`].
-    pub fn record(
-        &mut self,
-        gpu: &GpuContext,
-        target: &RenderTarget,
-        encoder: &mut wgpu::CommandEncoder,
-        view: &wgpu::TextureView,
-        (format, size): (wgpu::TextureFormat, (u32, u32)),
-        rect: Option<ScreenRect>,
-    ) -> Result<(), PresentError> {
-        if target.target_format() != TargetFormat::Srgb8 {
-            return Err(PresentError::TargetFormat(target.target_format()));
-        }
+    /// Makes the pipeline for `format` on first use, and the bind group of `target` when it is
+    /// not the one presented last.
+    fn follow(&mut self, gpu: &GpuContext, target: &RenderTarget, format: wgpu::TextureFormat) {
         let device = &gpu.device;
-        let pipeline = self.pipelines.entry(format).or_insert_with(|| {
+        self.pipelines.entry(format).or_insert_with(|| {
             let entry = if takes_linear(format) {
                 "present_decoded"
             } else {
@@ -144,7 +129,30 @@ impl Presenter {
             });
             self.bind_group = Some((target.id(), group));
         }
-        let Some((_, bind_group)) = &self.bind_group else {
+    }
+
+    /// Records into `encoder` the pass that draws `target`'s display colour into `view`, a
+    /// swapchain image of `format` and `size` pixels, over `rect` of it (`None`: all of it;
+    /// the rest is cleared to black).
+    ///
+    /// # Errors
+    /// [`PresentError::TargetFormat`] for a target that is not [`TargetFormat::Srgb8`].
+    pub fn record(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        (format, size): (wgpu::TextureFormat, (u32, u32)),
+        rect: Option<ScreenRect>,
+    ) -> Result<(), PresentError> {
+        if target.target_format() != TargetFormat::Srgb8 {
+            return Err(PresentError::TargetFormat(target.target_format()));
+        }
+        self.follow(gpu, target, format);
+        let (Some(pipeline), Some((_, bind_group))) =
+            (self.pipelines.get(&format), &self.bind_group)
+        else {
             return Ok(());
         };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

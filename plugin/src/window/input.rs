@@ -7,6 +7,8 @@ use std::collections::HashSet;
 use std::hash::Hash;
 
 use glam::Vec2;
+use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
+use winit::keyboard::PhysicalKey;
 
 use crate::Resources;
 
@@ -142,6 +144,41 @@ pub(crate) enum InputEvent {
     Resized(u32, u32),
     Focused(bool),
     CloseRequested,
+}
+
+impl InputEvent {
+    /// The input a winit window event carries: keys, mouse buttons, the cursor and the wheel
+    /// (window events such as resizes are the runner's to queue).
+    pub(crate) fn from_window_event(event: &WindowEvent) -> Option<Self> {
+        match event {
+            WindowEvent::KeyboardInput { event, .. } => match event.physical_key {
+                PhysicalKey::Code(key) => Some(Self::Key {
+                    key,
+                    down: event.state == ElementState::Pressed,
+                }),
+                PhysicalKey::Unidentified(_) => None,
+            },
+            WindowEvent::MouseInput { state, button, .. } => Some(Self::Mouse {
+                button: *button,
+                down: *state == ElementState::Pressed,
+            }),
+            WindowEvent::CursorMoved { position, .. } => Some(Self::Cursor(Some(Vec2::new(
+                position.x as f32,
+                position.y as f32,
+            )))),
+            WindowEvent::CursorLeft { .. } => Some(Self::Cursor(None)),
+            WindowEvent::MouseWheel { delta, .. } => {
+                let (lines, pixels) = match delta {
+                    MouseScrollDelta::LineDelta(x, y) => (Vec2::new(*x, *y), Vec2::ZERO),
+                    MouseScrollDelta::PixelDelta(p) => {
+                        (Vec2::ZERO, Vec2::new(p.x as f32, p.y as f32))
+                    }
+                };
+                Some(Self::Scroll { lines, pixels })
+            }
+            _ => None,
+        }
+    }
 }
 
 /// Events queued since the last frame's [`update_input`]. A resource.

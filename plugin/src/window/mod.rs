@@ -21,6 +21,7 @@ mod frame_times;
 mod input;
 mod orbit_camera;
 mod overlay;
+mod panic_report;
 mod runner;
 mod screenshot;
 mod surface;
@@ -37,7 +38,7 @@ pub use input::{
 };
 pub use orbit_camera::{CameraInput, OrbitCamera, OrbitCameraPlugin, orbit_cameras};
 pub use overlay::WindowOverlay;
-pub use runner::panic_message;
+pub use panic_report::panic_message;
 pub use screenshot::{ScreenshotRequest, ScreenshotSaved};
 pub use surface::WindowSurface;
 

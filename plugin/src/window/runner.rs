@@ -14,13 +14,13 @@ use std::time::Instant;
 use glam::Vec2;
 use winit::application::ApplicationHandler;
 use winit::dpi::LogicalSize;
-use winit::event::{DeviceEvent, DeviceId, ElementState, MouseScrollDelta, WindowEvent};
+use winit::event::{DeviceEvent, DeviceId, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop, OwnedDisplayHandle};
-use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
 use super::frame_times::FrameTimes;
 use super::input::{InputEvent, PendingInput};
+use super::panic_report::{OncePanicHook, panic_message};
 use super::screenshot::ScreenshotTexture;
 use super::{
     AppExit, Automation, DeviceWatch, ScreenshotRequest, ScreenshotSaved, WindowError,
@@ -349,10 +349,38 @@ impl Runner {
             .push(event);
     }
 
+    /// One frame: check the device and the size, update the app, draw and present.
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         let start = Instant::now();
-        let (None, Some(open)) = (&self.outcome, &self.open) else {
+        let Some((gpu, window, size)) = self.ready_to_draw(event_loop) else {
             return;
+        };
+        self.frame_times.add(start, |time| &mut time.fit);
+        let start = Instant::now();
+        self.update_app(event_loop, &gpu, &window, size);
+        self.frame_times.add(start, |time| &mut time.update);
+        self.present(event_loop, &gpu, &window, size);
+        if let Some(exit) = self.app.resources.remove::<AppExit>() {
+            return self.end(event_loop, Ok(exit));
+        }
+        if self
+            .automation
+            .exit_after_frames
+            .is_some_and(|frames| self.frames >= frames)
+        {
+            self.end(event_loop, Ok(AppExit::Success));
+        }
+    }
+
+    /// The device and window to draw with and the window's size, once a lost device is
+    /// replaced and the size a system asked for is requested; `None` when there is nothing to
+    /// draw (the run ended, no window, no area).
+    fn ready_to_draw(
+        &mut self,
+        event_loop: &ActiveEventLoop,
+    ) -> Option<(GpuContext, Arc<Window>, (u32, u32))> {
+        let (None, Some(open)) = (&self.outcome, &self.open) else {
+            return None;
         };
         if let Some(reason) = open.device.lost()
             && let Err(error) = self.replace_lost_device(&reason)
@@ -361,30 +389,36 @@ impl Runner {
                 reason,
                 replacing: error.to_string(),
             };
-            return self.end(event_loop, Err(error));
+            self.end(event_loop, Err(error));
+            return None;
         }
         if let Err(error) = self.follow_size_request() {
             self.frame_failed(event_loop, error.to_string());
         }
-        let Some(open) = &self.open else {
-            return;
-        };
+        let open = self.open.as_ref()?;
         let (width, height) = open.surface.window_size();
-        if width == 0 || height == 0 {
-            return;
-        }
-        let (gpu, window) = (open.gpu.clone(), Arc::clone(&open.window));
-        self.frame_times.add(start, |time| &mut time.fit);
-        let start = Instant::now();
+        (width > 0 && height > 0)
+            .then(|| (open.gpu.clone(), Arc::clone(&open.window), (width, height)))
+    }
+
+    /// Fits the target to where the scene goes and runs the app's stages (and the overlay's
+    /// work around them); a failure is reported once.
+    fn update_app(
+        &mut self,
+        event_loop: &ActiveEventLoop,
+        gpu: &GpuContext,
+        window: &Window,
+        (width, height): (u32, u32),
+    ) {
         self.scene_rect = self
             .overlay
             .as_mut()
-            .and_then(|overlay| overlay.before_update(&mut self.app, &window))
+            .and_then(|overlay| overlay.before_update(&mut self.app, window))
             .and_then(|rect| rect.within(width, height));
         let (scene_width, scene_height) = self
             .scene_rect
             .map_or((width, height), |rect| (rect.width, rect.height));
-        fit_render_target(&mut self.app.resources, &gpu, scene_width, scene_height);
+        fit_render_target(&mut self.app.resources, gpu, scene_width, scene_height);
         let app = &mut self.app;
         let failure = match catch_unwind(AssertUnwindSafe(|| app.update())) {
             Ok(Ok(())) => None,
@@ -400,7 +434,17 @@ impl Runner {
         if let Some(failure) = failure {
             self.frame_failed(event_loop, failure);
         }
-        self.frame_times.add(start, |time| &mut time.update);
+    }
+
+    /// Draws the frame into the next swapchain image and presents it (nothing when the run
+    /// ended, the device was lost during the update, or no image came).
+    fn present(
+        &mut self,
+        event_loop: &ActiveEventLoop,
+        gpu: &GpuContext,
+        window: &Window,
+        size: (u32, u32),
+    ) {
         let start = Instant::now();
         let Some(open) = &mut self.open else {
             return;
@@ -419,18 +463,18 @@ impl Runner {
         let Some(frame) = open.surface.acquire(&open.gpu) else {
             return;
         };
+        let format = open.surface.format();
         self.frame_times.add(start, |time| &mut time.acquire);
         let start = Instant::now();
         let view = frame
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
-        let format = (open.surface.format(), (width, height));
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("present encoder"),
             });
-        if let Err(error) = self.draw_frame(&mut encoder, &view, format) {
+        if let Err(error) = self.draw_frame(&mut encoder, &view, (format, size)) {
             return self.end(event_loop, Err(WindowError::Present(error)));
         }
         let commands = encoder.finish();
@@ -446,60 +490,6 @@ impl Runner {
         self.frames += 1;
         self.frame_times.add(start, |time| &mut time.present);
         self.frame_times.presented();
-        if let Some(exit) = self.app.resources.remove::<AppExit>() {
-            return self.end(event_loop, Ok(exit));
-        }
-        if self
-            .automation
-            .exit_after_frames
-            .is_some_and(|frames| self.frames >= frames)
-        {
-            self.end(event_loop, Ok(AppExit::Success));
-        }
-    }
-}
-
-/// While it lives, a panic prints (through the hook there was before) only the first time its
-/// message and place are seen: a system that panics every frame is reported once, as its
-/// error would be.
-struct OncePanicHook {
-    previous: Arc<PanicHook>,
-}
-
-type PanicHook = dyn Fn(&std::panic::PanicHookInfo<'_>) + Send + Sync + 'static;
-
-impl OncePanicHook {
-    fn install() -> Self {
-        let previous: Arc<PanicHook> = Arc::from(std::panic::take_hook());
-        let seen = std::sync::Mutex::new(std::collections::HashSet::new());
-        let print = Arc::clone(&previous);
-        std::panic::set_hook(Box::new(move |info| {
-            let first = seen
-                .lock()
-                .map_or(true, |mut seen| seen.insert(info.to_string()));
-            if first {
-                print(info);
-            }
-        }));
-        Self { previous }
-    }
-}
-
-impl Drop for OncePanicHook {
-    fn drop(&mut self) {
-        let previous = Arc::clone(&self.previous);
-        std::panic::set_hook(Box::new(move |info| previous(info)));
-    }
-}
-
-/// The message of a caught panic (`catch_unwind`'s payload): its text, or "(no message)".
-pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(text) = payload.downcast_ref::<&str>() {
-        (*text).to_owned()
-    } else if let Some(text) = payload.downcast_ref::<String>() {
-        text.clone()
-    } else {
-        "(no message)".to_owned()
     }
 }
 
@@ -577,33 +567,11 @@ impl Runner {
                     open.window.request_redraw();
                 }
             }
-            WindowEvent::KeyboardInput { .. }
-            | WindowEvent::MouseInput { .. }
-            | WindowEvent::MouseWheel { .. }
-                if consumed => {}
-            WindowEvent::KeyboardInput { event, .. } => {
-                if let PhysicalKey::Code(key) = event.physical_key {
-                    let down = event.state == ElementState::Pressed;
-                    self.queue(InputEvent::Key { key, down });
+            // Input the overlay took (a click on its panel) stays from the game.
+            event if !consumed => {
+                if let Some(input) = InputEvent::from_window_event(&event) {
+                    self.queue(input);
                 }
-            }
-            WindowEvent::MouseInput { state, button, .. } => {
-                let down = state == ElementState::Pressed;
-                self.queue(InputEvent::Mouse { button, down });
-            }
-            WindowEvent::CursorMoved { position, .. } => {
-                let position = Vec2::new(position.x as f32, position.y as f32);
-                self.queue(InputEvent::Cursor(Some(position)));
-            }
-            WindowEvent::CursorLeft { .. } => self.queue(InputEvent::Cursor(None)),
-            WindowEvent::MouseWheel { delta, .. } => {
-                let (lines, pixels) = match delta {
-                    MouseScrollDelta::LineDelta(x, y) => (Vec2::new(x, y), Vec2::ZERO),
-                    MouseScrollDelta::PixelDelta(p) => {
-                        (Vec2::ZERO, Vec2::new(p.x as f32, p.y as f32))
-                    }
-                };
-                self.queue(InputEvent::Scroll { lines, pixels });
             }
             _ => {}
         }

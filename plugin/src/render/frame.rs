@@ -1,0 +1,189 @@
+//! The renderer's Prepare and Render stage systems: [`prepare_frame`] uploads the frame's data,
+//! [`render_frame`] decides what the frame runs ([`FramePlan`]) and runs one function per
+//! phase (frame_passes.rs), in the order `phases.rs` documents.
+
+use super::frame_passes::{FramePasses, clear_value, post_process};
+use super::{
+    DERIVED_TEXTURES_PASS, DrawPhase, ExtractedFrame, FrameUniform, GpuContext, PassTimestamps,
+    PostSettings, RenderPhase, RenderPhases, RenderTarget, Renderer, UploadStats, render_path,
+    time_pass,
+};
+use crate::{AppError, Assets, Image, Mesh, Resources};
+
+/// The Prepare stage's system: frees GPU copies of dropped assets and uploads the frame uniform.
+/// It runs before every material's Prepare system (materials need [`super::RenderPlugin`]
+/// first), and starts this frame's [`Renderer::last_upload`] count.
+pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+    resources
+        .scope(|resources, renderer: &mut Renderer| {
+            let gpu = resources.require::<GpuContext>()?;
+            let extracted = resources.require::<ExtractedFrame>()?;
+            let meshes = resources.require::<Assets<Mesh>>()?;
+            let images = resources.require::<Assets<Image>>()?;
+            let target = resources.require::<RenderTarget>()?;
+            renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
+            renderer.visibility_ids.reset();
+            if let (true, Some(background), Some(visibility)) = (
+                renderer.deferred,
+                &mut renderer.background,
+                &renderer.visibility,
+            ) {
+                background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
+            }
+            renderer.assets.release_freed(meshes, images);
+            let settings = PostSettings::new(extracted.tonemapping, target.target_format());
+            renderer.last_upload = UploadStats {
+                uniform_bytes: renderer.frame.upload(
+                    gpu,
+                    &extracted.frame,
+                    &light_views(extracted),
+                ) + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views)
+                    + renderer.post.upload(gpu, settings),
+                ..UploadStats::default()
+            };
+            Ok(())
+        })
+        .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+}
+
+/// The frame uniform each shadow map sees: the same lights, the light's eye.
+fn light_views(extracted: &ExtractedFrame) -> Vec<FrameUniform> {
+    extracted
+        .shadow_views
+        .iter()
+        .map(|plan| FrameUniform {
+            view_projection: plan.gpu.view_projection,
+            camera_position: plan.eye.extend(1.0).into(),
+            view_direction: plan
+                .forward
+                .extend(if plan.orthographic { 1.0 } else { 0.0 })
+                .into(),
+            ..extracted.frame
+        })
+        .collect()
+}
+
+/// The Render stage's system: builds the textures derived this frame, then runs the phases in
+/// order (prepass, shadows, opaque, resolve, transparent; then post-processing in a second
+/// submission; the overlay belongs to the application), each timed under its name.
+pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+    // Every material has prepared its blended draws: order them across materials.
+    resources.require_mut::<Renderer>()?.transparent.sort();
+    let plan = FramePlan::new(resources)?;
+    let times = PhaseTimes::reserve(&plan, resources);
+    let passes = FramePasses::new(resources, &plan)?;
+    let mut encoder = passes.encoder("frame encoder");
+    // Textures derived in the Prepare stage are built before every phase that may read them.
+    passes.derived_textures(&mut encoder, times.derived.as_ref());
+    if plan.prepass {
+        passes.prepass(&mut encoder, times.prepass.as_ref());
+    }
+    if plan.shadow_maps {
+        passes.shadow_maps(&mut encoder, times.shadows.as_ref());
+    }
+    if plan.shadow_work {
+        passes.shadow_work(&mut encoder);
+    }
+    if plan.opaque_pass {
+        passes.opaque(&mut encoder, times.opaque.as_ref());
+    }
+    if plan.resolve {
+        passes.resolve(&mut encoder, times.resolve.as_ref());
+    }
+    if plan.transparent {
+        passes.transparent(&mut encoder, times.transparent.as_ref());
+    }
+    passes.submit(encoder);
+    // Post-processing borrows the renderer mutably (its bind group follows the target).
+    post_process(resources, times.post.as_ref())
+}
+
+/// What this frame runs, decided once from the camera, the path and what the materials queued.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct FramePlan {
+    /// A camera sees the frame (without one, nothing is drawn; the target is still cleared).
+    pub has_camera: bool,
+    /// The frame runs the deferred path.
+    pub deferred: bool,
+    /// The depth prepass (the visibility pass, deferred) runs.
+    pub prepass: bool,
+    /// Shadow maps are drawn.
+    pub shadow_maps: bool,
+    /// Materials' own work of the shadows phase runs.
+    pub shadow_work: bool,
+    /// The opaque render pass runs: a deferred frame whose opaque phase draws nothing writes
+    /// the background from compute instead of clearing the scene in an empty render pass.
+    pub opaque_pass: bool,
+    /// The deferred compute resolve runs.
+    pub resolve: bool,
+    /// The resolve also writes the background.
+    pub background_in_compute: bool,
+    /// The transparent phase runs.
+    pub transparent: bool,
+    /// Textures derived from images are built this frame.
+    pub derived_textures: bool,
+}
+
+impl FramePlan {
+    fn new(resources: &Resources) -> Result<Self, AppError> {
+        let extracted = resources.require::<ExtractedFrame>()?;
+        let renderer = resources.require::<Renderer>()?;
+        let has_camera = extracted.has_camera;
+        let phases = resources.get::<RenderPhases>();
+        let has =
+            |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.has_draws(phase, resources));
+        let has_work = |phase: RenderPhase| {
+            has_camera && phases.is_some_and(|p| p.work(phase).next().is_some())
+        };
+        let shadow_maps = !extracted.shadow_views.is_empty()
+            && phases.is_some_and(|p| p.shadow_draws().next().is_some());
+        let prepass = renderer.depth_prepass && has(DrawPhase::Prepass);
+        let resolve = renderer.deferred
+            && prepass
+            && has_camera
+            && phases.is_some_and(|p| p.has_resolves(resources));
+        let background_in_compute = resolve && !has(DrawPhase::Opaque);
+        Ok(Self {
+            has_camera,
+            deferred: renderer.deferred,
+            prepass,
+            shadow_maps,
+            shadow_work: shadow_maps || has_work(RenderPhase::Shadows),
+            opaque_pass: !background_in_compute,
+            resolve,
+            background_in_compute,
+            transparent: has(DrawPhase::Transparent)
+                || (has_camera && !renderer.transparent.is_empty()),
+            derived_textures: !renderer.assets.pending_derived_builds().is_empty(),
+        })
+    }
+}
+
+/// The timestamps each phase writes, reserved before recording (the timer is borrowed
+/// mutably).
+struct PhaseTimes {
+    prepass: Option<PassTimestamps>,
+    shadows: Option<PassTimestamps>,
+    opaque: Option<PassTimestamps>,
+    resolve: Option<PassTimestamps>,
+    transparent: Option<PassTimestamps>,
+    post: Option<PassTimestamps>,
+    derived: Option<PassTimestamps>,
+}
+
+impl PhaseTimes {
+    fn reserve(plan: &FramePlan, resources: &mut Resources) -> Self {
+        let mut time = |run: bool, name: &str| run.then(|| time_pass(resources, name)).flatten();
+        Self {
+            prepass: time(plan.prepass, RenderPhase::Prepass.name()),
+            shadows: time(plan.shadow_maps, RenderPhase::Shadows.name()),
+            opaque: time(plan.opaque_pass, RenderPhase::Opaque.name()),
+            resolve: time(plan.resolve, RenderPhase::Resolve.name()),
+            transparent: time(plan.transparent, RenderPhase::Transparent.name()),
+            post: time(true, RenderPhase::PostProcess.name()),
+            // Reserved last: where a frame times more passes than the timer holds, the phases
+            // keep theirs.
+            derived: time(plan.derived_textures, DERIVED_TEXTURES_PASS),
+        }
+    }
+}

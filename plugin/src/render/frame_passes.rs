@@ -1,0 +1,255 @@
+//! The passes of a frame, one function per phase, recorded into the frame's encoder by
+//! [`super::render_frame`] as its [`FramePlan`] says; post-processing in its own submission.
+
+use super::frame::FramePlan;
+use super::{
+    DrawPhase, ExtractedFrame, GpuContext, PassTimestamps, RenderPhase, RenderPhases, RenderTarget,
+    Renderer, clearing_attachment,
+};
+use crate::{AppError, Resources};
+
+/// What the phases of one frame read: the app's resources and the frame's plan.
+pub(super) struct FramePasses<'a> {
+    resources: &'a Resources,
+    plan: &'a FramePlan,
+    gpu: &'a GpuContext,
+    target: &'a RenderTarget,
+    extracted: &'a ExtractedFrame,
+    renderer: &'a Renderer,
+    phases: Option<&'a RenderPhases>,
+}
+
+impl<'a> FramePasses<'a> {
+    pub fn new(resources: &'a Resources, plan: &'a FramePlan) -> Result<Self, AppError> {
+        Ok(Self {
+            resources,
+            plan,
+            gpu: resources.require::<GpuContext>()?,
+            target: resources.require::<RenderTarget>()?,
+            extracted: resources.require::<ExtractedFrame>()?,
+            renderer: resources.require::<Renderer>()?,
+            phases: resources.get::<RenderPhases>(),
+        })
+    }
+
+    /// A command encoder on the frame's device.
+    pub fn encoder(&self, label: &str) -> wgpu::CommandEncoder {
+        self.gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) })
+    }
+
+    /// Submits the frame's passes.
+    pub fn submit(&self, encoder: wgpu::CommandEncoder) {
+        self.gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// Draws every material's draws of `phase` into `pass` (none without a camera).
+    fn draw_phase(&self, phase: DrawPhase, pass: &mut wgpu::RenderPass<'_>) {
+        if let (true, Some(phases)) = (self.plan.has_camera, self.phases) {
+            for draw in phases.draws(phase) {
+                draw(self.resources, pass);
+            }
+        }
+    }
+
+    /// The target's depth as the attachment, with `ops` (`None`: read-only).
+    fn depth_attachment(
+        &self,
+        ops: Option<wgpu::Operations<f32>>,
+    ) -> Option<wgpu::RenderPassDepthStencilAttachment<'a>> {
+        Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &self.target.depth_view,
+            depth_ops: ops,
+            stencil_ops: None,
+        })
+    }
+
+    /// Builds the textures derived in the Prepare stage.
+    pub fn derived_textures(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) {
+        self.renderer
+            .assets
+            .pending_derived_builds()
+            .record(encoder, time);
+    }
+
+    /// The depth prepass. On the deferred path it is the visibility pass: its fragments also
+    /// merge each pixel's draw and triangle into the visibility keys (0: none).
+    pub fn prepass(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
+        let deferred = self.plan.deferred;
+        if let (true, Some(visibility)) = (deferred, &self.renderer.visibility) {
+            encoder.clear_buffer(&visibility.keys, 0, None);
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(if deferred { "visibility" } else { "prepass" }),
+            color_attachments: &[],
+            depth_stencil_attachment: self.depth_attachment(Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            })),
+            timestamp_writes: time.map(PassTimestamps::render),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        self.draw_phase(DrawPhase::Prepass, &mut pass);
+    }
+
+    /// One pass per shadow map, each drawing every shadow caster from its light.
+    pub fn shadow_maps(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
+        let Some(phases) = self.phases else {
+            return;
+        };
+        let shadow_maps = &self.renderer.shadow_maps;
+        let layer_size = shadow_maps.layer_size();
+        let count = self.extracted.shadow_views.len();
+        for (index, plan) in self.extracted.shadow_views.iter().enumerate() {
+            let Some(layer) = shadow_maps.layer_view(plan.gpu.layer) else {
+                continue;
+            };
+            let (first, last) = (index == 0, index + 1 == count);
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow map"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: layer,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                // The phase's span: the first map's pass begins it, the last one ends it.
+                timestamp_writes: time
+                    .filter(|_| first || last)
+                    .map(|time| time.render_part(first, last)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            // A smaller map draws into a corner of its layer.
+            let size = plan.map_size.min(layer_size) as f32;
+            pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+            for draw in phases.shadow_draws() {
+                draw(self.resources, &mut pass, 1 + index as u32);
+            }
+        }
+    }
+
+    /// The materials' own work of the shadows phase.
+    pub fn shadow_work(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(phases) = self.phases {
+            for work in phases.work(RenderPhase::Shadows) {
+                work(self.resources, encoder);
+            }
+        }
+    }
+
+    /// The opaque phase: clears the scene and draws every opaque surface. After a prepass the
+    /// depth is read-only: materials test against it, and may sample it.
+    pub fn opaque(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
+        let [r, g, b, a] = clear_value(self.extracted.clear_color).map(f64::from);
+        let depth_ops = (!self.plan.prepass).then_some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(1.0),
+            store: if self.plan.transparent {
+                wgpu::StoreOp::Store
+            } else {
+                wgpu::StoreOp::Discard
+            },
+        });
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("opaque"),
+            color_attachments: &[Some(clearing_attachment(
+                &self.target.scene_view,
+                wgpu::Color { r, g, b, a },
+            ))],
+            depth_stencil_attachment: self.depth_attachment(depth_ops),
+            timestamp_writes: time.map(PassTimestamps::render),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        self.draw_phase(DrawPhase::Opaque, &mut pass);
+    }
+
+    /// The deferred path's compute resolve (and the background, where no opaque pass ran).
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
+        let Some(phases) = self.phases else {
+            return;
+        };
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("deferred resolve"),
+            timestamp_writes: time.map(PassTimestamps::compute),
+        });
+        if self.plan.background_in_compute
+            && let Some(background) = &self.renderer.background
+        {
+            background.record(&mut pass);
+        }
+        for dispatch in phases.resolves() {
+            dispatch(self.resources, &mut pass);
+        }
+    }
+
+    /// The transparent phase: every material's blended draws farthest first, then the draws
+    /// materials record themselves.
+    pub fn transparent(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("transparent"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &self.target.scene_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: self.depth_attachment(None),
+            timestamp_writes: time.map(PassTimestamps::render),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if let Some(phases) = self.phases {
+            self.renderer
+                .transparent
+                .record(phases, self.resources, &mut pass);
+        }
+        self.draw_phase(DrawPhase::Transparent, &mut pass);
+    }
+}
+
+/// Post-processing and the materials' work of that phase, in a submission after the frame's.
+pub(super) fn post_process(
+    resources: &mut Resources,
+    time: Option<&PassTimestamps>,
+) -> Result<(), AppError> {
+    resources
+        .scope(|resources, renderer: &mut Renderer| {
+            renderer.assets.derived_builds_submitted();
+            let gpu = resources.require::<GpuContext>()?;
+            let target = resources.require::<RenderTarget>()?;
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("post-process encoder"),
+                });
+            renderer.post.record(gpu, target, &mut encoder, time);
+            if let Some(phases) = resources.get::<RenderPhases>() {
+                for work in phases.work(RenderPhase::PostProcess) {
+                    work(resources, &mut encoder);
+                }
+            }
+            gpu.queue.submit([encoder.finish()]);
+            Ok(())
+        })
+        .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+}
+
+/// What the scene is cleared to: the clear colour as set, its negative alpha marking it
+/// display-referred (post_process.wgsl), so neither exposure nor tonemapping changes the
+/// background.
+pub(super) fn clear_value(clear: crate::Color) -> [f32; 4] {
+    [clear.r, clear.g, clear.b, -1.0 - clear.a.clamp(0.0, 1.0)]
+}

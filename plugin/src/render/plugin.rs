@@ -1,0 +1,173 @@
+//! [`RenderPlugin`]: the renderer's settings, the stores and systems it adds, and the GPU
+//! state it makes when the app finishes its plugins.
+
+use super::{
+    FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, PostProcess, RenderPath, RenderPhases,
+    RenderTarget, Renderer, ShadowMaps, TargetFormat, TimingMode, TransparentPhase, UploadStats,
+    VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame,
+    resolve_gpu_timings, set_gpu_timing, target,
+};
+use crate::{
+    AmbientLight, App, Assets, BoxedError, Image, Mesh, Plugin, Stage, TransformPlugin,
+    free_unused_assets,
+};
+
+/// Renders every mesh entity into an offscreen target of a fixed size.
+///
+/// Adds [`TransformPlugin`] if missing, the `Assets<Mesh>` and `Assets<Image>` stores, an
+/// [`AmbientLight`], and the Extract, Prepare and Render systems. The GPU context is created in
+/// [`Plugin::finish`] unless a [`GpuContext`] resource was inserted before (to share a device
+/// with a window, say).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RenderPlugin {
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// What the target stores: display pixels or raw floats.
+    pub format: TargetFormat,
+    /// GPU pass timing ([`GpuTimings`]), when the adapter supports it; `None` turns it off.
+    pub gpu_timing: Option<TimingMode>,
+    /// Whether opaque geometry is drawn into a depth prepass first, so the opaque phase
+    /// shades each pixel once (on by default; off draws and shades in one pass).
+    pub depth_prepass: bool,
+    /// Where post-processing runs.
+    pub post_process: PostProcessPath,
+    /// Where opaque surfaces are shaded: forward, deferred, or the faster on the adapter.
+    pub path: RenderPath,
+}
+
+/// Where the post-processing phase runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum PostProcessPath {
+    /// Compute where the adapter can write the display format from compute, else a
+    /// full-screen triangle.
+    #[default]
+    Fastest,
+    /// Always the full-screen triangle (to compare the two, or to work around a driver).
+    Fragment,
+}
+
+impl RenderPlugin {
+    /// A plugin rendering into a `width`×`height` offscreen sRGB image.
+    pub fn headless(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            format: TargetFormat::Srgb8,
+            gpu_timing: Some(TimingMode::NonBlocking),
+            depth_prepass: true,
+            post_process: PostProcessPath::Fastest,
+            path: RenderPath::Auto,
+        }
+    }
+
+    /// The same plugin shading opaque surfaces on `path`.
+    pub fn with_path(self, path: RenderPath) -> Self {
+        Self { path, ..self }
+    }
+
+    /// The same plugin with the depth prepass on or off.
+    pub fn with_depth_prepass(self, depth_prepass: bool) -> Self {
+        Self {
+            depth_prepass,
+            ..self
+        }
+    }
+
+    /// The same plugin with post-processing on `path`.
+    pub fn with_post_process(self, post_process: PostProcessPath) -> Self {
+        Self {
+            post_process,
+            ..self
+        }
+    }
+
+    /// The same plugin rendering raw floats (for measurements) instead.
+    pub fn with_format(self, format: TargetFormat) -> Self {
+        Self { format, ..self }
+    }
+
+    /// The same plugin with GPU timing in `mode`, or off with `None`.
+    pub fn with_gpu_timing(self, gpu_timing: Option<TimingMode>) -> Self {
+        Self { gpu_timing, ..self }
+    }
+}
+
+impl Default for RenderPlugin {
+    fn default() -> Self {
+        Self::headless(1280, 720)
+    }
+}
+
+impl Plugin for RenderPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.has_plugin::<TransformPlugin>() {
+            app.add_plugin(TransformPlugin);
+        }
+        app.resources.get_or_default::<Assets<Mesh>>();
+        app.resources.get_or_default::<Assets<Image>>();
+        app.resources.get_or_default::<AmbientLight>();
+        app.resources.get_or_default::<RenderPhases>();
+        app.resources.get_or_default::<MeshLodCache>();
+        app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
+            .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
+            .add_system(Stage::Extract, extract_frame)
+            .add_system(Stage::Prepare, prepare_frame)
+            .add_system(Stage::Render, render_frame)
+            .add_system(Stage::Render, resolve_gpu_timings);
+    }
+
+    fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
+        if !app.resources.contains::<GpuContext>() {
+            app.insert_resource(GpuContext::headless()?);
+        }
+        let gpu = app.resources.require::<GpuContext>()?;
+        let target = RenderTarget::new(gpu, self.width, self.height, self.format);
+        let frame = FrameUniformBuffer::new(gpu);
+        let dummy_depth = gpu
+            .device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("dummy depth"),
+                size: wgpu::Extent3d::default(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: target::DEPTH_FORMAT,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let renderer = Renderer {
+            assets: GpuAssets::new(gpu),
+            frame,
+            depth_prepass: self.depth_prepass,
+            dummy_depth,
+            dummy_visibility: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("visibility stand-in"),
+                size: VISIBILITY_BYTES_PER_PIXEL,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }),
+            shadow_maps: ShadowMaps::new(gpu),
+            path: self.path,
+            deferred: false,
+            deferred_unavailable: None,
+            visibility: None,
+            background: None,
+            visibility_ids: VisibilityIds::default(),
+            transparent: TransparentPhase::default(),
+            first_frame: true,
+            post: PostProcess::new(
+                gpu,
+                self.format,
+                self.post_process == PostProcessPath::Fragment,
+            ),
+            last_upload: UploadStats::default(),
+        };
+        app.insert_resource(target).insert_resource(renderer);
+        set_gpu_timing(&mut app.resources, self.gpu_timing);
+        Ok(())
+    }
+}

@@ -1,0 +1,174 @@
+//! [`Renderer`]: the renderer's GPU state between frames (uploaded assets, the frame uniform,
+//! shadow maps, the deferred path's buffers, post-processing) and the choice of path.
+
+use super::{
+    DeferredBackground, DeferredUnavailable, FrameUniformBuffer, GpuAssets, GpuContext,
+    PostProcess, RenderPath, RenderTarget, ShadowMaps, TransparentPhase, UploadStats,
+    VisibilityBuffer, VisibilityIds, render_path,
+};
+use crate::{Image, Mesh};
+
+/// The renderer's GPU state: uploaded assets, the frame uniform, post-processing. A resource.
+#[derive(Debug)]
+pub struct Renderer {
+    /// GPU copies of meshes and images.
+    pub(crate) assets: GpuAssets,
+    /// Camera and lights, shared by every material pipeline.
+    pub(crate) frame: FrameUniformBuffer,
+    /// Whether frames run the depth prepass.
+    pub(crate) depth_prepass: bool,
+    /// A 1 × 1 depth texture bound where the real one is being written.
+    pub(crate) dummy_depth: wgpu::TextureView,
+    /// A one-key visibility buffer bound where the real one is not written.
+    pub(crate) dummy_visibility: wgpu::Buffer,
+    /// Every light's shadow maps.
+    pub(crate) shadow_maps: ShadowMaps,
+    /// The path asked for.
+    pub(super) path: RenderPath,
+    /// Whether this frame runs deferred (decided in the Prepare stage).
+    pub(crate) deferred: bool,
+    /// Why the last frame that asked for deferred ran forward, as logged.
+    pub(super) deferred_unavailable: Option<DeferredUnavailable>,
+    /// The deferred path's visibility buffer, once a frame has needed it.
+    pub(crate) visibility: Option<VisibilityBuffer>,
+    /// The deferred path's background pass, once a frame has needed it.
+    pub(super) background: Option<DeferredBackground>,
+    /// This frame's visibility ids, handed to the materials' batches as they prepare.
+    pub(crate) visibility_ids: VisibilityIds,
+    /// This frame's blended draws of every material, drawn farthest first.
+    pub(crate) transparent: TransparentPhase,
+    /// No frame has chosen its path yet (the first choice is always logged).
+    pub(super) first_frame: bool,
+    /// Tonemapping (the lights carry the exposure).
+    pub(super) post: PostProcess,
+    /// What the last Prepare stage uploaded (the core's frame data and every material's).
+    pub last_upload: UploadStats,
+}
+
+impl Renderer {
+    /// Whether frames run the depth prepass.
+    pub fn depth_prepass(&self) -> bool {
+        self.depth_prepass
+    }
+
+    /// Whether post-processing runs as a compute pass (else as a full-screen triangle).
+    pub fn post_process_is_compute(&self) -> bool {
+        self.post.is_compute()
+    }
+
+    /// The path asked for (see [`Renderer::runs_deferred`] for the one that runs).
+    pub fn path(&self) -> RenderPath {
+        self.path
+    }
+
+    /// Asks for `path` from the next frame on (the choice is logged).
+    pub fn set_path(&mut self, path: RenderPath) {
+        self.path = path;
+    }
+
+    /// Whether the last prepared frame ran the deferred path.
+    pub fn runs_deferred(&self) -> bool {
+        self.deferred
+    }
+
+    /// Why the last frame runs forward although its path asked for deferred, if it does.
+    pub fn deferred_unavailable(&self) -> Option<DeferredUnavailable> {
+        self.deferred_unavailable
+    }
+
+    /// Decides whether this frame runs deferred, logging when the decision changes, and makes
+    /// the visibility buffer on the first deferred frame of a target.
+    /// `blocker` is what of the app stops the deferred path (a material, a draw, a counter).
+    pub(super) fn choose_path(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        blocker: Option<DeferredUnavailable>,
+    ) {
+        let wants = match self.path {
+            RenderPath::Forward => false,
+            RenderPath::Deferred => true,
+            RenderPath::Auto => render_path::auto_picks_deferred(gpu),
+        };
+        let unavailable = if wants {
+            render_path::deferred_support(gpu, self.depth_prepass, target)
+                .and_then(|()| blocker.map_or(Ok(()), Err))
+                .err()
+        } else {
+            None
+        };
+        let deferred = wants && unavailable.is_none();
+        if (deferred, unavailable) != (self.deferred, self.deferred_unavailable) || self.first_frame
+        {
+            match unavailable {
+                Some(reason) => {
+                    log::warn!("render path {}: runs forward, since {reason}", self.path)
+                }
+                None => log::info!(
+                    "render path {}: runs {}",
+                    self.path,
+                    if deferred { "deferred" } else { "forward" }
+                ),
+            }
+        }
+        self.first_frame = false;
+        self.deferred = deferred;
+        self.deferred_unavailable = unavailable;
+        if deferred {
+            match &mut self.visibility {
+                Some(visibility) => visibility.follow(gpu, target),
+                None => self.visibility = Some(VisibilityBuffer::new(gpu, target)),
+            }
+        }
+        if deferred && self.background.is_none() {
+            self.background = Some(DeferredBackground::new(gpu, target.scene_format()));
+        }
+    }
+}
+
+/// What materials bind as the prepass depth, shadow maps and visibility keys for `target`: its
+/// depth after a prepass, else the dummy; the target's visibility buffer once made, else a
+/// stand-in (fields apart, so the renderer's assets stay borrowable).
+pub(crate) fn depth_bindings<'a>(
+    depth_prepass: bool,
+    dummy: &'a wgpu::TextureView,
+    shadow_maps: &'a ShadowMaps,
+    (visibility, dummy_visibility): (Option<&'a VisibilityBuffer>, &'a wgpu::Buffer),
+    target: &'a RenderTarget,
+) -> crate::material::DepthBindings<'a> {
+    let visibility = visibility.filter(|visibility| visibility.target == target.id());
+    crate::material::DepthBindings {
+        visibility: visibility.map_or(dummy_visibility, |visibility| &visibility.keys),
+        dummy_visibility,
+        opaque: if depth_prepass {
+            &target.depth_view
+        } else {
+            dummy
+        },
+        dummy,
+        shadow_maps: shadow_maps.array_view(),
+        dummy_shadow_maps: shadow_maps.dummy_view(),
+        shadow_views: shadow_maps.views_buffer(),
+        shadow_sampler: shadow_maps.sampler(),
+        bound: (target.id(), shadow_maps.generation(), visibility.is_some()),
+    }
+}
+
+impl Renderer {
+    /// The texture an image was uploaded to, for reading it back ([`read_rgba8`]); `None`
+    /// until the Prepare stage has uploaded it.
+    pub fn gpu_texture(&self, image: crate::AssetId<Image>) -> Option<&wgpu::Texture> {
+        self.assets.image(image).map(|image| &image.texture)
+    }
+
+    /// Whether a mesh is uploaded and valid (an invalid mesh is logged once and not drawn).
+    pub fn has_gpu_mesh(&self, mesh: crate::AssetId<Mesh>) -> bool {
+        self.assets.mesh(mesh).is_some()
+    }
+
+    /// How many textures derived from images (maximum pyramids) the GPU holds: one per image
+    /// and derivation some draw used in the last frame.
+    pub fn derived_texture_count(&self) -> usize {
+        self.assets.derived_count()
+    }
+}
