@@ -1,7 +1,6 @@
 //! The README's game in a window: a parallax brick plane, lit, seen from above.
 //! `cargo run --release -p pom --example minimal --features window`
-use pom::window::{AppExit, WindowPlugin};
-use pom::{glam::Vec3, *};
+use pom::prelude::*;
 
 fn main() -> AppExit {
     let mut app = App::new();

@@ -62,6 +62,7 @@ mod name;
 mod normal_map;
 pub mod parallax;
 pub mod picking;
+pub mod prelude;
 pub mod preview;
 #[cfg(feature = "scene-tests")]
 pub mod reference;

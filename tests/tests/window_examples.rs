@@ -321,7 +321,9 @@ fn the_custom_material_example_shows_the_documented_material() {
 fn the_readmes_window_game_is_the_minimal_example_and_runs() {
     let readme = include_str!("../../README.md");
     let example = include_str!("../../plugin/examples/minimal.rs");
-    let code = &example[example.find("use pom::window").expect("the example's code")..];
+    let code = &example[example
+        .find("use pom::prelude")
+        .expect("the example's code")..];
     let section = &readme[readme
         .find("## A game in a window")
         .expect("the README's section")..];

@@ -1,0 +1,32 @@
+//! The names a game uses, for `use pom::prelude::*;`: the app and its plugins, transforms,
+//! cameras and lights, meshes and images, the two shipped materials, time, glam's vectors,
+//! hecs's world, and (with the `window` feature) the window, its input and the cameras that
+//! move with it.
+//!
+//! ```
+//! use pom::prelude::*;
+//!
+//! let mut app = App::new();
+//! app.add_plugin(DefaultPlugins::headless(64, 64));
+//! let plane = app.resources.get_or_default::<Assets<Mesh>>().add(Mesh::plane(2.0));
+//! app.world.spawn((plane, LitMaterial::from_color(Color::WHITE), Transform::IDENTITY));
+//! let eye = Transform::from_xyz(0.0, 2.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y);
+//! app.world.spawn((Camera::perspective(45.0), eye));
+//! ```
+
+pub use glam::{Mat4, Quat, Vec2, Vec3, Vec4};
+pub use hecs::{Entity, World};
+
+pub use crate::{
+    AmbientLight, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight, Exposure,
+    GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, Material,
+    MaterialPlugin, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Parent, Plugin, PointLight,
+    PomPlugin, Projection, RenderPlugin, Resources, SpotLight, Stage, Time, Tonemapping, Transform,
+    load_gltf, patterns,
+};
+
+#[cfg(feature = "window")]
+pub use crate::window::{
+    AppExit, ButtonInput, FlyCamera, FlyCameraPlugin, KeyCode, MouseButton, OrbitCamera,
+    OrbitCameraPlugin, WindowPlugin,
+};
