@@ -55,6 +55,7 @@ mod image;
 #[cfg(feature = "scene-tests")]
 mod image_compare;
 mod light;
+mod lighting;
 pub mod lit;
 pub mod material;
 pub mod mesh;
@@ -102,13 +103,14 @@ pub use image::{
 #[cfg(feature = "scene-tests")]
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight, SpotLight};
+pub use lighting::LightingModel;
 pub use lit::{AlphaMode, LitMaterial, LitParams, LitPatch, LitPreset, lit_plugin};
 pub use material::{Material, MaterialPlugin};
 pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
-    DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, ParallaxMethod,
+    DebugView, HeightConvention, HeightSource, HeightUnits, ParallaxMethod,
     ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset, PresetError,
     ShadowMode,
 };

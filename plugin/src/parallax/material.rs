@@ -2,7 +2,7 @@
 //! default, limits, unit and help (`material_parameters!`), and the checks between them.
 
 use crate::material::{LimitError, ParamSpec};
-use crate::{Color, Handle, Image};
+use crate::{Color, Handle, Image, LightingModel};
 
 crate::choice_enum! {
     /// How the ray/height-field intersection is found. One march serves every method; they
@@ -52,27 +52,6 @@ crate::choice_enum! {
         Texture = "texture",
         /// World units (Luna §3): the same depth under any tiling or object scale.
         World = "world",
-    }
-}
-
-crate::choice_enum! {
-    /// The lighting model.
-    pub enum LightingModel: "LIGHTING" {
-        /// Phong, as in Tatarchuk's listing: highlight around the mirrored view ray.
-        Phong = "phong",
-        /// Blinn-Phong: highlight around the half vector.
-        BlinnPhong = "blinn_phong",
-        /// Cook-Torrance (GGX) specular over Oren-Nayar diffuse, with roughness and metallic.
-        CookTorrance = "cook_torrance",
-        /// GGX specular over Lambert diffuse, with roughness and metallic: glTF's BRDF (spec appendix B).
-        GgxLambert = "ggx_lambert",
-    }
-}
-
-impl LightingModel {
-    /// Whether the model is driven by roughness and metallic (else specular and shininess).
-    pub fn uses_roughness(self) -> bool {
-        matches!(self, Self::CookTorrance | Self::GgxLambert)
     }
 }
 

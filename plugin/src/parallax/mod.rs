@@ -5,11 +5,11 @@ mod material;
 mod pipelines;
 mod preset;
 
+pub use crate::lighting::LightingModel;
 pub use gpu::PomUniform;
 pub use material::{
-    DebugView, HeightConvention, HeightSource, HeightUnits, LightingModel, MAX_SAMPLES_LIMIT,
-    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset,
-    ShadowMode,
+    DebugView, HeightConvention, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT, ParallaxMethod,
+    ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset, ShadowMode,
 };
 pub use pipelines::PomPipelineKey;
 pub use preset::{PresetError, write_atomically};

@@ -8,9 +8,10 @@
 //! (sandbox/BENCHMARKS.md).
 
 use super::material::{
-    DebugView, HeightConvention, HeightSource, LightingModel, ParallaxMethod,
-    ParallaxOcclusionMaterial, ShadowMode,
+    DebugView, HeightConvention, HeightSource, ParallaxMethod, ParallaxOcclusionMaterial,
+    ShadowMode,
 };
+use crate::LightingModel;
 use crate::material::{Choice, FragmentVariant};
 
 /// What one parallax pipeline is compiled for.
