@@ -31,6 +31,21 @@ pub(crate) struct ResolveBatch {
     _padding_b: [u32; 2],
 }
 
+impl ResolveBatch {
+    /// The fields every batch of a frame shares: the camera's `inverse` view-projection, the
+    /// target's size and the tile grid; the batch's own are zero.
+    fn for_frame(inverse: Mat4, (width, height): (u32, u32), tiles: &ResolveTiles) -> Self {
+        Self {
+            inverse_view_projection: inverse.to_cols_array_2d(),
+            target_width: width as f32,
+            target_height: height as f32,
+            tiles_across: tiles.tiles_across(),
+            tile_count: tiles.tile_count(),
+            ..Self::zeroed()
+        }
+    }
+}
+
 crate::wgsl_layout!(ResolveBatch {
     inverse_view_projection,
     target_width,
@@ -187,6 +202,47 @@ impl DeferredResolve {
             .filter(|(_, batch)| resolves(batch) && batch.visibility_ids.start != 0)
             .filter_map(|(index, batch)| Some((index, batch, assets.mesh(batch.mesh)?)))
             .collect();
+        let classified =
+            self.prepare_tiles(gpu, targets, resolved.iter().map(|(_, batch, _)| *batch));
+        let frame_slot = ResolveBatch::for_frame(inverse, targets.size, &self.tiles);
+        let mut used = HashSet::new();
+        for (place, (index, batch, mesh)) in resolved.into_iter().enumerate() {
+            let slot = ResolveBatch {
+                first_id: batch.visibility_ids.start,
+                end_id: batch.visibility_ids.end,
+                first_object: batch.instances.start,
+                triangles: batch.triangles,
+                batch: if classified {
+                    place as u32
+                } else {
+                    UNCLASSIFIED
+                },
+                ..frame_slot
+            };
+            self.push_dispatch(index, place as u32, &slot);
+            used.insert(batch.mesh);
+            self.bind_mesh(gpu, targets, batch.mesh, &mesh.vertices, &mesh.indices);
+        }
+        self.meshes.retain(|mesh, _| used.contains(mesh));
+        if self.slot_data.is_empty() {
+            return;
+        }
+        if self.slots.size() < self.slot_data.len() as u64 {
+            self.grow_slots(gpu);
+            return self.prepare(gpu, targets, batches, resolves, assets);
+        }
+        gpu.queue.write_buffer(&self.slots, 0, &self.slot_data);
+    }
+
+    /// Prepares the tile classification for the `resolved` batches where it pays, and returns
+    /// whether it does; drops the mesh bind groups where the target or the tile buffers they
+    /// hold changed.
+    fn prepare_tiles<'b, K: 'b>(
+        &mut self,
+        gpu: &GpuContext,
+        targets: &ResolveTargets<'_>,
+        resolved: impl ExactSizeIterator<Item = &'b Batch<K>>,
+    ) -> bool {
         // Classifying costs one read of the whole visibility buffer, as does each batch's
         // whole-target dispatch (its pixels of other batches return after one load): it pays
         // from two batches on, while the tile lists fit the device's buffers.
@@ -194,8 +250,7 @@ impl DeferredResolve {
             resolved.len() >= 2 && ResolveTiles::fits(gpu, resolved.len(), targets.size);
         let ranges: Vec<[u32; 2]> = if classified {
             resolved
-                .iter()
-                .map(|(_, batch, _)| [batch.visibility_ids.start, batch.visibility_ids.end])
+                .map(|batch| [batch.visibility_ids.start, batch.visibility_ids.end])
                 .collect()
         } else {
             Vec::new()
@@ -212,63 +267,54 @@ impl DeferredResolve {
             self.meshes.clear();
             self.bound = bound;
         }
-        let (width, height) = targets.size;
-        let mut used = HashSet::new();
-        for (place, (index, batch, mesh)) in resolved.into_iter().enumerate() {
-            let slot = ResolveBatch {
-                inverse_view_projection: inverse.to_cols_array_2d(),
-                target_width: width as f32,
-                target_height: height as f32,
-                first_id: batch.visibility_ids.start,
-                end_id: batch.visibility_ids.end,
-                first_object: batch.instances.start,
-                triangles: batch.triangles,
-                batch: if classified {
-                    place as u32
-                } else {
-                    UNCLASSIFIED
+        classified
+    }
+
+    /// Adds a dispatch of `batches[index]`, the `place`th resolved, with its uniform `slot`.
+    fn push_dispatch(&mut self, index: usize, place: u32, slot: &ResolveBatch) {
+        let offset = self.slot_data.len() as u64;
+        self.slot_data.extend_from_slice(bytemuck::bytes_of(slot));
+        self.slot_data.resize((offset + self.slot_size) as usize, 0);
+        self.dispatches.push(Dispatch {
+            batch: index,
+            place,
+            offset: offset as u32,
+        });
+    }
+
+    /// Makes `mesh`'s bind group where it has none for these `vertices` and `indices` (a mesh
+    /// uploaded anew gets new buffers).
+    fn bind_mesh(
+        &mut self,
+        gpu: &GpuContext,
+        targets: &ResolveTargets<'_>,
+        mesh: AssetId<Mesh>,
+        vertices: &wgpu::Buffer,
+        indices: &wgpu::Buffer,
+    ) {
+        let current = self
+            .meshes
+            .get(&mesh)
+            .is_some_and(|bound| bound.vertices == *vertices && bound.indices == *indices);
+        if !current {
+            let bind_group = self.mesh_bind_group(gpu, targets, vertices, indices);
+            self.meshes.insert(
+                mesh,
+                MeshBindGroup {
+                    vertices: vertices.clone(),
+                    indices: indices.clone(),
+                    bind_group,
                 },
-                tiles_across: self.tiles.tiles_across(),
-                tile_count: self.tiles.tile_count(),
-                _padding_a: 0,
-                _padding_b: [0; 2],
-            };
-            let offset = self.slot_data.len() as u64;
-            self.slot_data.extend_from_slice(bytemuck::bytes_of(&slot));
-            self.slot_data.resize((offset + self.slot_size) as usize, 0);
-            self.dispatches.push(Dispatch {
-                batch: index,
-                place: place as u32,
-                offset: offset as u32,
-            });
-            used.insert(batch.mesh);
-            let current = self.meshes.get(&batch.mesh).is_some_and(|bound| {
-                bound.vertices == mesh.vertices && bound.indices == mesh.indices
-            });
-            if !current {
-                let bind_group = self.mesh_bind_group(gpu, targets, &mesh.vertices, &mesh.indices);
-                self.meshes.insert(
-                    batch.mesh,
-                    MeshBindGroup {
-                        vertices: mesh.vertices.clone(),
-                        indices: mesh.indices.clone(),
-                        bind_group,
-                    },
-                );
-            }
+            );
         }
-        self.meshes.retain(|mesh, _| used.contains(mesh));
-        if self.slot_data.is_empty() {
-            return;
-        }
-        if self.slots.size() < self.slot_data.len() as u64 {
-            let slots = (self.slot_data.len() as u64 / self.slot_size).next_power_of_two();
-            self.slots = Self::slot_buffer(gpu, self.label, self.slot_size, slots);
-            // Every bind group holds the old buffer.
-            self.meshes.clear();
-            return self.prepare(gpu, targets, batches, resolves, assets);
-        }
-        gpu.queue.write_buffer(&self.slots, 0, &self.slot_data);
+    }
+
+    /// Replaces the slot buffer with one that holds this frame's slots (a power of two of them).
+    fn grow_slots(&mut self, gpu: &GpuContext) {
+        let slots = (self.slot_data.len() as u64 / self.slot_size).next_power_of_two();
+        self.slots = Self::slot_buffer(gpu, self.label, self.slot_size, slots);
+        // Every bind group holds the old buffer.
+        self.meshes.clear();
     }
 
     fn mesh_bind_group(

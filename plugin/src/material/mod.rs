@@ -5,14 +5,19 @@
 mod batches;
 mod declare;
 mod deferred;
+mod draw;
+mod draw_order;
+mod extract;
 mod frame_bindings;
 mod layout_check;
 mod param_types;
 mod params;
 mod pipelines;
 mod plugin;
+mod registry;
 mod resolve_tiles;
 
+pub use extract::MaterialWarnings;
 pub use layout_check::{
     LayoutMismatch, MemberLayout, WgslLayout, check_material_layout, check_wgsl_layout,
 };
@@ -22,14 +27,14 @@ pub use params::{
     every_parameter_changed,
 };
 pub use plugin::{
-    MaterialPlugin, MaterialWarnings, MissingRenderPlugin, TooManyDerivedTextureSlots,
-    TooManyTextureSlots, draw_meshes_without_material, drawn_keys,
+    MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,
+    draw_meshes_without_material, drawn_keys,
 };
 
 pub(crate) use frame_bindings::DepthBindings;
 #[cfg(feature = "dev-tools")]
-pub(crate) use plugin::MaterialRegistry;
-pub(crate) use plugin::{is_deferred_material, material_without_deferred_shader};
+pub(crate) use registry::MaterialRegistry;
+pub(crate) use registry::{is_deferred_material, material_without_deferred_shader};
 pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
 
 use std::fmt::Debug;

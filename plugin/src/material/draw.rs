@@ -1,0 +1,198 @@
+//! Recording one material's prepared batches: the draws of each render phase (prepass, opaque,
+//! transparent, shadow maps) and the deferred resolve's dispatches, switching pipeline, textures
+//! and buffers only where they change.
+
+use std::ops::Range;
+
+use super::Material;
+use super::batches::{Batch, MaterialBatches};
+use super::deferred::DeferredResolve;
+use crate::render::layout::MeshPass;
+use crate::render::texture_bind_groups::BoundTextures;
+use crate::render::{DrawPhase, GpuAssets};
+use crate::{AssetId, Mesh};
+
+/// One `draw_indexed` of a run of instances with one pipeline, texture set and mesh.
+struct DrawCall<K> {
+    pass: MeshPass,
+    key: K,
+    textures: BoundTextures,
+    mesh: AssetId<Mesh>,
+    instances: Range<u32>,
+}
+
+impl<K: Copy> DrawCall<K> {
+    /// The call drawing all of `batch`'s instances with `pass`'s pipeline.
+    fn of(batch: &Batch<K>, pass: MeshPass) -> Self {
+        Self {
+            pass,
+            key: batch.key,
+            textures: batch.textures,
+            mesh: batch.mesh,
+            instances: batch.instances.clone(),
+        }
+    }
+}
+
+impl<M: Material> MaterialBatches<M> {
+    /// Whether the deferred resolve has pixels of this material to shade this frame.
+    pub(crate) fn has_resolves(&self) -> bool {
+        self.resolve.as_ref().is_some_and(DeferredResolve::has_work)
+    }
+
+    /// Records the deferred resolve's dispatches of this frame into `pass`.
+    pub(crate) fn dispatch_resolves(&self, pass: &mut wgpu::ComputePass<'_>) {
+        let Some(resolve) = &self.resolve else {
+            return;
+        };
+        resolve.classify(pass);
+        // Slot 0 of the frame uniform: the camera's view.
+        pass.set_bind_group(0, self.frame_groups.shading(), &[0]);
+        let mut bound_key = None;
+        let mut bound_textures = None;
+        resolve.dispatch(pass, &self.batches, |pass, batch| {
+            let (Some(pipeline), Some(textures)) = (
+                self.pipelines.resolve(&batch.key),
+                self.textures.get(&batch.textures),
+            ) else {
+                return false;
+            };
+            if bound_key != Some(batch.key) {
+                pass.set_pipeline(pipeline);
+                bound_key = Some(batch.key);
+            }
+            if bound_textures != Some(batch.textures) {
+                pass.set_bind_group(1, textures, &[]);
+                bound_textures = Some(batch.textures);
+            }
+            true
+        });
+    }
+
+    /// Whether any batch of the last prepared frame draws in `phase`.
+    pub(crate) fn draws_in(&self, phase: DrawPhase) -> bool {
+        self.batches
+            .iter()
+            .any(|batch| self.pipelines.pass_in(phase, batch.key).is_some())
+    }
+
+    /// The blended batches of the last prepared frame, for the frame's transparent phase:
+    /// (view depth of the draw's centre, batch index).
+    pub(crate) fn blended(&self) -> impl Iterator<Item = (f32, u32)> + '_ {
+        self.blended.iter().copied()
+    }
+
+    /// Records the blended `batches` (indices into the last prepared frame's batches, in the
+    /// order the transparent phase sorted them) into `pass`; neighbours that continue one
+    /// another's instances with the same pipeline, textures and mesh are one draw.
+    pub(crate) fn draw_blended(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        assets: &GpuAssets,
+        batches: &[u32],
+    ) {
+        pass.set_bind_group(0, self.frame_groups.shading(), &[0]);
+        let mut calls: Vec<DrawCall<M::Key>> = Vec::with_capacity(batches.len());
+        for batch in batches
+            .iter()
+            .filter_map(|&index| self.batches.get(index as usize))
+        {
+            match calls.last_mut() {
+                Some(call)
+                    if call.key == batch.key
+                        && call.textures == batch.textures
+                        && call.mesh == batch.mesh
+                        && call.instances.end == batch.instances.start =>
+                {
+                    call.instances.end = batch.instances.end;
+                }
+                _ => calls.push(DrawCall::of(batch, MeshPass::Transparent)),
+            }
+        }
+        self.record_calls(pass, assets, calls);
+    }
+
+    /// Records the batches that draw in `phase` and whose mesh is on the GPU into `pass`,
+    /// switching pipeline, textures and buffers only where they change.
+    pub(crate) fn draw(
+        &self,
+        phase: DrawPhase,
+        pass: &mut wgpu::RenderPass<'_>,
+        assets: &GpuAssets,
+    ) {
+        let frame_bind_group = if phase == DrawPhase::Prepass {
+            self.frame_groups.writing()
+        } else {
+            self.frame_groups.shading()
+        };
+        // Slot 0 of the frame uniform: the camera's view.
+        pass.set_bind_group(0, frame_bind_group, &[0]);
+        self.record_calls(
+            pass,
+            assets,
+            self.batches.iter().filter_map(|batch| {
+                let mesh_pass = self.pipelines.pass_in(phase, batch.key)?;
+                // Blended batches draw in the frame's sorted transparent list instead.
+                (mesh_pass != MeshPass::Transparent).then(|| DrawCall::of(batch, mesh_pass))
+            }),
+        );
+    }
+
+    /// Records the shadow casters into one shadow map's `pass`, whose view is the frame
+    /// uniform's slot at `frame_offset`.
+    pub(crate) fn draw_shadow_casters(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        frame_offset: u32,
+        assets: &GpuAssets,
+    ) {
+        if !self.batches.iter().any(|batch| batch.casts_shadows) {
+            return;
+        }
+        pass.set_bind_group(0, self.frame_groups.writing(), &[frame_offset]);
+        self.record_calls(
+            pass,
+            assets,
+            self.batches
+                .iter()
+                .filter(|batch| batch.casts_shadows && !M::blends(batch.key))
+                .map(|batch| DrawCall::of(batch, MeshPass::Shadow)),
+        );
+    }
+
+    /// Records `calls` whose mesh is on the GPU, each with its pass's pipeline, switching
+    /// pipeline, textures and buffers only where they change.
+    fn record_calls(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        assets: &GpuAssets,
+        calls: impl IntoIterator<Item = DrawCall<M::Key>>,
+    ) {
+        let mut bound_key = None;
+        let mut bound_textures = None;
+        let mut bound_mesh = None;
+        for call in calls {
+            let (Some(mesh), Some(textures), Some(pipeline)) = (
+                assets.mesh(call.mesh),
+                self.textures.get(&call.textures),
+                self.pipelines.get(call.pass, &call.key),
+            ) else {
+                continue;
+            };
+            if bound_key != Some((call.pass, call.key)) {
+                pass.set_pipeline(pipeline);
+                bound_key = Some((call.pass, call.key));
+            }
+            if bound_textures != Some(call.textures) {
+                pass.set_bind_group(1, textures, &[]);
+                bound_textures = Some(call.textures);
+            }
+            if bound_mesh != Some(call.mesh) {
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                bound_mesh = Some(call.mesh);
+            }
+            pass.draw_indexed(0..mesh.index_count, 0, call.instances);
+        }
+    }
+}

@@ -1,0 +1,208 @@
+//! The Extract stage of a material: each drawable entity's mesh, transform and material copied
+//! into [`ExtractedMaterials`], and a material's problems logged once per change
+//! ([`MaterialWarnings`]).
+
+use std::collections::HashMap;
+use std::marker::PhantomData;
+
+use hecs::{Entity, World};
+
+use super::Material;
+use super::batches::ExtractedDraw;
+use super::registry::MaterialRegistry;
+use crate::{GlobalTransform, Handle, Mesh, NotShadowCaster, NotShadowReceiver, Resources};
+
+/// This frame's draws of `M`, as extracted. A resource.
+pub(crate) struct ExtractedMaterials<M> {
+    pub(crate) draws: Vec<ExtractedDraw<M>>,
+}
+
+/// The problems last logged for each entity whose material of type `M` is being clamped, so a
+/// bad value is logged once per change, not every frame. Problems are compared as text: a NaN
+/// never equals itself, a material holding one would be "changed" every frame. A resource.
+#[derive(Debug)]
+pub struct MaterialWarnings<M>(HashMap<Entity, Vec<String>>, PhantomData<fn() -> M>);
+
+impl<M> MaterialWarnings<M> {
+    /// Number of entities whose material is being clamped.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether no material needed clamping.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+impl<M: Material> MaterialWarnings<M> {
+    /// Logs the problems of `entity`'s `material` where they differ from those last logged.
+    fn log_changed(&mut self, entity: Entity, material: &M) {
+        let problems = material.problems();
+        if problems.is_empty() {
+            // Valid again: forget it, so a later bad value is logged anew.
+            if !self.0.is_empty() {
+                self.0.remove(&entity);
+            }
+        } else if self.0.get(&entity) != Some(&problems) {
+            for problem in &problems {
+                log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
+            }
+            self.0.insert(entity, problems);
+        }
+    }
+}
+
+/// Whether a draw casts and receives scene shadows (its marker components).
+#[derive(Clone, Copy)]
+struct ShadowRoles {
+    casts: bool,
+    receives: bool,
+}
+
+/// The Extract stage's system of material `M`: copies each drawable entity's mesh, transform
+/// and material, and logs a material's problems once per change.
+pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources) {
+    let fallback = resources
+        .get::<MaterialRegistry>()
+        .is_some_and(MaterialRegistry::draws_meshes_without_material::<M>);
+    if !resources.contains::<ExtractedMaterials<M>>() {
+        resources.insert(ExtractedMaterials::<M> { draws: Vec::new() });
+    }
+    if !resources.contains::<MaterialWarnings<M>>() {
+        resources.insert(MaterialWarnings::<M>(HashMap::new(), PhantomData));
+    }
+    resources.scope(|resources, extracted: &mut ExtractedMaterials<M>| {
+        resources.scope(|resources, warnings: &mut MaterialWarnings<M>| {
+            extract_into(world, resources, fallback, extracted, warnings);
+        })
+    });
+}
+
+/// Writes this frame's draws into `extracted`: the entities with material `M`, then (with
+/// `fallback`) the meshes that have no registered material.
+fn extract_into<M: Material>(
+    world: &World,
+    resources: &Resources,
+    fallback: bool,
+    extracted: &mut ExtractedMaterials<M>,
+    warnings: &mut MaterialWarnings<M>,
+) {
+    let mut writer = DrawWriter {
+        extracted,
+        warnings,
+        written: 0,
+    };
+    writer.push_entities(world);
+    if fallback && let Some(registry) = resources.get::<MaterialRegistry>() {
+        writer.push_meshes_without_material(world, registry);
+    }
+    writer.finish(world);
+}
+
+/// Rewrites last frame's draws in place, slot after slot: a material equal to the one in the
+/// same slot last frame is not cloned again (a clone bumps every texture handle's reference
+/// count, and dropping the old one lowers it: tens of thousands of atomic operations a frame
+/// for nothing).
+struct DrawWriter<'a, M> {
+    extracted: &'a mut ExtractedMaterials<M>,
+    warnings: &'a mut MaterialWarnings<M>,
+    /// The slots written this frame.
+    written: usize,
+}
+
+impl<M: Material> DrawWriter<'_, M> {
+    /// Writes every entity that has material `M`, a mesh and a transform.
+    fn push_entities(&mut self, world: &World) {
+        for (entity, mesh, transform, material, not_caster, not_receiver) in world
+            .query::<(
+                Entity,
+                &Handle<Mesh>,
+                &GlobalTransform,
+                &M,
+                Option<&NotShadowCaster>,
+                Option<&NotShadowReceiver>,
+            )>()
+            .iter()
+        {
+            let shadows = ShadowRoles {
+                casts: not_caster.is_none(),
+                receives: not_receiver.is_none(),
+            };
+            self.push(Some(entity), mesh, transform, material, shadows);
+        }
+    }
+
+    /// Writes, with `M::default()`, every mesh entity that has none of `registry`'s materials.
+    fn push_meshes_without_material(&mut self, world: &World, registry: &MaterialRegistry) {
+        let default = M::default();
+        // Whole archetypes at a time: an entity with any registered material is skipped
+        // without looking it up.
+        for archetype in world.archetypes() {
+            if registry.has_any(archetype) {
+                continue;
+            }
+            if let (Some(meshes), Some(transforms)) = (
+                archetype.get::<&Handle<Mesh>>(),
+                archetype.get::<&GlobalTransform>(),
+            ) {
+                let shadows = ShadowRoles {
+                    casts: !archetype.has::<NotShadowCaster>(),
+                    receives: !archetype.has::<NotShadowReceiver>(),
+                };
+                for (mesh, transform) in meshes.iter().zip(transforms.iter()) {
+                    self.push(None, mesh, transform, &default, shadows);
+                }
+            }
+        }
+    }
+
+    /// Writes the next slot, unless the transform is not finite. `entity` is `None` for meshes
+    /// drawn with the default material (found by archetype), whose problems are not logged.
+    fn push(
+        &mut self,
+        entity: Option<Entity>,
+        mesh: &Handle<Mesh>,
+        transform: &GlobalTransform,
+        material: &M,
+        shadows: ShadowRoles,
+    ) {
+        let model = transform.to_mat4();
+        if !model.is_finite() {
+            log::warn!(
+                "{} mesh {:?} has a non-finite transform: not drawn",
+                M::NAME,
+                mesh.id()
+            );
+            return;
+        }
+        if let Some(entity) = entity {
+            self.warnings.log_changed(entity, material);
+        }
+        match self.extracted.draws.get_mut(self.written) {
+            Some(draw) => {
+                draw.mesh = mesh.id();
+                draw.model = model;
+                draw.casts_shadows = shadows.casts;
+                draw.receives_shadows = shadows.receives;
+                if draw.material != *material {
+                    draw.material = material.clone();
+                }
+            }
+            None => self.extracted.draws.push(ExtractedDraw {
+                mesh: mesh.id(),
+                model,
+                material: material.clone(),
+                casts_shadows: shadows.casts,
+                receives_shadows: shadows.receives,
+            }),
+        }
+        self.written += 1;
+    }
+
+    /// Drops last frame's draws past this frame's, and the warnings of despawned entities.
+    fn finish(self, world: &World) {
+        self.extracted.draws.truncate(self.written);
+        self.warnings.0.retain(|entity, _| world.contains(*entity));
+    }
+}
