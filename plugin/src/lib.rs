@@ -73,6 +73,7 @@ mod resources;
 pub mod script;
 #[cfg(feature = "dev-tools")]
 pub mod seed_port;
+pub mod shader;
 #[cfg(feature = "dev-tools")]
 mod shader_reload;
 mod shadows;

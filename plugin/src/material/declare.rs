@@ -1,57 +1,5 @@
-//! The two declaration macros: [`crate::choice_enum!`] for the enums a parameter chooses
-//! between, and [`crate::material_parameters!`] for a material's parameters, each written once.
-
-/// Declares an enum whose values a material parameter chooses between: one spelling per value
-/// (serde, command line, editor), a one-line help each, and generated WGSL constants.
-///
-/// ```
-/// pom::choice_enum! {
-///     /// How a stripe pattern runs.
-///     pub enum Stripes: "STRIPES" {
-///         /// Left to right.
-///         Horizontal = "horizontal",
-///         /// Top to bottom.
-///         Vertical = "vertical",
-///     }
-/// }
-/// use pom::material::Choice;
-/// assert_eq!(Stripes::Vertical.name(), "vertical");
-/// assert!(Stripes::wgsl_constants().contains("const STRIPES_VERTICAL: u32 = 1u;"));
-/// ```
-#[macro_export]
-macro_rules! choice_enum {
-    (
-        $(#[$attr:meta])*
-        pub enum $name:ident : $prefix:literal {
-            $(
-                #[doc = $help:literal]
-                $variant:ident = $spelling:literal,
-            )*
-        }
-    ) => {
-        $(#[$attr])*
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-        #[derive($crate::serde::Serialize, $crate::serde::Deserialize)]
-        #[serde(crate = "pom::serde")]
-        #[non_exhaustive]
-        pub enum $name {
-            $(
-                #[doc = $help]
-                #[serde(rename = $spelling)]
-                $variant,
-            )*
-        }
-
-        impl $crate::material::Choice for $name {
-            const VALUES: &'static [Self] = &[$($name::$variant),*];
-            const INFO: &'static [$crate::material::ChoiceInfo] = &[
-                $($crate::material::ChoiceInfo { name: $spelling, help: $help }),*
-            ];
-            const WGSL_PREFIX: &'static str = $prefix;
-            const RUST_NAMES: &'static [&'static str] = &[$(stringify!($variant)),*];
-        }
-    };
-}
+//! The declaration macro [`crate::material_parameters!`]: a material's parameters, each written
+//! once (the enums a parameter chooses between are [`crate::choice_enum!`]s).
 
 /// Declares a material struct from one list of parameters, each written once: doc line (its
 /// help), name, type, default and [`ParamSpec`]. Generates the struct (inputs such as texture

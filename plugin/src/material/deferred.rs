@@ -418,7 +418,7 @@ mod tests {
                 crate::parallax::PARALLAX_DEFERRED_SHADER,
             ),
         ] {
-            let header = crate::render::shaders::GENERATED_HEADER;
+            let header = crate::shader::GENERATED_HEADER;
             assert_eq!(
                 deferred.generated(),
                 forward

@@ -17,14 +17,14 @@ mod plugin;
 mod registry;
 mod resolve_tiles;
 
-pub use extract::MaterialWarnings;
-pub use layout_check::{
-    LayoutMismatch, MemberLayout, WgslLayout, check_material_layout, check_wgsl_layout,
+pub use crate::shader::{
+    Choice, ChoiceInfo, LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout,
 };
-pub use param_types::{Choice, GpuParam, ParamType};
+pub use extract::MaterialWarnings;
+pub use layout_check::check_material_layout;
+pub use param_types::{GpuParam, ParamType};
 pub use params::{
-    ChoiceInfo, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamValue,
-    every_parameter_changed,
+    LimitError, Param, ParamError, ParamKind, ParamSpec, ParamValue, every_parameter_changed,
 };
 pub use plugin::{
     MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,

@@ -2,7 +2,8 @@
 //! [`Choice`] enums), how each is uploaded ([`GpuParam`]), and the codes and WGSL constants of
 //! choice enums.
 
-use super::params::{ChoiceInfo, LimitError, ParamKind, ParamValue};
+use super::params::{LimitError, ParamKind, ParamValue};
+use crate::shader::Choice;
 
 /// A Rust type a parameter can have: numbers, `bool`, and [`Choice`] enums.
 pub trait ParamType: Copy + Sized {
@@ -224,57 +225,6 @@ impl<T: Choice> GpuParam for T {
     }
 }
 
-/// An enum whose values a parameter chooses between, declared with [`crate::choice_enum!`]: each
-/// value has one spelling, used by serde (RON, glTF), the command line and the editor, and a
-/// WGSL constant `PREFIX_VALUE` with its code.
-pub trait Choice: Copy + PartialEq + 'static {
-    /// Every value, in declaration order (its index is its code).
-    const VALUES: &'static [Self];
-    /// Spelling and help of each value, in the same order.
-    const INFO: &'static [ChoiceInfo];
-    /// The prefix of the WGSL constants (`METHOD` gives `METHOD_OCCLUSION`).
-    const WGSL_PREFIX: &'static str;
-    /// The Rust names of the values, for WGSL constant names.
-    const RUST_NAMES: &'static [&'static str];
-
-    /// The position of `self` in [`Choice::VALUES`]: the value shaders see.
-    fn code(self) -> u32 {
-        Self::VALUES
-            .iter()
-            .position(|value| *value == self)
-            .unwrap_or(0) as u32
-    }
-
-    /// The one spelling of `self`.
-    fn name(self) -> &'static str {
-        Self::INFO[self.code() as usize].name
-    }
-
-    /// The value spelled `name`.
-    fn from_name(name: &str) -> Option<Self> {
-        Self::INFO
-            .iter()
-            .position(|info| info.name == name)
-            .map(|index| Self::VALUES[index])
-    }
-
-    /// WGSL declarations of one `const PREFIX_VALUE: u32` per value, generated so shaders never
-    /// retype the codes.
-    fn wgsl_constants() -> String {
-        Self::RUST_NAMES
-            .iter()
-            .enumerate()
-            .map(|(code, rust_name)| {
-                format!(
-                    "const {}_{}: u32 = {code}u;\n",
-                    Self::WGSL_PREFIX,
-                    screaming_snake_case(rust_name)
-                )
-            })
-            .collect()
-    }
-}
-
 impl<T: Choice> ParamType for T {
     fn to_value(self) -> ParamValue {
         ParamValue::Choice(self.name())
@@ -291,28 +241,5 @@ impl<T: Choice> ParamType for T {
             ParamValue::Choice(name) => Self::from_name(name),
             _ => None,
         }
-    }
-}
-
-/// `CookTorrance` → `COOK_TORRANCE`.
-fn screaming_snake_case(name: &str) -> String {
-    let mut out = String::new();
-    for (index, character) in name.chars().enumerate() {
-        if character.is_uppercase() && index > 0 {
-            out.push('_');
-        }
-        out.push(character.to_ascii_uppercase());
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn screaming_snake_case_splits_words() {
-        assert_eq!(screaming_snake_case("CookTorrance"), "COOK_TORRANCE");
-        assert_eq!(screaming_snake_case("Occlusion"), "OCCLUSION");
     }
 }

@@ -5,7 +5,7 @@
 
 use std::fmt;
 
-use super::param_types::Choice;
+use crate::shader::{Choice, ChoiceInfo};
 
 /// A parameter's value as tables walked at run time (command line, editor) see it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,16 +33,6 @@ impl fmt::Display for ParamValue {
             ParamValue::Color([r, g, b, a]) => write!(f, "{r},{g},{b},{a}"),
         }
     }
-}
-
-/// One value of a [`Choice`] type: its spelling (the same in RON, glTF, on the command line and
-/// in the editor) and a one-line help.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ChoiceInfo {
-    /// The spelling.
-    pub name: &'static str,
-    /// One line saying what it does.
-    pub help: &'static str,
 }
 
 /// The type of a parameter and the values it accepts.

@@ -4,62 +4,43 @@
 //! and its own file. The naga test validates every composed shader and checks that every `.wgsl`
 //! file under `plugin/src` is part of one.
 
-/// One WGSL file, by its path under `plugin/src`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct WgslFile {
-    /// Path relative to `plugin/src`, for error messages and hot reload.
-    pub path: &'static str,
-    /// The file's text as it was at build time.
-    pub source: &'static str,
-}
-
-/// A [`WgslFile`] of the plugin's own, embedded from `plugin/src/<path>` (invoked from a module
-/// one folder below `src`).
-#[macro_export]
-#[doc(hidden)]
-macro_rules! wgsl_file {
-    ($path:literal) => {
-        $crate::render::shaders::WgslFile {
-            path: $path,
-            source: include_str!(concat!("../", $path)),
-        }
-    };
-}
+pub use crate::shader::{ComposedShader, GeneratedWgsl, WgslFile};
 
 /// Camera and light uniforms, and the light iteration helpers.
-pub const FRAME: WgslFile = wgsl_file!("render/frame.wgsl");
+pub const FRAME: WgslFile = crate::wgsl_file!("render/frame.wgsl");
 /// Tangent frames and normal-map decoding.
-pub const TANGENT_SPACE: WgslFile = wgsl_file!("render/tangent_space.wgsl");
+pub const TANGENT_SPACE: WgslFile = crate::wgsl_file!("render/tangent_space.wgsl");
 /// Phong, Blinn-Phong and Cook-Torrance + Oren-Nayar.
-pub const LIGHTING: WgslFile = wgsl_file!("render/lighting.wgsl");
+pub const LIGHTING: WgslFile = crate::wgsl_file!("render/lighting.wgsl");
 /// Helpers for generated parameter structs (colours as `array<f32, 4>`).
-pub const PARAMS: WgslFile = wgsl_file!("render/params.wgsl");
+pub const PARAMS: WgslFile = crate::wgsl_file!("render/params.wgsl");
 /// Vertex input/output, the per-draw transforms and the shared vertex stage `vs_main`.
-pub const MESH_VERTEX: WgslFile = wgsl_file!("render/mesh_vertex.wgsl");
+pub const MESH_VERTEX: WgslFile = crate::wgsl_file!("render/mesh_vertex.wgsl");
 /// Scene shadows: the shadow maps and `scene_shadow()`, for materials that receive them.
-pub const SHADOWS: WgslFile = wgsl_file!("render/shadows.wgsl");
+pub const SHADOWS: WgslFile = crate::wgsl_file!("render/shadows.wgsl");
 /// The depth prepass's result, bound for materials that test a depth of their own against it.
-pub const PREPASS_DEPTH: WgslFile = wgsl_file!("render/prepass_depth.wgsl");
+pub const PREPASS_DEPTH: WgslFile = crate::wgsl_file!("render/prepass_depth.wgsl");
 /// `count_fragment_invocation()`: does nothing, unless a [`super::FragmentInvocationCounter`]
 /// swaps in [`FRAGMENT_COUNTER_COUNTING`].
-pub const FRAGMENT_COUNTER: WgslFile = wgsl_file!("render/fragment_counter.wgsl");
+pub const FRAGMENT_COUNTER: WgslFile = crate::wgsl_file!("render/fragment_counter.wgsl");
 /// `count_fragment_invocation()` that counts, into group 0, binding 4.
-pub const FRAGMENT_COUNTER_COUNTING: WgslFile = wgsl_file!("render/fragment_counter_counting.wgsl");
+pub const FRAGMENT_COUNTER_COUNTING: WgslFile =
+    crate::wgsl_file!("render/fragment_counter_counting.wgsl");
 /// `fullscreen_vertex`: the vertex stage of full-screen passes.
-pub const FULLSCREEN_TRIANGLE: WgslFile = wgsl_file!("render/fullscreen_triangle.wgsl");
+pub const FULLSCREEN_TRIANGLE: WgslFile = crate::wgsl_file!("render/fullscreen_triangle.wgsl");
 /// The visibility pass of the deferred path: `visibility_id()` and the default `fs_visibility`.
-pub const VISIBILITY: WgslFile = wgsl_file!("render/visibility.wgsl");
+pub const VISIBILITY: WgslFile = crate::wgsl_file!("render/visibility.wgsl");
 /// The deferred resolve's inputs and `resolve_pixel()`, which rebuilds a pixel's vertex output
 /// and footprint from its visibility id.
-pub const DEFERRED_RESOLVE: WgslFile = wgsl_file!("render/deferred_resolve.wgsl");
+pub const DEFERRED_RESOLVE: WgslFile = crate::wgsl_file!("render/deferred_resolve.wgsl");
 /// Reading the visibility keys from compute (`visible_id`).
-pub const VISIBILITY_READ: WgslFile = wgsl_file!("render/visibility_read.wgsl");
+pub const VISIBILITY_READ: WgslFile = crate::wgsl_file!("render/visibility_read.wgsl");
 /// The deferred resolve's tile classification (one pass per material with resolve batches).
-pub const DEFERRED_CLASSIFY: WgslFile = wgsl_file!("render/deferred_classify.wgsl");
+pub const DEFERRED_CLASSIFY: WgslFile = crate::wgsl_file!("render/deferred_classify.wgsl");
 /// The Sobel compute pass of dynamic height fields.
-pub const SOBEL_ENTRY: WgslFile = wgsl_file!("dynamic_height/sobel.wgsl");
+pub const SOBEL_ENTRY: WgslFile = crate::wgsl_file!("dynamic_height/sobel.wgsl");
 /// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
-pub const HEIGHT_CHANNEL: WgslFile = wgsl_file!("render/height_channel.wgsl");
+pub const HEIGHT_CHANNEL: WgslFile = crate::wgsl_file!("render/height_channel.wgsl");
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
 /// the `primitive_index` extension the visibility pass needs, `SceneOutput`, the scene target as
@@ -110,39 +91,8 @@ pub(crate) fn for_scene_format(source: String, format: wgpu::TextureFormat) -> S
     }
 }
 
-/// WGSL generated from Rust (enum codes, say), prepended to a composed shader.
-pub type GeneratedWgsl = fn() -> String;
-
-/// An entry shader: generated constants, then the files it is made of, in order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ComposedShader {
-    /// A name for labels and messages.
-    pub name: &'static str,
-    /// Declarations generated from Rust types, so WGSL never retypes them.
-    pub constants: &'static [GeneratedWgsl],
-    /// Library files first, the entry file last.
-    pub files: &'static [WgslFile],
-}
-
-/// The first line of a composed source, before the generated constants.
-pub(crate) const GENERATED_HEADER: &str = "// ---- generated from Rust ----\n";
-
+// The renderer's part of composing: the counting twin and the module on a device.
 impl ComposedShader {
-    /// The generated constants: the text every composed source starts with.
-    pub fn generated(&self) -> String {
-        let mut source = String::from(GENERATED_HEADER);
-        for constants in self.constants {
-            source.push_str(&constants());
-        }
-        source
-    }
-
-    /// The concatenated source: the generated constants, then each file introduced by a
-    /// comment naming it.
-    pub fn source(&self) -> String {
-        self.source_with(|file| file)
-    }
-
     /// The source with [`FRAGMENT_COUNTER`] replaced by [`FRAGMENT_COUNTER_COUNTING`].
     pub fn counting_source(&self) -> String {
         self.source_with(|file| {
@@ -152,18 +102,6 @@ impl ComposedShader {
                 file
             }
         })
-    }
-
-    fn source_with(&self, substitute: impl Fn(WgslFile) -> WgslFile) -> String {
-        let mut source = self.generated();
-        for file in self.files.iter().map(|file| substitute(*file)) {
-            source.push_str("// ---- ");
-            source.push_str(file.path);
-            source.push_str(" ----\n");
-            source.push_str(file.source);
-            source.push('\n');
-        }
-        source
     }
 
     /// Compiles the composed source on `device`, labelled with the shader's name.

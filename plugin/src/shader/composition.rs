@@ -1,0 +1,70 @@
+//! Composing WGSL: a shader is generated constants followed by WGSL files (WGSL has no
+//! `#include`), named for error messages and validation.
+
+/// One WGSL file, by its path under `plugin/src`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WgslFile {
+    /// Path relative to `plugin/src`, for error messages and hot reload.
+    pub path: &'static str,
+    /// The file's text as it was at build time.
+    pub source: &'static str,
+}
+
+/// A [`WgslFile`] of the plugin's own, embedded from `plugin/src/<path>` (invoked from a module
+/// one folder below `src`).
+#[macro_export]
+#[doc(hidden)]
+macro_rules! wgsl_file {
+    ($path:literal) => {
+        $crate::shader::WgslFile {
+            path: $path,
+            source: include_str!(concat!("../", $path)),
+        }
+    };
+}
+
+/// WGSL generated from Rust (enum codes, say), prepended to a composed shader.
+pub type GeneratedWgsl = fn() -> String;
+
+/// An entry shader: generated constants, then the files it is made of, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ComposedShader {
+    /// A name for labels and messages.
+    pub name: &'static str,
+    /// Declarations generated from Rust types, so WGSL never retypes them.
+    pub constants: &'static [GeneratedWgsl],
+    /// Library files first, the entry file last.
+    pub files: &'static [WgslFile],
+}
+
+/// The first line of a composed source, before the generated constants.
+pub(crate) const GENERATED_HEADER: &str = "// ---- generated from Rust ----\n";
+
+impl ComposedShader {
+    /// The generated constants: the text every composed source starts with.
+    pub fn generated(&self) -> String {
+        let mut source = String::from(GENERATED_HEADER);
+        for constants in self.constants {
+            source.push_str(&constants());
+        }
+        source
+    }
+
+    /// The concatenated source: the generated constants, then each file introduced by a
+    /// comment naming it.
+    pub fn source(&self) -> String {
+        self.source_with(|file| file)
+    }
+
+    pub(crate) fn source_with(&self, substitute: impl Fn(WgslFile) -> WgslFile) -> String {
+        let mut source = self.generated();
+        for file in self.files.iter().map(|file| substitute(*file)) {
+            source.push_str("// ---- ");
+            source.push_str(file.path);
+            source.push_str(" ----\n");
+            source.push_str(file.source);
+            source.push('\n');
+        }
+        source
+    }
+}
