@@ -53,6 +53,22 @@ struct SobelParams {
     padding: f32,
 }
 
+impl SobelParams {
+    /// The parameters of a field of `size`; a height scale that is not a finite number ≥ 0
+    /// derives flat normals (0).
+    fn new(size: [u32; 2], height_scale: f32) -> Self {
+        Self {
+            size,
+            height_scale: if height_scale.is_finite() {
+                height_scale.max(0.0)
+            } else {
+                0.0
+            },
+            padding: 0.0,
+        }
+    }
+}
+
 struct SobelBinding {
     // Upload serials of the height and normal textures the group was made for.
     serials: (u64, u64),
@@ -107,6 +123,67 @@ impl SobelPass {
             bindings: HashMap::new(),
         }
     }
+
+    /// A bind group reading level 0 of `height` and writing `normal`, with a parameter buffer
+    /// holding `params`; `serials` are the uploads it is made for.
+    fn create_binding(
+        &self,
+        gpu: &GpuContext,
+        serials: (u64, u64),
+        params: &SobelParams,
+        height: &wgpu::Texture,
+        normal: &wgpu::TextureView,
+    ) -> SobelBinding {
+        let params_buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("sobel parameters"),
+                contents: bytemuck::bytes_of(params),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+        let height_view = height.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("sobel height level 0"),
+            base_mip_level: 0,
+            mip_level_count: Some(1),
+            ..Default::default()
+        });
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sobel bind group"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&height_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(normal),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: params_buffer.as_entire_binding(),
+                },
+            ],
+        });
+        SobelBinding {
+            serials,
+            params: params_buffer,
+            bind_group,
+        }
+    }
+
+    /// Records the compute pass over a `width` × `rows` field, 8 × 8 texels a workgroup.
+    fn record(&self, target: DispatchTarget<'_>, binding: &SobelBinding, width: u32, rows: u32) {
+        let mut compute = target
+            .encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("sobel pass"),
+                timestamp_writes: target.timestamps.map(PassTimestamps::compute),
+            });
+        compute.set_pipeline(&self.pipeline);
+        compute.set_bind_group(0, &binding.bind_group, &[]);
+        compute.dispatch_workgroups(width.div_ceil(8), rows.div_ceil(8), 1);
+    }
 }
 
 /// Why a dynamic field could not be processed this frame.
@@ -121,6 +198,16 @@ pub enum DynamicHeightError {
         /// What does not fit.
         problem: String,
     },
+}
+
+impl DynamicHeightError {
+    /// A [`DynamicHeightError::Mismatch`] of `entity`'s field.
+    fn mismatch(entity: Entity, problem: &str) -> Self {
+        Self::Mismatch {
+            entity,
+            problem: problem.to_owned(),
+        }
+    }
 }
 
 /// The Prepare stage's system that re-derives every dynamic field's normals on the GPU.
@@ -193,6 +280,7 @@ struct DispatchTarget<'a> {
     timestamps: Option<&'a PassTimestamps>,
 }
 
+/// Records `field`'s Sobel pass on `target`, making its bind group where its textures are new.
 fn dispatch(
     gpu: &GpuContext,
     images: &Assets<Image>,
@@ -202,10 +290,37 @@ fn dispatch(
     entity: Entity,
     field: &DynamicHeightField,
 ) -> Result<(), DynamicHeightError> {
-    let mismatch = |problem: &str| DynamicHeightError::Mismatch {
-        entity,
-        problem: problem.to_owned(),
+    let (width, rows) = checked_size(images, entity, field)?;
+    let (Some(height), Some(normal)) = (
+        renderer.assets.image(field.height.id()),
+        renderer.assets.image(field.normal.id()),
+    ) else {
+        return Err(DynamicHeightError::mismatch(
+            entity,
+            "its images are not on the GPU",
+        ));
     };
+    let params = SobelParams::new([width, rows], field.height_scale);
+    let serials = (height.upload_serial, normal.upload_serial);
+    let binding = match pass.bindings.remove(&entity) {
+        Some(binding) if binding.serials == serials => binding,
+        _ => pass.create_binding(gpu, serials, &params, &height.texture, &normal.view),
+    };
+    gpu.queue
+        .write_buffer(&binding.params, 0, bytemuck::bytes_of(&params));
+    pass.record(target, &binding, width, rows);
+    pass.bindings.insert(entity, binding);
+    Ok(())
+}
+
+/// The size of `field`, whose images must exist and fit together: a normal image made with
+/// [`Image::gpu_written`], of the height image's size.
+fn checked_size(
+    images: &Assets<Image>,
+    entity: Entity,
+    field: &DynamicHeightField,
+) -> Result<(u32, u32), DynamicHeightError> {
+    let mismatch = |problem| DynamicHeightError::mismatch(entity, problem);
     let (Some(height_image), Some(normal_image)) =
         (images.get(&field.height), images.get(&field.normal))
     else {
@@ -219,77 +334,5 @@ fn dispatch(
     if height_image.size() != normal_image.size() {
         return Err(mismatch("the height and normal images differ in size"));
     }
-    let (Some(height), Some(normal)) = (
-        renderer.assets.image(field.height.id()),
-        renderer.assets.image(field.normal.id()),
-    ) else {
-        return Err(mismatch("its images are not on the GPU"));
-    };
-    let (width, rows) = height_image.size();
-    let params = SobelParams {
-        size: [width, rows],
-        height_scale: if field.height_scale.is_finite() {
-            field.height_scale.max(0.0)
-        } else {
-            0.0
-        },
-        padding: 0.0,
-    };
-    let serials = (height.upload_serial, normal.upload_serial);
-    let binding = match pass.bindings.remove(&entity) {
-        Some(binding) if binding.serials == serials => binding,
-        _ => {
-            let params_buffer = gpu
-                .device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("sobel parameters"),
-                    contents: bytemuck::bytes_of(&params),
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                });
-            let height_view = height.texture.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("sobel height level 0"),
-                base_mip_level: 0,
-                mip_level_count: Some(1),
-                ..Default::default()
-            });
-            let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("sobel bind group"),
-                layout: &pass.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&height_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&normal.view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: params_buffer.as_entire_binding(),
-                    },
-                ],
-            });
-            SobelBinding {
-                serials,
-                params: params_buffer,
-                bind_group,
-            }
-        }
-    };
-    gpu.queue
-        .write_buffer(&binding.params, 0, bytemuck::bytes_of(&params));
-    {
-        let mut compute = target
-            .encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("sobel pass"),
-                timestamp_writes: target.timestamps.map(PassTimestamps::compute),
-            });
-        compute.set_pipeline(&pass.pipeline);
-        compute.set_bind_group(0, &binding.bind_group, &[]);
-        compute.dispatch_workgroups(width.div_ceil(8), rows.div_ceil(8), 1);
-    }
-    pass.bindings.insert(entity, binding);
-    Ok(())
+    Ok(height_image.size())
 }

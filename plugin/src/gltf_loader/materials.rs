@@ -1,15 +1,15 @@
-//! glTF materials and textures to [`LitMaterial`] and [`ParallaxOcclusionMaterial`].
+//! glTF materials to [`LitMaterial`] and [`ParallaxOcclusionMaterial`].
 
 use std::collections::HashMap;
 
 use glam::{Affine2, Vec2};
-use image::DynamicImage;
 
 use super::extras::{PomExtras, choose};
+use super::textures::TextureCache;
 use super::{GltfError, Source, describe};
 use crate::{
-    AlphaMode, Assets, Channel, Color, FilterMode, Handle, HeightSource, Image, ImageSampler,
-    LightingModel, LitMaterial, ParallaxOcclusionMaterial, TextureKind, WrapMode,
+    AlphaMode, Assets, Channel, Color, Handle, HeightSource, Image, LightingModel, LitMaterial,
+    ParallaxOcclusionMaterial, TextureKind,
 };
 
 /// A material as loaded: one of the two kinds the renderer draws, plus the texture-coordinate
@@ -30,166 +30,10 @@ pub(super) enum MaterialComponent {
 #[derive(Default)]
 pub(super) struct MaterialCache {
     materials: HashMap<Option<usize>, LoadedMaterial>,
-    images: HashMap<(usize, TextureKind, Channel, ImageSampler), Handle<Image>>,
-}
-
-fn to_dynamic(data: gltf::image::Data) -> Option<DynamicImage> {
-    use gltf::image::Format;
-    let (width, height) = (data.width, data.height);
-    let sixteen = |bytes: &[u8]| -> Vec<u16> {
-        bytes
-            .chunks_exact(2)
-            .map(|pair| u16::from_ne_bytes([pair[0], pair[1]]))
-            .collect()
-    };
-    let float = |bytes: &[u8]| -> Vec<f32> {
-        bytes
-            .chunks_exact(4)
-            .map(|quad| f32::from_ne_bytes([quad[0], quad[1], quad[2], quad[3]]))
-            .collect()
-    };
-    Some(match data.format {
-        Format::R8 => {
-            DynamicImage::ImageLuma8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
-        }
-        Format::R8G8 => {
-            DynamicImage::ImageLumaA8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
-        }
-        Format::R8G8B8 => {
-            DynamicImage::ImageRgb8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
-        }
-        Format::R8G8B8A8 => {
-            DynamicImage::ImageRgba8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
-        }
-        Format::R16 => DynamicImage::ImageLuma16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R16G16 => DynamicImage::ImageLumaA16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R16G16B16 => DynamicImage::ImageRgb16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R16G16B16A16 => DynamicImage::ImageRgba16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R32G32B32FLOAT => DynamicImage::ImageRgb32F(image::ImageBuffer::from_raw(
-            width,
-            height,
-            float(&data.pixels),
-        )?),
-        Format::R32G32B32A32FLOAT => DynamicImage::ImageRgba32F(image::ImageBuffer::from_raw(
-            width,
-            height,
-            float(&data.pixels),
-        )?),
-    })
-}
-
-/// A glTF sampler as the renderer samples: wrap modes as given; no filter given is linear.
-fn sampler_of(sampler: &gltf::texture::Sampler<'_>) -> ImageSampler {
-    use gltf::texture::{MagFilter, MinFilter, WrappingMode};
-    let wrap = |mode| match mode {
-        WrappingMode::Repeat => WrapMode::Repeat,
-        WrappingMode::MirroredRepeat => WrapMode::MirroredRepeat,
-        WrappingMode::ClampToEdge => WrapMode::ClampToEdge,
-    };
-    let (min_filter, mipmap_filter) = match sampler.min_filter() {
-        Some(MinFilter::Nearest | MinFilter::NearestMipmapNearest) => {
-            (FilterMode::Nearest, FilterMode::Nearest)
-        }
-        Some(MinFilter::NearestMipmapLinear) => (FilterMode::Nearest, FilterMode::Linear),
-        Some(MinFilter::LinearMipmapNearest) => (FilterMode::Linear, FilterMode::Nearest),
-        Some(MinFilter::Linear | MinFilter::LinearMipmapLinear) | None => {
-            (FilterMode::Linear, FilterMode::Linear)
-        }
-    };
-    ImageSampler {
-        wrap_u: wrap(sampler.wrap_s()),
-        wrap_v: wrap(sampler.wrap_t()),
-        mag_filter: match sampler.mag_filter() {
-            Some(MagFilter::Nearest) => FilterMode::Nearest,
-            Some(MagFilter::Linear) | None => FilterMode::Linear,
-        },
-        min_filter,
-        mipmap_filter,
-    }
+    textures: TextureCache,
 }
 
 impl MaterialCache {
-    /// The image of `texture`, decoded for `kind` (and `channel` for heights), added to `images`.
-    fn texture(
-        &mut self,
-        source: &Source,
-        images: &mut Assets<Image>,
-        texture: gltf::Texture<'_>,
-        kind: TextureKind,
-        channel: Channel,
-    ) -> Result<Handle<Image>, GltfError> {
-        let image = texture.source();
-        let sampler = sampler_of(&texture.sampler());
-        let key = (image.index(), kind, channel, sampler);
-        if let Some(handle) = self.images.get(&key) {
-            return Ok(handle.clone());
-        }
-        let name = describe(image.name(), image.index());
-        let image_error = |reason: String| GltfError::Image {
-            path: source.path.clone(),
-            image: name.clone(),
-            reason,
-        };
-        // A file the image names is reported by its URI and the path looked at.
-        let location = match image.source() {
-            gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-                let tried = source
-                    .base
-                    .as_deref()
-                    .map(|base| base.join(super::percent_decode(uri)));
-                Some(match tried {
-                    Some(tried) => format!("{uri} (looked for {})", tried.display()),
-                    None => uri.to_owned(),
-                })
-            }
-            _ => None,
-        };
-        let data =
-            gltf::image::Data::from_source(image.source(), source.base.as_deref(), &source.buffers)
-                .map_err(|error| match &location {
-                    Some(location) => image_error(format!("{location}: {error}")),
-                    None => image_error(error.to_string()),
-                })?;
-        let decoded = to_dynamic(data)
-            .ok_or_else(|| image_error("pixel data is shorter than its size".into()))?;
-        let loaded = Image::from_decoded(decoded, kind, channel, &name)
-            .map_err(|error| image_error(error.to_string()))?
-            .with_sampler(sampler);
-        let handle = images.add(loaded);
-        self.images.insert(key, handle.clone());
-        Ok(handle)
-    }
-
-    /// [`MaterialCache::texture`] of a texture slot the material may leave empty (red channel:
-    /// only height maps choose another).
-    fn optional_texture(
-        &mut self,
-        source: &Source,
-        images: &mut Assets<Image>,
-        texture: Option<gltf::Texture<'_>>,
-        kind: TextureKind,
-    ) -> Result<Option<Handle<Image>>, GltfError> {
-        texture
-            .map(|texture| self.texture(source, images, texture, kind, Channel::Red))
-            .transpose()
-    }
-
     /// The material of a primitive (`None` = glTF's default material).
     pub fn material(
         &mut self,
@@ -202,188 +46,312 @@ impl MaterialCache {
         if let Some(loaded) = self.materials.get(&key) {
             return Ok(loaded.clone());
         }
-        let name = describe(material.name(), key.unwrap_or(usize::MAX));
-        let material_error = |reason: String| GltfError::Material {
-            path: source.path.clone(),
-            material: name.clone(),
-            reason,
-        };
-        let pbr = material.pbr_metallic_roughness();
-        let [r, g, b, a] = pbr.base_color_factor();
-        let base_color = Color { r, g, b, a };
-        let base_info = pbr.base_color_texture();
-        let base_texture = base_info.as_ref().map(|info| info.texture());
-        let base_color_texture =
-            self.optional_texture(source, images, base_texture, TextureKind::Color)?;
-        let normal_info = material.normal_texture();
-        let normal_map = self.optional_texture(
+        let mut conversion = Conversion {
             source,
             images,
+            textures: &mut self.textures,
+            name: describe(material.name(), key.unwrap_or(usize::MAX)),
+        };
+        let loaded = conversion.convert(&material, warnings)?;
+        self.materials.insert(key, loaded.clone());
+        Ok(loaded)
+    }
+}
+
+/// What both kinds of material take from a glTF material.
+struct Surface {
+    base_color: Color,
+    base_color_texture: Option<Handle<Image>>,
+    normal_map: Option<Handle<Image>>,
+    normal_strength: f32,
+    roughness: f32,
+    metallic: f32,
+    double_sided: bool,
+}
+
+/// What only a [`LitMaterial`] draws (a parallax material warns that it leaves it out).
+struct LitOnly {
+    emissive_texture: Option<Handle<Image>>,
+    emissive: Color,
+    emissive_strength: f32,
+    occlusion_texture: Option<Handle<Image>>,
+    occlusion_strength: f32,
+    alpha_mode: AlphaMode,
+    alpha_cutoff: f32,
+    unlit: bool,
+}
+
+/// The renderer samples every map of a material with the same coordinates, so the base colour
+/// texture's transform (T · R · S, as the extension defines it) applies to all.
+fn uv_transform_of(material: &gltf::Material<'_>) -> Affine2 {
+    material
+        .pbr_metallic_roughness()
+        .base_color_texture()
+        .and_then(|info| info.texture_transform())
+        .map_or(Affine2::IDENTITY, |t| {
+            Affine2::from_scale_angle_translation(
+                Vec2::from(t.scale()),
+                t.rotation(),
+                Vec2::from(t.offset()),
+            )
+        })
+}
+
+/// One glTF material being converted: the file, the image store and cache its textures go to,
+/// and its name for messages. Textures load in the order the material's parts are read.
+struct Conversion<'a> {
+    source: &'a Source,
+    images: &'a mut Assets<Image>,
+    textures: &'a mut TextureCache,
+    name: String,
+}
+
+impl Conversion<'_> {
+    /// A problem of this material.
+    fn error(&self, reason: String) -> GltfError {
+        GltfError::Material {
+            path: self.source.path.clone(),
+            material: self.name.clone(),
+            reason,
+        }
+    }
+
+    /// The image of a texture slot the material may leave empty.
+    fn optional_texture(
+        &mut self,
+        texture: Option<gltf::Texture<'_>>,
+        kind: TextureKind,
+    ) -> Result<Option<Handle<Image>>, GltfError> {
+        self.textures
+            .optional_texture(self.source, self.images, texture, kind)
+    }
+
+    /// The surface and lit-only parts, then the kind the material's extras ask for.
+    fn convert(
+        &mut self,
+        material: &gltf::Material<'_>,
+        warnings: &mut Vec<String>,
+    ) -> Result<LoadedMaterial, GltfError> {
+        let surface = self.surface(material)?;
+        let uv_transform = uv_transform_of(material);
+        let lit_only = self.lit_only(material)?;
+        let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
+            .map_err(|reason| self.error(reason))?;
+        let kind = match extras {
+            None => MaterialComponent::Lit(self.lit(material, surface, lit_only)?),
+            Some(pom) => MaterialComponent::Parallax(
+                self.parallax(material, &pom, surface, &lit_only, warnings)?,
+            ),
+        };
+        Ok(LoadedMaterial { kind, uv_transform })
+    }
+
+    /// Base colour and normal map (loaded in this order) and the factors both kinds use.
+    fn surface(&mut self, material: &gltf::Material<'_>) -> Result<Surface, GltfError> {
+        let pbr = material.pbr_metallic_roughness();
+        let [r, g, b, a] = pbr.base_color_factor();
+        let base_color_texture = self.optional_texture(
+            pbr.base_color_texture().map(|info| info.texture()),
+            TextureKind::Color,
+        )?;
+        let normal_info = material.normal_texture();
+        let normal_map = self.optional_texture(
             normal_info.as_ref().map(|info| info.texture()),
             TextureKind::Normal,
         )?;
-        let normal_strength = normal_info.as_ref().map_or(1.0, |info| info.scale());
+        Ok(Surface {
+            base_color: Color { r, g, b, a },
+            base_color_texture,
+            normal_map,
+            normal_strength: normal_info.as_ref().map_or(1.0, |info| info.scale()),
+            roughness: pbr.roughness_factor(),
+            metallic: pbr.metallic_factor(),
+            double_sided: material.double_sided(),
+        })
+    }
 
-        // The renderer samples every map of a material with the same coordinates, so the base
-        // colour texture's transform (T · R · S, as the extension defines it) applies to all.
-        let uv_transform = base_info
-            .as_ref()
-            .and_then(|info| info.texture_transform())
-            .map_or(Affine2::IDENTITY, |t| {
-                Affine2::from_scale_angle_translation(
-                    Vec2::from(t.scale()),
-                    t.rotation(),
-                    Vec2::from(t.offset()),
-                )
-            });
-
+    /// Emission and occlusion (loaded in this order), alpha mode and unlit.
+    fn lit_only(&mut self, material: &gltf::Material<'_>) -> Result<LitOnly, GltfError> {
         let emissive_texture = self.optional_texture(
-            source,
-            images,
             material.emissive_texture().map(|info| info.texture()),
             TextureKind::Color,
         )?;
         let occlusion_info = material.occlusion_texture();
         let occlusion_texture = self.optional_texture(
-            source,
-            images,
             occlusion_info.as_ref().map(|info| info.texture()),
             TextureKind::Data,
         )?;
-        let occlusion_strength = occlusion_info
-            .as_ref()
-            .map_or(1.0, |info| info.strength().clamp(0.0, 1.0));
+        let (alpha_mode, alpha_cutoff) = self.alpha(material)?;
         let [er, eg, eb] = material.emissive_factor();
-        let emissive = Color::linear_rgb(er, eg, eb);
-        let emissive_strength = material.emissive_strength().unwrap_or(1.0);
-        let unlit = material.unlit();
-        let (alpha_mode, alpha_cutoff) = match material.alpha_mode() {
+        Ok(LitOnly {
+            emissive_texture,
+            emissive: Color::linear_rgb(er, eg, eb),
+            emissive_strength: material.emissive_strength().unwrap_or(1.0),
+            occlusion_texture,
+            occlusion_strength: occlusion_info
+                .as_ref()
+                .map_or(1.0, |info| info.strength().clamp(0.0, 1.0)),
+            alpha_mode,
+            alpha_cutoff,
+            unlit: material.unlit(),
+        })
+    }
+
+    /// The alpha mode, and the cutoff of a mask (which must lie in 0..=1).
+    fn alpha(&self, material: &gltf::Material<'_>) -> Result<(AlphaMode, f32), GltfError> {
+        Ok(match material.alpha_mode() {
             gltf::material::AlphaMode::Mask => {
                 let cutoff = material.alpha_cutoff().unwrap_or(0.5);
                 if !(0.0..=1.0).contains(&cutoff) {
-                    return Err(material_error(format!(
-                        "alphaCutoff {cutoff} is outside 0..=1"
-                    )));
+                    return Err(self.error(format!("alphaCutoff {cutoff} is outside 0..=1")));
                 }
                 (AlphaMode::Mask, cutoff)
             }
             gltf::material::AlphaMode::Blend => (AlphaMode::Blend, 0.5),
             gltf::material::AlphaMode::Opaque => (AlphaMode::Opaque, 0.5),
-        };
+        })
+    }
 
-        let metallic_roughness_info = pbr.metallic_roughness_texture();
-        let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
-            .map_err(&material_error)?;
-        let roughness = pbr.roughness_factor();
-        let kind = match extras {
-            None => MaterialComponent::Lit(LitMaterial {
-                base_color,
-                base_color_texture,
-                normal_map,
-                normal_strength,
-                lighting: LightingModel::GgxLambert,
-                roughness,
-                metallic: pbr.metallic_factor(),
-                metallic_roughness_texture: self.optional_texture(
-                    source,
-                    images,
-                    metallic_roughness_info.map(|info| info.texture()),
-                    TextureKind::Data,
-                )?,
-                double_sided: material.double_sided(),
-                emissive_texture,
-                occlusion_texture,
-                occlusion_strength,
-                emissive,
-                emissive_strength,
-                unlit,
-                alpha_mode,
-                alpha_cutoff,
-                ..LitMaterial::default()
-            }),
-            Some(pom) => {
-                let height_map = match (pom.height_in_normal_alpha, pom.height_texture) {
-                    (true, _) => {
-                        if normal_map.is_none() {
-                            return Err(material_error(
-                                "extras.pom.height_in_normal_alpha needs a normal texture".into(),
-                            ));
-                        }
-                        HeightSource::NormalMapAlpha
-                    }
-                    (false, Some(index)) => {
-                        let texture = source.document.textures().nth(index).ok_or_else(|| {
-                            material_error(format!(
-                                "extras.pom.height_texture is {index} but the file has {} textures",
-                                source.document.textures().len()
-                            ))
-                        })?;
-                        let channel = choose(
-                            "height_channel",
-                            &pom.height_channel,
-                            &[
-                                ("r", Channel::Red),
-                                ("g", Channel::Green),
-                                ("b", Channel::Blue),
-                                ("a", Channel::Alpha),
-                            ],
-                            Channel::Red,
-                        )
-                        .map_err(&material_error)?;
-                        HeightSource::Texture(self.texture(
-                            source,
-                            images,
-                            texture,
-                            TextureKind::Height,
-                            channel,
-                        )?)
-                    }
-                    (false, None) => {
-                        return Err(material_error(
-                            "extras.pom needs height_texture (or height_in_normal_alpha: true)"
-                                .into(),
-                        ));
-                    }
-                };
-                let mut material = ParallaxOcclusionMaterial {
-                    base_color,
-                    base_color_texture,
-                    normal_map,
-                    height_map: Some(height_map),
-                    // glTF's own BRDF, driven by the roughness and metallic factors, unless
-                    // the extras say otherwise.
-                    lighting: LightingModel::GgxLambert,
-                    roughness,
-                    metallic: pbr.metallic_factor(),
-                    normal_strength,
-                    double_sided: material.double_sided(),
-                    ..ParallaxOcclusionMaterial::default()
-                };
-                // What the parallax material does not have yet is said, not dropped silently.
-                if emissive_texture.is_some() || emissive != Color::linear_rgb(0.0, 0.0, 0.0) {
-                    warnings.push(format!(
-                        "material {name}: emission is not supported on parallax materials; ignored"
-                    ));
-                }
-                if metallic_roughness_info.is_some() {
-                    warnings.push(format!(
-                        "material {name}: metallicRoughnessTexture is not supported on parallax materials; its roughness and metallic factors are used"
-                    ));
-                }
-                if alpha_mode != AlphaMode::Opaque || unlit {
-                    warnings.push(format!(
-                        "material {name}: alpha mask, alpha blend and unlit are not supported on parallax materials; drawn opaque and lit"
-                    ));
-                }
-                pom.apply(&mut material).map_err(&material_error)?;
-                material
-                    .validate()
-                    .map_err(|problem| material_error(format!("extras.pom: {problem}")))?;
-                MaterialComponent::Parallax(material)
-            }
+    /// A material without POM extras: lit, with its metallic-roughness texture loaded last.
+    fn lit(
+        &mut self,
+        material: &gltf::Material<'_>,
+        surface: Surface,
+        lit: LitOnly,
+    ) -> Result<LitMaterial, GltfError> {
+        let metallic_roughness = material
+            .pbr_metallic_roughness()
+            .metallic_roughness_texture();
+        Ok(LitMaterial {
+            base_color: surface.base_color,
+            base_color_texture: surface.base_color_texture,
+            normal_map: surface.normal_map,
+            normal_strength: surface.normal_strength,
+            lighting: LightingModel::GgxLambert,
+            roughness: surface.roughness,
+            metallic: surface.metallic,
+            metallic_roughness_texture: self.optional_texture(
+                metallic_roughness.map(|info| info.texture()),
+                TextureKind::Data,
+            )?,
+            double_sided: surface.double_sided,
+            emissive_texture: lit.emissive_texture,
+            occlusion_texture: lit.occlusion_texture,
+            occlusion_strength: lit.occlusion_strength,
+            emissive: lit.emissive,
+            emissive_strength: lit.emissive_strength,
+            unlit: lit.unlit,
+            alpha_mode: lit.alpha_mode,
+            alpha_cutoff: lit.alpha_cutoff,
+            ..LitMaterial::default()
+        })
+    }
+
+    /// A material with POM extras: its height map, the extras' parameters, validated.
+    fn parallax(
+        &mut self,
+        material: &gltf::Material<'_>,
+        pom: &PomExtras,
+        surface: Surface,
+        lit: &LitOnly,
+        warnings: &mut Vec<String>,
+    ) -> Result<ParallaxOcclusionMaterial, GltfError> {
+        let height_map = self.height_map(pom, surface.normal_map.is_some())?;
+        let mut parallax = ParallaxOcclusionMaterial {
+            base_color: surface.base_color,
+            base_color_texture: surface.base_color_texture,
+            normal_map: surface.normal_map,
+            height_map: Some(height_map),
+            // glTF's own BRDF, driven by the roughness and metallic factors, unless the extras
+            // say otherwise.
+            lighting: LightingModel::GgxLambert,
+            roughness: surface.roughness,
+            metallic: surface.metallic,
+            normal_strength: surface.normal_strength,
+            double_sided: surface.double_sided,
+            ..ParallaxOcclusionMaterial::default()
         };
-        let loaded = LoadedMaterial { kind, uv_transform };
-        self.materials.insert(key, loaded.clone());
-        Ok(loaded)
+        self.warn_left_out(material, lit, warnings);
+        pom.apply(&mut parallax)
+            .map_err(|reason| self.error(reason))?;
+        parallax
+            .validate()
+            .map_err(|problem| self.error(format!("extras.pom: {problem}")))?;
+        Ok(parallax)
+    }
+
+    /// Where a parallax material's heights come from: the normal map's alpha, or a channel of
+    /// the texture the extras name.
+    fn height_map(
+        &mut self,
+        pom: &PomExtras,
+        has_normal_map: bool,
+    ) -> Result<HeightSource, GltfError> {
+        let source = self.source;
+        match (pom.height_in_normal_alpha, pom.height_texture) {
+            (true, _) if !has_normal_map => {
+                Err(self.error("extras.pom.height_in_normal_alpha needs a normal texture".into()))
+            }
+            (true, _) => Ok(HeightSource::NormalMapAlpha),
+            (false, Some(index)) => {
+                let texture = source.document.textures().nth(index).ok_or_else(|| {
+                    self.error(format!(
+                        "extras.pom.height_texture is {index} but the file has {} textures",
+                        source.document.textures().len()
+                    ))
+                })?;
+                let channel = choose(
+                    "height_channel",
+                    &pom.height_channel,
+                    &[
+                        ("r", Channel::Red),
+                        ("g", Channel::Green),
+                        ("b", Channel::Blue),
+                        ("a", Channel::Alpha),
+                    ],
+                    Channel::Red,
+                )
+                .map_err(|reason| self.error(reason))?;
+                let height = self.textures.texture(
+                    source,
+                    self.images,
+                    texture,
+                    TextureKind::Height,
+                    channel,
+                )?;
+                Ok(HeightSource::Texture(height))
+            }
+            (false, None) => Err(self
+                .error("extras.pom needs height_texture (or height_in_normal_alpha: true)".into())),
+        }
+    }
+
+    /// What the parallax material does not have yet is said, not dropped silently.
+    fn warn_left_out(
+        &self,
+        material: &gltf::Material<'_>,
+        lit: &LitOnly,
+        warnings: &mut Vec<String>,
+    ) {
+        let name = &self.name;
+        if lit.emissive_texture.is_some() || lit.emissive != Color::linear_rgb(0.0, 0.0, 0.0) {
+            warnings.push(format!(
+                "material {name}: emission is not supported on parallax materials; ignored"
+            ));
+        }
+        if material
+            .pbr_metallic_roughness()
+            .metallic_roughness_texture()
+            .is_some()
+        {
+            warnings.push(format!(
+                "material {name}: metallicRoughnessTexture is not supported on parallax materials; its roughness and metallic factors are used"
+            ));
+        }
+        if lit.alpha_mode != AlphaMode::Opaque || lit.unlit {
+            warnings.push(format!(
+                "material {name}: alpha mask, alpha blend and unlit are not supported on parallax materials; drawn opaque and lit"
+            ));
+        }
     }
 }

@@ -13,6 +13,7 @@ mod guards;
 mod materials;
 mod nodes;
 mod primitives;
+mod textures;
 
 pub use extras::PomExtras;
 

@@ -7,7 +7,7 @@ use super::materials::{MaterialCache, MaterialComponent};
 use super::primitives::read_primitive;
 use super::{GltfError, GltfScene, Source, describe};
 use crate::{
-    App, Assets, Camera, Color, DirectionalLight, Image, Mesh, Name, Parent, PointLight,
+    App, Assets, Camera, Color, DirectionalLight, Handle, Image, Mesh, Name, Parent, PointLight,
     Projection, SpotLight, Transform,
 };
 
@@ -75,6 +75,17 @@ pub(super) fn spawn_scene(
     .unwrap_or(Ok(()))
 }
 
+/// The walk's state: where it spawns, and the materials and mesh boxes it has gathered.
+struct Spawner<'a> {
+    app: &'a mut App,
+    source: &'a Source,
+    scene: &'a mut GltfScene,
+    meshes: &'a mut Assets<Mesh>,
+    images: &'a mut Assets<Image>,
+    materials: MaterialCache,
+    mesh_boxes: Vec<(Vec3, Vec3)>,
+}
+
 fn spawn_nodes(
     app: &mut App,
     source: &Source,
@@ -83,8 +94,15 @@ fn spawn_nodes(
     meshes: &mut Assets<Mesh>,
     images: &mut Assets<Image>,
 ) -> Result<(), GltfError> {
-    let mut materials = MaterialCache::default();
-    let mut mesh_boxes = Vec::new();
+    let mut spawner = Spawner {
+        app,
+        source,
+        scene,
+        meshes,
+        images,
+        materials: MaterialCache::default(),
+        mesh_boxes: Vec::new(),
+    };
     let mut stack: Vec<(gltf::Node<'_>, Option<Entity>, Affine3A)> = root
         .nodes()
         .map(|node| (node, None, Affine3A::IDENTITY))
@@ -103,150 +121,211 @@ fn spawn_nodes(
                 ),
             });
         }
-        let transform = transform_of(&node);
-        let world = parent_world * transform.to_affine();
-        // The file's node name, or "node N" for an unnamed node.
-        let name = node
-            .name()
-            .map_or_else(|| format!("node {}", node.index()), str::to_owned);
-        let entity = app.world.spawn((transform, Name::new(name.clone())));
-        if let Some(parent) = parent {
-            let _ = app.world.insert_one(entity, Parent(parent));
-        }
-        scene.entities.push(entity);
-        let node_name = describe(node.name(), node.index());
-
-        if node.skin().is_some() {
-            scene.warnings.push(format!(
-                "node {node_name}: skinning is not supported; drawn in its bind pose"
-            ));
-        }
-        if let Some(mesh) = node.mesh() {
-            let mut drawable = Vec::new();
-            for primitive in mesh.primitives() {
-                if primitive.mode() != gltf::mesh::Mode::Triangles {
-                    scene.warnings.push(format!(
-                        "mesh {}, primitive {}: mode {:?} is not supported; skipped",
-                        describe(mesh.name(), mesh.index()),
-                        primitive.index(),
-                        primitive.mode()
-                    ));
-                    continue;
-                }
-                if primitive.morph_targets().len() > 0 {
-                    scene.warnings.push(format!(
-                        "mesh {}, primitive {}: morph targets are not supported; drawn unmorphed",
-                        describe(mesh.name(), mesh.index()),
-                        primitive.index()
-                    ));
-                }
-                let material = materials.material(
-                    source,
-                    images,
-                    primitive.material(),
-                    &mut scene.warnings,
-                )?;
-                let data = read_primitive(source, &mesh, &primitive, material.uv_transform)?;
-                if let Some(bounds) = mesh_bounds(world, &data) {
-                    mesh_boxes.push(bounds);
-                }
-                drawable.push((meshes.add(data), material.kind));
-            }
-            // One primitive goes on the node itself; several get a child entity each.
-            let single = drawable.len() == 1;
-            for (primitive, (handle, material)) in drawable.into_iter().enumerate() {
-                let target = if single {
-                    entity
-                } else {
-                    let child = app.world.spawn((
-                        Transform::IDENTITY,
-                        Parent(entity),
-                        Name(format!("{name} / primitive {primitive}")),
-                    ));
-                    scene.entities.push(child);
-                    child
-                };
-                let _ = app.world.insert_one(target, handle);
-                let _ = match material {
-                    MaterialComponent::Lit(lit) => app.world.insert_one(target, lit),
-                    MaterialComponent::Parallax(parallax) => app.world.insert_one(target, parallax),
-                };
-            }
-        }
-        if let Some(camera) = node.camera() {
-            // One rule everywhere: the first camera node is the one looked through.
-            let camera = Camera {
-                active: scene.cameras.is_empty(),
-                ..camera_of(&camera)
-            };
-            let _ = app.world.insert_one(entity, camera);
-            scene.cameras.push(entity);
-        }
-        if let Some(light) = node.light() {
-            let [r, g, b] = light.color();
-            let color = Color::linear_rgb(r, g, b);
-            let mut intensity = light.intensity();
-            if !(intensity >= 0.0 && intensity.is_finite()) {
-                scene.warnings.push(format!(
-                    "node {node_name}: light intensity {intensity} is not a finite number ≥ 0; clamped to 0"
-                ));
-                intensity = 0.0;
-            }
-            let inserted = match light.kind() {
-                gltf::khr_lights_punctual::Kind::Directional => app
-                    .world
-                    .insert_one(entity, DirectionalLight { color, intensity }),
-                gltf::khr_lights_punctual::Kind::Spot {
-                    inner_cone_angle,
-                    outer_cone_angle,
-                } => {
-                    let spot = SpotLight {
-                        color,
-                        intensity,
-                        range: light.range().unwrap_or(f32::INFINITY),
-                        inner_angle: inner_cone_angle,
-                        outer_angle: outer_cone_angle,
-                    };
-                    let (inner, outer) = spot.sanitized_cone();
-                    if (inner, outer) != (inner_cone_angle, outer_cone_angle) {
-                        scene.warnings.push(format!(
-                            "node {node_name}: spot cone inner {inner_cone_angle} / outer {outer_cone_angle} rad is not 0 ≤ inner ≤ outer ≤ π/2; clamped to {inner} / {outer}"
-                        ));
-                    }
-                    app.world.insert_one(
-                        entity,
-                        SpotLight {
-                            inner_angle: inner,
-                            outer_angle: outer,
-                            ..spot
-                        },
-                    )
-                }
-                gltf::khr_lights_punctual::Kind::Point => {
-                    app.world.insert_one(
-                        entity,
-                        PointLight {
-                            color,
-                            intensity,
-                            // No range: unbounded, as KHR_lights_punctual defines it.
-                            range: light.range().unwrap_or(f32::INFINITY),
-                        },
-                    )
-                }
-            };
-            if inserted.is_ok() {
-                scene.lights.push(entity);
-            }
-        }
+        let (entity, world) = spawner.node(&node, parent, parent_world)?;
         let children: Vec<_> = node.children().collect();
         for child in children.into_iter().rev() {
             stack.push((child, Some(entity), world));
         }
     }
-    scene.bounds = mesh_boxes
-        .iter()
-        .copied()
-        .reduce(|(min_a, max_a), (min_b, max_b)| (min_a.min(min_b), max_a.max(max_b)));
-    scene.framing_bounds = super::framing::framing_bounds(&mesh_boxes);
+    spawner.finish();
     Ok(())
+}
+
+impl Spawner<'_> {
+    /// Spawns `node` under `parent` with its mesh, camera and light; returns the entity and
+    /// its world transform.
+    fn node(
+        &mut self,
+        node: &gltf::Node<'_>,
+        parent: Option<Entity>,
+        parent_world: Affine3A,
+    ) -> Result<(Entity, Affine3A), GltfError> {
+        let transform = transform_of(node);
+        let world = parent_world * transform.to_affine();
+        // The file's node name, or "node N" for an unnamed node.
+        let name = node
+            .name()
+            .map_or_else(|| format!("node {}", node.index()), str::to_owned);
+        let entity = self.app.world.spawn((transform, Name::new(name.clone())));
+        if let Some(parent) = parent {
+            let _ = self.app.world.insert_one(entity, Parent(parent));
+        }
+        self.scene.entities.push(entity);
+        let node_name = describe(node.name(), node.index());
+
+        if node.skin().is_some() {
+            self.scene.warnings.push(format!(
+                "node {node_name}: skinning is not supported; drawn in its bind pose"
+            ));
+        }
+        if let Some(mesh) = node.mesh() {
+            self.mesh(&mesh, entity, &name, world)?;
+        }
+        if let Some(camera) = node.camera() {
+            // One rule everywhere: the first camera node is the one looked through.
+            let camera = Camera {
+                active: self.scene.cameras.is_empty(),
+                ..camera_of(&camera)
+            };
+            let _ = self.app.world.insert_one(entity, camera);
+            self.scene.cameras.push(entity);
+        }
+        if let Some(light) = node.light() {
+            self.light(&light, entity, &node_name);
+        }
+        Ok((entity, world))
+    }
+
+    /// The drawable primitives of `mesh` on node `entity` (named `name`, placed by `world`):
+    /// one primitive goes on the node itself; several get a child entity each.
+    fn mesh(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        entity: Entity,
+        name: &str,
+        world: Affine3A,
+    ) -> Result<(), GltfError> {
+        let drawable = self.primitives(mesh, world)?;
+        let single = drawable.len() == 1;
+        for (primitive, (handle, material)) in drawable.into_iter().enumerate() {
+            let target = if single {
+                entity
+            } else {
+                let child = self.app.world.spawn((
+                    Transform::IDENTITY,
+                    Parent(entity),
+                    Name(format!("{name} / primitive {primitive}")),
+                ));
+                self.scene.entities.push(child);
+                child
+            };
+            let _ = self.app.world.insert_one(target, handle);
+            let _ = match material {
+                MaterialComponent::Lit(lit) => self.app.world.insert_one(target, lit),
+                MaterialComponent::Parallax(parallax) => {
+                    self.app.world.insert_one(target, parallax)
+                }
+            };
+        }
+        Ok(())
+    }
+
+    /// The meshes and materials of `mesh`'s triangle primitives, their boxes gathered; other
+    /// modes are skipped and morph targets left out, with a warning each.
+    fn primitives(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        world: Affine3A,
+    ) -> Result<Vec<(Handle<Mesh>, MaterialComponent)>, GltfError> {
+        let mut drawable = Vec::new();
+        for primitive in mesh.primitives() {
+            if primitive.mode() != gltf::mesh::Mode::Triangles {
+                self.scene.warnings.push(format!(
+                    "mesh {}, primitive {}: mode {:?} is not supported; skipped",
+                    describe(mesh.name(), mesh.index()),
+                    primitive.index(),
+                    primitive.mode()
+                ));
+                continue;
+            }
+            if primitive.morph_targets().len() > 0 {
+                self.scene.warnings.push(format!(
+                    "mesh {}, primitive {}: morph targets are not supported; drawn unmorphed",
+                    describe(mesh.name(), mesh.index()),
+                    primitive.index()
+                ));
+            }
+            let material = self.materials.material(
+                self.source,
+                self.images,
+                primitive.material(),
+                &mut self.scene.warnings,
+            )?;
+            let data = read_primitive(self.source, mesh, &primitive, material.uv_transform)?;
+            if let Some(bounds) = mesh_bounds(world, &data) {
+                self.mesh_boxes.push(bounds);
+            }
+            drawable.push((self.meshes.add(data), material.kind));
+        }
+        Ok(drawable)
+    }
+
+    /// A `KHR_lights_punctual` light on node `entity`; a negative or non-finite intensity is
+    /// clamped to 0, with a warning.
+    fn light(
+        &mut self,
+        light: &gltf::khr_lights_punctual::Light<'_>,
+        entity: Entity,
+        node_name: &str,
+    ) {
+        let [r, g, b] = light.color();
+        let color = Color::linear_rgb(r, g, b);
+        let mut intensity = light.intensity();
+        if !(intensity >= 0.0 && intensity.is_finite()) {
+            self.scene.warnings.push(format!(
+                "node {node_name}: light intensity {intensity} is not a finite number ≥ 0; clamped to 0"
+            ));
+            intensity = 0.0;
+        }
+        // No range: unbounded, as KHR_lights_punctual defines it.
+        let range = light.range().unwrap_or(f32::INFINITY);
+        let inserted = match light.kind() {
+            gltf::khr_lights_punctual::Kind::Directional => self
+                .app
+                .world
+                .insert_one(entity, DirectionalLight { color, intensity }),
+            gltf::khr_lights_punctual::Kind::Spot {
+                inner_cone_angle,
+                outer_cone_angle,
+            } => {
+                let spot = SpotLight {
+                    color,
+                    intensity,
+                    range,
+                    inner_angle: inner_cone_angle,
+                    outer_angle: outer_cone_angle,
+                };
+                let spot = self.sanitized_spot(spot, node_name);
+                self.app.world.insert_one(entity, spot)
+            }
+            gltf::khr_lights_punctual::Kind::Point => self.app.world.insert_one(
+                entity,
+                PointLight {
+                    color,
+                    intensity,
+                    range,
+                },
+            ),
+        };
+        if inserted.is_ok() {
+            self.scene.lights.push(entity);
+        }
+    }
+
+    /// `spot` with its cone clamped to 0 ≤ inner ≤ outer ≤ π/2, with a warning if that
+    /// changed it.
+    fn sanitized_spot(&mut self, spot: SpotLight, node_name: &str) -> SpotLight {
+        let (inner, outer) = spot.sanitized_cone();
+        if (inner, outer) != (spot.inner_angle, spot.outer_angle) {
+            self.scene.warnings.push(format!(
+                "node {node_name}: spot cone inner {} / outer {} rad is not 0 ≤ inner ≤ outer ≤ π/2; clamped to {inner} / {outer}",
+                spot.inner_angle, spot.outer_angle
+            ));
+        }
+        SpotLight {
+            inner_angle: inner,
+            outer_angle: outer,
+            ..spot
+        }
+    }
+
+    /// The scene's boxes: of every mesh, and the one an automatic camera frames.
+    fn finish(self) {
+        self.scene.bounds = self
+            .mesh_boxes
+            .iter()
+            .copied()
+            .reduce(|(min_a, max_a), (min_b, max_b)| (min_a.min(min_b), max_a.max(max_b)));
+        self.scene.framing_bounds = super::framing::framing_bounds(&self.mesh_boxes);
+    }
 }

@@ -5,12 +5,16 @@ use std::path::Path;
 use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
 
 mod decode;
+mod error;
 mod mips;
+mod pixels;
 mod sampler;
 
 pub use decode::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 use decode::{decode_bytes, decode_file};
+pub use error::ImageError;
 use mips::Reduce;
+pub use pixels::Pixels;
 pub use sampler::{FilterMode, ImageSampler, WrapMode};
 
 /// What a texture holds: decides its GPU format and how its mip levels are filtered.
@@ -27,91 +31,6 @@ pub enum TextureKind {
     Height,
     /// Any other linear data: plain averages.
     Data,
-}
-
-/// Pixel storage of an [`Image`].
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum Pixels {
-    /// Four 8-bit channels.
-    Rgba8(RgbaImage),
-    /// One 8-bit channel.
-    Gray8(GrayImage),
-    /// One 16-bit channel (16-bit height maps stay 16-bit on the GPU where it allows).
-    Gray16(ImageBuffer<Luma<u16>, Vec<u16>>),
-}
-
-impl Pixels {
-    /// Width and height.
-    pub fn dimensions(&self) -> (u32, u32) {
-        match self {
-            Pixels::Rgba8(pixels) => pixels.dimensions(),
-            Pixels::Gray8(pixels) => pixels.dimensions(),
-            Pixels::Gray16(pixels) => pixels.dimensions(),
-        }
-    }
-
-    /// Channels per pixel.
-    pub fn channels(&self) -> usize {
-        match self {
-            Pixels::Rgba8(_) => 4,
-            Pixels::Gray8(_) | Pixels::Gray16(_) => 1,
-        }
-    }
-
-    /// The raw bytes, row by row (16-bit values little-endian, as GPUs expect).
-    pub fn bytes(&self) -> Vec<u8> {
-        match self {
-            Pixels::Rgba8(pixels) => pixels.as_raw().clone(),
-            Pixels::Gray8(pixels) => pixels.as_raw().clone(),
-            Pixels::Gray16(pixels) => pixels
-                .as_raw()
-                .iter()
-                .flat_map(|v| v.to_le_bytes())
-                .collect(),
-        }
-    }
-
-    /// Every value as 0..=1, row by row, `channels()` per pixel.
-    pub fn to_unit_floats(&self) -> Vec<f32> {
-        match self {
-            Pixels::Rgba8(pixels) => pixels
-                .as_raw()
-                .iter()
-                .map(|v| f32::from(*v) / 255.0)
-                .collect(),
-            Pixels::Gray8(pixels) => pixels
-                .as_raw()
-                .iter()
-                .map(|v| f32::from(*v) / 255.0)
-                .collect(),
-            Pixels::Gray16(pixels) => pixels
-                .as_raw()
-                .iter()
-                .map(|v| f32::from(*v) / 65535.0)
-                .collect(),
-        }
-    }
-
-    fn from_unit_floats(like: &Pixels, width: u32, height: u32, values: &[f32]) -> Pixels {
-        let to_u8 = |v: &f32| (v * 255.0).round().clamp(0.0, 255.0) as u8;
-        let to_u16 = |v: &f32| (v * 65535.0).round().clamp(0.0, 65535.0) as u16;
-        // Lengths follow from width × height × channels, which the callers compute.
-        match like {
-            Pixels::Rgba8(_) => Pixels::Rgba8(
-                RgbaImage::from_raw(width, height, values.iter().map(to_u8).collect())
-                    .expect("four values per pixel"),
-            ),
-            Pixels::Gray8(_) => Pixels::Gray8(
-                GrayImage::from_raw(width, height, values.iter().map(to_u8).collect())
-                    .expect("one value per pixel"),
-            ),
-            Pixels::Gray16(_) => Pixels::Gray16(
-                ImageBuffer::from_raw(width, height, values.iter().map(to_u16).collect())
-                    .expect("one value per pixel"),
-            ),
-        }
-    }
 }
 
 /// Which channel of a colour image holds a height.
@@ -133,64 +52,6 @@ impl Channel {
     pub fn index(self) -> usize {
         self as usize
     }
-}
-
-/// What went wrong building or loading an [`Image`].
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum ImageError {
-    /// The file could not be read or decoded.
-    #[error("cannot load image {path}: {reason}")]
-    Load {
-        /// The file (or the name of an embedded image).
-        path: std::path::PathBuf,
-        /// What the decoder or the file system said.
-        reason: String,
-    },
-    /// Width or height is zero.
-    #[error("image is {width}×{height}; both sides must be at least 1")]
-    Empty {
-        /// Width in pixels.
-        width: u32,
-        /// Height in pixels.
-        height: u32,
-    },
-    /// The pixel buffer's length does not match the size.
-    #[error("image of {width}×{height} needs {expected} bytes of RGBA8 but got {found}")]
-    WrongLength {
-        /// Width in pixels.
-        width: u32,
-        /// Height in pixels.
-        height: u32,
-        /// Bytes needed.
-        expected: usize,
-        /// Bytes given.
-        found: usize,
-    },
-    /// The file declares a size over [`MAX_IMAGE_SIDE`] or [`MAX_IMAGE_PIXELS`]; it is refused
-    /// before any pixel memory is allocated.
-    #[error(
-        "image {name} declares {width}×{height} pixels, over the limit of {max_side} per side \
-         and {max_pixels} in all"
-    )]
-    TooLarge {
-        /// The file or image name.
-        name: String,
-        /// Declared width.
-        width: u32,
-        /// Declared height.
-        height: u32,
-        /// [`MAX_IMAGE_SIDE`].
-        max_side: u32,
-        /// [`MAX_IMAGE_PIXELS`].
-        max_pixels: u64,
-    },
-    /// The image has no alpha channel but its alpha was asked for as a height.
-    #[error("{name} has no alpha channel to read a height from")]
-    NoAlpha {
-        /// The file or image name.
-        name: String,
-    },
 }
 
 /// A texture on the CPU, with its kind; the renderer uploads it with a full mip chain.

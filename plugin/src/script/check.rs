@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use super::ScriptError;
-use super::format::{MaterialDesc, Script, Statistic, Step};
+use super::format::{EntityDesc, MaterialDesc, Script, Statistic, Step};
 
 /// Line and column (1-based) of the first `needle` in `text` after `after` (or anywhere).
 fn locate(text: &str, needle: &str, after: &str) -> (usize, usize) {
@@ -50,6 +50,48 @@ fn locate_light_shadows(text: &str, nth: usize, field: &str) -> (usize, usize) {
     line_and_column(text, offset)
 }
 
+/// The script's text and file, which every error found in it names with a line and column.
+struct ScriptText<'a> {
+    text: &'a str,
+    path: &'a Path,
+}
+
+impl ScriptText<'_> {
+    /// A text that is not a valid script (a value out of range) at `line` and `column`.
+    fn invalid(&self, (line, column): (usize, usize), reason: String) -> ScriptError {
+        ScriptError::Parse {
+            path: self.path.to_owned(),
+            line,
+            column,
+            reason,
+        }
+    }
+
+    /// A reference to something missing at `line` and `column`.
+    fn reference(&self, (line, column): (usize, usize), reason: String) -> ScriptError {
+        ScriptError::Reference {
+            path: self.path.to_owned(),
+            line,
+            column,
+            reason,
+        }
+    }
+
+    /// A reference to something missing, placed at the first `"needle"` after `after`.
+    fn missing(&self, needle: &str, after: &str, reason: String) -> ScriptError {
+        self.reference(locate(self.text, &format!("\"{needle}\""), after), reason)
+    }
+
+    /// A step that reads capture `capture` before any step takes it.
+    fn no_capture(&self, capture: &str) -> ScriptError {
+        self.missing(
+            capture,
+            "steps",
+            format!("no capture named {capture:?} is taken before this step"),
+        )
+    }
+}
+
 /// Checks every name and file the script refers to before anything runs.
 pub(super) fn check(
     script: &Script,
@@ -57,30 +99,32 @@ pub(super) fn check(
     path: &Path,
     dir: &Path,
 ) -> Result<(), ScriptError> {
-    let missing = |needle: &str, after: &str, reason: String| {
-        let (line, column) = locate(text, &format!("\"{needle}\""), after);
-        ScriptError::Reference {
-            path: path.to_owned(),
-            line,
-            column,
-            reason,
-        }
-    };
+    let source = ScriptText { text, path };
+    check_exposure(script, &source)?;
+    check_light_shadows(script, &source)?;
+    let names = check_entities(script, &source, dir)?;
+    check_steps(script, &names, &source)
+}
+
+/// The camera's exposure, if given, is within [`crate::Exposure::RANGE`].
+fn check_exposure(script: &Script, source: &ScriptText<'_>) -> Result<(), ScriptError> {
     if let Some(ev100) = script.camera.exposure
         && !crate::Exposure::RANGE.contains(&ev100)
     {
-        let (line, column) = locate(text, "exposure", "camera");
-        return Err(ScriptError::Parse {
-            path: path.to_owned(),
-            line,
-            column,
-            reason: format!(
+        return Err(source.invalid(
+            locate(source.text, "exposure", "camera"),
+            format!(
                 "camera exposure {ev100} EV100 is outside {}..={}",
                 crate::Exposure::RANGE.start(),
                 crate::Exposure::RANGE.end()
             ),
-        });
+        ));
     }
+    Ok(())
+}
+
+/// Every light's shadow settings, where given, are usable.
+fn check_light_shadows(script: &Script, source: &ScriptText<'_>) -> Result<(), ScriptError> {
     let lights_with_shadows = script
         .lights
         .iter()
@@ -88,143 +132,159 @@ pub(super) fn check(
         .filter_map(|(index, light)| light.shadows().map(|shadows| (index, shadows)));
     for (nth, (index, shadows)) in lights_with_shadows.enumerate() {
         if let Some((field, problem)) = shadows.problem() {
-            let (line, column) = locate_light_shadows(text, nth, field);
-            return Err(ScriptError::Parse {
-                path: path.to_owned(),
-                line,
-                column,
-                reason: format!("light {index} shadows: {problem}"),
-            });
+            return Err(source.invalid(
+                locate_light_shadows(source.text, nth, field),
+                format!("light {index} shadows: {problem}"),
+            ));
         }
     }
+    Ok(())
+}
+
+/// Every entity has a name of its own, exactly one of a shape and a glTF file, and files that
+/// exist. Returns the names, in order.
+fn check_entities(
+    script: &Script,
+    source: &ScriptText<'_>,
+    dir: &Path,
+) -> Result<Vec<String>, ScriptError> {
     let mut names = Vec::new();
     for entity in &script.entities {
         if names.contains(&entity.name) {
-            return Err(missing(
+            return Err(source.missing(
                 &entity.name,
                 "entities",
                 format!("entity {:?} is named twice", entity.name),
             ));
         }
         names.push(entity.name.clone());
-        match (&entity.shape, &entity.gltf, &entity.material) {
-            (Some(_), None, _) => {}
-            (None, Some(file), None) => {
-                if !dir.join(file).is_file() {
-                    return Err(missing(
-                        file,
-                        "entities",
-                        format!("glTF file {file:?} does not exist"),
-                    ));
-                }
-            }
-            (None, Some(_), Some(_)) => {
-                return Err(missing(
-                    &entity.name,
-                    "entities",
-                    format!(
-                        "entity {:?}: a glTF file brings its own materials",
-                        entity.name
-                    ),
-                ));
-            }
-            _ => {
-                return Err(missing(
-                    &entity.name,
-                    "entities",
-                    format!(
-                        "entity {:?} needs exactly one of shape and gltf",
-                        entity.name
-                    ),
-                ));
-            }
-        }
+        check_shape_or_gltf(entity, source, dir)?;
         if let Some(MaterialDesc::Pom { maps, preset, .. }) = &entity.material {
-            for file in ["albedo.png", "normal.png", "height.png"] {
-                if !dir.join(maps).join(file).is_file() {
-                    return Err(missing(
-                        maps,
-                        "entities",
-                        format!("{maps}/{file} does not exist"),
-                    ));
-                }
-            }
-            if let Some(preset) = preset
-                && !dir.join(preset).is_file()
-            {
-                return Err(missing(
-                    preset,
-                    "entities",
-                    format!("preset file {preset:?} does not exist"),
-                ));
-            }
+            check_pom_files(maps, preset.as_deref(), source, dir)?;
         }
     }
+    Ok(names)
+}
+
+/// An entity is a shape (with any material) or a glTF file that exists (with none).
+fn check_shape_or_gltf(
+    entity: &EntityDesc,
+    source: &ScriptText<'_>,
+    dir: &Path,
+) -> Result<(), ScriptError> {
+    let name = &entity.name;
+    match (&entity.shape, &entity.gltf, &entity.material) {
+        (Some(_), None, _) => Ok(()),
+        (None, Some(file), None) if dir.join(file).is_file() => Ok(()),
+        (None, Some(file), None) => Err(source.missing(
+            file,
+            "entities",
+            format!("glTF file {file:?} does not exist"),
+        )),
+        (None, Some(_), Some(_)) => Err(source.missing(
+            name,
+            "entities",
+            format!("entity {name:?}: a glTF file brings its own materials"),
+        )),
+        _ => Err(source.missing(
+            name,
+            "entities",
+            format!("entity {name:?} needs exactly one of shape and gltf"),
+        )),
+    }
+}
+
+/// A parallax material's three maps in folder `maps`, and its preset file, exist.
+fn check_pom_files(
+    maps: &str,
+    preset: Option<&str>,
+    source: &ScriptText<'_>,
+    dir: &Path,
+) -> Result<(), ScriptError> {
+    for file in ["albedo.png", "normal.png", "height.png"] {
+        if !dir.join(maps).join(file).is_file() {
+            return Err(source.missing(maps, "entities", format!("{maps}/{file} does not exist")));
+        }
+    }
+    if let Some(preset) = preset
+        && !dir.join(preset).is_file()
+    {
+        return Err(source.missing(
+            preset,
+            "entities",
+            format!("preset file {preset:?} does not exist"),
+        ));
+    }
+    Ok(())
+}
+
+/// Every step refers to entities, lights and earlier captures that exist.
+fn check_steps(
+    script: &Script,
+    names: &[String],
+    source: &ScriptText<'_>,
+) -> Result<(), ScriptError> {
     let mut captures: Vec<&str> = Vec::new();
     for step in &script.steps {
-        match step {
-            Step::Set { entity, .. } | Step::Spin { entity, .. } if !names.contains(entity) => {
-                return Err(missing(
-                    entity,
-                    "steps",
-                    format!("no entity is named {entity:?}"),
-                ));
-            }
-            Step::MoveLight { light, .. } if *light >= script.lights.len() => {
-                let (line, column) = locate(text, "MoveLight", "steps");
-                return Err(ScriptError::Reference {
-                    path: path.to_owned(),
-                    line,
-                    column,
-                    reason: format!(
-                        "light {light} does not exist (the script has {})",
-                        script.lights.len()
-                    ),
-                });
-            }
-            Step::Capture { name, .. } => captures.push(name),
-            Step::ExpectMatch { capture, .. } | Step::ExpectStat { capture, .. }
-                if !captures.contains(&capture.as_str()) =>
-            {
-                return Err(missing(
-                    capture,
-                    "steps",
-                    format!("no capture named {capture:?} is taken before this step"),
-                ));
-            }
-            Step::ExpectMonotonic { captures: list, .. } => {
-                if let Some(capture) = list.iter().find(|c| !captures.contains(&c.as_str())) {
-                    return Err(missing(
-                        capture,
-                        "steps",
-                        format!("no capture named {capture:?} is taken before this step"),
-                    ));
-                }
-            }
-            _ => {}
-        }
-        let baseline = match step {
-            Step::ExpectStat {
-                stat: Statistic::UvShift { baseline },
-                ..
-            }
-            | Step::ExpectMonotonic {
-                stat: Statistic::UvShift { baseline },
-                ..
-            } => Some(baseline),
-            _ => None,
-        };
-        if let Some(baseline) = baseline
-            && !captures.contains(&baseline.as_str())
-        {
-            return Err(missing(
-                baseline,
-                "steps",
-                format!("no capture named {baseline:?} is taken before this step"),
-            ));
+        check_step(step, script, names, &captures, source)?;
+        if let Step::Capture { name, .. } = step {
+            captures.push(name);
         }
     }
     Ok(())
+}
+
+/// One step's references, `captures` being those taken by the steps before it.
+fn check_step(
+    step: &Step,
+    script: &Script,
+    names: &[String],
+    captures: &[&str],
+    source: &ScriptText<'_>,
+) -> Result<(), ScriptError> {
+    let taken = |capture: &String| captures.contains(&capture.as_str());
+    match step {
+        Step::Set { entity, .. } | Step::Spin { entity, .. } if !names.contains(entity) => {
+            return Err(source.missing(entity, "steps", format!("no entity is named {entity:?}")));
+        }
+        Step::MoveLight { light, .. } if *light >= script.lights.len() => {
+            return Err(source.reference(
+                locate(source.text, "MoveLight", "steps"),
+                format!(
+                    "light {light} does not exist (the script has {})",
+                    script.lights.len()
+                ),
+            ));
+        }
+        Step::ExpectMatch { capture, .. } | Step::ExpectStat { capture, .. } if !taken(capture) => {
+            return Err(source.no_capture(capture));
+        }
+        Step::ExpectMonotonic { captures: list, .. } => {
+            if let Some(capture) = list.iter().find(|capture| !taken(capture)) {
+                return Err(source.no_capture(capture));
+            }
+        }
+        _ => {}
+    }
+    match uv_shift_baseline(step) {
+        Some(baseline) if !taken(baseline) => Err(source.no_capture(baseline)),
+        _ => Ok(()),
+    }
+}
+
+/// The baseline capture a `UvShift` statistic of an expectation measures from.
+fn uv_shift_baseline(step: &Step) -> Option<&String> {
+    match step {
+        Step::ExpectStat {
+            stat: Statistic::UvShift { baseline },
+            ..
+        }
+        | Step::ExpectMonotonic {
+            stat: Statistic::UvShift { baseline },
+            ..
+        } => Some(baseline),
+        _ => None,
+    }
 }
 
 #[cfg(test)]

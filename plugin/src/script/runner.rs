@@ -1,22 +1,23 @@
 //! Checking a script against itself and the file system, building its scene, running its steps.
 
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+mod expect;
+mod spawn;
+mod steps;
 
-use glam::{EulerRot, Quat, Vec3};
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::Vec3;
 use hecs::Entity;
 use image::RgbaImage;
 
 use super::check::check;
-use super::format::{CameraDesc, MaterialDesc, Script, ShapeDesc, Statistic, Step};
-use super::lights::{light_towards, spawn_light};
-use super::stats::{measure, required_view};
-use super::{CapturePath, Outcome, Report, RunOptions, ScriptError, StepReport};
+use super::format::{CameraDesc, Script, Step};
+use super::lights::spawn_light;
+use super::{CapturePath, Report, RunOptions, ScriptError, StepReport};
 use crate::{
-    AmbientLight, App, Assets, Camera, Color, DebugView, DirectionalLight, Exposure, GpuContext,
-    HeightSource, Image, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
-    PomPreset, Projection, RenderPlugin, TextureKind, Transform, flip_compare, load_gltf,
-    render::Renderer,
+    AmbientLight, App, Camera, Color, DebugView, Exposure, PomPlugin, Projection, RenderPlugin,
+    Transform,
 };
 
 /// The time between two frames of a scene script ([`crate::Time`] advances by it).
@@ -67,21 +68,27 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Script, ScriptError> {
     Ok(script)
 }
 
+/// A frame a `Capture` step kept, with the debug view it was drawn with and the path it ran on.
 struct Capture {
     image: RgbaImage,
     view: Option<DebugView>,
     path: CapturePath,
 }
 
+/// A script's scene while its steps run: the app, what the script named, and the captures.
 struct Runner<'a> {
     app: App,
     path: &'a Path,
     dir: &'a Path,
     options: &'a RunOptions,
+    /// What each script entity spawned (a glTF file: every entity of its scene).
     entities: HashMap<String, Vec<Entity>>,
+    /// The script's lights, in its order.
     lights: Vec<Entity>,
     camera: Entity,
+    /// The point the camera looks at, which `OrbitCamera` turns about.
     target: Vec3,
+    /// Degrees per frame about Y, by entity name.
     spins: HashMap<String, f32>,
     captures: HashMap<String, Capture>,
 }
@@ -90,6 +97,7 @@ fn vec3(v: [f32; 3]) -> Vec3 {
     Vec3::from(v)
 }
 
+/// The script camera's projection (perspective unless an orthographic height is given).
 fn camera_component(desc: &CameraDesc) -> Camera {
     let projection = match (desc.orthographic_height, desc.fov_degrees) {
         (Some(height), _) => Projection::Orthographic {
@@ -110,6 +118,7 @@ fn camera_component(desc: &CameraDesc) -> Camera {
     }
 }
 
+/// A transform at `position` looking at `target`, with an up axis that is not along the view.
 fn look(position: Vec3, target: Vec3) -> Transform {
     let up = if (target - position).normalize_or_zero().y.abs() > 0.99 {
         Vec3::Z
@@ -120,6 +129,7 @@ fn look(position: Vec3, target: Vec3) -> Transform {
 }
 
 impl<'a> Runner<'a> {
+    /// Builds the script's app and scene: camera, lights, ambient light, then its entities.
     fn new(
         script: &Script,
         path: &'a Path,
@@ -181,94 +191,7 @@ impl<'a> Runner<'a> {
         Ok(runner)
     }
 
-    fn spawn(&mut self, desc: &super::format::EntityDesc) -> Result<Vec<Entity>, String> {
-        let rotation = Quat::from_euler(
-            EulerRot::XYZ,
-            desc.transform.rotation_degrees[0].to_radians(),
-            desc.transform.rotation_degrees[1].to_radians(),
-            desc.transform.rotation_degrees[2].to_radians(),
-        );
-        let transform = Transform {
-            translation: vec3(desc.transform.translation),
-            rotation,
-            scale: vec3(desc.transform.scale.unwrap_or([1.0; 3])),
-        };
-        if let Some(file) = &desc.gltf {
-            let scene =
-                load_gltf(&mut self.app, self.dir.join(file)).map_err(|error| error.to_string())?;
-            // Place the whole file by moving its root nodes.
-            for entity in &scene.entities {
-                if self.app.world.get::<&crate::Parent>(*entity).is_err()
-                    && let Ok(mut root) = self.app.world.get::<&mut Transform>(*entity)
-                {
-                    *root = Transform::from_affine(transform.to_affine() * root.to_affine());
-                }
-            }
-            // A script's own camera and lights replace the file's.
-            for camera in &scene.cameras {
-                let _ = self.app.world.remove_one::<Camera>(*camera);
-            }
-            if !self.lights.is_empty() {
-                for light in &scene.lights {
-                    let _ = self.app.world.remove_one::<DirectionalLight>(*light);
-                    let _ = self.app.world.remove_one::<PointLight>(*light);
-                }
-            }
-            return Ok(scene.entities);
-        }
-        let mesh = match desc.shape.as_ref().ok_or("no shape")? {
-            ShapeDesc::Plane { size, tiling } => Mesh::plane_tiled(*size, *tiling),
-            ShapeDesc::Cube { size } => Mesh::cube(*size),
-            ShapeDesc::Sphere { radius } => Mesh::uv_sphere(*radius, 32, 16),
-        };
-        let mesh = self
-            .app
-            .resources
-            .get_mut::<Assets<Mesh>>()
-            .ok_or("no mesh store")?
-            .add(mesh);
-        let entity = self.app.world.spawn((mesh, transform));
-        match &desc.material {
-            None => {}
-            Some(MaterialDesc::Lit { color }) => {
-                let _ = self.app.world.insert_one(
-                    entity,
-                    LitMaterial::from_color(Color::linear_rgb(color[0], color[1], color[2])),
-                );
-            }
-            Some(MaterialDesc::Pom { maps, preset, set }) => {
-                let folder = self.dir.join(maps);
-                let load = |file: &str, kind| {
-                    Image::load(folder.join(file), kind).map_err(|error| error.to_string())
-                };
-                let (albedo, normal, height) = (
-                    load("albedo.png", TextureKind::Color)?,
-                    load("normal.png", TextureKind::Normal)?,
-                    load("height.png", TextureKind::Height)?,
-                );
-                let images = self
-                    .app
-                    .resources
-                    .get_mut::<Assets<Image>>()
-                    .ok_or("no image store")?;
-                let mut material = ParallaxOcclusionMaterial {
-                    base_color_texture: Some(images.add(albedo)),
-                    normal_map: Some(images.add(normal)),
-                    height_map: Some(HeightSource::Texture(images.add(height))),
-                    ..ParallaxOcclusionMaterial::default()
-                };
-                if let Some(preset) = preset {
-                    let preset = PomPreset::load(self.dir.join(preset))
-                        .map_err(|error| error.to_string())?;
-                    material.apply_preset(&preset);
-                }
-                set.apply(&mut material);
-                let _ = self.app.world.insert_one(entity, material);
-            }
-        }
-        Ok(vec![entity])
-    }
-
+    /// A step that could not be carried out, with the report of the steps before it.
     fn step_error(&self, number: usize, reason: String, report: &Report) -> ScriptError {
         ScriptError::Step {
             path: self.path.to_owned(),
@@ -278,43 +201,7 @@ impl<'a> Runner<'a> {
         }
     }
 
-    /// One update, with spins applied first; fails on any GPU error the frame raised.
-    fn frame(&mut self) -> Result<(), String> {
-        for (name, degrees) in &self.spins {
-            for entity in self.entities.get(name).into_iter().flatten() {
-                if let Ok(mut transform) = self.app.world.get::<&mut Transform>(*entity) {
-                    transform.rotation =
-                        Quat::from_rotation_y(degrees.to_radians()) * transform.rotation;
-                }
-            }
-        }
-        self.app.update().map_err(|error| error.to_string())?;
-        let errors = self
-            .app
-            .resources
-            .get::<GpuContext>()
-            .map(GpuContext::take_uncaptured_errors)
-            .unwrap_or_default();
-        match errors.first() {
-            Some(error) => Err(format!("GPU error: {error}")),
-            None => Ok(()),
-        }
-    }
-
-    fn materials_of(&mut self, name: &str) -> Vec<Entity> {
-        self.entities
-            .get(name)
-            .into_iter()
-            .flatten()
-            .copied()
-            .filter(|entity| {
-                self.app
-                    .world
-                    .satisfies::<&ParallaxOcclusionMaterial>(*entity)
-            })
-            .collect()
-    }
-
+    /// Runs every step in order, one report line each.
     fn run(mut self, script: &Script) -> Result<Report, ScriptError> {
         let mut report = Report {
             script: self.path.to_owned(),
@@ -337,309 +224,6 @@ impl<'a> Runner<'a> {
             });
         }
         Ok(report)
-    }
-
-    fn execute(&mut self, step: &Step) -> Result<(String, Outcome), String> {
-        match step {
-            Step::Advance { frames } => {
-                for _ in 0..*frames {
-                    self.frame()?;
-                }
-                Ok((format!("Advance {frames}"), Outcome::Done))
-            }
-            Step::Set { entity, material } => {
-                let targets = self.materials_of(entity);
-                if targets.is_empty() {
-                    return Err(format!("entity {entity:?} has no parallax material"));
-                }
-                for target in targets {
-                    if let Ok(mut component) =
-                        self.app.world.get::<&mut ParallaxOcclusionMaterial>(target)
-                    {
-                        material.apply(&mut component);
-                    }
-                }
-                Ok((format!("Set {entity:?}"), Outcome::Done))
-            }
-            Step::Camera { position, target } => {
-                self.target = vec3(*target);
-                if let Ok(mut transform) = self.app.world.get::<&mut Transform>(self.camera) {
-                    *transform = look(vec3(*position), self.target);
-                }
-                Ok(("Camera".into(), Outcome::Done))
-            }
-            Step::OrbitCamera { degrees } => {
-                let target = self.target;
-                if let Ok(mut transform) = self.app.world.get::<&mut Transform>(self.camera) {
-                    let offset = Quat::from_rotation_y(degrees.to_radians())
-                        * (transform.translation - target);
-                    *transform = look(target + offset, target);
-                }
-                Ok((format!("OrbitCamera {degrees}°"), Outcome::Done))
-            }
-            Step::MoveLight {
-                light,
-                direction,
-                position,
-            } => {
-                let entity = self.lights[*light];
-                if let Ok(mut transform) = self.app.world.get::<&mut Transform>(entity) {
-                    if let Some(direction) = direction {
-                        // Turned in place: a spot keeps its position.
-                        let translation = transform.translation;
-                        *transform = light_towards(vec3(*direction));
-                        transform.translation = translation;
-                    }
-                    if let Some(position) = position {
-                        transform.translation = vec3(*position);
-                    }
-                }
-                Ok((format!("MoveLight {light}"), Outcome::Done))
-            }
-            Step::Spin {
-                entity,
-                degrees_per_frame,
-            } => {
-                self.spins.insert(entity.clone(), *degrees_per_frame);
-                Ok((
-                    format!("Spin {entity:?} {degrees_per_frame}°/frame"),
-                    Outcome::Done,
-                ))
-            }
-            Step::Capture { name, debug_view } => {
-                let image = self.capture(*debug_view)?;
-                let path = self.last_frame_path()?;
-                self.captures.insert(
-                    name.clone(),
-                    Capture {
-                        image,
-                        view: *debug_view,
-                        path,
-                    },
-                );
-                Ok((format!("Capture {name:?}"), Outcome::Done))
-            }
-            Step::ExpectMatch {
-                capture,
-                reference,
-                tolerance,
-            } => {
-                let outcome = self.expect_match(capture, reference, tolerance)?;
-                Ok((format!("ExpectMatch {capture:?}"), outcome))
-            }
-            Step::ExpectStat {
-                capture,
-                stat,
-                rect,
-                min,
-                max,
-            } => {
-                let value = self.statistic(capture, stat, *rect)?;
-                let low = min.unwrap_or(f32::NEG_INFINITY);
-                let high = max.unwrap_or(f32::INFINITY);
-                let detail = format!("{} = {value:.4}, bounds {low}..={high}", stat_name(stat));
-                let outcome = if (low..=high).contains(&value) {
-                    Outcome::Passed(detail)
-                } else {
-                    Outcome::Failed(detail)
-                };
-                Ok((format!("ExpectStat {capture:?}"), outcome))
-            }
-            Step::ExpectMonotonic {
-                captures,
-                stat,
-                increasing,
-            } => {
-                let values = captures
-                    .iter()
-                    .map(|capture| self.statistic(capture, stat, None))
-                    .collect::<Result<Vec<f32>, String>>()?;
-                let ordered = values.windows(2).all(|pair| {
-                    if *increasing {
-                        pair[1] > pair[0]
-                    } else {
-                        pair[1] < pair[0]
-                    }
-                });
-                let list: Vec<String> = values.iter().map(|v| format!("{v:.4}")).collect();
-                let detail = format!(
-                    "{} = [{}], {}",
-                    stat_name(stat),
-                    list.join(", "),
-                    if *increasing {
-                        "must grow"
-                    } else {
-                        "must shrink"
-                    }
-                );
-                let outcome = if ordered {
-                    Outcome::Passed(detail)
-                } else {
-                    Outcome::Failed(detail)
-                };
-                Ok(("ExpectMonotonic".into(), outcome))
-            }
-        }
-    }
-
-    fn capture(&mut self, view: Option<DebugView>) -> Result<RgbaImage, String> {
-        let mut saved = Vec::new();
-        if let Some(view) = view {
-            for (entity, material) in self
-                .app
-                .world
-                .query_mut::<(Entity, &mut ParallaxOcclusionMaterial)>()
-            {
-                saved.push((entity, material.debug_view));
-                material.debug_view = view;
-            }
-        }
-        let result = self
-            .frame()
-            .and_then(|()| crate::capture(&self.app).map_err(|error| error.to_string()));
-        for (entity, view) in saved {
-            if let Ok(mut material) = self.app.world.get::<&mut ParallaxOcclusionMaterial>(entity) {
-                material.debug_view = view;
-            }
-        }
-        result
-    }
-
-    /// The path the renderer ran the last frame on (a deferred request can fall back to
-    /// forward, which the images alone would not show).
-    fn last_frame_path(&self) -> Result<CapturePath, String> {
-        let renderer = self
-            .app
-            .resources
-            .get::<Renderer>()
-            .ok_or("the app has no renderer")?;
-        Ok(
-            match (renderer.runs_deferred(), renderer.deferred_unavailable()) {
-                (true, _) => CapturePath::Deferred,
-                (false, Some(reason)) => CapturePath::FellBackToForward(reason),
-                (false, None) => CapturePath::Forward,
-            },
-        )
-    }
-
-    fn statistic(
-        &self,
-        capture: &str,
-        stat: &Statistic,
-        rect: Option<super::format::Rect>,
-    ) -> Result<f32, String> {
-        let taken = &self.captures[capture];
-        if let Some(view) = required_view(stat)
-            && taken.view != Some(view)
-        {
-            return Err(format!(
-                "{} needs capture {capture:?} taken with debug_view: {view:?}",
-                stat_name(stat)
-            ));
-        }
-        let baseline = match stat {
-            Statistic::UvShift { baseline } => Some(&self.captures[baseline].image),
-            _ => None,
-        };
-        Ok(measure(stat, &taken.image, rect, baseline))
-    }
-
-    fn expect_match(
-        &self,
-        capture: &str,
-        reference: &str,
-        tolerance: &crate::FlipTolerance,
-    ) -> Result<Outcome, String> {
-        let actual = &self.captures[capture].image;
-        let reference_path = self.dir.join(reference);
-        let save = |image: &RgbaImage, path: &Path| -> Result<(), String> {
-            if let Some(parent) = path.parent() {
-                std::fs::create_dir_all(parent)
-                    .map_err(|e| format!("{}: {e}", parent.display()))?;
-            }
-            image
-                .save(path)
-                .map_err(|error| format!("{}: {error}", path.display()))
-        };
-        let stem = Path::new(reference)
-            .file_stem()
-            .map(|stem| stem.to_string_lossy().into_owned())
-            .unwrap_or_else(|| capture.to_owned());
-        let out_dir: PathBuf = self
-            .options
-            .out_dir
-            .clone()
-            .unwrap_or_else(|| reference_path.parent().unwrap_or(self.dir).to_owned());
-        let actual_path = out_dir.join(format!("{stem}-actual.png"));
-        let difference_path = out_dir.join(format!("{stem}-difference.png"));
-        let expected = match image::open(&reference_path) {
-            Ok(expected) => expected.to_rgba8(),
-            Err(_) if self.options.bless => {
-                save(actual, &reference_path)?;
-                return Ok(Outcome::Blessed(format!(
-                    "wrote {}",
-                    reference_path.display()
-                )));
-            }
-            Err(error) => {
-                save(actual, &actual_path)?;
-                return Ok(Outcome::Failed(format!(
-                    "reference {} is missing ({error}); look at {} and run with --bless",
-                    reference_path.display(),
-                    actual_path.display()
-                )));
-            }
-        };
-        let Some(comparison) = flip_compare(&expected, actual, tolerance.percentile) else {
-            if self.options.bless {
-                save(actual, &reference_path)?;
-                return Ok(Outcome::Blessed(format!(
-                    "rewrote {} at the new size",
-                    reference_path.display()
-                )));
-            }
-            save(actual, &actual_path)?;
-            return Ok(Outcome::Failed(format!(
-                "size {:?} differs from the reference's {:?}",
-                actual.dimensions(),
-                expected.dimensions()
-            )));
-        };
-        let detail = format!(
-            "FLIP mean {:.4} (max {}), p{} {:.4} (max {})",
-            comparison.mean,
-            tolerance.mean,
-            tolerance.percentile * 100.0,
-            comparison.at_percentile,
-            tolerance.percentile_max
-        );
-        if comparison.within(tolerance) {
-            return Ok(Outcome::Passed(detail));
-        }
-        if self.options.bless {
-            save(actual, &reference_path)?;
-            return Ok(Outcome::Blessed(format!(
-                "{detail}; rewrote {}",
-                reference_path.display()
-            )));
-        }
-        save(actual, &actual_path)?;
-        save(&comparison.error_map, &difference_path)?;
-        Ok(Outcome::Failed(format!(
-            "{detail}; see {} and {}",
-            actual_path.display(),
-            difference_path.display()
-        )))
-    }
-}
-
-fn stat_name(stat: &Statistic) -> String {
-    match stat {
-        Statistic::MeanLuminance => "mean luminance".into(),
-        Statistic::LodBandFraction => "LOD band fraction".into(),
-        Statistic::NormalMappingFraction => "normal-mapping fraction".into(),
-        Statistic::ShadowedFraction => "shadowed fraction".into(),
-        Statistic::UvShift { baseline } => format!("UV shift from {baseline:?}"),
     }
 }
 

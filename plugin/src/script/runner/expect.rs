@@ -1,0 +1,236 @@
+//! The expectation steps: a capture against its reference image (FLIP), a statistic within
+//! bounds, a statistic in order along captures.
+
+use std::path::{Path, PathBuf};
+
+use image::RgbaImage;
+
+use super::Runner;
+use crate::script::Outcome;
+use crate::script::format::{Rect, Statistic};
+use crate::script::stats::{measure, required_view};
+use crate::{FlipComparison, FlipTolerance, flip_compare};
+
+/// How a statistic is named in a report.
+fn stat_name(stat: &Statistic) -> String {
+    match stat {
+        Statistic::MeanLuminance => "mean luminance".into(),
+        Statistic::LodBandFraction => "LOD band fraction".into(),
+        Statistic::NormalMappingFraction => "normal-mapping fraction".into(),
+        Statistic::ShadowedFraction => "shadowed fraction".into(),
+        Statistic::UvShift { baseline } => format!("UV shift from {baseline:?}"),
+    }
+}
+
+/// Writes `image` as a PNG at `path`, making its folder first.
+fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+    }
+    image
+        .save(path)
+        .map_err(|error| format!("{}: {error}", path.display()))
+}
+
+/// One `ExpectMatch` step's capture and files: the reference it reads (and writes when
+/// blessing), and where the images of a failure go.
+struct ReferenceMatch<'a> {
+    actual: &'a RgbaImage,
+    reference: PathBuf,
+    actual_path: PathBuf,
+    difference_path: PathBuf,
+    bless: bool,
+}
+
+impl ReferenceMatch<'_> {
+    /// The reference could not be read: written when blessing, else a failure.
+    fn missing(&self, error: &image::ImageError) -> Result<Outcome, String> {
+        if self.bless {
+            save(self.actual, &self.reference)?;
+            return Ok(Outcome::Blessed(format!(
+                "wrote {}",
+                self.reference.display()
+            )));
+        }
+        save(self.actual, &self.actual_path)?;
+        Ok(Outcome::Failed(format!(
+            "reference {} is missing ({error}); look at {} and run with --bless",
+            self.reference.display(),
+            self.actual_path.display()
+        )))
+    }
+
+    /// The capture and the reference differ in size: rewritten when blessing, else a failure.
+    fn size_differs(&self, expected: &RgbaImage) -> Result<Outcome, String> {
+        if self.bless {
+            save(self.actual, &self.reference)?;
+            return Ok(Outcome::Blessed(format!(
+                "rewrote {} at the new size",
+                self.reference.display()
+            )));
+        }
+        save(self.actual, &self.actual_path)?;
+        Ok(Outcome::Failed(format!(
+            "size {:?} differs from the reference's {:?}",
+            self.actual.dimensions(),
+            expected.dimensions()
+        )))
+    }
+
+    /// A pass within `tolerance`; outside it, rewritten when blessing, else a failure with the
+    /// capture and the error map written.
+    fn judge(
+        &self,
+        comparison: &FlipComparison,
+        tolerance: &FlipTolerance,
+    ) -> Result<Outcome, String> {
+        let detail = format!(
+            "FLIP mean {:.4} (max {}), p{} {:.4} (max {})",
+            comparison.mean,
+            tolerance.mean,
+            tolerance.percentile * 100.0,
+            comparison.at_percentile,
+            tolerance.percentile_max
+        );
+        if comparison.within(tolerance) {
+            return Ok(Outcome::Passed(detail));
+        }
+        if self.bless {
+            save(self.actual, &self.reference)?;
+            return Ok(Outcome::Blessed(format!(
+                "{detail}; rewrote {}",
+                self.reference.display()
+            )));
+        }
+        save(self.actual, &self.actual_path)?;
+        save(&comparison.error_map, &self.difference_path)?;
+        Ok(Outcome::Failed(format!(
+            "{detail}; see {} and {}",
+            self.actual_path.display(),
+            self.difference_path.display()
+        )))
+    }
+}
+
+impl Runner<'_> {
+    /// `ExpectMatch`: compares capture `capture` with the reference image at `reference`.
+    pub(super) fn expect_match(
+        &self,
+        capture: &str,
+        reference: &str,
+        tolerance: &FlipTolerance,
+    ) -> Result<Outcome, String> {
+        let check = self.reference_match(capture, reference);
+        let expected = match image::open(&check.reference) {
+            Ok(expected) => expected.to_rgba8(),
+            Err(error) => return check.missing(&error),
+        };
+        match flip_compare(&expected, check.actual, tolerance.percentile) {
+            Some(comparison) => check.judge(&comparison, tolerance),
+            None => check.size_differs(&expected),
+        }
+    }
+
+    /// The files of comparing `capture` with `reference`: failure images are named after the
+    /// reference and go to the options' folder, or next to the reference.
+    fn reference_match(&self, capture: &str, reference: &str) -> ReferenceMatch<'_> {
+        let reference_path = self.dir.join(reference);
+        let stem = Path::new(reference)
+            .file_stem()
+            .map(|stem| stem.to_string_lossy().into_owned())
+            .unwrap_or_else(|| capture.to_owned());
+        let out_dir: PathBuf = self
+            .options
+            .out_dir
+            .clone()
+            .unwrap_or_else(|| reference_path.parent().unwrap_or(self.dir).to_owned());
+        ReferenceMatch {
+            actual: &self.captures[capture].image,
+            actual_path: out_dir.join(format!("{stem}-actual.png")),
+            difference_path: out_dir.join(format!("{stem}-difference.png")),
+            reference: reference_path,
+            bless: self.options.bless,
+        }
+    }
+
+    /// `ExpectStat`: the statistic of a capture (over `rect`) within `min..=max` (each open
+    /// when absent).
+    pub(super) fn expect_stat(
+        &self,
+        capture: &str,
+        stat: &Statistic,
+        rect: Option<Rect>,
+        min: Option<f32>,
+        max: Option<f32>,
+    ) -> Result<Outcome, String> {
+        let value = self.statistic(capture, stat, rect)?;
+        let low = min.unwrap_or(f32::NEG_INFINITY);
+        let high = max.unwrap_or(f32::INFINITY);
+        let detail = format!("{} = {value:.4}, bounds {low}..={high}", stat_name(stat));
+        Ok(if (low..=high).contains(&value) {
+            Outcome::Passed(detail)
+        } else {
+            Outcome::Failed(detail)
+        })
+    }
+
+    /// `ExpectMonotonic`: the statistic grows (or shrinks) strictly along `captures`.
+    pub(super) fn expect_monotonic(
+        &self,
+        captures: &[String],
+        stat: &Statistic,
+        increasing: bool,
+    ) -> Result<Outcome, String> {
+        let values = captures
+            .iter()
+            .map(|capture| self.statistic(capture, stat, None))
+            .collect::<Result<Vec<f32>, String>>()?;
+        let ordered = values.windows(2).all(|pair| {
+            if increasing {
+                pair[1] > pair[0]
+            } else {
+                pair[1] < pair[0]
+            }
+        });
+        let list: Vec<String> = values.iter().map(|v| format!("{v:.4}")).collect();
+        let detail = format!(
+            "{} = [{}], {}",
+            stat_name(stat),
+            list.join(", "),
+            if increasing {
+                "must grow"
+            } else {
+                "must shrink"
+            }
+        );
+        Ok(if ordered {
+            Outcome::Passed(detail)
+        } else {
+            Outcome::Failed(detail)
+        })
+    }
+
+    /// `stat` of capture `capture` over `rect`; fails if the capture lacks the debug view
+    /// the statistic reads.
+    fn statistic(
+        &self,
+        capture: &str,
+        stat: &Statistic,
+        rect: Option<Rect>,
+    ) -> Result<f32, String> {
+        let taken = &self.captures[capture];
+        if let Some(view) = required_view(stat)
+            && taken.view != Some(view)
+        {
+            return Err(format!(
+                "{} needs capture {capture:?} taken with debug_view: {view:?}",
+                stat_name(stat)
+            ));
+        }
+        let baseline = match stat {
+            Statistic::UvShift { baseline } => Some(&self.captures[baseline].image),
+            _ => None,
+        };
+        Ok(measure(stat, &taken.image, rect, baseline))
+    }
+}
