@@ -68,7 +68,6 @@ pub mod preview;
 #[cfg(feature = "scene-tests")]
 pub mod reference;
 pub mod render;
-mod resources;
 #[cfg(feature = "scene-tests")]
 pub mod script;
 #[cfg(feature = "dev-tools")]
@@ -86,7 +85,8 @@ mod transform;
 pub mod window;
 
 pub use app::{
-    App, AppError, BoxedError, Fallible, Infallible, IntoSystem, Plugin, Schedule, Stage, System,
+    App, AppError, BoxedError, Fallible, Infallible, IntoSystem, Plugin, Resources, Schedule,
+    Stage, System,
 };
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection, active_camera};
@@ -120,7 +120,6 @@ pub use render::{
     GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
     TargetFormat, TimingMode, capture, capture_f32, capture_scene,
 };
-pub use resources::Resources;
 #[cfg(feature = "scene-tests")]
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 #[cfg(feature = "dev-tools")]

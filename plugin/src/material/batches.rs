@@ -11,9 +11,10 @@ use glam::Mat4;
 
 use super::deferred::{DeferredResolve, ResolveTargets};
 use super::draw_order::{SortEntry, view_depth};
-use super::frame_bindings::{DepthBindings, DrawBuffers, FrameBindGroups};
+use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
+use crate::render::DepthBindings;
 use crate::render::MAX_DERIVED_TEXTURES;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;

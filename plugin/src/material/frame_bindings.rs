@@ -3,35 +3,7 @@
 //! for the passes that write depth (prepass, shadow maps) and one for those that shade.
 
 use crate::render::object_buffer::ObjectBuffer;
-use crate::render::{FrameUniformBuffer, GpuContext, MeshTransform};
-
-/// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
-/// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
-/// (the prepass and the shadow maps themselves); and the visibility keys (binding 8) the other
-/// way round: the real ones in the prepass, which writes them, a stand-in elsewhere (the
-/// deferred resolve reads them through a binding of its own).
-pub(crate) struct DepthBindings<'a> {
-    /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
-    pub(crate) opaque: &'a wgpu::TextureView,
-    /// The 1 × 1 dummy.
-    pub(crate) dummy: &'a wgpu::TextureView,
-    /// Every shadow map, for receivers.
-    pub(crate) shadow_maps: &'a wgpu::TextureView,
-    /// Their 1 × 1 × 1 stand-in.
-    pub(crate) dummy_shadow_maps: &'a wgpu::TextureView,
-    /// What receivers read of each map.
-    pub(crate) shadow_views: &'a wgpu::Buffer,
-    /// The shadow maps' comparison sampler.
-    pub(crate) shadow_sampler: &'a wgpu::Sampler,
-    /// The visibility keys the deferred path's prepass merges into (or the stand-in).
-    pub(crate) visibility: &'a wgpu::Buffer,
-    /// The one-key stand-in, bound where the keys are not written.
-    pub(crate) dummy_visibility: &'a wgpu::Buffer,
-    /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
-    /// belong to, and whether the target's visibility buffer exists: bind groups follow when
-    /// any changes.
-    pub(crate) bound: (u64, u64, bool),
-}
+use crate::render::{DepthBindings, FrameUniformBuffer, GpuContext, MeshTransform};
 
 /// The buffers and textures group 0 binds.
 struct FrameBindings<'a> {

@@ -17,6 +17,7 @@ mod plugin;
 mod registry;
 mod resolve_tiles;
 
+pub use crate::render::{FragmentVariant, MAX_MATERIAL_TEXTURES, MaterialTextures, TextureFacts};
 pub use crate::shader::{
     Choice, ChoiceInfo, LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout,
 };
@@ -31,10 +32,8 @@ pub use plugin::{
     draw_meshes_without_material, drawn_keys,
 };
 
-pub(crate) use frame_bindings::DepthBindings;
 #[cfg(feature = "dev-tools")]
 pub(crate) use registry::MaterialRegistry;
-pub(crate) use registry::{is_deferred_material, material_without_deferred_shader};
 pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
 
 use std::fmt::Debug;
@@ -42,44 +41,6 @@ use std::hash::Hash;
 
 use crate::render::shaders::ComposedShader;
 use crate::render::{DefaultTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES};
-use crate::{AssetId, Image};
-
-/// Most texture slots one material binds.
-pub const MAX_MATERIAL_TEXTURES: usize = 6;
-
-/// The image in each texture slot of a draw; `None` binds the slot's default texture.
-pub type MaterialTextures = [Option<AssetId<Image>>; MAX_MATERIAL_TEXTURES];
-
-/// A texture as it is bound on the GPU (after any downscaling at upload).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct TextureFacts {
-    /// Width of mip level 0 in texels.
-    pub width: u32,
-    /// Height of mip level 0 in texels.
-    pub height: u32,
-    /// Mip levels of the bound texture.
-    pub mip_levels: u32,
-}
-
-/// The entry point (fragment, or compute for a deferred resolve) and pipeline-overridable
-/// constants of one pipeline variant.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FragmentVariant {
-    /// The `@fragment` function.
-    pub entry_point: &'static str,
-    /// Values of the shader's `override` constants.
-    pub constants: Vec<(&'static str, f64)>,
-}
-
-impl FragmentVariant {
-    /// `entry_point` with no constants.
-    pub fn entry(entry_point: &'static str) -> Self {
-        Self {
-            entry_point,
-            constants: Vec::new(),
-        }
-    }
-}
 
 /// A surface type the renderer can draw: put it on an entity with a `Handle<Mesh>` and a
 /// transform, and add [`MaterialPlugin<Self>`].

@@ -6,12 +6,12 @@ use std::marker::PhantomData;
 
 use hecs::World;
 
-use super::DepthBindings;
 use super::Material;
 use super::batches::{MaterialBatches, MaterialShader, PrepareInputs};
 use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
+use crate::render::DepthBindings;
 use crate::render::{
     DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, RenderPhases, RenderTarget,
     Renderer, UploadStats, VisibilityBuffer, depth_bindings,
@@ -107,7 +107,9 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .push(MaterialEntry::new::<M>(self.draws_meshes_without_material));
         app.add_system(Stage::Extract, extract_materials::<M>)
             .add_system(Stage::Prepare, prepare_materials::<M>);
-        add_phase_draws::<M>(app.resources.get_or_default::<RenderPhases>());
+        let phases = app.resources.get_or_default::<RenderPhases>();
+        add_phase_draws::<M>(phases);
+        phases.declare_owner::<M>(M::NAME, false);
     }
 
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
@@ -143,12 +145,16 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             counter,
         );
         app.insert_resource(batches);
+        app.resources
+            .get_or_default::<RenderPhases>()
+            .declare_owner::<M>(M::NAME, shader.deferred);
+        #[cfg(feature = "dev-tools")]
         if let Some(entry) = app
             .resources
             .get_or_default::<MaterialRegistry>()
             .entry_mut::<M>()
         {
-            entry.set_compiled(shader);
+            entry.set_compiled(shader.composed);
         }
         Ok(())
     }

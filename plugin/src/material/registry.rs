@@ -8,7 +8,7 @@ use std::any::TypeId;
 use super::Material;
 #[cfg(feature = "dev-tools")]
 use super::batches::MaterialBatches;
-use super::batches::MaterialShader;
+#[cfg(feature = "dev-tools")]
 use crate::Resources;
 #[cfg(feature = "dev-tools")]
 use crate::render::shaders::ComposedShader;
@@ -20,13 +20,10 @@ pub(crate) type RebuiltPipelines = Box<dyn Any>;
 /// One registered material type.
 pub(crate) struct MaterialEntry {
     type_id: TypeId,
-    name: &'static str,
     /// Its shader as compiled (its deferred shader where it has one and the adapter the
     /// visibility pass).
     #[cfg(feature = "dev-tools")]
     pub(crate) shader: ComposedShader,
-    /// Whether its pipelines can draw the visibility pass (it compiled its deferred shader).
-    deferred: bool,
     /// Whether entities of an archetype have it.
     has: fn(&hecs::Archetype) -> bool,
     /// Whether it also draws, with its default, meshes that have no registered material.
@@ -45,8 +42,6 @@ impl MaterialEntry {
     pub(super) fn new<M: Material>(draws_meshes_without_material: bool) -> Self {
         Self {
             type_id: TypeId::of::<M>(),
-            name: M::NAME,
-            deferred: false,
             has: |archetype| archetype.has::<M>(),
             draws_meshes_without_material,
             #[cfg(feature = "dev-tools")]
@@ -68,13 +63,10 @@ impl MaterialEntry {
         }
     }
 
-    /// Records the shader the material compiled.
-    pub(super) fn set_compiled(&mut self, shader: MaterialShader) {
-        self.deferred = shader.deferred;
-        #[cfg(feature = "dev-tools")]
-        {
-            self.shader = shader.composed;
-        }
+    /// Records the shader the material compiled (hot reload recompiles it).
+    #[cfg(feature = "dev-tools")]
+    pub(super) fn set_compiled(&mut self, shader: ComposedShader) {
+        self.shader = shader;
     }
 }
 
@@ -103,25 +95,4 @@ impl MaterialRegistry {
     pub(super) fn has_any(&self, archetype: &hecs::Archetype) -> bool {
         self.entries.iter().any(|entry| (entry.has)(archetype))
     }
-}
-
-/// Whether `owner` is a registered material whose pipelines draw the visibility pass.
-pub(crate) fn is_deferred_material(resources: &Resources, owner: TypeId) -> bool {
-    resources.get::<MaterialRegistry>().is_some_and(|registry| {
-        registry
-            .entries
-            .iter()
-            .any(|entry| entry.type_id == owner && entry.deferred)
-    })
-}
-
-/// The first of the app's materials that cannot draw the visibility pass, if any: the deferred
-/// path needs them all.
-pub(crate) fn material_without_deferred_shader(resources: &Resources) -> Option<&'static str> {
-    resources
-        .get::<MaterialRegistry>()?
-        .entries
-        .iter()
-        .find(|entry| !entry.deferred)
-        .map(|entry| entry.name)
 }

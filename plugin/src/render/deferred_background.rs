@@ -132,7 +132,7 @@ mod tests {
     fn the_background_params_match_their_wgsl() {
         let source = DEFERRED_BACKGROUND.source();
         assert_eq!(
-            crate::material::check_wgsl_layout::<BackgroundParams>(&source, "BackgroundParams"),
+            crate::shader::check_wgsl_layout::<BackgroundParams>(&source, "BackgroundParams"),
             Ok(())
         );
     }

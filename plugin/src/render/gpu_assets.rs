@@ -11,6 +11,17 @@ use super::derived_textures::{
 use super::gpu_types::Vertex;
 use crate::{AssetId, Assets, Image, Mesh, Pixels, TextureKind};
 
+/// A texture as it is bound on the GPU (after any downscaling at upload).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureFacts {
+    /// Width of mip level 0 in texels.
+    pub width: u32,
+    /// Height of mip level 0 in texels.
+    pub height: u32,
+    /// Mip levels of the bound texture.
+    pub mip_levels: u32,
+}
+
 /// A mesh's vertex and index buffers.
 #[derive(Debug)]
 pub struct GpuMesh {
@@ -38,9 +49,9 @@ pub struct GpuImage {
 impl GpuImage {
     /// Size and mip count of the texture as bound (an image over the device's limit was
     /// downscaled at upload; a GPU-written one has a single level).
-    pub fn facts(&self) -> crate::material::TextureFacts {
+    pub fn facts(&self) -> TextureFacts {
         let size = self.texture.size();
-        crate::material::TextureFacts {
+        TextureFacts {
             width: size.width,
             height: size.height,
             mip_levels: self.texture.mip_level_count(),

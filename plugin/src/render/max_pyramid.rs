@@ -320,7 +320,7 @@ mod tests {
     fn pyramid_level_matches_its_wgsl() {
         let source = MAX_PYRAMID_SHADER.source();
         assert_eq!(
-            crate::material::check_wgsl_layout::<PyramidLevel>(&source, "PyramidLevel"),
+            crate::shader::check_wgsl_layout::<PyramidLevel>(&source, "PyramidLevel"),
             Ok(())
         );
     }

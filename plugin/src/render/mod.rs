@@ -37,6 +37,7 @@ mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
+pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod transparent;
 mod visibility;
 
@@ -56,11 +57,12 @@ pub use fragment_counter::FragmentInvocationCounter;
 pub use frame::{prepare_frame, render_frame};
 pub(crate) use frame_uniform::FrameUniformBuffer;
 pub(crate) use gpu_assets::GpuAssets;
-pub use gpu_assets::{DefaultTexture, UploadStats};
+pub use gpu_assets::{DefaultTexture, TextureFacts, UploadStats};
 pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_gpu_timing};
 pub use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
+pub use layout::FragmentVariant;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
 pub use max_pyramid::MAX_PYRAMID_SHADER;
 #[cfg(feature = "scene-tests")]
@@ -76,7 +78,7 @@ pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub use renderer::Renderer;
-pub(crate) use renderer::depth_bindings;
+pub(crate) use renderer::{DepthBindings, depth_bindings};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};

@@ -120,9 +120,37 @@ pub struct RenderPhases {
     shadow_draws: Vec<(TypeId, ShadowDraw)>,
     resolves: Vec<(TypeId, ResolveDispatch, HasDraws)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
+    /// Each declared owner's name and whether its prepass draws write visibility keys (the
+    /// deferred path needs every owner's to).
+    owners: Vec<(TypeId, &'static str, bool)>,
 }
 
 impl RenderPhases {
+    /// Declares `Owner` (a material type, say) by `name`, and whether its prepass draws also
+    /// write the deferred path's visibility keys; a later call replaces the earlier.
+    pub fn declare_owner<Owner: 'static>(&mut self, name: &'static str, writes_visibility: bool) {
+        let owner = TypeId::of::<Owner>();
+        match self.owners.iter_mut().find(|(id, _, _)| *id == owner) {
+            Some(entry) => *entry = (owner, name, writes_visibility),
+            None => self.owners.push((owner, name, writes_visibility)),
+        }
+    }
+
+    /// The first declared owner whose draws cannot take part in the deferred path.
+    pub(crate) fn owner_without_visibility(&self) -> Option<&'static str> {
+        self.owners
+            .iter()
+            .find(|(_, _, writes)| !writes)
+            .map(|(_, name, _)| *name)
+    }
+
+    /// Whether `owner` is declared and its prepass draws write visibility keys.
+    pub(crate) fn writes_visibility(&self, owner: TypeId) -> bool {
+        self.owners
+            .iter()
+            .any(|(id, _, writes)| *id == owner && *writes)
+    }
+
     /// Adds `draw` to `phase` for `Owner` (a material type, say) unless `Owner` has one there.
     pub fn add_draw<Owner: 'static>(&mut self, phase: DrawPhase, draw: PhaseDraw) {
         self.add_draw_when::<Owner>(phase, draw, |_| true);

@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 use super::shaders::{self, ComposedShader, WgslFile};
 use super::{GpuContext, RenderTarget, TargetFormat};
 use crate::Tonemapping;
-use crate::material::Choice;
+use crate::shader::Choice;
 
 /// Shared post-processing functions (settings, tonemapping, sRGB encoding).
 pub const POST_PROCESS: WgslFile = crate::wgsl_file!("render/post_process.wgsl");
@@ -333,10 +333,8 @@ mod tests {
     #[test]
     fn the_settings_match_their_wgsl() {
         for shader in POST_SHADERS {
-            let layout = crate::material::check_wgsl_layout::<PostSettings>(
-                &shader.source(),
-                "PostSettings",
-            );
+            let layout =
+                crate::shader::check_wgsl_layout::<PostSettings>(&shader.source(), "PostSettings");
             assert_eq!(layout, Ok(()), "{}", shader.name);
         }
     }

@@ -135,13 +135,13 @@ pub(crate) fn deferred_blocker(resources: &Resources) -> Option<DeferredUnavaila
     if resources.contains::<FragmentInvocationCounter>() {
         return Some(DeferredUnavailable::FragmentCounter);
     }
-    if let Some(name) = crate::material::material_without_deferred_shader(resources) {
+    let phases = resources.get::<RenderPhases>()?;
+    if let Some(name) = phases.owner_without_visibility() {
         return Some(DeferredUnavailable::MaterialWithoutDeferredShader(name));
     }
-    let phases = resources.get::<RenderPhases>()?;
     phases
         .draw_owners(DrawPhase::Prepass)
-        .any(|owner| !crate::material::is_deferred_material(resources, owner))
+        .any(|owner| !phases.writes_visibility(owner))
         .then_some(DeferredUnavailable::PrepassDrawWithoutVisibility)
 }
 

@@ -1,5 +1,6 @@
 //! [`Renderer`]: the renderer's GPU state between frames (uploaded assets, the frame uniform,
-//! shadow maps, the deferred path's buffers, post-processing) and the choice of path.
+//! shadow maps, the deferred path's buffers, post-processing), the choice of path, and what a
+//! material's group 0 binds of it ([`DepthBindings`]).
 
 use super::{
     DeferredBackground, DeferredUnavailable, FrameUniformBuffer, GpuAssets, GpuContext,
@@ -135,9 +136,9 @@ pub(crate) fn depth_bindings<'a>(
     shadow_maps: &'a ShadowMaps,
     (visibility, dummy_visibility): (Option<&'a VisibilityBuffer>, &'a wgpu::Buffer),
     target: &'a RenderTarget,
-) -> crate::material::DepthBindings<'a> {
+) -> DepthBindings<'a> {
     let visibility = visibility.filter(|visibility| visibility.target == target.id());
-    crate::material::DepthBindings {
+    DepthBindings {
         visibility: visibility.map_or(dummy_visibility, |visibility| &visibility.keys),
         dummy_visibility,
         opaque: if depth_prepass {
@@ -171,4 +172,32 @@ impl Renderer {
     pub fn derived_texture_count(&self) -> usize {
         self.assets.derived_count()
     }
+}
+
+/// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
+/// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
+/// (the prepass and the shadow maps themselves); and the visibility keys (binding 8) the other
+/// way round: the real ones in the prepass, which writes them, a stand-in elsewhere (the
+/// deferred resolve reads them through a binding of its own).
+pub(crate) struct DepthBindings<'a> {
+    /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
+    pub(crate) opaque: &'a wgpu::TextureView,
+    /// The 1 × 1 dummy.
+    pub(crate) dummy: &'a wgpu::TextureView,
+    /// Every shadow map, for receivers.
+    pub(crate) shadow_maps: &'a wgpu::TextureView,
+    /// Their 1 × 1 × 1 stand-in.
+    pub(crate) dummy_shadow_maps: &'a wgpu::TextureView,
+    /// What receivers read of each map.
+    pub(crate) shadow_views: &'a wgpu::Buffer,
+    /// The shadow maps' comparison sampler.
+    pub(crate) shadow_sampler: &'a wgpu::Sampler,
+    /// The visibility keys the deferred path's prepass merges into (or the stand-in).
+    pub(crate) visibility: &'a wgpu::Buffer,
+    /// The one-key stand-in, bound where the keys are not written.
+    pub(crate) dummy_visibility: &'a wgpu::Buffer,
+    /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
+    /// belong to, and whether the target's visibility buffer exists: bind groups follow when
+    /// any changes.
+    pub(crate) bound: (u64, u64, bool),
 }

@@ -6,7 +6,13 @@ use super::derived_textures::DerivedTextures;
 use super::gpu_assets::{DefaultTexture, GpuAssets};
 use super::{GpuContext, layout};
 use crate::ImageSampler;
-use crate::material::MaterialTextures;
+use crate::{AssetId, Image};
+
+/// Most texture slots one material binds.
+pub const MAX_MATERIAL_TEXTURES: usize = 6;
+
+/// The image in each texture slot of a draw; `None` binds the slot's default texture.
+pub type MaterialTextures = [Option<AssetId<Image>>; MAX_MATERIAL_TEXTURES];
 
 /// What a draw binds at group 1: its images and the textures derived from them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -46,7 +52,7 @@ impl std::fmt::Debug for TextureBindGroups {
 
 impl TextureBindGroups {
     /// Creates the layout; `defaults` names the texture bound for each slot left empty (at most
-    /// [`crate::material::MAX_MATERIAL_TEXTURES`]), `derived_slots` counts the derived textures
+    /// [`MAX_MATERIAL_TEXTURES`]), `derived_slots` counts the derived textures
     /// (at most [`super::MAX_DERIVED_TEXTURES`]).
     pub(crate) fn new(
         gpu: &GpuContext,

@@ -1,11 +1,13 @@
 //! The app: a world of entities, resources, a staged schedule of systems, and plugins.
 
+mod resources;
+
+pub use resources::Resources;
+
 use std::error::Error;
 use std::fmt;
 
 use hecs::World;
-
-use crate::Resources;
 
 /// The boxed error a fallible system or plugin returns.
 pub type BoxedError = Box<dyn Error + Send + Sync + 'static>;
@@ -230,7 +232,7 @@ impl AppError {
     }
 }
 
-impl crate::resources::ResourceHolder for App {
+impl resources::ResourceHolder for App {
     fn resources_mut(&mut self) -> &mut Resources {
         &mut self.resources
     }
@@ -323,7 +325,7 @@ impl App {
         &mut self,
         f: impl FnOnce(&mut App, &mut T) -> R,
     ) -> Option<R> {
-        crate::resources::scoped(self, f)
+        resources::scoped(self, f)
     }
 
     /// Runs [`Plugin::finish`] for every plugin that has not been finished yet, in the order

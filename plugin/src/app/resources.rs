@@ -39,16 +39,16 @@ impl Resources {
             .and_then(|value| value.downcast_mut::<T>())
     }
 
-    /// Returns the value of type `T`, or [`crate::AppError::MissingResource`] naming the type:
+    /// Returns the value of type `T`, or [`super::AppError::MissingResource`] naming the type:
     /// what a system returns when a plugin it needs was not added.
-    pub fn require<T: 'static>(&self) -> Result<&T, crate::AppError> {
-        self.get::<T>().ok_or_else(crate::AppError::missing::<T>)
+    pub fn require<T: 'static>(&self) -> Result<&T, super::AppError> {
+        self.get::<T>().ok_or_else(super::AppError::missing::<T>)
     }
 
     /// Like [`Resources::require`], mutably.
-    pub fn require_mut<T: 'static>(&mut self) -> Result<&mut T, crate::AppError> {
+    pub fn require_mut<T: 'static>(&mut self) -> Result<&mut T, super::AppError> {
         self.get_mut::<T>()
-            .ok_or_else(crate::AppError::missing::<T>)
+            .ok_or_else(super::AppError::missing::<T>)
     }
 
     /// Returns the value of type `T`, inserting `T::default()` first if it is missing.
