@@ -128,7 +128,7 @@ impl<M: Material> MaterialBatches<M> {
         let frame_groups = FrameBindGroups::new(
             gpu,
             M::NAME,
-            ObjectBuffer::<M::Uniform>::layout_entry(2),
+            ObjectBuffer::<M::Uniform>::layout_entry(crate::render::frame_group::MATERIAL_UNIFORMS),
             (deferred, counter),
             &DrawBuffers {
                 frame,

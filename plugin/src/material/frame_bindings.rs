@@ -3,7 +3,7 @@
 //! for the passes that write depth (prepass, shadow maps) and one for those that shade.
 
 use crate::render::object_buffer::ObjectBuffer;
-use crate::render::{DepthBindings, FrameUniformBuffer, GpuContext, MeshTransform};
+use crate::render::{DepthBindings, FrameUniformBuffer, GpuContext, MeshTransform, frame_group};
 
 /// The buffers and textures group 0 binds.
 struct FrameBindings<'a> {
@@ -38,19 +38,43 @@ fn frame_bind_group(
         DepthUse::Writing => (depth.dummy, depth.dummy_shadow_maps, depth.visibility),
     };
     let mut entries = vec![
-        entry(0, bindings.frame.binding()),
-        entry(1, bindings.transforms.as_entire_binding()),
-        entry(2, bindings.uniforms.as_entire_binding()),
-        entry(3, wgpu::BindingResource::TextureView(prepass_depth)),
-        entry(5, depth.shadow_views.as_entire_binding()),
-        entry(6, wgpu::BindingResource::TextureView(shadow_maps)),
-        entry(7, wgpu::BindingResource::Sampler(depth.shadow_sampler)),
+        entry(frame_group::FRAME, bindings.frame.binding()),
+        entry(
+            frame_group::TRANSFORMS,
+            bindings.transforms.as_entire_binding(),
+        ),
+        entry(
+            frame_group::MATERIAL_UNIFORMS,
+            bindings.uniforms.as_entire_binding(),
+        ),
+        entry(
+            frame_group::PREPASS_DEPTH,
+            wgpu::BindingResource::TextureView(prepass_depth),
+        ),
+        entry(
+            frame_group::SHADOW_VIEWS,
+            depth.shadow_views.as_entire_binding(),
+        ),
+        entry(
+            frame_group::SHADOW_MAPS,
+            wgpu::BindingResource::TextureView(shadow_maps),
+        ),
+        entry(
+            frame_group::SHADOW_SAMPLER,
+            wgpu::BindingResource::Sampler(depth.shadow_sampler),
+        ),
     ];
     if bindings.visibility_keys {
-        entries.push(entry(8, visibility.as_entire_binding()));
+        entries.push(entry(
+            frame_group::VISIBILITY_KEYS,
+            visibility.as_entire_binding(),
+        ));
     }
     if let Some(counter) = bindings.counter {
-        entries.push(entry(4, counter.as_entire_binding()));
+        entries.push(entry(
+            frame_group::FRAGMENT_COUNTER,
+            counter.as_entire_binding(),
+        ));
     }
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
@@ -62,7 +86,7 @@ fn frame_bind_group(
 /// Binding 3 of group 0: the prepass depth, read by materials that test their own depth.
 fn prepass_depth_entry() -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
-        binding: 3,
+        binding: frame_group::PREPASS_DEPTH,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Depth,
@@ -79,7 +103,7 @@ fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
     let visibility = wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
     [
         wgpu::BindGroupLayoutEntry {
-            binding: 5,
+            binding: frame_group::SHADOW_VIEWS,
             visibility,
             ty: wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Storage { read_only: true },
@@ -89,7 +113,7 @@ fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
             count: None,
         },
         wgpu::BindGroupLayoutEntry {
-            binding: 6,
+            binding: frame_group::SHADOW_MAPS,
             visibility,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Depth,
@@ -99,7 +123,7 @@ fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
             count: None,
         },
         wgpu::BindGroupLayoutEntry {
-            binding: 7,
+            binding: frame_group::SHADOW_SAMPLER,
             visibility,
             ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
             count: None,
@@ -110,7 +134,7 @@ fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
 /// Binding 8 of group 0: the visibility keys the deferred path's prepass merges into.
 fn visibility_keys_entry() -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
-        binding: 8,
+        binding: frame_group::VISIBILITY_KEYS,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Storage { read_only: false },
@@ -124,7 +148,7 @@ fn visibility_keys_entry() -> wgpu::BindGroupLayoutEntry {
 /// Binding 4 of group 0: the fragment invocation counter.
 fn counter_entry() -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
-        binding: 4,
+        binding: frame_group::FRAGMENT_COUNTER,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Storage { read_only: false },
@@ -184,7 +208,7 @@ impl FrameBindGroups {
     ) -> Self {
         let mut entries = vec![
             FrameUniformBuffer::layout_entry(),
-            ObjectBuffer::<MeshTransform>::layout_entry(1),
+            ObjectBuffer::<MeshTransform>::layout_entry(frame_group::TRANSFORMS),
             uniforms_entry,
             prepass_depth_entry(),
         ];

@@ -81,10 +81,10 @@ impl FrameUniformBuffer {
         written
     }
 
-    /// The layout entry for binding 0 of a pass's group 0.
+    /// The layout entry of the frame in a pass's group 0 ([`super::frame_group::FRAME`]).
     pub fn layout_entry() -> wgpu::BindGroupLayoutEntry {
         wgpu::BindGroupLayoutEntry {
-            binding: 0,
+            binding: super::frame_group::FRAME,
             visibility: wgpu::ShaderStages::VERTEX_FRAGMENT.union(wgpu::ShaderStages::COMPUTE),
             ty: wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Uniform,

@@ -15,6 +15,7 @@ mod error;
 mod extract;
 mod fragment_counter;
 mod frame;
+pub mod frame_group;
 mod frame_passes;
 mod frame_uniform;
 mod gpu_assets;
