@@ -251,6 +251,7 @@ impl<M> Param<M> {
 /// A material whose every parameter in `params` is valid by its limits and differs from the
 /// default, found from the declarations alone: for round-trip tests that must cover parameters
 /// added later. Numbers are multiples of 1/64, exact in text.
+#[doc(hidden)] // A test hook.
 pub fn every_parameter_changed<M: Default>(params: &[Param<M>]) -> M {
     let mut material = M::default();
     for param in params {

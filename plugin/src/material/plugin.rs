@@ -343,6 +343,7 @@ fn draw_materials<M: Material>(
 
 /// The pipeline keys of material `M`'s batches in the last prepared frame, in draw order: which
 /// variant each object drew with (one entry per batch of instances).
+#[doc(hidden)] // A test hook.
 pub fn drawn_keys<M: Material>(resources: &Resources) -> Vec<M::Key> {
     resources
         .get::<MaterialBatches<M>>()

@@ -42,6 +42,7 @@ pub fn read_texture(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
 }
 
 /// [`read_texture`] of mip level `level` (`UnsupportedFormat` past the last level, too).
+#[doc(hidden)] // A test hook.
 pub fn read_texture_level(
     gpu: &GpuContext,
     texture: &wgpu::Texture,

@@ -10,6 +10,7 @@ use super::{CaptureError, GpuContext};
 /// Insert it before the app's plugins finish: material plugins then compile their shaders with
 /// the counting variant. A resource; for tests and measurements, not for games (an atomic per
 /// pixel costs time).
+#[doc(hidden)] // A test and measurement hook.
 #[derive(Debug)]
 pub struct FragmentInvocationCounter {
     buffer: wgpu::Buffer,
