@@ -164,6 +164,8 @@ impl Material for LitMaterial {
     type Key = LitPipelineKey;
     const NAME: &'static str = "lit";
     const UNIFORM_WGSL_NAME: &'static str = "LitParams";
+    // Masked surfaces discard, in the prepass too.
+    const SURFACE_ON_POLYGON: bool = false;
     const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
         DefaultTexture::WhiteSrgb,
         DefaultTexture::FlatNormal,

@@ -16,6 +16,7 @@ mod pipelines;
 mod plugin;
 mod registry;
 mod resolve_tiles;
+mod shader_check;
 
 pub use crate::render::{FragmentVariant, MAX_MATERIAL_TEXTURES, MaterialTextures, TextureFacts};
 pub use crate::shader::{
@@ -35,6 +36,7 @@ pub use plugin::{
 #[cfg(feature = "dev-tools")]
 pub(crate) use registry::MaterialRegistry;
 pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
+pub use shader_check::MaterialShaderError;
 
 use std::fmt::Debug;
 use std::hash::Hash;
@@ -65,6 +67,13 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// The texture bound in each slot when the material has none there (at most
     /// [`MAX_MATERIAL_TEXTURES`]; more is an error when the plugin starts).
     const TEXTURE_SLOTS: &'static [DefaultTexture];
+    /// Whether the surface lies on the material's polygons and covers them whole: no fragment
+    /// entry discards or writes its depth (true by default). The core then writes its depth
+    /// prepass, shadow maps and deferred visibility pass without a fragment stage of the
+    /// material's, and composes its deferred shader. A material that discards (alpha masks) or
+    /// moves its depth (parallax relief) says `false` and names its own prepass fragment; one
+    /// that says `true` but discards is an error when its plugin starts.
+    const SURFACE_ON_POLYGON: bool = true;
 
     /// The material's WGSL (entry points and its own library files).
     fn shader() -> ComposedShader;
@@ -115,15 +124,18 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn fragment_after_prepass(key: Self::Key) -> FragmentVariant {
         Self::fragment(key)
     }
-    /// The material's shader for the deferred path ([`crate::RenderPath`]): the constants of
-    /// [`Material::shader`] after [`crate::render::shaders::deferred_header`], its files, then the core's
+    /// The material's shader for the deferred path ([`crate::RenderPath`]). By default, for a
+    /// material whose surface lies on its polygon ([`Material::SURFACE_ON_POLYGON`]), the core
+    /// composes it ([`crate::render::shaders::deferred_twin`]): the material then writes the
+    /// visibility pass with the core's `fs_visibility` and shades in the opaque phase on both
+    /// paths. A material of its own kind returns the constants of [`Material::shader`] after
+    /// [`crate::render::shaders::deferred_header`], its files, then the core's
     /// [`crate::render::shaders::VISIBILITY`] (and [`crate::render::shaders::VISIBILITY_READ`]
-    /// with [`crate::render::shaders::DEFERRED_RESOLVE`] for a compute resolve) and the
-    /// material's own deferred entry points. `None` (the default): an app that draws this
-    /// material renders forward (the deferred path needs every opaque draw in the visibility
-    /// buffer).
+    /// with [`crate::render::shaders::DEFERRED_RESOLVE`] for a compute resolve) and its own
+    /// deferred entry points. `None` opts out: an app that draws the material renders forward
+    /// (the deferred path needs every opaque draw in the visibility buffer), and says so once.
     fn deferred_shader() -> Option<ComposedShader> {
-        None
+        Self::SURFACE_ON_POLYGON.then(|| crate::render::shaders::deferred_twin(&Self::shader()))
     }
     /// The fragment stage of `key` in the visibility pass (the deferred path's prepass, which
     /// also writes each pixel's id): the core's `fs_visibility` by default. A material whose

@@ -11,6 +11,7 @@ use super::batches::{MaterialBatches, MaterialShader, PrepareInputs};
 use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
+use super::shader_check::check_material_shader;
 use crate::render::DepthBindings;
 use crate::render::{
     DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, RenderPhases, RenderTarget,
@@ -117,6 +118,8 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             return Ok(());
         }
         check_texture_slots::<M>()?;
+        // Before any GPU work: a shader that cannot work leaves nothing half-built.
+        check_material_shader(M::NAME, &M::shader(), M::SURFACE_ON_POLYGON)?;
         let (Some(gpu), Some(target), Some(renderer)) = (
             app.resources.get::<GpuContext>(),
             app.resources.get::<RenderTarget>(),
@@ -128,7 +131,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .resources
             .get::<FragmentInvocationCounter>()
             .map(|counter| counter.buffer().clone());
-        let shader = material_shader::<M>(&gpu.device);
+        let shader = material_shader::<M>(&gpu.device)?;
         let batches = MaterialBatches::<M>::new(
             gpu,
             &renderer.frame,
@@ -226,9 +229,10 @@ fn check_texture_slots<M: Material>() -> Result<(), BoxedError> {
 
 /// The shader material `M` compiles on `device`: its deferred shader where it has one and the
 /// adapter the visibility pass, else its forward one.
-fn material_shader<M: Material>(device: &wgpu::Device) -> MaterialShader {
-    match M::deferred_shader() {
+fn material_shader<M: Material>(device: &wgpu::Device) -> Result<MaterialShader, BoxedError> {
+    Ok(match M::deferred_shader() {
         Some(composed) if device.features().contains(crate::render::DEFERRED_FEATURES) => {
+            check_material_shader(M::NAME, &composed, false)?;
             MaterialShader {
                 composed,
                 deferred: true,
@@ -238,7 +242,7 @@ fn material_shader<M: Material>(device: &wgpu::Device) -> MaterialShader {
             composed: M::shader(),
             deferred: false,
         },
-    }
+    })
 }
 
 /// The Prepare stage's system of material `M`.

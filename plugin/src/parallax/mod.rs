@@ -96,6 +96,8 @@ impl Material for ParallaxOcclusionMaterial {
     type Key = PomPipelineKey;
     const NAME: &'static str = "parallax";
     const UNIFORM_WGSL_NAME: &'static str = "PomUniform";
+    // The relief lies below the polygon (and the depth offset moves the depth there).
+    const SURFACE_ON_POLYGON: bool = false;
     const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
         DefaultTexture::WhiteSrgb,
         DefaultTexture::FlatNormal,

@@ -4,6 +4,8 @@
 //! and its own file. The naga test validates every composed shader and checks that every `.wgsl`
 //! file under `plugin/src` is part of one.
 
+use std::sync::{Mutex, PoisonError};
+
 pub use crate::shader::{ComposedShader, GeneratedWgsl, WgslFile};
 
 /// Camera and light uniforms, and the light iteration helpers.
@@ -41,6 +43,30 @@ pub const DEFERRED_CLASSIFY: WgslFile = crate::wgsl_file!("render/deferred_class
 pub const SOBEL_ENTRY: WgslFile = crate::wgsl_file!("dynamic_height/sobel.wgsl");
 /// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
 pub const HEIGHT_CHANNEL: WgslFile = crate::wgsl_file!("render/height_channel.wgsl");
+
+/// `shader`'s twin for the deferred path, for a material whose surface lies on its polygon
+/// ([`crate::Material::SURFACE_ON_POLYGON`]): [`deferred_header`] first among its constants and
+/// [`VISIBILITY`] after its files, so its prepass draws write each pixel's visibility key with
+/// the core's `fs_visibility` and it shades in the opaque phase as on the forward path. Made
+/// once per shader for the whole process (the lists are `'static`, like a shader's own).
+pub fn deferred_twin(shader: &ComposedShader) -> ComposedShader {
+    static TWINS: Mutex<Vec<(ComposedShader, ComposedShader)>> = Mutex::new(Vec::new());
+    let mut twins = TWINS.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some((_, twin)) = twins.iter().find(|(forward, _)| forward == shader) {
+        return *twin;
+    }
+    let constants: Vec<GeneratedWgsl> = std::iter::once(deferred_header as GeneratedWgsl)
+        .chain(shader.constants.iter().copied())
+        .collect();
+    let files: Vec<WgslFile> = shader.files.iter().copied().chain([VISIBILITY]).collect();
+    let twin = ComposedShader {
+        name: Box::leak(format!("{} (deferred)", shader.name).into_boxed_str()),
+        constants: Box::leak(constants.into_boxed_slice()),
+        files: Box::leak(files.into_boxed_slice()),
+    };
+    twins.push((*shader, twin));
+    twin
+}
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
 /// the `primitive_index` extension the visibility pass needs, `SceneOutput`, the scene target as

@@ -139,6 +139,10 @@ impl Material for SeedPortMaterial {
         DefaultTexture::WhiteLinear,
     ];
 
+    /// The seed's shader as written runs forward only: that is what the bench measures.
+    fn deferred_shader() -> Option<ComposedShader> {
+        None
+    }
     fn shader() -> ComposedShader {
         SEED_PORT_SHADER
     }

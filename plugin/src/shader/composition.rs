@@ -56,6 +56,25 @@ impl ComposedShader {
         self.source_with(|file| file)
     }
 
+    /// Where line `line` (1-based) of [`ComposedShader::source`] comes from: the file's path
+    /// and the line in it, or `"generated"` and the line among the generated constants.
+    pub fn locate(&self, line: u32) -> (&'static str, u32) {
+        let generated_lines = self.generated().matches('\n').count() as u32;
+        if line <= generated_lines {
+            return ("generated", line);
+        }
+        // Each file is a header line, its text, and a line break of its own.
+        let mut first = generated_lines + 1;
+        for file in self.files {
+            let lines = file.source.matches('\n').count() as u32 + 1;
+            if line <= first + lines {
+                return (file.path, line.saturating_sub(first));
+            }
+            first += lines + 1;
+        }
+        ("generated", line)
+    }
+
     pub(crate) fn source_with(&self, substitute: impl Fn(WgslFile) -> WgslFile) -> String {
         let mut source = self.generated();
         for file in self.files.iter().map(|file| substitute(*file)) {
@@ -66,5 +85,48 @@ impl ComposedShader {
             source.push('\n');
         }
         source
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_line_of_a_composed_source_is_found_in_its_file() {
+        const A: WgslFile = WgslFile {
+            path: "a.wgsl",
+            source: "fn a() {}\nfn b() {}",
+        };
+        const B: WgslFile = WgslFile {
+            path: "b.wgsl",
+            source: "// one\n// two\n// three\n",
+        };
+        fn constants() -> String {
+            "const X: u32 = 1u;\nconst Y: u32 = 2u;\n".to_owned()
+        }
+        let shader = ComposedShader {
+            name: "test",
+            constants: &[constants],
+            files: &[A, B],
+        };
+        let source = shader.source();
+        for (index, text) in source.lines().enumerate() {
+            let (path, line) = shader.locate(index as u32 + 1);
+            let file = [A, B].into_iter().find(|file| file.path == path);
+            match file {
+                Some(file) if line > 0 => assert_eq!(
+                    file.source.lines().nth(line as usize - 1).unwrap_or(""),
+                    text,
+                    "line {} of the composed source",
+                    index + 1
+                ),
+                // The header line introducing a file, or a generated line.
+                _ => assert!(
+                    text.starts_with("// ----") || text.starts_with("const"),
+                    "{text}"
+                ),
+            }
+        }
     }
 }
