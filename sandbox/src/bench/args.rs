@@ -37,6 +37,9 @@ pub enum Measurement {
     MethodTable,
     /// MaxMip's pyramid rebuilt every frame (a dynamic height field): the build's GPU time.
     PyramidBuild,
+    /// The wall time of the frame that first uses MaxMip with hard shadows (its pipelines are
+    /// compiled then) against the frames around it.
+    FirstUse,
 }
 
 /// Options of `sandbox bench`.

@@ -8,6 +8,7 @@
 mod args;
 mod chart;
 mod cpu_side;
+mod first_use;
 mod method_table;
 mod pyramid_build;
 mod report;
@@ -165,6 +166,15 @@ impl Runner<'_> {
         if wanted(Measurement::PyramidBuild) {
             eprintln!("timing max-mip's pyramid rebuilt every frame{on_path} ...");
             self.pyramid_builds(sizes[0], args.quick)?;
+        }
+        if wanted(Measurement::FirstUse) {
+            for &size in sizes {
+                eprintln!(
+                    "timing the first use of a pipeline variant at {}x{}{on_path} ...",
+                    size.0, size.1
+                );
+                self.first_use(size)?;
+            }
         }
         if wanted(Measurement::CpuSide) {
             eprintln!(

@@ -326,6 +326,22 @@ impl BenchScene {
         Ok(times.pop().map(|(_, times)| times).unwrap_or_default())
     }
 
+    /// Renders one frame and waits until the GPU has finished it; returns its wall-clock
+    /// milliseconds, pipeline compiles and uploads included (what a frame that stalls costs).
+    pub fn wall_frame_ms(&mut self) -> Result<f64> {
+        let started = Instant::now();
+        self.app.update().context("rendering a frame")?;
+        if let Some(gpu) = self.app.resources.get::<pom::GpuContext>() {
+            gpu.device
+                .poll(pom::wgpu::PollType::wait_indefinitely())
+                .context("waiting for the GPU")?;
+        }
+        let ms = started.elapsed().as_secs_f64() * 1000.0;
+        self.timed_deferred = Some(self.runs_deferred());
+        self.check_errors().context("while timing")?;
+        Ok(ms)
+    }
+
     /// Whether the last frame ran the deferred path (the renderer decides per frame: a material
     /// without a deferred shader, such as the seed port, sends a deferred frame forward).
     fn runs_deferred(&self) -> bool {
