@@ -122,7 +122,7 @@ impl<M: Material> MaterialBatches<M> {
             None => shader.source(),
         };
         let source = crate::render::shaders::for_scene_format(source, color_format);
-        let module = crate::render::shaders::create_module(device, shader.name, source.clone());
+        let module = crate::render::shaders::create_module(device, shader.name, source);
         let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
         let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
         let frame_groups = FrameBindGroups::new(
@@ -159,7 +159,7 @@ impl<M: Material> MaterialBatches<M> {
         Self {
             pipelines: MaterialPipelines::new(PipelineSetup {
                 shader: module,
-                source,
+                receives_scene_shadows: shader.files.contains(&crate::render::shaders::SHADOWS),
                 layout,
                 resolve_layout,
                 color_format,

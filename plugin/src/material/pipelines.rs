@@ -35,8 +35,9 @@ const SCENE_SHADOWS: &str = "SCENE_SHADOWS";
 /// frames have a depth prepass.
 pub(crate) struct PipelineSetup {
     pub(crate) shader: wgpu::ShaderModule,
-    /// The module's WGSL (to see whether it receives scene shadows).
-    pub(crate) source: String,
+    /// Whether the shader is composed with the core's scene shadows (shaders::SHADOWS, which
+    /// declares the `SCENE_SHADOWS` override).
+    pub(crate) receives_scene_shadows: bool,
     pub(crate) layout: wgpu::PipelineLayout,
     /// Present where the module is `M`'s deferred shader.
     pub(crate) resolve_layout: Option<wgpu::PipelineLayout>,
@@ -48,7 +49,7 @@ impl<M: Material> MaterialPipelines<M> {
     /// No pipelines yet; they will come from `setup`.
     pub(crate) fn new(setup: PipelineSetup) -> Self {
         Self {
-            declares_scene_shadows: setup.source.contains(&format!("override {SCENE_SHADOWS}")),
+            declares_scene_shadows: setup.receives_scene_shadows,
             shader: setup.shader,
             layout: setup.layout,
             resolve_layout: setup.resolve_layout,
