@@ -77,6 +77,14 @@ pub(crate) struct MaterialShader {
     pub(crate) deferred: bool,
 }
 
+/// How a material's shader and pipelines are compiled beyond the frame's needs.
+pub(crate) struct CompileOptions {
+    /// The fragment invocation counter the shader counts into (tests and measurements).
+    pub(crate) counter: Option<wgpu::Buffer>,
+    /// The app's count of background compiles, where pipelines compile in the background.
+    pub(crate) background: Option<std::sync::Arc<std::sync::atomic::AtomicUsize>>,
+}
+
 /// Material `M`'s GPU state. A resource.
 pub(crate) struct MaterialBatches<M: Material> {
     pub(crate) pipelines: MaterialPipelines<M>,
@@ -114,7 +122,10 @@ impl<M: Material> MaterialBatches<M> {
         color_format: wgpu::TextureFormat,
         prepass: bool,
         depth: &DepthBindings<'_>,
-        counter: Option<wgpu::Buffer>,
+        CompileOptions {
+            counter,
+            background,
+        }: CompileOptions,
     ) -> Self {
         let device = &gpu.device;
         let source = match counter {
@@ -164,6 +175,7 @@ impl<M: Material> MaterialBatches<M> {
                 resolve_layout,
                 color_format,
                 prepass,
+                background,
             }),
             resolve,
             frame_groups,
@@ -378,6 +390,7 @@ impl<M: Material> MaterialBatches<M> {
     /// Builds the pipelines the batches use this frame where missing (shadow pipelines too for
     /// opaque casters on frames with shadow maps).
     fn ensure_pipelines(&mut self, inputs: &PrepareInputs<'_>) {
+        self.pipelines.take_compiled();
         self.pipelines
             .set_frame(inputs.shadow_maps, inputs.deferred.is_some());
         for batch in &self.batches {
@@ -385,6 +398,9 @@ impl<M: Material> MaterialBatches<M> {
             if inputs.shadow_maps && batch.casts_shadows && !M::blends(batch.key) {
                 self.pipelines.ensure_shadow(&inputs.gpu.device, batch.key);
             }
+        }
+        if !self.batches.is_empty() {
+            self.pipelines.frame_prepared();
         }
     }
 

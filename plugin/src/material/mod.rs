@@ -30,7 +30,7 @@ pub use params::{
 };
 pub use plugin::{
     MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,
-    draw_meshes_without_material, drawn_keys,
+    draw_meshes_without_material, drawn_keys, pipelines_ready,
 };
 
 #[cfg(feature = "dev-tools")]
@@ -136,6 +136,14 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// (the deferred path needs every opaque draw in the visibility buffer), and says so once.
     fn deferred_shader() -> Option<ComposedShader> {
         Self::SURFACE_ON_POLYGON.then(|| crate::render::shaders::deferred_twin(&Self::shader()))
+    }
+    /// The variant drawn in `key`'s place while `key`'s pipelines compile on a worker thread
+    /// ([`crate::render::PipelineCompilation::background`]): a cheap one that looks alike. The
+    /// fallback of the default material's key is compiled when the plugin starts and stands in
+    /// for any variant whose own fallback is not ready either. `None` (the default): the
+    /// default material's key itself stands in.
+    fn fallback_key(_key: Self::Key) -> Option<Self::Key> {
+        None
     }
     /// The fragment stage of `key` in the visibility pass (the deferred path's prepass, which
     /// also writes each pixel's id): the core's `fs_visibility` by default. A material whose

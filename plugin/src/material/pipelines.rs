@@ -1,6 +1,11 @@
-//! A material's render pipelines, one per [`Material::Key`] and pass, compiled on first use.
+//! A material's render pipelines, one per [`Material::Key`] and pass, compiled on first use:
+//! in that frame, or on a worker thread while the variant's draws use a fallback
+//! ([`crate::render::PipelineCompilation`]).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
 
 use super::Material;
 use crate::render::DrawPhase;
@@ -24,6 +29,64 @@ pub(crate) struct MaterialPipelines<M: Material> {
     deferred: bool,
     pipelines: HashMap<(MeshPass, bool, M::Key), wgpu::RenderPipeline>,
     resolve_pipelines: HashMap<(bool, M::Key), wgpu::ComputePipeline>,
+    /// Compiles on worker threads, where the app asked for them.
+    background: Option<Background<M>>,
+}
+
+/// A pipeline compiled on a worker thread.
+enum Compiled<M: Material> {
+    Mesh((MeshPass, bool, M::Key), wgpu::RenderPipeline),
+    Resolve((bool, M::Key), wgpu::ComputePipeline),
+}
+
+/// What a worker thread is compiling.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum Pending<K> {
+    Mesh(MeshPass, bool, K),
+    Resolve(bool, K),
+}
+
+/// One compile handed to a worker thread: where its pipeline goes, and the count it is in.
+struct Job<M: Material> {
+    sender: Sender<Compiled<M>>,
+    in_flight: Arc<AtomicUsize>,
+}
+
+impl<M: Material> Job<M> {
+    /// Runs `compile` on a worker thread and sends its pipeline back.
+    fn run(
+        self,
+        device: wgpu::Device,
+        compile: impl FnOnce(&wgpu::Device) -> Compiled<M> + Send + 'static,
+    ) {
+        let Self { sender, in_flight } = self;
+        let counter = Arc::clone(&in_flight);
+        let spawned = std::thread::Builder::new()
+            .name(format!("{} pipeline", M::NAME))
+            .spawn(move || {
+                let _ = sender.send(compile(&device));
+                counter.fetch_sub(1, Ordering::AcqRel);
+            });
+        if let Err(error) = spawned {
+            // The thread never ran: nothing will arrive, so the count goes back.
+            log::warn!("cannot start a pipeline compile thread: {error}");
+            in_flight.fetch_sub(1, Ordering::AcqRel);
+        }
+    }
+}
+
+/// The worker threads' side of a material's pipelines.
+struct Background<M: Material> {
+    sender: Sender<Compiled<M>>,
+    receiver: Receiver<Compiled<M>>,
+    pending: HashSet<Pending<M::Key>>,
+    /// The app's count of compiles in flight ([`crate::render::wait_for_pipelines`]).
+    in_flight: Arc<AtomicUsize>,
+    /// The variant that stands in for any variant not ready (compiled at start).
+    stand_in: M::Key,
+    /// Whether a frame was prepared: the variants of the first frame compile in it (an app's
+    /// loading frame, and again after a lost device), later ones in the background.
+    loaded: bool,
 }
 
 /// The pipeline-overridable constant of shadows.wgsl that compiles the shadow-map lookups in:
@@ -43,6 +106,8 @@ pub(crate) struct PipelineSetup {
     pub(crate) resolve_layout: Option<wgpu::PipelineLayout>,
     pub(crate) color_format: wgpu::TextureFormat,
     pub(crate) prepass: bool,
+    /// The app's count of background compiles, where pipelines compile in the background.
+    pub(crate) background: Option<Arc<AtomicUsize>>,
 }
 
 impl<M: Material> MaterialPipelines<M> {
@@ -59,7 +124,93 @@ impl<M: Material> MaterialPipelines<M> {
             deferred: false,
             pipelines: HashMap::new(),
             resolve_pipelines: HashMap::new(),
+            background: setup.background.map(|in_flight| {
+                let (sender, receiver) = channel();
+                let stand_in = M::default().key();
+                Background {
+                    sender,
+                    receiver,
+                    pending: HashSet::new(),
+                    in_flight,
+                    stand_in: M::fallback_key(stand_in).unwrap_or(stand_in),
+                    loaded: false,
+                }
+            }),
         }
+    }
+
+    /// Compiles, blocking, the stand-in variant's pipelines for every pass and shadow-map
+    /// state a frame may ask of it, where pipelines compile in the background.
+    pub(crate) fn compile_stand_in(&mut self, device: &wgpu::Device) {
+        let Some(stand_in) = self.background.as_ref().map(|b| b.stand_in) else {
+            return;
+        };
+        let (scene_shadows, deferred) = (self.scene_shadows, self.deferred);
+        for shadows in [false, true] {
+            for deferred_frame in [false, true] {
+                self.set_frame(shadows, deferred_frame);
+                for &pass in self.passes(stand_in) {
+                    self.compile_pass(device, pass, stand_in, false);
+                }
+                self.compile_pass(device, MeshPass::Shadow, stand_in, false);
+                if self.resolves_in_compute(stand_in) {
+                    self.compile_resolve(device, stand_in, false);
+                }
+            }
+        }
+        self.scene_shadows = scene_shadows;
+        self.deferred = deferred;
+    }
+
+    /// Takes in the pipelines the worker threads have finished (at the start of a frame's
+    /// preparation: a frame draws with what was ready when it began).
+    pub(crate) fn take_compiled(&mut self) {
+        let Some(background) = &mut self.background else {
+            return;
+        };
+        while let Ok(compiled) = background.receiver.try_recv() {
+            match compiled {
+                Compiled::Mesh(id, pipeline) => {
+                    background.pending.remove(&Pending::Mesh(id.0, id.1, id.2));
+                    self.pipelines.insert(id, pipeline);
+                }
+                Compiled::Resolve(id, pipeline) => {
+                    background.pending.remove(&Pending::Resolve(id.0, id.1));
+                    self.resolve_pipelines.insert(id, pipeline);
+                }
+            }
+        }
+    }
+
+    /// Marks a frame prepared: variants first used from now on compile in the background.
+    pub(crate) fn frame_prepared(&mut self) {
+        if let Some(background) = &mut self.background {
+            background.loaded = true;
+        }
+    }
+
+    /// Whether every pipeline `key` needs this frame is compiled (not standing in).
+    pub(crate) fn ready(&self, key: M::Key) -> bool {
+        self.passes(key).iter().all(|&pass| {
+            self.pipelines
+                .contains_key(&(pass, self.reads_shadow_maps(pass), key))
+        }) && (!self.resolves_in_compute(key)
+            || self
+                .resolve_pipelines
+                .contains_key(&(self.scene_shadows, key)))
+    }
+
+    /// `key`, else its fallback, else the stand-in: the first whose pipeline `exists`.
+    fn drawn_as(&self, key: M::Key, exists: impl Fn(M::Key) -> bool) -> M::Key {
+        if exists(key) {
+            return key;
+        }
+        let Some(background) = &self.background else {
+            return key;
+        };
+        M::fallback_key(key)
+            .filter(|fallback| exists(*fallback))
+            .unwrap_or(background.stand_in)
     }
 
     /// Sets whether this frame renders shadow maps (which shading pipelines are used) and
@@ -116,57 +267,106 @@ impl<M: Material> MaterialPipelines<M> {
     /// Compiles the pipelines of `key` unless they exist (a first use costs a pipeline
     /// compile per pass, a few milliseconds, once).
     pub(crate) fn ensure(&mut self, device: &wgpu::Device, key: M::Key) {
+        let background = self.background.as_ref().is_some_and(|b| b.loaded);
         for &pass in self.passes(key) {
-            self.ensure_pass(device, pass, key);
+            self.compile_pass(device, pass, key, background);
         }
         if self.resolves_in_compute(key) {
-            self.ensure_resolve(device, key);
+            self.compile_resolve(device, key, background);
         }
     }
 
-    fn ensure_resolve(&mut self, device: &wgpu::Device, key: M::Key) {
+    /// Compiles `key`'s deferred resolve unless it exists or is compiling, on a worker thread
+    /// where `background`.
+    fn compile_resolve(&mut self, device: &wgpu::Device, key: M::Key, background: bool) {
         let shadowed = self.scene_shadows;
         let (Some(layout), Some(mut entry)) = (&self.resolve_layout, M::deferred_resolve(key))
         else {
             return;
         };
-        if self.resolve_pipelines.contains_key(&(shadowed, key)) {
+        if self.resolve_pipelines.contains_key(&(shadowed, key))
+            || self.is_pending(Pending::Resolve(shadowed, key))
+        {
             return;
         }
         if shadowed {
             entry.constants.push((SCENE_SHADOWS, 1.0));
         }
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&format!(
-                "{} deferred resolve {key:?} shadowed {shadowed}",
-                M::NAME
-            )),
-            layout: Some(layout),
-            module: &self.shader,
-            entry_point: Some(entry.entry_point),
-            compilation_options: wgpu::PipelineCompilationOptions {
-                constants: &entry.constants,
-                ..Default::default()
-            },
-            cache: None,
-        });
-        self.resolve_pipelines.insert((shadowed, key), pipeline);
+        let label = format!("{} deferred resolve {key:?} shadowed {shadowed}", M::NAME);
+        let (layout, shader) = (layout.clone(), self.shader.clone());
+        let compile = move |device: &wgpu::Device| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(&label),
+                layout: Some(&layout),
+                module: &shader,
+                entry_point: Some(entry.entry_point),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &entry.constants,
+                    ..Default::default()
+                },
+                cache: None,
+            })
+        };
+        match self.background_job(background, Pending::Resolve(shadowed, key)) {
+            Some(job) => job.run(device.clone(), move |device| {
+                Compiled::Resolve((shadowed, key), compile(device))
+            }),
+            None => {
+                let pipeline = compile(device);
+                self.resolve_pipelines.insert((shadowed, key), pipeline);
+            }
+        }
     }
 
-    /// The deferred resolve's pipeline of `key`, once [`MaterialPipelines::ensure`]d.
+    /// Whether a worker thread is compiling `pending`.
+    fn is_pending(&self, pending: Pending<M::Key>) -> bool {
+        self.background
+            .as_ref()
+            .is_some_and(|background| background.pending.contains(&pending))
+    }
+
+    /// Where `background`, marks `pending` as compiling and returns the job that compiles it
+    /// on a worker thread; `None`: compile here.
+    fn background_job(&mut self, background: bool, pending: Pending<M::Key>) -> Option<Job<M>> {
+        let worker = self.background.as_mut().filter(|_| background)?;
+        worker.pending.insert(pending);
+        worker.in_flight.fetch_add(1, Ordering::AcqRel);
+        Some(Job {
+            sender: worker.sender.clone(),
+            in_flight: Arc::clone(&worker.in_flight),
+        })
+    }
+
+    /// The deferred resolve's pipeline of `key` (or of what stands in for it), once
+    /// [`MaterialPipelines::ensure`]d.
     pub(crate) fn resolve(&self, key: &M::Key) -> Option<&wgpu::ComputePipeline> {
-        self.resolve_pipelines.get(&(self.scene_shadows, *key))
+        let shadowed = self.scene_shadows;
+        let drawn = self.drawn_as(*key, |key| {
+            self.resolve_pipelines.contains_key(&(shadowed, key))
+        });
+        self.resolve_pipelines.get(&(shadowed, drawn))
     }
 
     /// Compiles `key`'s shadow-map pipeline unless it exists (only frames with shadow maps
     /// need it).
     pub(crate) fn ensure_shadow(&mut self, device: &wgpu::Device, key: M::Key) {
-        self.ensure_pass(device, MeshPass::Shadow, key);
+        let background = self.background.as_ref().is_some_and(|b| b.loaded);
+        self.compile_pass(device, MeshPass::Shadow, key, background);
     }
 
-    fn ensure_pass(&mut self, device: &wgpu::Device, pass: MeshPass, key: M::Key) {
+    /// Compiles `key`'s pipeline of `pass` unless it exists or is compiling, on a worker
+    /// thread where `background`.
+    fn compile_pass(
+        &mut self,
+        device: &wgpu::Device,
+        pass: MeshPass,
+        key: M::Key,
+        background: bool,
+    ) {
         let shadowed = self.reads_shadow_maps(pass);
-        if self.pipelines.contains_key(&(pass, shadowed, key)) {
+        if self.pipelines.contains_key(&(pass, shadowed, key))
+            || self.is_pending(Pending::Mesh(pass, shadowed, key))
+        {
             return;
         }
         let mut fragment = match pass {
@@ -179,25 +379,42 @@ impl<M: Material> MaterialPipelines<M> {
         if shadowed && let Some(fragment) = &mut fragment {
             fragment.constants.push((SCENE_SHADOWS, 1.0));
         }
-        let pipeline = mesh_pipeline(
-            device,
-            &MeshPipelineDescriptor {
-                label: &format!("{} {pass:?} pipeline {key:?} shadowed {shadowed}", M::NAME),
-                layout: &self.layout,
-                shader: &self.shader,
-                pass,
-                fragment: fragment.as_ref(),
-                color_format: self.color_format,
-                cull_mode: M::cull_mode(key),
-            },
-        );
-        self.pipelines.insert((pass, shadowed, key), pipeline);
+        let label = format!("{} {pass:?} pipeline {key:?} shadowed {shadowed}", M::NAME);
+        let (layout, shader, color_format) =
+            (self.layout.clone(), self.shader.clone(), self.color_format);
+        let compile = move |device: &wgpu::Device| {
+            mesh_pipeline(
+                device,
+                &MeshPipelineDescriptor {
+                    label: &label,
+                    layout: &layout,
+                    shader: &shader,
+                    pass,
+                    fragment: fragment.as_ref(),
+                    color_format,
+                    cull_mode: M::cull_mode(key),
+                },
+            )
+        };
+        match self.background_job(background, Pending::Mesh(pass, shadowed, key)) {
+            Some(job) => job.run(device.clone(), move |device| {
+                Compiled::Mesh((pass, shadowed, key), compile(device))
+            }),
+            None => {
+                let pipeline = compile(device);
+                self.pipelines.insert((pass, shadowed, key), pipeline);
+            }
+        }
     }
 
-    /// The pipeline of `key` in `pass`, once [`MaterialPipelines::ensure`]d.
+    /// The pipeline of `key` in `pass` (or of what stands in for it while it compiles), once
+    /// [`MaterialPipelines::ensure`]d.
     pub(crate) fn get(&self, pass: MeshPass, key: &M::Key) -> Option<&wgpu::RenderPipeline> {
-        self.pipelines
-            .get(&(pass, self.reads_shadow_maps(pass), *key))
+        let shadowed = self.reads_shadow_maps(pass);
+        let drawn = self.drawn_as(*key, |key| {
+            self.pipelines.contains_key(&(pass, shadowed, key))
+        });
+        self.pipelines.get(&(pass, shadowed, drawn))
     }
 
     /// Every pipeline in use rebuilt from `shader` (a recompiled shader), for hot reload:
@@ -216,6 +433,8 @@ impl<M: Material> MaterialPipelines<M> {
             deferred: self.deferred,
             pipelines: HashMap::new(),
             resolve_pipelines: HashMap::new(),
+            // A rebuild compiles here, inside the caller's error scope.
+            background: None,
         };
         let keys: std::collections::BTreeSet<M::Key> =
             self.pipelines.keys().map(|(_, _, key)| *key).collect();

@@ -7,6 +7,7 @@ use std::marker::PhantomData;
 use hecs::World;
 
 use super::Material;
+use super::batches::CompileOptions;
 use super::batches::{MaterialBatches, MaterialShader, PrepareInputs};
 use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
@@ -14,8 +15,8 @@ use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
 use crate::render::DepthBindings;
 use crate::render::{
-    DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, RenderPhases, RenderTarget,
-    Renderer, UploadStats, VisibilityBuffer, depth_bindings,
+    DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, PipelineCompilation,
+    RenderPhases, RenderTarget, Renderer, UploadStats, VisibilityBuffer, depth_bindings,
 };
 use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
 
@@ -132,7 +133,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .get::<FragmentInvocationCounter>()
             .map(|counter| counter.buffer().clone());
         let shader = material_shader::<M>(&gpu.device)?;
-        let batches = MaterialBatches::<M>::new(
+        let mut batches = MaterialBatches::<M>::new(
             gpu,
             &renderer.frame,
             shader,
@@ -145,8 +146,16 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
                 (renderer.visibility.as_ref(), &renderer.dummy_visibility),
                 target,
             ),
-            counter,
+            CompileOptions {
+                counter,
+                background: app
+                    .resources
+                    .get::<PipelineCompilation>()
+                    .and_then(PipelineCompilation::background_counter),
+            },
         );
+        // With background compiles, what stands in for a variant not ready is ready itself.
+        batches.pipelines.compile_stand_in(&gpu.device);
         app.insert_resource(batches);
         app.resources
             .get_or_default::<RenderPhases>()
@@ -347,6 +356,15 @@ fn draw_materials<M: Material>(
 
 /// The pipeline keys of material `M`'s batches in the last prepared frame, in draw order: which
 /// variant each object drew with (one entry per batch of instances).
+/// Whether every pipeline `key` of material `M` needs in the last prepared frame's setting is
+/// compiled (not standing in for it: [`crate::render::PipelineCompilation::background`]).
+#[doc(hidden)] // A test hook.
+pub fn pipelines_ready<M: Material>(resources: &Resources, key: M::Key) -> bool {
+    resources
+        .get::<MaterialBatches<M>>()
+        .is_some_and(|batches| batches.pipelines.ready(key))
+}
+
 #[doc(hidden)] // A test hook.
 pub fn drawn_keys<M: Material>(resources: &Resources) -> Vec<M::Key> {
     resources

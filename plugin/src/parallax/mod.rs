@@ -148,6 +148,17 @@ impl Material for ParallaxOcclusionMaterial {
         (!key.double_sided).then_some(wgpu::Face::Back)
     }
 
+    // While a variant compiles: the same surface, normal-mapped (the seed's own LOD fallback).
+    fn fallback_key(key: PomPipelineKey) -> Option<PomPipelineKey> {
+        Some(PomPipelineKey {
+            method: ParallaxMethod::NormalMapping,
+            shadows: ShadowMode::Off,
+            depth_offset: false,
+            debug_view: DebugView::None,
+            ..key
+        })
+    }
+
     fn prepass_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
         key.prepass_fragment()
     }

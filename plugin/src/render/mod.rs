@@ -26,6 +26,7 @@ mod lowest_mip;
 mod max_pyramid;
 pub(crate) mod object_buffer;
 mod phases;
+mod pipeline_compilation;
 mod plugin;
 mod post_process;
 mod present;
@@ -72,6 +73,7 @@ pub use phases::{
     DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
     ShadowDraw, TransparentDraw,
 };
+pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use plugin::{PostProcessPath, RenderPlugin};
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{PostProcess, PostSettings};

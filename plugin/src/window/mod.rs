@@ -170,6 +170,13 @@ impl WindowPlugin {
 impl Plugin for WindowPlugin {
     fn build(&self, app: &mut App) {
         app.insert_resource(self.clone());
+        // A window's frames never wait for a pipeline compile.
+        if !app
+            .resources
+            .contains::<crate::render::PipelineCompilation>()
+        {
+            app.insert_resource(crate::render::PipelineCompilation::background());
+        }
         input::insert_input_resources(&mut app.resources);
         app.add_system(Stage::PreUpdate, update_input);
     }

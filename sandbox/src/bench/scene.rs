@@ -56,6 +56,9 @@ pub struct SceneOptions {
     /// Whether the seed port's material is registered, for [`BenchScene::use_seed_port`]. It
     /// has no deferred shader, and a registered material without one sends every frame forward.
     pub seed_port: bool,
+    /// Whether pipelines compile on worker threads (as in a window), else in the frame that
+    /// first needs them.
+    pub background_pipelines: bool,
 }
 
 impl SceneOptions {
@@ -69,6 +72,7 @@ impl SceneOptions {
             depth_prepass: true,
             path,
             seed_port: false,
+            background_pipelines: false,
         }
     }
 }
@@ -94,6 +98,9 @@ impl BenchScene {
         let (width, height) = options.size;
         let seed_port = options.seed_port;
         let mut app = App::new();
+        if options.background_pipelines {
+            app.insert_resource(pom::render::PipelineCompilation::background());
+        }
         let timing = options.timestamps.then_some(TimingMode::Blocking);
         app.add_plugin(
             RenderPlugin::headless(width, height)
@@ -340,6 +347,14 @@ impl BenchScene {
         self.timed_deferred = Some(self.runs_deferred());
         self.check_errors().context("while timing")?;
         Ok(ms)
+    }
+
+    /// How many pipeline compiles run on worker threads now.
+    pub fn compiles_in_flight(&self) -> usize {
+        self.app
+            .resources
+            .get::<pom::render::PipelineCompilation>()
+            .map_or(0, pom::render::PipelineCompilation::in_flight)
     }
 
     /// Whether the last frame ran the deferred path (the renderer decides per frame: a material
