@@ -52,10 +52,9 @@ fn render_with(app: &mut App, split: &mut SplitView) -> Result<(), SplitViewErro
     } else {
         TargetFormat::Srgb8
     };
-    let fits = split
-        .target
-        .as_ref()
-        .is_some_and(|target| target.size() == main.size() && target.format() == main.format());
+    let fits = split.target.as_ref().is_some_and(|target| {
+        target.size() == main.size() && target.format() == main.format() && target.made_on(gpu)
+    });
     if !fits {
         let (width, height) = main.size();
         split.target = Some(RenderTarget::new(gpu, width, height, format));

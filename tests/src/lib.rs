@@ -8,6 +8,7 @@ pub mod gltf_fixture;
 mod golden;
 pub mod parameters;
 pub mod pom_scene;
+pub mod sources;
 pub mod xvfb;
 
 pub use finite::{NonFinitePixels, non_finite_pixels, render_and_capture_finite};

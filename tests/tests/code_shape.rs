@@ -2,23 +2,10 @@
 //! and no function over [`MAX_FUNCTION_LINES`] (from its `fn` line to its closing brace, as
 //! rustfmt lays it out), tests included.
 
-use std::path::{Path, PathBuf};
+use pom_tests::sources::{plugin_src, rust_files};
 
 const MAX_FILE_LINES: usize = 600;
 const MAX_FUNCTION_LINES: usize = 80;
-
-fn rust_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files = Vec::new();
-    for entry in std::fs::read_dir(dir).expect("reading plugin/src") {
-        let path = entry.expect("a directory entry").path();
-        if path.is_dir() {
-            files.extend(rust_files(&path));
-        } else if path.extension().is_some_and(|ext| ext == "rs") {
-            files.push(path);
-        }
-    }
-    files
-}
 
 /// The name of the function `line` starts, if it starts one with a body.
 fn function_name(line: &str) -> Option<&str> {
@@ -82,7 +69,7 @@ fn long_functions(source: &str) -> Vec<(String, usize, usize)> {
 
 #[test]
 fn no_file_or_function_of_the_library_is_too_long() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src");
+    let src = plugin_src();
     let mut problems = Vec::new();
     for file in rust_files(&src) {
         let source = std::fs::read_to_string(&file).expect("reading a source file");

@@ -17,23 +17,11 @@ use pom::{
 use pom_tests::{FlipTolerance, check_golden, headless_app, render_and_capture, render_on_path};
 use tinted::Tinted;
 
-#[test]
-fn a_material_written_outside_the_crate_renders() {
-    let mut app = headless_app(96, 96).unwrap();
-    app.add_plugin(MaterialPlugin::<Tinted>::default());
+/// The example's orange cube standing on a grey lit floor.
+fn spawn_cube_over_floor(app: &mut pom::App) {
     let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
     let cube = meshes.add(Mesh::cube(0.8));
     let floor = meshes.add(Mesh::plane(3.0));
-    // Tonemapping off: an unlit colour reaches the image exactly.
-    app.world.spawn((
-        pom::Camera::perspective(45.0),
-        pom::Tonemapping::None,
-        Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    app.world.spawn((
-        DirectionalLight::default(),
-        Transform::IDENTITY.looking_at(Vec3::new(-0.4, -1.0, -0.6), Vec3::Y),
-    ));
     app.world.spawn((
         floor,
         LitMaterial::from_color(Color::linear_rgb(0.5, 0.5, 0.5)),
@@ -46,6 +34,23 @@ fn a_material_written_outside_the_crate_renders() {
         },
         Transform::IDENTITY,
     ));
+}
+
+#[test]
+fn a_material_written_outside_the_crate_renders() {
+    let mut app = headless_app(96, 96).unwrap();
+    app.add_plugin(MaterialPlugin::<Tinted>::default());
+    // Tonemapping off: an unlit colour reaches the image exactly.
+    app.world.spawn((
+        pom::Camera::perspective(45.0),
+        pom::Tonemapping::None,
+        Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    app.world.spawn((
+        DirectionalLight::default(),
+        Transform::IDENTITY.looking_at(Vec3::new(-0.4, -1.0, -0.6), Vec3::Y),
+    ));
+    spawn_cube_over_floor(&mut app);
     let image = render_and_capture(&mut app).unwrap();
     // Unlit: every pixel of the cube has exactly its colour, whatever the light.
     let orange = pom::linear_to_srgb(0.35);
@@ -61,9 +66,6 @@ fn a_material_written_outside_the_crate_renders() {
 fn tinted_scene(size: u32) -> pom::App {
     let mut app = headless_app(size, size).unwrap();
     app.add_plugin(MaterialPlugin::<Tinted>::default());
-    let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
-    let cube = meshes.add(Mesh::cube(0.8));
-    let floor = meshes.add(Mesh::plane(3.0));
     app.world.spawn((
         pom::Camera::perspective(45.0),
         Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
@@ -74,18 +76,7 @@ fn tinted_scene(size: u32) -> pom::App {
         pom::LightShadows::default(),
         Transform::IDENTITY.looking_at(Vec3::new(0.5, -1.0, 0.6), Vec3::Y),
     ));
-    app.world.spawn((
-        floor,
-        LitMaterial::from_color(Color::linear_rgb(0.5, 0.5, 0.5)),
-        Transform::from_xyz(0.0, -0.4, 0.0),
-    ));
-    app.world.spawn((
-        cube,
-        Tinted {
-            color: Color::linear_rgb(0.9, 0.35, 0.05),
-        },
-        Transform::IDENTITY,
-    ));
+    spawn_cube_over_floor(&mut app);
     app
 }
 

@@ -9,6 +9,8 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
+use pom_tests::sources::{plugin_src, rust_files};
+
 /// The top-level modules, lowest layer first.
 const LAYERS: &[&str] = &[
     // The shader vocabulary and the app.
@@ -156,19 +158,6 @@ fn crate_paths(code: &str) -> BTreeSet<String> {
     names
 }
 
-fn rust_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files = Vec::new();
-    for entry in std::fs::read_dir(dir).expect("reading plugin/src") {
-        let path = entry.expect("a directory entry").path();
-        if path.is_dir() {
-            files.extend(rust_files(&path));
-        } else if path.extension().is_some_and(|ext| ext == "rs") {
-            files.push(path);
-        }
-    }
-    files
-}
-
 /// The top-level module a file of `src` belongs to (`None`: the crate root).
 fn module_of(src: &Path, file: &Path) -> Option<String> {
     let relative = file.strip_prefix(src).ok()?;
@@ -256,10 +245,6 @@ fn back_imports(src: &Path, files: &[(PathBuf, String)]) -> Vec<BackImport> {
     }
     found.sort();
     found
-}
-
-fn plugin_src() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src")
 }
 
 fn read(src: &Path) -> Vec<(PathBuf, String)> {

@@ -7,7 +7,7 @@
 //! target/<profile>/examples/, beside the test binaries' deps/ folder.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Child, Command};
 use std::time::{Duration, Instant};
 
 use pom_tests::xvfb::{Xvfb, distinct_colours};
@@ -147,13 +147,11 @@ fn title_depth(title: &str) -> f32 {
         .unwrap_or_else(|| panic!("no depth in the title {title:?}"))
 }
 
-#[test]
-fn the_parallax_window_takes_keys_follows_resizes_and_exits_0_when_closed() {
-    let xvfb = Xvfb::start();
-    let screenshot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallax-resized.png");
-    let _ = std::fs::remove_file(&screenshot);
-    let mut child =
-        xvfb.spawn(Command::new(example("parallax")).env("POM_SCREENSHOT", &screenshot));
+/// Starts the parallax example on `xvfb`, writing its last frame to `screenshot`, and presses
+/// 2 in its window until the title's depth has risen by `rise`; returns the process, the
+/// window's id and the depth before.
+fn deepen_parallax(xvfb: &Xvfb, screenshot: &Path, rise: f32) -> (Child, String, f32) {
+    let child = xvfb.spawn(Command::new(example("parallax")).env("POM_SCREENSHOT", screenshot));
     // Its first frame titles it with the values.
     let found = xvfb.xdotool(&["search", "--sync", "--name", "^parallax: depth"]);
     let window = found.lines().next().unwrap_or_default().to_owned();
@@ -162,15 +160,25 @@ fn the_parallax_window_takes_keys_follows_resizes_and_exits_0_when_closed() {
     // Keys go to the focused window (xdotool's synthetic events to a window are ignored).
     xvfb.xdotool(&["windowfocus", "--sync", &window]);
     let deadline = Instant::now() + Duration::from_secs(120);
-    while title_depth(&title()) <= before {
+    while title_depth(&title()) < before + rise {
         assert!(
             Instant::now() < deadline,
-            "the key 2 never raised the depth: {}",
+            "the key 2 raised the depth from {before} only to: {}",
             title()
         );
         xvfb.xdotool(&["key", "2"]);
         std::thread::sleep(Duration::from_millis(500));
     }
+    (child, window, before)
+}
+
+#[test]
+fn the_parallax_window_takes_keys_follows_resizes_and_exits_0_when_closed() {
+    let xvfb = Xvfb::start();
+    let screenshot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallax-resized.png");
+    let _ = std::fs::remove_file(&screenshot);
+    // One step of 0.01 up.
+    let (mut child, window, _) = deepen_parallax(&xvfb, &screenshot, 0.005);
     for (width, height) in [(900, 500), (640, 480), (1000, 700), (500, 500), (800, 450)] {
         xvfb.xdotool(&[
             "windowsize",
@@ -237,23 +245,8 @@ fn a_key_press_changes_the_parallax_depth_on_screen_and_a_close_request_exits_0(
     let xvfb = Xvfb::start();
     let screenshot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallax-deeper.png");
     let _ = std::fs::remove_file(&screenshot);
-    let child = xvfb.spawn(Command::new(example("parallax")).env("POM_SCREENSHOT", &screenshot));
-    let found = xvfb.xdotool(&["search", "--sync", "--name", "^parallax: depth"]);
-    let window = found.lines().next().unwrap_or_default().to_owned();
-    let title = || xvfb.xdotool(&["getwindowname", &window]);
-    let before = title_depth(&title());
-    xvfb.xdotool(&["windowfocus", "--sync", &window]);
     // Three steps of 0.01 deeper: the bricks' relief grows visibly.
-    let deadline = Instant::now() + Duration::from_secs(120);
-    while title_depth(&title()) < before + 0.025 {
-        assert!(
-            Instant::now() < deadline,
-            "the key 2 stopped at {}",
-            title()
-        );
-        xvfb.xdotool(&["key", "2"]);
-        std::thread::sleep(Duration::from_millis(500));
-    }
+    let (child, window, before) = deepen_parallax(&xvfb, &screenshot, 0.025);
     close_request::request_close(&xvfb, window.parse().expect("a window id"));
     let output = pom_tests::xvfb::wait_for(child, EXAMPLE_TIMEOUT);
     assert!(

@@ -200,17 +200,20 @@ impl<M: Material> MaterialPipelines<M> {
                 .contains_key(&(self.scene_shadows, key)))
     }
 
-    /// `key`, else its fallback, else the stand-in: the first whose pipeline `exists`.
-    fn drawn_as(&self, key: M::Key, exists: impl Fn(M::Key) -> bool) -> M::Key {
-        if exists(key) {
-            return key;
-        }
-        let Some(background) = &self.background else {
-            return key;
-        };
-        M::fallback_key(key)
-            .filter(|fallback| exists(*fallback))
-            .unwrap_or(background.stand_in)
+    /// The pipeline `lookup` finds for `key`, else (while `key` compiles in the background)
+    /// for its fallback, else for the stand-in: one lookup when `key`'s is there, as it is in
+    /// every settled frame.
+    fn drawn_as<'a, P>(
+        &self,
+        key: M::Key,
+        lookup: impl Fn(M::Key) -> Option<&'a P>,
+    ) -> Option<&'a P> {
+        lookup(key).or_else(|| {
+            let background = self.background.as_ref()?;
+            M::fallback_key(key)
+                .and_then(&lookup)
+                .or_else(|| lookup(background.stand_in))
+        })
     }
 
     /// Sets whether this frame renders shadow maps (which shading pipelines are used) and
@@ -341,10 +344,7 @@ impl<M: Material> MaterialPipelines<M> {
     /// [`MaterialPipelines::ensure`]d.
     pub(crate) fn resolve(&self, key: &M::Key) -> Option<&wgpu::ComputePipeline> {
         let shadowed = self.scene_shadows;
-        let drawn = self.drawn_as(*key, |key| {
-            self.resolve_pipelines.contains_key(&(shadowed, key))
-        });
-        self.resolve_pipelines.get(&(shadowed, drawn))
+        self.drawn_as(*key, |key| self.resolve_pipelines.get(&(shadowed, key)))
     }
 
     /// Compiles `key`'s shadow-map pipeline unless it exists (only frames with shadow maps
@@ -411,10 +411,7 @@ impl<M: Material> MaterialPipelines<M> {
     /// [`MaterialPipelines::ensure`]d.
     pub(crate) fn get(&self, pass: MeshPass, key: &M::Key) -> Option<&wgpu::RenderPipeline> {
         let shadowed = self.reads_shadow_maps(pass);
-        let drawn = self.drawn_as(*key, |key| {
-            self.pipelines.contains_key(&(pass, shadowed, key))
-        });
-        self.pipelines.get(&(pass, shadowed, drawn))
+        self.drawn_as(*key, |key| self.pipelines.get(&(pass, shadowed, key)))
     }
 
     /// Every pipeline in use rebuilt from `shader` (a recompiled shader), for hot reload:

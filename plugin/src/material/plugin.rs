@@ -119,8 +119,6 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             return Ok(());
         }
         check_texture_slots::<M>()?;
-        // Before any GPU work: a shader that cannot work leaves nothing half-built.
-        check_material_shader(M::NAME, &M::shader(), M::SURFACE_ON_POLYGON)?;
         let (Some(gpu), Some(target), Some(renderer)) = (
             app.resources.get::<GpuContext>(),
             app.resources.get::<RenderTarget>(),
@@ -132,7 +130,10 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .resources
             .get::<FragmentInvocationCounter>()
             .map(|counter| counter.buffer().clone());
-        let shader = material_shader::<M>(&gpu.device)?;
+        let shader = material_shader::<M>(&gpu.device);
+        // The shader that will compile, checked once before any GPU work: one that cannot
+        // work leaves nothing half-built.
+        check_material_shader(M::NAME, &shader.composed, M::SURFACE_ON_POLYGON)?;
         let mut batches = MaterialBatches::<M>::new(
             gpu,
             &renderer.frame,
@@ -238,10 +239,9 @@ fn check_texture_slots<M: Material>() -> Result<(), BoxedError> {
 
 /// The shader material `M` compiles on `device`: its deferred shader where it has one and the
 /// adapter the visibility pass, else its forward one.
-fn material_shader<M: Material>(device: &wgpu::Device) -> Result<MaterialShader, BoxedError> {
-    Ok(match M::deferred_shader() {
+fn material_shader<M: Material>(device: &wgpu::Device) -> MaterialShader {
+    match M::deferred_shader() {
         Some(composed) if device.features().contains(crate::render::DEFERRED_FEATURES) => {
-            check_material_shader(M::NAME, &composed, false)?;
             MaterialShader {
                 composed,
                 deferred: true,
@@ -251,7 +251,7 @@ fn material_shader<M: Material>(device: &wgpu::Device) -> Result<MaterialShader,
             composed: M::shader(),
             deferred: false,
         },
-    })
+    }
 }
 
 /// The Prepare stage's system of material `M`.

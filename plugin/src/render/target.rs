@@ -81,6 +81,9 @@ pub struct RenderTarget {
     /// A view of [`RenderTarget::depth`].
     pub depth_view: wgpu::TextureView,
     id: u64,
+    /// The device its textures live on: a target made before a device was replaced is
+    /// stale ([`RenderTarget::made_on`]).
+    device: wgpu::Device,
 }
 
 impl RenderTarget {
@@ -160,6 +163,7 @@ impl RenderTarget {
             scene,
             depth,
             id: NEXT_TARGET_ID.fetch_add(1, Ordering::Relaxed),
+            device: gpu.device.clone(),
         }
     }
 
@@ -180,6 +184,11 @@ impl RenderTarget {
         } else {
             TargetFormat::Srgb8
         }
+    }
+
+    /// Whether the target's textures live on `gpu`'s device (not on one since replaced).
+    pub fn made_on(&self, gpu: &GpuContext) -> bool {
+        self.device == gpu.device
     }
 
     /// Width and height in pixels.
@@ -211,7 +220,10 @@ pub fn fit_render_target(
     if width == 0 || height == 0 {
         return;
     }
-    if resources.get::<RenderTarget>().map(RenderTarget::size) != Some((width, height)) {
+    let fits = resources
+        .get::<RenderTarget>()
+        .is_some_and(|target| target.size() == (width, height) && target.made_on(gpu));
+    if !fits {
         resources.insert(RenderTarget::new(gpu, width, height, TargetFormat::Srgb8));
     }
 }

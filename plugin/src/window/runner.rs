@@ -207,11 +207,6 @@ impl Runner {
             .map_err(|_| WindowError::CannotPresent)?;
         let gpu = GpuContext::for_surface(instance, &surface)?;
         self.app.redo_plugin_setup(gpu.clone())?;
-        // The split view's second target is the game's resource, made on the old device.
-        #[cfg(feature = "dev-tools")]
-        if let Some(split) = self.app.resources.get_mut::<crate::SplitView>() {
-            split.target = None;
-        }
         let open = self.present_on(window, gpu, surface)?;
         open.window.request_redraw();
         self.open = Some(open);
