@@ -1,18 +1,19 @@
-//! `Tinted`, the unlit material of "Writing your own material" (plugin/docs/custom-material.md),
-//! in a window, on a spinning cube over a lit floor, with the orbit camera.
+//! `Matte`, the material of the README and of "Writing your own material"
+//! (plugin/docs/custom-material.md), in a window: a spinning cube over a floor, both `Matte`,
+//! the cube's shadow on the floor, with the orbit camera.
 //!
 //! `cargo run --release -p pom --example custom_material --features window`
 
 // The document's code, kept identical to it by tests/tests/custom_material.rs.
 #[rustfmt::skip]
-#[path = "../../tests/tests/custom_material/tinted.rs"]
-mod tinted;
+#[path = "../../tests/tests/custom_material/matte.rs"]
+mod matte;
 
+use matte::Matte;
 use pom::glam::{Quat, Vec3};
 use pom::hecs::World;
 use pom::window::{AppExit, OrbitCamera, OrbitCameraPlugin, WindowPlugin};
 use pom::*;
-use tinted::Tinted;
 
 /// Marks the cube that spins.
 struct Spinning;
@@ -23,7 +24,7 @@ fn main() -> AppExit {
         title: "custom_material".to_owned(),
         ..WindowPlugin::default()
     }))
-    .add_plugin(MaterialPlugin::<Tinted>::default())
+    .add_plugin(MaterialPlugin::<Matte>::default())
     .add_plugin(OrbitCameraPlugin)
     .add_system(Stage::Startup, setup)
     .add_system(Stage::Update, spin);
@@ -37,7 +38,7 @@ fn setup(world: &mut World, resources: &mut Resources) {
     let (cube, floor) = (meshes.add(Mesh::cube(0.8)), meshes.add(Mesh::plane(4.0)));
     world.spawn((
         cube,
-        Tinted {
+        Matte {
             color: Color::linear_rgb(0.9, 0.35, 0.05),
         },
         Transform::from_xyz(0.0, 0.5, 0.0),
@@ -45,7 +46,9 @@ fn setup(world: &mut World, resources: &mut Resources) {
     ));
     world.spawn((
         floor,
-        LitMaterial::from_color(Color::linear_rgb(0.5, 0.5, 0.5)),
+        Matte {
+            color: Color::linear_rgb(0.5, 0.5, 0.5),
+        },
         Transform::IDENTITY,
     ));
     let eye = Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::new(0.0, 0.4, 0.0), Vec3::Y);
@@ -56,6 +59,7 @@ fn setup(world: &mut World, resources: &mut Resources) {
     ));
     world.spawn((
         DirectionalLight::default(),
+        LightShadows::default(),
         Transform::IDENTITY.looking_at(Vec3::new(-0.4, -1.0, -0.6), Vec3::Y),
     ));
 }

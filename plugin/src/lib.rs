@@ -106,7 +106,7 @@ pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, PointLight, SpotLight};
 pub use lighting::LightingModel;
 pub use lit::{AlphaMode, LitMaterial, LitParams, LitPatch, LitPreset, lit_plugin};
-pub use material::{Material, MaterialPlugin};
+pub use material::{Material, MaterialPlugin, ShadedMaterial};
 pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;

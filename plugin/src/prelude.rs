@@ -1,5 +1,6 @@
 //! The names a game uses, for `use pom::prelude::*;`: the app and its plugins, transforms,
-//! cameras and lights, meshes and images, the two shipped materials, time, glam's vectors,
+//! cameras and lights, meshes and images, the two shipped materials and what writing one takes
+//! (`ShadedMaterial`, `ParamSpec`, `WgslFile`), time, glam's vectors,
 //! hecs's world, and (with the `window` feature) the window, its input and the cameras that
 //! move with it.
 //!
@@ -21,9 +22,12 @@ pub use crate::{
     AmbientLight, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight, Exposure,
     GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, Material,
     MaterialPlugin, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Parent, Plugin, PointLight,
-    PomPlugin, Projection, RenderPlugin, Resources, SpotLight, Stage, Time, Tonemapping, Transform,
-    load_gltf, patterns,
+    PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial, SpotLight, Stage, Time,
+    Tonemapping, Transform, load_gltf, patterns,
 };
+// Writing a material: its parameters' limits and its shading file.
+pub use crate::material::ParamSpec;
+pub use crate::shader::WgslFile;
 
 #[cfg(feature = "window")]
 pub use crate::window::{

@@ -1,71 +1,51 @@
-//! The material seam, proved from outside the `pom` crate: the example of "Writing your own
-//! material" (plugin/docs/custom-material.md; `custom_material/tinted.rs`, kept identical to the
-//! document's code by a test)
-//! renders beside the shipped materials, and its uniform matches its WGSL.
+//! The material seam, proved from outside the `pom` crate: the material of the README and of
+//! "Writing your own material" (plugin/docs/custom-material.md; `custom_material/matte.rs` and
+//! `matte.wgsl`, kept identical to the documents by a test) renders on both paths, casts and
+//! receives scene shadows; a second one written the same way (`custom_material/screen.rs`, a
+//! texture and two parameters) renders against a reference; bad materials fail when their
+//! plugin starts, and a material of its own entry points (the escape hatch) still works.
 
 #[rustfmt::skip]
-#[path = "custom_material/tinted.rs"]
-mod tinted;
+#[path = "custom_material/matte.rs"]
+mod matte;
+#[rustfmt::skip]
+#[path = "custom_material/screen.rs"]
+mod screen;
 
+use matte::Matte;
 use pom::glam::Vec3;
-use pom::material::check_material_layout;
+use pom::material::{DeclaredMaterial, check_material_layout};
 use pom::render::Renderer;
 use pom::render::shaders::{self, ComposedShader};
-use pom::{
-    Assets, Color, DirectionalLight, LitMaterial, MaterialPlugin, Mesh, RenderPath, Transform,
-};
-use pom_tests::{FlipTolerance, check_golden, headless_app, render_and_capture, render_on_path};
-use tinted::Tinted;
+use pom::{Assets, Color, DirectionalLight, MaterialPlugin, Mesh, RenderPath, Transform};
+use pom_tests::{FlipTolerance, check_golden, headless_app, render_on_path};
+use screen::Screen;
 
-/// The example's orange cube standing on a grey lit floor.
+/// The example's orange cube standing on a grey floor, both `Matte`.
 fn spawn_cube_over_floor(app: &mut pom::App) {
     let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
     let cube = meshes.add(Mesh::cube(0.8));
     let floor = meshes.add(Mesh::plane(3.0));
     app.world.spawn((
         floor,
-        LitMaterial::from_color(Color::linear_rgb(0.5, 0.5, 0.5)),
+        Matte {
+            color: Color::linear_rgb(0.5, 0.5, 0.5),
+        },
         Transform::from_xyz(0.0, -0.4, 0.0),
     ));
     app.world.spawn((
         cube,
-        Tinted {
+        Matte {
             color: Color::linear_rgb(0.9, 0.35, 0.05),
         },
         Transform::IDENTITY,
     ));
 }
 
-#[test]
-fn a_material_written_outside_the_crate_renders() {
-    let mut app = headless_app(96, 96).unwrap();
-    app.add_plugin(MaterialPlugin::<Tinted>::default());
-    // Tonemapping off: an unlit colour reaches the image exactly.
-    app.world.spawn((
-        pom::Camera::perspective(45.0),
-        pom::Tonemapping::None,
-        Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    app.world.spawn((
-        DirectionalLight::default(),
-        Transform::IDENTITY.looking_at(Vec3::new(-0.4, -1.0, -0.6), Vec3::Y),
-    ));
-    spawn_cube_over_floor(&mut app);
-    let image = render_and_capture(&mut app).unwrap();
-    // Unlit: every pixel of the cube has exactly its colour, whatever the light.
-    let orange = pom::linear_to_srgb(0.35);
-    let center = image.get_pixel(48, 48).0;
-    assert!(
-        (f32::from(center[1]) / 255.0 - orange).abs() < 0.01,
-        "{center:?}"
-    );
-    check_golden("custom_material", &image, FlipTolerance::default()).unwrap();
-}
-
-/// The example's cube over a lit floor, lit by a sun that casts scene shadows.
-fn tinted_scene(size: u32) -> pom::App {
+/// The example's cube over its floor, lit by a sun that casts scene shadows.
+fn matte_scene(size: u32) -> pom::App {
     let mut app = headless_app(size, size).unwrap();
-    app.add_plugin(MaterialPlugin::<Tinted>::default());
+    app.add_plugin(MaterialPlugin::<Matte>::default());
     app.world.spawn((
         pom::Camera::perspective(45.0),
         Transform::from_xyz(1.6, 1.8, 2.4).looking_at(Vec3::ZERO, Vec3::Y),
@@ -81,14 +61,19 @@ fn tinted_scene(size: u32) -> pom::App {
 }
 
 #[test]
-fn the_example_runs_on_the_deferred_path_as_it_does_forward() {
-    let mut app = tinted_scene(96);
+fn the_example_resolves_on_the_deferred_path_as_it_renders_forward() {
+    let mut app = matte_scene(96);
     let deferred = render_on_path(&mut app, RenderPath::Deferred).unwrap();
     let renderer = app.resources.get::<Renderer>().unwrap();
     assert!(
         renderer.runs_deferred(),
         "the frame ran forward: {:?}",
         renderer.deferred_unavailable()
+    );
+    // It shades in the compute resolve: no opaque raster pass drew it.
+    assert_eq!(
+        pom::material::drawn_in_opaque_and_resolve::<Matte>(&app.resources),
+        (false, true)
     );
     let forward = render_on_path(&mut app, RenderPath::Forward).unwrap();
     assert!(!app.resources.get::<Renderer>().unwrap().runs_deferred());
@@ -98,19 +83,21 @@ fn the_example_runs_on_the_deferred_path_as_it_does_forward() {
         "deferred differs from forward: FLIP mean {}",
         flip.mean
     );
+    check_golden("custom_material", &forward, FlipTolerance::default()).unwrap();
 }
 
 #[test]
-fn the_example_casts_a_scene_shadow_on_both_paths() {
+fn the_example_casts_and_receives_a_scene_shadow_on_both_paths() {
     for path in [RenderPath::Forward, RenderPath::Deferred] {
-        let mut app = tinted_scene(96);
+        let mut app = matte_scene(96);
         let shadowed = render_on_path(&mut app, path).unwrap();
+        // The floor, a `Matte` too, darkens where the cube's shadow falls on it.
         let cube = app
             .world
-            .query::<(pom::hecs::Entity, &Tinted)>()
+            .query::<(pom::hecs::Entity, &Matte)>()
             .iter()
+            .find(|(_, matte)| matte.color.r > 0.8)
             .map(|(entity, _)| entity)
-            .next()
             .unwrap();
         app.world.insert_one(cube, pom::NotShadowCaster).unwrap();
         let unshadowed = render_on_path(&mut app, path).unwrap();
@@ -126,19 +113,69 @@ fn the_example_casts_a_scene_shadow_on_both_paths() {
     }
 }
 
-/// A material of the example's uniform, named `$name`, with its own shading file `$wgsl`
+#[test]
+fn a_material_with_a_texture_and_parameters_renders_on_both_paths() {
+    let mut app = headless_app(96, 96).unwrap();
+    app.add_plugin(MaterialPlugin::<Screen>::default());
+    let picture = pom_tests::fixtures::checker_albedo(64, 8, [230, 200, 40], [30, 60, 200]);
+    let picture = app
+        .resources
+        .get_or_default::<Assets<pom::Image>>()
+        .add(picture);
+    let plane = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::plane(2.0));
+    // Seen at a slant, so the picture's far cells shrink to a few pixels (its mips show).
+    app.world.spawn((
+        pom::Camera::perspective(45.0),
+        pom::Tonemapping::None,
+        Transform::from_xyz(0.0, 0.9, 1.6).looking_at(Vec3::new(0.0, 0.0, -0.3), Vec3::Y),
+    ));
+    app.world.spawn((
+        plane,
+        Screen {
+            picture: Some(picture),
+            tint: Color::linear_rgb(1.0, 0.8, 0.8),
+            brightness: 1.5,
+        },
+        Transform::IDENTITY,
+    ));
+    let image = pom_tests::render_both_paths(&mut app, "custom_material_screen").unwrap();
+    check_golden("custom_material_screen", &image, FlipTolerance::default()).unwrap();
+    // Parameters out of their limits are clamped and named, as for the shipped materials.
+    let bad = Screen {
+        brightness: f32::NAN,
+        ..Screen::default()
+    };
+    assert_eq!(bad.params().brightness, 1.0);
+    assert!(
+        bad.parameter_problems()[0].contains("brightness"),
+        "{:?}",
+        bad.parameter_problems()
+    );
+}
+
+#[test]
+fn the_examples_parameters_match_their_wgsl() {
+    assert_eq!(check_material_layout::<Matte>(), Ok(()));
+    assert_eq!(check_material_layout::<Screen>(), Ok(()));
+}
+
+/// A material of its own entry points (the escape hatch) with the example's parameters, named `$name`, with its own shading file `$wgsl`
 /// (composed after the core's FRAME and MESH_VERTEX), and the given surface capability and
 /// deferred shader.
 macro_rules! test_material {
     ($ty:ident, $name:literal, $wgsl:expr, on_polygon: $on_polygon:expr, deferred: $deferred:expr) => {
         #[derive(Clone, Debug, Default, PartialEq)]
-        struct $ty(Tinted);
+        struct $ty(Matte);
 
         impl pom::Material for $ty {
-            type Uniform = <Tinted as pom::Material>::Uniform;
+            type Uniform = <Matte as DeclaredMaterial>::Params;
             type Key = ();
             const NAME: &'static str = $name;
-            const UNIFORM_WGSL_NAME: &'static str = "TintedUniform";
+            const UNIFORM_WGSL_NAME: &'static str = "MaterialParams";
             const TEXTURE_SLOTS: &'static [pom::render::DefaultTexture] = &[];
             const SURFACE_ON_POLYGON: bool = $on_polygon;
             fn shader() -> ComposedShader {
@@ -160,7 +197,7 @@ macro_rules! test_material {
                 deferred()
             }
             fn textures(&self) -> pom::material::MaterialTextures {
-                self.0.textures()
+                self.0.texture_images()
             }
             fn key(&self) {}
             fn fragment(_: ()) -> pom::material::FragmentVariant {
@@ -168,29 +205,144 @@ macro_rules! test_material {
             }
             fn uniform(
                 &self,
-                textures: &[Option<pom::material::TextureFacts>;
-                     pom::material::MAX_MATERIAL_TEXTURES],
+                _: &[Option<pom::material::TextureFacts>; pom::material::MAX_MATERIAL_TEXTURES],
             ) -> Self::Uniform {
-                self.0.uniform(textures)
+                self.0.params()
             }
         }
     };
 }
 
-const TINTED_SHADING: &str = "struct TintedUniform { color: vec4<f32> }
-@group(0) @binding(2) var<storage, read> materials: array<TintedUniform>;
+const TINTED_SHADING: &str = "struct MaterialParams { color: array<f32, 4> }
+@group(0) @binding(2) var<storage, read> materials: array<MaterialParams>;
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> { return materials[in.object_index].color; }";
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> { return vec4<f32>(materials[in.object_index].color[0]); }";
+
+/// Shaded materials that cannot work: each fails when its plugin starts.
+mod bad {
+    use pom::prelude::*;
+
+    pom::material_parameters! {
+        /// `shade` names a parameter that does not exist, on line 3 of its file.
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct Misshaded {
+            parameters {
+                /// A colour.
+                color: Color = Color::WHITE, ParamSpec::color();
+            }
+        }
+    }
+    impl ShadedMaterial for Misshaded {
+        const SHADING: WgslFile = WgslFile::new(
+            "misshaded.wgsl",
+            "// A typo.
+fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32> {
+    return rgba(material.colour);
+}",
+        );
+    }
+
+    pom::material_parameters! {
+        /// One texture more than a material binds.
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct Crowded {
+            textures {
+                /// 1.
+                a: WhiteSrgb,
+                /// 2.
+                b: WhiteSrgb,
+                /// 3.
+                c: WhiteSrgb,
+                /// 4.
+                d: WhiteSrgb,
+                /// 5.
+                e: WhiteSrgb,
+                /// 6.
+                f: WhiteSrgb,
+                /// 7.
+                g: WhiteSrgb,
+            }
+            parameters {
+                /// A colour.
+                color: Color = Color::WHITE, ParamSpec::color();
+            }
+        }
+    }
+    impl ShadedMaterial for Crowded {
+        const SHADING: WgslFile = WgslFile::new(
+            "crowded.wgsl",
+            "fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32> {
+    return texture_at(g, surface);
+}",
+        );
+    }
+
+    pom::material_parameters! {
+        /// Cuts holes in its surface, which a shaded material says it never does.
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct Holed {
+            parameters {
+                /// A colour.
+                color: Color = Color::WHITE, ParamSpec::color();
+            }
+        }
+    }
+    impl ShadedMaterial for Holed {
+        const SHADING: WgslFile = WgslFile::new(
+            "holed.wgsl",
+            "fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32> {
+    if fract(surface.uv.x * 8.0) < 0.5 {
+        discard;
+    }
+    return rgba(material.color);
+}",
+        );
+    }
+}
+
+/// The error the plugin of material `M` gives when the app starts.
+fn start_error<M: pom::Material>() -> String {
+    let mut app = headless_app(8, 8).unwrap();
+    app.add_plugin(MaterialPlugin::<M>::default());
+    app.finish().unwrap_err().to_string()
+}
+
+#[test]
+fn a_shading_function_that_does_not_compile_is_an_error_naming_the_material_file_and_line() {
+    let error = start_error::<bad::Misshaded>();
+    assert!(
+        error.contains("the shader of material Misshaded does not compile: misshaded.wgsl line 3:"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_material_declaring_more_textures_than_a_group_holds_is_an_error() {
+    let error = start_error::<bad::Crowded>();
+    assert!(
+        error.contains("material Crowded declares 7 texture slots; at most 6 are bound"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_shading_function_that_discards_is_an_error() {
+    let error = start_error::<bad::Holed>();
+    assert!(
+        error.contains("material Holed discards in its compute entry cs_resolve"),
+        "{error}"
+    );
+}
 
 test_material!(ForwardOnly, "forward only", TINTED_SHADING, on_polygon: true, deferred: || None);
 test_material!(
     Misspelt,
     "misspelt",
-    "struct TintedUniform { color: vec4<f32> }
-@group(0) @binding(2) var<storage, read> materials: array<TintedUniform>;
+    "struct MaterialParams { color: array<f32, 4> }
+@group(0) @binding(2) var<storage, read> materials: array<MaterialParams>;
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    return materials[in.object_index].colour;
+    return vec4<f32>(materials[in.object_index].colour[0]);
 }",
     on_polygon: true,
     deferred: || None
@@ -198,13 +350,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
 test_material!(
     SecretlyCut,
     "secretly cut",
-    "struct TintedUniform { color: vec4<f32> }
-@group(0) @binding(2) var<storage, read> materials: array<TintedUniform>;
+    "struct MaterialParams { color: array<f32, 4> }
+@group(0) @binding(2) var<storage, read> materials: array<MaterialParams>;
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    let color = materials[in.object_index].color;
-    if color.a < 0.5 { discard; }
-    return color;
+    let alpha = materials[in.object_index].color[3];
+    if alpha < 0.5 { discard; }
+    return vec4<f32>(alpha);
 }",
     on_polygon: true,
     deferred: || None
@@ -265,28 +417,40 @@ fn a_material_that_discards_but_says_its_surface_is_on_its_polygon_is_an_error()
     );
 }
 
-#[test]
-fn the_example_uniform_matches_its_wgsl() {
-    assert_eq!(check_material_layout::<Tinted>(), Ok(()));
+/// The first fenced block of `language` in `document` after `heading`.
+fn block_after<'a>(document: &'a str, heading: &str, language: &str) -> &'a str {
+    let section = &document[document.find(heading).expect(heading)..];
+    let fence = format!("```{language}");
+    let code = &section[section.find(&fence).expect(&fence) + fence.len()..];
+    &code[code.find('\n').unwrap() + 1..code.find("```").unwrap()]
 }
 
 #[test]
-fn the_custom_material_doc_shows_this_example_verbatim() {
+fn the_readme_and_the_custom_material_doc_show_this_example_verbatim() {
+    let rust = include_str!("custom_material/matte.rs");
+    let wgsl = include_str!("custom_material/matte.wgsl");
+    let readme = include_str!("../../README.md");
     let doc = include_str!("../../plugin/docs/custom-material.md");
-    let example = include_str!("custom_material/tinted.rs");
-    let start = doc
-        .find("# Writing your own material")
-        .expect("the document has the section");
-    let section = &doc[start..];
-    let code_start = section.find("```rust").expect("a Rust block") + "```rust".len();
-    let code = &section[code_start..];
-    let code = &code[code.find('\n').unwrap() + 1..code.find("```").unwrap()];
-    assert!(
-        code.contains(example.trim()),
-        "plugin/docs/custom-material.md's example and tests/tests/custom_material/tinted.rs differ"
-    );
-    assert!(
-        example.lines().count() <= 40,
-        "the example grew past 40 lines"
-    );
+    for (name, document, heading) in [
+        ("README.md", readme, "## A material of your own"),
+        (
+            "plugin/docs/custom-material.md",
+            doc,
+            "# Writing your own material",
+        ),
+    ] {
+        assert_eq!(
+            block_after(document, heading, "rust"),
+            rust,
+            "{name}'s material and tests/tests/custom_material/matte.rs differ"
+        );
+        assert_eq!(
+            block_after(document, heading, "wgsl"),
+            wgsl,
+            "{name}'s shading function and tests/tests/custom_material/matte.wgsl differ"
+        );
+    }
+    // The issue's measure: a material in at most 15 lines of Rust and 10 of WGSL.
+    assert!(rust.lines().count() <= 15, "the Rust grew past 15 lines");
+    assert!(wgsl.lines().count() <= 10, "the WGSL grew past 10 lines");
 }

@@ -2,12 +2,12 @@
 //! [`MaterialPlugin::for_meshes_without_material`] it also draws meshes that have no material.
 
 use crate::material::{
-    Choice, FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
-    ParamSpec, TextureFacts,
+    Choice, DeclaredMaterial, FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin,
+    MaterialTextures, ParamSpec, TextureFacts,
 };
 use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
-use crate::{Color, Handle, Image, LightingModel};
+use crate::{Color, LightingModel};
 
 crate::choice_enum! {
     /// How a surface's alpha is used (glTF alphaMode).
@@ -30,18 +30,18 @@ crate::material_parameters! {
     /// `LitMaterial::default()`.
     #[derive(Clone, Debug, PartialEq)]
     pub struct LitMaterial {
-        inputs {
+        textures {
             /// sRGB colour texture (white when absent).
-            base_color_texture: Option<Handle<Image>> = None,
+            base_color_texture: WhiteSrgb,
             /// Tangent-space normal map, OpenGL convention (green up the image); flat when absent.
-            normal_map: Option<Handle<Image>> = None,
+            normal_map: FlatNormal,
             /// sRGB emissive texture, multiplied with `emissive` (white when absent).
-            emissive_texture: Option<Handle<Image>> = None,
+            emissive_texture: WhiteSrgb,
             /// Ambient occlusion in the red channel, linear (glTF occlusionTexture); none when absent.
-            occlusion_texture: Option<Handle<Image>> = None,
+            occlusion_texture: WhiteLinear,
             /// Roughness in green and metalness in blue, linear, multiplied with `roughness` and
             /// `metallic` (glTF metallicRoughnessTexture); GGX models only.
-            metallic_roughness_texture: Option<Handle<Image>> = None,
+            metallic_roughness_texture: WhiteLinear,
         }
         parameters {
             /// Colour multiplied with the texture, linear.
@@ -166,33 +166,14 @@ impl Material for LitMaterial {
     const UNIFORM_WGSL_NAME: &'static str = "LitParams";
     // Masked surfaces discard, in the prepass too.
     const SURFACE_ON_POLYGON: bool = false;
-    const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
-        DefaultTexture::WhiteSrgb,
-        DefaultTexture::FlatNormal,
-        DefaultTexture::WhiteSrgb,
-        DefaultTexture::WhiteLinear,
-        DefaultTexture::WhiteLinear,
-    ];
+    const TEXTURE_SLOTS: &'static [DefaultTexture] = <Self as DeclaredMaterial>::TEXTURE_SLOTS;
 
     fn shader() -> ComposedShader {
         LIT_SHADER
     }
 
     fn textures(&self) -> MaterialTextures {
-        let mut textures = [None; MAX_MATERIAL_TEXTURES];
-        for (slot, image) in [
-            &self.base_color_texture,
-            &self.normal_map,
-            &self.emissive_texture,
-            &self.occlusion_texture,
-            &self.metallic_roughness_texture,
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            textures[slot] = image.as_ref().map(Handle::id);
-        }
-        textures
+        self.texture_images()
     }
 
     fn key(&self) -> Self::Key {
@@ -232,23 +213,11 @@ impl Material for LitMaterial {
     }
 
     fn uniform(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitParams {
-        if self.first_limit_problem().is_none() {
-            self.gpu_params()
-        } else {
-            let mut clean = self.clone();
-            clean.clamp_to_limits();
-            clean.gpu_params()
-        }
+        self.params()
     }
 
     fn problems(&self) -> Vec<String> {
-        if self.first_limit_problem().is_none() {
-            return Vec::new();
-        }
-        self.limit_problems()
-            .iter()
-            .map(ToString::to_string)
-            .collect()
+        self.parameter_problems()
     }
 }
 

@@ -1,41 +1,81 @@
-//! The declaration macro [`crate::material_parameters!`]: a material's parameters, each written
-//! once (the enums a parameter chooses between are [`crate::choice_enum!`]s).
+//! The declaration macro [`crate::material_parameters!`]: a material's parameters and texture
+//! inputs, each written once (the enums a parameter chooses between are
+//! [`crate::choice_enum!`]s), and [`DeclaredMaterial`], what it says of the material.
+
+use crate::render::{DefaultTexture, MaterialTextures};
+use crate::shader::WgslLayout;
+
+/// What [`crate::material_parameters!`] declares of a material: its GPU parameter struct and
+/// its WGSL, its texture inputs and their defaults. [`super::ShadedMaterial`]s are built on it;
+/// a [`super::Material`] written by hand can use it for its uniform and textures.
+pub trait DeclaredMaterial: Clone {
+    /// Every parameter as the shader reads it (the generated `#[repr(C)]` struct).
+    type Params: bytemuck::Pod + PartialEq + WgslLayout + Send + Sync;
+    /// The material struct's Rust name, for labels and messages.
+    const TYPE_NAME: &'static str;
+    /// The WGSL name of [`DeclaredMaterial::Params`] (`MaterialParams` in the short form).
+    const PARAMS_WGSL_NAME: &'static str;
+    /// The texture bound in each declared texture input's slot when it has no image.
+    const TEXTURE_SLOTS: &'static [DefaultTexture];
+    /// The WGSL names of the texture inputs, slot by slot (their field names).
+    const TEXTURE_NAMES: &'static [&'static str];
+    /// The WGSL declaration of [`DeclaredMaterial::Params`].
+    fn params_wgsl() -> String;
+    /// The parameters as the shader reads them, each brought within its limits first.
+    fn params(&self) -> Self::Params;
+    /// Every parameter outside its limits, one line each (empty when all are within).
+    fn parameter_problems(&self) -> Vec<String>;
+    /// The images of the texture inputs, slot by slot (`None`: the slot's default).
+    fn texture_images(&self) -> MaterialTextures;
+}
 
 /// Declares a material struct from one list of parameters, each written once: doc line (its
-/// help), name, type, default and [`ParamSpec`]. Generates the struct (inputs such as texture
-/// handles first, then the parameters), `Default`, the [`Param`] table `PARAMETERS`, a full
-/// preset struct and an all-optional patch struct (both serde, unknown fields rejected), and
-/// the limit checks and clamps of every parameter, and the GPU struct of the parameters with its
-/// generated WGSL declaration.
+/// help), name, type, default and [`ParamSpec`](super::ParamSpec). Optional sections come first:
+/// `inputs { name: Type = default, }` (fields that are not parameters, a height source say) and
+/// `textures { name: DefaultTexture, }` (an `Option<Handle<Image>>` each, bound in declaration
+/// order at group 1, with the [`DefaultTexture`] bound when the field is `None`).
+///
+/// Generates the struct, `Default`, the [`Param`](super::Param) table `PARAMETERS`, a preset
+/// struct of every parameter and an all-optional patch struct (both serde, unknown fields
+/// rejected), the limit checks and clamps of every parameter, the GPU struct of the parameters
+/// with its generated WGSL declaration, and [`DeclaredMaterial`]. With the trailing
+/// `preset P; patch Q; gpu G;` those three structs get those names; without it they are
+/// reached through `preset()`, `PARAMETERS` and [`DeclaredMaterial::Params`], and the WGSL
+/// struct is `MaterialParams`.
 #[macro_export]
 macro_rules! material_parameters {
-    (
-        $(#[$attr:meta])*
-        pub struct $material:ident {
-            inputs {
-                $(
-                    $(#[doc = $input_doc:literal])*
-                    $input:ident : $input_ty:ty = $input_default:expr,
-                )*
-            }
-            parameters {
-                $(
-                    #[doc = $help:literal]
-                    $(#[doc = $more:literal])*
-                    $field:ident : $ty:ty = $default:expr, $spec:expr;
-                )*
-            }
+    // The struct and its `Default`: outside any block, so that it is nameable.
+    (@struct [$(#[$attr:meta])*] $material:ident {
+        $(inputs {
+            $(
+                $(#[doc = $input_doc:literal])*
+                $input:ident : $input_ty:ty = $input_default:expr,
+            )*
+        })?
+        $(textures {
+            $(
+                $(#[doc = $texture_doc:literal])*
+                $texture:ident : $texture_default:ident,
+            )*
+        })?
+        parameters {
+            $(
+                #[doc = $help:literal]
+                $(#[doc = $more:literal])*
+                $field:ident : $ty:ty = $default:expr, $spec:expr;
+            )*
         }
-        preset $preset:ident;
-        patch $patch:ident;
-        gpu $gpu:ident;
-    ) => {
+    }) => {
         $(#[$attr])*
         pub struct $material {
-            $(
+            $($(
                 $(#[doc = $input_doc])*
                 pub $input: $input_ty,
-            )*
+            )*)?
+            $($(
+                $(#[doc = $texture_doc])*
+                pub $texture: Option<$crate::Handle<$crate::Image>>,
+            )*)?
             $(
                 #[doc = $help]
                 $(#[doc = $more])*
@@ -46,9 +86,72 @@ macro_rules! material_parameters {
         impl Default for $material {
             fn default() -> Self {
                 Self {
-                    $($input: $input_default,)*
+                    $($($input: $input_default,)*)?
+                    $($($texture: None,)*)?
                     $($field: $default,)*
                 }
+            }
+        }
+    };
+    // Everything else, with the names of the preset, patch and GPU structs.
+    (@items [$preset:ident $patch:ident $gpu:ident] $material:ident {
+        $(inputs {
+            $(
+                $(#[doc = $input_doc:literal])*
+                $input:ident : $input_ty:ty = $input_default:expr,
+            )*
+        })?
+        $(textures {
+            $(
+                $(#[doc = $texture_doc:literal])*
+                $texture:ident : $texture_default:ident,
+            )*
+        })?
+        parameters {
+            $(
+                #[doc = $help:literal]
+                $(#[doc = $more:literal])*
+                $field:ident : $ty:ty = $default:expr, $spec:expr;
+            )*
+        }
+    }) => {
+        impl $crate::material::DeclaredMaterial for $material {
+            type Params = $gpu;
+            const TYPE_NAME: &'static str = stringify!($material);
+            const PARAMS_WGSL_NAME: &'static str = stringify!($gpu);
+            const TEXTURE_SLOTS: &'static [$crate::render::DefaultTexture] =
+                &[$($($crate::render::DefaultTexture::$texture_default,)*)?];
+            const TEXTURE_NAMES: &'static [&'static str] = &[$($(stringify!($texture),)*)?];
+
+            fn params_wgsl() -> String {
+                $gpu::wgsl()
+            }
+
+            fn params(&self) -> $gpu {
+                if self.first_limit_problem().is_none() {
+                    self.gpu_params()
+                } else {
+                    let mut clean = self.clone();
+                    clean.clamp_to_limits();
+                    clean.gpu_params()
+                }
+            }
+
+            fn parameter_problems(&self) -> Vec<String> {
+                if self.first_limit_problem().is_none() {
+                    return Vec::new();
+                }
+                self.limit_problems().iter().map(ToString::to_string).collect()
+            }
+
+            fn texture_images(&self) -> $crate::material::MaterialTextures {
+                let images: &[&Option<$crate::Handle<$crate::Image>>] =
+                    &[$($(&self.$texture,)*)?];
+                let mut textures = [None; $crate::material::MAX_MATERIAL_TEXTURES];
+                for (slot, image) in textures.iter_mut().zip(images) {
+                    *slot = image.as_ref().map($crate::Handle::id);
+                }
+                textures
             }
         }
 
@@ -232,5 +335,29 @@ macro_rules! material_parameters {
                 Self { $($field: Some(material.$field),)* }
             }
         }
+    };
+    // The full form: the preset, patch and GPU structs under the given names.
+    (
+        $(#[$attr:meta])*
+        pub struct $material:ident { $($body:tt)* }
+        preset $preset:ident;
+        patch $patch:ident;
+        gpu $gpu:ident;
+    ) => {
+        $crate::material_parameters!(@struct [$(#[$attr])*] $material { $($body)* });
+        $crate::material_parameters!(@items [$preset $patch $gpu] $material { $($body)* });
+    };
+    // The short form: those structs are reached through the material's methods and
+    // `DeclaredMaterial::Params`, and the GPU struct is `MaterialParams` in WGSL.
+    (
+        $(#[$attr:meta])*
+        pub struct $material:ident { $($body:tt)* }
+    ) => {
+        $crate::material_parameters!(@struct [$(#[$attr])*] $material { $($body)* });
+        const _: () = {
+            $crate::material_parameters!(
+                @items [MaterialPreset MaterialPatch MaterialParams] $material { $($body)* }
+            );
+        };
     };
 }

@@ -16,12 +16,14 @@ mod pipelines;
 mod plugin;
 mod registry;
 mod resolve_tiles;
+mod shaded;
 mod shader_check;
 
 pub use crate::render::{FragmentVariant, MAX_MATERIAL_TEXTURES, MaterialTextures, TextureFacts};
 pub use crate::shader::{
     Choice, ChoiceInfo, LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout,
 };
+pub use declare::DeclaredMaterial;
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
 pub use param_types::{GpuParam, ParamType};
@@ -30,12 +32,13 @@ pub use params::{
 };
 pub use plugin::{
     MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,
-    draw_meshes_without_material, drawn_keys, pipelines_ready,
+    draw_meshes_without_material, drawn_in_opaque_and_resolve, drawn_keys, pipelines_ready,
 };
 
 #[cfg(feature = "dev-tools")]
 pub(crate) use registry::MaterialRegistry;
 pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
+pub use shaded::{SHADED_FORWARD, SHADED_RESOLVE, SURFACE_INPUT, ShadedMaterial};
 pub use shader_check::MaterialShaderError;
 
 use std::fmt::Debug;

@@ -373,6 +373,16 @@ pub fn drawn_keys<M: Material>(resources: &Resources) -> Vec<M::Key> {
         .unwrap_or_default()
 }
 
+#[doc(hidden)] // A test hook: whether material `M`'s last prepared frame draws in the opaque
+// raster pass, and whether it shades pixels in the deferred resolve.
+pub fn drawn_in_opaque_and_resolve<M: Material>(resources: &Resources) -> (bool, bool) {
+    resources
+        .get::<MaterialBatches<M>>()
+        .map_or((false, false), |batches| {
+            (batches.draws_in(DrawPhase::Opaque), batches.has_resolves())
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -37,6 +37,20 @@ pub enum MaterialShaderError {
         /// `discards` or `writes its depth`.
         what: &'static str,
     },
+    /// A compute entry discards: the deferred resolve shades pixels whose visibility the
+    /// visibility pass has already decided.
+    #[error(
+        "material {material} discards in its compute entry {entry_point} (the deferred \
+         resolve), where each pixel's surface is already decided: a material that cuts holes \
+         implements Material itself, with SURFACE_ON_POLYGON false and a prepass fragment that \
+         discards"
+    )]
+    DiscardsInResolve {
+        /// The material's name.
+        material: &'static str,
+        /// The compute entry point.
+        entry_point: String,
+    },
 }
 
 /// Checks `shader`, material `material`'s, as [`MaterialShaderError`] says; `on_polygon` is the
@@ -60,6 +74,8 @@ pub(crate) fn check_material_shader(
         let line = error.location(&source).map(|at| at.line_number);
         compile_error(line, error.message().to_owned())
     })?;
+    // Before validation, which rejects a discard in a compute entry without saying where.
+    check_surface(material, &module, on_polygon)?;
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
@@ -69,25 +85,47 @@ pub(crate) fn check_material_shader(
         let line = error.location(&source).map(|at| at.line_number);
         compile_error(line, error.as_inner().to_string())
     })?;
-    if on_polygon {
-        for entry in &module.entry_points {
-            if entry.stage != naga::ShaderStage::Fragment {
-                continue;
-            }
-            let what = if writes_depth(&module, &entry.function) {
-                Some("writes its depth")
-            } else if discards(&module, &entry.function.body, &mut HashSet::new()) {
-                Some("discards")
-            } else {
-                None
-            };
-            if let Some(what) = what {
-                return Err(MaterialShaderError::LeavesPolygon {
+    Ok(())
+}
+
+/// Whether `module`'s entry points keep to the material's surface: no compute entry discards,
+/// and, where the surface lies on the polygon, no fragment entry discards or writes its depth.
+fn check_surface(
+    material: &'static str,
+    module: &naga::Module,
+    on_polygon: bool,
+) -> Result<(), MaterialShaderError> {
+    // Compute entries first: a shaded material's resolve says what to do about it.
+    let (compute, others): (Vec<_>, Vec<_>) = module
+        .entry_points
+        .iter()
+        .partition(|entry| entry.stage == naga::ShaderStage::Compute);
+    for entry in compute.into_iter().chain(others) {
+        let discards = || discards(module, &entry.function.body, &mut HashSet::new());
+        match entry.stage {
+            naga::ShaderStage::Compute if discards() => {
+                return Err(MaterialShaderError::DiscardsInResolve {
                     material,
                     entry_point: entry.name.clone(),
-                    what,
                 });
             }
+            naga::ShaderStage::Fragment if on_polygon => {
+                let what = if writes_depth(module, &entry.function) {
+                    Some("writes its depth")
+                } else if discards() {
+                    Some("discards")
+                } else {
+                    None
+                };
+                if let Some(what) = what {
+                    return Err(MaterialShaderError::LeavesPolygon {
+                        material,
+                        entry_point: entry.name.clone(),
+                        what,
+                    });
+                }
+            }
+            _ => {}
         }
     }
     Ok(())

@@ -10,6 +10,13 @@ pub struct WgslFile {
     pub source: &'static str,
 }
 
+impl WgslFile {
+    /// The file `path` (a name for messages) holding `source`, often `include_str!(path)`.
+    pub const fn new(path: &'static str, source: &'static str) -> Self {
+        Self { path, source }
+    }
+}
+
 /// A [`WgslFile`] of the plugin's own, embedded from `plugin/src/<path>` (invoked from a module
 /// one folder below `src`).
 #[macro_export]

@@ -1,0 +1,143 @@
+//! [`ShadedMaterial`]: a material written as one WGSL shading function over a documented surface
+//! input; the core writes every entry point around it, so it runs on both paths.
+
+use super::{DeclaredMaterial, Material};
+use crate::render::frame_group::MATERIAL_UNIFORMS;
+use crate::render::shaders::{self, ComposedShader, GeneratedWgsl, WgslFile};
+use crate::render::{DefaultTexture, FragmentVariant, MaterialTextures, TextureFacts};
+
+/// The surface input, and the helpers a shading function samples textures and shadows with.
+pub const SURFACE_INPUT: WgslFile = crate::wgsl_file!("material/surface_input.wgsl");
+/// The forward path's fragment entry around `shade`.
+pub const SHADED_FORWARD: WgslFile = crate::wgsl_file!("material/shaded_forward.wgsl");
+/// The deferred resolve's compute entry around `shade`.
+pub const SHADED_RESOLVE: WgslFile = crate::wgsl_file!("material/shaded_resolve.wgsl");
+
+/// A material written as a shading function: declare its parameters and textures with
+/// [`crate::material_parameters!`], write `shade` in WGSL, and the core composes its forward
+/// fragment, its deferred resolve and its shadow, prepass and visibility draws (its surface lies
+/// on its polygons: no fragment stage of its own there). It runs on the deferred path, shading
+/// in the compute resolve.
+///
+/// The shading file defines
+/// `fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32>`, which returns
+/// scene-linear light and alpha. It sees:
+/// - `SurfaceInput` (`plugin/src/material/surface_input.wgsl`): position, normal, tangent frame,
+///   uv, vertex colour, direction to the eye, pixel footprint, draw index, facing;
+/// - its parameters as `material` (colours as `array<f32, 4>`: `rgba(material.color)`);
+/// - each texture input under its field name, sampled with `texture_at(texture, surface)`;
+/// - the lights (`light_count()`, `light_at(i, position)`, `frame.ambient`) and the scene's
+///   shadows (`surface_shadow(i, surface)`);
+/// - `perturbed_normal`, `safe_normalize` and the rest of the core's `tangent_space.wgsl`.
+///
+/// A material that discards, moves its depth, or wants entry points of its own implements
+/// [`Material`] itself instead.
+pub trait ShadedMaterial: DeclaredMaterial + hecs::Component + PartialEq + Default {
+    /// The WGSL file that defines `shade`.
+    const SHADING: WgslFile;
+}
+
+/// The composed shaders of a shaded material, made once per type.
+trait ShadedShaders {
+    const FORWARD: ComposedShader;
+    const DEFERRED: ComposedShader;
+}
+
+impl<T: ShadedMaterial> ShadedShaders for T {
+    const FORWARD: ComposedShader = ComposedShader {
+        name: T::TYPE_NAME,
+        constants: &[declarations::<T> as GeneratedWgsl],
+        files: &[
+            shaders::FRAME,
+            shaders::PARAMS,
+            shaders::MESH_VERTEX,
+            shaders::SHADOWS,
+            shaders::TANGENT_SPACE,
+            SURFACE_INPUT,
+            T::SHADING,
+            SHADED_FORWARD,
+        ],
+    };
+    const DEFERRED: ComposedShader = ComposedShader {
+        name: T::TYPE_NAME,
+        constants: &[
+            shaders::deferred_header as GeneratedWgsl,
+            declarations::<T> as GeneratedWgsl,
+        ],
+        files: &[
+            shaders::FRAME,
+            shaders::PARAMS,
+            shaders::MESH_VERTEX,
+            shaders::SHADOWS,
+            shaders::TANGENT_SPACE,
+            SURFACE_INPUT,
+            T::SHADING,
+            SHADED_FORWARD,
+            shaders::VISIBILITY,
+            shaders::VISIBILITY_READ,
+            shaders::DEFERRED_RESOLVE,
+            SHADED_RESOLVE,
+        ],
+    };
+}
+
+/// `T`'s generated WGSL: its parameter struct, the per-draw array of it (`materials`), its
+/// textures at group 1 in slot order and the trilinear `material_sampler` after them.
+fn declarations<T: DeclaredMaterial>() -> String {
+    let mut wgsl = T::params_wgsl();
+    wgsl.push_str(&format!(
+        "@group(0) @binding({MATERIAL_UNIFORMS}) var<storage, read> materials: array<{}>;\n",
+        T::PARAMS_WGSL_NAME
+    ));
+    for (binding, name) in T::TEXTURE_NAMES.iter().enumerate() {
+        wgsl.push_str(&format!(
+            "@group(1) @binding({binding}) var {name}: texture_2d<f32>;\n"
+        ));
+    }
+    wgsl.push_str(&format!(
+        "@group(1) @binding({}) var material_sampler: sampler;\n",
+        T::TEXTURE_NAMES.len()
+    ));
+    wgsl
+}
+
+impl<T: ShadedMaterial> Material for T {
+    type Uniform = T::Params;
+    type Key = ();
+    const NAME: &'static str = T::TYPE_NAME;
+    const UNIFORM_WGSL_NAME: &'static str = T::PARAMS_WGSL_NAME;
+    const TEXTURE_SLOTS: &'static [DefaultTexture] = <T as DeclaredMaterial>::TEXTURE_SLOTS;
+
+    fn shader() -> ComposedShader {
+        T::FORWARD
+    }
+
+    fn deferred_shader() -> Option<ComposedShader> {
+        Some(T::DEFERRED)
+    }
+
+    fn textures(&self) -> MaterialTextures {
+        self.texture_images()
+    }
+
+    fn key(&self) {}
+
+    fn fragment(_: ()) -> FragmentVariant {
+        FragmentVariant::entry("fs_main")
+    }
+
+    fn deferred_resolve(_: ()) -> Option<FragmentVariant> {
+        Some(FragmentVariant::entry("cs_resolve"))
+    }
+
+    fn uniform(
+        &self,
+        _: &[Option<TextureFacts>; crate::render::MAX_MATERIAL_TEXTURES],
+    ) -> T::Params {
+        self.params()
+    }
+
+    fn problems(&self) -> Vec<String> {
+        self.parameter_problems()
+    }
+}
