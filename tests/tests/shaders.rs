@@ -1,8 +1,29 @@
 //! Every WGSL file in the plugin is part of a composed shader, and every composed shader parses
-//! and validates with naga.
+//! and validates with naga: the plugin's own (`pom::SHADERS`), and those the core composes
+//! around a shaded material's `shade` (the README's `Matte`).
+
+#[rustfmt::skip]
+#[path = "custom_material/matte.rs"]
+mod matte;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
+
+use pom::Material;
+use pom::render::shaders::ComposedShader;
+
+/// Every shader to validate: the plugin's, and both of a shaded material's.
+fn every_shader() -> Vec<ComposedShader> {
+    let shaded = [
+        Some(matte::Matte::shader()),
+        matte::Matte::deferred_shader(),
+    ];
+    pom::SHADERS
+        .iter()
+        .copied()
+        .chain(shaded.into_iter().flatten())
+        .collect()
+}
 
 fn src_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin/src")
@@ -22,10 +43,11 @@ fn wgsl_files(dir: &Path, found: &mut Vec<PathBuf>) {
 
 #[test]
 fn every_composed_shader_validates() {
+    let shaders = every_shader();
     assert!(!pom::SHADERS.is_empty());
     let mut failures = Vec::new();
     // Each shader as games compile it, and as FragmentInvocationCounter compiles it for tests.
-    let sources = pom::SHADERS.iter().flat_map(|shader| {
+    let sources = shaders.iter().flat_map(|shader| {
         [shader.source(), shader.counting_source()]
             .map(|source| (shader, source))
             .into_iter()
@@ -63,7 +85,8 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         src_dir().display()
     );
     let counting = pom::render::shaders::FRAGMENT_COUNTER_COUNTING;
-    let composed: BTreeSet<(&str, &str)> = pom::SHADERS
+    let shaders = every_shader();
+    let composed: BTreeSet<(&str, &str)> = shaders
         .iter()
         .flat_map(|shader| shader.files.iter().map(|file| (file.path, file.source)))
         .chain([(counting.path, counting.source)])
@@ -77,12 +100,8 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         let text = std::fs::read_to_string(path).unwrap();
         assert!(
             composed.contains(&(relative.as_str(), text.as_str())),
-            "{relative} is not part of any shader in pom::SHADERS (or is stale)"
+            "{relative} is not part of any shader in pom::SHADERS or Matte's (or is stale)"
         );
     }
-    eprintln!(
-        "{} WGSL files in {} shaders",
-        on_disk.len(),
-        pom::SHADERS.len()
-    );
+    eprintln!("{} WGSL files in {} shaders", on_disk.len(), shaders.len());
 }

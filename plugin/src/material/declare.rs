@@ -95,12 +95,8 @@ macro_rules! material_parameters {
     };
     // Everything else, with the names of the preset, patch and GPU structs.
     (@items [$preset:ident $patch:ident $gpu:ident] $material:ident {
-        $(inputs {
-            $(
-                $(#[doc = $input_doc:literal])*
-                $input:ident : $input_ty:ty = $input_default:expr,
-            )*
-        })?
+        // Inputs are the struct's alone.
+        $(inputs { $($inputs:tt)* })?
         $(textures {
             $(
                 $(#[doc = $texture_doc:literal])*

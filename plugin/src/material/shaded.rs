@@ -43,42 +43,40 @@ trait ShadedShaders {
     const DEFERRED: ComposedShader;
 }
 
-impl<T: ShadedMaterial> ShadedShaders for T {
-    const FORWARD: ComposedShader = ComposedShader {
-        name: T::TYPE_NAME,
-        constants: &[declarations::<T> as GeneratedWgsl],
-        files: &[
-            shaders::FRAME,
-            shaders::PARAMS,
-            shaders::MESH_VERTEX,
-            shaders::SHADOWS,
-            shaders::TANGENT_SPACE,
-            SURFACE_INPUT,
-            T::SHADING,
-            SHADED_FORWARD,
-        ],
+/// A shaded material's composition: the generated constants after `$first`, the library files,
+/// its shading file and the forward entry, then `$more`.
+macro_rules! shaded_shader {
+    ($T:ty, [$($first:expr),*], [$($more:expr),*]) => {
+        ComposedShader {
+            name: <$T as DeclaredMaterial>::TYPE_NAME,
+            constants: &[$($first as GeneratedWgsl,)* declarations::<$T> as GeneratedWgsl],
+            files: &[
+                shaders::FRAME,
+                shaders::PARAMS,
+                shaders::MESH_VERTEX,
+                shaders::SHADOWS,
+                shaders::TANGENT_SPACE,
+                SURFACE_INPUT,
+                <$T as ShadedMaterial>::SHADING,
+                SHADED_FORWARD,
+                $($more,)*
+            ],
+        }
     };
-    const DEFERRED: ComposedShader = ComposedShader {
-        name: T::TYPE_NAME,
-        constants: &[
-            shaders::deferred_header as GeneratedWgsl,
-            declarations::<T> as GeneratedWgsl,
-        ],
-        files: &[
-            shaders::FRAME,
-            shaders::PARAMS,
-            shaders::MESH_VERTEX,
-            shaders::SHADOWS,
-            shaders::TANGENT_SPACE,
-            SURFACE_INPUT,
-            T::SHADING,
-            SHADED_FORWARD,
+}
+
+impl<T: ShadedMaterial> ShadedShaders for T {
+    const FORWARD: ComposedShader = shaded_shader!(T, [], []);
+    const DEFERRED: ComposedShader = shaded_shader!(
+        T,
+        [shaders::deferred_header],
+        [
             shaders::VISIBILITY,
             shaders::VISIBILITY_READ,
             shaders::DEFERRED_RESOLVE,
-            SHADED_RESOLVE,
-        ],
-    };
+            SHADED_RESOLVE
+        ]
+    );
 }
 
 /// `T`'s generated WGSL: its parameter struct, the per-draw array of it (`materials`), its
