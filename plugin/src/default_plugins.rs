@@ -22,7 +22,7 @@ pub struct DefaultPlugins {
 impl DefaultPlugins {
     /// The default plugins rendering into a `width`×`height` offscreen sRGB image.
     pub fn headless(width: u32, height: u32) -> Self {
-        RenderPlugin::headless(width, height).into()
+        RenderPlugin::new(width, height).into()
     }
 }
 

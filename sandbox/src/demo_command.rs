@@ -34,7 +34,7 @@ pub struct DemoArgs {
 pub fn run(args: &DemoArgs) -> Result<()> {
     let (width, height) = args.size;
     let mut app = pom::App::new();
-    app.add_plugin(args.path.apply(pom::RenderPlugin::headless(width, height)))
+    app.add_plugin(args.path.apply(pom::RenderPlugin::new(width, height)))
         .add_plugin(pom::PomPlugin);
     demo_scene::spawn(&mut app)?;
     args.display.apply(&mut app);

@@ -347,7 +347,7 @@ fn headless_app(output: &OutputArgs, path: PathArgs) -> App {
     };
     let (width, height) = output.size;
     let mut app = App::new();
-    app.add_plugin(path.apply(RenderPlugin::headless(width, height).with_format(format)));
+    app.add_plugin(path.apply(RenderPlugin::new(width, height).with_format(format)));
     app.add_plugin(PomPlugin);
     app
 }

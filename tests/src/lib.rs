@@ -45,7 +45,7 @@ pub enum HarnessError {
 /// validation error turned into a failure.
 pub fn headless_app(width: u32, height: u32) -> Result<App, HarnessError> {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(width, height))
+    app.add_plugin(RenderPlugin::new(width, height))
         .add_plugin(pom::lit_plugin());
     app.finish()?;
     let gpu = app

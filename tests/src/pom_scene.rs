@@ -40,7 +40,7 @@ impl HeightMaterial {
 /// A headless app with the parallax plugin, rendering `format` at `size`×`size`.
 pub fn pom_app(size: u32, format: TargetFormat) -> Result<App, HarnessError> {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(size, size).with_format(format));
+    app.add_plugin(RenderPlugin::new(size, size).with_format(format));
     app.add_plugin(PomPlugin);
     app.finish()?;
     Ok(app)

@@ -31,7 +31,7 @@ fn render_one_frame(
     textures: &HeightMaterial,
 ) -> Result<pom::wgpu::Instance, HarnessError> {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(SIZE, SIZE).with_path(path))
+    app.add_plugin(RenderPlugin::new(SIZE, SIZE).with_path(path))
         .add_plugin(PomPlugin);
     app.finish()?;
     let material = textures.material(&mut app);

@@ -4,7 +4,7 @@
 //! paths; a pane moving through another swaps the result.
 
 use pom::glam::Vec3;
-use pom::material::{FragmentVariant, MAX_MATERIAL_TEXTURES, MaterialTextures, TextureFacts};
+use pom::material::{MAX_MATERIAL_TEXTURES, MaterialTextures, ShaderEntry, TextureFacts};
 use pom::render::shaders::{self, ComposedShader, FRAME, MESH_VERTEX, WgslFile};
 use pom::render::{DefaultTexture, Renderer};
 use pom::{
@@ -43,10 +43,10 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> { return materials[in.object
 };
 
 impl Material for Glaze {
-    type Uniform = GlazeUniform;
+    type PerDraw = GlazeUniform;
     type Key = ();
     const NAME: &'static str = "glaze";
-    const UNIFORM_WGSL_NAME: &'static str = "GlazeUniform";
+    const PER_DRAW_WGSL_NAME: &'static str = "GlazeUniform";
     const TEXTURE_SLOTS: &'static [DefaultTexture] = &[];
     fn shader() -> ComposedShader {
         ComposedShader {
@@ -68,13 +68,13 @@ impl Material for Glaze {
         [None; MAX_MATERIAL_TEXTURES]
     }
     fn key(&self) {}
-    fn fragment(_: ()) -> FragmentVariant {
-        FragmentVariant::entry("fs_main")
+    fn fragment(_: ()) -> ShaderEntry {
+        ShaderEntry::entry("fs_main")
     }
     fn blends(_: ()) -> bool {
         true
     }
-    fn uniform(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> GlazeUniform {
+    fn per_draw(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> GlazeUniform {
         GlazeUniform {
             color: self.color.to_array(),
         }

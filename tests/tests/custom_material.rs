@@ -172,10 +172,10 @@ macro_rules! test_material {
         struct $ty(Matte);
 
         impl pom::Material for $ty {
-            type Uniform = <Matte as DeclaredMaterial>::Params;
+            type PerDraw = <Matte as DeclaredMaterial>::Params;
             type Key = ();
             const NAME: &'static str = $name;
-            const UNIFORM_WGSL_NAME: &'static str = "MaterialParams";
+            const PER_DRAW_WGSL_NAME: &'static str = "MaterialParams";
             const TEXTURE_SLOTS: &'static [pom::render::DefaultTexture] = &[];
             const SURFACE_ON_POLYGON: bool = $on_polygon;
             fn shader() -> ComposedShader {
@@ -200,13 +200,13 @@ macro_rules! test_material {
                 self.0.texture_images()
             }
             fn key(&self) {}
-            fn fragment(_: ()) -> pom::material::FragmentVariant {
-                pom::material::FragmentVariant::entry("fs_main")
+            fn fragment(_: ()) -> pom::material::ShaderEntry {
+                pom::material::ShaderEntry::entry("fs_main")
             }
-            fn uniform(
+            fn per_draw(
                 &self,
                 _: &[Option<pom::material::TextureFacts>; pom::material::MAX_MATERIAL_TEXTURES],
-            ) -> Self::Uniform {
+            ) -> Self::PerDraw {
                 self.0.params()
             }
         }

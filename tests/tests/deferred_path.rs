@@ -130,7 +130,7 @@ fn a_cube_in_depth_offset_relief_meets_it_the_same_way_on_both_paths() {
 fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
     let mut app = pom::App::new();
     app.add_plugin(
-        pom::RenderPlugin::headless(32, 32)
+        pom::RenderPlugin::new(32, 32)
             .with_depth_prepass(false)
             .with_path(RenderPath::Deferred),
     )

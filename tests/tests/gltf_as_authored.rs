@@ -12,7 +12,7 @@ use serde_json::json;
 
 fn app(size: u32) -> App {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(size, size))
+    app.add_plugin(RenderPlugin::new(size, size))
         .add_plugin(PomPlugin);
     app
 }

@@ -13,7 +13,7 @@ use serde_json::json;
 
 fn app() -> App {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(64, 64))
+    app.add_plugin(RenderPlugin::new(64, 64))
         .add_plugin(PomPlugin);
     app
 }

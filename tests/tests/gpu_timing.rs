@@ -15,7 +15,7 @@ const HEIGHT_SCALE: f32 = 0.04;
 
 fn timed_app(mode: TimingMode) -> App {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(48, 48).with_gpu_timing(Some(mode)));
+    app.add_plugin(RenderPlugin::new(48, 48).with_gpu_timing(Some(mode)));
     app.add_plugin(PomPlugin);
     app.finish().unwrap();
     let field = HeightField::from_fn(32, 32, |u, v| {
@@ -139,7 +139,7 @@ fn non_blocking_timings_appear_after_a_few_frames_and_keep_coming() {
 #[test]
 fn timing_can_be_turned_off_and_says_so() {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(32, 32).with_gpu_timing(None));
+    app.add_plugin(RenderPlugin::new(32, 32).with_gpu_timing(None));
     let textures = HeightMaterial {
         field: HeightField::from_fn(16, 16, |u, _| u),
         height_scale: HEIGHT_SCALE,
@@ -167,7 +167,7 @@ fn timing_can_be_turned_off_and_says_so() {
 fn the_texel_rate_probe_samples_its_texture_and_is_timed() {
     use pom::render::{PROBE_PASS, TexelRateProbe, resolve_gpu_timings};
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(32, 16).with_gpu_timing(Some(TimingMode::Blocking)));
+    app.add_plugin(RenderPlugin::new(32, 16).with_gpu_timing(Some(TimingMode::Blocking)));
     app.finish().unwrap();
     let gpu = app.resources.get::<pom::GpuContext>().unwrap();
     let format = app

@@ -21,7 +21,7 @@ fn scene(
 ) -> App {
     let mut app = App::new();
     app.insert_resource(compilation);
-    app.add_plugin(RenderPlugin::headless(SIZE, SIZE))
+    app.add_plugin(RenderPlugin::new(SIZE, SIZE))
         .add_plugin(PomPlugin);
     let material = material(&mut app);
     let plane = app

@@ -65,7 +65,7 @@ fn plane(app: &mut App, size: f32) -> pom::Handle<Mesh> {
 /// Fragment-shader invocations of the parallax material's opaque pipeline for `planes` full
 /// screen planes stacked along the view.
 fn parallax_invocations(planes: usize, depth_offset: bool, prepass: bool, stack: Stack) -> u32 {
-    let mut app = counting_app(RenderPlugin::headless(SIZE, SIZE).with_depth_prepass(prepass));
+    let mut app = counting_app(RenderPlugin::new(SIZE, SIZE).with_depth_prepass(prepass));
     let material = ParallaxOcclusionMaterial {
         depth_offset,
         ..cobbles().material(&mut app)
@@ -157,7 +157,7 @@ fn depth_offset_scene(prepass: bool) -> image::RgbaImage {
         ..PreviewView::default()
     };
     let mut app = started(
-        RenderPlugin::headless(128, 128)
+        RenderPlugin::new(128, 128)
             .with_format(TargetFormat::Srgb8)
             .with_depth_prepass(prepass),
     );
@@ -212,7 +212,7 @@ fn the_prepass_changes_no_pixel_of_a_depth_offset_scene() {
 /// Linear display colour and scene colour at the centre of a lit orange plane whose brightest
 /// channel reaches `level` × white, through `tonemapping` at the default exposure.
 fn bright_surface(tonemapping: Tonemapping, level: f32) -> ([f32; 3], [f32; 3]) {
-    let mut app = started(RenderPlugin::headless(16, 16).with_format(TargetFormat::Float32));
+    let mut app = started(RenderPlugin::new(16, 16).with_format(TargetFormat::Float32));
     *app.resources.get_mut::<pom::AmbientLight>().unwrap() = pom::AmbientLight {
         color: Color::WHITE,
         intensity: 0.0,
@@ -313,7 +313,7 @@ fn bright_colours_keep_their_hue_through_the_tonemappers_that_promise_it() {
 #[test]
 fn one_stop_more_exposure_value_halves_the_light() {
     let display_at = |ev100: f32| {
-        let mut app = started(RenderPlugin::headless(8, 8).with_format(TargetFormat::Float32));
+        let mut app = started(RenderPlugin::new(8, 8).with_format(TargetFormat::Float32));
         let plane = plane(&mut app, 4.0);
         app.world
             .spawn((plane, LitMaterial::default(), Transform::IDENTITY));
@@ -350,7 +350,7 @@ fn post_processed(path: PostProcessPath) -> (image::RgbaImage, bool) {
         view_angle: 40.0,
         ..PreviewView::default()
     };
-    let mut app = started(RenderPlugin::headless(64, 48).with_post_process(path));
+    let mut app = started(RenderPlugin::new(64, 48).with_post_process(path));
     let material = cobbles().material(&mut app);
     pom::preview::spawn_preview(&mut app, material, &view).unwrap();
     // A light bright enough that tonemapping has highlights to compress.
@@ -387,7 +387,7 @@ fn compute_and_fragment_post_processing_write_the_same_pixels() {
 #[test]
 fn each_phase_is_timed_under_its_name() {
     let mut app =
-        started(RenderPlugin::headless(32, 32).with_gpu_timing(Some(pom::TimingMode::Blocking)));
+        started(RenderPlugin::new(32, 32).with_gpu_timing(Some(pom::TimingMode::Blocking)));
     let material = cobbles().material(&mut app);
     pom::preview::spawn_preview(&mut app, material, &PreviewView::default()).unwrap();
     pom_tests::run_frames(&mut app, 3).unwrap();
@@ -465,7 +465,7 @@ fn the_transparent_phase_blends_over_the_opaque_result_and_keeps_its_depth() {
     let render = |overlay_depth: Option<f32>| {
         // The 8-bit target: its Rgba16Float scene blends everywhere (Rgba32Float needs
         // FLOAT32_BLENDABLE).
-        let mut app = started(RenderPlugin::headless(16, 16));
+        let mut app = started(RenderPlugin::new(16, 16));
         let plane = plane(&mut app, 4.0);
         app.world.spawn((
             plane,

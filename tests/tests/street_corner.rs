@@ -9,7 +9,7 @@ use pom_tests::{FlipTolerance, check_golden, render_both_paths};
 fn the_shipped_street_corner_matches_its_reference() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(384, 216))
+    app.add_plugin(RenderPlugin::new(384, 216))
         .add_plugin(PomPlugin);
     let scene = load_gltf(&mut app, &path).unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
@@ -24,7 +24,7 @@ fn the_shipped_street_corner_matches_its_reference() {
 fn the_street_corner_with_scene_shadows_matches_its_reference() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(384, 216))
+    app.add_plugin(RenderPlugin::new(384, 216))
         .add_plugin(PomPlugin);
     let scene = load_gltf(&mut app, &path).unwrap();
     for &light in &scene.lights {

@@ -178,7 +178,7 @@ fn quad_app(
     to_light: Vec3,
 ) -> (App, pom::hecs::Entity) {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::headless(SIZE, SIZE).with_format(TargetFormat::Float32))
+    app.add_plugin(RenderPlugin::new(SIZE, SIZE).with_format(TargetFormat::Float32))
         .add_plugin(PomPlugin);
     let name = format!("{tangents:?}").to_lowercase();
     let dir = scratch_dir(&format!("{test}-{name}"));

@@ -305,7 +305,7 @@ fn decode_base64(text: &str) -> Option<Vec<u8>> {
 /// ```no_run
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let mut app = pom::App::new();
-/// app.add_plugin(pom::RenderPlugin::headless(640, 360)).add_plugin(pom::PomPlugin);
+/// app.add_plugin(pom::RenderPlugin::new(640, 360)).add_plugin(pom::PomPlugin);
 /// let scene = pom::load_gltf(&mut app, "assets/street_corner.gltf")?;
 /// for warning in &scene.warnings {
 ///     eprintln!("warning: {warning}");

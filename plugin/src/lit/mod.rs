@@ -2,8 +2,8 @@
 //! [`MaterialPlugin::for_meshes_without_material`] it also draws meshes that have no material.
 
 use crate::material::{
-    Choice, DeclaredMaterial, FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin,
-    MaterialTextures, ParamSpec, TextureFacts,
+    Choice, DeclaredMaterial, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
+    ParamSpec, ShaderEntry, TextureFacts,
 };
 use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
@@ -150,9 +150,9 @@ pub struct LitPipelineKey {
 }
 
 impl LitPipelineKey {
-    fn variant(self, entry_point: &'static str) -> FragmentVariant {
+    fn variant(self, entry_point: &'static str) -> ShaderEntry {
         let mask = self.alpha_mode == AlphaMode::Mask;
-        FragmentVariant {
+        ShaderEntry {
             entry_point,
             constants: vec![("ALPHA_MASK", f64::from(u8::from(mask)))],
         }
@@ -160,10 +160,10 @@ impl LitPipelineKey {
 }
 
 impl Material for LitMaterial {
-    type Uniform = LitParams;
+    type PerDraw = LitParams;
     type Key = LitPipelineKey;
     const NAME: &'static str = "lit";
-    const UNIFORM_WGSL_NAME: &'static str = "LitParams";
+    const PER_DRAW_WGSL_NAME: &'static str = "LitParams";
     // Masked surfaces discard, in the prepass too.
     const SURFACE_ON_POLYGON: bool = false;
     const TEXTURE_SLOTS: &'static [DefaultTexture] = <Self as DeclaredMaterial>::TEXTURE_SLOTS;
@@ -187,7 +187,7 @@ impl Material for LitMaterial {
         key.alpha_mode == AlphaMode::Blend
     }
 
-    fn prepass_fragment(key: Self::Key) -> Option<FragmentVariant> {
+    fn prepass_fragment(key: Self::Key) -> Option<ShaderEntry> {
         // A cut-out surface must leave its holes out of the depth too.
         (key.alpha_mode == AlphaMode::Mask).then(|| key.variant("fs_prepass_alpha_mask"))
     }
@@ -196,11 +196,11 @@ impl Material for LitMaterial {
         Some(LIT_DEFERRED_SHADER)
     }
 
-    fn visibility_fragment(key: Self::Key) -> FragmentVariant {
+    fn visibility_fragment(key: Self::Key) -> ShaderEntry {
         if key.alpha_mode == AlphaMode::Mask {
             key.variant("fs_visibility_alpha_mask")
         } else {
-            FragmentVariant::entry("fs_visibility")
+            ShaderEntry::entry("fs_visibility")
         }
     }
 
@@ -208,11 +208,11 @@ impl Material for LitMaterial {
         (!key.double_sided).then_some(wgpu::Face::Back)
     }
 
-    fn fragment(key: Self::Key) -> FragmentVariant {
+    fn fragment(key: Self::Key) -> ShaderEntry {
         key.variant("fs_main")
     }
 
-    fn uniform(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitParams {
+    fn per_draw(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitParams {
         self.params()
     }
 

@@ -14,8 +14,8 @@ use super::draw_order::{SortEntry, view_depth};
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
-use crate::render::DepthBindings;
 use crate::render::MAX_DERIVED_TEXTURES;
+use crate::render::PhaseBindings;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;
 use crate::render::texture_bind_groups::{BoundTextures, TextureBindGroups};
@@ -56,7 +56,7 @@ pub(crate) struct Batch<K> {
 pub(crate) struct PrepareInputs<'a> {
     pub(crate) gpu: &'a GpuContext,
     pub(crate) frame: &'a FrameUniformBuffer,
-    pub(crate) depth: &'a DepthBindings<'a>,
+    pub(crate) depth: &'a PhaseBindings<'a>,
     pub(crate) meshes: &'a Assets<Mesh>,
     pub(crate) images: &'a Assets<Image>,
     pub(crate) footprint: Option<&'a PixelFootprint>,
@@ -89,7 +89,7 @@ pub(crate) struct CompileOptions {
 pub(crate) struct MaterialBatches<M: Material> {
     pub(crate) pipelines: MaterialPipelines<M>,
     transforms: ObjectBuffer<MeshTransform>,
-    uniforms: ObjectBuffer<M::Uniform>,
+    uniforms: ObjectBuffer<M::PerDraw>,
     pub(super) frame_groups: FrameBindGroups,
     pub(super) textures: TextureBindGroups,
     /// The deferred resolve's inputs, where the material compiled its deferred shader.
@@ -103,8 +103,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     models: Vec<(Mat4, bool)>,
     transform_data: Vec<MeshTransform>,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
-    uniform_data: Vec<M::Uniform>,
-    sorted_uniforms: Vec<M::Uniform>,
+    uniform_data: Vec<M::PerDraw>,
+    sorted_uniforms: Vec<M::PerDraw>,
 }
 
 impl<M: Material> MaterialBatches<M> {
@@ -121,7 +121,7 @@ impl<M: Material> MaterialBatches<M> {
         }: MaterialShader,
         color_format: wgpu::TextureFormat,
         prepass: bool,
-        depth: &DepthBindings<'_>,
+        depth: &PhaseBindings<'_>,
         CompileOptions {
             counter,
             background,
@@ -139,7 +139,7 @@ impl<M: Material> MaterialBatches<M> {
         let frame_groups = FrameBindGroups::new(
             gpu,
             M::NAME,
-            ObjectBuffer::<M::Uniform>::layout_entry(crate::render::frame_group::MATERIAL_UNIFORMS),
+            ObjectBuffer::<M::PerDraw>::layout_entry(crate::render::frame_group::MATERIAL_UNIFORMS),
             (deferred, counter),
             &DrawBuffers {
                 frame,
@@ -256,7 +256,7 @@ impl<M: Material> MaterialBatches<M> {
                 bounds,
                 footprint: inputs.footprint,
             };
-            let uniform = draw.material.uniform(&facts);
+            let uniform = draw.material.per_draw(&facts);
             let key = draw
                 .material
                 .draw_key(draw.material.key(), &uniform, &mut view);

@@ -3,7 +3,7 @@
 //! for the passes that write depth (prepass, shadow maps) and one for those that shade.
 
 use crate::render::object_buffer::ObjectBuffer;
-use crate::render::{DepthBindings, FrameUniformBuffer, GpuContext, MeshTransform, frame_group};
+use crate::render::{FrameUniformBuffer, GpuContext, MeshTransform, PhaseBindings, frame_group};
 
 /// The buffers and textures group 0 binds.
 struct FrameBindings<'a> {
@@ -29,7 +29,7 @@ fn frame_bind_group(
     label: &str,
     layout: &wgpu::BindGroupLayout,
     bindings: &FrameBindings<'_>,
-    depth: &DepthBindings<'_>,
+    depth: &PhaseBindings<'_>,
     depth_use: DepthUse,
 ) -> wgpu::BindGroup {
     let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
@@ -188,7 +188,7 @@ fn writing_and_shading(
     label: &str,
     layout: &wgpu::BindGroupLayout,
     bindings: &FrameBindings<'_>,
-    depth: &DepthBindings<'_>,
+    depth: &PhaseBindings<'_>,
 ) -> (wgpu::BindGroup, wgpu::BindGroup) {
     let group = |depth_use| frame_bind_group(gpu, label, layout, bindings, depth, depth_use);
     (group(DepthUse::Writing), group(DepthUse::Shading))
@@ -204,7 +204,7 @@ impl FrameBindGroups {
         uniforms_entry: wgpu::BindGroupLayoutEntry,
         (deferred, counter): (bool, Option<wgpu::Buffer>),
         buffers: &DrawBuffers<'_>,
-        depth: &DepthBindings<'_>,
+        depth: &PhaseBindings<'_>,
     ) -> Self {
         let mut entries = vec![
             FrameUniformBuffer::layout_entry(),
@@ -250,7 +250,7 @@ impl FrameBindGroups {
         &mut self,
         gpu: &GpuContext,
         buffers: &DrawBuffers<'_>,
-        depth: &DepthBindings<'_>,
+        depth: &PhaseBindings<'_>,
         grew: bool,
     ) {
         if !grew && self.bound == depth.bound {

@@ -7,7 +7,7 @@ use crate::shader::{LayoutMismatch, check_wgsl_layout};
 /// Call it in a test of every material you write.
 pub fn check_material_layout<M: super::Material>() -> Result<(), LayoutMismatch> {
     let source = M::shader().source();
-    check_wgsl_layout::<M::Uniform>(&source, M::UNIFORM_WGSL_NAME)?;
+    check_wgsl_layout::<M::PerDraw>(&source, M::PER_DRAW_WGSL_NAME)?;
     check_wgsl_layout::<crate::render::MeshTransform>(&source, "MeshTransform")
 }
 

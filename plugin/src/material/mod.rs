@@ -19,7 +19,7 @@ mod resolve_tiles;
 mod shaded;
 mod shader_check;
 
-pub use crate::render::{FragmentVariant, MAX_MATERIAL_TEXTURES, MaterialTextures, TextureFacts};
+pub use crate::render::{MAX_MATERIAL_TEXTURES, MaterialTextures, ShaderEntry, TextureFacts};
 pub use crate::shader::{
     Choice, ChoiceInfo, LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout,
 };
@@ -57,16 +57,17 @@ use crate::render::{DefaultTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTU
 /// own per-draw `array<Uniform>` at group 0 binding 2 and its textures at group 1, bindings
 /// `0..TEXTURE_SLOTS.len()`, followed by one trilinear repeating sampler.
 pub trait Material: hecs::Component + Clone + PartialEq + Default {
-    /// The per-draw data the shader reads: a `#[repr(C)]` Pod struct laid out like the WGSL
-    /// struct [`Material::UNIFORM_WGSL_NAME`] (check it with [`check_wgsl_layout`]).
-    type Uniform: bytemuck::Pod + PartialEq + WgslLayout + Send + Sync;
+    /// One element of the per-draw storage array the shader reads (`materials[object_index]`):
+    /// a `#[repr(C)]` Pod struct laid out like the WGSL struct
+    /// [`Material::PER_DRAW_WGSL_NAME`] (check it with [`check_wgsl_layout`]).
+    type PerDraw: bytemuck::Pod + PartialEq + WgslLayout + Send + Sync;
     /// What selects a pipeline variant: draws with equal keys share one pipeline.
     type Key: Copy + Eq + Hash + Ord + Debug + Send + Sync + 'static;
 
     /// A name for labels and messages.
     const NAME: &'static str;
-    /// The WGSL name of [`Material::Uniform`].
-    const UNIFORM_WGSL_NAME: &'static str;
+    /// The WGSL name of [`Material::PerDraw`].
+    const PER_DRAW_WGSL_NAME: &'static str;
     /// The texture bound in each slot when the material has none there (at most
     /// [`MAX_MATERIAL_TEXTURES`]; more is an error when the plugin starts).
     const TEXTURE_SLOTS: &'static [DefaultTexture];
@@ -86,7 +87,7 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn key(&self) -> Self::Key;
     /// The fragment entry point and constants of `key`'s pipeline in the opaque phase when
     /// the frame has no depth prepass (it tests and writes depth itself).
-    fn fragment(key: Self::Key) -> FragmentVariant;
+    fn fragment(key: Self::Key) -> ShaderEntry;
     /// Whether `key` blends over what is behind it: its draws then go to the transparent phase
     /// (one list with every material's blended draws, farthest first by the view depth of each
     /// draw's centre; depth tested, not in the prepass) instead of the prepass and the opaque
@@ -113,18 +114,18 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// The fragment stage of `key` in the depth prepass: `None` (the default) writes the
     /// rasterized depth with no fragment shader at all; a material whose fragments move their
     /// depth (parallax depth offset) names the entry point that writes it.
-    fn prepass_fragment(_key: Self::Key) -> Option<FragmentVariant> {
+    fn prepass_fragment(_key: Self::Key) -> Option<ShaderEntry> {
         None
     }
     /// The fragment stage of `key` in a shadow map (the light's view, depth only):
     /// [`Material::prepass_fragment`] by default. A material whose surface lies elsewhere than
     /// its polygon (parallax relief) names the entry point that writes that depth.
-    fn shadow_fragment(key: Self::Key) -> Option<FragmentVariant> {
+    fn shadow_fragment(key: Self::Key) -> Option<ShaderEntry> {
         Self::prepass_fragment(key)
     }
     /// The fragment stage of `key` in the opaque phase after a depth prepass (depth tested
     /// `LessEqual`, never written): [`Material::fragment`] by default.
-    fn fragment_after_prepass(key: Self::Key) -> FragmentVariant {
+    fn fragment_after_prepass(key: Self::Key) -> ShaderEntry {
         Self::fragment(key)
     }
     /// The material's shader for the deferred path ([`crate::RenderPath`]). By default, for a
@@ -152,29 +153,30 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// also writes each pixel's id): the core's `fs_visibility` by default. A material whose
     /// [`Material::prepass_fragment`] discards or moves the depth names its twin, which does the
     /// same and then calls `keep_visible(position, depth, visibility_id(...))`.
-    fn visibility_fragment(_key: Self::Key) -> FragmentVariant {
-        FragmentVariant::entry("fs_visibility")
+    fn visibility_fragment(_key: Self::Key) -> ShaderEntry {
+        ShaderEntry::entry("fs_visibility")
     }
     /// The compute entry point (and constants) that shades `key`'s pixels from the visibility
     /// buffer on the deferred path, in its deferred shader; `None` (the default): `key` draws in
     /// the opaque phase on both paths.
-    fn deferred_resolve(_key: Self::Key) -> Option<FragmentVariant> {
+    fn deferred_resolve(_key: Self::Key) -> Option<ShaderEntry> {
         None
     }
-    /// The uniform, given the textures as the GPU holds them (`None`: the slot's default).
-    fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> Self::Uniform;
-    /// What is wrong with the parameters, one line each (logged once per change; the uniform
-    /// must still be drawable). Empty by default.
+    /// This material's element of the per-draw array, given the textures as the GPU holds them
+    /// (`None`: the slot's default).
+    fn per_draw(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> Self::PerDraw;
+    /// What is wrong with the parameters, one line each (logged once per change; the per-draw
+    /// data must still be drawable). Empty by default.
     fn problems(&self) -> Vec<String> {
         Vec::new()
     }
-    /// The key one draw uses, knowing its uniform (as [`Material::uniform`] packed it) and its
+    /// The key one draw uses, knowing its per-draw data (as [`Material::per_draw`] packed it) and its
     /// place in the view: a material may pick a cheaper variant for a far-away object. `key` by
     /// default.
     fn draw_key(
         &self,
         key: Self::Key,
-        _uniform: &Self::Uniform,
+        _per_draw: &Self::PerDraw,
         _view: &mut DrawView<'_>,
     ) -> Self::Key {
         key

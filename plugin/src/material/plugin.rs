@@ -13,10 +13,10 @@ use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
-use crate::render::DepthBindings;
+use crate::render::PhaseBindings;
 use crate::render::{
     DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, PipelineCompilation,
-    RenderPhases, RenderTarget, Renderer, UploadStats, VisibilityBuffer, depth_bindings,
+    RenderPhases, RenderTarget, Renderer, UploadStats, VisibilityBuffer, phase_bindings,
 };
 use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
 
@@ -140,7 +140,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             shader,
             target.scene_format(),
             renderer.depth_prepass,
-            &depth_bindings(
+            &phase_bindings(
                 renderer.depth_prepass,
                 &renderer.dummy_depth,
                 &renderer.shadow_maps,
@@ -285,7 +285,7 @@ fn prepare_frame<M: Material>(
     let extracted = resources.require::<ExtractedMaterials<M>>()?;
     let frame = resources.require::<ExtractedFrame>()?;
     let target = resources.require::<RenderTarget>()?;
-    let depth: DepthBindings<'_> = depth_bindings(
+    let depth: PhaseBindings<'_> = phase_bindings(
         renderer.depth_prepass,
         &renderer.dummy_depth,
         &renderer.shadow_maps,
@@ -391,7 +391,7 @@ mod tests {
     #[test]
     fn adding_the_material_plugins_twice_registers_each_draw_once() {
         let mut app = App::new();
-        app.add_plugin(RenderPlugin::headless(8, 8))
+        app.add_plugin(RenderPlugin::new(8, 8))
             .add_plugin(PomPlugin)
             .add_plugin(PomPlugin)
             .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
@@ -416,10 +416,10 @@ mod tests {
     struct TooManyTextures;
 
     impl Material for TooManyTextures {
-        type Uniform = crate::LitParams;
+        type PerDraw = crate::LitParams;
         type Key = ();
         const NAME: &'static str = "too many textures";
-        const UNIFORM_WGSL_NAME: &'static str = "LitParams";
+        const PER_DRAW_WGSL_NAME: &'static str = "LitParams";
         const TEXTURE_SLOTS: &'static [crate::render::DefaultTexture] =
             &[crate::render::DefaultTexture::WhiteSrgb; super::super::MAX_MATERIAL_TEXTURES + 1];
         fn shader() -> crate::render::shaders::ComposedShader {
@@ -429,10 +429,10 @@ mod tests {
             [None; super::super::MAX_MATERIAL_TEXTURES]
         }
         fn key(&self) {}
-        fn fragment(_: ()) -> super::super::FragmentVariant {
-            super::super::FragmentVariant::entry("fs_main")
+        fn fragment(_: ()) -> super::super::ShaderEntry {
+            super::super::ShaderEntry::entry("fs_main")
         }
-        fn uniform(
+        fn per_draw(
             &self,
             _: &[Option<super::super::TextureFacts>; super::super::MAX_MATERIAL_TEXTURES],
         ) -> crate::LitParams {

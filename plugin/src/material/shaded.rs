@@ -4,7 +4,7 @@
 use super::{DeclaredMaterial, Material};
 use crate::render::frame_group::MATERIAL_UNIFORMS;
 use crate::render::shaders::{self, ComposedShader, GeneratedWgsl, WgslFile};
-use crate::render::{DefaultTexture, FragmentVariant, MaterialTextures, TextureFacts};
+use crate::render::{DefaultTexture, MaterialTextures, ShaderEntry, TextureFacts};
 
 /// The surface input, and the helpers a shading function samples textures and shadows with.
 pub const SURFACE_INPUT: WgslFile = crate::wgsl_file!("material/surface_input.wgsl");
@@ -100,10 +100,10 @@ fn declarations<T: DeclaredMaterial>() -> String {
 }
 
 impl<T: ShadedMaterial> Material for T {
-    type Uniform = T::Params;
+    type PerDraw = T::Params;
     type Key = ();
     const NAME: &'static str = T::TYPE_NAME;
-    const UNIFORM_WGSL_NAME: &'static str = T::PARAMS_WGSL_NAME;
+    const PER_DRAW_WGSL_NAME: &'static str = T::PARAMS_WGSL_NAME;
     const TEXTURE_SLOTS: &'static [DefaultTexture] = <T as DeclaredMaterial>::TEXTURE_SLOTS;
 
     fn shader() -> ComposedShader {
@@ -120,15 +120,15 @@ impl<T: ShadedMaterial> Material for T {
 
     fn key(&self) {}
 
-    fn fragment(_: ()) -> FragmentVariant {
-        FragmentVariant::entry("fs_main")
+    fn fragment(_: ()) -> ShaderEntry {
+        ShaderEntry::entry("fs_main")
     }
 
-    fn deferred_resolve(_: ()) -> Option<FragmentVariant> {
-        Some(FragmentVariant::entry("cs_resolve"))
+    fn deferred_resolve(_: ()) -> Option<ShaderEntry> {
+        Some(ShaderEntry::entry("cs_resolve"))
     }
 
-    fn uniform(
+    fn per_draw(
         &self,
         _: &[Option<TextureFacts>; crate::render::MAX_MATERIAL_TEXTURES],
     ) -> T::Params {

@@ -15,7 +15,7 @@ pub use pipelines::PomPipelineKey;
 pub use preset::{PresetError, write_atomically};
 
 use crate::material::{
-    Choice, FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
+    Choice, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures, ShaderEntry,
     TextureFacts,
 };
 use crate::render::shaders::{self, ComposedShader, WgslFile};
@@ -92,10 +92,10 @@ pub type MaterialWarnings = crate::material::MaterialWarnings<ParallaxOcclusionM
 const HEIGHT_SLOT: usize = 2;
 
 impl Material for ParallaxOcclusionMaterial {
-    type Uniform = PomUniform;
+    type PerDraw = PomUniform;
     type Key = PomPipelineKey;
     const NAME: &'static str = "parallax";
-    const UNIFORM_WGSL_NAME: &'static str = "PomUniform";
+    const PER_DRAW_WGSL_NAME: &'static str = "PomUniform";
     // The relief lies below the polygon (and the depth offset moves the depth there).
     const SURFACE_ON_POLYGON: bool = false;
     const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
@@ -140,7 +140,7 @@ impl Material for ParallaxOcclusionMaterial {
         PomPipelineKey::of(self)
     }
 
-    fn fragment(key: PomPipelineKey) -> FragmentVariant {
+    fn fragment(key: PomPipelineKey) -> ShaderEntry {
         key.fragment()
     }
 
@@ -159,15 +159,15 @@ impl Material for ParallaxOcclusionMaterial {
         })
     }
 
-    fn prepass_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
+    fn prepass_fragment(key: PomPipelineKey) -> Option<ShaderEntry> {
         key.prepass_fragment()
     }
 
-    fn shadow_fragment(key: PomPipelineKey) -> Option<FragmentVariant> {
+    fn shadow_fragment(key: PomPipelineKey) -> Option<ShaderEntry> {
         key.shadow_fragment()
     }
 
-    fn fragment_after_prepass(key: PomPipelineKey) -> FragmentVariant {
+    fn fragment_after_prepass(key: PomPipelineKey) -> ShaderEntry {
         key.fragment_after_prepass()
     }
 
@@ -175,15 +175,15 @@ impl Material for ParallaxOcclusionMaterial {
         Some(PARALLAX_DEFERRED_SHADER)
     }
 
-    fn visibility_fragment(key: PomPipelineKey) -> FragmentVariant {
+    fn visibility_fragment(key: PomPipelineKey) -> ShaderEntry {
         key.visibility_fragment()
     }
 
-    fn deferred_resolve(key: PomPipelineKey) -> Option<FragmentVariant> {
+    fn deferred_resolve(key: PomPipelineKey) -> Option<ShaderEntry> {
         Some(key.deferred_resolve())
     }
 
-    fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {
+    fn per_draw(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {
         let height = textures[HEIGHT_SLOT];
         if self.is_valid() {
             PomUniform::new(self, height)

@@ -12,7 +12,7 @@ use super::material::{
     ShadowMode,
 };
 use crate::LightingModel;
-use crate::material::{Choice, FragmentVariant};
+use crate::material::{Choice, ShaderEntry};
 
 /// What one parallax pipeline is compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -63,7 +63,7 @@ impl PomPipelineKey {
     }
 
     /// The fragment entry point and constants of this pipeline in a frame without prepass.
-    pub fn fragment(self) -> FragmentVariant {
+    pub fn fragment(self) -> ShaderEntry {
         self.variant(if self.depth_offset {
             "fs_main_depth_offset"
         } else {
@@ -73,14 +73,14 @@ impl PomPipelineKey {
 
     /// The prepass's fragment stage: only a depth-offset material needs one (it writes the
     /// displaced depth); the others write the rasterized depth without a fragment shader.
-    pub fn prepass_fragment(self) -> Option<FragmentVariant> {
+    pub fn prepass_fragment(self) -> Option<ShaderEntry> {
         self.depth_offset
             .then(|| self.variant("fs_prepass_depth_offset"))
     }
 
     /// The shadow map's fragment stage: the relief's depth seen from the light (the march
     /// along the light's view ray), except where only normal mapping runs (the polygon's).
-    pub fn shadow_fragment(self) -> Option<FragmentVariant> {
+    pub fn shadow_fragment(self) -> Option<ShaderEntry> {
         (self.method != ParallaxMethod::NormalMapping).then(|| {
             let mut variant = self.variant("fs_prepass_depth_offset");
             variant.constants.push(("SHADOW_CASTER", 1.0));
@@ -89,7 +89,7 @@ impl PomPipelineKey {
     }
 
     /// The opaque phase's fragment stage after a prepass.
-    pub fn fragment_after_prepass(self) -> FragmentVariant {
+    pub fn fragment_after_prepass(self) -> ShaderEntry {
         self.variant(if self.depth_offset {
             "fs_main_after_depth_prepass"
         } else {
@@ -99,21 +99,21 @@ impl PomPipelineKey {
 
     /// The visibility pass's fragment stage (deferred path): the core's, or with depth offset
     /// the one that also writes the displaced depth.
-    pub fn visibility_fragment(self) -> FragmentVariant {
+    pub fn visibility_fragment(self) -> ShaderEntry {
         if self.depth_offset {
             self.variant("fs_visibility_depth_offset")
         } else {
-            FragmentVariant::entry("fs_visibility")
+            ShaderEntry::entry("fs_visibility")
         }
     }
 
     /// The compute resolve that marches and shades this pipeline's pixels on the deferred path.
-    pub fn deferred_resolve(self) -> FragmentVariant {
+    pub fn deferred_resolve(self) -> ShaderEntry {
         self.variant("cs_resolve")
     }
 
-    fn variant(self, entry_point: &'static str) -> FragmentVariant {
-        FragmentVariant {
+    fn variant(self, entry_point: &'static str) -> ShaderEntry {
+        ShaderEntry {
             entry_point,
             constants: vec![
                 ("METHOD", f64::from(self.method.code())),

@@ -153,7 +153,7 @@ pub fn read_rgba32f(
 /// ```no_run
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let mut app = pom::App::new();
-/// app.add_plugin(pom::RenderPlugin::headless(64, 64));
+/// app.add_plugin(pom::RenderPlugin::new(64, 64));
 /// app.update()?;
 /// let image = pom::capture(&app)?;
 /// assert_eq!(image.dimensions(), (64, 64));

@@ -38,7 +38,7 @@ pub enum TimingMode {
 /// ```no_run
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let mut app = pom::App::new();
-/// app.add_plugin(pom::RenderPlugin::headless(64, 64));
+/// app.add_plugin(pom::RenderPlugin::new(64, 64));
 /// for _ in 0..4 {
 ///     app.update()?;
 /// }

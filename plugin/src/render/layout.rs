@@ -1,17 +1,17 @@
 //! Bind group layout entries the material passes share, and the entry point of a pipeline
-//! variant ([`FragmentVariant`]).
+//! variant ([`ShaderEntry`]).
 
 /// The entry point (fragment, or compute for a deferred resolve) and pipeline-overridable
 /// constants of one pipeline variant.
 #[derive(Clone, Debug, PartialEq)]
-pub struct FragmentVariant {
-    /// The `@fragment` function.
+pub struct ShaderEntry {
+    /// The `@fragment` or `@compute` function.
     pub entry_point: &'static str,
     /// Values of the shader's `override` constants.
     pub constants: Vec<(&'static str, f64)>,
 }
 
-impl FragmentVariant {
+impl ShaderEntry {
     /// `entry_point` with no constants.
     pub fn entry(entry_point: &'static str) -> Self {
         Self {
@@ -199,7 +199,7 @@ pub(crate) struct MeshPipelineDescriptor<'a> {
     /// Which pass it draws in: sets the depth state and whether there is a colour target.
     pub(crate) pass: MeshPass,
     /// The entry point and its constants; `None`: no fragment stage (prepass only).
-    pub(crate) fragment: Option<&'a FragmentVariant>,
+    pub(crate) fragment: Option<&'a ShaderEntry>,
     /// The scene target's format.
     pub(crate) color_format: wgpu::TextureFormat,
     /// The material's: back faces, or none when double-sided.

@@ -64,7 +64,7 @@ pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_
 pub use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
-pub use layout::FragmentVariant;
+pub use layout::ShaderEntry;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
 pub use max_pyramid::MAX_PYRAMID_SHADER;
 #[cfg(feature = "scene-tests")]
@@ -81,7 +81,7 @@ pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub use renderer::Renderer;
-pub(crate) use renderer::{DepthBindings, depth_bindings};
+pub(crate) use renderer::{PhaseBindings, phase_bindings};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};

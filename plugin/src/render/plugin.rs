@@ -50,8 +50,9 @@ pub enum PostProcessPath {
 }
 
 impl RenderPlugin {
-    /// A plugin rendering into a `width`×`height` offscreen sRGB image.
-    pub fn headless(width: u32, height: u32) -> Self {
+    /// A plugin rendering into a `width`×`height` sRGB target: offscreen, or fitted to the
+    /// window where a window runner drives the app.
+    pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
             height,
@@ -97,7 +98,7 @@ impl RenderPlugin {
 
 impl Default for RenderPlugin {
     fn default() -> Self {
-        Self::headless(1280, 720)
+        Self::new(1280, 720)
     }
 }
 

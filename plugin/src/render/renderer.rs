@@ -1,6 +1,6 @@
 //! [`Renderer`]: the renderer's GPU state between frames (uploaded assets, the frame uniform,
 //! shadow maps, the deferred path's buffers, post-processing), the choice of path, and what a
-//! material's group 0 binds of it ([`DepthBindings`]).
+//! material's group 0 binds of it ([`PhaseBindings`]).
 
 use super::{
     DeferredBackground, DeferredUnavailable, FrameUniformBuffer, GpuAssets, GpuContext,
@@ -130,15 +130,15 @@ impl Renderer {
 /// What materials bind as the prepass depth, shadow maps and visibility keys for `target`: its
 /// depth after a prepass, else the dummy; the target's visibility buffer once made, else a
 /// stand-in (fields apart, so the renderer's assets stay borrowable).
-pub(crate) fn depth_bindings<'a>(
+pub(crate) fn phase_bindings<'a>(
     depth_prepass: bool,
     dummy: &'a wgpu::TextureView,
     shadow_maps: &'a ShadowMaps,
     (visibility, dummy_visibility): (Option<&'a VisibilityBuffer>, &'a wgpu::Buffer),
     target: &'a RenderTarget,
-) -> DepthBindings<'a> {
+) -> PhaseBindings<'a> {
     let visibility = visibility.filter(|visibility| visibility.target == target.id());
-    DepthBindings {
+    PhaseBindings {
         visibility: visibility.map_or(dummy_visibility, |visibility| &visibility.keys),
         dummy_visibility,
         opaque: if depth_prepass {
@@ -174,12 +174,12 @@ impl Renderer {
     }
 }
 
-/// The depth textures a material's group 0 binds: the prepass depth (binding 3) and the shadow
+/// What a material's group 0 binds that changes from phase to phase: the prepass depth (binding 3) and the shadow
 /// maps (bindings 5 to 7) in the phases that shade, dummies wherever they are being written
 /// (the prepass and the shadow maps themselves); and the visibility keys (binding 8) the other
 /// way round: the real ones in the prepass, which writes them, a stand-in elsewhere (the
 /// deferred resolve reads them through a binding of its own).
-pub(crate) struct DepthBindings<'a> {
+pub(crate) struct PhaseBindings<'a> {
     /// What the opaque phase binds (the target's depth after a prepass, else the dummy).
     pub(crate) opaque: &'a wgpu::TextureView,
     /// The 1 × 1 dummy.

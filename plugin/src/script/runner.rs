@@ -143,8 +143,7 @@ impl<'a> Runner<'a> {
         let (width, height) = script.size;
         let mut app = App::new();
         app.add_plugin(
-            RenderPlugin::headless(width.clamp(1, 8192), height.clamp(1, 8192))
-                .with_path(options.path),
+            RenderPlugin::new(width.clamp(1, 8192), height.clamp(1, 8192)).with_path(options.path),
         )
         .add_plugin(PomPlugin);
         // Scripts run with the fixed frame time their steps count in, so a run repeats exactly.

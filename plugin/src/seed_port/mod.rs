@@ -5,8 +5,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::material::{
-    FragmentVariant, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
-    TextureFacts,
+    MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures, ShaderEntry, TextureFacts,
 };
 use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
@@ -129,10 +128,10 @@ pub const SEED_PORT_SHADER: ComposedShader = ComposedShader {
 const HEIGHT_SLOT: usize = 2;
 
 impl Material for SeedPortMaterial {
-    type Uniform = SeedPortUniform;
+    type PerDraw = SeedPortUniform;
     type Key = ();
     const NAME: &'static str = "seed port";
-    const UNIFORM_WGSL_NAME: &'static str = "SeedPortUniform";
+    const PER_DRAW_WGSL_NAME: &'static str = "SeedPortUniform";
     const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
         DefaultTexture::WhiteSrgb,
         DefaultTexture::FlatNormal,
@@ -157,11 +156,14 @@ impl Material for SeedPortMaterial {
 
     fn key(&self) {}
 
-    fn fragment(_: ()) -> FragmentVariant {
-        FragmentVariant::entry("fs_seed_port")
+    fn fragment(_: ()) -> ShaderEntry {
+        ShaderEntry::entry("fs_seed_port")
     }
 
-    fn uniform(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> SeedPortUniform {
+    fn per_draw(
+        &self,
+        textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+    ) -> SeedPortUniform {
         let height = textures[HEIGHT_SLOT].unwrap_or(TextureFacts {
             width: 1,
             height: 1,

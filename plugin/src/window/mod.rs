@@ -66,7 +66,7 @@ pub enum WindowError {
     NoWindowPlugin,
     /// No display to open a window on.
     #[error(
-        "cannot open a window ({0}): no display? Render headless with RenderPlugin::headless and pom::capture instead"
+        "cannot open a window ({0}): no display? Render headless with RenderPlugin::new and pom::capture instead"
     )]
     NoDisplay(String),
     /// The window could not be created.

@@ -51,7 +51,7 @@ pub fn measure(
 ) -> Result<CpuSide> {
     let mut app = App::new();
     app.add_plugin(
-        RenderPlugin::headless(256, 256)
+        RenderPlugin::new(256, 256)
             .with_gpu_timing(None)
             .with_path(path),
     );

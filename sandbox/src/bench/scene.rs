@@ -103,7 +103,7 @@ impl BenchScene {
         }
         let timing = options.timestamps.then_some(TimingMode::Blocking);
         app.add_plugin(
-            RenderPlugin::headless(width, height)
+            RenderPlugin::new(width, height)
                 .with_format(options.format)
                 .with_gpu_timing(timing)
                 .with_depth_prepass(options.depth_prepass)

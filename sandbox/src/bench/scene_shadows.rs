@@ -51,7 +51,7 @@ impl ShadowCase {
 pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Result<BenchScene> {
     let mut app = App::new();
     app.add_plugin(
-        RenderPlugin::headless(size.0, size.1)
+        RenderPlugin::new(size.0, size.1)
             .with_gpu_timing(Some(TimingMode::Blocking))
             .with_path(path),
     )

@@ -236,7 +236,7 @@ fn switching_the_render_path_control_changes_the_renderers_path() {
     use pom::RenderPath;
     use pom::render::Renderer;
     let mut app = App::new();
-    app.add_plugin(pom::RenderPlugin::headless(16, 16));
+    app.add_plugin(pom::RenderPlugin::new(16, 16));
     app.finish().expect("a GPU or lavapipe for this test");
     let mut harness = harness_with(app);
     let renderer = |harness: &Harness<'_, Fixture>| {

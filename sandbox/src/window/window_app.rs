@@ -46,7 +46,7 @@ pub fn run(args: &WindowArgs) -> Result<()> {
         height: INITIAL_SIZE.1,
         ..WindowPlugin::default()
     })
-    .add_plugin(RenderPlugin::headless(INITIAL_SIZE.0, INITIAL_SIZE.1))
+    .add_plugin(RenderPlugin::new(INITIAL_SIZE.0, INITIAL_SIZE.1))
     .add_plugin(PomPlugin);
     if let Some(hot_reload) = std::env::current_dir()
         .ok()
