@@ -1,6 +1,7 @@
-//! What the shipped materials share about lighting a surface: the reflection model. Both the
-//! lit material and the parallax material choose one (`lighting.wgsl` implements them), so it
-//! lives below both.
+//! What the shipped materials share about lighting a surface: the reflection model
+//! (`lighting.wgsl` implements them) and the parameters that drive it, declared once in
+//! [`crate::with_lighting_parameters!`]. The lit material and the parallax material both use
+//! them, so they live below both.
 
 crate::choice_enum! {
     /// The lighting model.
@@ -21,4 +22,63 @@ impl LightingModel {
     pub fn uses_roughness(self) -> bool {
         matches!(self, Self::CookTorrance | Self::GgxLambert)
     }
+}
+
+/// Declares a material with [`crate::material_parameters!`] and the lighting parameters every
+/// lit surface shares, appended to its own: `base_color`, `normal_strength`, `specular_strength`
+/// and `shininess` (Phong and Blinn-Phong), `roughness` and `metallic` (Cook-Torrance and
+/// GGX-Lambert), and `double_sided`. Each is declared here once, help, limits and default
+/// (the parallax material's values: specular 0.3, roughness 0.6); the material declares its
+/// `lighting: LightingModel` itself, whose default is its own choice (the seed's Phong for the
+/// parallax material, Blinn-Phong for the lit one).
+#[macro_export]
+#[doc(hidden)]
+macro_rules! with_lighting_parameters {
+    (
+        $(#[$attr:meta])*
+        pub struct $material:ident {
+            $(inputs { $($inputs:tt)* })?
+            $(textures { $($textures:tt)* })?
+            parameters { $($parameters:tt)* }
+        }
+        $($trailer:tt)*
+    ) => {
+        $crate::material_parameters! {
+            $(#[$attr])*
+            pub struct $material {
+                $(inputs { $($inputs)* })?
+                $(textures { $($textures)* })?
+                parameters {
+                    $($parameters)*
+                    /// Linear RGBA multiplied with the colour texture.
+                    base_color: $crate::Color = $crate::Color::WHITE,
+                        $crate::material::ParamSpec::color();
+                    /// Scales the normal map's tilt: 0 is flat, 1 as authored.
+                    normal_strength: f32 = 1.0,
+                        $crate::material::ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
+                    /// Weight of the Phong / Blinn-Phong highlight.
+                    specular_strength: f32 = 0.3,
+                        $crate::material::ParamSpec::float(0.0, 100.0).editor(0.0, 2.0)
+                        .applies_when(|material| !material.lighting.uses_roughness());
+                    /// Phong / Blinn-Phong exponent: higher is a smaller, sharper highlight.
+                    shininess: f32 = 32.0,
+                        $crate::material::ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
+                        .logarithmic()
+                        .applies_when(|material| !material.lighting.uses_roughness());
+                    /// Cook-Torrance / GGX-Lambert roughness (glTF roughnessFactor): 0 is a
+                    /// mirror, 1 fully rough.
+                    roughness: f32 = 0.6, $crate::material::ParamSpec::float(0.0, 1.0)
+                        .applies_when(|material| material.lighting.uses_roughness());
+                    /// Cook-Torrance / GGX-Lambert metalness (glTF metallicFactor): 0 is a
+                    /// dielectric, 1 a metal.
+                    metallic: f32 = 0.0, $crate::material::ParamSpec::float(0.0, 1.0)
+                        .applies_when(|material| material.lighting.uses_roughness());
+                    /// Draw and light both sides (glTF doubleSided): the back gets the reversed
+                    /// normal.
+                    double_sided: bool = false, $crate::material::ParamSpec::toggle();
+                }
+            }
+            $($trailer)*
+        }
+    };
 }

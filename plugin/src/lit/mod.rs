@@ -21,7 +21,7 @@ crate::choice_enum! {
     }
 }
 
-crate::material_parameters! {
+crate::with_lighting_parameters! {
     /// A lit material with optional colour, normal, emissive, occlusion and metallic-roughness
     /// textures: Blinn-Phong by default, GGX-Lambert for glTF's metallic-roughness materials.
     ///
@@ -44,28 +44,9 @@ crate::material_parameters! {
             metallic_roughness_texture: WhiteLinear,
         }
         parameters {
-            /// Colour multiplied with the texture, linear.
-            base_color: Color = Color::WHITE, ParamSpec::color();
-            /// Scales the normal map's XY tilt: 0 = flat, 1 = as authored.
-            normal_strength: f32 = 1.0, ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
             /// Reflection model: Phong and Blinn-Phong use specular and shininess; Cook-Torrance
             /// and GGX-Lambert (glTF's) roughness and metallic, times the metallic-roughness texture.
             lighting: LightingModel = LightingModel::BlinnPhong, ParamSpec::choice::<LightingModel>();
-            /// Weight of the Phong / Blinn-Phong highlight.
-            specular_strength: f32 = 0.25, ParamSpec::float(0.0, 100.0).editor(0.0, 2.0)
-                .applies_when(|material| !material.lighting.uses_roughness());
-            /// Phong / Blinn-Phong exponent: higher = smaller, sharper highlight.
-            shininess: f32 = 32.0, ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
-                .logarithmic()
-                .applies_when(|material| !material.lighting.uses_roughness());
-            /// GGX roughness (glTF roughnessFactor): 0 is a mirror, 1 fully rough.
-            roughness: f32 = 0.5, ParamSpec::float(0.0, 1.0)
-                .applies_when(|material| material.lighting.uses_roughness());
-            /// Metalness (glTF metallicFactor): 0 is a dielectric, 1 a metal.
-            metallic: f32 = 0.0, ParamSpec::float(0.0, 1.0)
-                .applies_when(|material| material.lighting.uses_roughness());
-            /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
-            double_sided: bool = false, ParamSpec::toggle();
             /// How much the occlusion texture darkens the ambient light: 0 = not at all, 1 = fully.
             occlusion_strength: f32 = 1.0, ParamSpec::float(0.0, 1.0);
             /// Light the surface gives off itself, linear (glTF emissiveFactor).

@@ -1,8 +1,9 @@
 //! `ParallaxOcclusionMaterial`: the artist-facing parameters, each declared once with its
-//! default, limits, unit and help (`material_parameters!`), and the checks between them.
+//! default, limits, unit and help (`material_parameters!`; the lighting ones shared with the
+//! lit material, `with_lighting_parameters!`), and the checks between them.
 
 use crate::material::{LimitError, ParamSpec};
-use crate::{Color, Handle, Image, LightingModel};
+use crate::{Handle, Image, LightingModel};
 
 crate::choice_enum! {
     /// How the ray/height-field intersection is found. One march serves every method; they
@@ -100,7 +101,7 @@ impl HeightSource {
 /// Most height samples one march may take; larger `max_samples` are clamped to it.
 pub const MAX_SAMPLES_LIMIT: u32 = 256;
 
-crate::material_parameters! {
+crate::with_lighting_parameters! {
     /// A surface that looks displaced: Tatarchuk's parallax occlusion mapping with soft
     /// self-shadows and per-pixel LOD. Put it on an entity with a `Handle<Mesh>` and a transform.
     ///
@@ -135,8 +136,6 @@ crate::material_parameters! {
                 ParamSpec::choice::<HeightConvention>();
             /// Write the displaced depth, so other geometry meets the relief where it is (slower).
             depth_offset: bool = false, ParamSpec::toggle();
-            /// Draw and light both sides (glTF doubleSided): the back gets the reversed normal.
-            double_sided: bool = false, ParamSpec::toggle();
             /// Height samples looking straight at the surface (T eq. 1's n_min): fewer is faster.
             min_samples: u32 = 8, ParamSpec::integer(1, MAX_SAMPLES_LIMIT).logarithmic();
             /// Height samples at grazing angles (T eq. 1's n_max): raise it if layers show.
@@ -156,23 +155,6 @@ crate::material_parameters! {
             /// Reflection model: Phong and Blinn-Phong use specular and shininess, Cook-Torrance
             /// and GGX-Lambert roughness and metallic.
             lighting: LightingModel = LightingModel::Phong, ParamSpec::choice::<LightingModel>();
-            /// Linear RGBA multiplied with the colour texture.
-            base_color: Color = Color::WHITE, ParamSpec::color();
-            /// Weight of the Phong / Blinn-Phong highlight.
-            specular_strength: f32 = 0.3, ParamSpec::float(0.0, 100.0).editor(0.0, 2.0)
-                .applies_when(|material| !material.lighting.uses_roughness());
-            /// Phong / Blinn-Phong exponent: higher is a smaller, sharper highlight.
-            shininess: f32 = 32.0, ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
-                .logarithmic()
-                .applies_when(|material| !material.lighting.uses_roughness());
-            /// Cook-Torrance and Oren-Nayar roughness: 0 is a mirror, 1 fully rough.
-            roughness: f32 = 0.6, ParamSpec::float(0.0, 1.0)
-                .applies_when(|material| material.lighting.uses_roughness());
-            /// Cook-Torrance metalness: 0 is a dielectric, 1 a metal.
-            metallic: f32 = 0.0, ParamSpec::float(0.0, 1.0)
-                .applies_when(|material| material.lighting.uses_roughness());
-            /// Scales the normal map's tilt: 0 is flat, 1 as authored.
-            normal_strength: f32 = 1.0, ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
             /// An inspection image instead of the lit surface (LOD, mip, samples, uv, ...).
             debug_view: DebugView = DebugView::None, ParamSpec::choice::<DebugView>();
         }
