@@ -62,6 +62,7 @@ pub mod mesh;
 mod name;
 mod normal_map;
 pub mod parallax;
+pub mod parameters;
 pub mod picking;
 pub mod prelude;
 pub mod preview;

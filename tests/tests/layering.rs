@@ -33,6 +33,8 @@ const LAYERS: &[&str] = &[
     "tonemapping",
     // The renderer core.
     "render",
+    // Parameters: declaration, limits, presets (no GPU).
+    "parameters",
     // The material seam.
     "material",
     // The materials.

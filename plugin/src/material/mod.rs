@@ -3,15 +3,12 @@
 //! material; `LitMaterial` and `ParallaxOcclusionMaterial` are two materials like any other.
 
 mod batches;
-mod declare;
 mod deferred;
 mod draw;
 mod draw_order;
 mod extract;
 mod frame_bindings;
 mod layout_check;
-mod param_types;
-mod params;
 mod pipelines;
 mod plugin;
 mod registry;
@@ -23,13 +20,13 @@ pub use crate::render::{MAX_MATERIAL_TEXTURES, MaterialTextures, ShaderEntry, Te
 pub use crate::shader::{
     Choice, ChoiceInfo, LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout,
 };
-pub use declare::DeclaredMaterial;
+// The parameter layer's names, where materials have always found them.
+pub use crate::parameters::{
+    DeclaredMaterial, GpuParam, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType,
+    ParamValue, every_parameter_changed,
+};
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
-pub use param_types::{GpuParam, ParamType};
-pub use params::{
-    LimitError, Param, ParamError, ParamKind, ParamSpec, ParamValue, every_parameter_changed,
-};
 pub use plugin::{
     MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,
     draw_meshes_without_material, drawn_in_opaque_and_resolve, drawn_keys, pipelines_ready,

@@ -6,8 +6,8 @@ use crate::render::{DefaultTexture, MaterialTextures};
 use crate::shader::WgslLayout;
 
 /// What [`crate::material_parameters!`] declares of a material: its GPU parameter struct and
-/// its WGSL, its texture inputs and their defaults. [`super::ShadedMaterial`]s are built on it;
-/// a [`super::Material`] written by hand can use it for its uniform and textures.
+/// its WGSL, its texture inputs and their defaults. The material seam's `ShadedMaterial`s are
+/// built on it; a `Material` written by hand can use it for its per-draw data and textures.
 pub trait DeclaredMaterial: Clone {
     /// Every parameter as the shader reads it (the generated `#[repr(C)]` struct).
     type Params: bytemuck::Pod + PartialEq + WgslLayout + Send + Sync;
@@ -111,7 +111,7 @@ macro_rules! material_parameters {
             )*
         }
     }) => {
-        impl $crate::material::DeclaredMaterial for $material {
+        impl $crate::parameters::DeclaredMaterial for $material {
             type Params = $gpu;
             const TYPE_NAME: &'static str = stringify!($material);
             const PARAMS_WGSL_NAME: &'static str = stringify!($gpu);
@@ -140,10 +140,10 @@ macro_rules! material_parameters {
                 self.limit_problems().iter().map(ToString::to_string).collect()
             }
 
-            fn texture_images(&self) -> $crate::material::MaterialTextures {
+            fn texture_images(&self) -> $crate::render::MaterialTextures {
                 let images: &[&Option<$crate::Handle<$crate::Image>>] =
                     &[$($(&self.$texture,)*)?];
-                let mut textures = [None; $crate::material::MAX_MATERIAL_TEXTURES];
+                let mut textures = [None; $crate::render::MAX_MATERIAL_TEXTURES];
                 for (slot, image) in textures.iter_mut().zip(images) {
                     *slot = image.as_ref().map($crate::Handle::id);
                 }
@@ -153,22 +153,22 @@ macro_rules! material_parameters {
 
         impl $material {
             /// Every parameter, in declaration order, for code that walks them at run time.
-            pub const PARAMETERS: &'static [$crate::material::Param<$material>] = &[
+            pub const PARAMETERS: &'static [$crate::parameters::Param<$material>] = &[
                 $(
-                    $crate::material::Param {
+                    $crate::parameters::Param {
                         name: stringify!($field),
                         help: $help,
                         spec: $spec,
                         get: |material: &$material| {
-                            $crate::material::ParamType::to_value(material.$field)
+                            $crate::parameters::ParamType::to_value(material.$field)
                         },
                         set: |material: &mut $material, value| {
-                            match $crate::material::ParamType::from_value(value) {
+                            match $crate::parameters::ParamType::from_value(value) {
                                 Some(value) => {
                                     material.$field = value;
                                     Ok(())
                                 }
-                                None => Err($crate::material::ParamError::WrongKind {
+                                None => Err($crate::parameters::ParamError::WrongKind {
                                     name: stringify!($field),
                                     value,
                                 }),
@@ -179,11 +179,11 @@ macro_rules! material_parameters {
             ];
 
             /// The first parameter outside its declared limits, if any (no allocation).
-            fn first_limit_problem(&self) -> Option<$crate::material::LimitError> {
+            fn first_limit_problem(&self) -> Option<$crate::parameters::LimitError> {
                 $(
                     {
-                        const SPEC: $crate::material::ParamSpec<$material> = $spec;
-                        if let Err(problem) = $crate::material::ParamType::check(
+                        const SPEC: $crate::parameters::ParamSpec<$material> = $spec;
+                        if let Err(problem) = $crate::parameters::ParamType::check(
                             self.$field,
                             stringify!($field),
                             &SPEC.kind,
@@ -196,12 +196,12 @@ macro_rules! material_parameters {
             }
 
             /// Every parameter outside its declared limits, in declaration order.
-            fn limit_problems(&self) -> Vec<$crate::material::LimitError> {
+            fn limit_problems(&self) -> Vec<$crate::parameters::LimitError> {
                 let mut problems = Vec::new();
                 $(
                     {
-                        const SPEC: $crate::material::ParamSpec<$material> = $spec;
-                        if let Err(problem) = $crate::material::ParamType::check(
+                        const SPEC: $crate::parameters::ParamSpec<$material> = $spec;
+                        if let Err(problem) = $crate::parameters::ParamType::check(
                             self.$field,
                             stringify!($field),
                             &SPEC.kind,
@@ -218,8 +218,8 @@ macro_rules! material_parameters {
                 let defaults = Self::default();
                 $(
                     {
-                        const SPEC: $crate::material::ParamSpec<$material> = $spec;
-                        self.$field = $crate::material::ParamType::clamped(
+                        const SPEC: $crate::parameters::ParamSpec<$material> = $spec;
+                        self.$field = $crate::parameters::ParamType::clamped(
                             self.$field,
                             &SPEC.kind,
                             defaults.$field,
@@ -248,7 +248,7 @@ macro_rules! material_parameters {
         pub struct $gpu {
             $(
                 #[doc = $help]
-                pub $field: <$ty as $crate::material::GpuParam>::Gpu,
+                pub $field: <$ty as $crate::parameters::GpuParam>::Gpu,
             )*
         }
 
@@ -262,7 +262,7 @@ macro_rules! material_parameters {
                     wgsl.push_str(&format!(
                         "    {}: {},\n",
                         stringify!($field),
-                        <$ty as $crate::material::GpuParam>::WGSL
+                        <$ty as $crate::parameters::GpuParam>::WGSL
                     ));
                 )*
                 wgsl.push_str("}\n");
@@ -274,7 +274,7 @@ macro_rules! material_parameters {
             /// The parameters as the shader reads them (sanitize the material first).
             pub fn gpu_params(&self) -> $gpu {
                 $gpu {
-                    $($field: $crate::material::GpuParam::to_gpu(self.$field),)*
+                    $($field: $crate::parameters::GpuParam::to_gpu(self.$field),)*
                 }
             }
         }
@@ -300,7 +300,7 @@ macro_rules! material_parameters {
         impl $preset {
             /// Each field as a Rust expression, in declaration order.
             pub fn rust_fields(&self) -> Vec<(&'static str, String)> {
-                vec![$((stringify!($field), $crate::material::ParamType::rust_literal(self.$field)),)*]
+                vec![$((stringify!($field), $crate::parameters::ParamType::rust_literal(self.$field)),)*]
             }
         }
 
