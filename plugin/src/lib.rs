@@ -144,7 +144,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     parallax::PARALLAX_SHADER,
     parallax::PARALLAX_DEFERRED_SHADER,
     render::shaders::SOBEL,
-    render::MAX_PYRAMID_SHADER,
+    parallax::MAX_PYRAMID_SHADER,
     render::DEFERRED_BACKGROUND,
     material::DEFERRED_CLASSIFY_SHADER,
     render::POST_SHADERS[0],

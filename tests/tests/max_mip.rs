@@ -9,7 +9,7 @@ use pom::{GpuContext, HeightField, Image, TextureKind, patterns};
 fn assert_pyramid_matches(gpu: &GpuContext, image: Image, channel: u8, depth: bool) {
     let field = HeightField::from_image(&image, usize::from(channel), depth);
     let reference = MaxPyramid::new(&field);
-    let levels = pom::render::read_max_pyramid(gpu, image, channel, depth).unwrap();
+    let levels = pom::parallax::read_max_pyramid(gpu, image, channel, depth).unwrap();
     assert_eq!(levels.len(), reference.level_count());
     for (level, (width, height, maxima)) in levels.iter().enumerate() {
         for y in 0..*height {

@@ -264,7 +264,7 @@ fn gpu_hits(
         wgpu::TextureUsages::TEXTURE_BINDING,
         Some(&image.pixels().bytes()),
     );
-    let levels = pom::render::read_max_pyramid(gpu, image, 0, false).unwrap();
+    let levels = pom::parallax::read_max_pyramid(gpu, image, 0, false).unwrap();
     let maxima: Vec<f32> = levels
         .iter()
         .flat_map(|(_, _, maxima)| maxima.iter().copied())
@@ -306,7 +306,7 @@ fn gpu_hits(
     let source = format!(
         "{}{}\n{}\n{}\n{MARCH_RAYS}",
         pom::parallax::PARALLAX_SHADER.generated(),
-        pom::render::shaders::HEIGHT_CHANNEL.source,
+        pom::parallax::HEIGHT_CHANNEL.source,
         pom::parallax::PARALLAX_MARCH.source,
         pom::parallax::PARALLAX_MAX_MIP.source,
     );

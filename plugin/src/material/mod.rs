@@ -102,8 +102,10 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// group 1 after the sampler, bindings `TEXTURE_SLOTS.len() + 1 ..`, as unfilterable float
     /// textures (`textureLoad`). 0 by default.
     const DERIVED_TEXTURE_SLOTS: usize = 0;
-    /// The textures derived from the material's images, one per derived slot: built on the GPU
-    /// when first used and after every re-upload of their source; `None` binds one texel of
+    /// The textures derived from the material's images, one per derived slot, each by a
+    /// [`crate::render::TextureDeriver`] the material names (the parallax material's
+    /// `MaxHeightPyramid`): built on the GPU when first used and after every re-upload of their
+    /// source; `None` binds one texel of
     /// 1.0. None by default.
     fn derived_textures(&self) -> DerivedTextures {
         [None; MAX_DERIVED_TEXTURES]

@@ -7,7 +7,7 @@
 // higher than its highest corner: pyramid level 0 holds that maximum per *cell* (cell (i, j)
 // spans texel centres i..i+1, j..j+1), each level above the maximum of 2 × 2 cells, in
 // Tatarchuk's convention (1 = top) whatever the channel and convention (the core builds it:
-// render/max_pyramid.wgsl). Positions are in level-0 cells.
+// parallax/max_pyramid.wgsl). Positions are in level-0 cells.
 
 // Most traversal steps (skip, climb or descend) one ray takes: a bound on the GPU's time per
 // pixel. A ray that runs out stops where it is known to be free (the reference's tests count how

@@ -2,6 +2,7 @@
 
 mod gpu;
 mod material;
+mod max_pyramid;
 mod pipelines;
 mod preset;
 
@@ -11,6 +12,9 @@ pub use material::{
     DebugView, HeightConvention, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT, ParallaxMethod,
     ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset, ShadowMode,
 };
+#[cfg(feature = "scene-tests")]
+pub use max_pyramid::read_max_pyramid;
+pub use max_pyramid::{HEIGHT_CHANNEL, MAX_PYRAMID_SHADER, MaxHeightPyramid};
 pub use pipelines::PomPipelineKey;
 pub use preset::{PresetError, write_atomically};
 
@@ -21,7 +25,6 @@ use crate::material::{
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::render::{
     DefaultTexture, DerivedTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES,
-    TextureDerivation,
 };
 use crate::{App, AssetId, Handle, Image, Plugin};
 
@@ -56,7 +59,7 @@ macro_rules! parallax_shader {
                 shaders::FRAGMENT_COUNTER,
                 shaders::TANGENT_SPACE,
                 shaders::LIGHTING,
-                shaders::HEIGHT_CHANNEL,
+                HEIGHT_CHANNEL,
                 PARALLAX_MARCH,
                 PARALLAX_MAX_MIP,
                 PARALLAX_ENTRY,
@@ -127,10 +130,10 @@ impl Material for ParallaxOcclusionMaterial {
         {
             derived[0] = Some(DerivedTexture {
                 source: image,
-                derivation: TextureDerivation::MaxHeightPyramid {
-                    channel: source.channel(),
-                    depth_convention: self.height_convention == HeightConvention::Depth,
-                },
+                derivation: MaxHeightPyramid::derivation(
+                    source.channel(),
+                    self.height_convention == HeightConvention::Depth,
+                ),
             });
         }
         derived

@@ -1,12 +1,17 @@
-//! Textures the GPU derives from an uploaded image (a height map's maximum pyramid), cached
-//! per image and derivation and rebuilt whenever the image is re-uploaded (a dynamic height
-//! field's every change). The Prepare stage makes the builds ready; the frame records them in
-//! one compute pass before its phases ([`DERIVED_TEXTURES_PASS`]).
+//! Textures the GPU derives from an uploaded image (the parallax material's maximum pyramid of
+//! its height map, say), cached per image and derivation and rebuilt whenever the image is
+//! re-uploaded (a dynamic height field's every change). What is derived, and how, is the
+//! material's: it names a [`TextureDeriver`] of its own; the core compiles each deriver once
+//! per device, keeps the textures and records the builds. The Prepare stage makes the builds
+//! ready; the frame records them in one compute pass before its phases
+//! ([`DERIVED_TEXTURES_PASS`]).
 
+use std::any::Any;
 use std::collections::HashMap;
+use std::fmt;
+use std::hash::{Hash, Hasher};
 
 use super::gpu_assets::{GpuImage, solid_texture};
-use super::max_pyramid::{MaxPyramidBuilder, PyramidBuild, PyramidLevels, create_pyramid};
 use super::{GpuContext, PassTimestamps};
 use crate::{AssetId, Image};
 
@@ -30,37 +35,145 @@ pub struct DerivedTexture {
     pub derivation: TextureDerivation,
 }
 
-/// What a [`DerivedTexture`] holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[non_exhaustive]
-pub enum TextureDerivation {
-    /// The maximum-height pyramid (`R32Float`, read with `textureLoad`): level 0 holds, per cell
-    /// between four texel centres (wrapping), the highest corner with 1 = top; each level above
-    /// the maximum of 2 × 2 cells, while both sides stay even.
-    MaxHeightPyramid {
-        /// Channel of the source holding the height: 0 = red .. 3 = alpha.
-        channel: u8,
-        /// Whether white in the source means deepest (depth maps): the pyramid inverts it.
-        depth_convention: bool,
-    },
+/// What a [`DerivedTexture`] holds: a deriver's output for two parameters of its own (a height
+/// map's channel and convention, say). Equal when the deriver's name and the parameters are.
+#[derive(Clone, Copy)]
+pub struct TextureDerivation {
+    /// How it is derived.
+    pub deriver: &'static dyn TextureDeriver,
+    /// What the deriver is told besides the source (their meaning is the deriver's).
+    pub parameters: [u32; 2],
+}
+
+impl TextureDerivation {
+    fn key(&self) -> (&'static str, [u32; 2]) {
+        (self.deriver.name(), self.parameters)
+    }
+}
+
+impl fmt::Debug for TextureDerivation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("TextureDerivation")
+            .field("deriver", &self.deriver.name())
+            .field("parameters", &self.parameters)
+            .finish()
+    }
+}
+
+impl PartialEq for TextureDerivation {
+    fn eq(&self, other: &Self) -> bool {
+        self.key() == other.key()
+    }
+}
+
+impl Eq for TextureDerivation {}
+
+impl Hash for TextureDerivation {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.key().hash(state);
+    }
+}
+
+impl PartialOrd for TextureDerivation {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for TextureDerivation {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.key().cmp(&other.key())
+    }
+}
+
+/// A way to derive a texture from an image on the GPU, named by the materials that bind its
+/// output ([`crate::render::DerivedTextures`]): a `static` of the material's own.
+pub trait TextureDeriver: Sync {
+    /// A name unique among derivers, for labels and the cache.
+    fn name(&self) -> &'static str;
+    /// Compiles what its builds need on `gpu`: once per device, when something is first
+    /// derived with it.
+    fn compile(&self, gpu: &GpuContext) -> Box<dyn DerivedTextureBuilder>;
+}
+
+/// A [`TextureDeriver`] compiled on one device.
+pub trait DerivedTextureBuilder: Send + Sync {
+    /// An empty derived texture for a `width` × `height` source, bound as an unfilterable float
+    /// texture (`textureLoad`), and what every build into it shares.
+    fn create(&self, gpu: &GpuContext, size: (u32, u32), parameters: [u32; 2]) -> DerivedStorage;
+    /// The build of `storage` from `source`, recorded by the frame before any phase reads it.
+    fn build(
+        &self,
+        gpu: &GpuContext,
+        source: &wgpu::Texture,
+        storage: &DerivedStorage,
+    ) -> ComputeDispatches;
+}
+
+/// A derived texture and what its builds share (bind groups of levels that never change, say).
+pub struct DerivedStorage {
+    /// The texture (with every mip level the deriver wants).
+    pub texture: wgpu::Texture,
+    /// The deriver's own state, given back to each build.
+    pub shared: Box<dyn Any + Send + Sync>,
+}
+
+impl fmt::Debug for DerivedStorage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("DerivedStorage")
+            .field("texture", &self.texture)
+            .finish_non_exhaustive()
+    }
+}
+
+/// One compute dispatch of a build.
+#[derive(Clone, Debug)]
+pub struct ComputeDispatch {
+    /// The pipeline.
+    pub pipeline: wgpu::ComputePipeline,
+    /// Its group 0 (it keeps the textures it binds alive until the build is recorded).
+    pub bind_group: wgpu::BindGroup,
+    /// Workgroups along x, y and z.
+    pub workgroups: [u32; 3],
+}
+
+/// A build's dispatches, recorded in order in one compute pass: wgpu puts a barrier between
+/// dispatches where one writes what the next reads.
+#[derive(Clone, Debug, Default)]
+pub struct ComputeDispatches(pub Vec<ComputeDispatch>);
+
+impl ComputeDispatches {
+    fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        for dispatch in &self.0 {
+            pass.set_pipeline(&dispatch.pipeline);
+            pass.set_bind_group(0, &dispatch.bind_group, &[]);
+            let [x, y, z] = dispatch.workgroups;
+            pass.dispatch_workgroups(x, y, z);
+        }
+    }
 }
 
 /// A derived texture on the GPU.
 #[derive(Debug)]
 pub(crate) struct GpuDerivedTexture {
-    /// The texture (read back by `read_max_pyramid`; the view keeps it alive otherwise).
-    #[cfg_attr(not(feature = "scene-tests"), allow(dead_code))]
-    pub texture: wgpu::Texture,
+    /// The texture and what its builds share.
+    storage: DerivedStorage,
     /// A view of every level.
     pub view: wgpu::TextureView,
-    /// What every build into `texture` shares.
-    levels: PyramidLevels,
     /// Upload serial of the source it was built from.
     source_serial: u64,
     /// The last sweep before which a draw used it.
     last_used: u64,
     /// Distinguishes rebuilds, so bind groups that use it are rebuilt.
     pub serial: u64,
+}
+
+impl GpuDerivedTexture {
+    /// The texture (tests read it back; the view keeps it alive otherwise).
+    #[cfg_attr(not(feature = "scene-tests"), allow(dead_code))]
+    pub(crate) fn texture(&self) -> &wgpu::Texture {
+        &self.storage.texture
+    }
 }
 
 /// Frames a derived texture no draw used is kept before its memory is freed (a 4096² pyramid
@@ -70,7 +183,8 @@ const UNUSED_FRAMES_KEPT: u64 = 1;
 
 /// The derived textures of every image, and the default bound where a draw has none.
 pub(crate) struct DerivedTextureCache {
-    builder: Option<MaxPyramidBuilder>,
+    /// Each deriver used so far, compiled, by name.
+    builders: HashMap<&'static str, Box<dyn DerivedTextureBuilder>>,
     textures: HashMap<DerivedTexture, GpuDerivedTexture>,
     /// Builds prepared and not yet submitted in a frame.
     pending: DerivedTextureBuilds,
@@ -89,10 +203,10 @@ impl std::fmt::Debug for DerivedTextureCache {
 }
 
 impl DerivedTextureCache {
-    /// An empty cache; the builder is compiled when something is first derived.
+    /// An empty cache; a deriver is compiled when something is first derived with it.
     pub(crate) fn new(gpu: &GpuContext) -> Self {
         Self {
-            builder: None,
+            builders: HashMap::new(),
             textures: HashMap::new(),
             pending: DerivedTextureBuilds::default(),
             sweeps: 0,
@@ -121,30 +235,28 @@ impl DerivedTextureCache {
             cached.last_used = self.sweeps;
             return false;
         }
-        let TextureDerivation::MaxHeightPyramid {
-            channel,
-            depth_convention,
-        } = derived.derivation;
+        let derivation = derived.derivation;
         let builder = self
-            .builder
-            .get_or_insert_with(|| MaxPyramidBuilder::new(gpu));
-        let (width, height) = (source.texture.width(), source.texture.height());
-        let reusable = self
-            .textures
-            .get_mut(&derived)
-            .filter(|cached| (cached.texture.width(), cached.texture.height()) == (width, height));
+            .builders
+            .entry(derivation.deriver.name())
+            .or_insert_with(|| derivation.deriver.compile(gpu));
+        let size = (source.texture.width(), source.texture.height());
+        let reusable = self.textures.get_mut(&derived).filter(|cached| {
+            (
+                cached.storage.texture.width(),
+                cached.storage.texture.height(),
+            ) == size
+        });
         // A rewritten source of the same size (a dynamic height field's every change) is built
-        // into the same texture: nothing reallocated, only level 0's bind group remade.
+        // into the same texture: nothing reallocated, only the bind groups reading it remade.
         let cached = match reusable {
             Some(cached) => cached,
             None => {
-                let texture = create_pyramid(gpu, width, height);
-                let view = texture.create_view(&Default::default());
-                let levels = builder.levels(gpu, &texture, (channel, depth_convention));
+                let storage = builder.create(gpu, size, derivation.parameters);
+                let view = storage.texture.create_view(&Default::default());
                 let fresh = GpuDerivedTexture {
-                    texture,
+                    storage,
                     view,
-                    levels,
                     source_serial: 0,
                     last_used: 0,
                     serial: next_serial,
@@ -154,7 +266,7 @@ impl DerivedTextureCache {
         };
         self.pending
             .0
-            .push(builder.build(gpu, &source.texture, &cached.texture, &cached.levels));
+            .push(builder.build(gpu, &source.texture, &cached.storage));
         cached.source_serial = source.upload_serial;
         cached.last_used = self.sweeps;
         true
@@ -195,7 +307,7 @@ impl DerivedTextureCache {
 /// Builds of derived textures made ready in the Prepare stage, recorded by the frame before
 /// any phase reads them.
 #[derive(Default)]
-pub(crate) struct DerivedTextureBuilds(Vec<PyramidBuild>);
+pub(crate) struct DerivedTextureBuilds(Vec<ComputeDispatches>);
 
 impl DerivedTextureBuilds {
     /// Whether there is nothing to build.

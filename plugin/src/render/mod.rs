@@ -23,7 +23,6 @@ mod gpu_timing;
 pub(crate) mod gpu_types;
 pub(crate) mod layout;
 mod lowest_mip;
-mod max_pyramid;
 pub(crate) mod object_buffer;
 mod phases;
 mod pipeline_compilation;
@@ -50,7 +49,9 @@ pub use context::{GpuContext, GpuError};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
 pub use derived_textures::{
-    DERIVED_TEXTURES_PASS, DerivedTexture, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
+    ComputeDispatch, ComputeDispatches, DERIVED_TEXTURES_PASS, DerivedStorage, DerivedTexture,
+    DerivedTextureBuilder, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
+    TextureDeriver,
 };
 pub use draw_view::DrawView;
 pub use error::RenderError;
@@ -66,9 +67,6 @@ pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub use layout::ShaderEntry;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
-pub use max_pyramid::MAX_PYRAMID_SHADER;
-#[cfg(feature = "scene-tests")]
-pub use max_pyramid::read_max_pyramid;
 pub use phases::{
     DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
     ShadowDraw, TransparentDraw,

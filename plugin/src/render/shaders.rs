@@ -41,8 +41,6 @@ pub const VISIBILITY_READ: WgslFile = crate::wgsl_file!("render/visibility_read.
 pub const DEFERRED_CLASSIFY: WgslFile = crate::wgsl_file!("render/deferred_classify.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = crate::wgsl_file!("dynamic_height/sobel.wgsl");
-/// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
-pub const HEIGHT_CHANNEL: WgslFile = crate::wgsl_file!("render/height_channel.wgsl");
 
 /// `shader`'s twin for the deferred path, for a material whose surface lies on its polygon
 /// ([`crate::Material::SURFACE_ON_POLYGON`]): [`deferred_header`] first among its constants and

@@ -1,26 +1,90 @@
-//! Builds a height texture's maximum pyramid on the GPU (`max_pyramid.wgsl`), for hierarchical
-//! ray marching over the height field: one dispatch per level, recorded at the start of the
-//! frame that first uses it and of every frame after a change of the height.
+//! The maximum pyramid of a height texture, which MaxMip marches over hierarchically: a
+//! [`TextureDeriver`] of the parallax material's, built on the GPU (`max_pyramid.wgsl`) with one
+//! dispatch per level, recorded at the start of the frame that first uses it and of every frame
+//! after a change of the height.
 
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use super::shaders::{ComposedShader, WgslFile};
-use super::{GpuContext, layout};
+use crate::GpuContext;
+use crate::render::layout;
+use crate::render::shaders::{ComposedShader, WgslFile};
+use crate::render::{
+    ComputeDispatch, ComputeDispatches, DerivedStorage, DerivedTextureBuilder, TextureDerivation,
+    TextureDeriver,
+};
+
+/// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
+pub const HEIGHT_CHANNEL: WgslFile = crate::wgsl_file!("parallax/height_channel.wgsl");
 
 /// The pyramid build's shader.
 pub const MAX_PYRAMID_SHADER: ComposedShader = ComposedShader {
     name: "max_pyramid.wgsl",
     constants: &[],
-    files: &[super::shaders::HEIGHT_CHANNEL, MAX_PYRAMID],
+    files: &[HEIGHT_CHANNEL, MAX_PYRAMID],
 };
 
-const MAX_PYRAMID: WgslFile = crate::wgsl_file!("render/max_pyramid.wgsl");
+const MAX_PYRAMID: WgslFile = crate::wgsl_file!("parallax/max_pyramid.wgsl");
+
+/// The maximum-height pyramid (`R32Float`, read with `textureLoad`): level 0 holds, per cell
+/// between four texel centres (wrapping), the highest corner with 1 = top; each level above the
+/// maximum of 2 × 2 cells, while both sides stay even.
+pub struct MaxHeightPyramid;
+
+impl MaxHeightPyramid {
+    /// The pyramid of the height in `channel` (0 = red .. 3 = alpha) of a source, inverted where
+    /// white means deepest (`depth_convention`: depth maps).
+    pub fn derivation(channel: u8, depth_convention: bool) -> TextureDerivation {
+        TextureDerivation {
+            deriver: &MaxHeightPyramid,
+            parameters: [u32::from(channel), u32::from(depth_convention)],
+        }
+    }
+}
+
+impl TextureDeriver for MaxHeightPyramid {
+    fn name(&self) -> &'static str {
+        "max height pyramid"
+    }
+
+    fn compile(&self, gpu: &GpuContext) -> Box<dyn DerivedTextureBuilder> {
+        Box::new(MaxPyramidBuilder::new(gpu))
+    }
+}
+
+impl DerivedTextureBuilder for MaxPyramidBuilder {
+    fn create(
+        &self,
+        gpu: &GpuContext,
+        (width, height): (u32, u32),
+        parameters: [u32; 2],
+    ) -> DerivedStorage {
+        let texture = create_pyramid(gpu, width, height);
+        let levels = self.levels(gpu, &texture, parameters);
+        DerivedStorage {
+            texture,
+            shared: Box::new(levels),
+        }
+    }
+
+    fn build(
+        &self,
+        gpu: &GpuContext,
+        source: &wgpu::Texture,
+        storage: &DerivedStorage,
+    ) -> ComputeDispatches {
+        match storage.shared.downcast_ref::<PyramidLevels>() {
+            Some(levels) => self.build_levels(gpu, source, &storage.texture, levels),
+            // Only this builder makes its storage; nothing to build into anything else.
+            None => ComputeDispatches::default(),
+        }
+    }
+}
 
 /// Mirrors `PyramidLevel` in max_pyramid.wgsl (checked by a test).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub(crate) struct PyramidLevel {
+struct PyramidLevel {
     size: [u32; 2],
     channel: u32,
     depth_convention: u32,
@@ -34,7 +98,7 @@ crate::wgsl_layout!(PyramidLevel {
 
 /// Levels of the pyramid of a `width` × `height` map: they halve while both sides stay even,
 /// so that every level repeats with the texture (1024² → 11, 96 × 64 → 6, 1000 × 600 → 4).
-pub(crate) fn pyramid_levels(width: u32, height: u32) -> u32 {
+fn pyramid_levels(width: u32, height: u32) -> u32 {
     let (mut width, mut height, mut levels) = (width.max(1), height.max(1), 1);
     while width % 2 == 0 && height % 2 == 0 {
         width /= 2;
@@ -45,14 +109,14 @@ pub(crate) fn pyramid_levels(width: u32, height: u32) -> u32 {
 }
 
 /// The two pipelines (level 0 from the height texture, each level above from the one below).
-pub(crate) struct MaxPyramidBuilder {
+struct MaxPyramidBuilder {
     layout: wgpu::BindGroupLayout,
     cell_maxima: wgpu::ComputePipeline,
     reduce_level: wgpu::ComputePipeline,
 }
 
 impl MaxPyramidBuilder {
-    pub(crate) fn new(gpu: &GpuContext) -> Self {
+    fn new(gpu: &GpuContext) -> Self {
         let device = &gpu.device;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("max pyramid layout"),
@@ -86,12 +150,13 @@ impl MaxPyramidBuilder {
     }
 
     /// The dispatches of a pyramid's levels above 0 (they read only `pyramid`, so they are made
-    /// once per pyramid texture) and level 0's parameters, for [`MaxPyramidBuilder::build`].
-    pub(crate) fn levels(
+    /// once per pyramid texture) and level 0's parameters (`[channel, depth_convention]`), for
+    /// [`MaxPyramidBuilder::build_levels`].
+    fn levels(
         &self,
         gpu: &GpuContext,
         pyramid: &wgpu::Texture,
-        (channel, depth_convention): (u8, bool),
+        [channel, depth_convention]: [u32; 2],
     ) -> PyramidLevels {
         let (width, height) = (pyramid.width(), pyramid.height());
         let params = |level: u32| {
@@ -100,8 +165,8 @@ impl MaxPyramidBuilder {
                     label: Some("max pyramid level"),
                     contents: bytemuck::bytes_of(&PyramidLevel {
                         size: [(width >> level).max(1), (height >> level).max(1)],
-                        channel: u32::from(channel),
-                        depth_convention: u32::from(depth_convention),
+                        channel,
+                        depth_convention,
                     }),
                     usage: wgpu::BufferUsages::UNIFORM,
                 })
@@ -129,13 +194,13 @@ impl MaxPyramidBuilder {
     /// [`MaxPyramidBuilder::levels`] for it: only level 0, which reads `heights` (a re-upload
     /// replaces that texture), gets a new bind group. The frame records it before any phase
     /// that may read the pyramid.
-    pub(crate) fn build(
+    fn build_levels(
         &self,
         gpu: &GpuContext,
         heights: &wgpu::Texture,
         pyramid: &wgpu::Texture,
         levels: &PyramidLevels,
-    ) -> PyramidBuild {
+    ) -> ComputeDispatches {
         let first = self.level_build(
             gpu,
             &self.cell_maxima,
@@ -144,11 +209,11 @@ impl MaxPyramidBuilder {
             pyramid,
             levels.first_params.clone(),
         );
-        PyramidBuild {
-            levels: std::iter::once(first)
+        ComputeDispatches(
+            std::iter::once(first)
                 .chain(levels.upper.iter().cloned())
                 .collect(),
-        }
+        )
     }
 
     /// The dispatch writing `pyramid`'s `level` from `below` with `pipeline`.
@@ -160,7 +225,7 @@ impl MaxPyramidBuilder {
         below: &wgpu::TextureView,
         pyramid: &wgpu::Texture,
         params: wgpu::Buffer,
-    ) -> LevelBuild {
+    ) -> ComputeDispatch {
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("max pyramid level"),
             layout: &self.layout,
@@ -183,10 +248,11 @@ impl MaxPyramidBuilder {
             (pyramid.width() >> level).max(1),
             (pyramid.height() >> level).max(1),
         ];
-        LevelBuild {
+        // 8 × 8 workgroups (max_pyramid.wgsl).
+        ComputeDispatch {
             pipeline: pipeline.clone(),
             bind_group,
-            size,
+            workgroups: [size[0].div_ceil(8), size[1].div_ceil(8), 1],
         }
     }
 }
@@ -203,41 +269,15 @@ fn level_view(texture: &wgpu::Texture, level: u32) -> wgpu::TextureView {
 /// What a pyramid texture's builds share: level 0's parameters and the dispatches of the
 /// levels above it.
 #[derive(Debug)]
-pub(crate) struct PyramidLevels {
+struct PyramidLevels {
     first_params: wgpu::Buffer,
-    upper: Vec<LevelBuild>,
-}
-
-/// One level's dispatch.
-#[derive(Clone, Debug)]
-struct LevelBuild {
-    pipeline: wgpu::ComputePipeline,
-    bind_group: wgpu::BindGroup,
-    size: [u32; 2],
-}
-
-/// A pyramid's build, ready to record: its bind groups keep the height texture and the pyramid
-/// alive until then.
-pub(crate) struct PyramidBuild {
-    levels: Vec<LevelBuild>,
-}
-
-impl PyramidBuild {
-    /// Records the build's dispatches, finest level first. wgpu puts a barrier between
-    /// dispatches of one pass where a level written becomes the level read.
-    pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        for level in &self.levels {
-            pass.set_pipeline(&level.pipeline);
-            pass.set_bind_group(0, &level.bind_group, &[]);
-            pass.dispatch_workgroups(level.size[0].div_ceil(8), level.size[1].div_ceil(8), 1);
-        }
-    }
+    upper: Vec<ComputeDispatch>,
 }
 
 /// An empty pyramid for a `width` × `height` height texture: [`pyramid_levels`] levels of
 /// `R32Float`. A pyramid with few levels for its size is logged: its cells are large, and a
 /// hierarchical march over it tests many of them.
-pub(crate) fn create_pyramid(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
+fn create_pyramid(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
     let levels = pyramid_levels(width, height);
     let (coarsest_width, coarsest_height) = (width >> (levels - 1), height >> (levels - 1));
     if coarsest_width.max(coarsest_height) > 16 {
@@ -274,28 +314,25 @@ pub fn read_max_pyramid(
     image: crate::Image,
     channel: u8,
     depth_convention: bool,
-) -> Result<Vec<(u32, u32, Vec<f32>)>, super::CaptureError> {
+) -> Result<Vec<(u32, u32, Vec<f32>)>, crate::render::CaptureError> {
     let mut images = crate::Assets::default();
     let source = images.add(image).id();
-    let mut assets = super::GpuAssets::new(gpu);
+    let mut assets = crate::render::GpuAssets::new(gpu);
     assets.prepare_image(gpu, &images, source);
-    let derived = super::DerivedTexture {
+    let derived = crate::render::DerivedTexture {
         source,
-        derivation: super::TextureDerivation::MaxHeightPyramid {
-            channel,
-            depth_convention,
-        },
+        derivation: MaxHeightPyramid::derivation(channel, depth_convention),
     };
     assets.prepare_derived(gpu, derived);
     assets.pending_derived_builds().submit(gpu);
     assets.derived_builds_submitted();
-    let pyramid = &assets
+    let pyramid = assets
         .derived(&derived)
-        .ok_or_else(|| super::CaptureError::Map("the image was not uploaded".into()))?
-        .texture;
+        .ok_or_else(|| crate::render::CaptureError::Map("the image was not uploaded".into()))?
+        .texture();
     (0..pyramid.mip_level_count())
         .map(|level| {
-            let texels = super::read_texture_level(gpu, pyramid, level)?;
+            let texels = crate::render::read_texture_level(gpu, pyramid, level)?;
             let size = pyramid.size().mip_level_size(level, pyramid.dimension());
             let maxima = bytemuck::pod_collect_to_vec::<u8, f32>(&texels);
             Ok((size.width, size.height, maxima))
