@@ -8,7 +8,7 @@ use std::time::SystemTime;
 
 use crate::material::MaterialRegistry;
 use crate::render::GpuContext;
-use crate::render::shaders::ComposedShader;
+use crate::render::shaders::{ComposedShader, ShaderTarget};
 use crate::{App, AppError, Plugin, Resources, Stage};
 
 /// Why a reload did not swap the pipelines in.
@@ -176,13 +176,15 @@ fn reload(
         .clone();
     let mut rebuilt = Vec::new();
     for shader in changed {
-        let source = compose_checked(shader, source_dir)?;
-        // A deferred shader writes the scene in the target's format (shaders::deferred_header).
-        let source = match resources.get::<crate::render::RenderTarget>() {
-            Some(target) => crate::render::shaders::for_scene_format(source, target.scene_format()),
-            None => source,
-        };
         let device = &gpu.device;
+        // A deferred shader writes the scene in the target's format.
+        let scene_format = resources
+            .get::<crate::render::RenderTarget>()
+            .map_or(wgpu::TextureFormat::Rgba16Float, |target| {
+                target.scene_format()
+            });
+        let target = ShaderTarget::of_device(device, scene_format);
+        let source = compose_checked(shader, source_dir, &target)?;
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = crate::render::shaders::create_module(device, shader.name, source);
         if let Some(registry) = resources.get::<MaterialRegistry>() {
@@ -210,13 +212,14 @@ fn reload(
 /// Where each file starts in a composed source: (path, first line, 1-based).
 type FileLines = Vec<(&'static str, u32)>;
 
-/// `shader`'s source composed from the files under `source_dir`, parsed and validated by naga
-/// so that errors name the file and line they come from.
+/// `shader`'s source composed for `target` from the files under `source_dir`, parsed and
+/// validated by naga so that errors name the file and line they come from.
 pub fn compose_checked(
     shader: &ComposedShader,
     source_dir: &Path,
+    target: &ShaderTarget,
 ) -> Result<String, ShaderReloadError> {
-    let mut source = shader.generated();
+    let mut source = shader.generated_for(target);
     let mut starts: FileLines = Vec::new();
     for file in shader.files {
         let path = source_dir.join(file.path);
@@ -229,7 +232,7 @@ pub fn compose_checked(
         source.push_str(file.path);
         source.push_str(" ----\n");
         starts.push((file.path, line_count(&source) + 1));
-        source.push_str(&text);
+        source.push_str(&target.file_text(&text));
         source.push('\n');
     }
     let invalid = |location: Option<naga::SourceLocation>, message: String| {
@@ -279,7 +282,12 @@ mod tests {
     #[test]
     fn the_shipped_files_compose_to_the_embedded_source() {
         let dir = copy_sources("same");
-        let source = compose_checked(&crate::parallax::PARALLAX_SHADER, &dir).unwrap();
+        let source = compose_checked(
+            &crate::parallax::PARALLAX_SHADER,
+            &dir,
+            &ShaderTarget::default(),
+        )
+        .unwrap();
         assert_eq!(source, crate::parallax::PARALLAX_SHADER.source());
         std::fs::remove_dir_all(dir).unwrap();
     }
@@ -290,7 +298,12 @@ mod tests {
         let path = dir.join("parallax/march.wgsl");
         let text = std::fs::read_to_string(&path).unwrap();
         std::fs::write(&path, format!("// first\nfn broken( {{\n{text}")).unwrap();
-        let error = compose_checked(&crate::parallax::PARALLAX_SHADER, &dir).unwrap_err();
+        let error = compose_checked(
+            &crate::parallax::PARALLAX_SHADER,
+            &dir,
+            &ShaderTarget::default(),
+        )
+        .unwrap_err();
         let ShaderReloadError::Invalid { file, line, .. } = &error else {
             panic!("{error}");
         };
@@ -312,12 +325,18 @@ mod tests {
             format!("{text}\nfn wrong() -> f32 {{ return vec2<f32>(1.0); }}\n"),
         )
         .unwrap();
-        let error = compose_checked(&crate::parallax::PARALLAX_SHADER, &dir).unwrap_err();
+        let error = compose_checked(
+            &crate::parallax::PARALLAX_SHADER,
+            &dir,
+            &ShaderTarget::default(),
+        )
+        .unwrap_err();
         assert!(
             error.to_string().starts_with("parallax/pom.wgsl:"),
             "{error}"
         );
-        let missing = compose_checked(&crate::lit::LIT_SHADER, &dir).unwrap_err();
+        let missing =
+            compose_checked(&crate::lit::LIT_SHADER, &dir, &ShaderTarget::default()).unwrap_err();
         assert!(
             matches!(missing, ShaderReloadError::Read { .. }),
             "{missing}"

@@ -48,7 +48,7 @@ fn every_composed_shader_validates() {
     let mut failures = Vec::new();
     // Each shader as games compile it, and as FragmentInvocationCounter compiles it for tests.
     let sources = shaders.iter().flat_map(|shader| {
-        [shader.source(), shader.counting_source()]
+        [shader.source(), shader.counting_source(&Default::default())]
             .map(|source| (shader, source))
             .into_iter()
     });

@@ -128,11 +128,11 @@ impl<M: Material> MaterialBatches<M> {
         }: CompileOptions,
     ) -> Self {
         let device = &gpu.device;
+        let target = crate::render::shaders::ShaderTarget::of_device(device, color_format);
         let source = match counter {
-            Some(_) => shader.counting_source(),
-            None => shader.source(),
+            Some(_) => shader.counting_source(&target),
+            None => shader.source_for(&target),
         };
-        let source = crate::render::shaders::for_scene_format(source, color_format);
         let module = crate::render::shaders::create_module(device, shader.name, source);
         let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
         let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);

@@ -45,7 +45,8 @@ pub(crate) struct DeferredBackground {
 impl DeferredBackground {
     /// The pipeline for a scene target of `scene_format`.
     pub(crate) fn new(gpu: &GpuContext, scene_format: wgpu::TextureFormat) -> Self {
-        let source = shaders::for_scene_format(DEFERRED_BACKGROUND.source(), scene_format);
+        let target = shaders::ShaderTarget::of_device(&gpu.device, scene_format);
+        let source = DEFERRED_BACKGROUND.source_for(&target);
         let module = shaders::create_module(&gpu.device, DEFERRED_BACKGROUND.name, source);
         let pipeline = gpu
             .device

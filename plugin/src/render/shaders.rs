@@ -6,7 +6,7 @@
 
 use std::sync::{Mutex, PoisonError};
 
-pub use crate::shader::{ComposedShader, GeneratedWgsl, WgslFile};
+pub use crate::shader::{ComposedShader, GeneratedWgsl, ShaderTarget, WgslFile};
 
 /// Camera and light uniforms, and the light iteration helpers.
 pub const FRAME: WgslFile = crate::wgsl_file!("render/frame.wgsl");
@@ -67,15 +67,13 @@ pub fn deferred_twin(shader: &ComposedShader) -> ComposedShader {
 }
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
-/// the `primitive_index` extension the visibility pass needs, `SceneOutput`, the scene target as
-/// the resolve writes it (an `Rgba16Float` scene, adapted to the target's format at compile time),
-/// `TILES_PER_ROW` of the resolve's tile lists and `TILE_SIDE` of its tiles.
+/// the `primitive_index` extension the visibility pass needs, `TILES_PER_ROW` of the resolve's
+/// tile lists and `TILE_SIDE` of its tiles. (`SceneOutput`, the scene target as the resolve
+/// writes it, is the composer's: [`crate::shader::ShaderTarget`].)
 pub fn deferred_header() -> String {
     format!(
-        "enable primitive_index;\n{}const TILES_PER_ROW: u32 = {}u;\nconst TILE_SIDE: u32 = {}u;\n",
-        scene_output_alias(wgpu::TextureFormat::Rgba16Float),
-        RESOLVE_TILES_PER_ROW,
-        DEFERRED_TILE_SIDE
+        "enable primitive_index;\nconst TILES_PER_ROW: u32 = {}u;\nconst TILE_SIDE: u32 = {}u;\n",
+        RESOLVE_TILES_PER_ROW, DEFERRED_TILE_SIDE
     )
 }
 
@@ -95,31 +93,12 @@ pub(crate) fn deferred_tiles((width, height): (u32, u32)) -> (u32, u32) {
 /// has at most 65535 workgroups a side, a 4K target 129,600 tiles of 8 × 8.
 pub(crate) const RESOLVE_TILES_PER_ROW: u32 = 256;
 
-fn scene_output_alias(format: wgpu::TextureFormat) -> String {
-    let name = match format {
-        wgpu::TextureFormat::Rgba32Float => "rgba32float",
-        _ => "rgba16float",
-    };
-    format!("alias SceneOutput = texture_storage_2d<{name}, write>;\n")
-}
-
-/// A deferred shader's source for a scene target of `format` (`Rgba16Float` or `Rgba32Float`,
-/// what [`super::TargetFormat::scene_format`] gives).
-pub(crate) fn for_scene_format(source: String, format: wgpu::TextureFormat) -> String {
-    let default = scene_output_alias(wgpu::TextureFormat::Rgba16Float);
-    let wanted = scene_output_alias(format);
-    if wanted == default {
-        source
-    } else {
-        source.replacen(&default, &wanted, 1)
-    }
-}
-
 // The renderer's part of composing: the counting twin and the module on a device.
 impl ComposedShader {
-    /// The source with [`FRAGMENT_COUNTER`] replaced by [`FRAGMENT_COUNTER_COUNTING`].
-    pub fn counting_source(&self) -> String {
-        self.source_with(|file| {
+    /// The source for `target` with [`FRAGMENT_COUNTER`] replaced by
+    /// [`FRAGMENT_COUNTER_COUNTING`].
+    pub fn counting_source(&self, target: &ShaderTarget) -> String {
+        self.source_with(target, |file| {
             if file == FRAGMENT_COUNTER {
                 FRAGMENT_COUNTER_COUNTING
             } else {
@@ -128,47 +107,23 @@ impl ComposedShader {
         })
     }
 
-    /// Compiles the composed source on `device`, labelled with the shader's name.
+    /// Compiles the shader on `device` for its default scene format, labelled with its name.
     pub fn create_module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
-        create_module(device, self.name, self.source())
+        let target = ShaderTarget::of_device(device, wgpu::TextureFormat::Rgba16Float);
+        create_module(device, self.name, self.source_for(&target))
     }
 }
 
-/// Compiles `source` on `device`. Without `SHADER_EARLY_DEPTH_TEST` (adapters other than
-/// Vulkan and GLES) the `@early_depth_test(...)` attributes are dropped: they only promise what
-/// the shader does anyway (forced early tests where it writes no depth and has no side
-/// effects; depth only ever pushed further away), so dropping them costs speed, not pixels.
+/// Compiles `source`, composed for `device`'s [`ShaderTarget`], on `device`.
 pub(crate) fn create_module(
     device: &wgpu::Device,
     name: &str,
     source: String,
 ) -> wgpu::ShaderModule {
-    let source = if device
-        .features()
-        .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
-    {
-        source
-    } else {
-        without_early_depth_tests(&source)
-    };
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(name),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     })
-}
-
-/// `source` without its `@early_depth_test(...)` attributes.
-pub(crate) fn without_early_depth_tests(source: &str) -> String {
-    const ATTRIBUTE: &str = "@early_depth_test(";
-    let mut out = String::with_capacity(source.len());
-    let mut rest = source;
-    while let Some(start) = rest.find(ATTRIBUTE) {
-        out.push_str(&rest[..start]);
-        let after = &rest[start + ATTRIBUTE.len()..];
-        rest = after.find(')').map_or("", |close| &after[close + 1..]);
-    }
-    out.push_str(rest);
-    out
 }
 
 /// Normals of dynamic height fields, derived on the GPU.
@@ -177,18 +132,3 @@ pub const SOBEL: ComposedShader = ComposedShader {
     constants: &[],
     files: &[SOBEL_ENTRY],
 };
-
-#[cfg(test)]
-mod tests {
-    use super::without_early_depth_tests;
-
-    #[test]
-    fn early_depth_attributes_are_dropped_and_nothing_else() {
-        let source = "@fragment @early_depth_test(force)\nfn a() {}\n@fragment @early_depth_test(greater_equal)\nfn b() -> @builtin(frag_depth) f32 { return 1.0; }";
-        assert_eq!(
-            without_early_depth_tests(source),
-            "@fragment \nfn a() {}\n@fragment \nfn b() -> @builtin(frag_depth) f32 { return 1.0; }"
-        );
-        assert_eq!(without_early_depth_tests("fn c() {}"), "fn c() {}");
-    }
-}

@@ -1,5 +1,5 @@
 //! Composing WGSL: a shader is generated constants followed by WGSL files (WGSL has no
-//! `#include`), named for error messages and validation.
+//! `#include`), named for error messages and validation, composed for a [`ShaderTarget`].
 
 /// One WGSL file, by its path under `plugin/src`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,20 +47,101 @@ pub struct ComposedShader {
 /// The first line of a composed source, before the generated constants.
 pub(crate) const GENERATED_HEADER: &str = "// ---- generated from Rust ----\n";
 
+/// What a composition is compiled for. The composer writes it into the WGSL (the shader's text
+/// is never searched or edited afterwards): `SceneOutput`, the scene target as the deferred
+/// resolve writes it, and whether `@early_depth_test` attributes stay.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShaderTarget {
+    /// The HDR scene target's format (`Rgba16Float` or `Rgba32Float`).
+    pub scene_format: wgpu::TextureFormat,
+    /// Whether the adapter takes `@early_depth_test` (`SHADER_EARLY_DEPTH_TEST`: Vulkan,
+    /// GLES). Without it the composer leaves the attributes out: they only promise what the
+    /// shader does anyway (forced early tests where it writes no depth and has no side effects,
+    /// depth only ever pushed further away), so leaving them out costs speed, not pixels.
+    pub early_depth_test: bool,
+}
+
+impl Default for ShaderTarget {
+    /// An `Rgba16Float` scene, early depth tests kept: what `ComposedShader::source` gives.
+    fn default() -> Self {
+        Self {
+            scene_format: wgpu::TextureFormat::Rgba16Float,
+            early_depth_test: true,
+        }
+    }
+}
+
+impl ShaderTarget {
+    /// The target of `device` with a scene of `scene_format`.
+    pub fn of_device(device: &wgpu::Device, scene_format: wgpu::TextureFormat) -> Self {
+        Self {
+            scene_format,
+            early_depth_test: device
+                .features()
+                .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST),
+        }
+    }
+
+    /// The declarations every composed source starts with: `SceneOutput` (one line, whatever
+    /// the target, so line numbers never depend on it).
+    fn declarations(&self) -> String {
+        let format = match self.scene_format {
+            wgpu::TextureFormat::Rgba32Float => "rgba32float",
+            _ => "rgba16float",
+        };
+        format!("alias SceneOutput = texture_storage_2d<{format}, write>;\n")
+    }
+
+    /// `text` as this target compiles it.
+    pub(crate) fn file_text<'a>(&self, text: &'a str) -> std::borrow::Cow<'a, str> {
+        if self.early_depth_test {
+            text.into()
+        } else {
+            without_early_depth_tests(text).into()
+        }
+    }
+}
+
+/// `source` without its `@early_depth_test(...)` attributes.
+fn without_early_depth_tests(source: &str) -> String {
+    const ATTRIBUTE: &str = "@early_depth_test(";
+    let mut out = String::with_capacity(source.len());
+    let mut rest = source;
+    while let Some(start) = rest.find(ATTRIBUTE) {
+        out.push_str(&rest[..start]);
+        let after = &rest[start + ATTRIBUTE.len()..];
+        rest = after.find(')').map_or("", |close| &after[close + 1..]);
+    }
+    out.push_str(rest);
+    out
+}
+
 impl ComposedShader {
-    /// The generated constants: the text every composed source starts with.
+    /// The generated declarations and constants: the text every composed source starts with.
     pub fn generated(&self) -> String {
+        self.generated_for(&ShaderTarget::default())
+    }
+
+    /// [`ComposedShader::generated`] for `target`.
+    pub fn generated_for(&self, target: &ShaderTarget) -> String {
         let mut source = String::from(GENERATED_HEADER);
         for constants in self.constants {
             source.push_str(&constants());
         }
+        // Last: directives (`enable`) among the constants must come before any declaration.
+        source.push_str(&target.declarations());
         source
     }
 
-    /// The concatenated source: the generated constants, then each file introduced by a
-    /// comment naming it.
+    /// The concatenated source for the default [`ShaderTarget`]: the generated constants, then
+    /// each file introduced by a comment naming it.
     pub fn source(&self) -> String {
-        self.source_with(|file| file)
+        self.source_for(&ShaderTarget::default())
+    }
+
+    /// [`ComposedShader::source`] for `target`.
+    pub fn source_for(&self, target: &ShaderTarget) -> String {
+        self.source_with(target, |file| file)
     }
 
     /// Where line `line` (1-based) of [`ComposedShader::source`] comes from: the file's path
@@ -82,13 +163,17 @@ impl ComposedShader {
         ("generated", line)
     }
 
-    pub(crate) fn source_with(&self, substitute: impl Fn(WgslFile) -> WgslFile) -> String {
-        let mut source = self.generated();
+    pub(crate) fn source_with(
+        &self,
+        target: &ShaderTarget,
+        substitute: impl Fn(WgslFile) -> WgslFile,
+    ) -> String {
+        let mut source = self.generated_for(target);
         for file in self.files.iter().map(|file| substitute(*file)) {
             source.push_str("// ---- ");
             source.push_str(file.path);
             source.push_str(" ----\n");
-            source.push_str(file.source);
+            source.push_str(&target.file_text(file.source));
             source.push('\n');
         }
         source
@@ -98,6 +183,44 @@ impl ComposedShader {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn early_depth_attributes_are_dropped_and_nothing_else() {
+        let source = "@fragment @early_depth_test(force)\nfn a() {}\n@fragment @early_depth_test(greater_equal)\nfn b() -> @builtin(frag_depth) f32 { return 1.0; }";
+        assert_eq!(
+            without_early_depth_tests(source),
+            "@fragment \nfn a() {}\n@fragment \nfn b() -> @builtin(frag_depth) f32 { return 1.0; }"
+        );
+        assert_eq!(without_early_depth_tests("fn c() {}"), "fn c() {}");
+    }
+
+    #[test]
+    fn the_target_is_written_by_the_composer() {
+        const ENTRY: WgslFile = WgslFile {
+            path: "entry.wgsl",
+            source: "@fragment @early_depth_test(force)\nfn a() {}",
+        };
+        let shader = ComposedShader {
+            name: "test",
+            constants: &[],
+            files: &[ENTRY],
+        };
+        let wide = ShaderTarget {
+            scene_format: wgpu::TextureFormat::Rgba32Float,
+            early_depth_test: false,
+        };
+        let source = shader.source_for(&wide);
+        assert!(
+            source.contains("texture_storage_2d<rgba32float, write>"),
+            "{source}"
+        );
+        assert!(!source.contains("early_depth_test"), "{source}");
+        let default = shader.source();
+        assert!(default.contains("texture_storage_2d<rgba16float, write>"));
+        assert!(default.contains("@early_depth_test(force)"));
+        // The target never moves a line.
+        assert_eq!(source.lines().count(), default.lines().count());
+    }
 
     #[test]
     fn every_line_of_a_composed_source_is_found_in_its_file() {
@@ -130,7 +253,9 @@ mod tests {
                 ),
                 // The header line introducing a file, or a generated line.
                 _ => assert!(
-                    text.starts_with("// ----") || text.starts_with("const"),
+                    text.starts_with("// ----")
+                        || text.starts_with("const")
+                        || text.starts_with("alias SceneOutput"),
                     "{text}"
                 ),
             }

@@ -10,5 +10,5 @@ mod layout_check;
 pub use choice::{Choice, ChoiceInfo};
 #[cfg(test)]
 pub(crate) use composition::GENERATED_HEADER;
-pub use composition::{ComposedShader, GeneratedWgsl, WgslFile};
+pub use composition::{ComposedShader, GeneratedWgsl, ShaderTarget, WgslFile};
 pub use layout_check::{LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout};
