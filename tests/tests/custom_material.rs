@@ -11,7 +11,11 @@ mod matte;
 #[rustfmt::skip]
 #[path = "custom_material/screen.rs"]
 mod screen;
+#[rustfmt::skip]
+#[path = "custom_material/lattice.rs"]
+mod lattice;
 
+use lattice::Lattice;
 use matte::Matte;
 use pom::glam::Vec3;
 use pom::material::{DeclaredMaterial, check_material_layout};
@@ -157,10 +161,87 @@ fn a_material_with_a_texture_and_parameters_renders_on_both_paths() {
     );
 }
 
+/// A lattice plate at `hole_radius` over a `Matte` floor, under a sun that casts scene shadows,
+/// seen from above at a slant.
+fn lattice_scene(hole_radius: f32) -> pom::App {
+    let mut app = headless_app(96, 96).unwrap();
+    app.add_plugin(MaterialPlugin::<Matte>::default())
+        .add_plugin(MaterialPlugin::<Lattice>::default());
+    let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
+    let (plate, floor) = (meshes.add(Mesh::plane(1.6)), meshes.add(Mesh::plane(4.0)));
+    app.world.spawn((
+        floor,
+        Matte {
+            color: Color::linear_rgb(0.2, 0.6, 0.2),
+        },
+        Transform::from_xyz(0.0, -0.5, 0.0),
+    ));
+    app.world.spawn((
+        plate,
+        Lattice {
+            color: Color::linear_rgb(0.8, 0.8, 0.8),
+            hole_radius,
+            ..Lattice::default()
+        },
+        Transform::IDENTITY,
+    ));
+    app.world.spawn((
+        pom::Camera::perspective(45.0),
+        Transform::from_xyz(0.0, 2.2, 1.6).looking_at(Vec3::new(0.0, -0.2, 0.0), Vec3::Y),
+    ));
+    app.world.spawn((
+        DirectionalLight::default(),
+        pom::LightShadows::default(),
+        Transform::IDENTITY.looking_at(Vec3::new(0.3, -1.0, -0.2), Vec3::Y),
+    ));
+    app
+}
+
+#[test]
+fn a_material_that_cuts_holes_says_so_and_runs_on_both_paths() {
+    let mut app = lattice_scene(0.3);
+    let holed = render_on_path(&mut app, RenderPath::Deferred).unwrap();
+    assert!(app.resources.get::<Renderer>().unwrap().runs_deferred());
+    // Its holes are decided in the visibility pass; what is left shades in the resolve.
+    assert_eq!(
+        pom::material::drawn_in_opaque_and_resolve::<Lattice>(&app.resources),
+        (false, true)
+    );
+    let forward = render_on_path(&mut app, RenderPath::Forward).unwrap();
+    let flip = pom::flip_compare(&forward, &holed, 0.99).unwrap();
+    assert!(
+        flip.mean <= pom_tests::PATHS_AGREE_MEAN,
+        "deferred differs from forward: FLIP mean {}",
+        flip.mean
+    );
+    check_golden(
+        "custom_material_lattice",
+        &forward,
+        FlipTolerance::default(),
+    )
+    .unwrap();
+    // Through the holes: the green floor, and sunlight on it where the plate's shadow has holes.
+    let mut solid_app = lattice_scene(0.0);
+    let solid = render_on_path(&mut solid_app, RenderPath::Deferred).unwrap();
+    let green = |image: &image::RgbaImage| {
+        image
+            .pixels()
+            .filter(|pixel| pixel.0[1] > pixel.0[0] + 30)
+            .count()
+    };
+    assert!(
+        green(&holed) > green(&solid) + 200,
+        "the floor shows through the holes: {} green pixels against {} without holes",
+        green(&holed),
+        green(&solid)
+    );
+}
+
 #[test]
 fn the_examples_parameters_match_their_wgsl() {
     assert_eq!(check_material_layout::<Matte>(), Ok(()));
     assert_eq!(check_material_layout::<Screen>(), Ok(()));
+    assert_eq!(check_material_layout::<Lattice>(), Ok(()));
 }
 
 /// A material of its own entry points (the escape hatch) with the example's parameters, named `$name`, with its own shading file `$wgsl`
@@ -450,6 +531,11 @@ fn the_readme_and_the_custom_material_doc_show_this_example_verbatim() {
             "{name}'s shading function and tests/tests/custom_material/matte.wgsl differ"
         );
     }
+    let covers = block_after(doc, "## Cutting holes", "wgsl");
+    assert!(
+        include_str!("custom_material/lattice.wgsl").contains(covers),
+        "custom-material.md's `covers` and tests/tests/custom_material/lattice.wgsl differ"
+    );
     // The measure: a material in at most 15 lines of Rust and 10 of WGSL.
     assert!(rust.lines().count() <= 15, "the Rust grew past 15 lines");
     assert!(wgsl.lines().count() <= 10, "the WGSL grew past 10 lines");

@@ -1,10 +1,13 @@
 //! Every WGSL file in the plugin is part of a composed shader, and every composed shader parses
 //! and validates with naga: the plugin's own (`pom::SHADERS`), and those the core composes
-//! around a shaded material's `shade` (the README's `Matte`).
+//! around a shaded material's `shade` (the README's `Matte`, and `Lattice`, which cuts holes).
 
 #[rustfmt::skip]
 #[path = "custom_material/matte.rs"]
 mod matte;
+#[rustfmt::skip]
+#[path = "custom_material/lattice.rs"]
+mod lattice;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -17,6 +20,8 @@ fn every_shader() -> Vec<ComposedShader> {
     let shaded = [
         Some(matte::Matte::shader()),
         matte::Matte::deferred_shader(),
+        Some(lattice::Lattice::shader()),
+        lattice::Lattice::deferred_shader(),
     ];
     pom::SHADERS
         .iter()
@@ -100,7 +105,7 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         let text = std::fs::read_to_string(path).unwrap();
         assert!(
             composed.contains(&(relative.as_str(), text.as_str())),
-            "{relative} is not part of any shader in pom::SHADERS or Matte's (or is stale)"
+            "{relative} is not part of any shader in pom::SHADERS or a shaded material's (or is stale)"
         );
     }
     eprintln!("{} WGSL files in {} shaders", on_disk.len(), shaders.len());

@@ -35,7 +35,10 @@ pub use plugin::{
 #[cfg(feature = "dev-tools")]
 pub(crate) use registry::MaterialRegistry;
 pub use resolve_tiles::DEFERRED_CLASSIFY_SHADER;
-pub use shaded::{SHADED_FORWARD, SHADED_RESOLVE, SURFACE_INPUT, ShadedMaterial};
+pub use shaded::{
+    SHADED_CUT_OUT, SHADED_CUT_OUT_VISIBILITY, SHADED_FORWARD, SHADED_RESOLVE, SURFACE_INPUT,
+    ShadedMaterial,
+};
 pub use shader_check::MaterialShaderError;
 
 use std::fmt::Debug;

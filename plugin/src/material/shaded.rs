@@ -12,6 +12,11 @@ pub const SURFACE_INPUT: WgslFile = crate::wgsl_file!("material/surface_input.wg
 pub const SHADED_FORWARD: WgslFile = crate::wgsl_file!("material/shaded_forward.wgsl");
 /// The deferred resolve's compute entry around `shade`.
 pub const SHADED_RESOLVE: WgslFile = crate::wgsl_file!("material/shaded_resolve.wgsl");
+/// The fragment entries of a material that cuts holes ([`ShadedMaterial::CUTS_OUT`]).
+pub const SHADED_CUT_OUT: WgslFile = crate::wgsl_file!("material/shaded_cut_out.wgsl");
+/// The visibility-pass entry of a material that cuts holes.
+pub const SHADED_CUT_OUT_VISIBILITY: WgslFile =
+    crate::wgsl_file!("material/shaded_cut_out_visibility.wgsl");
 
 /// A material written as a shading function: declare its parameters and textures with
 /// [`crate::material_parameters!`], write `shade` in WGSL, and the core composes its forward
@@ -30,11 +35,17 @@ pub const SHADED_RESOLVE: WgslFile = crate::wgsl_file!("material/shaded_resolve.
 ///   shadows (`surface_shadow(i, surface)`);
 /// - `perturbed_normal`, `safe_normalize` and the rest of the core's `tangent_space.wgsl`.
 ///
-/// A material that discards, moves its depth, or wants entry points of its own implements
-/// [`Material`] itself instead.
+/// A material that cuts holes in its surface (an alpha mask, a grille) says so with
+/// [`ShadedMaterial::CUTS_OUT`]. One that moves its depth (a parallax relief) or wants entry
+/// points of its own implements [`Material`] itself instead.
 pub trait ShadedMaterial: DeclaredMaterial + hecs::Component + PartialEq + Default {
     /// The WGSL file that defines `shade`.
     const SHADING: WgslFile;
+    /// Whether the material cuts holes in its surface (false by default). The shading file then
+    /// also defines `fn covers(surface: SurfaceInput, material: MaterialParams) -> bool`, and
+    /// the core leaves what it does not cover out of the depth prepass, every shadow map, the
+    /// visibility pass and the forward path's image; `shade` itself never discards.
+    const CUTS_OUT: bool = false;
 }
 
 /// The composed shaders of a shaded material, made once per type.
@@ -65,18 +76,40 @@ macro_rules! shaded_shader {
     };
 }
 
+/// A shaded material's deferred composition: the forward one's, its visibility pass (`$cut`:
+/// the files a material that cuts holes adds) and the compute resolve.
+macro_rules! shaded_deferred_shader {
+    ($T:ty, [$($cut:expr),*]) => {
+        shaded_shader!(
+            $T,
+            [shaders::deferred_header],
+            [
+                $($cut,)*
+                shaders::VISIBILITY,
+                shaders::VISIBILITY_READ,
+                shaders::DEFERRED_RESOLVE,
+                SHADED_RESOLVE
+            ]
+        )
+    };
+}
+
 impl<T: ShadedMaterial> ShadedShaders for T {
-    const FORWARD: ComposedShader = shaded_shader!(T, [], []);
-    const DEFERRED: ComposedShader = shaded_shader!(
-        T,
-        [shaders::deferred_header],
-        [
-            shaders::VISIBILITY,
-            shaders::VISIBILITY_READ,
-            shaders::DEFERRED_RESOLVE,
-            SHADED_RESOLVE
-        ]
-    );
+    const FORWARD: ComposedShader = if T::CUTS_OUT {
+        shaded_shader!(T, [], [SHADED_CUT_OUT])
+    } else {
+        shaded_shader!(T, [], [])
+    };
+    const DEFERRED: ComposedShader = if T::CUTS_OUT {
+        shaded_deferred_shader!(T, [SHADED_CUT_OUT, SHADED_CUT_OUT_VISIBILITY])
+    } else {
+        shaded_deferred_shader!(T, [])
+    };
+}
+
+/// `name` of the entry points that cut holes where `T` does, else `whole`.
+fn entry<T: ShadedMaterial>(whole: &'static str, cut_out: &'static str) -> ShaderEntry {
+    ShaderEntry::entry(if T::CUTS_OUT { cut_out } else { whole })
 }
 
 /// `T`'s generated WGSL: its parameter struct, the per-draw array of it (`materials`), its
@@ -105,6 +138,7 @@ impl<T: ShadedMaterial> Material for T {
     const NAME: &'static str = T::TYPE_NAME;
     const PER_DRAW_WGSL_NAME: &'static str = T::PARAMS_WGSL_NAME;
     const TEXTURE_SLOTS: &'static [DefaultTexture] = <T as DeclaredMaterial>::TEXTURE_SLOTS;
+    const SURFACE_ON_POLYGON: bool = !T::CUTS_OUT;
 
     fn shader() -> ComposedShader {
         T::FORWARD
@@ -121,7 +155,15 @@ impl<T: ShadedMaterial> Material for T {
     fn key(&self) {}
 
     fn fragment(_: ()) -> ShaderEntry {
-        ShaderEntry::entry("fs_main")
+        entry::<T>("fs_main", "fs_main_cut_out")
+    }
+
+    fn prepass_fragment(_: ()) -> Option<ShaderEntry> {
+        T::CUTS_OUT.then(|| ShaderEntry::entry("fs_prepass_cut_out"))
+    }
+
+    fn visibility_fragment(_: ()) -> ShaderEntry {
+        entry::<T>("fs_visibility", "fs_visibility_cut_out")
     }
 
     fn deferred_resolve(_: ()) -> Option<ShaderEntry> {
