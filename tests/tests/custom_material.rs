@@ -226,7 +226,7 @@ fn a_material_that_cuts_holes_says_so_and_runs_on_both_paths() {
     let green = |image: &image::RgbaImage| {
         image
             .pixels()
-            .filter(|pixel| pixel.0[1] > pixel.0[0] + 30)
+            .filter(|pixel| i32::from(pixel.0[1]) > i32::from(pixel.0[0]) + 30)
             .count()
     };
     assert!(

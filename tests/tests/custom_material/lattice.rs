@@ -1,7 +1,7 @@
 use pom::prelude::*;
 
 pom::material_parameters! {
-    /// A plate with a grid of round holes, lit like `Matte`: a material that cuts holes.
+    /// A plate with a grid of round holes: a material that cuts holes.
     #[derive(Clone, Debug, PartialEq)]
     pub struct Lattice {
         parameters {
