@@ -29,7 +29,8 @@ pub const SHADED_CUT_OUT_VISIBILITY: WgslFile =
 /// scene-linear light and alpha. It sees:
 /// - `SurfaceInput` (`plugin/src/material/surface_input.wgsl`): position, normal, tangent frame,
 ///   uv, vertex colour, direction to the eye, pixel footprint, draw index, facing;
-/// - its parameters as `material` (colours as `array<f32, 4>`: `rgba(material.color)`);
+/// - its parameters as `material` (colours as `array<f32, 4>`: `rgba(material.color)`), of
+///   type `MaterialParams` (or the `gpu` name a declaration in the full form gives);
 /// - each texture input under its field name, sampled with `texture_at(texture, surface)`;
 /// - the lights (`light_count()`, `light_at(i, position)`, `frame.ambient`) and the scene's
 ///   shadows (`surface_shadow(i, surface)`);
