@@ -1,11 +1,13 @@
 //! CPU cost of many parallax entities: the Extract, Prepare and Render (command recording and
 //! submission) stages timed separately with the CPU clock, by marker systems added at the end of
-//! PostUpdate, Extract, Prepare and Render.
+//! PostUpdate, Extract, Prepare and Render. A share of the entities turns every frame, so that
+//! Prepare has their transforms to upload (with none moving it uploads nothing after frame 1:
+//! the best case).
 
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use pom::glam::Vec3;
+use pom::glam::{Quat, Vec3};
 use pom::{
     App, Assets, Camera, DirectionalLight, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
     RenderPlugin, Resources, Stage, Transform,
@@ -21,6 +23,8 @@ use crate::preview_textures::PreviewTextures;
 pub struct CpuSide {
     /// Entities with a parallax material.
     pub entities: usize,
+    /// The percentage of them that turn every frame.
+    pub moving_percent: u32,
     /// The path the frames ran, `forward` or `deferred`.
     pub path: &'static str,
     /// Extract stage.
@@ -40,10 +44,30 @@ fn mark<const INDEX: usize>(_: &mut pom::hecs::World, resources: &mut Resources)
     resources.get_or_default::<StageMarks>().0[INDEX] = Some(Instant::now());
 }
 
-/// Spawns `entities` small planes in a grid under one camera and times `frames` frames after
-/// `warmup` ones, rendered on `path`.
+/// Marks an entity that turns every frame.
+struct Moving;
+
+/// The percentages of moving entities each measurement is made with: none (the best case),
+/// a tenth (a game's usual share) and all.
+pub const MOVING_PERCENTS: [u32; 3] = [0, 10, 100];
+
+/// Turns every moving entity to a new angle about its vertical axis (every frame differs from
+/// the last, so each moving transform is uploaded again).
+fn turn_moving(world: &mut pom::hecs::World, resources: &mut Resources) {
+    let frame = resources
+        .get::<pom::Time>()
+        .map_or(0, pom::Time::frame_count);
+    let rotation = Quat::from_rotation_y(frame as f32 * 0.01);
+    for transform in world.query_mut::<&mut Transform>().with::<&Moving>() {
+        transform.rotation = rotation;
+    }
+}
+
+/// Spawns `entities` small planes in a grid under one camera, `moving_percent` of them turning
+/// every frame, and times `frames` frames after `warmup` ones, rendered on `path`.
 pub fn measure(
     entities: usize,
+    moving_percent: u32,
     textures: &PreviewTextures,
     path: pom::RenderPath,
     warmup: usize,
@@ -59,7 +83,8 @@ pub fn measure(
     app.add_system(Stage::PostUpdate, mark::<0>)
         .add_system(Stage::Extract, mark::<1>)
         .add_system(Stage::Prepare, mark::<2>)
-        .add_system(Stage::Render, mark::<3>);
+        .add_system(Stage::Render, mark::<3>)
+        .add_system(Stage::Update, turn_moving);
     app.finish().context("starting the GPU")?;
     let side = (entities as f32).sqrt().ceil().max(1.0) as usize;
     let plane = app
@@ -76,11 +101,15 @@ pub fn measure(
         .attach(images, ParallaxOcclusionMaterial::default());
     for index in 0..entities {
         let (x, z) = ((index % side) as f32, (index / side) as f32);
-        app.world.spawn((
+        let entity = app.world.spawn((
             plane.clone(),
             material.clone(),
             Transform::from_xyz(x - side as f32 / 2.0, 0.0, z - side as f32 / 2.0),
         ));
+        // Spread over the grid: entity i moves when the share reaches past it in its hundred.
+        if (index % 100) < moving_percent as usize {
+            app.world.insert_one(entity, Moving)?;
+        }
     }
     let extent = side as f32;
     app.world.spawn((
@@ -115,6 +144,7 @@ pub fn measure(
     let spread = |values: &[f64]| Spread::of(values).context("no CPU timings");
     Ok(CpuSide {
         entities,
+        moving_percent,
         path: path_name(deferred),
         extract: spread(&stages[0])?,
         prepare: spread(&stages[1])?,

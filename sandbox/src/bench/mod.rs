@@ -177,17 +177,20 @@ impl Runner<'_> {
             }
         }
         if wanted(Measurement::CpuSide) {
-            eprintln!(
-                "timing the CPU side with {} entities{on_path} ...",
-                args.entities
-            );
-            self.cpu_side.push(cpu_side::measure(
-                args.entities,
-                self.textures,
-                asked,
-                self.warmup.frames,
-                self.frames,
-            )?);
+            for moving_percent in cpu_side::MOVING_PERCENTS {
+                eprintln!(
+                    "timing the CPU side with {} entities, {moving_percent} % moving{on_path} ...",
+                    args.entities
+                );
+                self.cpu_side.push(cpu_side::measure(
+                    args.entities,
+                    moving_percent,
+                    self.textures,
+                    asked,
+                    self.warmup.frames,
+                    self.frames,
+                )?);
+            }
         }
         Ok(())
     }
@@ -324,6 +327,7 @@ impl Runner<'_> {
     fn scene_shadows(&mut self, size: (u32, u32)) -> Result<()> {
         let place = (size, 1.0);
         let material = self.base.clone();
+        // Each light type's frame without shadows, its baseline (ALL lists it first).
         let mut frame_without = None;
         for case in scene_shadows::ShadowCase::ALL {
             let (path, times) =
@@ -337,12 +341,14 @@ impl Runner<'_> {
             }
             let row = (path, "frame", case.name().to_owned());
             let frame_ms = self.record("scene_shadows", place, &material, row, &frames)?;
-            match frame_without {
-                None => frame_without = Some(frame_ms),
-                Some(without) => {
-                    let what = format!("street corner frame: {} / no shadows", case.name());
+            match (case.shadows, frame_without) {
+                (false, _) => frame_without = Some((case, frame_ms)),
+                (true, Some((baseline, without))) if baseline.light == case.light => {
+                    let what =
+                        format!("street corner frame: {} / {}", case.name(), baseline.name());
                     self.ratio(what, size, frame_ms, without);
                 }
+                (true, _) => anyhow::bail!("{} was timed before its baseline", case.name()),
             }
         }
         Ok(())

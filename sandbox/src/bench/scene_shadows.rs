@@ -1,5 +1,6 @@
 //! The street corner with and without scene shadows: the shadow phase per light type (the
-//! scene's sun, a spot and a point light in its place) and the whole frame, phase by phase.
+//! scene's sun, a spot and a point light in its place) and the whole frame, phase by phase, each
+//! light type against itself without shadows.
 
 use anyhow::{Context, Result};
 use glam::Vec3;
@@ -11,38 +12,62 @@ use pom::{
 use super::scene::{BenchScene, PhaseTimes, Warmup};
 use crate::demo_scene;
 
-/// Which light lights the scene, and whether it casts scene shadows.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ShadowCase {
-    /// The scene's sun, no shadow maps.
-    Off,
+/// The light that lights the street corner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowLight {
     /// The scene's sun: 3 cascades.
-    Directional,
+    Sun,
     /// A spot light where the sun comes from, aimed at the scene: one map.
     Spot,
     /// A point light there: six cube faces.
     Point,
 }
 
+/// Which light lights the scene, and whether it casts scene shadows. Each light type is timed
+/// without shadows too: its own baseline (a spot or point light shades differently from the
+/// sun even without maps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShadowCase {
+    /// The light.
+    pub light: ShadowLight,
+    /// Whether it casts scene shadows.
+    pub shadows: bool,
+}
+
 impl ShadowCase {
-    /// Every case, in the order they are reported.
-    pub const ALL: [ShadowCase; 4] = [Self::Off, Self::Directional, Self::Spot, Self::Point];
+    /// Every case, in the order they are reported: each light without shadows, then with.
+    pub const ALL: [ShadowCase; 6] = {
+        const fn case(light: ShadowLight, shadows: bool) -> ShadowCase {
+            ShadowCase { light, shadows }
+        }
+        [
+            case(ShadowLight::Sun, false),
+            case(ShadowLight::Sun, true),
+            case(ShadowLight::Spot, false),
+            case(ShadowLight::Spot, true),
+            case(ShadowLight::Point, false),
+            case(ShadowLight::Point, true),
+        ]
+    };
 
     /// The name in the report.
     pub fn name(self) -> &'static str {
-        match self {
-            Self::Off => "no shadows",
-            Self::Directional => "sun, 3 cascades",
-            Self::Spot => "spot, 1 map",
-            Self::Point => "point, 6 faces",
+        match (self.light, self.shadows) {
+            (ShadowLight::Sun, false) => "sun, no shadows",
+            (ShadowLight::Sun, true) => "sun, 3 cascades",
+            (ShadowLight::Spot, false) => "spot, no shadows",
+            (ShadowLight::Spot, true) => "spot, 1 map",
+            (ShadowLight::Point, false) => "point, no shadows",
+            (ShadowLight::Point, true) => "point, 6 faces",
         }
     }
 
     /// The phases a frame of this case runs (and, on the deferred path, the resolve).
     pub fn phases(self) -> &'static [&'static str] {
-        match self {
-            Self::Off => &["prepass", "opaque", "post"],
-            _ => &["prepass", "shadows", "opaque", "post"],
+        if self.shadows {
+            &["prepass", "shadows", "opaque", "post"]
+        } else {
+            &["prepass", "opaque", "post"]
         }
     }
 }
@@ -80,27 +105,33 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Re
     let intensity = DirectionalLight::default().intensity * distance * distance;
     let placed =
         Transform::from_xyz(position.x, position.y, position.z).looking_at(centre, Vec3::Y);
-    match case {
-        ShadowCase::Off => {}
-        ShadowCase::Directional => app.world.insert_one(sun, LightShadows::default())?,
-        ShadowCase::Spot | ShadowCase::Point => {
+    let shadows = case.shadows.then(LightShadows::default);
+    match case.light {
+        ShadowLight::Sun => {
+            if let Some(shadows) = shadows {
+                app.world.insert_one(sun, shadows)?;
+            }
+        }
+        ShadowLight::Spot | ShadowLight::Point => {
             app.world.despawn(sun)?;
-            let shadows = LightShadows::default();
-            if case == ShadowCase::Spot {
+            let light = if case.light == ShadowLight::Spot {
                 let spot = SpotLight {
                     intensity,
                     range: f32::INFINITY,
                     outer_angle: (radius / distance).atan() * 1.3,
                     ..SpotLight::default()
                 };
-                app.world.spawn((spot, shadows, placed));
+                app.world.spawn((spot, placed))
             } else {
                 let point = PointLight {
                     intensity,
                     range: f32::INFINITY,
                     ..PointLight::default()
                 };
-                app.world.spawn((point, shadows, placed));
+                app.world.spawn((point, placed))
+            };
+            if let Some(shadows) = shadows {
+                app.world.insert_one(light, shadows)?;
             }
         }
     }
