@@ -184,6 +184,8 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         assert!(cpu["total"]["median_ms"].as_f64().unwrap() > 0.0);
     }
     assert!(json["adapter"]["software_driver"].is_boolean());
+    // Frames whose timestamps were rejected or missing are counted, not reused.
+    assert!(json["dropped_frames"].is_u64());
 
     let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
     let mut lines = csv.lines();

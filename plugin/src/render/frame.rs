@@ -70,6 +70,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     // Every material has prepared its blended draws: order them across materials.
     resources.require_mut::<Renderer>()?.transparent.sort();
     let plan = FramePlan::new(resources)?;
+    resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
     let times = PhaseTimes::reserve(&plan, resources);
     let passes = FramePasses::new(resources, &plan)?;
     let mut encoder = passes.encoder("frame encoder");

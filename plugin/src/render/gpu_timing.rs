@@ -69,6 +69,15 @@ pub enum GpuTimings {
 }
 
 impl GpuTimings {
+    /// The frame number of the newest reading (`None` before the first, or without timing):
+    /// a reader that sees it unchanged after a frame knows that frame gave no reading.
+    pub fn reading_frame(&self) -> Option<u64> {
+        match self {
+            Self::Supported { passes, frame, .. } if !passes.is_empty() => Some(*frame),
+            _ => None,
+        }
+    }
+
     /// The milliseconds of the pass named `name` in the newest reading, if any.
     pub fn pass_ms(&self, name: &str) -> Option<f64> {
         match self {

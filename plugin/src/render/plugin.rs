@@ -154,6 +154,7 @@ impl Plugin for RenderPlugin {
             shadow_maps: ShadowMaps::new(gpu),
             path: self.path,
             deferred: false,
+            ran_opaque_pass: false,
             deferred_unavailable: None,
             visibility: None,
             background: None,

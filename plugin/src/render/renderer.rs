@@ -28,6 +28,9 @@ pub struct Renderer {
     pub(super) path: RenderPath,
     /// Whether this frame runs deferred (decided in the Prepare stage).
     pub(crate) deferred: bool,
+    /// Whether the last rendered frame ran the opaque render pass (a deferred frame whose
+    /// opaque draws all resolve in compute does not).
+    pub(crate) ran_opaque_pass: bool,
     /// Why the last frame that asked for deferred ran forward, as logged.
     pub(super) deferred_unavailable: Option<DeferredUnavailable>,
     /// The deferred path's visibility buffer, once a frame has needed it.
@@ -70,6 +73,13 @@ impl Renderer {
     /// Whether the last prepared frame ran the deferred path.
     pub fn runs_deferred(&self) -> bool {
         self.deferred
+    }
+
+    /// Whether the last rendered frame ran the opaque render pass: a deferred frame whose
+    /// opaque draws all shade in the compute resolve runs none (its GPU timings then have no
+    /// "opaque" phase).
+    pub fn ran_opaque_pass(&self) -> bool {
+        self.ran_opaque_pass
     }
 
     /// Why the last frame runs forward although its path asked for deferred, if it does.

@@ -622,6 +622,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         versus_mesh: runner.versus_mesh,
         cpu_side: runner.cpu_side,
         method_table: runner.method_rows,
+        dropped_frames: scene::dropped_frames(),
     };
     print!("{}", report.table());
     std::fs::create_dir_all(&args.out)

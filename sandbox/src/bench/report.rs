@@ -122,6 +122,9 @@ pub struct BenchReport {
     pub cpu_side: Vec<CpuSide>,
     /// Each method's error, fetches and time (none when left out by `--only`).
     pub method_table: Vec<MethodRow>,
+    /// Timed frames dropped because their timestamps were rejected or missing (each case
+    /// timed its full count of other frames instead).
+    pub dropped_frames: usize,
 }
 
 /// CSV columns, in order.
@@ -170,6 +173,11 @@ impl BenchReport {
         if a.software_driver {
             out.push_str("SOFTWARE DRIVER: these timings are not performance figures\n");
         }
+        let _ = writeln!(
+            out,
+            "timed frames dropped for rejected or missing timestamps: {}",
+            self.dropped_frames
+        );
         match &self.texel_rate {
             Some(rate) => {
                 let _ = writeln!(
@@ -396,6 +404,7 @@ mod tests {
             versus_mesh: Vec::new(),
             cpu_side: Vec::new(),
             method_table: Vec::new(),
+            dropped_frames: 0,
         }
     }
 

@@ -1,6 +1,7 @@
 //! One benchmark scene: the plugin's preview plane with a parallax material, rendered offscreen
 //! with blocking GPU timing. The plugin does all the rendering; this only drives it.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
@@ -273,9 +274,9 @@ impl BenchScene {
     }
 
     /// Like [`BenchScene::time`], each phase of `phases` with its milliseconds per timed frame;
-    /// where the frames run deferred, the resolve is added after the opaque phase, and a phase
-    /// the deferred frame did not run is left out (the opaque phase, when only the resolve
-    /// shades: the background is then written from compute).
+    /// where the frames run deferred, the resolve is added after the opaque phase, and the
+    /// opaque phase is left out when the renderer ran no opaque pass (only the resolve shades:
+    /// the background is then written from compute). Every other phase must be timed.
     pub fn time_phases(
         &mut self,
         warmup: Warmup,
@@ -286,13 +287,14 @@ impl BenchScene {
             warmup,
             frames,
             |scene| {
-                let deferred = scene.runs_deferred();
-                let timings = scene.app.resources.get::<GpuTimings>();
-                on_path(phases, deferred)
+                let opaque_pass = scene
+                    .app
+                    .resources
+                    .get::<Renderer>()
+                    .is_none_or(Renderer::ran_opaque_pass);
+                on_path(phases, scene.runs_deferred())
                     .into_iter()
-                    .filter(|phase| {
-                        !deferred || timings.is_some_and(|t| t.pass_ms(phase).is_some())
-                    })
+                    .filter(|phase| *phase != "opaque" || opaque_pass)
                     .collect()
             },
             |app| Ok(app.update()?),
@@ -396,6 +398,14 @@ impl BenchScene {
 
     /// Per pass of `passes` (chosen after the warm-up, which renders at least one frame), its
     /// milliseconds in each timed frame.
+    /// The frame number of the newest GPU timing reading.
+    fn reading_frame(&self) -> Option<u64> {
+        self.app
+            .resources
+            .get::<GpuTimings>()
+            .and_then(GpuTimings::reading_frame)
+    }
+
     fn time_frames(
         &mut self,
         warmup: Warmup,
@@ -414,28 +424,51 @@ impl BenchScene {
             .into_iter()
             .map(|pass| (pass, Vec::with_capacity(frames)))
             .collect();
-        for frame in 0..frames {
+        // A frame counts when it gave a reading of its own (not the last frame's again) with
+        // every phase in it; any other is dropped and counted. A phase that never comes fails
+        // the case rather than vanishing from its sum.
+        let (mut timed, mut dropped) = (0, 0);
+        let mut last_reading = self.reading_frame();
+        while timed < frames {
+            if dropped > frames + 8 {
+                let passes: Vec<_> = times.iter().map(|(pass, _)| *pass).collect();
+                bail!(
+                    "{dropped} timed frames had no fresh, valid timestamp for every one of \
+                     {passes:?} ({timed} of {frames} did)"
+                );
+            }
             render(&mut self.app).context("rendering a timed frame")?;
-            for (pass, times) in &mut times {
-                let ms = self
-                    .app
-                    .resources
-                    .get::<GpuTimings>()
-                    .and_then(|timings| timings.pass_ms(pass));
-                match ms {
-                    Some(ms) => times.push(ms),
-                    None => {
-                        bail!(
-                            "timed frame {frame}: the GPU gave no valid timestamps for {}",
-                            *pass
-                        )
+            let reading = self.reading_frame();
+            let fresh = reading.is_some() && reading != last_reading;
+            last_reading = reading;
+            let timings = self.app.resources.get::<GpuTimings>();
+            let all: Option<Vec<f64>> = times
+                .iter()
+                .map(|(pass, _)| timings.and_then(|timings| timings.pass_ms(pass)))
+                .collect();
+            match all.filter(|_| fresh) {
+                Some(frame) => {
+                    for ((_, times), ms) in times.iter_mut().zip(frame) {
+                        times.push(ms);
                     }
+                    timed += 1;
                 }
+                None => dropped += 1,
             }
         }
+        DROPPED_FRAMES.fetch_add(dropped, Ordering::Relaxed);
         self.check_errors().context("while timing")?;
         Ok(times)
     }
+}
+
+/// Timed frames dropped so far in this process because their timestamps were rejected or
+/// missing (never counted with the last frame's values instead).
+static DROPPED_FRAMES: AtomicUsize = AtomicUsize::new(0);
+
+/// The timed frames dropped so far for missing or rejected timestamps, for the report.
+pub fn dropped_frames() -> usize {
+    DROPPED_FRAMES.load(Ordering::Relaxed)
 }
 
 /// Whether `app`'s last frame ran the deferred path.
