@@ -1,6 +1,8 @@
-//! The material seam: a [`Material`] declares its GPU form (uniform, textures, WGSL, pipeline
-//! key) and [`MaterialPlugin`] extracts, prepares and draws it. The core renderer never names a
-//! material; `LitMaterial` and `ParallaxOcclusionMaterial` are two materials like any other.
+//! The material seam: a [`Material`] declares its GPU form (per-draw data, textures, WGSL,
+//! pipeline key) and [`MaterialPlugin`] extracts, prepares and draws it; a [`ShadedMaterial`]
+//! is one written as a WGSL shading function, around which the seam composes every entry
+//! point. The core renderer never names a material; `LitMaterial` and
+//! `ParallaxOcclusionMaterial` are two materials like any other.
 
 mod batches;
 mod deferred;
@@ -54,7 +56,7 @@ use crate::render::{DefaultTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTU
 /// [`crate::render::shaders`]): they declare (group 0) `frame` (binding 0) and the per-draw
 /// `transforms` (binding 1), the vertex entry `vs_main` and its output `VertexOut`
 /// (`object_index` indexes per-draw arrays). The material declares its
-/// own per-draw `array<Uniform>` at group 0 binding 2 and its textures at group 1, bindings
+/// own per-draw `array<PerDraw>` at group 0 binding 2 and its textures at group 1, bindings
 /// `0..TEXTURE_SLOTS.len()`, followed by one trilinear repeating sampler.
 pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// One element of the per-draw storage array the shader reads (`materials[object_index]`):
