@@ -1,4 +1,5 @@
-//! The library's source files, for the tests that read them (layering, code shape).
+//! The library's source files and documents, for the tests that read them (layering, code
+//! shape, the README's and the docs' code kept verbatim).
 
 use std::path::{Path, PathBuf};
 
@@ -19,4 +20,14 @@ pub fn rust_files(dir: &Path) -> Vec<PathBuf> {
         }
     }
     files
+}
+
+/// The text of the first fenced block of `language` (```` ```rust ````, ```` ```wgsl ````; an
+/// info string such as `rust,ignore` counts) after `heading` in `document`.
+pub fn fenced_block<'a>(document: &'a str, heading: &str, language: &str) -> &'a str {
+    let section = &document[document.find(heading).expect(heading)..];
+    let fence = format!("```{language}");
+    let code = &section[section.find(&fence).expect(&fence) + fence.len()..];
+    let code = &code[code.find('\n').expect("the fence ends its line") + 1..];
+    &code[..code.find("```").expect("the block is closed")]
 }

@@ -22,6 +22,7 @@ use pom::material::{DeclaredMaterial, check_material_layout};
 use pom::render::Renderer;
 use pom::render::shaders::{self, ComposedShader};
 use pom::{Assets, Color, DirectionalLight, MaterialPlugin, Mesh, RenderPath, Transform};
+use pom_tests::sources::fenced_block;
 use pom_tests::{FlipTolerance, check_golden, headless_app, render_on_path};
 use screen::Screen;
 
@@ -487,23 +488,13 @@ fn a_shader_that_does_not_compile_is_an_error_naming_the_material_file_and_line(
 
 #[test]
 fn a_material_that_discards_but_says_its_surface_is_on_its_polygon_is_an_error() {
-    let mut app = headless_app(8, 8).unwrap();
-    app.add_plugin(MaterialPlugin::<SecretlyCut>::default());
-    let error = app.finish().unwrap_err().to_string();
+    let error = start_error::<SecretlyCut>();
     assert!(
         error.contains(
             "material secretly cut says its surface lies on its polygon (Material::SURFACE_ON_POLYGON), but its fragment entry fs_main discards"
         ),
         "{error}"
     );
-}
-
-/// The first fenced block of `language` in `document` after `heading`.
-fn block_after<'a>(document: &'a str, heading: &str, language: &str) -> &'a str {
-    let section = &document[document.find(heading).expect(heading)..];
-    let fence = format!("```{language}");
-    let code = &section[section.find(&fence).expect(&fence) + fence.len()..];
-    &code[code.find('\n').unwrap() + 1..code.find("```").unwrap()]
 }
 
 #[test]
@@ -521,17 +512,17 @@ fn the_readme_and_the_custom_material_doc_show_this_example_verbatim() {
         ),
     ] {
         assert_eq!(
-            block_after(document, heading, "rust"),
+            fenced_block(document, heading, "rust"),
             rust,
             "{name}'s material and tests/tests/custom_material/matte.rs differ"
         );
         assert_eq!(
-            block_after(document, heading, "wgsl"),
+            fenced_block(document, heading, "wgsl"),
             wgsl,
             "{name}'s shading function and tests/tests/custom_material/matte.wgsl differ"
         );
     }
-    let covers = block_after(doc, "## Cutting holes", "wgsl");
+    let covers = fenced_block(doc, "## Cutting holes", "wgsl");
     assert!(
         include_str!("custom_material/lattice.wgsl").contains(covers),
         "custom-material.md's `covers` and tests/tests/custom_material/lattice.wgsl differ"

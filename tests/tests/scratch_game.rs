@@ -8,20 +8,16 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 
+use pom_tests::sources::fenced_block;
 use pom_tests::xvfb::{Xvfb, distinct_colours};
 
 /// The README's window game: the Rust block of its "A game in a window" section.
 fn readme_game() -> &'static str {
-    let readme = include_str!("../../README.md");
-    let section = &readme[readme
-        .find("## A game in a window")
-        .expect("the README has the section")..];
-    let start = section
-        .find("```rust")
-        .expect("the section has a Rust block");
-    let code = &section[start..];
-    let code = &code[code.find('\n').expect("the fence ends its line") + 1..];
-    &code[..code.find("```").expect("the block is closed")]
+    fenced_block(
+        include_str!("../../README.md"),
+        "## A game in a window",
+        "rust",
+    )
 }
 
 /// Writes the scratch crate under `dir`: its manifest, the workspace's lock file (so it builds

@@ -114,7 +114,8 @@ impl ComposedShader {
     }
 }
 
-/// Compiles `source`, composed for `device`'s [`ShaderTarget`], on `device`.
+/// Compiles `source` (already composed for `device`'s [`ShaderTarget`]) on `device`, labelled
+/// `name`.
 pub(crate) fn create_module(
     device: &wgpu::Device,
     name: &str,

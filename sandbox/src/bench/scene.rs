@@ -294,7 +294,7 @@ impl BenchScene {
                     .is_none_or(Renderer::ran_opaque_pass);
                 on_path(phases, scene.runs_deferred())
                     .into_iter()
-                    .filter(|phase| *phase != "opaque" || opaque_pass)
+                    .filter(|phase| *phase != RenderPhase::Opaque.name() || opaque_pass)
                     .collect()
             },
             |app| Ok(app.update()?),
@@ -396,8 +396,6 @@ impl BenchScene {
         Ok(times.pop().map(|(_, times)| times).unwrap_or_default())
     }
 
-    /// Per pass of `passes` (chosen after the warm-up, which renders at least one frame), its
-    /// milliseconds in each timed frame.
     /// The frame number of the newest GPU timing reading.
     fn reading_frame(&self) -> Option<u64> {
         self.app
@@ -406,6 +404,8 @@ impl BenchScene {
             .and_then(GpuTimings::reading_frame)
     }
 
+    /// Per pass of `passes` (chosen after the warm-up, which renders at least one frame), its
+    /// milliseconds in each timed frame.
     fn time_frames(
         &mut self,
         warmup: Warmup,
