@@ -2,8 +2,9 @@
 
 use std::path::Path;
 
-use pom::{App, PomPlugin, RenderPlugin, load_gltf};
-use pom_tests::{FlipTolerance, check_golden, render_both_paths};
+use pom::render::Renderer;
+use pom::{App, PomPlugin, RenderPath, RenderPlugin, load_gltf};
+use pom_tests::{FlipTolerance, check_golden, render_both_paths, render_on_path};
 
 #[test]
 fn the_shipped_street_corner_matches_its_reference() {
@@ -16,6 +17,11 @@ fn the_shipped_street_corner_matches_its_reference() {
     assert_eq!((scene.cameras.len(), scene.lights.len()), (1, 1));
     let image = render_both_paths(&mut app, "street_corner").unwrap();
     check_golden("street_corner", &image, FlipTolerance::default()).unwrap();
+    // Every opaque draw of the scene (lit and parallax) shades in the compute resolve: a
+    // deferred frame runs no opaque raster pass.
+    render_on_path(&mut app, RenderPath::Deferred).unwrap();
+    let renderer = app.resources.get::<Renderer>().unwrap();
+    assert!(renderer.runs_deferred() && !renderer.ran_opaque_pass());
 }
 
 /// The same scene with its sun casting scene shadows: the ball and the crate stand on the

@@ -1,9 +1,12 @@
-//! `LitMaterial`: the lit, normal-mapped material, a [`Material`] like any other. With
+//! `LitMaterial`: the lit, normal-mapped material, a [`Material`] like any other. Its WGSL is a
+//! shading function over the seam's surface input, around which it composes the seam's entry
+//! points: on the deferred path its opaque and masked draws shade in the compute resolve. With
 //! [`MaterialPlugin::for_meshes_without_material`] it also draws meshes that have no material.
 
 use crate::material::{
     Choice, DeclaredMaterial, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
-    ParamSpec, ShaderEntry, TextureFacts,
+    ParamSpec, SHADED_CUT_OUT, SHADED_CUT_OUT_VISIBILITY, SHADED_FORWARD, SHADED_RESOLVE,
+    SURFACE_INPUT, ShaderEntry, TextureFacts,
 };
 use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
@@ -77,11 +80,12 @@ impl LitMaterial {
     }
 }
 
-/// The lit material's entry point.
+/// The lit material's shading function (`shade`, `covers`) and bindings.
 pub const LIT_ENTRY: WgslFile = crate::wgsl_file!("lit/lit.wgsl");
 
-/// The lit shader's generated constants after `$first`, and its files followed by `$more`:
-/// the forward and the deferred shader list them once.
+/// The lit shader's generated constants after `$first`, and its files (the core's, the lit
+/// shading function and the seam's entry points around it) followed by `$more`: the forward and
+/// the deferred shader list them once.
 macro_rules! lit_shader {
     ($name:literal, [$($first:expr),*], [$($more:expr),*]) => {
         ComposedShader {
@@ -99,7 +103,10 @@ macro_rules! lit_shader {
                 shaders::SHADOWS,
                 shaders::TANGENT_SPACE,
                 shaders::LIGHTING,
+                SURFACE_INPUT,
                 LIT_ENTRY,
+                SHADED_FORWARD,
+                SHADED_CUT_OUT,
                 $($more,)*
             ],
         }
@@ -109,15 +116,19 @@ macro_rules! lit_shader {
 /// The lit material's shader.
 pub const LIT_SHADER: ComposedShader = lit_shader!("lit.wgsl", [], []);
 
-/// The lit material's visibility-pass entry for masked surfaces.
-pub const LIT_DEFERRED_ENTRY: WgslFile = crate::wgsl_file!("lit/lit_deferred.wgsl");
-
-/// The lit material's shader for the deferred path: [`LIT_SHADER`] and its visibility pass (it
-/// shades in the opaque phase on both paths).
+/// The lit material's shader for the deferred path: [`LIT_SHADER`], its visibility pass and
+/// the compute resolve, where opaque and masked surfaces shade (blended ones draw in the
+/// transparent phase on both paths).
 pub const LIT_DEFERRED_SHADER: ComposedShader = lit_shader!(
     "lit.wgsl (deferred)",
     [shaders::deferred_header],
-    [shaders::VISIBILITY, LIT_DEFERRED_ENTRY]
+    [
+        SHADED_CUT_OUT_VISIBILITY,
+        shaders::VISIBILITY,
+        shaders::VISIBILITY_READ,
+        shaders::DEFERRED_RESOLVE,
+        SHADED_RESOLVE
+    ]
 );
 
 /// What one lit pipeline is compiled for.
@@ -131,12 +142,13 @@ pub struct LitPipelineKey {
 }
 
 impl LitPipelineKey {
-    fn variant(self, entry_point: &'static str) -> ShaderEntry {
-        let mask = self.alpha_mode == AlphaMode::Mask;
-        ShaderEntry {
-            entry_point,
-            constants: vec![("ALPHA_MASK", f64::from(u8::from(mask)))],
-        }
+    /// `whole`, or for a masked surface `cut_out`: the seam's entry that leaves the holes out.
+    fn entry(self, whole: &'static str, cut_out: &'static str) -> ShaderEntry {
+        ShaderEntry::entry(if self.alpha_mode == AlphaMode::Mask {
+            cut_out
+        } else {
+            whole
+        })
     }
 }
 
@@ -170,7 +182,7 @@ impl Material for LitMaterial {
 
     fn prepass_fragment(key: Self::Key) -> Option<ShaderEntry> {
         // A cut-out surface must leave its holes out of the depth too.
-        (key.alpha_mode == AlphaMode::Mask).then(|| key.variant("fs_prepass_alpha_mask"))
+        (key.alpha_mode == AlphaMode::Mask).then(|| ShaderEntry::entry("fs_prepass_cut_out"))
     }
 
     fn deferred_shader() -> Option<ComposedShader> {
@@ -178,11 +190,12 @@ impl Material for LitMaterial {
     }
 
     fn visibility_fragment(key: Self::Key) -> ShaderEntry {
-        if key.alpha_mode == AlphaMode::Mask {
-            key.variant("fs_visibility_alpha_mask")
-        } else {
-            ShaderEntry::entry("fs_visibility")
-        }
+        key.entry("fs_visibility", "fs_visibility_cut_out")
+    }
+
+    fn deferred_resolve(key: Self::Key) -> Option<ShaderEntry> {
+        // What the visibility pass kept is covered: the resolve shades it whole.
+        (!Self::blends(key)).then(|| ShaderEntry::entry("cs_resolve"))
     }
 
     fn cull_mode(key: Self::Key) -> Option<wgpu::Face> {
@@ -190,7 +203,7 @@ impl Material for LitMaterial {
     }
 
     fn fragment(key: Self::Key) -> ShaderEntry {
-        key.variant("fs_main")
+        key.entry("fs_main", "fs_main_cut_out")
     }
 
     fn per_draw(&self, _: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> LitParams {
