@@ -89,12 +89,10 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
         "no WGSL files under {}: did they move?",
         src_dir().display()
     );
-    let counting = pom::render::shaders::FRAGMENT_COUNTER_COUNTING;
     let shaders = every_shader();
     let composed: BTreeSet<(&str, &str)> = shaders
         .iter()
         .flat_map(|shader| shader.files.iter().map(|file| (file.path, file.source)))
-        .chain([(counting.path, counting.source)])
         .collect();
     for path in &on_disk {
         let relative = path

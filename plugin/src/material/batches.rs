@@ -50,6 +50,9 @@ pub(crate) struct Batch<K> {
     pub(crate) visibility_ids: Range<u32>,
     /// The mesh's triangles: each instance owns that many ids.
     pub(crate) triangles: u32,
+    /// The view depth of its nearest instance's nearest point (bounding sphere): where it
+    /// stands in the frame's nearest-first prepass.
+    pub(crate) nearest_depth: f32,
 }
 
 /// What preparing one material's draws reads besides its own state.
@@ -262,20 +265,29 @@ impl<M: Material> MaterialBatches<M> {
                 .draw_key(draw.material.key(), &uniform, &mut view);
             self.uniform_data.push(uniform);
             // Blended draws are ordered by their centre, as a mesh placed away from its origin
-            // (a glTF primitive with its vertices where it stands) has it elsewhere.
-            let centre_depth = M::blends(key).then(|| {
-                let centre = bounds.map_or(draw.model.w_axis.truncate(), |bounds| {
-                    draw.model.transform_point3(bounds.center)
-                });
-                view_depth(centre, inputs.eye)
+            // (a glTF primitive with its vertices where it stands) has it elsewhere; the
+            // prepass by the nearest point of the bounding sphere (a floor reaching the eye is
+            // near, wherever its centre is).
+            let (centre, radius) = bounds.map_or((draw.model.w_axis.truncate(), 0.0), |bounds| {
+                let scale = draw
+                    .model
+                    .x_axis
+                    .length()
+                    .max(draw.model.y_axis.length())
+                    .max(draw.model.z_axis.length());
+                (
+                    draw.model.transform_point3(bounds.center),
+                    bounds.radius * scale,
+                )
             });
+            let centre_view_depth = view_depth(centre, inputs.eye);
             self.order.push(SortEntry::new(
                 draw,
                 index,
-                key,
-                textures,
+                (key, textures),
                 inputs.eye,
-                centre_depth,
+                centre_view_depth - radius,
+                M::blends(key).then_some(centre_view_depth),
             ));
         }
     }
@@ -324,6 +336,7 @@ impl<M: Material> MaterialBatches<M> {
                         && batch.mesh == entry.mesh =>
                 {
                     batch.instances.end = instance + 1;
+                    batch.nearest_depth = batch.nearest_depth.min(entry.nearest_depth);
                 }
                 _ => self.batches.push(Batch {
                     key: entry.key,
@@ -333,6 +346,7 @@ impl<M: Material> MaterialBatches<M> {
                     instances: instance..instance + 1,
                     visibility_ids: 0..0,
                     triangles: 0,
+                    nearest_depth: entry.nearest_depth,
                 }),
             }
         }

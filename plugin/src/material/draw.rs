@@ -82,34 +82,60 @@ impl<M: Material> MaterialBatches<M> {
         self.blended.iter().copied()
     }
 
-    /// Records the blended `batches` (indices into the last prepared frame's batches, in the
-    /// order the transparent phase sorted them) into `pass`; neighbours that continue one
-    /// another's instances with the same pipeline, textures and mesh are one draw.
-    pub(crate) fn draw_blended(
+    /// The batches of the last prepared frame that draw in the prepass, for the frame's
+    /// nearest-first list of it: (view depth of the batch's nearest point, batch index).
+    pub(crate) fn prepass_nearest_first(&self) -> impl Iterator<Item = (f32, u32)> + '_ {
+        self.batches
+            .iter()
+            .enumerate()
+            .filter_map(|(index, batch)| {
+                self.pipelines
+                    .pass_in(DrawPhase::Prepass, batch.key)
+                    .map(|_| (batch.nearest_depth, index as u32))
+            })
+    }
+
+    /// Records the `listed` batches (indices into the last prepared frame's batches, in the
+    /// order the frame's sorted list of `phase` gave them) that draw in `phase` into `pass`;
+    /// neighbours that continue one another's instances with the same pipeline, textures and
+    /// mesh are one draw.
+    pub(crate) fn draw_listed(
         &self,
+        phase: DrawPhase,
         pass: &mut wgpu::RenderPass<'_>,
         assets: &GpuAssets,
-        batches: &[u32],
+        listed: &[u32],
     ) {
-        pass.set_bind_group(0, self.frame_groups.shading(), &[0]);
-        let mut calls: Vec<DrawCall<M::Key>> = Vec::with_capacity(batches.len());
-        for batch in batches
-            .iter()
-            .filter_map(|&index| self.batches.get(index as usize))
-        {
+        pass.set_bind_group(0, self.frame_bind_group(phase), &[0]);
+        let mut calls: Vec<DrawCall<M::Key>> = Vec::with_capacity(listed.len());
+        for (batch, mesh_pass) in listed.iter().filter_map(|&index| {
+            let batch = self.batches.get(index as usize)?;
+            Some((batch, self.pipelines.pass_in(phase, batch.key)?))
+        }) {
             match calls.last_mut() {
                 Some(call)
-                    if call.key == batch.key
+                    if call.pass == mesh_pass
+                        && call.key == batch.key
                         && call.textures == batch.textures
                         && call.mesh == batch.mesh
                         && call.instances.end == batch.instances.start =>
                 {
                     call.instances.end = batch.instances.end;
                 }
-                _ => calls.push(DrawCall::of(batch, MeshPass::Transparent)),
+                _ => calls.push(DrawCall::of(batch, mesh_pass)),
             }
         }
         self.record_calls(pass, assets, calls);
+    }
+
+    /// The frame bind group of `phase`: the prepass writes (depth, visibility keys), the
+    /// others shade.
+    fn frame_bind_group(&self, phase: DrawPhase) -> &wgpu::BindGroup {
+        if phase == DrawPhase::Prepass {
+            self.frame_groups.writing()
+        } else {
+            self.frame_groups.shading()
+        }
     }
 
     /// Records the batches that draw in `phase` and whose mesh is on the GPU into `pass`,
@@ -120,13 +146,8 @@ impl<M: Material> MaterialBatches<M> {
         pass: &mut wgpu::RenderPass<'_>,
         assets: &GpuAssets,
     ) {
-        let frame_bind_group = if phase == DrawPhase::Prepass {
-            self.frame_groups.writing()
-        } else {
-            self.frame_groups.shading()
-        };
         // Slot 0 of the frame uniform: the camera's view.
-        pass.set_bind_group(0, frame_bind_group, &[0]);
+        pass.set_bind_group(0, self.frame_bind_group(phase), &[0]);
         self.record_calls(
             pass,
             assets,

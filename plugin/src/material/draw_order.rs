@@ -17,6 +17,9 @@ pub(super) struct SortEntry<K> {
     /// Distance from the eye to the object's origin along the view, as ordered bits: the
     /// instances of one batch are drawn nearest first.
     view_depth: u32,
+    /// The view depth of the nearest point of the draw's bounding sphere: its batch reaches the
+    /// frame's nearest-first prepass at its nearest instance's.
+    pub(super) nearest_depth: f32,
     /// Whether the draw blends: blended draws come after the opaque ones, farthest first, each a
     /// batch of its own (the frame's transparent phase orders them across materials).
     pub(super) blends: bool,
@@ -31,14 +34,15 @@ pub(super) struct SortEntry<K> {
 
 impl<K: Copy + Ord> SortEntry<K> {
     /// The entry of `draw`, the `index`th extracted, drawn with `key` and `textures`; its
-    /// origin's view depth seen from `eye` (position, forward), and for a blended draw its
-    /// centre's (`centre_depth`; `None` for an opaque one).
+    /// origin's view depth seen from `eye` (position, forward), its nearest point's
+    /// (`nearest_depth`), and for a blended draw its centre's (`centre_depth`; `None` for an
+    /// opaque one).
     pub(super) fn new<M>(
         draw: &ExtractedDraw<M>,
         index: usize,
-        key: K,
-        textures: BoundTextures,
+        (key, textures): (K, BoundTextures),
         eye: (Vec3, Vec3),
+        nearest_depth: f32,
         centre_depth: Option<f32>,
     ) -> Self {
         let centre_depth = centre_depth.map(|depth| f32::from_bits(depth_order_bits(depth)));
@@ -48,6 +52,7 @@ impl<K: Copy + Ord> SortEntry<K> {
             textures,
             mesh: draw.mesh,
             view_depth: depth_order_bits(view_depth(draw.model.w_axis.truncate(), eye)),
+            nearest_depth,
             blends: centre_depth.is_some(),
             far_first: centre_depth.map_or(0, |depth| !depth.to_bits()),
             centre_depth: centre_depth.unwrap_or(0.0),

@@ -176,8 +176,8 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
 /// Registers material `M`'s draws in every phase: prepass, opaque, transparent, deferred
 /// resolve and shadow maps.
 fn add_phase_draws<M: Material>(phases: &mut RenderPhases) {
-    phases.add_draw::<M>(DrawPhase::Prepass, |resources, pass| {
-        draw_materials::<M>(resources, pass, DrawPhase::Prepass);
+    phases.add_sorted::<M>(DrawPhase::Prepass, |resources, pass, batches| {
+        draw_listed::<M>(resources, pass, DrawPhase::Prepass, batches);
     });
     phases.add_draw_when::<M>(
         DrawPhase::Opaque,
@@ -188,13 +188,8 @@ fn add_phase_draws<M: Material>(phases: &mut RenderPhases) {
                 .is_some_and(|batches| batches.draws_in(DrawPhase::Opaque))
         },
     );
-    phases.add_transparent::<M>(|resources, pass, batches| {
-        if let (Some(material), Some(renderer)) = (
-            resources.get::<MaterialBatches<M>>(),
-            resources.get::<Renderer>(),
-        ) {
-            material.draw_blended(pass, &renderer.assets, batches);
-        }
+    phases.add_sorted::<M>(DrawPhase::Transparent, |resources, pass, batches| {
+        draw_listed::<M>(resources, pass, DrawPhase::Transparent, batches);
     });
     phases.add_resolve::<M>(
         |resources, pass| {
@@ -274,8 +269,8 @@ fn prepare_materials<M: Material>(
         .unwrap_or_else(|| Err(AppError::missing::<MaterialBatches<M>>()))
 }
 
-/// Prepares `batches` for this frame's extracted draws of `M`, hands the transparent phase its
-/// blended batches, and adds what was uploaded to the renderer's count.
+/// Prepares `batches` for this frame's extracted draws of `M`, hands the prepass its batches
+/// (nearest first) and the transparent phase its blended ones, and adds what was uploaded to the renderer's count.
 fn prepare_frame<M: Material>(
     resources: &Resources,
     batches: &mut MaterialBatches<M>,
@@ -316,6 +311,9 @@ fn prepare_frame<M: Material>(
         &mut stats,
         &mut renderer.visibility_ids,
     );
+    renderer
+        .prepass_order
+        .replace::<M>(batches.prepass_nearest_first());
     renderer.transparent.replace::<M>(batches.blended());
     lod_cache.retain_existing(inputs.meshes);
     renderer.last_upload.meshes += stats.meshes;
@@ -351,6 +349,22 @@ fn draw_materials<M: Material>(
         resources.get::<Renderer>(),
     ) {
         batches.draw(phase, pass, &renderer.assets);
+    }
+}
+
+/// Records material `M`'s `listed` batches of `phase`, in the order the frame's sorted list of
+/// the phase gave them.
+fn draw_listed<M: Material>(
+    resources: &Resources,
+    pass: &mut wgpu::RenderPass<'_>,
+    phase: DrawPhase,
+    listed: &[u32],
+) {
+    if let (Some(batches), Some(renderer)) = (
+        resources.get::<MaterialBatches<M>>(),
+        resources.get::<Renderer>(),
+    ) {
+        batches.draw_listed(phase, pass, &renderer.assets, listed);
     }
 }
 
@@ -399,7 +413,7 @@ mod tests {
         let phases = app.resources.get::<RenderPhases>().unwrap();
         assert_eq!(phases.draw_count(DrawPhase::Opaque), 2);
         assert_eq!(phases.draw_count(DrawPhase::Prepass), 2);
-        assert_eq!(phases.transparent_draw_count(), 2);
+        assert_eq!(phases.sorted_draw_count(DrawPhase::Transparent), 2);
         assert_eq!(
             app.resources
                 .get::<MaterialRegistry>()

@@ -56,7 +56,6 @@ macro_rules! parallax_shader {
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,
                 shaders::PREPASS_DEPTH,
-                shaders::FRAGMENT_COUNTER,
                 shaders::TANGENT_SPACE,
                 shaders::LIGHTING,
                 HEIGHT_CHANNEL,

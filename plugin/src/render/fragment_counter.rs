@@ -6,7 +6,9 @@ use std::time::Duration;
 use super::{CaptureError, GpuContext};
 
 /// Counts the fragment-shader invocations of every material entry point that calls
-/// `count_fragment_invocation()` (the parallax material's opaque-phase entry points).
+/// `count_fragment_invocation()`: the parallax material's opaque-phase entry points, and on
+/// the deferred path every merge into the visibility buffer (`keep_visible`), so a test sees
+/// what the visibility pass did for hidden surfaces.
 /// Insert it before the app's plugins finish: material plugins then compile their shaders with
 /// the counting variant. A resource; for tests and measurements, not for games (an atomic per
 /// pixel costs time).

@@ -67,8 +67,10 @@ fn light_views(extracted: &ExtractedFrame) -> Vec<FrameUniform> {
 /// order (prepass, shadows, opaque, resolve, transparent; then post-processing in a second
 /// submission; the overlay belongs to the application), each timed under its name.
 pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    // Every material has prepared its blended draws: order them across materials.
-    resources.require_mut::<Renderer>()?.transparent.sort();
+    // Every material has prepared its draws: order the sorted phases across materials.
+    let renderer = resources.require_mut::<Renderer>()?;
+    renderer.prepass_order.sort();
+    renderer.transparent.sort();
     let plan = FramePlan::new(resources)?;
     resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
     let times = PhaseTimes::reserve(&plan, resources);
@@ -138,7 +140,10 @@ impl FramePlan {
         };
         let shadow_maps = !extracted.shadow_views.is_empty()
             && phases.is_some_and(|p| p.shadow_draws().next().is_some());
-        let prepass = renderer.depth_prepass && has(DrawPhase::Prepass);
+        let prepass = renderer.depth_prepass
+            && (has(DrawPhase::Prepass)
+                || (has_camera
+                    && phases.is_some_and(|p| p.sorted_draw_count(DrawPhase::Prepass) > 0)));
         let resolve = renderer.deferred
             && prepass
             && has_camera

@@ -1,7 +1,8 @@
 //! Group 0 of every material pipeline, the frame's group: what the core binds at each binding.
 //! A material's shader declares its own per-draw array at [`MATERIAL_UNIFORMS`]; the rest are
 //! declared by the core's WGSL files (frame.wgsl, mesh_vertex.wgsl, prepass_depth.wgsl,
-//! shadows.wgsl, visibility.wgsl, the test counter), under the names in [`DECLARED`].
+//! shadows.wgsl, visibility.wgsl) and the composer (the test counter), under the names in
+//! [`DECLARED`].
 
 /// `frame`: the camera and lights (frame.wgsl).
 pub const FRAME: u32 = 0;
@@ -41,15 +42,18 @@ mod tests {
 
     #[test]
     fn the_core_files_declare_each_binding_where_the_constants_say() {
-        let files = [
-            shaders::FRAME,
-            shaders::MESH_VERTEX,
-            shaders::PREPASS_DEPTH,
-            shaders::FRAGMENT_COUNTER_COUNTING,
-            shaders::SHADOWS,
-            shaders::VISIBILITY,
-        ];
-        let source: String = files.iter().map(|file| file.source).collect();
+        let shader = shaders::ComposedShader {
+            name: "core",
+            constants: &[],
+            files: &[
+                shaders::FRAME,
+                shaders::MESH_VERTEX,
+                shaders::PREPASS_DEPTH,
+                shaders::SHADOWS,
+                shaders::VISIBILITY,
+            ],
+        };
+        let source = shader.counting_source(&Default::default());
         for (name, binding) in DECLARED {
             let declaration = format!("@group(0) @binding({binding}) var");
             let found = source

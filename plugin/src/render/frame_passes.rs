@@ -95,6 +95,11 @@ impl<'a> FramePasses<'a> {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        if let (true, Some(phases)) = (self.plan.has_camera, self.phases) {
+            self.renderer
+                .prepass_order
+                .record(phases, self.resources, &mut pass);
+        }
         self.draw_phase(DrawPhase::Prepass, &mut pass);
     }
 

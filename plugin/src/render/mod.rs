@@ -34,12 +34,12 @@ mod renderer;
 pub mod shaders;
 mod shadow_maps;
 mod shadow_views;
+mod sorted_draws;
 mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
 pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
-mod transparent;
 mod visibility;
 
 pub use capture::{
@@ -69,7 +69,7 @@ pub use layout::ShaderEntry;
 pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
 pub use phases::{
     DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
-    ShadowDraw, TransparentDraw,
+    ShadowDraw, SortedDraw,
 };
 pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use plugin::{PostProcessPath, RenderPlugin};
@@ -82,9 +82,9 @@ pub use renderer::Renderer;
 pub(crate) use renderer::{PhaseBindings, phase_bindings};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
+pub(crate) use sorted_draws::SortedDraws;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
-pub(crate) use transparent::TransparentPhase;
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};

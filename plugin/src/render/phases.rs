@@ -90,10 +90,10 @@ impl From<DrawPhase> for RenderPhase {
 /// Records draws into a phase's open render pass, given the resources.
 pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 
-/// Records some of its owner's blended draws into the transparent phase's open render pass,
-/// given the resources and the draws' numbers (as the owner gave them to the frame's sorted
-/// list), in the order to draw them.
-pub type TransparentDraw = fn(&Resources, &mut wgpu::RenderPass<'_>, &[u32]);
+/// Records some of its owner's draws into a phase's open render pass, given the resources and
+/// the draws' numbers (as the owner gave them to the frame's sorted list of the phase), in the
+/// order to draw them.
+pub type SortedDraw = fn(&Resources, &mut wgpu::RenderPass<'_>, &[u32]);
 
 /// Records shadow casters into one shadow map's open render pass, given the resources and
 /// the frame-uniform slot that holds the map's view (bind it with
@@ -116,7 +116,7 @@ pub type HasDraws = fn(&Resources) -> bool;
 #[derive(Debug, Default)]
 pub struct RenderPhases {
     draws: Vec<(DrawPhase, TypeId, PhaseDraw, HasDraws)>,
-    transparent_draws: Vec<(TypeId, TransparentDraw)>,
+    sorted_draws: Vec<(DrawPhase, TypeId, SortedDraw)>,
     shadow_draws: Vec<(TypeId, ShadowDraw)>,
     resolves: Vec<(TypeId, ResolveDispatch, HasDraws)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
@@ -174,27 +174,36 @@ impl RenderPhases {
         }
     }
 
-    /// Adds `draw` as `Owner`'s drawer of blended draws unless `Owner` has one: the frame sorts
-    /// every owner's blended draws farthest first in one list and calls `draw` for each run of
-    /// `Owner`'s, before the transparent phase's [`RenderPhases::add_draw`] draws.
-    pub fn add_transparent<Owner: 'static>(&mut self, draw: TransparentDraw) {
+    /// Adds `draw` as `Owner`'s drawer of its draws in `phase`'s sorted list unless `Owner` has
+    /// one there: the frame sorts every owner's draws of the phase in one list (the transparent
+    /// phase farthest first, the prepass nearest first) and calls `draw` for each run of
+    /// `Owner`'s, before the phase's [`RenderPhases::add_draw`] draws. The opaque phase draws
+    /// after a prepass and keeps no sorted list.
+    pub fn add_sorted<Owner: 'static>(&mut self, phase: DrawPhase, draw: SortedDraw) {
         let owner = TypeId::of::<Owner>();
-        if !self.transparent_draws.iter().any(|(id, _)| *id == owner) {
-            self.transparent_draws.push((owner, draw));
+        if !self
+            .sorted_draws
+            .iter()
+            .any(|(p, id, _)| *p == phase && *id == owner)
+        {
+            self.sorted_draws.push((phase, owner, draw));
         }
     }
 
-    /// The drawer of `owner`'s blended draws, if it has one.
-    pub(crate) fn transparent_draw(&self, owner: TypeId) -> Option<TransparentDraw> {
-        self.transparent_draws
+    /// The drawer of `owner`'s sorted draws in `phase`, if it has one.
+    pub(crate) fn sorted_draw(&self, phase: DrawPhase, owner: TypeId) -> Option<SortedDraw> {
+        self.sorted_draws
             .iter()
-            .find(|(id, _)| *id == owner)
-            .map(|(_, draw)| *draw)
+            .find(|(p, id, _)| *p == phase && *id == owner)
+            .map(|(_, _, draw)| *draw)
     }
 
-    /// How many owners draw blended draws into the sorted transparent list.
-    pub fn transparent_draw_count(&self) -> usize {
-        self.transparent_draws.len()
+    /// How many owners draw into `phase`'s sorted list.
+    pub fn sorted_draw_count(&self, phase: DrawPhase) -> usize {
+        self.sorted_draws
+            .iter()
+            .filter(|(p, _, _)| *p == phase)
+            .count()
     }
 
     /// Adds `draw` to every shadow map of the shadows phase for `Owner` unless `Owner` has one:
@@ -253,12 +262,16 @@ impl RenderPhases {
             .map(|(_, _, draw, _)| *draw)
     }
 
-    /// The owners (a material type, say) of the draws of `phase`.
+    /// The owners (a material type, say) of the draws of `phase`, sorted or not.
     pub(crate) fn draw_owners(&self, phase: DrawPhase) -> impl Iterator<Item = TypeId> + '_ {
-        self.draws
+        let draws = self.draws.iter().filter(move |(p, _, _, _)| *p == phase);
+        let sorted = self
+            .sorted_draws
             .iter()
-            .filter(move |(p, _, _, _)| *p == phase)
+            .filter(move |(p, _, _)| *p == phase);
+        draws
             .map(|(_, owner, _, _)| *owner)
+            .chain(sorted.map(|(_, owner, _)| *owner))
     }
 
     /// Whether any draw of `phase` has work this frame.

@@ -2,10 +2,10 @@
 //! state it makes when the app finishes its plugins.
 
 use super::{
-    FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, PostProcess, RenderPath, RenderPhases,
-    RenderTarget, Renderer, ShadowMaps, TargetFormat, TimingMode, TransparentPhase, UploadStats,
-    VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame,
-    resolve_gpu_timings, set_gpu_timing, target,
+    DrawPhase, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, PostProcess, RenderPath,
+    RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat, TimingMode,
+    UploadStats, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame,
+    render_frame, resolve_gpu_timings, set_gpu_timing, target,
 };
 use crate::{
     AmbientLight, App, Assets, BoxedError, Image, Mesh, Plugin, Stage, TransformPlugin,
@@ -159,7 +159,8 @@ impl Plugin for RenderPlugin {
             visibility: None,
             background: None,
             visibility_ids: VisibilityIds::default(),
-            transparent: TransparentPhase::default(),
+            prepass_order: SortedDraws::new(DrawPhase::Prepass),
+            transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,
             post: PostProcess::new(
                 gpu,

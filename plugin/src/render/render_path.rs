@@ -8,9 +8,7 @@
 
 use std::str::FromStr;
 
-use super::{
-    DrawPhase, FragmentInvocationCounter, GpuContext, RenderPhases, RenderTarget, visibility,
-};
+use super::{DrawPhase, GpuContext, RenderPhases, RenderTarget, visibility};
 use crate::Resources;
 
 /// How opaque surfaces are shaded: [`super::RenderPlugin::path`], switchable at run time with
@@ -88,12 +86,6 @@ pub enum DeferredUnavailable {
         "a prepass draw is no material's (RenderPhases::add_draw): it writes no visibility key"
     )]
     PrepassDrawWithoutVisibility,
-    /// A [`super::FragmentInvocationCounter`] counts fragment invocations; the deferred path
-    /// shades in compute.
-    #[error(
-        "a FragmentInvocationCounter counts fragment shading, which the deferred path moves to compute"
-    )]
-    FragmentCounter,
     /// The target's visibility buffer would pass the device's buffer limits.
     #[error("the target's visibility buffer ({bytes} bytes) passes the device's buffer limits")]
     TargetTooLarge {
@@ -129,12 +121,8 @@ pub(crate) fn deferred_support(
 }
 
 /// What of the app keeps frames from the deferred path: a material without a deferred shader,
-/// a prepass draw that is no material's (it would write depth but no visibility key), or a
-/// [`FragmentInvocationCounter`] (the deferred path shades in compute, where it counts nothing).
+/// or a prepass draw that is no material's (it would write depth but no visibility key).
 pub(crate) fn deferred_blocker(resources: &Resources) -> Option<DeferredUnavailable> {
-    if resources.contains::<FragmentInvocationCounter>() {
-        return Some(DeferredUnavailable::FragmentCounter);
-    }
     let phases = resources.get::<RenderPhases>()?;
     if let Some(name) = phases.owner_without_visibility() {
         return Some(DeferredUnavailable::MaterialWithoutDeferredShader(name));

@@ -4,8 +4,8 @@
 
 use super::{
     DeferredBackground, DeferredUnavailable, FrameUniformBuffer, GpuAssets, GpuContext,
-    PostProcess, RenderPath, RenderTarget, ShadowMaps, TransparentPhase, UploadStats,
-    VisibilityBuffer, VisibilityIds, render_path,
+    PostProcess, RenderPath, RenderTarget, ShadowMaps, SortedDraws, UploadStats, VisibilityBuffer,
+    VisibilityIds, render_path,
 };
 use crate::{Image, Mesh};
 
@@ -39,8 +39,10 @@ pub struct Renderer {
     pub(super) background: Option<DeferredBackground>,
     /// This frame's visibility ids, handed to the materials' batches as they prepare.
     pub(crate) visibility_ids: VisibilityIds,
+    /// This frame's prepass draws of every material, drawn nearest first.
+    pub(crate) prepass_order: SortedDraws,
     /// This frame's blended draws of every material, drawn farthest first.
-    pub(crate) transparent: TransparentPhase,
+    pub(crate) transparent: SortedDraws,
     /// No frame has chosen its path yet (the first choice is always logged).
     pub(super) first_frame: bool,
     /// Tonemapping (the lights carry the exposure).

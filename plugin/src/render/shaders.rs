@@ -22,12 +22,6 @@ pub const MESH_VERTEX: WgslFile = crate::wgsl_file!("render/mesh_vertex.wgsl");
 pub const SHADOWS: WgslFile = crate::wgsl_file!("render/shadows.wgsl");
 /// The depth prepass's result, bound for materials that test a depth of their own against it.
 pub const PREPASS_DEPTH: WgslFile = crate::wgsl_file!("render/prepass_depth.wgsl");
-/// `count_fragment_invocation()`: does nothing, unless a [`super::FragmentInvocationCounter`]
-/// swaps in [`FRAGMENT_COUNTER_COUNTING`].
-pub const FRAGMENT_COUNTER: WgslFile = crate::wgsl_file!("render/fragment_counter.wgsl");
-/// `count_fragment_invocation()` that counts, into group 0, binding 4.
-pub const FRAGMENT_COUNTER_COUNTING: WgslFile =
-    crate::wgsl_file!("render/fragment_counter_counting.wgsl");
 /// `fullscreen_vertex`: the vertex stage of full-screen passes.
 pub const FULLSCREEN_TRIANGLE: WgslFile = crate::wgsl_file!("render/fullscreen_triangle.wgsl");
 /// The visibility pass of the deferred path: `visibility_id()` and the default `fs_visibility`.
@@ -95,15 +89,12 @@ pub(crate) const RESOLVE_TILES_PER_ROW: u32 = 256;
 
 // The renderer's part of composing: the counting twin and the module on a device.
 impl ComposedShader {
-    /// The source for `target` with [`FRAGMENT_COUNTER`] replaced by
-    /// [`FRAGMENT_COUNTER_COUNTING`].
+    /// The source for `target` whose `count_fragment_invocation()` counts into group 0's
+    /// [`super::frame_group::FRAGMENT_COUNTER`] (a [`super::FragmentInvocationCounter`]).
     pub fn counting_source(&self, target: &ShaderTarget) -> String {
-        self.source_with(target, |file| {
-            if file == FRAGMENT_COUNTER {
-                FRAGMENT_COUNTER_COUNTING
-            } else {
-                file
-            }
+        self.source_for(&ShaderTarget {
+            fragment_counter: Some(super::frame_group::FRAGMENT_COUNTER),
+            ..*target
         })
     }
 

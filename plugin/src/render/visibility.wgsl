@@ -17,8 +17,9 @@ fn visibility_id(object_index: u32, triangle: u32) -> u32 {
 }
 
 // Merges `id`, seen at framebuffer position `position` at clip depth `depth`, into the pixel's
-// key.
+// key (and counts the merge where a test counts fragments: FragmentInvocationCounter).
 fn keep_visible(position: vec4<f32>, depth: f32, id: u32) {
+    count_fragment_invocation();
     let pixel = vec2<u32>(position.xy);
     let key = (u64(~bitcast<u32>(depth)) << 32u) | u64(id);
     atomicMax(&visibility_keys[pixel.y * frame.target_size.x + pixel.x], key);

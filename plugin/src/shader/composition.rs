@@ -49,7 +49,8 @@ pub(crate) const GENERATED_HEADER: &str = "// ---- generated from Rust ----\n";
 
 /// What a composition is compiled for. The composer writes it into the WGSL (the shader's text
 /// is never searched or edited afterwards): `SceneOutput`, the scene target as the deferred
-/// resolve writes it, and whether `@early_depth_test` attributes stay.
+/// resolve writes it, whether `@early_depth_test` attributes stay, and what
+/// `count_fragment_invocation()` does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ShaderTarget {
     /// The HDR scene target's format (`Rgba16Float` or `Rgba32Float`).
@@ -59,6 +60,9 @@ pub struct ShaderTarget {
     /// shader does anyway (forced early tests where it writes no depth and has no side effects,
     /// depth only ever pushed further away), so leaving them out costs speed, not pixels.
     pub early_depth_test: bool,
+    /// The group-0 binding of the atomic counter `count_fragment_invocation()` adds one to
+    /// (a test's measurement of how many fragments ran), or `None`: it does nothing.
+    pub fragment_counter: Option<u32>,
 }
 
 impl Default for ShaderTarget {
@@ -67,6 +71,7 @@ impl Default for ShaderTarget {
         Self {
             scene_format: wgpu::TextureFormat::Rgba16Float,
             early_depth_test: true,
+            fragment_counter: None,
         }
     }
 }
@@ -79,17 +84,26 @@ impl ShaderTarget {
             early_depth_test: device
                 .features()
                 .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST),
+            fragment_counter: None,
         }
     }
 
-    /// The declarations every composed source starts with: `SceneOutput` (one line, whatever
-    /// the target, so line numbers never depend on it).
+    /// The declarations every composed source starts with: `SceneOutput` and
+    /// `count_fragment_invocation()` (one line each, whatever the target, so line numbers never
+    /// depend on it).
     fn declarations(&self) -> String {
         let format = match self.scene_format {
             wgpu::TextureFormat::Rgba32Float => "rgba32float",
             _ => "rgba16float",
         };
-        format!("alias SceneOutput = texture_storage_2d<{format}, write>;\n")
+        let counter = match self.fragment_counter {
+            Some(binding) => format!(
+                "@group(0) @binding({binding}) var<storage, read_write> fragment_invocations: atomic<u32>; \
+                 fn count_fragment_invocation() {{ atomicAdd(&fragment_invocations, 1u); }}"
+            ),
+            None => "fn count_fragment_invocation() {}".to_owned(),
+        };
+        format!("alias SceneOutput = texture_storage_2d<{format}, write>;\n{counter}\n")
     }
 
     /// `text` as this target compiles it.
@@ -208,6 +222,7 @@ mod tests {
         let wide = ShaderTarget {
             scene_format: wgpu::TextureFormat::Rgba32Float,
             early_depth_test: false,
+            fragment_counter: Some(4),
         };
         let source = shader.source_for(&wide);
         assert!(
@@ -215,9 +230,13 @@ mod tests {
             "{source}"
         );
         assert!(!source.contains("early_depth_test"), "{source}");
+        assert!(
+            source.contains("@group(0) @binding(4) var<storage, read_write> fragment_invocations")
+        );
         let default = shader.source();
         assert!(default.contains("texture_storage_2d<rgba16float, write>"));
         assert!(default.contains("@early_depth_test(force)"));
+        assert!(default.contains("fn count_fragment_invocation() {}"));
         // The target never moves a line.
         assert_eq!(source.lines().count(), default.lines().count());
     }
