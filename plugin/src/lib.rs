@@ -146,6 +146,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::shaders::SOBEL,
     parallax::MAX_PYRAMID_SHADER,
     render::DEFERRED_BACKGROUND,
+    render::VISIBILITY_CLEAR_SHADER,
     material::DEFERRED_CLASSIFY_SHADER,
     render::POST_SHADERS[0],
     render::POST_SHADERS[1],

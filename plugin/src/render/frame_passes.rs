@@ -78,12 +78,18 @@ impl<'a> FramePasses<'a> {
     }
 
     /// The depth prepass. On the deferred path it is the visibility pass: its fragments also
-    /// merge each pixel's draw and triangle into the visibility keys (0: none).
+    /// merge each pixel's draw and triangle into the visibility keys (0: none), which a compute
+    /// pass clears first, inside the phase's timestamps.
     pub fn prepass(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
-        let deferred = self.plan.deferred;
-        if let (true, Some(visibility)) = (deferred, &self.renderer.visibility) {
-            encoder.clear_buffer(&visibility.keys, 0, None);
+        let clear = self
+            .renderer
+            .visibility
+            .as_ref()
+            .filter(|_| self.plan.deferred);
+        if let Some(visibility) = clear {
+            visibility.record_clear(encoder, time);
         }
+        let deferred = self.plan.deferred;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(if deferred { "visibility" } else { "prepass" }),
             color_attachments: &[],
@@ -91,7 +97,7 @@ impl<'a> FramePasses<'a> {
                 load: wgpu::LoadOp::Clear(1.0),
                 store: wgpu::StoreOp::Store,
             })),
-            timestamp_writes: time.map(PassTimestamps::render),
+            timestamp_writes: time.map(|time| time.render_part(clear.is_none(), true)),
             occlusion_query_set: None,
             multiview_mask: None,
         });

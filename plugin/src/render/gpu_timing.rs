@@ -116,10 +116,16 @@ impl PassTimestamps {
 
     /// The `timestamp_writes` for a compute pass.
     pub fn compute(&self) -> wgpu::ComputePassTimestampWrites<'_> {
+        self.compute_part(true, true)
+    }
+
+    /// The `timestamp_writes` for a compute pass that is one of several passes timed as one
+    /// span: the first writes the beginning, the last the end.
+    pub fn compute_part(&self, first: bool, last: bool) -> wgpu::ComputePassTimestampWrites<'_> {
         wgpu::ComputePassTimestampWrites {
             query_set: &self.query_set,
-            beginning_of_pass_write_index: Some(self.begin),
-            end_of_pass_write_index: Some(self.begin + 1),
+            beginning_of_pass_write_index: first.then_some(self.begin),
+            end_of_pass_write_index: last.then_some(self.begin + 1),
         }
     }
 }

@@ -87,4 +87,5 @@ pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_tar
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
+pub use visibility::VISIBILITY_CLEAR_SHADER;
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};

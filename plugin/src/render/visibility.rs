@@ -1,7 +1,24 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
 //! hands out, and the buffer of one target.
 
-use super::{GpuContext, RenderTarget};
+use super::shaders::{self, ComposedShader, WgslFile};
+use super::{GpuContext, PassTimestamps, RenderTarget};
+
+/// The compute pass that clears the visibility keys (visibility_clear.wgsl).
+pub const VISIBILITY_CLEAR_SHADER: ComposedShader = ComposedShader {
+    name: "visibility_clear.wgsl",
+    constants: &[],
+    files: &[VISIBILITY_CLEAR_ENTRY],
+};
+
+/// The clear's WGSL file.
+const VISIBILITY_CLEAR_ENTRY: WgslFile = crate::wgsl_file!("render/visibility_clear.wgsl");
+
+/// Keys one workgroup of the clear writes (`CLEAR_GROUP_SIZE` in WGSL).
+const CLEAR_GROUP_SIZE: u64 = 256;
+
+/// Workgroups along a dispatch's first dimension at most (WebGPU's limit).
+const MAX_GROUPS_ACROSS: u64 = 65_535;
 
 /// Bytes per pixel of the visibility buffer: one 64-bit key, the pixel's depth above its
 /// visibility id, which every fragment of the visibility pass merges with `atomicMax`, so the
@@ -53,19 +70,62 @@ pub(crate) struct VisibilityBuffer {
     pub(crate) keys: wgpu::Buffer,
     /// The [`RenderTarget::id`] it was made for.
     pub(crate) target: u64,
+    /// The clear's pipeline and its bind group over `keys`.
+    clear: (wgpu::ComputePipeline, wgpu::BindGroup),
 }
 
 impl VisibilityBuffer {
     pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
+        let keys = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("visibility buffer"),
+            size: visibility_bytes(target),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let module = VISIBILITY_CLEAR_SHADER.create_module(&gpu.device);
+        let pipeline = gpu
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("visibility clear"),
+                layout: None,
+                module: &module,
+                entry_point: Some("cs_clear_visibility"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("visibility clear"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: keys.as_entire_binding(),
+            }],
+        });
         Self {
-            keys: gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("visibility buffer"),
-                size: visibility_bytes(target),
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
+            keys,
             target: target.id(),
+            clear: (pipeline, bind_group),
         }
+    }
+
+    /// Records the clear of every key to 0 ("no draw") as a compute pass that begins `time`'s
+    /// span where given (the visibility pass ends it).
+    pub(crate) fn record_clear(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) {
+        let keys = self.keys.size() / VISIBILITY_BYTES_PER_PIXEL;
+        let groups = keys.div_ceil(CLEAR_GROUP_SIZE);
+        let across = groups.clamp(1, MAX_GROUPS_ACROSS);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("visibility clear"),
+            timestamp_writes: time.map(|time| time.compute_part(true, false)),
+        });
+        pass.set_pipeline(&self.clear.0);
+        pass.set_bind_group(0, &self.clear.1, &[]);
+        // Both fit in u32: `keys` is bound as one storage buffer.
+        pass.dispatch_workgroups(across as u32, groups.div_ceil(across) as u32, 1);
     }
 
     /// Serves `target` too: a target of the same size (the split view swaps two each frame)
