@@ -412,7 +412,7 @@ mod tests {
         // The lit material (brought by PomPlugin) and the parallax material.
         let phases = app.resources.get::<RenderPhases>().unwrap();
         assert_eq!(phases.draw_count(DrawPhase::Opaque), 2);
-        assert_eq!(phases.draw_count(DrawPhase::Prepass), 2);
+        assert_eq!(phases.sorted_draw_count(DrawPhase::Prepass), 2);
         assert_eq!(phases.sorted_draw_count(DrawPhase::Transparent), 2);
         assert_eq!(
             app.resources

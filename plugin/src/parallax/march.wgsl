@@ -29,14 +29,25 @@ struct HeightField {
     channel: u32,
     // 1 when white means deepest (depth maps).
     depth_convention: u32,
-    // Screen-space gradients of the texture coordinate, taken once outside every loop
-    // (T's tex2Dgrad, Luna's SampleGrad): nothing in a march uses implicit derivatives.
-    ddx: vec2<f32>,
-    ddy: vec2<f32>,
+    // The mip level every height sample of the march reads (`sampler_level` of the pixel's
+    // footprint), taken once outside every loop: nothing in a march uses implicit derivatives
+    // (T samples with tex2Dgrad, Luna with SampleGrad, for the same reason). An explicit level
+    // rather than the gradients themselves: the same filtering, and on the H200 a sample at a
+    // given level costs less than one the sampler must find the level of
+    // (sandbox/BENCHMARKS.md, "explicit sample level").
+    level: f32,
+}
+
+// The level a trilinear sampler without anisotropy picks for a pixel whose texture coordinate
+// moves by `ddx_texels` across and `ddy_texels` down (in texels): log2 of the longer of the two
+// (the scale factor of the Vulkan and WebGPU specifications), never below level 0.
+fn sampler_level(ddx_texels: vec2<f32>, ddy_texels: vec2<f32>) -> f32 {
+    let longest_squared = max(dot(ddx_texels, ddx_texels), dot(ddy_texels, ddy_texels));
+    return max(0.5 * log2(longest_squared), 0.0);
 }
 
 fn sample_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, uv: vec2<f32>) -> f32 {
-    let texel = textureSampleGrad(height_texture, height_sampler, uv, field.ddx, field.ddy);
+    let texel = textureSampleLevel(height_texture, height_sampler, uv, field.level);
     return height_in_channel(texel, field.channel, field.depth_convention);
 }
 

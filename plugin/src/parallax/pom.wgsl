@@ -82,7 +82,8 @@ fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) ->
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
     point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 
-    point.field = HeightField(HEIGHT_CHANNEL, u32(HEIGHT_IS_DEPTH), point.ddx_uv, point.ddy_uv);
+    point.field = HeightField(HEIGHT_CHANNEL, u32(HEIGHT_IS_DEPTH),
+        sampler_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size));
     let method = METHOD;
     point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.

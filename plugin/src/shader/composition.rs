@@ -274,7 +274,8 @@ mod tests {
                 _ => assert!(
                     text.starts_with("// ----")
                         || text.starts_with("const")
-                        || text.starts_with("alias SceneOutput"),
+                        || text.starts_with("alias SceneOutput")
+                        || text.starts_with("fn count_fragment_invocation"),
                     "{text}"
                 ),
             }
