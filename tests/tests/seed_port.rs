@@ -41,8 +41,9 @@ fn render(view_angle: f32, port: bool) -> [image::Rgba32FImage; 2] {
     app.add_plugin(pom::seed_port::seed_port_plugin());
     app.finish().unwrap();
     if port {
+        let images = app.resources.get_mut::<pom::Assets<pom::Image>>().unwrap();
         assert_eq!(
-            pom::seed_port::replace_parallax_materials(&mut app.world),
+            pom::seed_port::replace_parallax_materials(&mut app.world, images).unwrap(),
             1
         );
     }
