@@ -30,6 +30,11 @@
 // - ps_main passes `vViewTS` to ComputeIllumination and lerps the sample count by
 //   `dot(vViewWS, vNormalWS)`; it declares neither name, only the normalized mViewTS and
 //   mViewWS, which are used.
+// - ComputeIllumination's `normalize(tex2D(tNormalMap, texCoord) * 2 - 1)` normalizes all four
+//   channels, the height in alpha among them, before HLSL's implicit truncation to float3 keeps
+//   xyz: a normal shortened by up to 1/√2 where the height is 0 or 1 (13–17 % darker diffuse on
+//   the cobblestones), an artefact of the packing the text never describes. The port
+//   normalizes xyz, the normal the text shades with; the cost is the same.
 // - pow() gets max(R·L, 0) (HLSL's saturate(pow(negative)) is 0, WGSL's pow of a negative
 //   number is undefined); looking straight down the normal, the parallax direction is zero
 //   instead of normalize(0) = NaN.
@@ -95,12 +100,10 @@ fn seed_port_listing_1(in: VertexOut, dx: vec2<f32>, dy: vec2<f32>) -> SeedPortP
 }
 
 // Listing 2's ComputeIllumination: Phong (ambient + diffuse) × base + specular, times the shadow.
-// The normal is normalized as the listing has it, all four channels (the height in w included),
-// before its xyz are kept.
 fn compute_illumination(tex_coord: vec2<f32>, light_ts: vec3<f32>, view_ts: vec3<f32>, occlusion_shadow: f32,
     pixel: SeedPortPixel, params: SeedPortUniform) -> vec4<f32> {
     let texel = textureSampleGrad(normal_map, material_sampler, tex_coord, pixel.dx, pixel.dy);
-    let normal_ts = normalize(texel * 2.0 - 1.0).xyz;
+    let normal_ts = normalize(texel.xyz * 2.0 - 1.0);
     let base_color = textureSampleGrad(base_map, material_sampler, tex_coord, pixel.dx, pixel.dy);
     let diffuse = clamp(dot(normal_ts, light_ts), 0.0, 1.0) * pixel.radiance;
     let reflection_ts = normalize(2.0 * dot(view_ts, normal_ts) * normal_ts - view_ts);
