@@ -237,6 +237,43 @@ impl BenchScene {
         Ok(())
     }
 
+    /// Replaces the surface with `tiles` × `tiles` copies of it `spacing` apart, side by side in
+    /// the preview plane from its −u, −v corner as its UVs run: a mesh made for one texture
+    /// repeat (UVs 0..1, side `spacing`) lies where each repeat lies (the textures wrap). With a
+    /// fractional number of repeats the last copies reach past the plane's edge.
+    pub fn tile_surface(&mut self, tiles: u32, spacing: f32) -> Result<()> {
+        let (entity, mesh, material, transform) = self
+            .app
+            .world
+            .query_mut::<(
+                pom::hecs::Entity,
+                &pom::Handle<Mesh>,
+                &ParallaxOcclusionMaterial,
+                &pom::Transform,
+            )>()
+            .into_iter()
+            .map(|(entity, mesh, material, transform)| {
+                (entity, mesh.clone(), material.clone(), *transform)
+            })
+            .next()
+            .context("the scene has no parallax surface")?;
+        self.app.world.despawn(entity)?;
+        let first = 0.5 * (spacing - pom::preview::PLANE_SIZE);
+        for row in 0..tiles.max(1) {
+            for column in 0..tiles.max(1) {
+                let mut tile = transform;
+                tile.translation += transform.rotation
+                    * glam::Vec3::new(
+                        first + spacing * column as f32,
+                        0.0,
+                        first + spacing * row as f32,
+                    );
+                self.app.world.spawn((mesh.clone(), material.clone(), tile));
+            }
+        }
+        Ok(())
+    }
+
     /// Draws the plane with the seed's shader ([`pom::seed_port::SeedPortMaterial`], with the
     /// parallax material's textures and shared settings) instead of ours; the scene must have
     /// been made with [`SceneOptions::seed_port`].
