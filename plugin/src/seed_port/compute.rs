@@ -208,17 +208,7 @@ impl SeedPortCompute {
         let (images, per_draw) = uploaded_textures(&material, renderer)?;
 
         let device = &gpu.device;
-        let shader_target = ShaderTarget::of_device(device, target.scene_format());
-        let source = SEED_PORT_COMPUTE_SHADER.source_for(&shader_target);
-        let module = shaders::create_module(device, SEED_PORT_COMPUTE_SHADER.name, source);
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(SEED_PORT_COMPUTE_PASS),
-            layout: None,
-            module: &module,
-            entry_point: Some("cs_seed_port"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = compute_pipeline(device, target.scene_format());
         let buffer = |label: &str, contents: &[u8], usage: wgpu::BufferUsages| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -226,8 +216,7 @@ impl SeedPortCompute {
                 usage,
             })
         };
-        let uniform = wgpu::BufferUsages::UNIFORM;
-        let storage = wgpu::BufferUsages::STORAGE;
+        let (uniform, storage) = (wgpu::BufferUsages::UNIFORM, wgpu::BufferUsages::STORAGE);
         let buffers = [
             buffer(
                 "seed port compute frame",
@@ -312,6 +301,24 @@ impl SeedPortCompute {
         gpu.queue.submit([encoder.finish()]);
         Ok(())
     }
+}
+
+/// The pipeline of `cs_seed_port`, writing a scene texture of `scene_format`.
+fn compute_pipeline(
+    device: &wgpu::Device,
+    scene_format: wgpu::TextureFormat,
+) -> wgpu::ComputePipeline {
+    let shader_target = ShaderTarget::of_device(device, scene_format);
+    let source = SEED_PORT_COMPUTE_SHADER.source_for(&shader_target);
+    let module = shaders::create_module(device, SEED_PORT_COMPUTE_SHADER.name, source);
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(SEED_PORT_COMPUTE_PASS),
+        layout: None,
+        module: &module,
+        entry_point: Some("cs_seed_port"),
+        compilation_options: Default::default(),
+        cache: None,
+    })
 }
 
 fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
