@@ -156,6 +156,8 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::TEXEL_RATE_PROBE,
     #[cfg(feature = "dev-tools")]
     seed_port::SEED_PORT_SHADER,
+    #[cfg(feature = "dev-tools")]
+    seed_port::SEED_PORT_COMPUTE_SHADER,
 ];
 
 /// Re-exported so users name the same versions the plugin was built with.

@@ -34,14 +34,24 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // texel rate, 3 phases, 2 far-field, 6 overdraw (1 plane, 4 back to front, 4 copies of one
     // mesh; with and without depth offset), 27 scene-shadow figures (the street corner lit by
     // a sun, a spot, a point light: without shadows 3 phases and the frame, with shadows 4
-    // phases and the frame), 4 seed-port figures (ours and the seed's listing 2 on the same plane, near
-    // and far), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip);
+    // phases and the frame), 6 seed-port figures (ours, the seed's listing 2 as a fragment pass
+    // and as a compute pass on the same plane, near and far; and ours' resolve, near and far,
+    // where ours ran deferred), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip);
     // once, at the first size, max-mip's pyramid rebuilt every frame for two map sizes; and
     // 6 first-use figures (settled before, the first frame, settled after; blocking and in the
     // background).
+    let resolve_rows = cases
+        .iter()
+        .filter(|c| c["group"] == "seed_port" && c["pass"] == "resolve")
+        .count();
+    let ours_deferred = cases
+        .iter()
+        .filter(|c| c["group"] == "seed_port" && c["variant"] == "ours" && c["path"] == "deferred")
+        .count();
+    assert_eq!(resolve_rows, 2 * ours_deferred);
     assert_eq!(
         cases.len(),
-        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 4 + 13 + 6) + 2
+        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6) + 2 + resolve_rows
     );
     let first_frames = cases
         .iter()
@@ -74,9 +84,11 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     }
     for variant in [
         "ours",
-        "seed port",
+        "seed port, fragment pass",
+        "seed port, compute pass",
         "ours, far field",
-        "seed port, far field",
+        "seed port, far field, fragment pass",
+        "seed port, far field, compute pass",
     ] {
         assert!(
             cases
@@ -100,10 +112,19 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         );
     }
     for case in cases {
-        assert!(
-            case["path"] == "forward" || case["path"] == "deferred",
-            "{case}"
-        );
+        // The seed port's compute pass runs on neither render path.
+        let compute_pass = case["variant"]
+            .as_str()
+            .is_some_and(|v| v.ends_with("compute pass"));
+        if compute_pass {
+            assert_eq!(case["path"], "compute", "{case}");
+            assert_eq!(case["pass"], "seed port compute", "{case}");
+        } else {
+            assert!(
+                case["path"] == "forward" || case["path"] == "deferred",
+                "{case}"
+            );
+        }
         let spread = &case["spread"];
         for field in ["median_ms", "min_ms", "p10_ms", "p90_ms", "max_ms"] {
             let ms = spread[field].as_f64().unwrap();
@@ -317,10 +338,24 @@ fn both_paths_are_timed_side_by_side_in_one_run() {
             .map(|c| c["path"].as_str().unwrap())
             .collect()
     };
-    assert_eq!(ran("seed port"), ["forward"; 4]);
+    assert_eq!(ran("seed port, fragment pass"), ["forward"; 4]);
+    assert_eq!(ran("seed port, compute pass"), ["compute"; 4]);
     assert_eq!(ran("ours"), ["forward", "forward", "deferred", "deferred"]);
+    // Ours' resolve only where it ran deferred, and divided by the seed's compute pass there.
+    assert_eq!(ran("ours, resolve"), ["deferred"; 2]);
     let ratios = json["ratios"].as_array().unwrap();
     assert!(ratios.iter().any(|r| r["path"] == "deferred"));
+    let over_compute: Vec<_> = ratios
+        .iter()
+        .filter(|r| r["what"] == "ours, resolve / seed port compute")
+        .map(|r| (r["width"].as_u64().unwrap(), r["path"].as_str().unwrap()))
+        .collect();
+    assert_eq!(over_compute, [(64, "deferred"), (96, "deferred")]);
+    let over_fragment = ratios
+        .iter()
+        .filter(|r| r["what"] == "ours / seed port as written (fragment pass)")
+        .count();
+    assert_eq!(over_fragment, 4, "both paths, both sizes");
 
     let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
     let deferred_rows = csv.lines().filter(|l| l.contains(",deferred,")).count();

@@ -1,6 +1,10 @@
 //! The seed's shader as a material, for the bench: Tatarchuk's listings 1 and 2 transliterated
-//! to WGSL (see seed_port.wgsl for the few deviations it needs to run), so every bench run can
-//! time the seed beside our parallax material on the same workload and GPU.
+//! to WGSL (see seed_port.wgsl for every deviation from them), so every bench run can time the
+//! seed beside our parallax material on the same workload and GPU: as written (a material in
+//! the opaque raster pass) and as one compute dispatch over the target ([`SeedPortCompute`]).
+
+mod compute;
+mod packed;
 
 use bytemuck::{Pod, Zeroable};
 
@@ -9,7 +13,45 @@ use crate::material::{
 };
 use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
-use crate::{Handle, HeightSource, Image, ParallaxOcclusionMaterial, ShadowMode};
+use crate::{Assets, Handle, Image, ParallaxOcclusionMaterial, ShadowMode};
+
+pub use compute::{SEED_PORT_COMPUTE_PASS, SEED_PORT_COMPUTE_SHADER, SeedPortCompute};
+pub use packed::packed_normal_height;
+
+/// What can stop the seed port from being set up.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SeedPortError {
+    /// The normal map and the height map differ in size: one RGBA8 image holds both.
+    #[error(
+        "the normal map is {normal:?} texels and the height map {height:?}: the seed reads both \
+         from one image, so they need one size"
+    )]
+    SizeMismatch {
+        /// The normal map's width and height.
+        normal: (u32, u32),
+        /// The height map's width and height.
+        height: (u32, u32),
+    },
+    /// A texture the parallax material names is not in the image store.
+    #[error("a texture of the parallax material is not loaded")]
+    MissingImage,
+    /// The packed image could not be made.
+    #[error("packing the normal and height maps: {0}")]
+    Image(#[from] crate::ImageError),
+    /// The world has no plane drawn with the seed port (for the compute pass).
+    #[error("no entity with a seed port material, a mesh and a global transform")]
+    NoPlane,
+    /// The plane's mesh is not loaded, or has no triangle.
+    #[error("the seed port plane's mesh is not loaded or has no triangle")]
+    NoTriangle,
+    /// The compute pass reads what the last frame extracted and uploaded: none was rendered.
+    #[error("no frame was rendered yet, or its textures are not on the GPU: render one first")]
+    NotRendered,
+    /// A resource the compute pass needs is missing.
+    #[error(transparent)]
+    App(#[from] crate::AppError),
+}
 
 /// Tatarchuk's parallax occlusion mapping exactly as the seed's listing 2 has it: POM with
 /// `n = lerp(max, min, N·V)` linear steps, the 7-tap soft shadow, the mip-level LOD switch, and
@@ -18,10 +60,9 @@ use crate::{Handle, HeightSource, Image, ParallaxOcclusionMaterial, ShadowMode};
 pub struct SeedPortMaterial {
     /// sRGB colour texture (tBaseMap).
     pub base_color_texture: Option<Handle<Image>>,
-    /// Tangent-space normal map (tNormalMap's RGB).
-    pub normal_map: Option<Handle<Image>>,
-    /// Height map, read from red (the listing keeps it in tNormalMap's alpha).
-    pub height_map: Option<Handle<Image>>,
+    /// tNormalMap: RGBA8, the tangent-space normal in RGB with Direct3D's green (pointing down
+    /// the image, +v) and the height in alpha ([`packed_normal_height`] makes one).
+    pub normal_height_map: Option<Handle<Image>>,
     /// fHeightMapRange.
     pub height_map_range: f32,
     /// nMinSamples.
@@ -41,23 +82,39 @@ pub struct SeedPortMaterial {
 }
 
 impl Default for SeedPortMaterial {
-    /// The seed's settings: range 0.05, samples 8..50, LOD threshold 4, softening 0.58.
+    /// The seed's settings: range 0.05, samples 8..50, LOD threshold 4, softening 0.58; no
+    /// textures.
     fn default() -> Self {
-        Self::like(&ParallaxOcclusionMaterial::default())
+        Self::settings_of(&ParallaxOcclusionMaterial::default())
     }
 }
 
 impl SeedPortMaterial {
-    /// The port with `material`'s textures and the settings the listing shares with it (height
-    /// scale, samples, LOD threshold, shadow softening, shadows on unless off, highlight).
-    pub fn like(material: &ParallaxOcclusionMaterial) -> Self {
-        Self {
+    /// The port with `material`'s colour texture, its normal and height maps packed into one
+    /// RGBA8 image as the listing reads them (added to `images`), and the settings the listing
+    /// shares with it (height scale, samples, LOD threshold, shadow softening, shadows on
+    /// unless off, highlight).
+    ///
+    /// # Errors
+    /// [`SeedPortError::MissingImage`] when a texture it names is not in `images`,
+    /// [`SeedPortError::SizeMismatch`] when the normal and height maps differ in size.
+    pub fn like(
+        material: &ParallaxOcclusionMaterial,
+        images: &mut Assets<Image>,
+    ) -> Result<Self, SeedPortError> {
+        let packed = packed_normal_height(material, images)?;
+        Ok(Self {
             base_color_texture: material.base_color_texture.clone(),
-            normal_map: material.normal_map.clone(),
-            height_map: match &material.height_map {
-                Some(HeightSource::Texture(height)) => Some(height.clone()),
-                _ => None,
-            },
+            normal_height_map: packed.map(|image| images.add(image)),
+            ..Self::settings_of(material)
+        })
+    }
+
+    /// `material`'s shared settings, without textures.
+    fn settings_of(material: &ParallaxOcclusionMaterial) -> Self {
+        Self {
+            base_color_texture: None,
+            normal_height_map: None,
             height_map_range: material.height_scale,
             min_samples: material.min_samples.max(1),
             max_samples: material.max_samples.max(1),
@@ -90,7 +147,7 @@ pub struct SeedPortUniform {
     pub max_samples: i32,
     /// bDisplayShadows.
     pub display_shadows: u32,
-    /// vTextureDims: the height map's size in texels.
+    /// vTextureDims: the normal and height map's size in texels.
     pub texture_dims: [f32; 2],
     /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
     pub _padding: [f32; 2],
@@ -124,19 +181,16 @@ pub const SEED_PORT_SHADER: ComposedShader = ComposedShader {
     ],
 };
 
-/// The texture slot of the height map.
-const HEIGHT_SLOT: usize = 2;
+/// The texture slot of the normal and height map (tNormalMap).
+const NORMAL_HEIGHT_SLOT: usize = 1;
 
 impl Material for SeedPortMaterial {
     type PerDraw = SeedPortUniform;
     type Key = ();
     const NAME: &'static str = "seed port";
     const PER_DRAW_WGSL_NAME: &'static str = "SeedPortUniform";
-    const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
-        DefaultTexture::WhiteSrgb,
-        DefaultTexture::FlatNormal,
-        DefaultTexture::WhiteLinear,
-    ];
+    const TEXTURE_SLOTS: &'static [DefaultTexture] =
+        &[DefaultTexture::WhiteSrgb, DefaultTexture::FlatNormal];
 
     /// The seed's shader as written runs forward only: that is what the bench measures.
     fn deferred_shader() -> Option<ComposedShader> {
@@ -149,8 +203,7 @@ impl Material for SeedPortMaterial {
     fn textures(&self) -> MaterialTextures {
         let mut textures = [None; MAX_MATERIAL_TEXTURES];
         textures[0] = self.base_color_texture.as_ref().map(Handle::id);
-        textures[1] = self.normal_map.as_ref().map(Handle::id);
-        textures[HEIGHT_SLOT] = self.height_map.as_ref().map(Handle::id);
+        textures[NORMAL_HEIGHT_SLOT] = self.normal_height_map.as_ref().map(Handle::id);
         textures
     }
 
@@ -164,7 +217,7 @@ impl Material for SeedPortMaterial {
         &self,
         textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
     ) -> SeedPortUniform {
-        let height = textures[HEIGHT_SLOT].unwrap_or(TextureFacts {
+        let height = textures[NORMAL_HEIGHT_SLOT].unwrap_or(TextureFacts {
             width: 1,
             height: 1,
             mip_levels: 1,
@@ -188,20 +241,42 @@ impl Material for SeedPortMaterial {
     }
 }
 
-/// Puts the seed's shader in place of every parallax material in `world`, with its textures and
-/// shared settings ([`SeedPortMaterial::like`]); returns how many it replaced.
-pub fn replace_parallax_materials(world: &mut hecs::World) -> usize {
-    let planes: Vec<_> = world
-        .query_mut::<(hecs::Entity, &ParallaxOcclusionMaterial)>()
-        .into_iter()
-        .map(|(entity, material)| (entity, SeedPortMaterial::like(material)))
-        .collect();
+/// Puts the seed's shader in place of every parallax material in `world`, with its textures
+/// (the normal and height maps packed into one image, added to `images`) and shared settings
+/// ([`SeedPortMaterial::like`]); returns how many it replaced. Materials that share their
+/// textures share one packed image.
+///
+/// # Errors
+/// As [`SeedPortMaterial::like`]; nothing in `world` is replaced then.
+pub fn replace_parallax_materials(
+    world: &mut hecs::World,
+    images: &mut Assets<Image>,
+) -> Result<usize, SeedPortError> {
+    let mut ports: Vec<(ParallaxOcclusionMaterial, SeedPortMaterial)> = Vec::new();
+    let mut planes = Vec::new();
+    for (entity, material) in world.query_mut::<(hecs::Entity, &ParallaxOcclusionMaterial)>() {
+        let same_textures = |(other, _): &&(ParallaxOcclusionMaterial, SeedPortMaterial)| {
+            other.normal_map == material.normal_map
+                && other.height_map == material.height_map
+                && other.height_convention == material.height_convention
+        };
+        let port = match ports.iter().find(same_textures) {
+            Some((_, port)) => SeedPortMaterial {
+                base_color_texture: material.base_color_texture.clone(),
+                normal_height_map: port.normal_height_map.clone(),
+                ..SeedPortMaterial::settings_of(material)
+            },
+            None => SeedPortMaterial::like(material, images)?,
+        };
+        ports.push((material.clone(), port.clone()));
+        planes.push((entity, port));
+    }
     for (entity, port) in &planes {
         // Both listed by the query above, so the entity and its component exist.
         let _ = world.remove_one::<ParallaxOcclusionMaterial>(*entity);
         let _ = world.insert_one(*entity, port.clone());
     }
-    planes.len()
+    Ok(planes.len())
 }
 
 /// Draws [`SeedPortMaterial`]s (the bench adds it beside the parallax plugin).

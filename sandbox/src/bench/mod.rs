@@ -15,6 +15,7 @@ mod report;
 mod sample_count;
 mod scene;
 mod scene_shadows;
+mod seed_port;
 mod stats;
 mod texel_rate;
 mod versus_mesh;
@@ -350,54 +351,6 @@ impl Runner<'_> {
                 }
                 (true, _) => anyhow::bail!("{} was timed before its baseline", case.name()),
             }
-        }
-        Ok(())
-    }
-
-    /// The base material and the seed's own shader (listing 2 ported) on the same plane: our
-    /// POM, then the port, and their ratio; then the same far away (every pixel past the LOD
-    /// threshold), where both only normal-map: the per-pixel base cost. Each in its own scene:
-    /// the port has no deferred shader, and a registered material without one sends every
-    /// frame forward, so ours runs on the path asked for and the port forward.
-    fn seed_port(&mut self, size: (u32, u32)) -> Result<()> {
-        let texture_width = self.textures.height.size().0;
-        let far_tiling = far_field_tiling(size, texture_width, self.base.lod_threshold);
-        for (tiling, far) in [(self.view.tiling, false), (far_tiling, true)] {
-            let place = (size, tiling);
-            let material = self.base.clone();
-            let view = PreviewView {
-                tiling,
-                ..self.view
-            };
-            let mut scene = self.scene(size, &view)?;
-            let (ours, port) = if far {
-                ("ours, far field", "seed port, far field")
-            } else {
-                ("ours", "seed port")
-            };
-            let ours_ms = self.case_variant(
-                &mut scene,
-                "seed_port",
-                place,
-                material.clone(),
-                ours.into(),
-            )?;
-            drop(scene);
-            let mut scene = BenchScene::new(
-                SceneOptions {
-                    seed_port: true,
-                    ..SceneOptions::timed_plane(size, self.path)
-                },
-                self.textures,
-                material.clone(),
-                &view,
-            )?;
-            scene.use_seed_port()?;
-            let (pass, times) = scene.time(self.warmup, self.frames)?;
-            let row = (scene.path_ran(), pass, port.into());
-            let port_ms = self.record("seed_port", place, &material, row, &times)?;
-            let what = format!("{ours} / the seed's listing 2");
-            self.ratio(what, size, ours_ms, port_ms);
         }
         Ok(())
     }

@@ -237,6 +237,43 @@ impl BenchScene {
         Ok(())
     }
 
+    /// Replaces the surface with `tiles` × `tiles` copies of it `spacing` apart, side by side in
+    /// the preview plane from its −u, −v corner as its UVs run: a mesh made for one texture
+    /// repeat (UVs 0..1, side `spacing`) lies where each repeat lies (the textures wrap). With a
+    /// fractional number of repeats the last copies reach past the plane's edge.
+    pub fn tile_surface(&mut self, tiles: u32, spacing: f32) -> Result<()> {
+        let (entity, mesh, material, transform) = self
+            .app
+            .world
+            .query_mut::<(
+                pom::hecs::Entity,
+                &pom::Handle<Mesh>,
+                &ParallaxOcclusionMaterial,
+                &pom::Transform,
+            )>()
+            .into_iter()
+            .map(|(entity, mesh, material, transform)| {
+                (entity, mesh.clone(), material.clone(), *transform)
+            })
+            .next()
+            .context("the scene has no parallax surface")?;
+        self.app.world.despawn(entity)?;
+        let first = 0.5 * (spacing - pom::preview::PLANE_SIZE);
+        for row in 0..tiles.max(1) {
+            for column in 0..tiles.max(1) {
+                let mut tile = transform;
+                tile.translation += transform.rotation
+                    * glam::Vec3::new(
+                        first + spacing * column as f32,
+                        0.0,
+                        first + spacing * row as f32,
+                    );
+                self.app.world.spawn((mesh.clone(), material.clone(), tile));
+            }
+        }
+        Ok(())
+    }
+
     /// Draws the plane with the seed's shader ([`pom::seed_port::SeedPortMaterial`], with the
     /// parallax material's textures and shared settings) instead of ours; the scene must have
     /// been made with [`SceneOptions::seed_port`].
@@ -245,7 +282,8 @@ impl BenchScene {
             self.seed_port,
             "the scene was made without the seed port's material"
         );
-        let replaced = pom::seed_port::replace_parallax_materials(&mut self.app.world);
+        let images = self.app.resources.require_mut::<Assets<Image>>()?;
+        let replaced = pom::seed_port::replace_parallax_materials(&mut self.app.world, images)?;
         anyhow::ensure!(replaced > 0, "the scene has no parallax plane");
         Ok(())
     }
@@ -261,6 +299,17 @@ impl BenchScene {
     /// `frames` timed ones; returns what was timed ([`TIMED_PASS`], or [`TIMED_PASS_DEFERRED`]
     /// where the frames ran deferred) and the material phases' milliseconds per timed frame.
     pub fn time(&mut self, warmup: Warmup, frames: usize) -> Result<(&'static str, Vec<f64>)> {
+        let (pass, times, _) = self.time_material_phases(warmup, frames)?;
+        Ok((pass, times))
+    }
+
+    /// Like [`BenchScene::time`], with each material phase's own milliseconds per timed frame
+    /// besides their sum (on the deferred path, the resolve among them).
+    pub fn time_material_phases(
+        &mut self,
+        warmup: Warmup,
+        frames: usize,
+    ) -> Result<(&'static str, Vec<f64>, PhaseTimes)> {
         let phases = self.time_phases(warmup, frames, &MATERIAL_PHASES)?;
         let pass = if self.timed_deferred == Some(true) {
             TIMED_PASS_DEFERRED
@@ -270,7 +319,7 @@ impl BenchScene {
         let times = (0..frames)
             .map(|frame| phases.iter().map(|(_, times)| times[frame]).sum())
             .collect();
-        Ok((pass, times))
+        Ok((pass, times, phases))
     }
 
     /// Like [`BenchScene::time`], each phase of `phases` with its milliseconds per timed frame;
@@ -389,6 +438,28 @@ impl BenchScene {
             |_| vec![PROBE_PASS],
             |app| {
                 probe.render(&mut app.resources)?;
+                resolve_gpu_timings(&mut app.world, &mut app.resources)?;
+                Ok(())
+            },
+        )?;
+        Ok(times.pop().map(|(_, times)| times).unwrap_or_default())
+    }
+
+    /// Times the seed port as one compute pass over the target
+    /// ([`pom::seed_port::SeedPortCompute`]: the plane, textures, settings, camera and light the
+    /// raster pass draws with), like [`BenchScene::time`]; the scene must be showing the seed
+    /// port ([`BenchScene::use_seed_port`]). Renders one frame first, for the pass to read.
+    pub fn time_seed_port_compute(&mut self, warmup: Warmup, frames: usize) -> Result<Vec<f64>> {
+        self.app
+            .update()
+            .context("rendering the frame the compute pass reads")?;
+        let pass = pom::seed_port::SeedPortCompute::new(&self.app.world, &self.app.resources)?;
+        let mut times = self.time_frames(
+            warmup,
+            frames,
+            |_| vec![pom::seed_port::SEED_PORT_COMPUTE_PASS],
+            |app| {
+                pass.render(&mut app.resources)?;
                 resolve_gpu_timings(&mut app.world, &mut app.resources)?;
                 Ok(())
             },
