@@ -1,7 +1,7 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
 //! hands out, and the buffer of one target.
 
-use super::shaders::{self, ComposedShader, WgslFile};
+use super::shaders::{ComposedShader, WgslFile};
 use super::{GpuContext, PassTimestamps, RenderTarget};
 
 /// The compute pass that clears the visibility keys (visibility_clear.wgsl).

@@ -187,11 +187,10 @@ impl BenchScene {
         )
     }
 
-    /// Replaces the plane with `count` copies stacked along its normal `spacing` apart, spawned
-    /// deepest first. With `own_meshes` each copy gets its own mesh, made deepest first: separate
-    /// batches in mesh order, drawn back to front (the worst order); else they share one, and
-    /// the renderer draws the instances nearest first.
-    pub fn stack_planes(&mut self, count: usize, spacing: f32, own_meshes: bool) -> Result<()> {
+    /// Despawns the scene's parallax surface and returns its mesh, material and transform.
+    fn take_parallax_surface(
+        &mut self,
+    ) -> Result<(pom::Handle<Mesh>, ParallaxOcclusionMaterial, pom::Transform)> {
         let (entity, mesh, material, transform) = self
             .app
             .world
@@ -206,8 +205,17 @@ impl BenchScene {
                 (entity, mesh.clone(), material.clone(), *transform)
             })
             .next()
-            .context("the scene has no parallax plane")?;
+            .context("the scene has no parallax surface")?;
         self.app.world.despawn(entity)?;
+        Ok((mesh, material, transform))
+    }
+
+    /// Replaces the plane with `count` copies stacked along its normal `spacing` apart, spawned
+    /// deepest first. With `own_meshes` each copy gets its own mesh, made deepest first: separate
+    /// batches in mesh order, drawn back to front (the worst order); else they share one, and
+    /// the renderer draws the instances nearest first.
+    pub fn stack_planes(&mut self, count: usize, spacing: f32, own_meshes: bool) -> Result<()> {
+        let (mesh, material, transform) = self.take_parallax_surface()?;
         let normal = transform.rotation * glam::Vec3::Y;
         let meshes = self.app.resources.require_mut::<Assets<Mesh>>()?;
         let plane = meshes
@@ -242,22 +250,7 @@ impl BenchScene {
     /// repeat (UVs 0..1, side `spacing`) lies where each repeat lies (the textures wrap). With a
     /// fractional number of repeats the last copies reach past the plane's edge.
     pub fn tile_surface(&mut self, tiles: u32, spacing: f32) -> Result<()> {
-        let (entity, mesh, material, transform) = self
-            .app
-            .world
-            .query_mut::<(
-                pom::hecs::Entity,
-                &pom::Handle<Mesh>,
-                &ParallaxOcclusionMaterial,
-                &pom::Transform,
-            )>()
-            .into_iter()
-            .map(|(entity, mesh, material, transform)| {
-                (entity, mesh.clone(), material.clone(), *transform)
-            })
-            .next()
-            .context("the scene has no parallax surface")?;
-        self.app.world.despawn(entity)?;
+        let (mesh, material, transform) = self.take_parallax_surface()?;
         let first = 0.5 * (spacing - pom::preview::PLANE_SIZE);
         for row in 0..tiles.max(1) {
             for column in 0..tiles.max(1) {
