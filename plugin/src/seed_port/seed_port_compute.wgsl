@@ -33,16 +33,24 @@ struct SeedPortView {
 // `SceneOutput` is generated: the target's HDR scene format, where the raster pass draws.
 @group(2) @binding(1) var scene_output: SceneOutput;
 
-// The vertex stage's outputs at the three corners of the plane's first triangle.
-fn seed_port_corners() -> array<VertexOut, 3> {
+// The vertex stage's outputs at the three corners of the plane's first triangle: a struct of
+// three rather than an array, which a GPU compiler may keep in memory, not registers, where it is
+// indexed by a loop or passed by value.
+struct SeedPortCorners {
+    a: VertexOut,
+    b: VertexOut,
+    c: VertexOut,
+}
+
+fn seed_port_corner(i: u32) -> VertexOut {
     let transform = transforms[0];
-    var corners: array<VertexOut, 3>;
-    for (var i = 0u; i < 3u; i += 1u) {
-        let vertex = VertexIn(view.corner_positions[i].xyz, view.corner_normals[i].xyz, view.corner_uvs[i].xy,
-            view.corner_tangents[i], vec4<f32>(1.0));
-        corners[i] = transform_vertex(vertex, transform.model, transform.normal_matrix, transform.determinant_sign, 0u);
-    }
-    return corners;
+    let vertex = VertexIn(view.corner_positions[i].xyz, view.corner_normals[i].xyz, view.corner_uvs[i].xy,
+        view.corner_tangents[i], vec4<f32>(1.0));
+    return transform_vertex(vertex, transform.model, transform.normal_matrix, transform.determinant_sign, 0u);
+}
+
+fn seed_port_corners() -> SeedPortCorners {
+    return SeedPortCorners(seed_port_corner(0u), seed_port_corner(1u), seed_port_corner(2u));
 }
 
 // The world point at `ndc` (x, y) and depth `depth` in wgpu's 0..1 clip depth.
@@ -53,14 +61,14 @@ fn unproject(ndc: vec2<f32>, depth: f32) -> vec3<f32> {
 
 // Barycentric weights of the corners at the point of their plane that `pixel` (a position in
 // pixels, y down, as the rasterizer counts them) sees.
-fn seed_port_weights(corners: array<VertexOut, 3>, pixel: vec2<f32>) -> vec3<f32> {
+fn seed_port_weights(corners: SeedPortCorners, pixel: vec2<f32>) -> vec3<f32> {
     let size = vec2<f32>(view.target_size.xy);
     let ndc = vec2<f32>(pixel.x / size.x * 2.0 - 1.0, 1.0 - pixel.y / size.y * 2.0);
     let near = unproject(ndc, 0.0);
     let far = unproject(ndc, 1.0);
-    let p0 = corners[0].world_position;
-    let edge1 = corners[1].world_position - p0;
-    let edge2 = corners[2].world_position - p0;
+    let p0 = corners.a.world_position;
+    let edge1 = corners.b.world_position - p0;
+    let edge2 = corners.c.world_position - p0;
     let normal = cross(edge1, edge2);
     let along = dot(normal, far - near);
     let t = select(0.0, dot(normal, p0 - near) / along, abs(along) > 1e-20);
@@ -78,21 +86,21 @@ fn seed_port_weights(corners: array<VertexOut, 3>, pixel: vec2<f32>) -> vec3<f32
 }
 
 // The corners' outputs weighted by `weights`, as the rasterizer interpolates them.
-fn seed_port_interpolate(corners: array<VertexOut, 3>, weights: vec3<f32>) -> VertexOut {
-    var out = corners[0];
-    out.world_position = corners[0].world_position * weights.x + corners[1].world_position * weights.y
-        + corners[2].world_position * weights.z;
-    out.world_normal = corners[0].world_normal * weights.x + corners[1].world_normal * weights.y
-        + corners[2].world_normal * weights.z;
-    out.uv = corners[0].uv * weights.x + corners[1].uv * weights.y + corners[2].uv * weights.z;
-    out.world_tangent = corners[0].world_tangent * weights.x + corners[1].world_tangent * weights.y
-        + corners[2].world_tangent * weights.z;
+fn seed_port_interpolate(corners: SeedPortCorners, weights: vec3<f32>) -> VertexOut {
+    var out = corners.a;
+    out.world_position = corners.a.world_position * weights.x + corners.b.world_position * weights.y
+        + corners.c.world_position * weights.z;
+    out.world_normal = corners.a.world_normal * weights.x + corners.b.world_normal * weights.y
+        + corners.c.world_normal * weights.z;
+    out.uv = corners.a.uv * weights.x + corners.b.uv * weights.y + corners.c.uv * weights.z;
+    out.world_tangent = corners.a.world_tangent * weights.x + corners.b.world_tangent * weights.y
+        + corners.c.world_tangent * weights.z;
     return out;
 }
 
-fn seed_port_uv(corners: array<VertexOut, 3>, pixel: vec2<f32>) -> vec2<f32> {
+fn seed_port_uv(corners: SeedPortCorners, pixel: vec2<f32>) -> vec2<f32> {
     let weights = seed_port_weights(corners, pixel);
-    return corners[0].uv * weights.x + corners[1].uv * weights.y + corners[2].uv * weights.z;
+    return corners.a.uv * weights.x + corners.b.uv * weights.y + corners.c.uv * weights.z;
 }
 
 @compute @workgroup_size(8, 8, 1)
