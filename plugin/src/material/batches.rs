@@ -20,8 +20,8 @@ use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;
 use crate::render::texture_bind_groups::{BoundTextures, TextureBindGroups};
 use crate::render::{
-    DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, MeshTransform,
-    PixelFootprint, UploadStats, VisibilityIds,
+    DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodBounds, MeshLodCache,
+    MeshTransform, PixelFootprint, UploadStats, VisibilityIds,
 };
 use crate::{AssetId, Assets, Image, Mesh};
 
@@ -268,18 +268,7 @@ impl<M: Material> MaterialBatches<M> {
             // (a glTF primitive with its vertices where it stands) has it elsewhere; the
             // prepass by the nearest point of the bounding sphere (a floor reaching the eye is
             // near, wherever its centre is).
-            let (centre, radius) = bounds.map_or((draw.model.w_axis.truncate(), 0.0), |bounds| {
-                let scale = draw
-                    .model
-                    .x_axis
-                    .length()
-                    .max(draw.model.y_axis.length())
-                    .max(draw.model.z_axis.length());
-                (
-                    draw.model.transform_point3(bounds.center),
-                    bounds.radius * scale,
-                )
-            });
+            let (centre, radius) = bounding_sphere(draw.model, bounds.as_ref());
             let centre_view_depth = view_depth(centre, inputs.eye);
             self.order.push(SortEntry::new(
                 draw,
@@ -434,6 +423,19 @@ impl<M: Material> MaterialBatches<M> {
             }
         }
     }
+}
+
+/// The world-space centre and radius of the bounding sphere of a mesh with `bounds` drawn with
+/// `model` (without bounds: its origin, radius 0).
+fn bounding_sphere(model: Mat4, bounds: Option<&MeshLodBounds>) -> (glam::Vec3, f32) {
+    bounds.map_or((model.w_axis.truncate(), 0.0), |bounds| {
+        let scale = model
+            .x_axis
+            .length()
+            .max(model.y_axis.length())
+            .max(model.z_axis.length());
+        (model.transform_point3(bounds.center), bounds.radius * scale)
+    })
 }
 
 /// The textures `material` binds; entries past the declared derived slots are not bound, so

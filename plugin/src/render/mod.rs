@@ -66,7 +66,7 @@ pub use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
 pub use layout::ShaderEntry;
-pub(crate) use lowest_mip::{MeshLodCache, PixelFootprint};
+pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
 pub use phases::{
     DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
     ShadowDraw, SortedDraw,

@@ -70,15 +70,18 @@ impl<T: Pod + PartialEq> ObjectBuffer<T> {
             self.uploaded.clear();
         }
         let merge_gap = (MERGE_GAP_BYTES / Self::ENTRY_SIZE.max(1)) as usize;
+        let runs = changed_runs(&self.uploaded, entries, merge_gap);
+        // The copy mirrors only what changed: entries past the old end are all in runs.
+        self.uploaded.resize(entries.len(), T::zeroed());
         let mut written = 0;
-        for run in changed_runs(&self.uploaded, entries, merge_gap) {
-            let bytes: &[u8] = bytemuck::cast_slice(&entries[run.clone()]);
+        for run in runs {
+            let changed = &entries[run.clone()];
+            let bytes: &[u8] = bytemuck::cast_slice(changed);
             gpu.queue
                 .write_buffer(&self.buffer, run.start as u64 * Self::ENTRY_SIZE, bytes);
             written += bytes.len() as u64;
+            self.uploaded[run].copy_from_slice(changed);
         }
-        self.uploaded.clear();
-        self.uploaded.extend_from_slice(entries);
         (written, grew)
     }
 }
