@@ -76,12 +76,6 @@ pub(crate) struct VisibilityBuffer {
 
 impl VisibilityBuffer {
     pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
-        let keys = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("visibility buffer"),
-            size: visibility_bytes(target),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         let module = VISIBILITY_CLEAR_SHADER.create_module(&gpu.device);
         let pipeline = gpu
             .device
@@ -93,6 +87,22 @@ impl VisibilityBuffer {
                 compilation_options: Default::default(),
                 cache: None,
             });
+        Self::with_clear(gpu, target, pipeline)
+    }
+
+    /// The buffer of `target`, cleared by `pipeline` (compiled once per device: a resize makes a
+    /// new buffer and keeps it).
+    fn with_clear(
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        pipeline: wgpu::ComputePipeline,
+    ) -> Self {
+        let keys = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("visibility buffer"),
+            size: visibility_bytes(target),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("visibility clear"),
             layout: &pipeline.get_bind_group_layout(0),
@@ -137,7 +147,7 @@ impl VisibilityBuffer {
         if self.keys.size() == visibility_bytes(target) {
             self.target = target.id();
         } else {
-            *self = Self::new(gpu, target);
+            *self = Self::with_clear(gpu, target, self.clear.0.clone());
         }
     }
 }

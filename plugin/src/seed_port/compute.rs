@@ -6,7 +6,7 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use super::{SEED_PORT_ENTRY, SeedPortError, SeedPortMaterial, SeedPortUniform};
+use super::{SeedPortError, SeedPortMaterial, SeedPortUniform};
 use crate::material::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::render::shaders::{self, ComposedShader, ShaderTarget, WgslFile};
 use crate::render::{
@@ -24,17 +24,8 @@ pub const SEED_PORT_COMPUTE_ENTRY: WgslFile = crate::wgsl_file!("seed_port/seed_
 
 /// The seed port's compute shader: the same files as [`super::SEED_PORT_SHADER`], then the
 /// compute entry point.
-pub const SEED_PORT_COMPUTE_SHADER: ComposedShader = ComposedShader {
-    name: "seed_port_compute.wgsl",
-    constants: &[],
-    files: &[
-        shaders::FRAME,
-        shaders::MESH_VERTEX,
-        shaders::TANGENT_SPACE,
-        SEED_PORT_ENTRY,
-        SEED_PORT_COMPUTE_ENTRY,
-    ],
-};
+pub const SEED_PORT_COMPUTE_SHADER: ComposedShader =
+    super::seed_port_shader!("seed_port_compute.wgsl", [SEED_PORT_COMPUTE_ENTRY]);
 
 /// What the compute pass knows of the view and the plane (`SeedPortView` in
 /// seed_port_compute.wgsl).

@@ -169,17 +169,27 @@ crate::wgsl_layout!(SeedPortUniform {
 /// The port's entry point.
 pub const SEED_PORT_ENTRY: WgslFile = crate::wgsl_file!("seed_port/seed_port.wgsl");
 
+/// The port's shader named `$name`: the core files it reads and the listing, followed by
+/// `$more` (the fragment and the compute pass list them once).
+macro_rules! seed_port_shader {
+    ($name:literal, [$($more:expr),*]) => {
+        ComposedShader {
+            name: $name,
+            constants: &[],
+            files: &[
+                shaders::FRAME,
+                shaders::MESH_VERTEX,
+                shaders::TANGENT_SPACE,
+                crate::seed_port::SEED_PORT_ENTRY,
+                $($more,)*
+            ],
+        }
+    };
+}
+pub(crate) use seed_port_shader;
+
 /// The port's shader.
-pub const SEED_PORT_SHADER: ComposedShader = ComposedShader {
-    name: "seed_port.wgsl",
-    constants: &[],
-    files: &[
-        shaders::FRAME,
-        shaders::MESH_VERTEX,
-        shaders::TANGENT_SPACE,
-        SEED_PORT_ENTRY,
-    ],
-};
+pub const SEED_PORT_SHADER: ComposedShader = seed_port_shader!("seed_port.wgsl", []);
 
 /// The texture slot of the normal and height map (tNormalMap).
 const NORMAL_HEIGHT_SLOT: usize = 1;

@@ -274,15 +274,7 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
     for cells in mesh_cells {
         let mesh = grid(cells).context("building a candidate grid")?;
         let triangles = mesh.triangle_count();
-        let mut scene = BenchScene::new(
-            SceneOptions {
-                surface: Some(mesh),
-                ..SceneOptions::timed_plane(setup.size, setup.path)
-            },
-            setup.textures,
-            on_mesh.clone(),
-            setup.view,
-        )?;
+        let mut scene = grid_scene(setup, mesh, &on_mesh, true)?;
         candidates.push(score(
             &mut scene,
             &reference,
@@ -348,16 +340,7 @@ fn reference_image(
         "  reference: {tiles}x{tiles} displaced grids of {} triangles ({per_texel:.2} cells per texel)",
         mesh.triangle_count()
     );
-    let mut reference = BenchScene::new(
-        SceneOptions {
-            timestamps: false,
-            surface: Some(mesh),
-            ..SceneOptions::timed_plane(setup.size, setup.path)
-        },
-        setup.textures,
-        on_mesh.clone(),
-        setup.view,
-    )?;
+    let mut reference = grid_scene(setup, mesh, on_mesh, false)?;
     reference.tile_surface(tiles, repeat)?;
     // Alpha 0 marks where the sunken reference leaves the view empty (at the far edge).
     reference.set_clear_color(pom::Color {
@@ -365,6 +348,26 @@ fn reference_image(
         ..pom::Color::BLACK
     });
     Ok((reference.capture()?, triangles, per_texel))
+}
+
+/// A bench scene of `setup` drawing the displaced grid `mesh` with `material` (the grid's
+/// relief is in its vertices), GPU-timed where `timestamps`.
+fn grid_scene(
+    setup: &Setup,
+    mesh: Mesh,
+    material: &ParallaxOcclusionMaterial,
+    timestamps: bool,
+) -> Result<BenchScene> {
+    BenchScene::new(
+        SceneOptions {
+            timestamps,
+            surface: Some(mesh),
+            ..SceneOptions::timed_plane(setup.size, setup.path)
+        },
+        setup.textures,
+        material.clone(),
+        setup.view,
+    )
 }
 
 fn score(
