@@ -112,9 +112,9 @@ pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
-    DebugView, HeightConvention, HeightSource, HeightUnits, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset, PresetError,
-    ShadowMode,
+    CurvedSilhouetteWarnings, DebugView, HeightConvention, HeightSource, HeightUnits,
+    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset,
+    PresetError, ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{

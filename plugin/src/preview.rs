@@ -25,6 +25,54 @@ pub enum PreviewProjection {
     Perspective,
 }
 
+/// What the preview shows the material on. Each is [`PLANE_SIZE`] across, centred on the
+/// origin, and `tiling` repeats its texture coordinates.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PreviewShape {
+    /// A square in the XZ plane facing +Y, u along +X and v along +Z; it fills the image
+    /// (cropped where the view tilts it).
+    #[default]
+    Plane,
+    /// A cube with the whole texture on each face ([`Mesh::cube`]); the top faces +Y like the
+    /// plane. It and the other solids are framed whole.
+    Cube,
+    /// A sphere wrapped once around (u) and from pole to pole (v) ([`Mesh::uv_sphere`]).
+    Sphere,
+    /// A closed cylinder about +Y, its side wrapped once around (u) and once along the axis (v),
+    /// each cap with the unit square over its disc ([`Mesh::cylinder`]).
+    Cylinder,
+}
+
+impl PreviewShape {
+    /// The shape's mesh with its texture repeated `tiling` times (values that are not positive
+    /// and finite mean 1).
+    pub fn mesh(self, tiling: f32) -> Mesh {
+        let tiling = if tiling.is_finite() && tiling > 0.0 {
+            tiling
+        } else {
+            1.0
+        };
+        let mut mesh = match self {
+            PreviewShape::Plane => return Mesh::plane_tiled(PLANE_SIZE, tiling),
+            PreviewShape::Cube => Mesh::cube(PLANE_SIZE),
+            PreviewShape::Sphere => Mesh::uv_sphere(PLANE_SIZE * 0.5, 64, 32),
+            PreviewShape::Cylinder => Mesh::cylinder(PLANE_SIZE * 0.5, PLANE_SIZE, 64),
+        };
+        for uv in &mut mesh.uvs {
+            *uv = uv.map(|coordinate| coordinate * tiling);
+        }
+        mesh
+    }
+
+    /// Half the extent of the shape's bounding box along each axis.
+    fn half_extent(self) -> Vec3 {
+        match self {
+            PreviewShape::Plane => Vec3::new(0.5, 0.0, 0.5) * PLANE_SIZE,
+            _ => Vec3::splat(0.5 * PLANE_SIZE),
+        }
+    }
+}
+
 /// Where the camera and the light are, relative to the plane.
 ///
 /// Angles are in degrees. The view angle is between the view direction and the plane's normal
@@ -48,6 +96,8 @@ pub struct PreviewView {
     pub distance: f32,
     /// UV repeats across the plane.
     pub tiling: f32,
+    /// What the material is shown on.
+    pub shape: PreviewShape,
 }
 
 impl Default for PreviewView {
@@ -60,6 +110,7 @@ impl Default for PreviewView {
             projection: PreviewProjection::Orthographic,
             distance: 1.0,
             tiling: 1.0,
+            shape: PreviewShape::Plane,
         }
     }
 }
@@ -96,12 +147,23 @@ impl PreviewView {
         } else {
             1.0
         };
+        let right = up.cross(-to_camera).normalize_or(Vec3::Z);
         let (projection, distance) = match self.projection {
             PreviewProjection::Orthographic => {
-                // The plane appears cos(angle) as tall as it is wide; fit it in both directions.
-                let fit = (PLANE_SIZE * radians.cos())
-                    .min(PLANE_SIZE / aspect)
-                    .max(1e-3);
+                let fit = if self.shape == PreviewShape::Plane {
+                    // The plane appears cos(angle) as tall as it is wide; it fills the image.
+                    (PLANE_SIZE * radians.cos()).min(PLANE_SIZE / aspect)
+                } else {
+                    // A solid is framed whole: its box's corners fit, with a margin.
+                    let extent = self.shape.half_extent();
+                    let (mut tall, mut wide) = (0.0_f32, 0.0_f32);
+                    for corner in box_corners(extent) {
+                        tall = tall.max(corner.dot(up).abs());
+                        wide = wide.max(corner.dot(right).abs());
+                    }
+                    2.2 * tall.max(wide / aspect)
+                }
+                .max(1e-3);
                 (
                     Projection::Orthographic {
                         height: fit * distance_scale,
@@ -119,7 +181,13 @@ impl PreviewView {
                         near: 0.01,
                         far: 100.0,
                     },
-                    (PLANE_SIZE * 0.5 / (fov_y * 0.5).tan()) * distance_scale,
+                    if self.shape == PreviewShape::Plane {
+                        PLANE_SIZE * 0.5 / (fov_y * 0.5).tan() * distance_scale
+                    } else {
+                        // The bounding sphere fits the narrower field, with a margin.
+                        let half_fov = (fov_y * 0.5).min(((fov_y * 0.5).tan() * aspect).atan());
+                        1.1 * self.shape.half_extent().length() / half_fov.sin() * distance_scale
+                    },
                 )
             }
         };
@@ -146,19 +214,22 @@ impl PreviewView {
     }
 }
 
-/// Spawns the preview plane with `material`, the camera and the light. Finishes the app's
+/// The eight corners of the box of half extent `extent` about the origin.
+fn box_corners(extent: Vec3) -> impl Iterator<Item = Vec3> {
+    (0..8).map(move |bits| {
+        let sign = |bit: u32| if bits & bit == 0 { -1.0 } else { 1.0 };
+        extent * Vec3::new(sign(1), sign(2), sign(4))
+    })
+}
+
+/// Spawns the preview shape with `material`, the camera and the light. Finishes the app's
 /// plugins first (the render plugin's target gives the aspect ratio).
 pub fn spawn_preview(
     app: &mut App,
     material: ParallaxOcclusionMaterial,
     view: &PreviewView,
 ) -> Result<(), AppError> {
-    let tiling = if view.tiling.is_finite() && view.tiling > 0.0 {
-        view.tiling
-    } else {
-        1.0
-    };
-    spawn_preview_mesh(app, Mesh::plane_tiled(PLANE_SIZE, tiling), material, view)
+    spawn_preview_mesh(app, view.shape.mesh(view.tiling), material, view)
 }
 
 /// Like [`spawn_preview`] with `surface` in place of the flat plane: a mesh of about the

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::ValueEnum;
 use pom::hecs::{Entity, World};
-use pom::preview::{MAX_VIEW_ANGLE, PreviewProjection};
+use pom::preview::{MAX_VIEW_ANGLE, PreviewProjection, PreviewShape};
 use pom::{DirectionalLight, LightShadows, PointLight, RenderPath, RenderPlugin, SpotLight};
 
 /// `--projection`: how the preview camera projects.
@@ -32,6 +32,32 @@ impl From<PreviewProjection> for ProjectionArg {
         match projection {
             PreviewProjection::Orthographic => ProjectionArg::Ortho,
             PreviewProjection::Perspective => ProjectionArg::Perspective,
+        }
+    }
+}
+
+/// `--shape`: what the material preview shows the material on (`pom::preview::PreviewShape`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ShapeArg {
+    /// A square facing up, u along +X and v along +Z (0..tiling); it fills the image
+    Plane,
+    /// A cube with the whole texture on each face (u and v along the face's edges, v down the
+    /// side faces), framed whole
+    Cube,
+    /// A sphere, u once around the equator and v from the top pole (0) to the bottom (1)
+    Sphere,
+    /// A closed cylinder about the vertical: its side u once around and v from the top rim to
+    /// the bottom, each cap the unit square over its disc
+    Cylinder,
+}
+
+impl From<ShapeArg> for PreviewShape {
+    fn from(shape: ShapeArg) -> Self {
+        match shape {
+            ShapeArg::Plane => PreviewShape::Plane,
+            ShapeArg::Cube => PreviewShape::Cube,
+            ShapeArg::Sphere => PreviewShape::Sphere,
+            ShapeArg::Cylinder => PreviewShape::Cylinder,
         }
     }
 }

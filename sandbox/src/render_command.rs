@@ -15,8 +15,8 @@ use pom::{
 };
 
 use crate::cli_types::{
-    CameraArg, DisplayArgs, PathArgs, ProjectionArg, ShadowArgs, parse_camera, parse_finite,
-    parse_png_path, parse_positive, parse_size, parse_view_angle,
+    CameraArg, DisplayArgs, PathArgs, ProjectionArg, ShadowArgs, ShapeArg, parse_camera,
+    parse_finite, parse_png_path, parse_positive, parse_size, parse_view_angle,
 };
 use crate::frame_output;
 use crate::material_args::{self, MaterialArgs, choice_parser};
@@ -32,7 +32,9 @@ Geometry conventions:
   default, the plane fills the image. Azimuth 0 puts the camera on the −u side with its
   view ray's in-plane component along +u, so +u runs up the image and +v to the right;
   the azimuth turns that towards +v. The light uses the same frame: light angle 0 is
-  straight above, 90 is the horizon, more is below it.
+  straight above, 90 is the horizon, more is below it. Every --shape is one unit across
+  and centred where the plane is, its top facing up as the plane does; a solid (cube,
+  sphere, cylinder) is framed whole, so its outline shows (--silhouette).
 
 Missing textures:
   Without --height, the shipped bricks (assets/bricks, embedded in the binary) are used,
@@ -107,7 +109,7 @@ pub struct OutputArgs {
 /// The options only the material preview uses, besides the material's own flags: every one of
 /// `TextureArgs` and `ViewArgs`. Each conflicts with `--scene` by name, so the usage error names
 /// the one given.
-const PREVIEW_ONLY: [&str; 7] = [
+const PREVIEW_ONLY: [&str; 8] = [
     "height",
     "normal",
     "albedo",
@@ -115,6 +117,7 @@ const PREVIEW_ONLY: [&str; 7] = [
     "light_azimuth",
     "projection",
     "tiling",
+    "shape",
 ];
 
 /// Every option `--scene` conflicts with: [`PREVIEW_ONLY`] and every material flag.
@@ -222,6 +225,9 @@ pub struct ViewArgs {
         default_value_t = view_default().tiling
     )]
     pub tiling: f32,
+    /// What the material is shown on; each value's texture layout is listed with it.
+    #[arg(long, value_enum, default_value = "plane")]
+    pub shape: ShapeArg,
 }
 
 impl RenderArgs {
@@ -269,6 +275,7 @@ impl ViewArgs {
             projection: self.projection.into(),
             distance: self.distance.unwrap_or(default.distance),
             tiling: self.tiling,
+            shape: self.shape.into(),
         }
     }
 
@@ -454,6 +461,7 @@ mod tests {
                 projection: pom::preview::PreviewProjection::Perspective,
                 distance: 0.5,
                 tiling: 3.0,
+                shape: pom::preview::PreviewShape::Plane,
             }
         );
     }

@@ -65,10 +65,9 @@ fn frame_bind_group(
         ),
     ];
     if bindings.visibility_keys {
-        entries.push(entry(
-            frame_group::VISIBILITY_KEYS,
-            visibility.as_entire_binding(),
-        ));
+        for binding in [frame_group::VISIBILITY_KEYS, frame_group::VISIBILITY_WORDS] {
+            entries.push(entry(binding, visibility.as_entire_binding()));
+        }
     }
     if let Some(counter) = bindings.counter {
         entries.push(entry(
@@ -131,18 +130,21 @@ fn shadow_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
     ]
 }
 
-/// Binding 8 of group 0: the visibility keys the deferred path's prepass merges into.
-fn visibility_keys_entry() -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding: frame_group::VISIBILITY_KEYS,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: wgpu::BufferSize::new(crate::render::VISIBILITY_BYTES_PER_PIXEL),
-        },
-        count: None,
-    }
+/// Bindings 8 and 9 of group 0: the visibility keys the deferred path's prepass merges into,
+/// and the same buffer as words, read for the depth each pixel has kept.
+fn visibility_entries() -> [wgpu::BindGroupLayoutEntry; 2] {
+    [frame_group::VISIBILITY_KEYS, frame_group::VISIBILITY_WORDS].map(|binding| {
+        wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: false },
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(crate::render::VISIBILITY_BYTES_PER_PIXEL),
+            },
+            count: None,
+        }
+    })
 }
 
 /// Binding 4 of group 0: the fragment invocation counter.
@@ -214,7 +216,7 @@ impl FrameBindGroups {
         ];
         entries.extend(shadow_entries());
         if deferred {
-            entries.push(visibility_keys_entry());
+            entries.extend(visibility_entries());
         }
         if counter.is_some() {
             entries.push(counter_entry());

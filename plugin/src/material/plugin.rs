@@ -422,7 +422,11 @@ mod tests {
                 .len(),
             2
         );
-        assert_eq!(app.schedule.len(Stage::Extract), 3, "core + two materials");
+        assert_eq!(
+            app.schedule.len(Stage::Extract),
+            4,
+            "core + two materials + the curved silhouette's mesh check"
+        );
     }
 
     /// A material that asks for one texture slot too many.

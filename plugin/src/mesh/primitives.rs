@@ -103,6 +103,62 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// A closed cylinder of `radius` and `height` about +Y, centred on the origin, made of
+    /// `sectors` slices (at least 3). The side wraps the texture once around (u, from +X
+    /// towards −Z, so it grows to the right seen from outside) and once along the axis (v, from
+    /// the top rim, 0, to the bottom, 1); each cap has the texture's unit square over its disc
+    /// (u along +X, v along +Z on the top, −Z on the bottom, so both read unmirrored from
+    /// outside).
+    pub fn cylinder(radius: f32, height: f32, sectors: u32) -> Self {
+        let sectors = sectors.max(3);
+        let half = height * 0.5;
+        let mut mesh = Mesh::default();
+        for sector in 0..=sectors {
+            let u = sector as f32 / sectors as f32;
+            let azimuth = u * TAU;
+            let normal = Vec3::new(azimuth.cos(), 0.0, -azimuth.sin());
+            for (y, v) in [(half, 0.0), (-half, 1.0)] {
+                mesh.positions.push((normal * radius + Vec3::Y * y).into());
+                mesh.normals.push(normal.into());
+                mesh.uvs.push([u, v]);
+            }
+        }
+        for sector in 0..sectors {
+            let (top, bottom) = (sector * 2, sector * 2 + 1);
+            let (next_top, next_bottom) = (top + 2, bottom + 2);
+            mesh.indices
+                .extend([top, bottom, next_bottom, top, next_bottom, next_top]);
+        }
+        for (cap_normal, flip_v) in [(Vec3::Y, 1.0), (Vec3::NEG_Y, -1.0)] {
+            let centre = mesh.positions.len() as u32;
+            mesh.positions.push((cap_normal * half).into());
+            mesh.normals.push(cap_normal.into());
+            mesh.uvs.push([0.5, 0.5]);
+            for sector in 0..sectors {
+                let azimuth = sector as f32 / sectors as f32 * TAU;
+                let (x, z) = (azimuth.cos(), -azimuth.sin());
+                mesh.positions
+                    .push((Vec3::new(x * radius, 0.0, z * radius) + cap_normal * half).into());
+                mesh.normals.push(cap_normal.into());
+                mesh.uvs.push([0.5 + 0.5 * x, 0.5 + 0.5 * z * flip_v]);
+            }
+            for sector in 0..sectors {
+                let a = centre + 1 + sector;
+                let b = centre + 1 + (sector + 1) % sectors;
+                // Counter-clockwise seen from outside the cap.
+                if cap_normal.y > 0.0 {
+                    mesh.indices.extend([centre, a, b]);
+                } else {
+                    mesh.indices.extend([centre, b, a]);
+                }
+            }
+        }
+        mesh.tangents = generate_tangents(&mesh);
+        mesh
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -145,6 +201,7 @@ mod tests {
         assert_outward_and_complete(&Mesh::plane(2.0));
         assert_outward_and_complete(&Mesh::cube(1.0));
         assert_outward_and_complete(&Mesh::uv_sphere(1.0, 24, 12));
+        assert_outward_and_complete(&Mesh::cylinder(0.5, 1.0, 24));
     }
 
     #[test]

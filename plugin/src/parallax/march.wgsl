@@ -36,6 +36,16 @@ struct HeightField {
     // given level costs less than one the sampler must find the level of
     // (sandbox/BENCHMARKS.md, "explicit sample level").
     level: f32,
+    // 1 where the surface ends at `bounds` (min u, min v, max u, max v; the material's
+    // uv_bounds silhouette): a sample outside reads as the deepest height, so no ray meets the
+    // relief there, and a view ray that gets there has left the surface. The CPU reference
+    // samples fields unbounded, as 0 does here.
+    bounded: u32,
+    bounds: vec4<f32>,
+}
+
+fn inside_bounds(field: HeightField, uv: vec2<f32>) -> bool {
+    return all(uv >= field.bounds.xy) && all(uv <= field.bounds.zw);
 }
 
 // The level a trilinear sampler without anisotropy picks for a pixel whose texture coordinate
@@ -48,7 +58,8 @@ fn sampler_level(ddx_texels: vec2<f32>, ddy_texels: vec2<f32>) -> f32 {
 
 fn sample_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, uv: vec2<f32>) -> f32 {
     let texel = textureSampleLevel(height_texture, height_sampler, uv, field.level);
-    return height_in_channel(texel, field.channel, field.depth_convention);
+    let height = height_in_channel(texel, field.channel, field.depth_convention);
+    return select(height, 0.0, field.bounded != 0u && !inside_bounds(field, uv));
 }
 
 // How far, in texture coordinates, a ray along `direction_ts` (tangent space, pointing away from
@@ -99,7 +110,9 @@ struct Crossing {
 
 // Linear search with early exit (T §5.4.1): from `start_uv` at ray height `start_ray` (surface
 // height `start_surface` there), take `steps` equal steps spanning `uv_span` and `ray_span`, and
-// stop at the first sample where the surface reaches the ray.
+// stop at the first sample where the surface reaches the ray. `bend` bends the ray by the
+// surface's curvature: at the fraction t of the span its height is start_ray + ray_span · t +
+// bend · t² (0: straight, as the CPU reference marches every ray).
 fn linear_search(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -109,6 +122,7 @@ fn linear_search(
     start_surface: f32,
     uv_span: vec2<f32>,
     ray_span: f32,
+    bend: f32,
     steps: u32,
 ) -> Crossing {
     var crossing = Crossing(start_uv, start_ray, start_surface, start_uv, start_ray, start_surface, false, 0u);
@@ -117,7 +131,7 @@ fn linear_search(
         // From the start each time, not accumulated, and the last step exactly on the end.
         let t = select(f32(i) * step, 1.0, i == steps);
         let uv = start_uv + uv_span * t;
-        let ray = start_ray + ray_span * t;
+        let ray = start_ray + ray_span * t + bend * t * t;
         let surface = sample_height(height_texture, height_sampler, field, uv);
         crossing.samples += 1u;
         if surface >= ray {
@@ -141,6 +155,9 @@ struct RayHit {
     height: f32,
     // Height samples taken.
     samples: u32,
+    // False where a bent ray rose out of the relief's shell without meeting it: it left the
+    // surface (the CPU reference's rays are straight and always meet it).
+    met: bool,
 }
 
 // T / Luna §4: the ray meets the straight line through the two bracketing samples.
@@ -153,6 +170,7 @@ fn secant_refinement(crossing: Crossing) -> RayHit {
         mix(crossing.above_uv, crossing.below_uv, t),
         mix(crossing.above_ray, crossing.below_ray, t),
         crossing.samples,
+        true,
     );
 }
 
@@ -179,12 +197,24 @@ fn binary_refinement(
             above_ray = middle_ray;
         }
     }
-    return RayHit((above_uv + below_uv) * 0.5, (above_ray + below_ray) * 0.5, crossing.samples + steps);
+    return RayHit((above_uv + below_uv) * 0.5, (above_ray + below_ray) * 0.5, crossing.samples + steps, true);
+}
+
+// The fraction of a view ray's straight path (the one that reaches the deepest height at 1) its
+// march spans when `bend` bends it (height 1 − t + bend · t²): to where it reaches the deepest
+// height, or, bent up by more than ¼, to where it rises back out of the shell's top.
+fn bent_span(bend: f32) -> f32 {
+    if bend > 0.25 {
+        return 1.0 / bend;
+    }
+    // The smaller root of 1 − t + bend · t², in the form that stays exact as bend → 0.
+    return 2.0 / (1.0 + sqrt(1.0 - 4.0 * bend));
 }
 
 // The visible point for the view ray entering at `uv` with parallax offset vector `offset` (P),
-// by `method`. `to_eye_ts` is only used by parallax offset mapping, `pyramid` (the height's
-// maximum pyramid, max_mip.wgsl) only by MaxMip.
+// by `method`, the ray bent by `bend` (`linear_search`; 0: straight). `to_eye_ts` is only used
+// by parallax offset mapping, `pyramid` (the height's maximum pyramid, max_mip.wgsl) only by
+// MaxMip, which walks the straight ray and judges the bent one by where that meets the relief.
 fn march_view(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -197,25 +227,37 @@ fn march_view(
     height_scale: f32,
     steps: u32,
     binary_steps: u32,
+    bend: f32,
 ) -> RayHit {
     if method == METHOD_NORMAL_MAPPING {
-        return RayHit(uv, 1.0, 0u);
+        return RayHit(uv, 1.0, 0u, true);
     }
     if method == METHOD_MAX_MIP {
-        return march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
+        var hit = march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
+        // Bent up by more than ¼ the ray is back at the top at t = 1 / bend: past that, the
+        // straight ray's hit is one the bent ray never reaches.
+        hit.met = bend <= 0.25 || (1.0 - hit.height) * bend <= 1.0;
+        return hit;
     }
     let surface = sample_height(height_texture, height_sampler, field, uv);
     if method == METHOD_PARALLAX_OFFSET {
         // Welsh's offset limiting: shift by the depth along V.xy without dividing by V.z.
-        return RayHit(uv - (1.0 - surface) * height_scale * to_eye_ts.xy, surface, 1u);
+        return RayHit(uv - (1.0 - surface) * height_scale * to_eye_ts.xy, surface, 1u, true);
     }
     if surface >= 1.0 {
-        return RayHit(uv, 1.0, 1u);
+        return RayHit(uv, 1.0, 1u, true);
     }
-    var crossing = linear_search(height_texture, height_sampler, field, uv, 1.0, surface, offset, -1.0, steps);
+    let span = bent_span(bend);
+    var crossing = linear_search(height_texture, height_sampler, field, uv, 1.0, surface, offset * span, -span,
+        bend * span * span, steps);
     crossing.samples += 1u;
+    if !crossing.found {
+        // A straight ray always ends on the deepest height; a bent one ends there only to a
+        // rounding (the last sample is kept), or rose out of the shell.
+        return RayHit(crossing.above_uv, crossing.above_ray, crossing.samples, bend <= 0.25);
+    }
     if method == METHOD_STEEP {
-        return RayHit(crossing.below_uv, crossing.below_ray, crossing.samples);
+        return RayHit(crossing.below_uv, crossing.below_ray, crossing.samples, true);
     }
     if method == METHOD_RELIEF {
         return binary_refinement(height_texture, height_sampler, field, crossing, binary_steps);
@@ -227,8 +269,9 @@ fn march_view(
 // of the height field rises above the light ray, else 1. `light_offset` is ray_offset(L_ts, H);
 // `texels_per_rise` the texels a ray rising the whole height range crosses. The ray only rises
 // from the visible point to the top, so it takes T eq. 1's count for N·L capped by the texels
-// that shorter ray crosses: a point near the top needs few steps. MaxMip walks its `pyramid`
-// instead, exactly (max_mip.wgsl).
+// that shorter ray crosses: a point near the top needs few steps. `bend` bends the light ray
+// by the surface's curvature as `linear_search` does, over the whole rise (0: straight). MaxMip
+// walks its `pyramid` instead, exactly and straight (max_mip.wgsl).
 fn hard_shadow(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -241,6 +284,7 @@ fn hard_shadow(
     max_samples: u32,
     n_dot_l: f32,
     texels_per_rise: f32,
+    bend: f32,
 ) -> f32 {
     if method == METHOD_MAX_MIP {
         return max_mip_hard_shadow(height_texture, height_sampler, pyramid, field, uv, light_offset);
@@ -251,13 +295,15 @@ fn hard_shadow(
         return 1.0;
     }
     let steps = march_steps(min_samples, max_samples, n_dot_l, texels_per_rise * rise);
-    let crossing = linear_search(height_texture, height_sampler, field, uv, start, start, light_offset * rise, rise, steps);
+    let crossing = linear_search(height_texture, height_sampler, field, uv, start, start, light_offset * rise, rise,
+        bend * rise * rise, steps);
     return select(1.0, 0.0, crossing.found);
 }
 
 // Tatarchuk's soft self-shadow (§5.4.2, Listing 2): seven height samples along the light ray at
 // 0.22 … 0.88 of the height range above the visible point. Each sample's height over the ray is
 // weighted more the nearer it is (near blockers cast sharp penumbrae), the strongest one wins.
+// `bend` raises the ray by bend · fraction² where the surface curves away (0: straight).
 fn soft_shadow(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -265,6 +311,7 @@ fn soft_shadow(
     uv: vec2<f32>,
     light_offset: vec2<f32>,
     softening: f32,
+    bend: f32,
 ) -> f32 {
     let start = sample_height(height_texture, height_sampler, field, uv);
     var strongest = 0.0;
@@ -273,7 +320,7 @@ fn soft_shadow(
         let fraction = 0.88 - 0.11 * f32(k);
         let weight = max(1.0, 2.0 * f32(k));
         let blocker = sample_height(height_texture, height_sampler, field, uv + light_offset * fraction);
-        strongest = max(strongest, (blocker - start - fraction) * weight);
+        strongest = max(strongest, (blocker - start - fraction - bend * fraction * fraction) * weight);
     }
     let sharpness = SEED_SHADOW_SOFTENING * SEED_SHADOW_SOFTENING / max(softening, 1e-4);
     return clamp(1.0 - strongest * sharpness, 0.0, 1.0);

@@ -37,6 +37,25 @@ crate::choice_enum! {
 }
 
 crate::choice_enum! {
+    /// Whether the relief shows at the outline of the surface (T §5.6: POM's silhouettes are
+    /// the polygon's). With `uv_bounds`, a view ray that leaves the texture bounds
+    /// (`bounds_u_min` ..) before it meets the relief leaves the surface, and the pixel shows
+    /// what lies behind: for surfaces the texture does not wrap around (a crate's face, a sign,
+    /// a tile). With `curved`, the view ray is bent by the surface's curvature along its
+    /// direction (Oliveira and Policarpo 2005, here from the interpolated normal's change across
+    /// the pixel), and a ray that rises out of the relief's shell without meeting it leaves the
+    /// surface: for closed, curved surfaces.
+    pub enum Silhouette: "SILHOUETTE" {
+        /// The outline is the polygon's: every pixel of it shows the relief.
+        Off = "off",
+        /// A ray leaving the texture bounds before it meets the relief leaves the surface (a crate's face, a sign).
+        UvBounds = "uv_bounds",
+        /// The ray bends with the surface's curvature and leaves where it rises out of the relief (a sphere, a rock).
+        Curved = "curved",
+    }
+}
+
+crate::choice_enum! {
     /// What the height texture's values mean.
     pub enum HeightConvention: "CONVENTION" {
         /// White is the top (the polygon's surface), black the deepest point (Tatarchuk).
@@ -98,6 +117,14 @@ impl HeightSource {
     }
 }
 
+/// Largest magnitude of a texture-bounds coordinate (`bounds_u_min` ..): far past any atlas or
+/// count of repeats, small enough that a float texture coordinate still resolves a texel.
+pub const BOUNDS_LIMIT: f32 = 4096.0;
+
+fn clips_at_bounds(material: &ParallaxOcclusionMaterial) -> bool {
+    material.silhouette == Silhouette::UvBounds
+}
+
 /// Most height samples one march may take; larger `max_samples` are clamped to it.
 pub const MAX_SAMPLES_LIMIT: u32 = 256;
 
@@ -146,6 +173,21 @@ crate::with_lighting_parameters! {
             /// Width of the band below the threshold where parallax fades out: wider hides it.
             lod_band: f32 = 1.0, ParamSpec::float(0.01, 16.0).editor(0.01, 4.0)
                 .unit("mip levels");
+            /// Whether the relief shows at the outline: off, clipped where the view ray leaves
+            /// the texture bounds (uv_bounds), or where it rises out of a curved surface (curved).
+            silhouette: Silhouette = Silhouette::Off, ParamSpec::choice::<Silhouette>();
+            /// Smallest u of the surface's texture (uv_bounds): 0, or an atlas rectangle's edge.
+            bounds_u_min: f32 = 0.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
+                .editor(-1.0, 1.0).unit("texture units").applies_when(clips_at_bounds);
+            /// Largest u (uv_bounds): 1, or the count of repeats across the surface.
+            bounds_u_max: f32 = 1.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
+                .editor(0.0, 8.0).unit("texture units").applies_when(clips_at_bounds);
+            /// Smallest v of the surface's texture (uv_bounds).
+            bounds_v_min: f32 = 0.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
+                .editor(-1.0, 1.0).unit("texture units").applies_when(clips_at_bounds);
+            /// Largest v (uv_bounds).
+            bounds_v_max: f32 = 1.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
+                .editor(0.0, 8.0).unit("texture units").applies_when(clips_at_bounds);
             /// Whether bumps cast shadows on the surface: off, hard-edged, or soft.
             shadows: ShadowMode = ShadowMode::Soft, ParamSpec::choice::<ShadowMode>();
             /// Penumbra width of soft shadows: larger is softer (0.58 is Tatarchuk's look).
@@ -179,6 +221,18 @@ pub enum PomMaterialError {
         /// max_samples.
         max: u32,
     },
+    /// The texture bounds enclose no area along one axis (minimum at or above maximum).
+    #[error(
+        "bounds_{axis}_min ({min}) is not below bounds_{axis}_max ({max}): the bounds enclose no area"
+    )]
+    BoundsEmpty {
+        /// `u` or `v`.
+        axis: char,
+        /// The axis's minimum.
+        min: f32,
+        /// Its maximum.
+        max: f32,
+    },
 }
 
 impl ParallaxOcclusionMaterial {
@@ -195,12 +249,28 @@ impl ParallaxOcclusionMaterial {
                 max: self.max_samples,
             });
         }
+        for (axis, min, max) in self.bounds_axes() {
+            // NaN is a limit problem already.
+            if min >= max {
+                problems.push(PomMaterialError::BoundsEmpty { axis, min, max });
+            }
+        }
         problems
+    }
+
+    /// Each axis of the texture bounds: its name, minimum and maximum.
+    fn bounds_axes(&self) -> [(char, f32, f32); 2] {
+        [
+            ('u', self.bounds_u_min, self.bounds_u_max),
+            ('v', self.bounds_v_min, self.bounds_v_max),
+        ]
     }
 
     /// Whether every parameter is valid (no allocation: the renderer asks every frame).
     pub fn is_valid(&self) -> bool {
-        self.first_limit_problem().is_none() && self.min_samples <= self.max_samples
+        self.first_limit_problem().is_none()
+            && self.min_samples <= self.max_samples
+            && self.bounds_axes().iter().all(|(_, min, max)| min < max)
     }
 
     /// Checks every parameter; the first problem is the error.
@@ -223,13 +293,24 @@ impl ParallaxOcclusionMaterial {
     }
 
     /// A copy with every parameter brought into range: NaN and ∞ become the default, numbers are
-    /// clamped to their limits, inverted sample bounds are swapped. This is what the renderer
-    /// draws; it logs [`Self::problems`] once per change.
+    /// clamped to their limits, inverted sample and texture bounds are swapped, and texture
+    /// bounds of no area become the default [0, 1]. This is what the renderer draws; it logs
+    /// [`Self::problems`] once per change.
     pub fn sanitized(&self) -> Self {
         let mut clean = self.clone();
         clean.clamp_to_limits();
         if clean.min_samples > clean.max_samples {
             std::mem::swap(&mut clean.min_samples, &mut clean.max_samples);
+        }
+        for (min, max) in [
+            (&mut clean.bounds_u_min, &mut clean.bounds_u_max),
+            (&mut clean.bounds_v_min, &mut clean.bounds_v_max),
+        ] {
+            if *min > *max {
+                std::mem::swap(min, max);
+            } else if *min == *max {
+                (*min, *max) = (0.0, 1.0);
+            }
         }
         clean
     }
@@ -295,6 +376,47 @@ mod tests {
         );
         let clean = inverted.sanitized();
         assert_eq!((clean.min_samples, clean.max_samples), (10, 40));
+    }
+
+    #[test]
+    fn texture_bounds_of_no_area_are_an_error_and_get_drawable() {
+        let inverted = ParallaxOcclusionMaterial {
+            silhouette: Silhouette::UvBounds,
+            bounds_u_min: 0.75,
+            bounds_u_max: 0.25,
+            ..ParallaxOcclusionMaterial::default()
+        };
+        assert_eq!(
+            inverted.validate().unwrap_err().to_string(),
+            "bounds_u_min (0.75) is not below bounds_u_max (0.25): the bounds enclose no area"
+        );
+        assert!(!inverted.is_valid());
+        let clean = inverted.sanitized();
+        assert_eq!((clean.bounds_u_min, clean.bounds_u_max), (0.25, 0.75));
+        assert!(clean.is_valid());
+
+        let flat = ParallaxOcclusionMaterial {
+            bounds_v_min: 2.0,
+            bounds_v_max: 2.0,
+            ..inverted.clone()
+        };
+        assert!(flat.problems().contains(&PomMaterialError::BoundsEmpty {
+            axis: 'v',
+            min: 2.0,
+            max: 2.0
+        }));
+        let clean = flat.sanitized();
+        assert_eq!((clean.bounds_v_min, clean.bounds_v_max), (0.0, 1.0));
+
+        let not_a_number = ParallaxOcclusionMaterial {
+            bounds_v_max: f32::NAN,
+            ..inverted
+        };
+        assert_eq!(
+            not_a_number.validate().unwrap_err().to_string(),
+            "bounds_v_max is NaN, which is not a finite number"
+        );
+        assert!(not_a_number.sanitized().is_valid());
     }
 
     #[test]

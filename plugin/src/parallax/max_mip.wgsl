@@ -150,7 +150,7 @@ fn march_max_mip(
 ) -> RayHit {
     // A miss reaches the bottom (t = 1); a ray that ran out of steps stops where it is free.
     let found = max_mip_first_hit(height_texture, height_sampler, pyramid, field, FieldRay(uv, offset, 1.0, -1.0));
-    return RayHit(uv + offset * found.t, 1.0 - found.t, found.samples);
+    return RayHit(uv + offset * found.t, 1.0 - found.t, found.samples, true);
 }
 
 // Hard self-shadow, exactly (no blocker stepped over): 0 if the height field blocks the light

@@ -1,5 +1,6 @@
 //! The parallax occlusion mapping material: its parameters, GPU form and plugin.
 
+mod curvature;
 mod gpu;
 mod material;
 mod max_pyramid;
@@ -7,10 +8,14 @@ mod pipelines;
 mod preset;
 
 pub use crate::lighting::LightingModel;
+pub use curvature::{
+    CurvedSilhouetteWarnings, curvature_problem, warn_about_meshes_without_curvature,
+};
 pub use gpu::PomUniform;
 pub use material::{
-    DebugView, HeightConvention, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset, ShadowMode,
+    BOUNDS_LIMIT, DebugView, HeightConvention, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT,
+    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset,
+    ShadowMode, Silhouette,
 };
 #[cfg(feature = "scene-tests")]
 pub use max_pyramid::read_max_pyramid;
@@ -45,6 +50,7 @@ macro_rules! parallax_shader {
                 $($first,)*
                 ParallaxMethod::wgsl_constants,
                 ShadowMode::wgsl_constants,
+                Silhouette::wgsl_constants,
                 HeightUnits::wgsl_constants,
                 LightingModel::wgsl_constants,
                 DebugView::wgsl_constants,
@@ -261,6 +267,7 @@ impl Plugin for PomPlugin {
         // A lit plugin added before without that setting still draws the other meshes.
         crate::material::draw_meshes_without_material::<crate::LitMaterial>(app);
         app.add_system(crate::Stage::Prepare, crate::derive_dynamic_normals);
+        app.add_system(crate::Stage::Extract, warn_about_meshes_without_curvature);
     }
 
     fn finish(&self, app: &mut App) -> Result<(), crate::BoxedError> {

@@ -1,6 +1,7 @@
 //! What picks a parallax pipeline: method, shadow mode, lighting model, debug view, depth
-//! offset, and the height's channel and convention. `pom.wgsl` reads all but depth offset (an
-//! entry point) and double-sidedness (culling) as pipeline-overridable constants, so each
+//! offset, silhouette, and the height's channel and convention. `pom.wgsl` reads all but
+//! double-sidedness (culling) as pipeline-overridable constants (depth offset and silhouette
+//! also pick the entry points that march for their depth), so each
 //! pipeline holds only its own code path: on the H100 the single pipeline that branched on them
 //! per pixel took 27 % longer on POM without shadows and 52 % longer on normal mapping; on the
 //! H200, folding the channel pick out of every height sample (with a multiplication for the
@@ -9,7 +10,7 @@
 
 use super::material::{
     DebugView, HeightConvention, HeightSource, ParallaxMethod, ParallaxOcclusionMaterial,
-    ShadowMode,
+    ShadowMode, Silhouette,
 };
 use crate::LightingModel;
 use crate::material::{Choice, ShaderEntry};
@@ -25,8 +26,10 @@ pub struct PomPipelineKey {
     pub lighting: LightingModel,
     /// `DEBUG_VIEW`.
     pub debug_view: DebugView,
-    /// Whether the fragment shader writes the displaced depth (`fs_main_depth_offset`).
+    /// `DEPTH_OFFSET`: whether the depth passes write the displaced depth.
     pub depth_offset: bool,
+    /// `SILHOUETTE`: whether pixels where the view ray leaves the surface are clipped.
+    pub silhouette: Silhouette,
     /// Both sides drawn (no culling).
     pub double_sided: bool,
     /// `HEIGHT_CHANNEL`: the height's channel (0 = red, 3 = alpha).
@@ -44,6 +47,7 @@ impl PomPipelineKey {
             lighting: material.lighting,
             debug_view: material.debug_view,
             depth_offset: material.depth_offset,
+            silhouette: material.silhouette,
             double_sided: material.double_sided,
             height_channel: material
                 .height_map
@@ -62,27 +66,38 @@ impl PomPipelineKey {
         }
     }
 
+    /// Whether the depth passes march: for the displaced depth, or for the coverage a
+    /// silhouette clips. The others write the rasterized depth without a fragment shader.
+    fn marches_for_depth(self) -> bool {
+        self.depth_offset || self.silhouette != Silhouette::Off
+    }
+
     /// The fragment entry point and constants of this pipeline in a frame without prepass.
     pub fn fragment(self) -> ShaderEntry {
-        self.variant(if self.depth_offset {
-            "fs_main_depth_offset"
+        self.variant(if self.marches_for_depth() {
+            "fs_main_marched_depth"
         } else {
             "fs_main"
         })
     }
 
-    /// The prepass's fragment stage: only a depth-offset material needs one (it writes the
-    /// displaced depth); the others write the rasterized depth without a fragment shader.
+    /// The prepass's fragment stage, where it marches for its depth.
     pub fn prepass_fragment(self) -> Option<ShaderEntry> {
-        self.depth_offset
-            .then(|| self.variant("fs_prepass_depth_offset"))
+        self.marches_for_depth()
+            .then(|| self.variant("fs_prepass_marched_depth"))
     }
 
     /// The shadow map's fragment stage: the relief's depth seen from the light (the march
     /// along the light's view ray), except where only normal mapping runs (the polygon's).
     pub fn shadow_fragment(self) -> Option<ShaderEntry> {
         (self.method != ParallaxMethod::NormalMapping).then(|| {
-            let mut variant = self.variant("fs_prepass_depth_offset");
+            // A caster's map always holds the relief's depth, whatever the material writes in
+            // the camera's passes.
+            let caster = Self {
+                depth_offset: true,
+                ..self
+            };
+            let mut variant = caster.variant("fs_prepass_marched_depth");
             variant.constants.push(("SHADOW_CASTER", 1.0));
             variant
         })
@@ -90,18 +105,18 @@ impl PomPipelineKey {
 
     /// The opaque phase's fragment stage after a prepass.
     pub fn fragment_after_prepass(self) -> ShaderEntry {
-        self.variant(if self.depth_offset {
-            "fs_main_after_depth_prepass"
+        self.variant(if self.marches_for_depth() {
+            "fs_main_after_marched_prepass"
         } else {
             "fs_main"
         })
     }
 
-    /// The visibility pass's fragment stage (deferred path): the core's, or with depth offset
-    /// the one that also writes the displaced depth.
+    /// The visibility pass's fragment stage (deferred path): the core's, or where the depth
+    /// passes march the one that writes their depth and coverage.
     pub fn visibility_fragment(self) -> ShaderEntry {
-        if self.depth_offset {
-            self.variant("fs_visibility_depth_offset")
+        if self.marches_for_depth() {
+            self.variant("fs_visibility_marched_depth")
         } else {
             ShaderEntry::entry("fs_visibility")
         }
@@ -122,6 +137,8 @@ impl PomPipelineKey {
                 ("DEBUG_VIEW", f64::from(self.debug_view.code())),
                 ("HEIGHT_CHANNEL", f64::from(self.height_channel)),
                 ("HEIGHT_IS_DEPTH", f64::from(u8::from(self.height_is_depth))),
+                ("DEPTH_OFFSET", f64::from(u8::from(self.depth_offset))),
+                ("SILHOUETTE", f64::from(self.silhouette.code())),
             ],
         }
     }
@@ -157,6 +174,10 @@ mod tests {
                 ..base.clone()
             },
             ParallaxOcclusionMaterial {
+                silhouette: Silhouette::UvBounds,
+                ..base.clone()
+            },
+            ParallaxOcclusionMaterial {
                 double_sided: true,
                 ..base.clone()
             },
@@ -173,7 +194,7 @@ mod tests {
         keys.push(key);
         keys.sort();
         keys.dedup();
-        assert_eq!(keys.len(), 9, "{keys:?}");
+        assert_eq!(keys.len(), 10, "{keys:?}");
         // Parameters that are not modes share a pipeline.
         let tuned = ParallaxOcclusionMaterial {
             height_scale: 0.2,

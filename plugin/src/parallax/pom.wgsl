@@ -12,6 +12,10 @@ override DEBUG_VIEW: u32 = DEBUG_NONE;
 // surface, or at a grazing angle, would otherwise leave the flat polygon in the map, above every
 // receiver's relief, which would then read as shadowed).
 override SHADOW_CASTER: bool = false;
+// Whether the passes that march for their depth write the displaced point's (depth_offset) or
+// the polygon's (a silhouette that only clips).
+override DEPTH_OFFSET: bool = false;
+override SILHOUETTE: u32 = SILHOUETTE_OFF;
 // The height's channel (0 = red .. 3 = alpha) and whether white is deepest, set per pipeline
 // from the material: the per-sample channel pick and inversion fold away.
 override HEIGHT_CHANNEL: u32 = 0u;
@@ -46,11 +50,21 @@ struct SurfacePoint {
     mip: f32,
     // Texture units per world unit (Luna §3).
     uv_per_world: f32,
+    // The view ray in tangent space, its parallax offset vector P (the sideways travel over the
+    // whole height range) and how much the surface's curvature bends it (`ray_bend`).
+    to_eye_ts: vec3<f32>,
+    offset: vec2<f32>,
+    bend: f32,
+    // The surface's curvature along the light rays is read from the same footprint.
+    footprint: PixelFootprint,
     height_scale: f32,
     field: HeightField,
     // 1 past the LOD threshold, 0 before its band.
     fade: f32,
     marched: bool,
+    // Where the view ray left the surface before it met the relief (the silhouette): the pixel
+    // shows what lies behind.
+    clipped: bool,
     uv: vec2<f32>,
     height: f32,
     samples: u32,
@@ -62,15 +76,67 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3<f32>(x, x - 1.0, x - 2.0), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// The normal curvature of the surface along `direction` (a world direction in the tangent
+// plane; 1 / world units, positive where the surface falls away from its tangent plane, as a
+// sphere's outside does), from the pixel's footprint: the change of the interpolated normal
+// against the change of position (the shape operator of the triangle's normal field, the same
+// on both paths). 0 where the footprint is degenerate (a triangle seen edge-on).
+fn normal_curvature(in: VertexOut, frame: TangentFrame, footprint: PixelFootprint, direction: vec3<f32>) -> f32 {
+    // `direction` as a · ddx_world + b · ddy_world, solved in the tangent plane's coordinates
+    // (a basis of the normal and the footprint alone: the texture's tangents degenerate where
+    // its mapping pinches, at a sphere's poles).
+    let first = along_plane(frame, footprint.ddx_world);
+    let second = cross(frame.normal, first);
+    let across = vec2<f32>(dot(footprint.ddx_world, first), dot(footprint.ddx_world, second));
+    let down = vec2<f32>(dot(footprint.ddy_world, first), dot(footprint.ddy_world, second));
+    let along = vec2<f32>(dot(direction, first), dot(direction, second));
+    let determinant = across.x * down.y - down.x * across.y;
+    let length_squared = dot(along, along);
+    if abs(determinant) <= 1e-12 * max(dot(across, across) * dot(down, down), 1e-30) || length_squared < 1e-12 {
+        return 0.0;
+    }
+    let a = (along.x * down.y - down.x * along.y) / determinant;
+    let b = (across.x * along.y - along.x * across.y) / determinant;
+    let normal_change = a * footprint.ddx_normal + b * footprint.ddy_normal;
+    // The interpolated normal is about unit length; its change along the plane is what the
+    // unit normal's is. Seen from the back the surface bends the other way.
+    let facing = select(-1.0, 1.0, dot(in.world_normal, frame.normal) >= 0.0);
+    return facing * dot(normal_change, direction)
+        / (length_squared * max(length(in.world_normal), 1e-6));
+}
+
+// How much a ray through the relief bends (`linear_search`'s bend: its height rises by bend ·
+// t² after the fraction t of `offset`, the sideways travel over the whole height range) where
+// the surface curves by `curvature` (1 / world units) along it: the surface falls ½ k d² below
+// its tangent plane at distance d. 0 without the curved silhouette.
+fn ray_bend(curvature: f32, offset: vec2<f32>, point: SurfacePoint) -> f32 {
+    if SILHOUETTE != SILHOUETTE_CURVED {
+        return 0.0;
+    }
+    let curvature_texture = curvature / max(point.uv_per_world, 1e-30);
+    return 0.5 * curvature_texture * dot(offset, offset) / max(point.height_scale, 1e-30);
+}
+
+// The world direction along the tangent plane of `v` (a unit vector away from the surface).
+fn along_plane(frame: TangentFrame, v: vec3<f32>) -> vec3<f32> {
+    return safe_normalize(v - frame.normal * dot(v, frame.normal), frame.tangent);
+}
+
 // The march: the same code for the prepass, which only needs the depth, and the shading.
 fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> SurfacePoint {
+    return march_surface(in, view_ray(in, front_facing, footprint));
+}
+
+// Everything the march needs to know of the pixel before it samples a height.
+fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> SurfacePoint {
     let material = materials[in.object_index];
     let params = material.params;
     var point: SurfacePoint;
     point.surface_frame = facing_tangent_frame(in.world_normal, in.world_tangent, front_facing);
     point.to_eye = direction_to_eye(in.world_position, point.surface_frame.normal);
-    let to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
+    point.to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
 
+    point.footprint = footprint;
     point.ddx_uv = footprint.ddx_uv;
     point.ddy_uv = footprint.ddy_uv;
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
@@ -83,25 +149,59 @@ fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) ->
     point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 
     point.field = HeightField(HEIGHT_CHANNEL, u32(HEIGHT_IS_DEPTH),
-        sampler_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size));
-    let method = METHOD;
+        sampler_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size),
+        u32(SILHOUETTE == SILHOUETTE_UV_BOUNDS),
+        vec4<f32>(params.bounds_u_min, params.bounds_v_min, params.bounds_u_max, params.bounds_v_max));
     point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
-    point.marched = point.fade < 1.0 && method != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;
+    point.marched = point.fade < 1.0 && METHOD != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;
 
     point.uv = in.uv;
     point.height = 1.0;
     point.samples = 0u;
+    point.clipped = false;
+    point.offset = -ray_offset(point.to_eye_ts, point.height_scale);
+    let curvature = normal_curvature(in, point.surface_frame, footprint, along_plane(point.surface_frame, -point.to_eye));
+    point.bend = ray_bend(curvature, point.offset, point);
+    return point;
+}
+
+// Whether the view ray of `point` could leave the surface before it meets the relief: only
+// then must a pass that needs no more than coverage march. A straight ray stays on the segment
+// from where it enters to its parallax offset, so under uv_bounds it can leave only where that
+// segment crosses a bound; a bent one only where it is bent up by more than ¼ (`bent_span`).
+fn may_leave_surface(in: VertexOut, point: SurfacePoint) -> bool {
+    if !point.marched {
+        return false;
+    }
+    if SILHOUETTE == SILHOUETTE_UV_BOUNDS {
+        return !inside_bounds(point.field, in.uv) || !inside_bounds(point.field, in.uv + point.offset);
+    }
+    return SILHOUETTE == SILHOUETTE_CURVED && point.bend > 0.25;
+}
+
+// `point` (from `view_ray`) with the visible point the march finds.
+fn march_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
+    var point = ray;
     if point.marched {
-        let offset = -ray_offset(to_eye_ts, point.height_scale);
-        let texels = length(offset * texture_size) / exp2(point.mip);
+        let params = materials[in.object_index].params;
+        let texture_size = vec2<f32>(materials[in.object_index].height_texture_width,
+            materials[in.object_index].height_texture_height);
+        let offset = point.offset;
+        let bend = point.bend;
+        let texels = length(offset * texture_size) / exp2(point.mip) * bent_span(bend);
         let steps = march_steps(params.min_samples, params.max_samples, dot(point.surface_frame.normal, point.to_eye), texels);
-        let hit = march_view(height_texture, material_sampler, height_pyramid, point.field, method, in.uv, offset, to_eye_ts,
-            point.height_scale, steps, params.relief_binary_steps);
+        let hit = march_view(height_texture, material_sampler, height_pyramid, point.field, METHOD, in.uv, offset,
+            point.to_eye_ts, point.height_scale, steps, params.relief_binary_steps, bend);
+        // The bent ray's height is over the curved surface; the point lies on the straight view
+        // ray, t of its way down below the tangent plane.
+        let t = length(hit.uv - in.uv) / max(length(offset), 1e-30);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
         point.uv = mix(hit.uv, in.uv, point.fade);
-        point.height = mix(hit.height, 1.0, point.fade);
+        point.height = mix(hit.height - bend * t * t, 1.0, point.fade);
         point.samples = hit.samples;
+        // Through the LOD band too (the plain coordinate is on the polygon): the outline stays.
+        point.clipped = !hit.met || (point.field.bounded != 0u && !inside_bounds(point.field, hit.uv));
     }
     return point;
 }
@@ -156,13 +256,16 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
         if point.marched && SHADOW_MODE != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
             let to_light_ts = to_tangent_space(surface_frame, light.to_light);
             let light_offset = ray_offset(to_light_ts, point.height_scale);
+            let light_bend = ray_bend(normal_curvature(in, surface_frame, point.footprint,
+                along_plane(surface_frame, light.to_light)), light_offset, point);
             if SHADOW_MODE == SHADOWS_SOFT {
-                visibility = soft_shadow(height_texture, material_sampler, point.field, uv, light_offset, params.shadow_softening);
+                visibility = soft_shadow(height_texture, material_sampler, point.field, uv, light_offset, params.shadow_softening,
+                    light_bend);
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(point.mip);
                 visibility = hard_shadow(height_texture, material_sampler, height_pyramid, point.field, METHOD, uv,
                     light_offset, params.min_samples, params.max_samples, dot(surface_frame.normal, light.to_light),
-                    texels_per_rise);
+                    texels_per_rise, light_bend);
             }
             visibility = mix(visibility, 1.0, fade);
         }
@@ -228,37 +331,65 @@ struct ColorAndDepth {
     @builtin(frag_depth) depth: f32,
 }
 
-// `depth_offset` without a prepass: the depth buffer gets the displaced point, so other geometry
-// meets the relief where it really is. The depth only ever moves away from the eye
+// The depth the passes that march for it write: the displaced point's with depth offset, else
+// the polygon's (a silhouette that only clips).
+fn marched_depth(in: VertexOut, point: SurfacePoint) -> f32 {
+    if DEPTH_OFFSET {
+        return displaced_depth(in, point);
+    }
+    return in.clip_position.z;
+}
+
+// `depth_offset` or a silhouette without a prepass: the depth buffer gets the displaced point
+// (so other geometry meets the relief where it really is), and pixels the view ray left the
+// surface at show what lies behind. The depth only ever moves away from the eye
 // (`displaced_depth`), which lets the GPU reject fragments behind nearer geometry before they
 // march.
 @fragment @early_depth_test(greater_equal)
-fn fs_main_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> ColorAndDepth {
+fn fs_main_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: bool) -> ColorAndDepth {
     count_fragment_invocation();
     let point = find_surface(in, front_facing, fragment_footprint(in));
-    return ColorAndDepth(shade(in, point), displaced_depth(in, point));
+    if point.clipped {
+        discard;
+    }
+    return ColorAndDepth(shade(in, point), marched_depth(in, point));
 }
 
-// `depth_offset` in the prepass, and every parallax caster in a shadow map (where the "eye" is
-// the light, so the march follows the light's view ray): only the march and the depth (pushed
-// away from the eye only, as above).
+// `depth_offset` or a silhouette in the prepass, and every parallax caster in a shadow map
+// (where the "eye" is the light, so the march follows the light's view ray and a clipped
+// outline casts a clipped shadow): only the march, the coverage and the depth (pushed away from
+// the eye only, as above).
 @fragment @early_depth_test(greater_equal)
-fn fs_prepass_depth_offset(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @builtin(frag_depth) f32 {
-    return displaced_depth(in, find_surface(in, front_facing, fragment_footprint(in)));
+fn fs_prepass_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @builtin(frag_depth) f32 {
+    let point = covering_surface(in, view_ray(in, front_facing, fragment_footprint(in)));
+    if point.clipped {
+        discard;
+    }
+    return marched_depth(in, point);
 }
 
-// `depth_offset` in the opaque phase after the prepass. The hardware test (rasterized depth
-// ≤ prepass depth, forced early) drops fragments hidden behind nearer geometry before they
-// march; the point then recomputes its displaced depth with the same code as the prepass and
-// shades only where that is the depth the prepass kept (bit for bit: see the closing note
-// of issue 16 and tests/tests/render_phases.rs).
+// What the depth passes need of `ray`: with depth offset the march; for a silhouette alone the
+// march only where the ray could leave the surface (`may_leave_surface`), the polygon elsewhere
+// (on a crate's face seen at 45°, a band a twentieth of the face wide marches).
+fn covering_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
+    if DEPTH_OFFSET || may_leave_surface(in, ray) {
+        return march_surface(in, ray);
+    }
+    return ray;
+}
+
+// `depth_offset` or a silhouette in the opaque phase after the prepass. The hardware test
+// (rasterized depth ≤ prepass depth, forced early) drops fragments hidden behind nearer
+// geometry before they march; the point then recomputes its depth with the same code as the
+// prepass and shades only where that is the depth the prepass kept (bit for bit: see the
+// closing note of issue 16 and tests/tests/render_phases.rs), which a clipped pixel never is.
 @fragment @early_depth_test(force)
-fn fs_main_after_depth_prepass(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn fs_main_after_marched_prepass(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     count_fragment_invocation();
     let point = find_surface(in, front_facing, fragment_footprint(in));
-    let depth = displaced_depth(in, point);
+    let depth = marched_depth(in, point);
     let kept = textureLoad(prepass_depth, vec2<i32>(in.clip_position.xy), 0);
-    if depth > kept {
+    if point.clipped || depth > kept {
         discard;
     }
     return shade(in, point);

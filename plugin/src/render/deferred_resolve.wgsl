@@ -196,7 +196,9 @@ fn resolve_pixel(item: ResolveItem) -> ResolvedPixel {
     let down = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(0.0, step.y)), p0, p1, p2));
     resolved.footprint = PixelFootprint((across.uv - resolved.vertex.uv) * step.x, (down.uv - resolved.vertex.uv) * step.y,
         (across.world_position - resolved.vertex.world_position) * step.x,
-        (down.world_position - resolved.vertex.world_position) * step.y);
+        (down.world_position - resolved.vertex.world_position) * step.y,
+        (across.world_normal - resolved.vertex.world_normal) * step.x,
+        (down.world_normal - resolved.vertex.world_normal) * step.y);
     let clip = frame.view_projection * vec4<f32>(resolved.vertex.world_position, 1.0);
     resolved.vertex.clip_position = vec4<f32>(centre, clip.z / clip.w, 1.0);
     // Counter-clockwise seen from the eye is the front (wgpu's default winding).

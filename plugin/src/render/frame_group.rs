@@ -22,6 +22,9 @@ pub const SHADOW_MAPS: u32 = 6;
 pub const SHADOW_SAMPLER: u32 = 7;
 /// `visibility_keys`: the deferred path's visibility buffer (visibility.wgsl).
 pub const VISIBILITY_KEYS: u32 = 8;
+/// `visibility_words`: the same buffer as 32-bit words, for the depth a pixel has kept so far
+/// (WGSL's 64-bit atomics offer only min and max).
+pub const VISIBILITY_WORDS: u32 = 9;
 
 /// The WGSL name the core's files declare at each binding it owns.
 pub const DECLARED: &[(&str, u32)] = &[
@@ -33,6 +36,7 @@ pub const DECLARED: &[(&str, u32)] = &[
     ("shadow_maps", SHADOW_MAPS),
     ("shadow_sampler", SHADOW_SAMPLER),
     ("visibility_keys", VISIBILITY_KEYS),
+    ("visibility_words", VISIBILITY_WORDS),
 ];
 
 #[cfg(test)]

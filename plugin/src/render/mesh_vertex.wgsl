@@ -75,9 +75,14 @@ struct PixelFootprint {
     ddy_uv: vec2<f32>,
     ddx_world: vec3<f32>,
     ddy_world: vec3<f32>,
+    // Of the interpolated (not normalized) world normal: with the position's, the surface's
+    // curvature.
+    ddx_normal: vec3<f32>,
+    ddy_normal: vec3<f32>,
 }
 
 // The fragment stage's footprint: screen-space derivatives, taken once before any branch.
 fn fragment_footprint(in: VertexOut) -> PixelFootprint {
-    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position));
+    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position),
+        dpdx(in.world_normal), dpdy(in.world_normal));
 }

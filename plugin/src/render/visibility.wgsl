@@ -8,12 +8,25 @@
 // atomicMax keeps the nearest fragment whatever the order fragments arrive in (ties: the larger
 // id). Cleared to 0 before the pass; outside it a one-key stand-in is bound.
 @group(0) @binding(8) var<storage, read_write> visibility_keys: array<atomic<u64>>;
+// The same keys as 32-bit words (little-endian: a key's depth is its odd word), for
+// `behind_kept_depth`; WGSL's 64-bit atomics offer only min and max.
+@group(0) @binding(9) var<storage, read_write> visibility_words: array<atomic<u32>>;
 
 // The id a pixel of draw `object_index`, triangle `triangle`, keeps: 0 for a draw the frame
 // had no ids left for (it then shows the background rather than another draw's triangle).
 fn visibility_id(object_index: u32, triangle: u32) -> u32 {
     let first = transforms[object_index].first_visibility_id;
     return select(first + triangle, 0u, first == 0u);
+}
+
+// Whether a fragment at framebuffer position `position` lies behind the depth its pixel has
+// kept so far: one whose depth can only move away from the eye (depth offset) then loses the
+// merge wherever its march ends, so it need not march. Drawn nearest first, hidden surfaces
+// mostly find the nearer one already merged; a cleared key (0) keeps everything.
+fn behind_kept_depth(position: vec4<f32>) -> bool {
+    let pixel = vec2<u32>(position.xy);
+    let kept = ~atomicLoad(&visibility_words[2u * (pixel.y * frame.target_size.x + pixel.x) + 1u]);
+    return bitcast<u32>(position.z) > kept;
 }
 
 // Merges `id`, seen at framebuffer position `position` at clip depth `depth`, into the pixel's

@@ -69,7 +69,9 @@ pub fn build(materials: &[EncodedMaterial]) -> Vec<u8> {
     let sign = pom_material(
         &mut builder,
         find(materials, "sign"),
-        json!({"shadows": "soft", "max_samples": 64}),
+        // The board and the crate's faces end where their texture does: their outlines show
+        // the relief (`uv_bounds`).
+        json!({"shadows": "soft", "max_samples": 64, "silhouette": "uv_bounds"}),
     );
     let fur = pom_material(
         &mut builder,
@@ -79,7 +81,7 @@ pub fn build(materials: &[EncodedMaterial]) -> Vec<u8> {
     let cones = pom_material(
         &mut builder,
         find(materials, "cones"),
-        json!({"shadows": "hard"}),
+        json!({"shadows": "hard", "silhouette": "uv_bounds"}),
     );
     let ball = builder.material(json!({
         "name": "ball",

@@ -31,6 +31,8 @@ pub enum Measurement {
     Overdraw,
     /// The street corner with and without scene shadows, per light type.
     SceneShadows,
+    /// Each silhouette mode against `off` on the preview cube and sphere.
+    Silhouette,
     /// Tatarchuk's listing 2 transliterated to WGSL on the same plane, beside our POM.
     SeedPort,
     /// Steep, POM and relief at 8–64 samples and MaxMip: error, fetches per pixel and time.

@@ -24,8 +24,8 @@ use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use anyhow::{Context, Result};
 use pom::material::Choice;
-use pom::preview::PreviewView;
-use pom::{ParallaxMethod, ParallaxOcclusionMaterial, RenderPath, ShadowMode};
+use pom::preview::{PreviewShape, PreviewView};
+use pom::{ParallaxMethod, ParallaxOcclusionMaterial, RenderPath, ShadowMode, Silhouette};
 
 use crate::preview_textures::PreviewTextures;
 use report::{AdapterReport, BenchReport, CaseResult, Ratio};
@@ -139,6 +139,9 @@ impl Runner<'_> {
             }
             if wanted(Measurement::SceneShadows) {
                 self.scene_shadows(size)?;
+            }
+            if wanted(Measurement::Silhouette) {
+                self.silhouette(size)?;
             }
             if wanted(Measurement::SeedPort) {
                 self.seed_port(size)?;
@@ -318,6 +321,34 @@ impl Runner<'_> {
                     self.case_variant(&mut stacked, "overdraw", place, material.clone(), variant)?;
                 let what = format!("overdraw: {OVERDRAW_PLANES} planes {order} / 1{offset}");
                 self.ratio(what, size, stacked_ms, one_ms);
+            }
+        }
+        Ok(())
+    }
+
+    /// The base material on the preview cube and sphere with each silhouette mode, against
+    /// `off` on the same shape.
+    fn silhouette(&mut self, size: (u32, u32)) -> Result<()> {
+        for shape in [PreviewShape::Cube, PreviewShape::Sphere] {
+            let view = PreviewView { shape, ..self.view };
+            let shape_name = format!("{shape:?}").to_lowercase();
+            let mut scene = self.scene(size, &view)?;
+            let mut off_ms = None;
+            for silhouette in Silhouette::VALUES {
+                let material = ParallaxOcclusionMaterial {
+                    silhouette: *silhouette,
+                    ..self.base.clone()
+                };
+                let variant = format!("{shape_name}, {}", silhouette.name());
+                let place = (size, self.view.tiling);
+                let ms = self.case_variant(&mut scene, "silhouette", place, material, variant)?;
+                match off_ms {
+                    None => off_ms = Some(ms),
+                    Some(off) => {
+                        let what = format!("silhouette: {shape_name}, {} / off", silhouette.name());
+                        self.ratio(what, size, ms, off);
+                    }
+                }
             }
         }
         Ok(())

@@ -219,6 +219,14 @@ fn gltf_extras_unknown_method() {
 }
 
 #[test]
+fn gltf_extras_unknown_silhouette() {
+    assert_material_error(
+        "gltf/extras_unknown_silhouette.gltf",
+        "extras.pom.silhouette is \"outline\"; expected one of off, uv_bounds",
+    );
+}
+
+#[test]
 fn gltf_extras_height_texture_out_of_range() {
     assert_material_error(
         "gltf/extras_missing_texture.gltf",

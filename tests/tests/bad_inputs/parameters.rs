@@ -72,6 +72,32 @@ fn material_min_samples_over_max() {
 }
 
 #[test]
+fn material_inverted_texture_bounds() {
+    clamped_with_a_warning("bounds_u_min (0.8) is not below bounds_u_max (0.2)", |m| {
+        m.silhouette = pom::Silhouette::UvBounds;
+        m.bounds_u_min = 0.8;
+        m.bounds_u_max = 0.2;
+    });
+}
+
+#[test]
+fn material_texture_bounds_of_no_area() {
+    clamped_with_a_warning("the bounds enclose no area", |m| {
+        m.silhouette = pom::Silhouette::UvBounds;
+        m.bounds_v_min = 0.5;
+        m.bounds_v_max = 0.5;
+    });
+}
+
+#[test]
+fn material_nan_texture_bound() {
+    clamped_with_a_warning("bounds_u_max is NaN", |m| {
+        m.silhouette = pom::Silhouette::UvBounds;
+        m.bounds_u_max = f32::NAN;
+    });
+}
+
+#[test]
 fn material_absurd_sample_count() {
     clamped_with_a_warning("max_samples is 4294967300 but must be at most 256", |m| {
         m.max_samples = u32::MAX
