@@ -75,6 +75,84 @@ fn inverted_sample_bounds_are_rejected() {
 }
 
 #[test]
+fn texture_bounds_of_no_area_are_rejected() {
+    let dir = TempDir::new("inverted-bounds");
+    let out = dir.join("out.png");
+    let output = sandbox(&[
+        "render",
+        "--out",
+        path_arg(&out),
+        "--silhouette",
+        "uv_bounds",
+        "--bounds-u-min",
+        "1",
+        "--bounds-u-max",
+        "0",
+    ]);
+    assert_one_line_error(
+        &output,
+        &["bounds_u_min (1)", "bounds_u_max (0)", "no area"],
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn an_unknown_silhouette_is_rejected_with_the_valid_ones() {
+    let dir = TempDir::new("unknown-silhouette");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--silhouette", "outline"]);
+    assert_one_line_error(&output, &["outline", "--silhouette", "uv_bounds", "curved"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn an_unknown_shape_is_rejected_with_the_valid_ones() {
+    let dir = TempDir::new("unknown-shape");
+    let out = dir.join("out.png");
+    let output = sandbox(&["render", "--out", path_arg(&out), "--shape", "torus"]);
+    assert_one_line_error(&output, &["torus", "--shape", "cube", "cylinder"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_shape_is_framed_whole_and_its_clipped_outline_shows_what_lies_behind() {
+    let dir = TempDir::new("shape");
+    let coverage = |silhouette: &str| {
+        let out = dir.join(&format!("cube-{silhouette}.png"));
+        let args = [
+            "render",
+            "--out",
+            path_arg(&out),
+            "--size",
+            "96x96",
+            "--shape",
+            "cube",
+            "--view-angle",
+            "60",
+            "--height-scale",
+            "0.1",
+            "--silhouette",
+            silhouette,
+        ];
+        assert_success(&sandbox(&args));
+        let image = image::open(&out).unwrap().to_rgba8();
+        // The corners are background: the solid is framed whole, with a margin.
+        for (x, y) in [(0, 0), (95, 0), (0, 95), (95, 95)] {
+            assert!(
+                brightness(image.get_pixel(x, y)) < 30,
+                "{silhouette}: corner ({x}, {y})"
+            );
+        }
+        image
+            .pixels()
+            .filter(|pixel| brightness(pixel) >= 30)
+            .count()
+    };
+    let (off, clipped) = (coverage("off"), coverage("uv_bounds"));
+    assert!(clipped < off, "clipped {clipped} pixels, off {off}");
+}
+
+#[test]
 fn a_negative_height_scale_is_rejected() {
     let dir = TempDir::new("negative-height-scale");
     let out = dir.join("out.png");

@@ -502,18 +502,19 @@ fn golden_sphere_and_cylinder_with_curved_outlines() {
 }
 
 #[test]
-fn a_curved_silhouette_on_a_mesh_without_normals_warns_once_and_draws_as_off() {
-    let render = |silhouette: Silhouette| {
+fn a_curved_silhouette_on_a_mesh_without_normals_or_uvs_warns_once_and_draws_as_off() {
+    let render = |silhouette: Silhouette, bare: Mesh| {
         let mut app = pom_app(64, TargetFormat::Float32).unwrap();
+        // Half way down everywhere: every pixel marches, whatever its texture coordinate.
+        let halfway = HeightMaterial {
+            field: pom::HeightField::from_fn(16, 16, |_, _| 0.5),
+            height_scale: 0.05,
+        };
         let material = ParallaxOcclusionMaterial {
             silhouette,
             debug_view: DebugView::Uv,
             lod_threshold: 16.0,
-            ..bumps().material(&mut app)
-        };
-        let bare = Mesh {
-            normals: Vec::new(),
-            ..Mesh::uv_sphere(0.5, 32, 16)
+            ..halfway.material(&mut app)
         };
         let mesh = app.resources.get_mut::<Assets<Mesh>>().unwrap().add(bare);
         let entity = app
@@ -535,16 +536,40 @@ fn a_curved_silhouette_on_a_mesh_without_normals_warns_once_and_draws_as_off() {
             });
         (first, warned)
     };
-    let (curved, warned) = render(Silhouette::Curved);
-    assert_eq!(warned, 1, "no warning named the mesh");
-    let (off, not_warned) = render(Silhouette::Off);
-    assert_eq!(not_warned, 0);
-    // Flat normals do not curve: the outline is the polygons', as with off.
-    let outline = |image: &image::Rgba32FImage| {
+    // Flat normals do not curve, and without texture coordinates there is no texture space to
+    // bend in: the outline is the polygons', as with off.
+    let covered = |image: &image::Rgba32FImage| {
         (0..image.height())
             .flat_map(|y| (0..image.width()).map(move |x| (x, y)))
             .filter(|&(x, y)| is_surface(image, x, y))
             .count()
     };
-    assert_eq!(outline(&curved), outline(&off));
+    let sphere = Mesh::uv_sphere(0.5, 32, 16);
+    for (what, bare) in [
+        (
+            "no normals",
+            Mesh {
+                normals: Vec::new(),
+                ..sphere.clone()
+            },
+        ),
+        (
+            "no texture coordinates",
+            Mesh {
+                uvs: Vec::new(),
+                ..sphere.clone()
+            },
+        ),
+    ] {
+        let (curved, warned) = render(Silhouette::Curved, bare.clone());
+        assert_eq!(warned, 1, "{what}: no warning named the mesh");
+        let (off, not_warned) = render(Silhouette::Off, bare);
+        assert_eq!(not_warned, 0, "{what}");
+        assert!(
+            covered(&off) > 1000,
+            "{what}: the sphere covers {} pixels",
+            covered(&off)
+        );
+        assert_eq!(covered(&curved), covered(&off), "{what}");
+    }
 }

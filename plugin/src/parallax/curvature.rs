@@ -3,7 +3,8 @@
 //! (pom.wgsl, `normal_curvature`): a mesh without normals of its own (the flat ones generated
 //! for it do not change across a triangle), without texture coordinates (no tangent frame to
 //! bend in) or with triangles of no area gives it nothing there, and the material draws as
-//! `off` on it. Each such entity and mesh is warned about once.
+//! `off` on it (pom.wgsl's `ray_bend` is 0 where the normal or the texture coordinate does not
+//! change across the pixel). Each such entity and mesh is warned about once.
 
 use std::collections::HashSet;
 

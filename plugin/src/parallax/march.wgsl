@@ -204,6 +204,9 @@ fn binary_refinement(
 // march spans when `bend` bends it (height 1 − t + bend · t²): to where it reaches the deepest
 // height, or, bent up by more than ¼, to where it rises back out of the shell's top.
 fn bent_span(bend: f32) -> f32 {
+    if bend == 0.0 {
+        return 1.0;
+    }
     if bend > 0.25 {
         return 1.0 / bend;
     }
@@ -214,7 +217,7 @@ fn bent_span(bend: f32) -> f32 {
 // The visible point for the view ray entering at `uv` with parallax offset vector `offset` (P),
 // by `method`, the ray bent by `bend` (`linear_search`; 0: straight). `to_eye_ts` is only used
 // by parallax offset mapping, `pyramid` (the height's maximum pyramid, max_mip.wgsl) only by
-// MaxMip, which walks the straight ray and judges the bent one by where that meets the relief.
+// MaxMip, which walks straight rays: a bent one takes the linear search instead.
 fn march_view(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -232,12 +235,8 @@ fn march_view(
     if method == METHOD_NORMAL_MAPPING {
         return RayHit(uv, 1.0, 0u, true);
     }
-    if method == METHOD_MAX_MIP {
-        var hit = march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
-        // Bent up by more than ¼ the ray is back at the top at t = 1 / bend: past that, the
-        // straight ray's hit is one the bent ray never reaches.
-        hit.met = bend <= 0.25 || (1.0 - hit.height) * bend <= 1.0;
-        return hit;
+    if method == METHOD_MAX_MIP && bend == 0.0 {
+        return march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
     }
     let surface = sample_height(height_texture, height_sampler, field, uv);
     if method == METHOD_PARALLAX_OFFSET {

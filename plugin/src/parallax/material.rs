@@ -250,8 +250,9 @@ impl ParallaxOcclusionMaterial {
             });
         }
         for (axis, min, max) in self.bounds_axes() {
-            // NaN is a limit problem already.
-            if min >= max {
+            // NaN is a limit problem already; bounds matter only to the silhouette that reads
+            // them.
+            if clips_at_bounds(self) && min >= max {
                 problems.push(PomMaterialError::BoundsEmpty { axis, min, max });
             }
         }
@@ -270,7 +271,7 @@ impl ParallaxOcclusionMaterial {
     pub fn is_valid(&self) -> bool {
         self.first_limit_problem().is_none()
             && self.min_samples <= self.max_samples
-            && self.bounds_axes().iter().all(|(_, min, max)| min < max)
+            && (!clips_at_bounds(self) || self.bounds_axes().iter().all(|(_, min, max)| min < max))
     }
 
     /// Checks every parameter; the first problem is the error.

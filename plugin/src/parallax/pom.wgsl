@@ -79,8 +79,9 @@ fn heat(t: f32) -> vec3<f32> {
 // The normal curvature of the surface along `direction` (a world direction in the tangent
 // plane; 1 / world units, positive where the surface falls away from its tangent plane, as a
 // sphere's outside does), from the pixel's footprint: the change of the interpolated normal
-// against the change of position (the shape operator of the triangle's normal field, the same
-// on both paths). 0 where the footprint is degenerate (a triangle seen edge-on).
+// against the change of position (the shape operator of the triangle's normal field; the
+// forward path's derivatives may be a 2 × 2 quad's, the resolve's are the pixel's own). 0
+// where the footprint is degenerate (a triangle seen edge-on).
 fn normal_curvature(in: VertexOut, frame: TangentFrame, footprint: PixelFootprint, direction: vec3<f32>) -> f32 {
     // `direction` as a · ddx_world + b · ddy_world, solved in the tangent plane's coordinates
     // (a basis of the normal and the footprint alone: the texture's tangents degenerate where
@@ -110,7 +111,9 @@ fn normal_curvature(in: VertexOut, frame: TangentFrame, footprint: PixelFootprin
 // the surface curves by `curvature` (1 / world units) along it: the surface falls ½ k d² below
 // its tangent plane at distance d. 0 without the curved silhouette.
 fn ray_bend(curvature: f32, offset: vec2<f32>, point: SurfacePoint) -> f32 {
-    if SILHOUETTE != SILHOUETTE_CURVED {
+    // Without texture coordinates that change across the pixel (a mesh without UVs) there is
+    // no texture space to bend in: straight, as off.
+    if SILHOUETTE != SILHOUETTE_CURVED || point.uv_per_world <= 0.0 || point.height_scale <= 0.0 {
         return 0.0;
     }
     let curvature_texture = curvature / max(point.uv_per_world, 1e-30);
@@ -162,7 +165,9 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
     point.clipped = false;
     point.offset = -ray_offset(point.to_eye_ts, point.height_scale);
     let curvature = normal_curvature(in, point.surface_frame, footprint, along_plane(point.surface_frame, -point.to_eye));
-    point.bend = ray_bend(curvature, point.offset, point);
+    // Only a ray march bends (parallax offset takes one sample, normal mapping none).
+    let marches_a_ray = METHOD != METHOD_PARALLAX_OFFSET && METHOD != METHOD_NORMAL_MAPPING;
+    point.bend = select(0.0, ray_bend(curvature, point.offset, point), marches_a_ray);
     return point;
 }
 
@@ -175,7 +180,11 @@ fn may_leave_surface(in: VertexOut, point: SurfacePoint) -> bool {
         return false;
     }
     if SILHOUETTE == SILHOUETTE_UV_BOUNDS {
-        return !inside_bounds(point.field, in.uv) || !inside_bounds(point.field, in.uv + point.offset);
+        // A hair inside the bounds, so a refinement that rounds past the segment's end still
+        // finds the march run here too.
+        var inner = point.field;
+        inner.bounds += vec4<f32>(1e-5, 1e-5, -1e-5, -1e-5);
+        return !inside_bounds(inner, in.uv) || !inside_bounds(inner, in.uv + point.offset);
     }
     return SILHOUETTE == SILHOUETTE_CURVED && point.bend > 0.25;
 }
@@ -194,7 +203,7 @@ fn march_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
         let hit = march_view(height_texture, material_sampler, height_pyramid, point.field, METHOD, in.uv, offset,
             point.to_eye_ts, point.height_scale, steps, params.relief_binary_steps, bend);
         // The bent ray's height is over the curved surface; the point lies on the straight view
-        // ray, t of its way down below the tangent plane.
+        // ray, t of its way down below the tangent plane (bend is 0 but for a ray march).
         let t = length(hit.uv - in.uv) / max(length(offset), 1e-30);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
         point.uv = mix(hit.uv, in.uv, point.fade);
