@@ -208,6 +208,17 @@ fn golden_cube_with_the_polygons_outline() {
 }
 
 #[test]
+fn a_curved_silhouette_on_flat_faces_is_the_polygons_outline() {
+    // A cube's faces do not curve: `curved` draws them as `off` does, to the golden's tolerance.
+    lit_shape(
+        "silhouette_cube_off",
+        PreviewShape::Cube,
+        55.0,
+        Silhouette::Curved,
+    );
+}
+
+#[test]
 fn golden_plane_with_its_outline_clipped_at_the_texture_bounds() {
     lit_shape(
         "silhouette_plane_uv_bounds",

@@ -81,10 +81,15 @@ impl PomPipelineKey {
         })
     }
 
-    /// The prepass's fragment stage, where it marches for its depth.
+    /// The prepass's fragment stage, where it marches: for the displaced depth, or for the
+    /// coverage alone (the rasterizer then writes the polygon's depth).
     pub fn prepass_fragment(self) -> Option<ShaderEntry> {
-        self.marches_for_depth()
-            .then(|| self.variant("fs_prepass_marched_depth"))
+        if self.depth_offset {
+            Some(self.variant("fs_prepass_marched_depth"))
+        } else {
+            self.marches_for_depth()
+                .then(|| self.variant("fs_prepass_clipped"))
+        }
     }
 
     /// The shadow map's fragment stage: the relief's depth seen from the light (the march
@@ -113,10 +118,12 @@ impl PomPipelineKey {
     }
 
     /// The visibility pass's fragment stage (deferred path): the core's, or where the depth
-    /// passes march the one that writes their depth and coverage.
+    /// passes march the one that writes their depth and coverage, or their coverage alone.
     pub fn visibility_fragment(self) -> ShaderEntry {
-        if self.marches_for_depth() {
+        if self.depth_offset {
             self.variant("fs_visibility_marched_depth")
+        } else if self.marches_for_depth() {
+            self.variant("fs_visibility_clipped")
         } else {
             ShaderEntry::entry("fs_visibility")
         }

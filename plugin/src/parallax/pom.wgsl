@@ -364,10 +364,10 @@ fn fs_main_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: boo
     return ColorAndDepth(shade(in, point), marched_depth(in, point));
 }
 
-// `depth_offset` or a silhouette in the prepass, and every parallax caster in a shadow map
-// (where the "eye" is the light, so the march follows the light's view ray and a clipped
-// outline casts a clipped shadow): only the march, the coverage and the depth (pushed away from
-// the eye only, as above).
+// `depth_offset` (with or without a silhouette) in the prepass, and every parallax caster in a
+// shadow map (where the "eye" is the light, so the march follows the light's view ray and a
+// clipped outline casts a clipped shadow): only the march, the coverage and the depth (pushed
+// away from the eye only, as above).
 @fragment @early_depth_test(greater_equal)
 fn fs_prepass_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @builtin(frag_depth) f32 {
     let point = covering_surface(in, view_ray(in, front_facing, fragment_footprint(in)));
@@ -375,6 +375,16 @@ fn fs_prepass_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: 
         discard;
     }
     return marched_depth(in, point);
+}
+
+// A silhouette without depth offset in the prepass: coverage alone. The depth is the polygon's,
+// which the rasterizer writes itself: a shader that exports its depth costs the raster units
+// their early test.
+@fragment
+fn fs_prepass_clipped(in: VertexOut, @builtin(front_facing) front_facing: bool) {
+    if covering_surface(in, view_ray(in, front_facing, fragment_footprint(in))).clipped {
+        discard;
+    }
 }
 
 // What the depth passes need of `ray`: with depth offset the march; for a silhouette alone the

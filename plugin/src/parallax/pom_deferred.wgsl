@@ -1,14 +1,14 @@
 // The parallax material's entry points of the deferred path: its visibility pass where the
-// prepass marches for its depth and coverage, and the compute resolve that marches and shades
+// prepass marches for its depth or coverage, and the compute resolve that marches and shades
 // each pixel the visibility buffer gives it. Composed after pom.wgsl, visibility.wgsl and
 // deferred_resolve.wgsl.
 
-// `depth_offset` or a silhouette in the visibility pass: the depth of `fs_prepass_marched_depth`,
+// `depth_offset` (with or without a silhouette) in the visibility pass: the depth of `fs_prepass_marched_depth`,
 // which is also the depth the id is merged with, so the pixel keeps whichever surface is really
 // nearest, and no id where the view ray left the surface. A fragment already behind what its
 // pixel kept is dropped before it marches: with a depth write and the merge's side effect the
 // GPU tests depth late, whatever the attribute promises (bench --only overdraw measured 3.25×
-// one plane for four without this, 1.96× with it). The footprint's derivatives come first, while
+// one plane for four without this, 2.11× with it). The footprint's derivatives come first, while
 // the whole quad still runs.
 @fragment @early_depth_test(greater_equal)
 fn fs_visibility_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: bool,
@@ -24,6 +24,17 @@ fn fs_visibility_marched_depth(in: VertexOut, @builtin(front_facing) front_facin
     let depth = marched_depth(in, point);
     keep_visible(in.clip_position, depth, visibility_id(in.object_index, triangle));
     return depth;
+}
+
+// A silhouette without depth offset in the visibility pass: the polygon's depth, written by the
+// rasterizer (as `fs_prepass_clipped`), and no id where the view ray left the surface.
+@fragment
+fn fs_visibility_clipped(in: VertexOut, @builtin(front_facing) front_facing: bool,
+    @builtin(primitive_index) triangle: u32) {
+    if covering_surface(in, view_ray(in, front_facing, fragment_footprint(in))).clipped {
+        discard;
+    }
+    keep_visible(in.clip_position, in.clip_position.z, visibility_id(in.object_index, triangle));
 }
 
 // One workgroup per 8 × 8 tile the batch shows in: its pixels march and shade as the fragment
