@@ -52,10 +52,15 @@ fn cube_uv(view_angle: f32, silhouette: Silhouette, path: RenderPath) -> image::
         },
     )
     .unwrap();
-    let image = render_on_path_f32(&mut app, path).unwrap();
+    rendered_finite(&mut app, path, &format!("{view_angle}° {silhouette:?}"))
+}
+
+/// The next frame of `app` on `path`, checked for NaN and infinite pixels.
+fn rendered_finite(app: &mut App, path: RenderPath, what: &str) -> image::Rgba32FImage {
+    let image = render_on_path_f32(app, path).unwrap();
     assert!(
         image.pixels().all(|p| p.0.iter().all(|c| c.is_finite())),
-        "{view_angle}° {silhouette:?} {path:?}: a NaN or infinite pixel"
+        "{what} {path:?}: a NaN or infinite pixel"
     );
     image
 }
@@ -385,12 +390,7 @@ fn sphere_uv(view_angle: f32, silhouette: Silhouette, path: RenderPath) -> image
         },
     )
     .unwrap();
-    let image = render_on_path_f32(&mut app, path).unwrap();
-    assert!(
-        image.pixels().all(|p| p.0.iter().all(|c| c.is_finite())),
-        "{view_angle}° {silhouette:?} {path:?}: a NaN or infinite pixel"
-    );
-    image
+    rendered_finite(&mut app, path, &format!("{view_angle}° {silhouette:?}"))
 }
 
 /// The surface's coverage at image point (x, y): is_surface of the pixels around, bilinearly
