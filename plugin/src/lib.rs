@@ -117,6 +117,7 @@ pub use parallax::{
     PresetError, ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
+pub use render::{AntiAliasing, TemporalAntiAliasing, TemporalHistory};
 pub use render::{
     GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
     TargetFormat, TimingMode, capture, capture_f32, capture_scene,
@@ -151,6 +152,10 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::POST_SHADERS[0],
     render::POST_SHADERS[1],
     render::POST_SHADERS[2],
+    render::TAA_SHADER,
+    render::FXAA_SHADERS[0],
+    render::FXAA_SHADERS[1],
+    render::FXAA_SHADERS[2],
     render::PRESENT_SHADER,
     #[cfg(feature = "dev-tools")]
     render::TEXEL_RATE_PROBE,

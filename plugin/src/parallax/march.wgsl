@@ -42,6 +42,10 @@ struct HeightField {
     // samples fields unbounded, as 0 does here.
     bounded: u32,
     bounds: vec4<f32>,
+    // The fraction of one step (0..1) by which every linear search starts early: per pixel and
+    // frame noise with the material's jitter_march, which TAA averages into the image of many
+    // more steps; 0 samples where Tatarchuk does (the CPU reference's march).
+    march_jitter: f32,
 }
 
 fn inside_bounds(field: HeightField, uv: vec2<f32>) -> bool {
@@ -129,7 +133,7 @@ fn linear_search(
     let step = 1.0 / f32(steps);
     for (var i = 1u; i <= steps; i += 1u) {
         // From the start each time, not accumulated, and the last step exactly on the end.
-        let t = select(f32(i) * step, 1.0, i == steps);
+        let t = select((f32(i) - field.march_jitter) * step, 1.0, i == steps);
         let uv = start_uv + uv_span * t;
         let ray = start_ray + ray_span * t + bend * t * t;
         let surface = sample_height(height_texture, height_sampler, field, uv);

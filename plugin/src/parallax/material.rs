@@ -167,6 +167,9 @@ crate::with_lighting_parameters! {
             min_samples: u32 = 8, ParamSpec::integer(1, MAX_SAMPLES_LIMIT).logarithmic();
             /// Height samples at grazing angles (T eq. 1's n_max): raise it if layers show.
             max_samples: u32 = 50, ParamSpec::integer(1, MAX_SAMPLES_LIMIT).logarithmic();
+            /// Start each march a per-pixel, per-frame part of a step early: with TAA, few
+            /// samples settle to the image of many (without it, layers turn to noise).
+            jitter_march: bool = false, ParamSpec::toggle();
             /// Mip level past which only normal mapping runs (T's nLODThreshold).
             lod_threshold: f32 = 4.0, ParamSpec::float(0.0, 16.0).editor(0.0, 12.0)
                 .unit("mip levels");

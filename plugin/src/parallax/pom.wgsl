@@ -125,6 +125,14 @@ fn along_plane(frame: TangentFrame, v: vec3<f32>) -> vec3<f32> {
     return safe_normalize(v - frame.normal * dot(v, frame.normal), frame.tangent);
 }
 
+// Interleaved gradient noise (Jimenez 2014) at `pixel`, moved each frame by his step so that a
+// pixel's values over 64 frames spread evenly over 0..1: the jittered march's start. Every
+// pass of a pixel (prepass, visibility, forward, resolve) draws the same value.
+fn march_noise(pixel: vec2<f32>) -> f32 {
+    let p = floor(pixel) + 5.588238 * f32(frame.target_size.z % 64u);
+    return fract(52.9829189 * fract(dot(p, vec2<f32>(0.06711056, 0.00583715))));
+}
+
 // The march: the same code for the prepass, which only needs the depth, and the shading.
 fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> SurfacePoint {
     return march_surface(in, view_ray(in, front_facing, footprint));
@@ -154,7 +162,8 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
     point.field = HeightField(HEIGHT_CHANNEL, u32(HEIGHT_IS_DEPTH),
         sampler_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size),
         u32(SILHOUETTE == SILHOUETTE_UV_BOUNDS),
-        vec4<f32>(params.bounds_u_min, params.bounds_v_min, params.bounds_u_max, params.bounds_v_max));
+        vec4<f32>(params.bounds_u_min, params.bounds_v_min, params.bounds_u_max, params.bounds_v_max),
+        select(0.0, march_noise(in.clip_position.xy), params.jitter_march != 0u));
     point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
     point.marched = point.fade < 1.0 && METHOD != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;

@@ -2,7 +2,7 @@
 //! [`render_frame`] decides what the frame runs ([`FramePlan`]) and runs one function per
 //! phase (frame_passes.rs), in the order `phases.rs` documents.
 
-use super::frame_passes::{FramePasses, clear_value, post_process};
+use super::frame_passes::{FramePasses, PostTimes, clear_value, post_process};
 use super::{
     DERIVED_TEXTURES_PASS, DrawPhase, ExtractedFrame, FrameUniform, GpuContext, PassTimestamps,
     PostSettings, RenderPhase, RenderPhases, RenderTarget, Renderer, UploadStats, render_path,
@@ -90,15 +90,26 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     if plan.opaque_pass {
         passes.opaque(&mut encoder, times.opaque.as_ref());
     }
+    passes.work(RenderPhase::Opaque, &mut encoder);
     if plan.resolve {
         passes.resolve(&mut encoder, times.resolve.as_ref());
     }
+    passes.work(RenderPhase::Resolve, &mut encoder);
     if plan.transparent {
         passes.transparent(&mut encoder, times.transparent.as_ref());
     }
+    passes.work(RenderPhase::Transparent, &mut encoder);
     passes.submit(encoder);
     // Post-processing borrows the renderer mutably (its bind group follows the target).
-    post_process(resources, times.post.as_ref())
+    post_process(
+        resources,
+        &plan,
+        PostTimes {
+            taa: times.taa.as_ref(),
+            post: times.post.as_ref(),
+            post_filter: times.post_filter.as_ref(),
+        },
+    )
 }
 
 /// What this frame runs, decided once from the camera, the path and what the materials queued.
@@ -125,6 +136,10 @@ pub(super) struct FramePlan {
     pub transparent: bool,
     /// Textures derived from images are built this frame.
     pub derived_textures: bool,
+    /// Temporal anti-aliasing runs before tonemapping.
+    pub taa: bool,
+    /// The post filter runs after tonemapping.
+    pub post_filter: bool,
 }
 
 impl FramePlan {
@@ -149,7 +164,10 @@ impl FramePlan {
             && has_camera
             && phases.is_some_and(|p| p.has_resolves(resources));
         let background_in_compute = resolve && !has(DrawPhase::Opaque);
+        let anti_aliasing = extracted.anti_aliasing;
         Ok(Self {
+            taa: has_camera && extracted.temporal.is_some(),
+            post_filter: anti_aliasing == super::AntiAliasing::Fxaa,
             has_camera,
             deferred: renderer.deferred,
             prepass,
@@ -173,7 +191,9 @@ struct PhaseTimes {
     opaque: Option<PassTimestamps>,
     resolve: Option<PassTimestamps>,
     transparent: Option<PassTimestamps>,
+    taa: Option<PassTimestamps>,
     post: Option<PassTimestamps>,
+    post_filter: Option<PassTimestamps>,
     derived: Option<PassTimestamps>,
 }
 
@@ -186,7 +206,9 @@ impl PhaseTimes {
             opaque: time(plan.opaque_pass, RenderPhase::Opaque.name()),
             resolve: time(plan.resolve, RenderPhase::Resolve.name()),
             transparent: time(plan.transparent, RenderPhase::Transparent.name()),
+            taa: time(plan.taa, super::TAA_PASS),
             post: time(true, RenderPhase::PostProcess.name()),
+            post_filter: time(plan.post_filter, super::POST_FILTER_PASS),
             // Reserved last: where a frame times more passes than the timer holds, the phases
             // keep theirs.
             derived: time(plan.derived_textures, DERIVED_TEXTURES_PASS),

@@ -39,7 +39,8 @@ struct Frame {
     ambient: vec4<f32>,
     // x: directional light count, y: point and spot light count.
     light_counts: vec4<u32>,
-    // xy: the target's width and height in pixels (the visibility buffer's rows).
+    // xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed of
+    // per-frame noise (counts TAA frames; 0 without TAA).
     target_size: vec4<u32>,
     directional_lights: array<DirectionalLight, MAX_DIRECTIONAL_LIGHTS>,
     point_lights: array<PointLight, MAX_POINT_LIGHTS>,

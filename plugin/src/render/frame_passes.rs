@@ -3,8 +3,8 @@
 
 use super::frame::FramePlan;
 use super::{
-    DrawPhase, ExtractedFrame, GpuContext, PassTimestamps, RenderPhase, RenderPhases, RenderTarget,
-    Renderer, clearing_attachment,
+    DrawPhase, ExtractedFrame, FxaaPass, GpuContext, PassTimestamps, PostRouting, RenderPhase,
+    RenderPhases, RenderTarget, Renderer, TaaPass, TaaUniform, clearing_attachment,
 };
 use crate::{AppError, Resources};
 
@@ -151,8 +151,13 @@ impl<'a> FramePasses<'a> {
 
     /// The materials' own work of the shadows phase.
     pub fn shadow_work(&self, encoder: &mut wgpu::CommandEncoder) {
-        if let Some(phases) = self.phases {
-            for work in phases.work(RenderPhase::Shadows) {
+        self.work(RenderPhase::Shadows, encoder);
+    }
+
+    /// The encoder work plugins added to `phase`, after its pass (with a camera).
+    pub fn work(&self, phase: RenderPhase, encoder: &mut wgpu::CommandEncoder) {
+        if let (true, Some(phases)) = (self.plan.has_camera, self.phases) {
+            for work in phases.work(phase) {
                 work(self.resources, encoder);
             }
         }
@@ -164,7 +169,8 @@ impl<'a> FramePasses<'a> {
         let [r, g, b, a] = clear_value(self.extracted.clear_color).map(f64::from);
         let depth_ops = (!self.plan.prepass).then_some(wgpu::Operations {
             load: wgpu::LoadOp::Clear(1.0),
-            store: if self.plan.transparent {
+            // TAA reprojects through the depth.
+            store: if self.plan.transparent || self.plan.taa {
                 wgpu::StoreOp::Store
             } else {
                 wgpu::StoreOp::Discard
@@ -231,22 +237,77 @@ impl<'a> FramePasses<'a> {
     }
 }
 
-/// Post-processing and the materials' work of that phase, in a submission after the frame's.
+/// The timestamps of the post phase's passes.
+pub(super) struct PostTimes<'a> {
+    pub taa: Option<&'a PassTimestamps>,
+    pub post: Option<&'a PassTimestamps>,
+    pub post_filter: Option<&'a PassTimestamps>,
+}
+
+/// Post-processing and the materials' work of that phase, in a submission after the frame's:
+/// TAA on the HDR scene, tonemapping, the post filter, as `plan` says.
 pub(super) fn post_process(
     resources: &mut Resources,
-    time: Option<&PassTimestamps>,
+    plan: &FramePlan,
+    times: PostTimes<'_>,
 ) -> Result<(), AppError> {
     resources
         .scope(|resources, renderer: &mut Renderer| {
             renderer.assets.derived_builds_submitted();
             let gpu = resources.require::<GpuContext>()?;
             let target = resources.require::<RenderTarget>()?;
+            let extracted = resources.require::<ExtractedFrame>()?;
             let mut encoder = gpu
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("post-process encoder"),
                 });
-            renderer.post.record(gpu, target, &mut encoder, time);
+            let colour = match extracted.temporal.filter(|_| plan.taa) {
+                Some(frame) => {
+                    let jittered = glam::Mat4::from_cols_array_2d(&extracted.frame.view_projection);
+                    renderer
+                        .taa
+                        .get_or_insert_with(|| TaaPass::new(gpu))
+                        .record(
+                            gpu,
+                            target,
+                            TaaUniform::new(&frame, jittered),
+                            &mut encoder,
+                            times.taa,
+                        )
+                }
+                None => None,
+            };
+            let format = target.target_format();
+            let filter = if plan.post_filter {
+                if !renderer
+                    .fxaa
+                    .as_ref()
+                    .is_some_and(|fxaa| fxaa.is_for(format))
+                {
+                    renderer.fxaa = Some(FxaaPass::new(gpu, format, !renderer.post.is_compute()));
+                }
+                renderer.fxaa.as_mut()
+            } else {
+                None
+            };
+            let (output, filter) = match filter {
+                Some(fxaa) => {
+                    let (id, view) = fxaa.tonemapped_view(gpu, target);
+                    (Some((id, view.clone())), Some(&*fxaa))
+                }
+                None => (None, None),
+            };
+            let routing = PostRouting {
+                colour,
+                output: output.as_ref().map(|(id, view)| (*id, view)),
+            };
+            renderer
+                .post
+                .record(gpu, target, routing, &mut encoder, times.post);
+            if let Some(fxaa) = filter {
+                fxaa.record(target, &mut encoder, times.post_filter);
+            }
             if let Some(phases) = resources.get::<RenderPhases>() {
                 for work in phases.work(RenderPhase::PostProcess) {
                     work(resources, &mut encoder);

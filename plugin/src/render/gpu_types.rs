@@ -114,7 +114,8 @@ pub struct FrameUniform {
     pub ambient: [f32; 4],
     /// x: directional light count, y: point and spot light count.
     pub light_counts: [u32; 4],
-    /// xy: the target's width and height in pixels (the visibility buffer's rows).
+    /// xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed
+    /// of per-frame noise (counts TAA frames; 0 without TAA).
     pub target_size: [u32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
     pub directional_lights: [DirectionalLightGpu; MAX_DIRECTIONAL_LIGHTS],

@@ -6,6 +6,7 @@
 //! [`prepare_frame`] and [`render_frame`] (frame.rs) upload it and run the phases, one function
 //! each (frame_passes.rs); `capture.rs` reads images back, `present.rs` shows them in a window.
 
+pub(crate) mod anti_aliasing;
 mod capture;
 mod context;
 mod deferred_background;
@@ -18,6 +19,7 @@ mod frame;
 pub mod frame_group;
 mod frame_passes;
 mod frame_uniform;
+mod fxaa;
 mod gpu_assets;
 mod gpu_timing;
 pub(crate) mod gpu_types;
@@ -35,6 +37,7 @@ pub mod shaders;
 mod shadow_maps;
 mod shadow_views;
 mod sorted_draws;
+mod taa;
 mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
@@ -42,6 +45,19 @@ pub(crate) mod texture_bind_groups;
 pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod visibility;
 
+pub use anti_aliasing::{
+    AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit,
+    TemporalView, jitter_offset,
+};
+pub use fxaa::FXAA_SHADERS;
+pub(crate) use fxaa::FxaaPass;
+pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
+
+/// The name the TAA pass is timed under in [`GpuTimings`] (in the post phase, before
+/// tonemapping).
+pub const TAA_PASS: &str = "taa";
+/// The name the post filter (FXAA) is timed under in [`GpuTimings`] (after tonemapping).
+pub const POST_FILTER_PASS: &str = "post_filter";
 pub use capture::{
     CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture, read_texture_level,
 };
@@ -74,6 +90,7 @@ pub use phases::{
 pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use plugin::{PostProcessPath, RenderPlugin};
 pub(crate) use post_process::POST_SHADERS;
+pub(crate) use post_process::PostRouting;
 pub use post_process::{PostProcess, PostSettings};
 pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub(crate) use render_path::DEFERRED_FEATURES;
@@ -83,6 +100,7 @@ pub(crate) use renderer::{PhaseBindings, phase_bindings};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub(crate) use sorted_draws::SortedDraws;
+pub(crate) use taa::TaaPass;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};

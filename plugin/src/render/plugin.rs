@@ -167,6 +167,8 @@ impl Plugin for RenderPlugin {
                 self.format,
                 self.post_process == PostProcessPath::Fragment,
             ),
+            taa: None,
+            fxaa: None,
             last_upload: UploadStats::default(),
         };
         app.insert_resource(target).insert_resource(renderer);

@@ -21,11 +21,11 @@ pub const POST_COMPUTE_ENTRY: WgslFile = crate::wgsl_file!("render/post_compute.
 /// The full-screen triangle fallback.
 pub const POST_FRAGMENT_ENTRY: WgslFile = crate::wgsl_file!("render/post_fragment.wgsl");
 
-fn rgba8_output() -> String {
+pub(super) fn rgba8_output() -> String {
     "@group(0) @binding(2) var output: texture_storage_2d<rgba8unorm, write>;\n".to_owned()
 }
 
-fn rgba32f_output() -> String {
+pub(super) fn rgba32f_output() -> String {
     "@group(0) @binding(2) var output: texture_storage_2d<rgba32float, write>;\n".to_owned()
 }
 
@@ -100,12 +100,27 @@ pub struct PostProcess {
     layout: wgpu::BindGroupLayout,
     settings: wgpu::Buffer,
     uploaded: Option<PostSettings>,
-    // The bind group and the id of the target it was made for.
-    bind_group: Option<(u64, wgpu::BindGroup)>,
+    // Bind groups by what they bind: the target, the colour read (0: the scene; else TAA's
+    // history) and the image written (0: the display; else the post filter's input). A few
+    // at most: TAA's two histories take turns.
+    bind_groups: Vec<(BindingKey, wgpu::BindGroup)>,
+}
+
+/// What one bind group of the pass binds: (target id, colour source id, output id).
+type BindingKey = (u64, u64, u64);
+
+/// Where post-processing reads its colour and writes its image, other than the target's own
+/// scene and display textures (each with an id that changes when the texture does).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PostRouting<'a> {
+    /// The colour to tonemap instead of the scene's (TAA's history); alpha stays the scene's.
+    pub colour: Option<(u64, &'a wgpu::TextureView)>,
+    /// The texture to write instead of the display (the post filter's input).
+    pub output: Option<(u64, &'a wgpu::TextureView)>,
 }
 
 /// Whether the adapter can write `format` from a compute shader.
-fn can_store(gpu: &GpuContext, format: wgpu::TextureFormat) -> bool {
+pub(super) fn can_store(gpu: &GpuContext, format: wgpu::TextureFormat) -> bool {
     gpu.adapter
         .get_texture_format_features(format)
         .allowed_usages
@@ -138,7 +153,7 @@ impl PostProcess {
             layout,
             settings,
             uploaded: None,
-            bind_group: None,
+            bind_groups: Vec::new(),
         }
     }
 
@@ -158,51 +173,71 @@ impl PostProcess {
         std::mem::size_of::<PostSettings>() as u64
     }
 
-    /// Makes the bind group for `target` unless the current one is for it.
-    fn bind_target(&mut self, gpu: &GpuContext, target: &RenderTarget) {
-        let stale = self
-            .bind_group
-            .as_ref()
-            .is_none_or(|(id, _)| *id != target.id());
-        if stale {
-            let mut entries = vec![
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&target.scene_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.settings.as_entire_binding(),
-                },
-            ];
-            if self.is_compute() {
-                entries.push(wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&target.color_view),
-                });
-            }
-            let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("post-process bind group"),
-                layout: &self.layout,
-                entries: &entries,
-            });
-            self.bind_group = Some((target.id(), group));
+    /// The bind group for `target` as `routing` routes it, made unless one exists.
+    fn bind_group(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        routing: PostRouting<'_>,
+    ) -> &wgpu::BindGroup {
+        let key = (
+            target.id(),
+            routing.colour.map_or(0, |(id, _)| id),
+            routing.output.map_or(0, |(id, _)| id),
+        );
+        // Groups of other targets are stale; a few of this one's are kept.
+        self.bind_groups
+            .retain(|((id, _, _), _)| *id == target.id());
+        if let Some(index) = self.bind_groups.iter().position(|(k, _)| *k == key) {
+            return &self.bind_groups[index].1;
         }
+        let colour = routing.colour.map_or(&target.scene_view, |(_, view)| view);
+        let output = routing.output.map_or(&target.color_view, |(_, view)| view);
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&target.scene_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: self.settings.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::TextureView(colour),
+            },
+        ];
+        if self.is_compute() {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(output),
+            });
+        }
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("post-process bind group"),
+            layout: &self.layout,
+            entries: &entries,
+        });
+        if self.bind_groups.len() >= 4 {
+            self.bind_groups.remove(0);
+        }
+        self.bind_groups.push((key, group));
+        &self.bind_groups[self.bind_groups.len() - 1].1
     }
 
-    /// Records the pass: the scene target of `target` into its display target.
+    /// Records the pass: the scene target of `target` (or the colour `routing` names) into
+    /// its display target (or the texture `routing` names).
     pub(crate) fn record(
         &mut self,
         gpu: &GpuContext,
         target: &RenderTarget,
+        routing: PostRouting<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&super::PassTimestamps>,
     ) {
         let (width, height) = target.size();
-        self.bind_target(gpu, target);
-        let Some((_, bind_group)) = &self.bind_group else {
-            return;
-        };
+        let output = routing.output.map_or(&target.color_view, |(_, view)| view);
+        let bind_group = self.bind_group(gpu, target, routing).clone();
         match &self.pipeline {
             PostPipeline::Compute(pipeline) => {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -210,14 +245,14 @@ impl PostProcess {
                     timestamp_writes: timestamps.map(super::PassTimestamps::compute),
                 });
                 pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, bind_group, &[]);
+                pass.set_bind_group(0, &bind_group, &[]);
                 pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
             }
             PostPipeline::Fragment(pipeline) => {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("post-process pass"),
                     color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &target.color_view,
+                        view: output,
                         depth_slice: None,
                         resolve_target: None,
                         ops: wgpu::Operations {
@@ -231,7 +266,7 @@ impl PostProcess {
                     multiview_mask: None,
                 });
                 pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, bind_group, &[]);
+                pass.set_bind_group(0, &bind_group, &[]);
                 pass.draw(0..3, 0..1);
             }
         }
@@ -242,7 +277,8 @@ impl PostProcess {
 pub(crate) const POST_SHADERS: [ComposedShader; 3] =
     [POST_COMPUTE_RGBA8, POST_COMPUTE_RGBA32F, POST_FRAGMENT];
 
-/// The pass's bind group layout: the scene, the settings and, in compute, the display target.
+/// The pass's bind group layout: the scene, the settings, the colour to tonemap and, in
+/// compute, the image written.
 fn bind_group_layout(
     device: &wgpu::Device,
     display: wgpu::TextureFormat,
@@ -266,6 +302,16 @@ fn bind_group_layout(
                 ty: wgpu::BufferBindingType::Uniform,
                 has_dynamic_offset: false,
                 min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<PostSettings>() as u64),
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 3,
+            visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
             },
             count: None,
         },

@@ -12,6 +12,8 @@ struct PostSettings {
 
 @group(0) @binding(0) var scene: texture_2d<f32>;
 @group(0) @binding(1) var<uniform> settings: PostSettings;
+// The colour to tonemap: the scene's own, or TAA's history of it (the alpha stays the scene's).
+@group(0) @binding(3) var colour_source: texture_2d<f32>;
 
 // The sRGB transfer function (IEC 61966-2-1), exact: the storage target is plain Unorm.
 fn encode_srgb(linear: vec3<f32>) -> vec3<f32> {
@@ -23,7 +25,7 @@ fn encode_srgb(linear: vec3<f32>) -> vec3<f32> {
 // clear colour, a debug view's data: `DEBUG_VIEW_ALPHA` in frame.wgsl): its colour is written
 // as it is, with alpha −1 − a.
 fn post_process(pixel: vec2<u32>) -> vec4<f32> {
-    let hdr = textureLoad(scene, pixel, 0);
+    let hdr = vec4<f32>(textureLoad(colour_source, pixel, 0).rgb, textureLoad(scene, pixel, 0).a);
     var display: vec4<f32>;
     if hdr.a < 0.0 {
         display = vec4<f32>(hdr.rgb, clamp(-1.0 - hdr.a, 0.0, 1.0));

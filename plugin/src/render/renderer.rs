@@ -47,6 +47,10 @@ pub struct Renderer {
     pub(super) first_frame: bool,
     /// Tonemapping (the lights carry the exposure).
     pub(super) post: PostProcess,
+    /// Temporal anti-aliasing, once a frame has asked for it.
+    pub(super) taa: Option<super::TaaPass>,
+    /// The post filter, once a frame has asked for it.
+    pub(super) fxaa: Option<super::FxaaPass>,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
 }

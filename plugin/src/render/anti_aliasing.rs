@@ -1,0 +1,385 @@
+//! Anti-aliasing of a camera's image: which kind ([`AntiAliasing`], a camera component), the
+//! parameters of temporal anti-aliasing ([`TemporalAntiAliasing`], a camera component too),
+//! and what the history of one frame to the next keeps on the CPU ([`TemporalHistory`]: the
+//! sub-pixel jitter, the previous camera, and when the history is thrown away).
+//!
+//! The post phase runs TAA on the HDR scene before tonemapping (taa.rs), then tonemapping,
+//! then the post filter (fxaa.rs) where a frame asks for it. Where a camera has no
+//! [`AntiAliasing`], the app's resource of that type applies (the window runner inserts
+//! `taa`), else `off`: headless renders and reference images stay unfiltered unless asked.
+//!
+//! TAA jitters the projection by a Halton (2, 3) offset each frame, reprojects the history
+//! with the previous camera through each pixel's depth (a depth-offset surface's depth is the
+//! displaced point's), samples it with a Catmull-Rom filter, clips it to the variance box of
+//! the pixel's 3×3 neighbourhood (Salvi 2016) and drops it where the depth it kept says the
+//! pixel was hidden (disocclusion). For the first `jitter_samples` frames after a reset the
+//! history is a plain mean of the frames, so a still scene settles to `jitter_samples`
+//! sub-pixel positions exactly; after that each frame adds `current_weight` of itself.
+//! A reset comes with a new target (a resize), another camera or projection, another kind of
+//! anti-aliasing, or [`TemporalHistory::reset`] (a camera cut).
+
+use glam::{Mat4, Vec2, Vec3};
+
+crate::choice_enum! {
+    /// How a camera's image is anti-aliased.
+    pub enum AntiAliasing: "AA" {
+        /// None: every edge is whole pixels (what reference images use).
+        Off = "off",
+        /// FXAA after tonemapping: one frame, no history; softens edges and some texture.
+        Fxaa = "fxaa",
+        /// Temporal anti-aliasing: jittered frames accumulated in a history; sharpest when still.
+        Taa = "taa",
+    }
+}
+
+impl Default for AntiAliasing {
+    /// Off: a headless render shows exactly what the materials drew.
+    fn default() -> Self {
+        AntiAliasing::Off
+    }
+}
+
+/// The parameters of temporal anti-aliasing, a component of the camera entity (the defaults
+/// where it has none). Each is declared once, in [`TemporalAntiAliasing::LIMITS`]; values
+/// outside their limits are clamped, with one logged warning.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TemporalAntiAliasing {
+    /// Share of the new frame in each pixel once the history has settled: lower is smoother
+    /// and slower to follow a change.
+    pub current_weight: f32,
+    /// Half-width of the colour box the history is clipped to, in standard deviations of the
+    /// pixel's 3×3 neighbourhood: lower ghosts less and flickers more.
+    pub clip_gamma: f32,
+    /// Sub-pixel positions of the Halton (2, 3) jitter before it repeats: a still image
+    /// settles after this many frames.
+    pub jitter_samples: u32,
+    /// How much nearer than expected (as a share of the depth) a pixel's remembered depth may
+    /// be before its history counts as disoccluded and is dropped.
+    pub depth_tolerance: f32,
+}
+
+/// One declared TAA parameter: name, help and limits.
+#[derive(Clone, Copy, Debug)]
+pub struct TemporalLimit {
+    /// The field name: the RON key, `--taa-name-with-dashes` on the command line.
+    pub name: &'static str,
+    /// One line saying what it does.
+    pub help: &'static str,
+    /// Smallest value allowed.
+    pub min: f32,
+    /// Largest value allowed.
+    pub max: f32,
+    /// Whether it is a whole number.
+    pub integer: bool,
+    /// Reads it (as a float).
+    pub get: fn(&TemporalAntiAliasing) -> f32,
+    /// Writes it (a whole number is rounded).
+    pub set: fn(&mut TemporalAntiAliasing, f32),
+}
+
+impl Default for TemporalAntiAliasing {
+    fn default() -> Self {
+        Self {
+            current_weight: 0.1,
+            clip_gamma: 1.0,
+            jitter_samples: 16,
+            depth_tolerance: 0.05,
+        }
+    }
+}
+
+impl TemporalAntiAliasing {
+    /// Every parameter with its limits, in declaration order, for code that walks them (the
+    /// command line, scripts' checks, the sandbox's Display panel).
+    pub const LIMITS: [TemporalLimit; 4] = [
+        TemporalLimit {
+            name: "current_weight",
+            help: "Share of the new frame once the history has settled: lower is smoother, slower to follow.",
+            min: 0.02,
+            max: 1.0,
+            integer: false,
+            get: |taa| taa.current_weight,
+            set: |taa, value| taa.current_weight = value,
+        },
+        TemporalLimit {
+            name: "clip_gamma",
+            help: "Width of the colour box the history is clipped to, in standard deviations: lower ghosts less.",
+            min: 0.25,
+            max: 4.0,
+            integer: false,
+            get: |taa| taa.clip_gamma,
+            set: |taa, value| taa.clip_gamma = value,
+        },
+        TemporalLimit {
+            name: "jitter_samples",
+            help: "Sub-pixel positions of the jitter before it repeats: a still image settles after this many frames.",
+            min: 1.0,
+            max: 64.0,
+            integer: true,
+            get: |taa| taa.jitter_samples as f32,
+            set: |taa, value| taa.jitter_samples = value.round().clamp(0.0, u32::MAX as f32) as u32,
+        },
+        TemporalLimit {
+            name: "depth_tolerance",
+            help: "How much nearer than expected a remembered depth may be before the history is dropped as disoccluded.",
+            min: 0.0,
+            max: 1.0,
+            integer: false,
+            get: |taa| taa.depth_tolerance,
+            set: |taa, value| taa.depth_tolerance = value,
+        },
+    ];
+
+    /// Every parameter outside its limits (or not finite), one line each naming it and them.
+    pub fn problems(&self) -> Vec<String> {
+        Self::LIMITS
+            .iter()
+            .filter_map(|limit| {
+                let value = (limit.get)(self);
+                (!(limit.min..=limit.max).contains(&value)).then(|| {
+                    format!(
+                        "taa.{} = {value} is outside {}..={}",
+                        limit.name, limit.min, limit.max
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// Every parameter brought within its limits (not finite: its default).
+    pub fn sanitized(&self) -> Self {
+        let defaults = Self::default();
+        let mut clean = *self;
+        for limit in &Self::LIMITS {
+            let value = (limit.get)(self);
+            let value = if value.is_finite() {
+                value.clamp(limit.min, limit.max)
+            } else {
+                (limit.get)(&defaults)
+            };
+            (limit.set)(&mut clean, value);
+        }
+        clean
+    }
+}
+
+/// Element `index` (from 1) of the van der Corput sequence in `base`: the Halton sequence's
+/// coordinates, evenly spread over 0..1 for any prefix.
+fn radical_inverse(mut index: u32, base: u32) -> f32 {
+    let (mut result, mut scale) = (0.0_f32, 1.0_f32);
+    while index > 0 {
+        scale /= base as f32;
+        result += (index % base) as f32 * scale;
+        index /= base;
+    }
+    result
+}
+
+/// The sub-pixel offset of frame `frame` of a jitter of `samples` positions, in pixels
+/// (x right, y down, each in −½..½): Halton (2, 3), skipping its first point (0, 0).
+pub fn jitter_offset(frame: u32, samples: u32) -> Vec2 {
+    let index = frame % samples.max(1) + 1;
+    Vec2::new(radical_inverse(index, 2), radical_inverse(index, 3)) - 0.5
+}
+
+/// The camera as one TAA frame reprojects from and to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TemporalView {
+    /// World to clip space, without the jitter.
+    pub view_projection: Mat4,
+    /// Eye position.
+    pub position: Vec3,
+    /// The direction it looks (depths are measured along it).
+    pub direction: Vec3,
+}
+
+/// What one TAA frame needs: its jitter, the camera now and a frame ago, and the history's age.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TemporalFrame {
+    /// This frame's sub-pixel offset of the projection, in pixels (x right, y down).
+    pub jitter: Vec2,
+    /// The camera now (its projection unjittered).
+    pub current: TemporalView,
+    /// The camera of the frame the history holds (the current one after a reset).
+    pub previous: TemporalView,
+    /// Frames accumulated in the history before this one (0: reset, the history is dropped).
+    pub accumulated: u32,
+    /// The parameters, within their limits.
+    pub settings: TemporalAntiAliasing,
+    /// Counts every TAA frame, never reset: the seed of per-frame noise (the jittered march).
+    pub frame_index: u32,
+}
+
+/// What makes a history belong to the frames that follow it: a change of any is a reset.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct HistoryOwner {
+    target: u64,
+    camera: hecs::Entity,
+    projection: crate::Projection,
+    settings: TemporalAntiAliasing,
+}
+
+/// The CPU side of temporal anti-aliasing from one frame to the next: the previous camera, the
+/// history's age, the jitter's frame. A resource of the render plugin.
+#[derive(Debug, Default)]
+pub struct TemporalHistory {
+    owner: Option<HistoryOwner>,
+    previous: Option<TemporalView>,
+    accumulated: u32,
+    frame_index: u32,
+    reset_requested: bool,
+    warned_settings: Option<TemporalAntiAliasing>,
+}
+
+impl TemporalHistory {
+    /// Drops the history at the next frame: call it on a camera cut, where the last frame's
+    /// pixels say nothing about the next one's.
+    pub fn reset(&mut self) {
+        self.reset_requested = true;
+    }
+
+    /// Frames accumulated in the history of the last TAA frame, before it (0: it was reset).
+    pub fn accumulated(&self) -> u32 {
+        self.accumulated.saturating_sub(1)
+    }
+
+    /// The next TAA frame of `camera` (with `projection`) seeing `current` into target
+    /// `target`, with `settings` (clamped here, with one warning per new out-of-range value).
+    pub(crate) fn next_frame(
+        &mut self,
+        target: u64,
+        camera: hecs::Entity,
+        projection: crate::Projection,
+        current: TemporalView,
+        settings: &TemporalAntiAliasing,
+    ) -> TemporalFrame {
+        let problems = settings.problems();
+        if !problems.is_empty() && self.warned_settings != Some(*settings) {
+            log::warn!("temporal anti-aliasing: {}; clamped", problems.join("; "));
+            self.warned_settings = Some(*settings);
+        }
+        let settings = settings.sanitized();
+        let owner = HistoryOwner {
+            target,
+            camera,
+            projection,
+            settings,
+        };
+        if self.owner != Some(owner) || self.reset_requested {
+            self.accumulated = 0;
+            self.previous = None;
+        }
+        self.owner = Some(owner);
+        self.reset_requested = false;
+        let frame = TemporalFrame {
+            jitter: jitter_offset(self.accumulated, settings.jitter_samples),
+            current,
+            previous: self.previous.unwrap_or(current),
+            accumulated: self.accumulated,
+            settings,
+            frame_index: self.frame_index,
+        };
+        self.previous = Some(current);
+        self.accumulated = self.accumulated.saturating_add(1);
+        self.frame_index = self.frame_index.wrapping_add(1);
+        frame
+    }
+
+    /// A frame without TAA: the next TAA frame starts a new history.
+    pub(crate) fn skip(&mut self) {
+        self.owner = None;
+        self.previous = None;
+        self.accumulated = 0;
+    }
+}
+
+/// `projection` moved by `jitter` pixels (x right, y down) on a `width`×`height` target: the
+/// clip-space translation that shifts every projected point alike, perspective or not.
+pub fn jittered(projection: Mat4, jitter: Vec2, width: u32, height: u32) -> Mat4 {
+    let ndc = Vec2::new(
+        2.0 * jitter.x / width.max(1) as f32,
+        -2.0 * jitter.y / height.max(1) as f32,
+    );
+    Mat4::from_translation(ndc.extend(0.0)) * projection
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_jitter_covers_the_pixel_evenly_and_repeats() {
+        let offsets: Vec<Vec2> = (0..16).map(|frame| jitter_offset(frame, 16)).collect();
+        assert_eq!(jitter_offset(16, 16), offsets[0]);
+        assert!(offsets.iter().all(|o| o.abs().max_element() < 0.5));
+        let mean = offsets.iter().copied().sum::<Vec2>() / 16.0;
+        assert!(mean.length() < 0.05, "{mean}");
+        // Each quarter of the pixel holds four of the sixteen.
+        for (sx, sy) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
+            let count = offsets
+                .iter()
+                .filter(|o| o.x * sx > 0.0 && o.y * sy > 0.0)
+                .count();
+            assert!((3..=5).contains(&count), "{count} in quarter ({sx}, {sy})");
+        }
+    }
+
+    #[test]
+    fn out_of_range_settings_are_named_and_clamped() {
+        let wild = TemporalAntiAliasing {
+            current_weight: 5.0,
+            clip_gamma: f32::NAN,
+            jitter_samples: 0,
+            depth_tolerance: 0.5,
+        };
+        let problems = wild.problems();
+        assert_eq!(problems.len(), 3, "{problems:?}");
+        assert_eq!(problems[0], "taa.current_weight = 5 is outside 0.02..=1");
+        let clean = wild.sanitized();
+        assert_eq!(clean.current_weight, 1.0);
+        assert_eq!(clean.clip_gamma, TemporalAntiAliasing::default().clip_gamma);
+        assert_eq!(clean.jitter_samples, 1);
+        assert!(clean.problems().is_empty());
+    }
+
+    #[test]
+    fn a_new_target_camera_or_reset_drops_the_history() {
+        let mut world = hecs::World::new();
+        let (a, b) = (world.spawn(()), world.spawn(()));
+        let view = TemporalView {
+            view_projection: Mat4::IDENTITY,
+            position: Vec3::ZERO,
+            direction: Vec3::NEG_Z,
+        };
+        let projection = crate::Camera::default().projection;
+        let settings = TemporalAntiAliasing::default();
+        let mut history = TemporalHistory::default();
+        let ages: Vec<u32> = [(1, a), (1, a), (1, a), (2, a), (2, a), (2, b)]
+            .into_iter()
+            .map(|(target, camera)| {
+                history
+                    .next_frame(target, camera, projection, view, &settings)
+                    .accumulated
+            })
+            .collect();
+        assert_eq!(ages, [0, 1, 2, 0, 1, 0]);
+        history.reset();
+        let frame = history.next_frame(2, b, projection, view, &settings);
+        assert_eq!(frame.accumulated, 0);
+        history.skip();
+        let frame = history.next_frame(2, b, projection, view, &settings);
+        assert_eq!(frame.accumulated, 0);
+    }
+
+    #[test]
+    fn the_jitter_moves_projected_points_by_that_many_pixels() {
+        let projection = crate::Camera::default().projection.matrix(2.0);
+        let moved = jittered(projection, Vec2::new(0.25, -0.5), 200, 100);
+        let point = glam::Vec4::new(0.3, -0.2, -5.0, 1.0);
+        let (a, b) = (projection * point, moved * point);
+        let pixels = |clip: glam::Vec4| Vec2::new(clip.x / clip.w * 100.0, -clip.y / clip.w * 50.0);
+        let shift = pixels(b) - pixels(a);
+        assert!((shift - Vec2::new(0.25, -0.5)).length() < 1e-4, "{shift}");
+    }
+}

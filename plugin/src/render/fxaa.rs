@@ -1,0 +1,260 @@
+//! The post filter pass (fxaa.wgsl): FXAA on the tonemapped image, for frames that ask for
+//! anti-aliasing without a history. Tonemapping then writes into a texture of the display's
+//! format that this pass reads, and this pass writes the display target: in compute where the
+//! adapter can store that format, else as a full-screen triangle (as post-processing does).
+
+use super::shaders::{self, ComposedShader, WgslFile};
+use super::{GpuContext, PassTimestamps, RenderTarget, TargetFormat, layout, post_process};
+
+/// The pass's WGSL file.
+pub const FXAA_ENTRY: WgslFile = crate::wgsl_file!("render/fxaa.wgsl");
+
+/// The compute and fragment entry points.
+pub const FXAA_ENTRY_POINTS: WgslFile = crate::wgsl_file!("render/fxaa_entry.wgsl");
+
+fn srgb_input() -> String {
+    "const LINEAR_INPUT: bool = false;\n".to_owned()
+}
+
+fn linear_input() -> String {
+    "const LINEAR_INPUT: bool = true;\n".to_owned()
+}
+
+fn no_output() -> String {
+    String::new()
+}
+
+/// FXAA in compute, writing an 8-bit display target.
+pub const FXAA_COMPUTE_RGBA8: ComposedShader = ComposedShader {
+    name: "fxaa.wgsl (rgba8unorm)",
+    constants: &[post_process::rgba8_output, srgb_input],
+    files: &[FXAA_ENTRY, FXAA_ENTRY_POINTS],
+};
+
+/// FXAA in compute, writing a float display target.
+pub const FXAA_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
+    name: "fxaa.wgsl (rgba32float)",
+    constants: &[post_process::rgba32f_output, linear_input],
+    files: &[FXAA_ENTRY, FXAA_ENTRY_POINTS],
+};
+
+/// FXAA as a full-screen triangle (8-bit display).
+pub const FXAA_FRAGMENT: ComposedShader = ComposedShader {
+    name: "fxaa.wgsl (fragment)",
+    constants: &[no_output, srgb_input],
+    files: &[
+        FXAA_ENTRY,
+        shaders::FULLSCREEN_TRIANGLE,
+        FXAA_FRAGMENT_ENTRY,
+    ],
+};
+
+/// The full-screen triangle's entry point.
+pub const FXAA_FRAGMENT_ENTRY: WgslFile = crate::wgsl_file!("render/fxaa_fragment.wgsl");
+
+/// Every FXAA shader, for validation.
+pub const FXAA_SHADERS: [ComposedShader; 3] =
+    [FXAA_COMPUTE_RGBA8, FXAA_COMPUTE_RGBA32F, FXAA_FRAGMENT];
+
+#[derive(Debug)]
+enum FxaaPipeline {
+    Compute(wgpu::ComputePipeline),
+    Fragment(wgpu::RenderPipeline),
+}
+
+/// The tonemapped image of one target, which this pass reads, and the bind group for it.
+#[derive(Debug)]
+struct TonemappedTexture {
+    target: u64,
+    view: wgpu::TextureView,
+    bind_group: wgpu::BindGroup,
+}
+
+/// The FXAA pipeline and the tonemapped texture of the current target. Made on the first
+/// frame that asks for it; a part of [`super::Renderer`].
+#[derive(Debug)]
+pub(crate) struct FxaaPass {
+    pipeline: FxaaPipeline,
+    layout: wgpu::BindGroupLayout,
+    format: TargetFormat,
+    tonemapped: Option<TonemappedTexture>,
+}
+
+impl FxaaPass {
+    /// The pass for display targets of `format`, compute unless `fragment` (post-processing's
+    /// own choice, so both run the same way).
+    pub(crate) fn new(gpu: &GpuContext, format: TargetFormat, fragment: bool) -> Self {
+        let device = &gpu.device;
+        let display = format.texture_format();
+        let mut entries = vec![layout::unfilterable_texture_2d(0)];
+        if !fragment {
+            // Binding 2: the output post-processing's prelude declares.
+            entries.push(layout::compute_storage_texture(2, display));
+        }
+        let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fxaa layout"),
+            entries: &entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("fxaa pipeline layout"),
+            bind_group_layouts: &[Some(&bind_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = if fragment {
+            let module = FXAA_FRAGMENT.create_module(device);
+            FxaaPipeline::Fragment(layout::fullscreen_pipeline(
+                device,
+                "fxaa fragment pipeline",
+                Some(&pipeline_layout),
+                &module,
+                "fxaa_fragment",
+                display,
+            ))
+        } else {
+            let module = match format {
+                TargetFormat::Float32 => FXAA_COMPUTE_RGBA32F,
+                _ => FXAA_COMPUTE_RGBA8,
+            }
+            .create_module(device);
+            FxaaPipeline::Compute(device.create_compute_pipeline(
+                &wgpu::ComputePipelineDescriptor {
+                    label: Some("fxaa compute pipeline"),
+                    layout: Some(&pipeline_layout),
+                    module: &module,
+                    entry_point: Some("fxaa_main"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                },
+            ))
+        };
+        Self {
+            pipeline,
+            layout: bind_layout,
+            format,
+            tonemapped: None,
+        }
+    }
+
+    /// Whether the pass was made for targets of `format`.
+    pub(crate) fn is_for(&self, format: TargetFormat) -> bool {
+        self.format == format
+    }
+
+    /// The texture tonemapping writes for this pass on `target` (its id, for bind groups, and
+    /// its view), made unless the current one is for `target`.
+    pub(crate) fn tonemapped_view(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+    ) -> (u64, &wgpu::TextureView) {
+        if self
+            .tonemapped
+            .as_ref()
+            .is_some_and(|texture| texture.target != target.id())
+        {
+            self.tonemapped = None;
+        }
+        let compute = matches!(self.pipeline, FxaaPipeline::Compute(_));
+        let layout = &self.layout;
+        let texture = self
+            .tonemapped
+            .get_or_insert_with(|| tonemapped_texture(gpu, target, layout, compute));
+        (texture.target, &texture.view)
+    }
+
+    /// Records the pass: the tonemapped image of `target` into its display target.
+    pub(crate) fn record(
+        &self,
+        target: &RenderTarget,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<&PassTimestamps>,
+    ) {
+        let Some(texture) = self
+            .tonemapped
+            .as_ref()
+            .filter(|texture| texture.target == target.id())
+        else {
+            return;
+        };
+        let (width, height) = target.size();
+        match &self.pipeline {
+            FxaaPipeline::Compute(pipeline) => {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("fxaa pass"),
+                    timestamp_writes: timestamps.map(PassTimestamps::compute),
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &texture.bind_group, &[]);
+                pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+            }
+            FxaaPipeline::Fragment(pipeline) => {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("fxaa pass"),
+                    color_attachments: &[Some(super::clearing_attachment(
+                        &target.color_view,
+                        wgpu::Color::TRANSPARENT,
+                    ))],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: timestamps.map(PassTimestamps::render),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &texture.bind_group, &[]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+    }
+}
+
+/// The texture tonemapping writes for the pass on `target`, with the pass's bind group.
+fn tonemapped_texture(
+    gpu: &GpuContext,
+    target: &RenderTarget,
+    layout: &wgpu::BindGroupLayout,
+    compute: bool,
+) -> TonemappedTexture {
+    let (width, height) = target.size();
+    let storage = if post_process::can_store(gpu, target.format()) {
+        wgpu::TextureUsages::STORAGE_BINDING
+    } else {
+        wgpu::TextureUsages::empty()
+    };
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("tonemapped image (fxaa input)"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: target.format(),
+        usage: wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::RENDER_ATTACHMENT
+            | storage,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut entries = vec![wgpu::BindGroupEntry {
+        binding: 0,
+        resource: wgpu::BindingResource::TextureView(&view),
+    }];
+    if compute {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::TextureView(&target.color_view),
+        });
+    }
+    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("fxaa bind group"),
+        layout,
+        entries: &entries,
+    });
+    TonemappedTexture {
+        target: target.id(),
+        view,
+        bind_group,
+    }
+}

@@ -1,0 +1,301 @@
+//! The temporal anti-aliasing pass (taa.wgsl): in compute, before tonemapping, the jittered
+//! HDR scene and last frame's history into this frame's history, which tonemapping then reads.
+//! Two history textures per target take turns; what the pass does and when it resets is in
+//! anti_aliasing.rs.
+
+use bytemuck::{Pod, Zeroable};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use super::anti_aliasing::TemporalFrame;
+use super::shaders::{ComposedShader, WgslFile};
+use super::{GpuContext, PassTimestamps, RenderTarget, layout};
+
+/// The pass's WGSL file.
+pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/taa.wgsl");
+
+/// The pass's shader.
+pub const TAA_SHADER: ComposedShader = ComposedShader {
+    name: "taa.wgsl",
+    constants: &[],
+    files: &[TAA_ENTRY],
+};
+
+/// The history's format: filterable, storable, and wide enough for the pre-exposed scene.
+pub const HISTORY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// One TAA frame as the shader reads it; mirrors `TaaUniform` in taa.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct TaaUniform {
+    /// Clip space of the jittered frame to world space.
+    pub inverse_view_projection: [[f32; 4]; 4],
+    /// World to clip space now, unjittered.
+    pub view_projection: [[f32; 4]; 4],
+    /// World to clip space a frame ago, unjittered.
+    pub previous_view_projection: [[f32; 4]; 4],
+    /// Eye position now.
+    pub camera_position: [f32; 4],
+    /// View direction now.
+    pub view_direction: [f32; 4],
+    /// Eye position a frame ago.
+    pub previous_camera_position: [f32; 4],
+    /// View direction a frame ago.
+    pub previous_view_direction: [f32; 4],
+    /// This frame's sub-pixel offset in pixels (x right, y down).
+    pub jitter: [f32; 2],
+    /// Frames in the history before this one (0: dropped).
+    pub accumulated: u32,
+    /// Positions of the jitter before it repeats.
+    pub jitter_samples: u32,
+    /// Share of the new frame once settled.
+    pub current_weight: f32,
+    /// Half-width of the clip box in standard deviations.
+    pub clip_gamma: f32,
+    /// Relative depth difference past which the history is disoccluded.
+    pub depth_tolerance: f32,
+    /// Keeps the size a multiple of 16 bytes.
+    pub _padding: u32,
+}
+
+crate::wgsl_layout!(TaaUniform {
+    inverse_view_projection,
+    view_projection,
+    previous_view_projection,
+    camera_position,
+    view_direction,
+    previous_camera_position,
+    previous_view_direction,
+    jitter,
+    accumulated,
+    jitter_samples,
+    current_weight,
+    clip_gamma,
+    depth_tolerance,
+    _padding
+});
+
+impl TaaUniform {
+    /// The uniform of `frame`, whose jittered projection is `jittered_view_projection`.
+    pub fn new(frame: &TemporalFrame, jittered_view_projection: glam::Mat4) -> Self {
+        let settings = frame.settings;
+        Self {
+            inverse_view_projection: jittered_view_projection.inverse().to_cols_array_2d(),
+            view_projection: frame.current.view_projection.to_cols_array_2d(),
+            previous_view_projection: frame.previous.view_projection.to_cols_array_2d(),
+            camera_position: frame.current.position.extend(1.0).into(),
+            view_direction: frame.current.direction.extend(0.0).into(),
+            previous_camera_position: frame.previous.position.extend(1.0).into(),
+            previous_view_direction: frame.previous.direction.extend(0.0).into(),
+            jitter: frame.jitter.into(),
+            accumulated: frame.accumulated,
+            jitter_samples: settings.jitter_samples,
+            current_weight: settings.current_weight,
+            clip_gamma: settings.clip_gamma,
+            depth_tolerance: settings.depth_tolerance,
+            _padding: 0,
+        }
+    }
+}
+
+/// Gives every pair of history textures its own id, so a bind group can tell it is for them.
+static NEXT_HISTORY_ID: AtomicU64 = AtomicU64::new(1);
+
+/// The two history textures of one target, and the bind group that writes each.
+#[derive(Debug)]
+struct HistoryTextures {
+    target: u64,
+    id: u64,
+    views: [wgpu::TextureView; 2],
+    /// `bind_groups[i]` reads history `1 - i` and writes history `i`.
+    bind_groups: [wgpu::BindGroup; 2],
+    /// The history the last frame wrote.
+    written: usize,
+}
+
+/// The TAA pipeline, its uniform, and the history of the current target. Made on the first
+/// TAA frame; a part of [`super::Renderer`].
+#[derive(Debug)]
+pub(crate) struct TaaPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    sampler: wgpu::Sampler,
+    history: Option<HistoryTextures>,
+}
+
+impl TaaPass {
+    pub(crate) fn new(gpu: &GpuContext) -> Self {
+        let device = &gpu.device;
+        let depth = wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("taa layout"),
+            entries: &[
+                layout::unfilterable_texture_2d(0),
+                depth,
+                layout::texture_2d(2),
+                layout::filtering_sampler(3),
+                layout::compute_storage_texture(4, HISTORY_FORMAT),
+                layout::compute_uniform_buffer(5, false),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("taa pipeline layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let module = TAA_SHADER.create_module(device);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("taa pipeline"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("taa_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("taa uniform"),
+            size: std::mem::size_of::<TaaUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("taa history sampler"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Self {
+            pipeline,
+            layout,
+            uniform,
+            sampler,
+            history: None,
+        }
+    }
+
+    /// Makes the history textures for `target` unless the current ones are for it; returns
+    /// whether they are new (they then hold nothing to accumulate).
+    fn follow(&mut self, gpu: &GpuContext, target: &RenderTarget) -> bool {
+        if self
+            .history
+            .as_ref()
+            .is_some_and(|history| history.target == target.id())
+        {
+            return false;
+        }
+        let (width, height) = target.size();
+        let texture = |label| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: HISTORY_FORMAT,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let views = [texture("taa history 0"), texture("taa history 1")]
+            .map(|texture| texture.create_view(&wgpu::TextureViewDescriptor::default()));
+        let bind_group = |written: usize| {
+            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("taa bind group"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&target.scene_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&target.depth_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(&views[1 - written]),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(&views[written]),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 5,
+                        resource: self.uniform.as_entire_binding(),
+                    },
+                ],
+            })
+        };
+        let bind_groups = [bind_group(0), bind_group(1)];
+        self.history = Some(HistoryTextures {
+            target: target.id(),
+            id: NEXT_HISTORY_ID.fetch_add(1, Ordering::Relaxed),
+            views,
+            bind_groups,
+            written: 1,
+        });
+        true
+    }
+
+    /// Records the pass for `target`; returns the history it writes, what tonemapping reads
+    /// (its id, for bind groups, and its view).
+    pub(crate) fn record(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        mut uniform: TaaUniform,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<&PassTimestamps>,
+    ) -> Option<(u64, &wgpu::TextureView)> {
+        if self.follow(gpu, target) {
+            uniform.accumulated = 0;
+        }
+        gpu.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        let history = self.history.as_mut()?;
+        history.written = 1 - history.written;
+        let (width, height) = target.size();
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("taa pass"),
+                timestamp_writes: timestamps.map(PassTimestamps::compute),
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &history.bind_groups[history.written], &[]);
+            pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        }
+        let written = history.written;
+        Some((history.id * 2 + written as u64, &history.views[written]))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_uniform_matches_its_wgsl() {
+        let layout =
+            crate::shader::check_wgsl_layout::<TaaUniform>(&TAA_SHADER.source(), "TaaUniform");
+        assert_eq!(layout, Ok(()));
+    }
+}
