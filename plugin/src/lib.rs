@@ -117,7 +117,7 @@ pub use parallax::{
     PresetError, ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
-pub use render::{AntiAliasing, TemporalAntiAliasing, TemporalHistory};
+pub use render::{AntiAliasing, TemporalAntiAliasing, TemporalHistory, set_camera_anti_aliasing};
 pub use render::{
     GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
     TargetFormat, TimingMode, capture, capture_f32, capture_scene,

@@ -151,6 +151,40 @@ pub struct DisplayArgs {
     /// Tonemapping operator: none (clamp), aces, agx or neutral (Khronos PBR Neutral).
     #[arg(long, value_name = "NAME", value_parser = crate::material_args::choice_parser::<pom::Tonemapping>(), default_value = "neutral")]
     pub tonemap: pom::Tonemapping,
+    /// Anti-aliasing: off, fxaa (the post filter) or taa (a still image renders the jitter's
+    /// whole cycle, --taa-jitter-samples frames, for the history to settle).
+    #[arg(long, value_name = "NAME", value_parser = crate::material_args::choice_parser::<pom::AntiAliasing>(), default_value = "off")]
+    pub aa: pom::AntiAliasing,
+    /// TAA: share of the new frame once settled, 0.02..=1 [default: 0.1].
+    #[arg(long, value_name = "X", value_parser = taa_parser(0))]
+    pub taa_current_weight: Option<f32>,
+    /// TAA: width of the history's clip box in standard deviations, 0.25..=4 [default: 1].
+    #[arg(long, value_name = "X", value_parser = taa_parser(1))]
+    pub taa_clip_gamma: Option<f32>,
+    /// TAA: sub-pixel positions of the jitter, 1..=64 [default: 16].
+    #[arg(long, value_name = "N", value_parser = taa_parser(2))]
+    pub taa_jitter_samples: Option<f32>,
+    /// TAA: how much nearer a remembered depth may be before the history is dropped, 0..=1
+    /// [default: 0.05].
+    #[arg(long, value_name = "X", value_parser = taa_parser(3))]
+    pub taa_depth_tolerance: Option<f32>,
+}
+
+/// The value parser of TAA parameter `index` of [`pom::TemporalAntiAliasing::LIMITS`]: its
+/// limits, and whole numbers where it is one.
+fn taa_parser(index: usize) -> impl Fn(&str) -> Result<f32, String> + Clone {
+    move |text| {
+        let limit = &pom::TemporalAntiAliasing::LIMITS[index];
+        let value = parse_finite(text)?;
+        if limit.integer && value.fract() != 0.0 {
+            return Err(format!("{value} is not a whole number"));
+        }
+        if (limit.min..=limit.max).contains(&value) {
+            Ok(value)
+        } else {
+            Err(format!("{value} is outside {}..={}", limit.min, limit.max))
+        }
+    }
 }
 
 impl DisplayArgs {
@@ -160,6 +194,32 @@ impl DisplayArgs {
             .exposure
             .map_or_else(pom::Exposure::default, |ev100| pom::Exposure { ev100 });
         pom::set_camera_display_mapping(&mut app.world, exposure, self.tonemap);
+        pom::set_camera_anti_aliasing(&mut app.world, self.aa, self.temporal());
+    }
+
+    /// The TAA parameters the flags give (the defaults for those not given).
+    pub fn temporal(&self) -> pom::TemporalAntiAliasing {
+        let mut temporal = pom::TemporalAntiAliasing::default();
+        let given = [
+            self.taa_current_weight,
+            self.taa_clip_gamma,
+            self.taa_jitter_samples,
+            self.taa_depth_tolerance,
+        ];
+        for (limit, value) in pom::TemporalAntiAliasing::LIMITS.iter().zip(given) {
+            if let Some(value) = value {
+                (limit.set)(&mut temporal, value);
+            }
+        }
+        temporal
+    }
+
+    /// Frames a still image is rendered for: TAA's settling frames, else one.
+    pub fn frames(&self) -> u32 {
+        match self.aa {
+            pom::AntiAliasing::Taa => self.temporal().settling_frames(),
+            _ => 1,
+        }
     }
 }
 

@@ -39,7 +39,9 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     demo_scene::spawn(&mut app)?;
     args.display.apply(&mut app);
     args.shadows.apply(&mut app.world);
-    app.update().context("rendering the demo scene")?;
+    for _ in 0..args.display.frames() {
+        app.update().context("rendering the demo scene")?;
+    }
     let image = pom::capture(&app).context("reading the frame back")?;
     frame_output::write(&app, image.into(), &args.out)
 }

@@ -323,7 +323,12 @@ fn render_material(args: &RenderArgs) -> Result<()> {
     spawn_preview(&mut app, material, &args.view()).context("setting up the preview")?;
     args.display.apply(&mut app);
     args.shadows.apply(&mut app.world);
-    render_and_write(&mut app, &args.output, "rendering the preview")
+    render_and_write(
+        &mut app,
+        &args.output,
+        args.display.frames(),
+        "rendering the preview",
+    )
 }
 
 /// Loads the `--scene` file, picks its camera and lights, renders it. The GPU starts only once
@@ -341,7 +346,12 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
     scene_preview::spawn(&mut app, &preview)?;
     args.display.apply(&mut app);
     args.shadows.apply(&mut app.world);
-    render_and_write(&mut app, &args.output, "rendering the scene")
+    render_and_write(
+        &mut app,
+        &args.output,
+        args.display.frames(),
+        "rendering the scene",
+    )
 }
 
 /// An app with the headless renderer (a float target for the raw debug views) on `path`, and
@@ -359,10 +369,17 @@ fn headless_app(output: &OutputArgs, path: PathArgs) -> App {
     app
 }
 
-/// Renders one frame and writes it to `--out`: raw 16-bit values for the raw debug views, sRGB
-/// otherwise.
-fn render_and_write(app: &mut App, output: &OutputArgs, what: &'static str) -> Result<()> {
-    app.update().context(what)?;
+/// Renders `frames` frames of the still scene (TAA's history settles over them) and writes the
+/// last to `--out`: raw 16-bit values for the raw debug views, sRGB otherwise.
+fn render_and_write(
+    app: &mut App,
+    output: &OutputArgs,
+    frames: u32,
+    what: &'static str,
+) -> Result<()> {
+    for _ in 0..frames.max(1) {
+        app.update().context(what)?;
+    }
     let image = if writes_raw_values(output.debug_view) {
         let frame = pom::capture_f32(app).context("reading the frame back")?;
         DynamicImage::ImageRgb16(frame_output::raw_rgb16(&frame))

@@ -409,3 +409,74 @@ fn a_depth_map_renders_with_normal_mapping_that_sinks_its_white() {
         "the pit's wall facing the light is dark: {far_wall} vs {flat} on the flat"
     );
 }
+
+#[test]
+fn an_unknown_anti_aliasing_is_rejected_with_the_valid_ones() {
+    let dir = TempDir::new("bad-aa");
+    let out = dir.join("out.png");
+    for command in ["render", "snapshot"] {
+        let output = sandbox(&[command, "--out", path_arg(&out), "--aa", "msaa"]);
+        assert_one_line_error(&output, &["msaa", "--aa", "off", "fxaa", "taa"]);
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn out_of_range_taa_parameters_are_rejected_naming_the_flag_and_the_limit() {
+    let dir = TempDir::new("bad-taa");
+    let out = dir.join("out.png");
+    for (flag, bad, limit) in [
+        ("--taa-current-weight", "5", "0.02..=1"),
+        ("--taa-current-weight", "NaN", "NaN"),
+        ("--taa-jitter-samples", "100", "1..=64"),
+        ("--taa-jitter-samples", "2.5", "whole number"),
+        ("--taa-clip-gamma", "0", "0.25..=4"),
+    ] {
+        let output = sandbox(&["render", "--out", path_arg(&out), "--aa", "taa", flag, bad]);
+        assert_one_line_error(&output, &[flag, limit]);
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn the_post_filter_and_taa_soften_the_previews_edges() {
+    let dir = TempDir::new("aa");
+    // The cube's outline against the background: its edge pixels take values between the
+    // two only with anti-aliasing.
+    let render = |aa: &str| {
+        rendered(
+            &dir,
+            &format!("cube-{aa}.png"),
+            "render",
+            &[
+                "--size",
+                "48x48",
+                "--shape",
+                "cube",
+                "--view-angle",
+                "30",
+                "--aa",
+                aa,
+            ],
+        )
+    };
+    let distinct = |image: &image::RgbaImage| {
+        let mut values: Vec<i32> = image.pixels().map(brightness).collect();
+        values.sort_unstable();
+        values.dedup();
+        values.len()
+    };
+    let (off, fxaa, taa) = (render("off"), render("fxaa"), render("taa"));
+    assert!(
+        distinct(&fxaa) > distinct(&off),
+        "fxaa {} off {}",
+        distinct(&fxaa),
+        distinct(&off)
+    );
+    assert!(
+        distinct(&taa) > distinct(&off),
+        "taa {} off {}",
+        distinct(&taa),
+        distinct(&off)
+    );
+}

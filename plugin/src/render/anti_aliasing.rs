@@ -147,6 +147,13 @@ impl TemporalAntiAliasing {
             .collect()
     }
 
+    /// Frames a still image takes to settle under TAA with these parameters: one whole cycle
+    /// of the jitter, after which the history is the plain mean of its sub-pixel positions
+    /// (what `render --aa taa` and scripts' renders wait for).
+    pub fn settling_frames(&self) -> u32 {
+        self.sanitized().jitter_samples
+    }
+
     /// Every parameter brought within its limits (not finite: its default).
     pub fn sanitized(&self) -> Self {
         let defaults = Self::default();
@@ -162,6 +169,26 @@ impl TemporalAntiAliasing {
         }
         clean
     }
+}
+
+/// Puts `anti_aliasing` and `temporal` on every active camera of `world` (replacing what they
+/// had); returns how many cameras that was.
+pub fn set_camera_anti_aliasing(
+    world: &mut hecs::World,
+    anti_aliasing: AntiAliasing,
+    temporal: TemporalAntiAliasing,
+) -> usize {
+    let cameras: Vec<hecs::Entity> = world
+        .query::<(hecs::Entity, &crate::Camera)>()
+        .iter()
+        .filter(|(_, camera)| camera.active)
+        .map(|(entity, _)| entity)
+        .collect();
+    for camera in &cameras {
+        // The entity was just found, so inserting cannot fail.
+        let _ = world.insert(*camera, (anti_aliasing, temporal));
+    }
+    cameras.len()
 }
 
 /// Element `index` (from 1) of the van der Corput sequence in `base`: the Halton sequence's

@@ -47,7 +47,7 @@ mod visibility;
 
 pub use anti_aliasing::{
     AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit,
-    TemporalView, jitter_offset,
+    TemporalView, jitter_offset, set_camera_anti_aliasing,
 };
 pub use fxaa::FXAA_SHADERS;
 pub(crate) use fxaa::FxaaPass;

@@ -7,8 +7,9 @@
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! resolve      deferred path: materials shade their pixels of the visibility buffer in compute
 //! transparent  blended draws of every material in one list, farthest first; depth read-only
-//! post         tonemapping, HDR scene → display target (compute where allowed); the scene is
-//!              pre-exposed (the lights carry the camera's exposure)
+//! post         TAA on the HDR scene (compute), tonemapping, HDR scene → display target
+//!              (compute where allowed; the scene is pre-exposed: the lights carry the
+//!              camera's exposure), then the post filter (FXAA) where the camera asks for it
 //! overlay      UI drawn over the result by the application (the sandbox's egui)
 //! ```
 //! Each phase that has work is timed in [`super::GpuTimings`] under [`RenderPhase::name`].
@@ -32,7 +33,7 @@ pub enum RenderPhase {
     Resolve,
     /// Blended draws of every material in one list, farthest first.
     Transparent,
-    /// Tonemapping into the display target.
+    /// TAA, tonemapping into the display target, the post filter.
     PostProcess,
     /// The application's UI over the finished image.
     Overlay,

@@ -101,6 +101,7 @@ pub(super) fn check(
 ) -> Result<(), ScriptError> {
     let source = ScriptText { text, path };
     check_exposure(script, &source)?;
+    check_temporal(script, &source)?;
     check_light_shadows(script, &source)?;
     let names = check_entities(script, &source, dir)?;
     check_steps(script, &names, &source)
@@ -121,6 +122,22 @@ fn check_exposure(script: &Script, source: &ScriptText<'_>) -> Result<(), Script
         ));
     }
     Ok(())
+}
+
+/// TAA's parameters, if given, are within their limits.
+fn check_temporal(script: &Script, source: &ScriptText<'_>) -> Result<(), ScriptError> {
+    let problems = script
+        .camera
+        .taa
+        .map(|taa| taa.problems())
+        .unwrap_or_default();
+    match problems.first() {
+        Some(problem) => Err(source.invalid(
+            locate(source.text, "taa", "camera"),
+            format!("camera {problem}"),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Every light's shadow settings, where given, are usable.

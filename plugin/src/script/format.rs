@@ -51,6 +51,14 @@ pub struct CameraDesc {
     /// Tonemapping operator: none, aces, agx or neutral [default: neutral].
     #[serde(default)]
     pub tonemap: Option<crate::Tonemapping>,
+    /// Anti-aliasing: off, fxaa or taa [default: off]. Under taa a capture renders the
+    /// jitter's whole cycle (`taa.jitter_samples` frames) first, for the history to settle,
+    /// and a `Camera` or `OrbitCamera` step is a cut that drops the history.
+    #[serde(default)]
+    pub aa: Option<crate::AntiAliasing>,
+    /// TAA's parameters, absent fields at their defaults (`TemporalAntiAliasing::LIMITS`).
+    #[serde(default)]
+    pub taa: Option<crate::TemporalAntiAliasing>,
 }
 
 /// A light.

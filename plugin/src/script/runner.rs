@@ -157,6 +157,8 @@ impl<'a> Runner<'a> {
                 .exposure
                 .map_or_else(Exposure::default, |ev100| Exposure { ev100 }),
             script.camera.tonemap.unwrap_or_default(),
+            script.camera.aa.unwrap_or_default(),
+            script.camera.taa.unwrap_or_default(),
         ));
         let lights = script
             .lights

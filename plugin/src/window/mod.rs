@@ -177,6 +177,11 @@ impl Plugin for WindowPlugin {
         {
             app.insert_resource(crate::render::PipelineCompilation::background());
         }
+        // A window's cameras without an `AntiAliasing` of their own run TAA: a moving view
+        // is where stair-stepped edges and shimmering relief show.
+        if !app.resources.contains::<crate::AntiAliasing>() {
+            app.insert_resource(crate::AntiAliasing::Taa);
+        }
         input::insert_input_resources(&mut app.resources);
         app.add_system(Stage::PreUpdate, update_input);
     }

@@ -33,6 +33,9 @@ pub enum Measurement {
     SceneShadows,
     /// Each silhouette mode against `off` on the preview cube and sphere.
     Silhouette,
+    /// TAA and the post filter: each pass's time, and the jittered march at 16 samples
+    /// under TAA against 50 samples.
+    Antialiasing,
     /// Tatarchuk's listing 2 transliterated to WGSL on the same plane, beside our POM.
     SeedPort,
     /// Steep, POM and relief at 8–64 samples and MaxMip: error, fetches per pixel and time.

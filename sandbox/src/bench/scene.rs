@@ -141,6 +141,11 @@ impl BenchScene {
         }
     }
 
+    /// Puts `anti_aliasing` (TAA with its default parameters) on the camera.
+    pub fn set_anti_aliasing(&mut self, anti_aliasing: pom::AntiAliasing) {
+        pom::set_camera_anti_aliasing(&mut self.app.world, anti_aliasing, Default::default());
+    }
+
     /// Sets the colour the image is cleared to (alpha 0 marks pixels nothing was drawn on).
     pub fn set_clear_color(&mut self, color: pom::Color) {
         for camera in self.app.world.query_mut::<&mut Camera>() {

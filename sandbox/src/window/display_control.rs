@@ -1,9 +1,10 @@
-//! The display controls: the active camera's exposure (EV100) and tonemapping operator,
-//! written into its `Exposure` and `Tonemapping` components, and kept with the tuned state.
+//! The display controls: the active camera's exposure (EV100), tonemapping operator and
+//! anti-aliasing (with TAA's parameters), written into its `Exposure`, `Tonemapping`,
+//! `AntiAliasing` and `TemporalAntiAliasing` components, and kept with the tuned state.
 
 use egui::{Slider, Ui};
 use pom::hecs::World;
-use pom::{Camera, Exposure, Tonemapping};
+use pom::{AntiAliasing, Camera, Exposure, TemporalAntiAliasing, Tonemapping};
 use serde::{Deserialize, Serialize};
 
 use super::material_editor::choose;
@@ -15,23 +16,43 @@ pub struct DisplayState {
     pub ev100: f32,
     /// The tonemapping operator.
     pub tonemap: Tonemapping,
+    /// Anti-aliasing (TAA, the window's default, in state files from before it).
+    #[serde(default = "window_default")]
+    pub aa: AntiAliasing,
+    /// TAA's parameters.
+    #[serde(default)]
+    pub taa: TemporalAntiAliasing,
+}
+
+/// What a window's camera without an `AntiAliasing` runs (`WindowPlugin`'s resource).
+fn window_default() -> AntiAliasing {
+    AntiAliasing::Taa
 }
 
 /// The active camera's exposure and operator (their defaults where it has none).
 pub fn active_display(world: &World) -> Option<DisplayState> {
     world
-        .query::<(&Camera, Option<&Exposure>, Option<&Tonemapping>)>()
+        .query::<(
+            &Camera,
+            Option<&Exposure>,
+            Option<&Tonemapping>,
+            Option<&AntiAliasing>,
+            Option<&TemporalAntiAliasing>,
+        )>()
         .iter()
-        .find(|(camera, _, _)| camera.active)
-        .map(|(_, exposure, tonemap)| DisplayState {
+        .find(|(camera, ..)| camera.active)
+        .map(|(_, exposure, tonemap, aa, taa)| DisplayState {
             ev100: exposure.copied().unwrap_or_default().ev100,
             tonemap: tonemap.copied().unwrap_or_default(),
+            aa: aa.copied().unwrap_or_else(window_default),
+            taa: taa.copied().unwrap_or_default(),
         })
 }
 
 /// Puts `state` on the active cameras.
 pub fn apply_display(world: &mut World, state: DisplayState) {
     pom::set_camera_display_mapping(world, Exposure { ev100: state.ev100 }, state.tonemap);
+    pom::set_camera_anti_aliasing(world, state.aa, state.taa);
 }
 
 /// Shows the exposure slider and the operator choice; edits the active camera.
@@ -57,6 +78,21 @@ pub fn display_controls(ui: &mut Ui, world: &mut World) {
         state.ev100 = Exposure::DEFAULT_EV100;
     }
     choose(ui, "tonemapping", &mut state.tonemap);
+    choose(ui, "anti-aliasing", &mut state.aa);
+    if state.aa == AntiAliasing::Taa {
+        for limit in &TemporalAntiAliasing::LIMITS {
+            let mut value = (limit.get)(&state.taa);
+            let slider =
+                Slider::new(&mut value, limit.min..=limit.max).text(limit.name.replace('_', " "));
+            let slider = if limit.integer {
+                slider.step_by(1.0)
+            } else {
+                slider
+            };
+            ui.add(slider).on_hover_text(limit.help);
+            (limit.set)(&mut state.taa, value);
+        }
+    }
     if state != before {
         apply_display(world, state);
     }

@@ -410,6 +410,19 @@ fn the_display_controls_set_the_cameras_exposure_and_tonemapping() {
         .get::<&pom::Tonemapping>(camera)
         .unwrap();
     assert_eq!(tonemapping, pom::Tonemapping::Neutral);
+    // Anti-aliasing defaults to TAA, whose parameters show and reach the camera.
+    harness.get_by_label("anti-aliasing");
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "current weight")
+        .set_value_accesskit(0.25);
+    harness.run();
+    let world = &harness.state().app.world;
+    assert_eq!(
+        *world.get::<&pom::AntiAliasing>(camera).unwrap(),
+        pom::AntiAliasing::Taa
+    );
+    let taa = *world.get::<&pom::TemporalAntiAliasing>(camera).unwrap();
+    assert!((taa.current_weight - 0.25).abs() < 1e-6, "{taa:?}");
 }
 
 #[test]

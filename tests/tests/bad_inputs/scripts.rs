@@ -75,6 +75,20 @@ fn script_camera_exposure_out_of_range() {
 }
 
 #[test]
+fn script_camera_taa_out_of_range() {
+    assert_script_parse(
+        "scripts/taa_out_of_range.ron",
+        5,
+        "camera taa.current_weight = 5 is outside 0.02..=1",
+    );
+}
+
+#[test]
+fn script_camera_unknown_anti_aliasing() {
+    assert_script_parse("scripts/unknown_aa.ron", 5, "msaa");
+}
+
+#[test]
 fn script_light_shadow_map_size_out_of_range() {
     assert_script_parse(
         "scripts/shadow_map_size_out_of_range.ron",

@@ -158,6 +158,31 @@ impl Runner<'_> {
         if let Ok(mut transform) = self.app.world.get::<&mut Transform>(self.camera) {
             *transform = look(position, self.target);
         }
+        self.camera_cut();
+    }
+
+    /// The camera jumped: TAA's history says nothing of the next frame.
+    fn camera_cut(&mut self) {
+        if let Some(history) = self.app.resources.get_mut::<crate::TemporalHistory>() {
+            history.reset();
+        }
+    }
+
+    /// Frames a capture renders: under TAA the jitter's whole cycle, so a still scene's
+    /// history has settled; else one.
+    fn capture_frames(&self) -> u32 {
+        let taa = self
+            .app
+            .world
+            .get::<&crate::AntiAliasing>(self.camera)
+            .is_ok_and(|aa| *aa == crate::AntiAliasing::Taa);
+        if !taa {
+            return 1;
+        }
+        self.app
+            .world
+            .get::<&crate::TemporalAntiAliasing>(self.camera)
+            .map_or(1, |settings| settings.settling_frames())
     }
 
     /// Turns the camera by `degrees` about the vertical axis through its target.
@@ -168,6 +193,7 @@ impl Runner<'_> {
                 Quat::from_rotation_y(degrees.to_radians()) * (transform.translation - target);
             *transform = look(target + offset, target);
         }
+        self.camera_cut();
     }
 
     /// Turns script light `light` towards `direction` and/or moves it to `position`.
@@ -209,8 +235,8 @@ impl Runner<'_> {
                 material.debug_view = view;
             }
         }
-        let result = self
-            .frame()
+        let result = (0..self.capture_frames())
+            .try_for_each(|_| self.frame())
             .and_then(|()| crate::capture(&self.app).map_err(|error| error.to_string()));
         for (entity, view) in saved {
             if let Ok(mut material) = self.app.world.get::<&mut ParallaxOcclusionMaterial>(entity) {
