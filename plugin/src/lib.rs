@@ -156,6 +156,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::FXAA_SHADERS[0],
     render::FXAA_SHADERS[1],
     render::FXAA_SHADERS[2],
+    render::FXAA_SHADERS[3],
     render::PRESENT_SHADER,
     #[cfg(feature = "dev-tools")]
     render::TEXEL_RATE_PROBE,

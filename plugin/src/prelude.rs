@@ -19,11 +19,11 @@ pub use glam::{Mat4, Quat, Vec2, Vec3, Vec4};
 pub use hecs::{Entity, World};
 
 pub use crate::{
-    AmbientLight, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight, Exposure,
-    GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, Material,
+    AmbientLight, AntiAliasing, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight,
+    Exposure, GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, Material,
     MaterialPlugin, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Parent, Plugin, PointLight,
-    PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial, SpotLight, Stage, Time,
-    Tonemapping, Transform, load_gltf, patterns,
+    PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial, SpotLight, Stage,
+    TemporalAntiAliasing, Time, Tonemapping, Transform, load_gltf, patterns,
 };
 // Writing a material: its parameters' limits and its shading file.
 pub use crate::material::ParamSpec;

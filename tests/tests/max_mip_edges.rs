@@ -200,7 +200,7 @@ fn march_rays(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let ray = rays[index];
-    let field = HeightField(0u, 0u, 0.0, 0u, vec4<f32>(0.0));
+    let field = HeightField(0u, 0u, 0.0, 0u, vec4<f32>(0.0), 0.0);
     let hit = march_max_mip(height_texture, height_sampler, pyramid, field, ray.xy, ray.zw);
     textureStore(hits, id.xy, vec4<f32>(hit.uv, hit.height, f32(hit.samples)));
 }

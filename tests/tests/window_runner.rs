@@ -76,10 +76,12 @@ fn value<'a>(report: &'a str, line: &str, key: &str) -> &'a str {
 #[test]
 fn a_lost_device_is_replaced_and_the_next_frame_looks_as_before() {
     let before = scratch("before_loss.png");
-    run_probe(&["--frames", "10"], Some(&before));
+    // The window runs TAA: 16 frames are one whole cycle of its jitter, a settled history.
+    run_probe(&["--frames", "16"], Some(&before));
     let after = scratch("after_loss.png");
-    // Update 6 loses the device; update 7 is the first frame on the new one, update 10 the last.
-    let report = run_probe(&["--frames", "10", "--lose-device-at", "6"], Some(&after));
+    // Update 6 loses the device; update 7 is the first frame on the new one (a new target, so
+    // a new history), update 22 the last: 16 frames again.
+    let report = run_probe(&["--frames", "22", "--lose-device-at", "6"], Some(&after));
     assert!(
         report.contains("the GPU device was lost") && report.contains("goes on on a new GPU"),
         "the runner said nothing of the loss:\n{report}"

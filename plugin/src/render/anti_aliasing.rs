@@ -15,8 +15,10 @@
 //! pixel was hidden (disocclusion). For the first `jitter_samples` frames after a reset the
 //! history is a plain mean of the frames, so a still scene settles to `jitter_samples`
 //! sub-pixel positions exactly; after that each frame adds `current_weight` of itself.
-//! A reset comes with a new target (a resize), another camera or projection, another kind of
-//! anti-aliasing, or [`TemporalHistory::reset`] (a camera cut).
+//! A reset comes with a new target (a resize), another camera, projection or TAA parameters,
+//! another kind of anti-aliasing, or [`TemporalHistory::reset`] (a camera cut). The history
+//! holds tonemapped colour, so edges between lit surfaces and the clear colour blend as shown;
+//! debug views are averaged like any colour (use `off` to read their data exactly).
 
 use glam::{Mat4, Vec2, Vec3};
 
@@ -204,8 +206,13 @@ fn radical_inverse(mut index: u32, base: u32) -> f32 {
 }
 
 /// The sub-pixel offset of frame `frame` of a jitter of `samples` positions, in pixels
-/// (x right, y down, each in −½..½): Halton (2, 3), skipping its first point (0, 0).
+/// (x right, y down, each in −½..½): Halton (2, 3), skipping its first point (0, 0); the
+/// centre for a jitter of one position.
 pub fn jitter_offset(frame: u32, samples: u32) -> Vec2 {
+    // One position: the pixel's centre, as without TAA.
+    if samples <= 1 {
+        return Vec2::ZERO;
+    }
     let index = frame % samples.max(1) + 1;
     Vec2::new(radical_inverse(index, 2), radical_inverse(index, 3)) - 0.5
 }
@@ -321,9 +328,9 @@ impl TemporalHistory {
     }
 }
 
-/// `projection` moved by `jitter` pixels (x right, y down) on a `width`×`height` target: the
-/// clip-space translation that shifts every projected point alike, perspective or not.
-pub fn jittered(projection: Mat4, jitter: Vec2, width: u32, height: u32) -> Mat4 {
+/// `projection` moved by `jitter` pixels (x right, y down) on a target of `(width, height)`:
+/// the clip-space translation that shifts every projected point alike, perspective or not.
+pub fn jittered(projection: Mat4, jitter: Vec2, (width, height): (u32, u32)) -> Mat4 {
     let ndc = Vec2::new(
         2.0 * jitter.x / width.max(1) as f32,
         -2.0 * jitter.y / height.max(1) as f32,
@@ -402,7 +409,7 @@ mod tests {
     #[test]
     fn the_jitter_moves_projected_points_by_that_many_pixels() {
         let projection = crate::Camera::default().projection.matrix(2.0);
-        let moved = jittered(projection, Vec2::new(0.25, -0.5), 200, 100);
+        let moved = jittered(projection, Vec2::new(0.25, -0.5), (200, 100));
         let point = glam::Vec4::new(0.3, -0.2, -5.0, 1.0);
         let (a, b) = (projection * point, moved * point);
         let pixels = |clip: glam::Vec4| Vec2::new(clip.x / clip.w * 100.0, -clip.y / clip.w * 50.0);

@@ -178,41 +178,13 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
     let display = active_camera_and_display(world);
     let (exposure, tonemapping) = (display.exposure, display.tonemapping);
-    let anti_aliasing = display
-        .anti_aliasing
-        .or_else(|| resources.get::<AntiAliasing>().copied())
-        .unwrap_or_default();
     let camera = display
         .camera
         .map(|(_, camera, transform)| (camera, transform));
     let view = CameraView::of(camera.as_ref(), aspect);
-    let history = resources.get_or_default::<TemporalHistory>();
-    let temporal = match display.camera {
-        Some((entity, camera, _)) if anti_aliasing == AntiAliasing::Taa => {
-            Some(history.next_frame(
-                target_id,
-                entity,
-                camera.projection,
-                TemporalView {
-                    view_projection: view.view_projection,
-                    position: view.position,
-                    direction: view.direction.truncate(),
-                },
-                &display.temporal,
-            ))
-        }
-        _ => {
-            history.skip();
-            None
-        }
-    };
+    let (anti_aliasing, temporal) = temporal_frame(resources, &display, &view, target_id);
     let view_projection = temporal.map_or(view.view_projection, |frame| {
-        jittered(
-            view.view_projection,
-            frame.jitter,
-            target_size.0,
-            target_size.1,
-        )
+        jittered(view.view_projection, frame.jitter, target_size)
     });
     // Lux and candela to what the shaders multiply with the albedo: a Lambertian surface of
     // albedo ρ lit with illuminance E sends radiance ρ·E/π towards the eye (Lagarde & de
@@ -237,7 +209,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             target_size: [
                 target_size.0,
                 target_size.1,
-                temporal.map_or(0, |frame| frame.frame_index),
+                temporal.map_or(0, |f| f.frame_index),
                 0,
             ],
             directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
@@ -255,16 +227,8 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let directional_count = lights.directional_lights(world);
     let point_count = lights.point_and_spot_lights(world);
     lights.frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
-    // Once per episode, not every frame.
-    let overflow_warned = resources
-        .get::<ExtractedFrame>()
-        .is_some_and(|last| last.shadow_maps_overflowed);
     let overflowed = lights.shadow_views.overflowed;
-    if overflowed && !overflow_warned {
-        log::warn!(
-            "the lights ask for more than {MAX_SHADOW_VIEWS} shadow maps: the rest cast no scene shadow"
-        );
-    }
+    warn_of_shadow_overflow(resources, overflowed);
     resources.insert(ExtractedFrame {
         frame: lights.frame,
         clear_color: view.clear_color,
@@ -283,6 +247,54 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target_size)),
     });
     Ok(())
+}
+
+/// Warns when the lights ask for more shadow maps than there are, once per episode (the last
+/// frame's [`ExtractedFrame`] says whether it had already).
+fn warn_of_shadow_overflow(resources: &Resources, overflowed: bool) {
+    let warned = resources
+        .get::<ExtractedFrame>()
+        .is_some_and(|last| last.shadow_maps_overflowed);
+    if overflowed && !warned {
+        log::warn!(
+            "the lights ask for more than {MAX_SHADOW_VIEWS} shadow maps: the rest cast no scene shadow"
+        );
+    }
+}
+
+/// The active camera's anti-aliasing (its component, else the app's resource, else off) and,
+/// under TAA, this frame of its history.
+fn temporal_frame(
+    resources: &mut Resources,
+    display: &CameraDisplay,
+    view: &CameraView,
+    target: u64,
+) -> (AntiAliasing, Option<TemporalFrame>) {
+    let anti_aliasing = display
+        .anti_aliasing
+        .or_else(|| resources.get::<AntiAliasing>().copied())
+        .unwrap_or_default();
+    let history = resources.get_or_default::<TemporalHistory>();
+    let temporal = match display.camera {
+        Some((entity, camera, _)) if anti_aliasing == AntiAliasing::Taa => {
+            Some(history.next_frame(
+                target,
+                entity,
+                camera.projection,
+                TemporalView {
+                    view_projection: view.view_projection,
+                    position: view.position,
+                    direction: view.direction.truncate(),
+                },
+                &display.temporal,
+            ))
+        }
+        _ => {
+            history.skip();
+            None
+        }
+    };
+    (anti_aliasing, temporal)
 }
 
 /// The largest texture side the device allows (the shadow maps' cap), or the maps' own cap

@@ -31,7 +31,12 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
                 background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
             }
             renderer.assets.release_freed(meshes, images);
-            let settings = PostSettings::new(extracted.tonemapping, target.target_format());
+            // TAA's history holds display values already.
+            let tonemapping = match extracted.temporal {
+                Some(_) => crate::Tonemapping::None,
+                None => extracted.tonemapping,
+            };
+            let settings = PostSettings::new(tonemapping, target.target_format());
             renderer.last_upload = UploadStats {
                 uniform_bytes: renderer.frame.upload(
                     gpu,

@@ -271,7 +271,7 @@ pub(super) fn post_process(
                         .record(
                             gpu,
                             target,
-                            TaaUniform::new(&frame, jittered),
+                            TaaUniform::new(&frame, jittered, extracted.tonemapping),
                             &mut encoder,
                             times.taa,
                         )

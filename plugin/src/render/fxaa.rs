@@ -49,12 +49,27 @@ pub const FXAA_FRAGMENT: ComposedShader = ComposedShader {
     ],
 };
 
+/// FXAA as a full-screen triangle (float display).
+pub const FXAA_FRAGMENT_LINEAR: ComposedShader = ComposedShader {
+    name: "fxaa.wgsl (fragment, linear)",
+    constants: &[no_output, linear_input],
+    files: &[
+        FXAA_ENTRY,
+        shaders::FULLSCREEN_TRIANGLE,
+        FXAA_FRAGMENT_ENTRY,
+    ],
+};
+
 /// The full-screen triangle's entry point.
 pub const FXAA_FRAGMENT_ENTRY: WgslFile = crate::wgsl_file!("render/fxaa_fragment.wgsl");
 
 /// Every FXAA shader, for validation.
-pub const FXAA_SHADERS: [ComposedShader; 3] =
-    [FXAA_COMPUTE_RGBA8, FXAA_COMPUTE_RGBA32F, FXAA_FRAGMENT];
+pub const FXAA_SHADERS: [ComposedShader; 4] = [
+    FXAA_COMPUTE_RGBA8,
+    FXAA_COMPUTE_RGBA32F,
+    FXAA_FRAGMENT,
+    FXAA_FRAGMENT_LINEAR,
+];
 
 #[derive(Debug)]
 enum FxaaPipeline {
@@ -101,7 +116,11 @@ impl FxaaPass {
             immediate_size: 0,
         });
         let pipeline = if fragment {
-            let module = FXAA_FRAGMENT.create_module(device);
+            let module = match format {
+                TargetFormat::Float32 => FXAA_FRAGMENT_LINEAR,
+                _ => FXAA_FRAGMENT,
+            }
+            .create_module(device);
             FxaaPipeline::Fragment(layout::fullscreen_pipeline(
                 device,
                 "fxaa fragment pipeline",

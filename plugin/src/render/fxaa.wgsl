@@ -11,7 +11,7 @@ const CONTRAST_THRESHOLD: f32 = 0.0312;
 const RELATIVE_THRESHOLD: f32 = 0.125;
 // How much of the sub-pixel blend a lone bright pixel gets (his 0.75).
 const SUBPIXEL_BLENDING: f32 = 0.75;
-// The search along the edge: ten steps of growing length, at most 24 pixels each way.
+// The search along the edge: ten steps of growing length, at most 25 pixels each way.
 const EDGE_STEPS: u32 = 10u;
 
 // The length of search step `i`: 1, 1, 1, 1, 1.5, 2, 2, 2, 4, 8.5 pixels.

@@ -92,8 +92,8 @@ enum PostPipeline {
     Fragment(wgpu::RenderPipeline),
 }
 
-/// The post-processing pass: pipeline, settings buffer, and the bind group of the current
-/// target. A resource of the render plugin.
+/// The post-processing pass: pipeline, settings buffer, and the bind groups of the current
+/// target (by what they read and write). A resource of the render plugin.
 #[derive(Debug)]
 pub struct PostProcess {
     pipeline: PostPipeline,

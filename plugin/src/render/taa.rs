@@ -9,6 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use super::anti_aliasing::TemporalFrame;
 use super::shaders::{ComposedShader, WgslFile};
 use super::{GpuContext, PassTimestamps, RenderTarget, layout};
+use crate::shader::Choice;
 
 /// The pass's WGSL file.
 pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/taa.wgsl");
@@ -16,8 +17,8 @@ pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/taa.wgsl");
 /// The pass's shader.
 pub const TAA_SHADER: ComposedShader = ComposedShader {
     name: "taa.wgsl",
-    constants: &[],
-    files: &[TAA_ENTRY],
+    constants: &[crate::Tonemapping::wgsl_constants],
+    files: &[super::post_process::TONEMAPPING, TAA_ENTRY],
 };
 
 /// The history's format: filterable, storable, and wide enough for the pre-exposed scene.
@@ -53,8 +54,8 @@ pub struct TaaUniform {
     pub clip_gamma: f32,
     /// Relative depth difference past which the history is disoccluded.
     pub depth_tolerance: f32,
-    /// Keeps the size a multiple of 16 bytes.
-    pub _padding: u32,
+    /// `TONEMAP_*` code of the camera's operator (the history holds display values).
+    pub tonemapping: u32,
 }
 
 crate::wgsl_layout!(TaaUniform {
@@ -71,12 +72,16 @@ crate::wgsl_layout!(TaaUniform {
     current_weight,
     clip_gamma,
     depth_tolerance,
-    _padding
+    tonemapping
 });
 
 impl TaaUniform {
     /// The uniform of `frame`, whose jittered projection is `jittered_view_projection`.
-    pub fn new(frame: &TemporalFrame, jittered_view_projection: glam::Mat4) -> Self {
+    pub fn new(
+        frame: &TemporalFrame,
+        jittered_view_projection: glam::Mat4,
+        tonemapping: crate::Tonemapping,
+    ) -> Self {
         let settings = frame.settings;
         Self {
             inverse_view_projection: jittered_view_projection.inverse().to_cols_array_2d(),
@@ -92,7 +97,7 @@ impl TaaUniform {
             current_weight: settings.current_weight,
             clip_gamma: settings.clip_gamma,
             depth_tolerance: settings.depth_tolerance,
-            _padding: 0,
+            tonemapping: tonemapping.code(),
         }
     }
 }

@@ -1,6 +1,8 @@
 // Temporal anti-aliasing (anti_aliasing.rs says what and why), one invocation per pixel: the
 // jittered HDR scene and the history reprojected through the depth become the new history,
-// which tonemapping reads. Mirrors `TaaUniform` in taa.rs (the layout test checks them).
+// which post-processing then writes as it is. Each sample is tonemapped first (display-referred
+// ones, alpha < 0, are kept as they are), so an edge between the two kinds blends in display
+// values whichever kind the pixel's latest sample was. Mirrors `TaaUniform` in taa.rs (the layout test checks them).
 
 struct TaaUniform {
     // Clip space of this (jittered) frame to world space.
@@ -20,7 +22,8 @@ struct TaaUniform {
     current_weight: f32,
     clip_gamma: f32,
     depth_tolerance: f32,
-    _padding: u32,
+    // TONEMAP_* code of the camera's operator: the history holds display values.
+    tonemapping: u32,
 }
 
 @group(0) @binding(0) var scene: texture_2d<f32>;
@@ -63,6 +66,12 @@ fn to_ycocg(c: vec3<f32>) -> vec3<f32> {
 
 fn from_ycocg(c: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
+}
+
+// A scene sample as the display shows it (before the sRGB curve).
+fn display_colour(sample: vec4<f32>) -> vec3<f32> {
+    let colour = finite_colour(sample.rgb);
+    return select(tonemap(colour, taa.tonemapping), colour, sample.a < 0.0);
 }
 
 fn history_colour(uv: vec2<f32>) -> vec3<f32> {
@@ -128,7 +137,7 @@ fn taa_main(
     let origin = vec2<i32>(group.xy) * 8 - 1;
     for (var index = i32(local_index); index < TILE * TILE; index += 64) {
         let at = clamp(origin + vec2<i32>(index % TILE, index / TILE), vec2<i32>(0), last);
-        tile_colour[index] = to_ycocg(compress(finite_colour(textureLoad(scene, at, 0).rgb)));
+        tile_colour[index] = to_ycocg(compress(display_colour(textureLoad(scene, at, 0))));
         tile_depth[index] = textureLoad(scene_depth, at, 0);
     }
     workgroupBarrier();
@@ -189,7 +198,8 @@ fn taa_main(
         let kept_at = clamp(vec2<i32>(uv * vec2<f32>(size)), vec2<i32>(0), last);
         let kept = textureLoad(history, kept_at, 0).a;
         let expected = dot(world - taa.previous_camera_position.xyz, taa.previous_view_direction.xyz);
-        if kept < expected - taa.depth_tolerance * abs(expected) {
+        // The kept depth is a half float: a rounding of it is never a disocclusion.
+        if kept < expected - (taa.depth_tolerance + 1e-3) * abs(expected) {
             weight = 1.0;
         }
     }

@@ -235,7 +235,13 @@ impl Runner<'_> {
                 material.debug_view = view;
             }
         }
-        let result = (0..self.capture_frames())
+        let frames = self.capture_frames();
+        if frames > 1 {
+            // A fresh history: the capture is the plain mean of one whole jitter cycle, not a
+            // blend with what the earlier steps showed (another debug view, say).
+            self.camera_cut();
+        }
+        let result = (0..frames)
             .try_for_each(|_| self.frame())
             .and_then(|()| crate::capture(&self.app).map_err(|error| error.to_string()));
         for (entity, view) in saved {
