@@ -85,6 +85,17 @@ pub fn active_camera(world: &hecs::World) -> Option<(Camera, GlobalTransform)> {
         .map(|(camera, transform)| (*camera, *transform))
 }
 
+/// Every camera entity with `active` set: what the camera settings a tool applies (exposure,
+/// tonemapping, anti-aliasing) go on.
+pub fn active_cameras(world: &hecs::World) -> Vec<hecs::Entity> {
+    world
+        .query::<(hecs::Entity, &Camera)>()
+        .iter()
+        .filter(|(_, camera)| camera.active)
+        .map(|(entity, _)| entity)
+        .collect()
+}
+
 impl Camera {
     /// A perspective camera with a vertical field of view in degrees.
     pub fn perspective(fov_y_degrees: f32) -> Self {

@@ -90,7 +90,7 @@ pub use app::{
     Stage, System,
 };
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
-pub use camera::{Camera, Projection, active_camera};
+pub use camera::{Camera, Projection, active_camera, active_cameras};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
 pub use default_plugins::DefaultPlugins;
 pub use dynamic_height::{

@@ -8,12 +8,12 @@ use std::path::Path;
 use glam::{Quat, Vec3};
 use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewProjection, PreviewView};
-use pom::render::{RenderPhase, RenderPhases, RenderTarget};
 use pom::{
     AntiAliasing, App, Assets, Camera, Color, DirectionalLight, GlobalTransform, GpuContext,
     LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPlugin,
     TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf, patterns,
 };
+use pom_tests::nan_injection::inject_nan_at;
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{render_and_capture, render_and_capture_f32, render_on_path, run_frames};
 
@@ -508,92 +508,8 @@ fn both_paths_agree_with_taa() {
     assert!(flip.mean <= 0.005, "{}", flip.mean);
 }
 
-/// The scene's format at a pixel: where the NaN test writes its NaN.
+/// Where the NaN test writes its NaN.
 const NAN_PIXEL: (u32, u32) = (40, 30);
-
-/// A pipeline that writes NaN into one pixel of the scene target (scissored), run as work of
-/// the transparent phase, after every draw.
-struct NanInjector {
-    pipeline: pom::wgpu::RenderPipeline,
-}
-
-fn inject_nan(resources: &pom::Resources, encoder: &mut pom::wgpu::CommandEncoder) {
-    let (Some(injector), Some(target)) = (
-        resources.get::<NanInjector>(),
-        resources.get::<RenderTarget>(),
-    ) else {
-        return;
-    };
-    let mut pass = encoder.begin_render_pass(&pom::wgpu::RenderPassDescriptor {
-        label: Some("nan injection"),
-        color_attachments: &[Some(pom::wgpu::RenderPassColorAttachment {
-            view: &target.scene_view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: pom::wgpu::Operations {
-                load: pom::wgpu::LoadOp::Load,
-                store: pom::wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
-    pass.set_pipeline(&injector.pipeline);
-    pass.set_scissor_rect(NAN_PIXEL.0, NAN_PIXEL.1, 1, 1);
-    pass.draw(0..3, 0..1);
-}
-
-fn add_nan_injector(app: &mut App) {
-    let (device, format) = {
-        let gpu = app.resources.get::<GpuContext>().unwrap();
-        (
-            gpu.device.clone(),
-            app.resources.get::<RenderTarget>().unwrap().scene_format(),
-        )
-    };
-    let module = device.create_shader_module(pom::wgpu::ShaderModuleDescriptor {
-        label: Some("nan"),
-        source: pom::wgpu::ShaderSource::Wgsl(
-            "@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-                 let c = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-                 return vec4<f32>(c * 2.0 - 1.0, 0.0, 1.0);
-             }
-             @fragment fn fs() -> @location(0) vec4<f32> {
-                 let nan = bitcast<f32>(0x7fc00000u);
-                 return vec4<f32>(nan, nan, nan, 1.0);
-             }"
-            .into(),
-        ),
-    });
-    let pipeline = device.create_render_pipeline(&pom::wgpu::RenderPipelineDescriptor {
-        label: Some("nan"),
-        layout: None,
-        vertex: pom::wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(pom::wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs"),
-            compilation_options: Default::default(),
-            targets: &[Some(format.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    app.resources.insert(NanInjector { pipeline });
-    app.resources
-        .get_mut::<RenderPhases>()
-        .unwrap()
-        .add_work::<NanInjector>(RenderPhase::Transparent, inject_nan);
-}
 
 #[test]
 fn a_nan_in_the_scene_never_spreads_through_the_history() {
@@ -601,7 +517,7 @@ fn a_nan_in_the_scene_never_spreads_through_the_history() {
         let mut app = cobblestones(64, 60.0, |_| {});
         set_anti_aliasing(&mut app, AntiAliasing::Taa);
         if inject {
-            add_nan_injector(&mut app);
+            inject_nan_at(&mut app, NAN_PIXEL);
         }
         let mut frames = Vec::new();
         for _ in 0..12 {

@@ -180,12 +180,7 @@ pub fn set_camera_anti_aliasing(
     anti_aliasing: AntiAliasing,
     temporal: TemporalAntiAliasing,
 ) -> usize {
-    let cameras: Vec<hecs::Entity> = world
-        .query::<(hecs::Entity, &crate::Camera)>()
-        .iter()
-        .filter(|(_, camera)| camera.active)
-        .map(|(entity, _)| entity)
-        .collect();
+    let cameras = crate::camera::active_cameras(world);
     for camera in &cameras {
         // The entity was just found, so inserting cannot fail.
         let _ = world.insert(*camera, (anti_aliasing, temporal));

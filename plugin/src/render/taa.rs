@@ -42,8 +42,6 @@ pub struct TaaUniform {
     pub previous_camera_position: [f32; 4],
     /// View direction a frame ago.
     pub previous_view_direction: [f32; 4],
-    /// This frame's sub-pixel offset in pixels (x right, y down).
-    pub jitter: [f32; 2],
     /// Frames in the history before this one (0: dropped).
     pub accumulated: u32,
     /// Positions of the jitter before it repeats.
@@ -56,6 +54,8 @@ pub struct TaaUniform {
     pub depth_tolerance: f32,
     /// `TONEMAP_*` code of the camera's operator (the history holds display values).
     pub tonemapping: u32,
+    /// Keeps the size a multiple of 16 bytes.
+    pub _padding: [u32; 2],
 }
 
 crate::wgsl_layout!(TaaUniform {
@@ -66,13 +66,13 @@ crate::wgsl_layout!(TaaUniform {
     view_direction,
     previous_camera_position,
     previous_view_direction,
-    jitter,
     accumulated,
     jitter_samples,
     current_weight,
     clip_gamma,
     depth_tolerance,
-    tonemapping
+    tonemapping,
+    _padding
 });
 
 impl TaaUniform {
@@ -91,13 +91,13 @@ impl TaaUniform {
             view_direction: frame.current.direction.extend(0.0).into(),
             previous_camera_position: frame.previous.position.extend(1.0).into(),
             previous_view_direction: frame.previous.direction.extend(0.0).into(),
-            jitter: frame.jitter.into(),
             accumulated: frame.accumulated,
             jitter_samples: settings.jitter_samples,
             current_weight: settings.current_weight,
             clip_gamma: settings.clip_gamma,
             depth_tolerance: settings.depth_tolerance,
             tonemapping: tonemapping.code(),
+            _padding: [0; 2],
         }
     }
 }

@@ -14,8 +14,6 @@ struct TaaUniform {
     view_direction: vec4<f32>,
     previous_camera_position: vec4<f32>,
     previous_view_direction: vec4<f32>,
-    // This frame's sub-pixel offset, in pixels (x right, y down).
-    jitter: vec2<f32>,
     // Frames in the history before this one (0: dropped).
     accumulated: u32,
     jitter_samples: u32,
@@ -24,6 +22,7 @@ struct TaaUniform {
     depth_tolerance: f32,
     // TONEMAP_* code of the camera's operator: the history holds display values.
     tonemapping: u32,
+    _padding: vec2<u32>,
 }
 
 @group(0) @binding(0) var scene: texture_2d<f32>;

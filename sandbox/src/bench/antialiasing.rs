@@ -1,0 +1,59 @@
+//! The `antialiasing` group: the passes of TAA and the post filter, and the jittered march
+//! under TAA against the plain one.
+
+use anyhow::Result;
+use pom::ParallaxOcclusionMaterial;
+use pom::material::Choice;
+
+use super::Runner;
+
+impl Runner<'_> {
+    /// The passes of each anti-aliasing (TAA before tonemapping, the post filter after it) on
+    /// the base material's plane, and under TAA the jittered march at 16 samples against the
+    /// plain march at 50.
+    pub(super) fn antialiasing(&mut self, size: (u32, u32)) -> Result<()> {
+        let view = self.view;
+        let mut scene = self.scene(size, &view)?;
+        let material = self.base.clone();
+        Self::configure(&mut scene, &material);
+        let place = (size, self.view.tiling);
+        for (aa, phases) in [
+            (pom::AntiAliasing::Off, &["post"][..]),
+            (
+                pom::AntiAliasing::Fxaa,
+                &["post", pom::render::POST_FILTER_PASS][..],
+            ),
+            (pom::AntiAliasing::Taa, &[pom::render::TAA_PASS, "post"][..]),
+        ] {
+            scene.set_anti_aliasing(aa);
+            let times = scene.time_phases(self.warmup, self.frames, phases)?;
+            let path = scene.path_ran();
+            for (phase, times) in &times {
+                let row = (path, *phase, aa.name().to_owned());
+                self.record("antialiasing", place, &material, row, times)?;
+            }
+        }
+        scene.set_anti_aliasing(pom::AntiAliasing::Taa);
+        let mut fifty = None;
+        for (samples, jitter) in [(50, false), (16, true)] {
+            let material = ParallaxOcclusionMaterial {
+                max_samples: samples,
+                jitter_march: jitter,
+                ..self.base.clone()
+            };
+            let variant = format!(
+                "taa, {samples} samples{}",
+                if jitter { ", jittered march" } else { "" }
+            );
+            let ms = self.case_variant(&mut scene, "antialiasing", place, material, variant)?;
+            match fifty {
+                None => fifty = Some(ms),
+                Some(fifty) => {
+                    let what = "jittered march: 16 samples / 50 samples, under TAA".to_owned();
+                    self.ratio(what, size, ms, fifty);
+                }
+            }
+        }
+        Ok(())
+    }
+}
