@@ -168,6 +168,10 @@ pub struct DisplayArgs {
     /// [default: 0.05].
     #[arg(long, value_name = "X", value_parser = taa_parser(3))]
     pub taa_depth_tolerance: Option<f32>,
+    /// TAA: mip levels finer than the footprint that textures are sampled at, -2..=0
+    /// [default: -2].
+    #[arg(long, value_name = "X", value_parser = taa_parser(4), allow_hyphen_values = true)]
+    pub taa_mip_bias: Option<f32>,
 }
 
 /// The value parser of TAA parameter `index` of [`pom::TemporalAntiAliasing::LIMITS`]: its
@@ -205,6 +209,7 @@ impl DisplayArgs {
             self.taa_clip_gamma,
             self.taa_jitter_samples,
             self.taa_depth_tolerance,
+            self.taa_mip_bias,
         ];
         for (limit, value) in pom::TemporalAntiAliasing::LIMITS.iter().zip(given) {
             if let Some(value) = value {

@@ -13,6 +13,7 @@ use pom::{
     LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPlugin,
     TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf, patterns,
 };
+use pom_tests::edge_error::{box_filtered, edge_pixels, mean_error};
 use pom_tests::nan_injection::inject_nan_at;
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{render_and_capture, render_and_capture_f32, render_on_path, run_frames};
@@ -40,75 +41,6 @@ fn settled(app: &mut App, mode: AntiAliasing) -> RgbaImage {
         run_frames(app, SETTLE - 1).unwrap();
     }
     render_and_capture(app).unwrap()
-}
-
-fn decode(value: u8) -> f32 {
-    pom::srgb_to_linear(f32::from(value) / 255.0)
-}
-
-/// `image` box-filtered down by `factor` in linear light (what a pixel's coverage averages).
-fn box_filtered(image: &RgbaImage, factor: u32) -> RgbaImage {
-    let (width, height) = (image.width() / factor, image.height() / factor);
-    RgbaImage::from_fn(width, height, |x, y| {
-        let mut sum = [0.0_f32; 4];
-        for dy in 0..factor {
-            for dx in 0..factor {
-                let pixel = image.get_pixel(x * factor + dx, y * factor + dy).0;
-                for c in 0..3 {
-                    sum[c] += decode(pixel[c]);
-                }
-                sum[3] += f32::from(pixel[3]) / 255.0;
-            }
-        }
-        let n = (factor * factor) as f32;
-        let encode = |v: f32| (pom::linear_to_srgb(v / n) * 255.0).round() as u8;
-        image::Rgba([
-            encode(sum[0]),
-            encode(sum[1]),
-            encode(sum[2]),
-            (sum[3] / n * 255.0).round() as u8,
-        ])
-    })
-}
-
-fn luma(image: &RgbaImage, x: i64, y: i64) -> f32 {
-    let x = x.clamp(0, i64::from(image.width()) - 1) as u32;
-    let y = y.clamp(0, i64::from(image.height()) - 1) as u32;
-    let p = image.get_pixel(x, y).0;
-    (0.299 * f32::from(p[0]) + 0.587 * f32::from(p[1]) + 0.114 * f32::from(p[2])) / 255.0
-}
-
-/// The pixels where the reference's Sobel gradient of luma is high: its edges.
-fn edge_pixels(reference: &RgbaImage) -> Vec<(u32, u32)> {
-    let mut edges = Vec::new();
-    for y in 0..reference.height() {
-        for x in 0..reference.width() {
-            let (x, y) = (i64::from(x), i64::from(y));
-            let l = |dx, dy| luma(reference, x + dx, y + dy);
-            let gx = l(1, -1) + 2.0 * l(1, 0) + l(1, 1) - l(-1, -1) - 2.0 * l(-1, 0) - l(-1, 1);
-            let gy = l(-1, 1) + 2.0 * l(0, 1) + l(1, 1) - l(-1, -1) - 2.0 * l(0, -1) - l(1, -1);
-            if (gx * gx + gy * gy).sqrt() > 0.5 {
-                edges.push((x as u32, y as u32));
-            }
-        }
-    }
-    edges
-}
-
-/// The mean absolute difference (0..1, per channel of the sRGB bytes) of `image` from
-/// `reference` over `pixels`.
-fn mean_error(image: &RgbaImage, reference: &RgbaImage, pixels: &[(u32, u32)]) -> f32 {
-    let total: f32 = pixels
-        .iter()
-        .map(|&(x, y)| {
-            let (a, b) = (image.get_pixel(x, y).0, reference.get_pixel(x, y).0);
-            (0..3)
-                .map(|c| (f32::from(a[c]) - f32::from(b[c])).abs() / 255.0)
-                .sum::<f32>()
-                / 3.0
-        })
-        .sum();
-    total / pixels.len().max(1) as f32
 }
 
 fn save_for_looking(name: &str, image: &RgbaImage) {
@@ -200,16 +132,90 @@ fn taa_and_the_post_filter_smooth_diagonal_edges() {
     assert!(fxaa <= 0.7 * off, "FXAA: {fxaa} against {off} without");
 }
 
+/// The turned square on `path` after `frames` frames of moving `pixels_per_frame` to the
+/// right, with `mode` (the last frame's image).
+fn moving_square(
+    size: u32,
+    scale: u32,
+    (path, mode): (RenderPath, AntiAliasing),
+    frames: usize,
+    pixels_per_frame: f32,
+) -> RgbaImage {
+    let mut app = turned_square(size * scale, size * scale);
+    app.resources
+        .get_mut::<pom::render::Renderer>()
+        .unwrap()
+        .set_path(path);
+    set_anti_aliasing(&mut app, mode);
+    let square = app
+        .world
+        .query::<(pom::hecs::Entity, &LitMaterial)>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .next()
+        .unwrap();
+    // Camera::orthographic(1.6) sees 1.6 units from top to bottom.
+    let step = pixels_per_frame * 1.6 / size as f32;
+    for frame in 0..frames {
+        app.world
+            .get::<&mut Transform>(square)
+            .unwrap()
+            .translation
+            .x = (frame as f32 - frames as f32 * 0.5) * step;
+        if frame + 1 < frames {
+            run_frames(&mut app, 1).unwrap();
+        }
+    }
+    let image = render_and_capture(&mut app).unwrap();
+    let renderer = app.resources.get::<pom::render::Renderer>().unwrap();
+    assert_eq!(renderer.runs_deferred(), path == RenderPath::Deferred);
+    image
+}
+
+#[test]
+fn a_moving_draw_keeps_its_history_through_its_motion() {
+    // A third of a pixel a frame. Without following the square, TAA reprojects its history
+    // from where the square no longer is: its edges smear, 2.5 times off's error (measured
+    // with the motion numbers switched off). Followed, the edges are smooth, softer than a
+    // still square's (each frame resamples the history between pixels: −19 % here, −59 %
+    // still, −60 % at a whole pixel a frame; BENCHMARKS.md).
+    let (size, frames, speed) = (96, 24, 0.37);
+    let forward = RenderPath::Forward;
+    let reference = box_filtered(
+        &moving_square(size, 4, (forward, AntiAliasing::Off), frames, speed),
+        4,
+    );
+    let edges = edge_pixels(&reference);
+    let off = mean_error(
+        &moving_square(size, 1, (forward, AntiAliasing::Off), frames, speed),
+        &reference,
+        &edges,
+    );
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let image = moving_square(size, 1, (path, AntiAliasing::Taa), frames, speed);
+        save_for_looking(&format!("moving_square-{path:?}"), &image);
+        let taa = mean_error(&image, &reference, &edges);
+        eprintln!(
+            "moving square, {path:?}: {} edge pixels, mean error off {off:.4}, taa {taa:.4} ({:+.0} %)",
+            edges.len(),
+            (taa / off - 1.0) * 100.0
+        );
+        assert!(
+            taa <= 0.9 * off,
+            "TAA on a moving draw, {path:?}: {taa} against {off} without"
+        );
+    }
+}
+
 #[test]
 fn taa_and_the_post_filter_soften_the_street_corners_edges() {
     let [off, fxaa, taa] = edge_errors("street_corner", 192, 108, street_corner);
-    // The targets (−60 %, −30 %) are not met here: most of the street corner's edge
-    // pixels are texture edges, which the reference samples two mip levels finer. FXAA leaves
-    // texture alone and smooths the outlines; TAA's jitter also averages the texture over the
-    // pixel, a blur the reference does not have, which costs about what the outlines win
-    // (BENCHMARKS.md; a mip bias under TAA is the known remedy, not built yet).
+    // Most of the street corner's edge pixels are texture edges, which the reference samples
+    // two mip levels finer. Under TAA textures are sampled that much finer too (the mip bias,
+    // −2) and the jitter averages them: TAA meets the issue's −60 %. FXAA leaves texture alone
+    // and smooths only the outlines, so the post filter misses its −30 % here (BENCHMARKS.md).
     assert!(fxaa < off, "FXAA: {fxaa} against {off} without");
-    assert!(taa < 1.05 * off, "TAA: {taa} against {off} without");
+    assert!(taa <= 0.4 * off, "TAA: {taa} against {off} without");
 }
 
 /// The cobblestones seen at `angle` degrees, orthographic.
@@ -346,9 +352,10 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
         shimmers[1],
         shimmers[1] / shimmers[0] * 100.0
     );
-    // The target is half of off's; measured 0.75 (BENCHMARKS.md says why it is not
-    // met: each new jittered sample moves the pixel by current_weight of its difference).
-    assert!(shimmers[1] <= 0.85 * shimmers[0], "{shimmers:?}");
+    // The target is half of off's; measured 0.61 (0.74 before the mip bias;
+    // BENCHMARKS.md says why it is not met: each new jittered sample moves the pixel by
+    // current_weight of its difference).
+    assert!(shimmers[1] <= 0.7 * shimmers[0], "{shimmers:?}");
 }
 
 /// A lit ground with a sphere that crosses the view at `speed` pixels per frame from frame

@@ -5,6 +5,7 @@
 //! frame's transparent phase orders among every material's). Recording them into passes is
 //! [`super::draw`]'s.
 
+use std::collections::HashMap;
 use std::ops::Range;
 
 use glam::Mat4;
@@ -17,6 +18,7 @@ use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::render::MAX_DERIVED_TEXTURES;
 use crate::render::PhaseBindings;
 use crate::render::object_buffer::ObjectBuffer;
+use crate::render::object_motion::ObjectMotions;
 use crate::render::shaders::ComposedShader;
 use crate::render::texture_bind_groups::{BoundTextures, TextureBindGroups};
 use crate::render::{
@@ -28,6 +30,9 @@ use crate::{AssetId, Assets, Image, Mesh};
 /// One entity's draw as the Extract stage copied it.
 #[derive(Clone, Debug)]
 pub(crate) struct ExtractedDraw<M> {
+    /// The entity drawn (`None` for a mesh drawn with the default material, found by
+    /// archetype: its motion is not followed).
+    pub(crate) entity: Option<hecs::Entity>,
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) model: Mat4,
     pub(crate) material: M,
@@ -53,6 +58,9 @@ pub(crate) struct Batch<K> {
     /// The view depth of its nearest instance's nearest point (bounding sphere): where it
     /// stands in the frame's nearest-first prepass.
     pub(crate) nearest_depth: f32,
+    /// On TAA frames, whether an instance moved since the last frame (it then draws in the
+    /// object motion pass).
+    pub(crate) moving: bool,
 }
 
 /// What preparing one material's draws reads besides its own state.
@@ -69,6 +77,14 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) shadow_maps: bool,
     /// The targets of the deferred resolve, on frames that run the deferred path.
     pub(crate) deferred: Option<ResolveTargets<'a>>,
+}
+
+/// What the frame numbers across every material's draws, handed to each as it prepares.
+pub(crate) struct FrameNumbers<'a> {
+    /// The deferred path's visibility ids.
+    pub(crate) ids: &'a mut VisibilityIds,
+    /// On TAA frames, the motions of the draws that moved.
+    pub(crate) motions: Option<&'a mut ObjectMotions>,
 }
 
 /// The shader a material compiles: its deferred shader where it has one and the adapter can
@@ -105,6 +121,10 @@ pub(crate) struct MaterialBatches<M: Material> {
     // kept from frame to frame.
     models: Vec<(Mat4, bool)>,
     transform_data: Vec<MeshTransform>,
+    // On TAA frames, each followed entity's model last frame, and this frame's as they are
+    // gathered (the two swap after each frame).
+    previous_models: HashMap<hecs::Entity, Mat4>,
+    current_models: HashMap<hecs::Entity, Mat4>,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
     uniform_data: Vec<M::PerDraw>,
     sorted_uniforms: Vec<M::PerDraw>,
@@ -190,6 +210,8 @@ impl<M: Material> MaterialBatches<M> {
             order: Vec::new(),
             models: Vec::new(),
             transform_data: Vec::new(),
+            previous_models: HashMap::new(),
+            current_models: HashMap::new(),
             uniform_data: Vec::new(),
             sorted_uniforms: Vec::new(),
         }
@@ -205,11 +227,12 @@ impl<M: Material> MaterialBatches<M> {
         assets: &mut GpuAssets,
         lod_cache: &mut MeshLodCache,
         stats: &mut UploadStats,
-        ids: &mut VisibilityIds,
+        FrameNumbers { ids, motions }: FrameNumbers<'_>,
     ) {
         self.gather(inputs, draws, assets, lod_cache, stats);
         SortEntry::sort(&mut self.order);
         self.update_transforms(draws);
+        self.update_motions(draws, motions);
         self.sorted_uniforms.clear();
         self.sorted_uniforms
             .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));
@@ -303,6 +326,34 @@ impl<M: Material> MaterialBatches<M> {
         }
     }
 
+    /// On TAA frames (with `motions`), numbers each slot's motion since the last frame there
+    /// (0: still, or an entity not followed); other frames forget the models, so the next TAA
+    /// frame starts still.
+    fn update_motions(&mut self, draws: &[ExtractedDraw<M>], motions: Option<&mut ObjectMotions>) {
+        let Some(motions) = motions else {
+            self.previous_models.clear();
+            for transform in &mut self.transform_data {
+                transform.motion = 0;
+            }
+            return;
+        };
+        self.current_models.clear();
+        for (slot, entry) in self.order.iter().enumerate() {
+            let draw = &draws[entry.draw];
+            let mut motion = 0;
+            if let Some(entity) = draw.entity {
+                if let Some(previous) = self.previous_models.get(&entity)
+                    && *previous != draw.model
+                {
+                    motion = motions.push(*previous, draw.model);
+                }
+                self.current_models.insert(entity, draw.model);
+            }
+            self.transform_data[slot].motion = motion;
+        }
+        std::mem::swap(&mut self.previous_models, &mut self.current_models);
+    }
+
     /// Merges the sorted draws into batches (runs of opaque draws sharing key, shadow role,
     /// textures and mesh) and lists the blended ones.
     fn merge_batches(&mut self) {
@@ -326,6 +377,7 @@ impl<M: Material> MaterialBatches<M> {
                 {
                     batch.instances.end = instance + 1;
                     batch.nearest_depth = batch.nearest_depth.min(entry.nearest_depth);
+                    batch.moving |= self.transform_data[index].motion != 0;
                 }
                 _ => self.batches.push(Batch {
                     key: entry.key,
@@ -336,6 +388,7 @@ impl<M: Material> MaterialBatches<M> {
                     visibility_ids: 0..0,
                     triangles: 0,
                     nearest_depth: entry.nearest_depth,
+                    moving: self.transform_data[index].motion != 0,
                 }),
             }
         }
@@ -400,6 +453,9 @@ impl<M: Material> MaterialBatches<M> {
             self.pipelines.ensure(&inputs.gpu.device, batch.key);
             if inputs.shadow_maps && batch.casts_shadows && !M::blends(batch.key) {
                 self.pipelines.ensure_shadow(&inputs.gpu.device, batch.key);
+            }
+            if batch.moving {
+                self.pipelines.ensure_motion(&inputs.gpu.device, batch.key);
             }
         }
         if !self.batches.is_empty() {

@@ -73,7 +73,16 @@ impl<M: Material> MaterialBatches<M> {
     pub(crate) fn draws_in(&self, phase: DrawPhase) -> bool {
         self.batches
             .iter()
-            .any(|batch| self.pipelines.pass_in(phase, batch.key).is_some())
+            .any(|batch| self.batch_pass(phase, batch).is_some())
+    }
+
+    /// The pass `batch` draws with in `phase`, if it draws there: in the object motion phase
+    /// only batches with a moving instance do.
+    fn batch_pass(&self, phase: DrawPhase, batch: &Batch<M::Key>) -> Option<MeshPass> {
+        if phase == DrawPhase::Motion && !batch.moving {
+            return None;
+        }
+        self.pipelines.pass_in(phase, batch.key)
     }
 
     /// The blended batches of the last prepared frame, for the frame's transparent phase:
@@ -152,7 +161,7 @@ impl<M: Material> MaterialBatches<M> {
             pass,
             assets,
             self.batches.iter().filter_map(|batch| {
-                let mesh_pass = self.pipelines.pass_in(phase, batch.key)?;
+                let mesh_pass = self.batch_pass(phase, batch)?;
                 // Blended batches draw in the frame's sorted transparent list instead.
                 (mesh_pass != MeshPass::Transparent).then(|| DrawCall::of(batch, mesh_pass))
             }),

@@ -181,6 +181,7 @@ impl<M: Material> DrawWriter<'_, M> {
         }
         match self.extracted.draws.get_mut(self.written) {
             Some(draw) => {
+                draw.entity = entity;
                 draw.mesh = mesh.id();
                 draw.model = model;
                 draw.casts_shadows = shadows.casts;
@@ -190,6 +191,7 @@ impl<M: Material> DrawWriter<'_, M> {
                 }
             }
             None => self.extracted.draws.push(ExtractedDraw {
+                entity,
                 mesh: mesh.id(),
                 model,
                 material: material.clone(),

@@ -9,7 +9,7 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 
 use super::Material;
 use crate::render::DrawPhase;
-use crate::render::layout::{MeshPass, MeshPipelineDescriptor, mesh_pipeline};
+use crate::render::layout::{MeshPass, MeshPipelineDescriptor, ShaderEntry, mesh_pipeline};
 
 /// The compiled shader of material `M` and every pipeline made from it so far.
 pub(crate) struct MaterialPipelines<M: Material> {
@@ -234,7 +234,7 @@ impl<M: Material> MaterialPipelines<M> {
         self.scene_shadows
             && !matches!(
                 pass,
-                MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow
+                MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow | MeshPass::Motion
             )
     }
 
@@ -255,9 +255,19 @@ impl<M: Material> MaterialPipelines<M> {
         }
     }
 
+    /// Compiles the object motion pipeline of `key` unless it exists (TAA frames in which a
+    /// draw of `key` moved; blended keys take no part).
+    pub(crate) fn ensure_motion(&mut self, device: &wgpu::Device, key: M::Key) {
+        if !M::blends(key) {
+            let background = self.background.as_ref().is_some_and(|b| b.loaded);
+            self.compile_pass(device, MeshPass::Motion, key, background);
+        }
+    }
+
     /// The pass a draw of `key` takes in `phase`, if it draws there at all.
     pub(crate) fn pass_in(&self, phase: DrawPhase, key: M::Key) -> Option<MeshPass> {
         let wanted = match phase {
+            DrawPhase::Motion => return (!M::blends(key)).then_some(MeshPass::Motion),
             DrawPhase::Prepass if self.deferred => MeshPass::Visibility,
             DrawPhase::Prepass => MeshPass::Prepass,
             DrawPhase::Transparent => MeshPass::Transparent,
@@ -375,6 +385,7 @@ impl<M: Material> MaterialPipelines<M> {
             MeshPass::Shadow => M::shadow_fragment(key),
             MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
+            MeshPass::Motion => Some(ShaderEntry::entry("fs_motion")),
         };
         if shadowed && let Some(fragment) = &mut fragment {
             fragment.constants.push((SCENE_SHADOWS, 1.0));

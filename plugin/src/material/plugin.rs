@@ -8,7 +8,7 @@ use hecs::World;
 
 use super::Material;
 use super::batches::CompileOptions;
-use super::batches::{MaterialBatches, MaterialShader, PrepareInputs};
+use super::batches::{FrameNumbers, MaterialBatches, MaterialShader, PrepareInputs};
 use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
@@ -191,6 +191,15 @@ fn add_phase_draws<M: Material>(phases: &mut RenderPhases) {
     phases.add_sorted::<M>(DrawPhase::Transparent, |resources, pass, batches| {
         draw_listed::<M>(resources, pass, DrawPhase::Transparent, batches);
     });
+    phases.add_draw_when::<M>(
+        DrawPhase::Motion,
+        |resources, pass| draw_materials::<M>(resources, pass, DrawPhase::Motion),
+        |resources| {
+            resources
+                .get::<MaterialBatches<M>>()
+                .is_some_and(|batches| batches.draws_in(DrawPhase::Motion))
+        },
+    );
     phases.add_resolve::<M>(
         |resources, pass| {
             if let Some(batches) = resources.get::<MaterialBatches<M>>() {
@@ -309,7 +318,13 @@ fn prepare_frame<M: Material>(
         &mut renderer.assets,
         lod_cache,
         &mut stats,
-        &mut renderer.visibility_ids,
+        FrameNumbers {
+            ids: &mut renderer.visibility_ids,
+            motions: frame
+                .temporal
+                .is_some()
+                .then_some(&mut renderer.object_motions),
+        },
     );
     renderer
         .prepass_order

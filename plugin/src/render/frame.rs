@@ -23,6 +23,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             let target = resources.require::<RenderTarget>()?;
             renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
             renderer.visibility_ids.reset();
+            renderer.object_motions.reset();
             if let (true, Some(background), Some(visibility)) = (
                 renderer.deferred,
                 &mut renderer.background,
@@ -77,6 +78,17 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     renderer.prepass_order.sort();
     renderer.transparent.sort();
     let plan = FramePlan::new(resources)?;
+    if plan.object_motion {
+        // The materials have numbered their moving draws.
+        resources
+            .scope(|resources, renderer: &mut Renderer| {
+                let gpu = resources.require::<GpuContext>()?;
+                let target = resources.require::<RenderTarget>()?;
+                renderer.object_motions.prepare(gpu, target);
+                Ok(())
+            })
+            .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))?;
+    }
     resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
     let times = PhaseTimes::reserve(&plan, resources);
     let passes = FramePasses::new(resources, &plan)?;
@@ -104,6 +116,9 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
         passes.transparent(&mut encoder, times.transparent.as_ref());
     }
     passes.work(RenderPhase::Transparent, &mut encoder);
+    if plan.object_motion {
+        passes.object_motion(&mut encoder, times.object_motion.as_ref());
+    }
     passes.submit(encoder);
     // Post-processing borrows the renderer mutably (its bind group follows the target).
     post_process(
@@ -143,6 +158,8 @@ pub(super) struct FramePlan {
     pub derived_textures: bool,
     /// Temporal anti-aliasing runs before tonemapping.
     pub taa: bool,
+    /// TAA's object motion pass runs (a draw moved since the last frame).
+    pub object_motion: bool,
     /// The post filter runs after tonemapping.
     pub post_filter: bool,
 }
@@ -170,8 +187,10 @@ impl FramePlan {
             && phases.is_some_and(|p| p.has_resolves(resources));
         let background_in_compute = resolve && !has(DrawPhase::Opaque);
         let anti_aliasing = extracted.anti_aliasing;
+        let taa = has_camera && extracted.temporal.is_some();
         Ok(Self {
-            taa: has_camera && extracted.temporal.is_some(),
+            taa,
+            object_motion: taa && renderer.object_motions.any() && has(DrawPhase::Motion),
             post_filter: anti_aliasing == super::AntiAliasing::Fxaa,
             has_camera,
             deferred: renderer.deferred,
@@ -196,6 +215,7 @@ struct PhaseTimes {
     opaque: Option<PassTimestamps>,
     resolve: Option<PassTimestamps>,
     transparent: Option<PassTimestamps>,
+    object_motion: Option<PassTimestamps>,
     taa: Option<PassTimestamps>,
     post: Option<PassTimestamps>,
     post_filter: Option<PassTimestamps>,
@@ -211,6 +231,7 @@ impl PhaseTimes {
             opaque: time(plan.opaque_pass, RenderPhase::Opaque.name()),
             resolve: time(plan.resolve, RenderPhase::Resolve.name()),
             transparent: time(plan.transparent, RenderPhase::Transparent.name()),
+            object_motion: time(plan.object_motion, super::OBJECT_MOTION_PASS),
             taa: time(plan.taa, super::TAA_PASS),
             post: time(true, RenderPhase::PostProcess.name()),
             post_filter: time(plan.post_filter, super::POST_FILTER_PASS),

@@ -4,7 +4,7 @@
 use super::frame::FramePlan;
 use super::{
     DrawPhase, ExtractedFrame, FxaaPass, GpuContext, PassTimestamps, PostRouting, RenderPhase,
-    RenderPhases, RenderTarget, Renderer, TaaPass, TaaUniform, clearing_attachment,
+    RenderPhases, RenderTarget, Renderer, TaaInputs, TaaPass, TaaUniform, clearing_attachment,
 };
 use crate::{AppError, Resources};
 
@@ -235,6 +235,23 @@ impl<'a> FramePasses<'a> {
         }
         self.draw_phase(DrawPhase::Transparent, &mut pass);
     }
+
+    /// TAA's object motion pass: every moving draw writes its motion's number where it shows
+    /// (tested against the finished depth, never writing it); elsewhere the numbers are 0.
+    pub fn object_motion(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
+        let Some(ids) = self.renderer.object_motions.ids_view() else {
+            return;
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("object motion"),
+            color_attachments: &[Some(clearing_attachment(ids, wgpu::Color::TRANSPARENT))],
+            depth_stencil_attachment: self.depth_attachment(None),
+            timestamp_writes: time.map(PassTimestamps::render),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        self.draw_phase(DrawPhase::Motion, &mut pass);
+    }
 }
 
 /// The timestamps of the post phase's passes.
@@ -271,7 +288,15 @@ pub(super) fn post_process(
                         .record(
                             gpu,
                             target,
-                            TaaUniform::new(&frame, jittered, extracted.tonemapping),
+                            TaaInputs {
+                                uniform: TaaUniform::new(
+                                    &frame,
+                                    jittered,
+                                    extracted.tonemapping,
+                                    plan.object_motion,
+                                ),
+                                motions: &renderer.object_motions,
+                            },
                             &mut encoder,
                             times.taa,
                         )

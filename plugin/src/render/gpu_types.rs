@@ -117,6 +117,8 @@ pub struct FrameUniform {
     /// xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed
     /// of per-frame noise (counts TAA frames; 0 without TAA).
     pub target_size: [u32; 4],
+    /// x: the scale of every texture footprint, 2 to the TAA mip bias (1 without TAA); yzw: 0.
+    pub texture_lod: [f32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
     pub directional_lights: [DirectionalLightGpu; MAX_DIRECTIONAL_LIGHTS],
     /// The point and spot lights; only the first `light_counts.y` are used.
@@ -138,8 +140,9 @@ pub struct MeshTransform {
     /// On the deferred path, the visibility id of the object's first triangle (its triangle
     /// `t` shows as this + `t`; 0 marks no draw); 0 on the forward path.
     pub first_visibility_id: u32,
-    /// Keeps the size a multiple of 16 bytes, as WGSL lays the struct out.
-    pub _padding: u32,
+    /// Under TAA, the number of its motion since the last frame (`ObjectMotion`s, counted
+    /// from 1); 0 for a draw that did not move.
+    pub motion: u32,
 }
 
 crate::wgsl_layout!(MeshTransform {
@@ -148,7 +151,7 @@ crate::wgsl_layout!(MeshTransform {
     determinant_sign,
     receives_shadows,
     first_visibility_id,
-    _padding
+    motion
 });
 
 impl MeshTransform {
@@ -166,7 +169,7 @@ impl MeshTransform {
             determinant_sign: if determinant < 0.0 { -1.0 } else { 1.0 },
             receives_shadows: u32::from(receives_shadows),
             first_visibility_id: 0,
-            _padding: 0,
+            motion: 0,
         }
     }
 }
@@ -178,6 +181,7 @@ crate::wgsl_layout!(FrameUniform {
     ambient,
     light_counts,
     target_size,
+    texture_lod,
     directional_lights,
     point_lights
 });

@@ -156,6 +156,9 @@ pub(crate) enum MeshPass {
     Opaque,
     /// The transparent phase: depth tested `LessEqual`, never written, colour blended.
     Transparent,
+    /// TAA's object motion pass (`vs_motion`, `fs_motion`): depth tested `LessEqual`, never
+    /// written, into the motion numbers.
+    Motion,
 }
 
 /// "Over" blending of a straight-alpha colour; the destination keeps its alpha (which marks
@@ -225,12 +228,15 @@ pub(crate) fn mesh_pipeline(
         MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow | MeshPass::Opaque => {
             (true, wgpu::CompareFunction::Less)
         }
-        MeshPass::OpaqueAfterPrepass | MeshPass::Transparent => {
+        MeshPass::OpaqueAfterPrepass | MeshPass::Transparent | MeshPass::Motion => {
             (false, wgpu::CompareFunction::LessEqual)
         }
     };
     let color_targets = [Some(wgpu::ColorTargetState {
-        format: color_format,
+        format: match pass {
+            MeshPass::Motion => super::object_motion::MOTION_ID_FORMAT,
+            _ => color_format,
+        },
         blend: (pass == MeshPass::Transparent)
             .then(|| over_blend(device, color_format))
             .flatten(),
@@ -246,7 +252,11 @@ pub(crate) fn mesh_pipeline(
         layout: Some(layout),
         vertex: wgpu::VertexState {
             module: shader,
-            entry_point: Some("vs_main"),
+            entry_point: Some(if pass == MeshPass::Motion {
+                "vs_motion"
+            } else {
+                "vs_main"
+            }),
             compilation_options: Default::default(),
             buffers: &[Some(super::gpu_types::Vertex::LAYOUT)],
         },

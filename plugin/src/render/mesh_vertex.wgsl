@@ -11,7 +11,8 @@ struct MeshTransform {
     receives_shadows: u32,
     // Deferred path: the visibility id of the object's first triangle (visibility.wgsl).
     first_visibility_id: u32,
-    _padding: u32,
+    // Under TAA, the number of the draw's motion since the last frame (object_motion.rs); 0: still.
+    motion: u32,
 }
 
 @group(0) @binding(1) var<storage, read> transforms: array<MeshTransform>;
@@ -66,6 +67,24 @@ fn vs_main(in: VertexIn, @builtin(instance_index) object_index: u32) -> VertexOu
     return transform_vertex(in, transform.model, transform.normal_matrix, transform.determinant_sign, object_index);
 }
 
+// TAA's object motion pass (object_motion.rs): a moving draw marks the pixels it shows with its
+// motion's number, tested against the frame's depth; a still draw's triangles collapse outside
+// the clip volume. The position is vs_main's (one function computes both), so its depth equals the prepass's bit for bit.
+@vertex
+fn vs_motion(in: VertexIn, @builtin(instance_index) object_index: u32) -> VertexOut {
+    let transform = transforms[object_index];
+    var out = transform_vertex(in, transform.model, transform.normal_matrix, transform.determinant_sign, object_index);
+    if transform.motion == 0u {
+        out.clip_position = vec4<f32>(0.0, 0.0, 2.0, 1.0);
+    }
+    return out;
+}
+
+@fragment
+fn fs_motion(in: VertexOut) -> @location(0) u32 {
+    return transforms[in.object_index].motion;
+}
+
 // What a pixel covers: the change of the texture coordinate and of the world position from one
 // pixel to the next, across and down. Materials take it as an argument and use no stage
 // built-in, so the deferred resolve (deferred_resolve.wgsl), which knows the pixel's rays, calls
@@ -83,6 +102,7 @@ struct PixelFootprint {
 
 // The fragment stage's footprint: screen-space derivatives, taken once before any branch.
 fn fragment_footprint(in: VertexOut) -> PixelFootprint {
-    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position),
+    let uv_scale = frame.texture_lod.x;
+    return PixelFootprint(dpdx(in.uv) * uv_scale, dpdy(in.uv) * uv_scale, dpdx(in.world_position), dpdy(in.world_position),
         dpdx(in.world_normal), dpdy(in.world_normal));
 }

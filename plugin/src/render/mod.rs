@@ -26,6 +26,7 @@ pub(crate) mod gpu_types;
 pub(crate) mod layout;
 mod lowest_mip;
 pub(crate) mod object_buffer;
+pub(crate) mod object_motion;
 mod phases;
 mod pipeline_compilation;
 mod plugin;
@@ -51,11 +52,16 @@ pub use anti_aliasing::{
 };
 pub use fxaa::FXAA_SHADERS;
 pub(crate) use fxaa::FxaaPass;
+pub use object_motion::{MOTION_ID_FORMAT, ObjectMotion};
+pub(crate) use taa::TaaInputs;
 pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
 
 /// The name the TAA pass is timed under in [`GpuTimings`] (in the post phase, before
 /// tonemapping).
 pub const TAA_PASS: &str = "taa";
+/// The name TAA's object motion pass is timed under in [`GpuTimings`] (frames in which a draw
+/// moved).
+pub const OBJECT_MOTION_PASS: &str = "object_motion";
 /// The name the post filter (FXAA) is timed under in [`GpuTimings`] (after tonemapping).
 pub const POST_FILTER_PASS: &str = "post_filter";
 pub use capture::{

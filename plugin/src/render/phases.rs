@@ -7,7 +7,8 @@
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! resolve      deferred path: materials shade their pixels of the visibility buffer in compute
 //! transparent  blended draws of every material in one list, farthest first; depth read-only
-//! post         TAA on the HDR scene (compute), tonemapping, HDR scene → display target
+//! post         TAA's object motion pass (moving draws write which motion each pixel follows),
+//!              TAA on the HDR scene (compute), tonemapping, HDR scene → display target
 //!              (compute where allowed; the scene is pre-exposed: the lights carry the
 //!              camera's exposure), then the post filter (FXAA) where the camera asks for it
 //! overlay      UI drawn over the result by the application (the sandbox's egui)
@@ -76,6 +77,9 @@ pub enum DrawPhase {
     Opaque,
     /// Colour blended over the opaque result; depth tested, never written.
     Transparent,
+    /// TAA frames in which a draw moved, before TAA: each moving draw writes its motion's
+    /// number where it shows; depth tested, never written.
+    Motion,
 }
 
 impl From<DrawPhase> for RenderPhase {
@@ -84,6 +88,7 @@ impl From<DrawPhase> for RenderPhase {
             DrawPhase::Prepass => RenderPhase::Prepass,
             DrawPhase::Opaque => RenderPhase::Opaque,
             DrawPhase::Transparent => RenderPhase::Transparent,
+            DrawPhase::Motion => RenderPhase::PostProcess,
         }
     }
 }

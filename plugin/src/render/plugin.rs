@@ -167,6 +167,7 @@ impl Plugin for RenderPlugin {
                 self.format,
                 self.post_process == PostProcessPath::Fragment,
             ),
+            object_motions: super::object_motion::ObjectMotions::new(gpu),
             taa: None,
             fxaa: None,
             last_upload: UploadStats::default(),

@@ -47,6 +47,8 @@ pub struct Renderer {
     pub(super) first_frame: bool,
     /// Tonemapping (the lights carry the exposure).
     pub(super) post: PostProcess,
+    /// This frame's moving draws, for TAA.
+    pub(crate) object_motions: super::object_motion::ObjectMotions,
     /// Temporal anti-aliasing, once a frame has asked for it.
     pub(super) taa: Option<super::TaaPass>,
     /// The post filter, once a frame has asked for it.

@@ -7,6 +7,7 @@ use bytemuck::{Pod, Zeroable};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::anti_aliasing::TemporalFrame;
+use super::object_motion::ObjectMotions;
 use super::shaders::{ComposedShader, WgslFile};
 use super::{GpuContext, PassTimestamps, RenderTarget, layout};
 use crate::shader::Choice;
@@ -54,8 +55,10 @@ pub struct TaaUniform {
     pub depth_tolerance: f32,
     /// `TONEMAP_*` code of the camera's operator (the history holds display values).
     pub tonemapping: u32,
+    /// 1 where a draw moved since the last frame (the motion numbers are then written).
+    pub object_motion: u32,
     /// Keeps the size a multiple of 16 bytes.
-    pub _padding: [u32; 2],
+    pub _padding: u32,
 }
 
 crate::wgsl_layout!(TaaUniform {
@@ -72,15 +75,18 @@ crate::wgsl_layout!(TaaUniform {
     clip_gamma,
     depth_tolerance,
     tonemapping,
+    object_motion,
     _padding
 });
 
 impl TaaUniform {
-    /// The uniform of `frame`, whose jittered projection is `jittered_view_projection`.
+    /// The uniform of `frame`, whose jittered projection is `jittered_view_projection`, with
+    /// the motion numbers read where `object_motion` (a draw moved).
     pub fn new(
         frame: &TemporalFrame,
         jittered_view_projection: glam::Mat4,
         tonemapping: crate::Tonemapping,
+        object_motion: bool,
     ) -> Self {
         let settings = frame.settings;
         Self {
@@ -97,9 +103,16 @@ impl TaaUniform {
             clip_gamma: settings.clip_gamma,
             depth_tolerance: settings.depth_tolerance,
             tonemapping: tonemapping.code(),
-            _padding: [0; 2],
+            object_motion: u32::from(object_motion),
+            _padding: 0,
         }
     }
+}
+
+/// What one TAA frame reads besides the scene: its uniform and the frame's object motions.
+pub(crate) struct TaaInputs<'a> {
+    pub(crate) uniform: TaaUniform,
+    pub(crate) motions: &'a ObjectMotions,
 }
 
 /// Gives every pair of history textures its own id, so a bind group can tell it is for them.
@@ -126,6 +139,9 @@ pub(crate) struct TaaPass {
     uniform: wgpu::Buffer,
     sampler: wgpu::Sampler,
     history: Option<HistoryTextures>,
+    motion_layout: wgpu::BindGroupLayout,
+    /// Group 1, the object motions, and the key of what it binds.
+    motion_group: Option<((u64, u64, bool), wgpu::BindGroup)>,
 }
 
 impl TaaPass {
@@ -152,9 +168,25 @@ impl TaaPass {
                 layout::compute_uniform_buffer(5, false),
             ],
         });
+        let motion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("taa object motion layout"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Uint,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                layout::compute_storage_buffer(1, true),
+            ],
+        });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("taa pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
+            bind_group_layouts: &[Some(&layout), Some(&motion_layout)],
             immediate_size: 0,
         });
         let module = TAA_SHADER.create_module(device);
@@ -184,7 +216,40 @@ impl TaaPass {
             uniform,
             sampler,
             history: None,
+            motion_layout,
+            motion_group: None,
         }
+    }
+
+    /// Group 1 for `motions`, made again only when what it binds changed.
+    fn motion_group(&mut self, gpu: &GpuContext, motions: &ObjectMotions) -> &wgpu::BindGroup {
+        let (ids, buffer, key) = motions.bindings();
+        if self
+            .motion_group
+            .as_ref()
+            .is_some_and(|(bound, _)| *bound != key)
+        {
+            self.motion_group = None;
+        }
+        let layout = &self.motion_layout;
+        let (_, group) = self.motion_group.get_or_insert_with(|| {
+            let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("taa object motion bind group"),
+                layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(ids),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: buffer.as_entire_binding(),
+                    },
+                ],
+            });
+            (key, group)
+        });
+        group
     }
 
     /// Makes the history textures for `target` unless the current ones are for it; returns
@@ -267,7 +332,10 @@ impl TaaPass {
         &mut self,
         gpu: &GpuContext,
         target: &RenderTarget,
-        mut uniform: TaaUniform,
+        TaaInputs {
+            mut uniform,
+            motions,
+        }: TaaInputs<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&PassTimestamps>,
     ) -> Option<(u64, &wgpu::TextureView)> {
@@ -276,6 +344,7 @@ impl TaaPass {
         }
         gpu.queue
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        let motion_group = self.motion_group(gpu, motions).clone();
         let history = self.history.as_mut()?;
         history.written = 1 - history.written;
         let (width, height) = target.size();
@@ -286,7 +355,8 @@ impl TaaPass {
             });
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &history.bind_groups[history.written], &[]);
-            pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+            pass.set_bind_group(1, &motion_group, &[]);
+            pass.dispatch_workgroups(width.div_ceil(16), height.div_ceil(16), 1);
         }
         let written = history.written;
         Some((history.id * 2 + written as u64, &history.views[written]))

@@ -22,7 +22,14 @@ struct TaaUniform {
     depth_tolerance: f32,
     // TONEMAP_* code of the camera's operator: the history holds display values.
     tonemapping: u32,
-    _padding: vec2<u32>,
+    // 1 where a draw moved since the last frame: `motion_ids` is then this frame's.
+    object_motion: u32,
+    _padding: u32,
+}
+
+// A moving draw's motion (object_motion.rs): this frame's world to last frame's.
+struct ObjectMotion {
+    previous_from_current: mat4x4<f32>,
 }
 
 @group(0) @binding(0) var scene: texture_2d<f32>;
@@ -32,6 +39,9 @@ struct TaaUniform {
 // rgb: the anti-aliased scene; a: the view depth it shows (the next frame's disocclusion test).
 @group(0) @binding(4) var resolved: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(5) var<uniform> taa: TaaUniform;
+// Per pixel, the number of the moving draw it shows (0: none), and the motions they number.
+@group(1) @binding(0) var motion_ids: texture_2d<u32>;
+@group(1) @binding(1) var<storage, read> object_motions: array<ObjectMotion>;
 
 // Largest finite half float: the history's format.
 const HALF_MAX: f32 = 65504.0;
@@ -119,13 +129,15 @@ fn project(view_projection: mat4x4<f32>, world: vec3<f32>) -> vec3<f32> {
     return clip.xyz / clip.w;
 }
 
-// The workgroup's 8×8 pixels and a border of one: each neighbourhood's colours (compressed,
-// in YCoCg) and depths, loaded once per workgroup instead of nine times per pixel.
-const TILE: i32 = 10;
-var<workgroup> tile_colour: array<vec3<f32>, 100>;
-var<workgroup> tile_depth: array<f32, 100>;
+// The workgroup's 16×16 pixels and a border of one: each neighbourhood's colours (compressed,
+// in YCoCg) and depths, loaded and tonemapped once per workgroup instead of nine times per
+// pixel (1.27 loads a pixel; an 8×8 group's border made it 1.56).
+const GROUP: i32 = 16;
+const TILE: i32 = GROUP + 2;
+var<workgroup> tile_colour: array<vec3<f32>, 324>;
+var<workgroup> tile_depth: array<f32, 324>;
 
-@compute @workgroup_size(8, 8, 1)
+@compute @workgroup_size(16, 16, 1)
 fn taa_main(
     @builtin(global_invocation_id) id: vec3<u32>,
     @builtin(local_invocation_index) local_index: u32,
@@ -133,8 +145,8 @@ fn taa_main(
 ) {
     let size = textureDimensions(scene);
     let last = vec2<i32>(size) - 1;
-    let origin = vec2<i32>(group.xy) * 8 - 1;
-    for (var index = i32(local_index); index < TILE * TILE; index += 64) {
+    let origin = vec2<i32>(group.xy) * GROUP - 1;
+    for (var index = i32(local_index); index < TILE * TILE; index += GROUP * GROUP) {
         let at = clamp(origin + vec2<i32>(index % TILE, index / TILE), vec2<i32>(0), last);
         tile_colour[index] = to_ycocg(compress(display_colour(textureLoad(scene, at, 0))));
         tile_depth[index] = textureLoad(scene_depth, at, 0);
@@ -176,14 +188,24 @@ fn taa_main(
 
     // Where the nearest surface was a frame ago. The depth buffer holds the jittered frame's
     // depth at pixel centres: back to the world through this frame's jittered inverse, then
-    // both frames' unjittered projections give the motion (0 for a still camera: the history
-    // is read at the pixel's centre and never blurs).
+    // its draw's motion (where it moved) and both frames' unjittered projections give the
+    // pixel's motion (0 for a still camera and draw: the history is read at the pixel's
+    // centre and never blurs).
     let centre = vec2<f32>(nearest) + 0.5;
     let ndc = vec2<f32>(centre.x / f32(size.x) * 2.0 - 1.0, 1.0 - centre.y / f32(size.y) * 2.0);
     let world_h = taa.inverse_view_projection * vec4<f32>(ndc, nearest_depth, 1.0);
     let world = world_h.xyz / world_h.w;
+    // A moving draw's point was elsewhere a frame ago: its motion takes it there.
+    var world_before = world;
+    if taa.object_motion != 0u {
+        let motion = textureLoad(motion_ids, nearest, 0).r;
+        if motion != 0u {
+            let moved = object_motions[motion - 1u].previous_from_current * vec4<f32>(world, 1.0);
+            world_before = moved.xyz / moved.w;
+        }
+    }
     let now = project(taa.view_projection, world).xy;
-    let before = project(taa.previous_view_projection, world).xy;
+    let before = project(taa.previous_view_projection, world_before).xy;
     let uv = (vec2<f32>(pixel) + 0.5) / vec2<f32>(size) + (before - now) * vec2<f32>(0.5, -0.5);
     let view_depth = dot(world - taa.camera_position.xyz, taa.view_direction.xyz);
 
@@ -196,7 +218,7 @@ fn taa_main(
         // been, something hid it then (disocclusion), and the history is another surface's.
         let kept_at = clamp(vec2<i32>(uv * vec2<f32>(size)), vec2<i32>(0), last);
         let kept = textureLoad(history, kept_at, 0).a;
-        let expected = dot(world - taa.previous_camera_position.xyz, taa.previous_view_direction.xyz);
+        let expected = dot(world_before - taa.previous_camera_position.xyz, taa.previous_view_direction.xyz);
         // The kept depth is a half float: a rounding of it is never a disocclusion.
         if kept < expected - (taa.depth_tolerance + 1e-3) * abs(expected) {
             weight = 1.0;
