@@ -10,11 +10,14 @@
 //!
 //! TAA jitters the projection by a Halton (2, 3) offset each frame, reprojects the history
 //! with the previous camera through each pixel's depth (a depth-offset surface's depth is the
-//! displaced point's), samples it with a Catmull-Rom filter, clips it to the variance box of
+//! displaced point's) and, where a draw moved, through its motion (object_motion.rs), samples it with a Catmull-Rom filter, clips it to the variance box of
 //! the pixel's 3×3 neighbourhood (Salvi 2016) and drops it where the depth it kept says the
 //! pixel was hidden (disocclusion). For the first `jitter_samples` frames after a reset the
 //! history is a plain mean of the frames, so a still scene settles to `jitter_samples`
 //! sub-pixel positions exactly; after that each frame adds `current_weight` of itself.
+//! Textures are sampled `mip_bias` levels finer under TAA (the frame uniform's texture_lod
+//! scales every footprint), so the settled image averages texture detail over the pixel as a
+//! supersampled one does.
 //! A reset comes with a new target (a resize), another camera, projection or TAA parameters,
 //! another kind of anti-aliasing, or [`TemporalHistory::reset`] (a camera cut). The history
 //! holds tonemapped colour, so edges between lit surfaces and the clear colour blend as shown;

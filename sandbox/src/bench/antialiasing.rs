@@ -1,5 +1,5 @@
-//! The `antialiasing` group: the passes of TAA and the post filter, and the jittered march
-//! under TAA against the plain one.
+//! The `antialiasing` group: the passes of TAA and the post filter, the jittered march under
+//! TAA against the plain one, and the frame under TAA with and without its mip bias.
 
 use anyhow::Result;
 use pom::ParallaxOcclusionMaterial;
@@ -10,7 +10,7 @@ use super::Runner;
 impl Runner<'_> {
     /// The passes of each anti-aliasing (TAA before tonemapping, the post filter after it) on
     /// the base material's plane, and under TAA the jittered march at 16 samples against the
-    /// plain march at 50.
+    /// plain march at 50, and the 50-sample frame without TAA's mip bias.
     pub(super) fn antialiasing(&mut self, size: (u32, u32)) -> Result<()> {
         let view = self.view;
         let mut scene = self.scene(size, &view)?;
@@ -25,7 +25,7 @@ impl Runner<'_> {
             ),
             (pom::AntiAliasing::Taa, &[pom::render::TAA_PASS, "post"][..]),
         ] {
-            scene.set_anti_aliasing(aa);
+            scene.set_anti_aliasing(aa, Default::default());
             let times = scene.time_phases(self.warmup, self.frames, phases)?;
             let path = scene.path_ran();
             for (phase, times) in &times {
@@ -33,7 +33,7 @@ impl Runner<'_> {
                 self.record("antialiasing", place, &material, row, times)?;
             }
         }
-        scene.set_anti_aliasing(pom::AntiAliasing::Taa);
+        scene.set_anti_aliasing(pom::AntiAliasing::Taa, Default::default());
         let mut fifty = None;
         for (samples, jitter) in [(50, false), (16, true)] {
             let material = ParallaxOcclusionMaterial {
@@ -53,6 +53,24 @@ impl Runner<'_> {
                     self.ratio(what, size, ms, fifty);
                 }
             }
+        }
+        // Textures sampled finer under TAA read more texels: the mip bias's cost.
+        let unbiased = pom::TemporalAntiAliasing {
+            mip_bias: 0.0,
+            ..Default::default()
+        };
+        scene.set_anti_aliasing(pom::AntiAliasing::Taa, unbiased);
+        let variant = "taa, 50 samples, mip bias 0".to_owned();
+        let ms = self.case_variant(
+            &mut scene,
+            "antialiasing",
+            place,
+            self.base.clone(),
+            variant,
+        )?;
+        if let Some(fifty) = fifty {
+            let what = "TAA's mip bias: -2 / 0, 50 samples".to_owned();
+            self.ratio(what, size, fifty, ms);
         }
         Ok(())
     }

@@ -142,8 +142,12 @@ impl BenchScene {
     }
 
     /// Puts `anti_aliasing` (TAA with its default parameters) on the camera.
-    pub fn set_anti_aliasing(&mut self, anti_aliasing: pom::AntiAliasing) {
-        pom::set_camera_anti_aliasing(&mut self.app.world, anti_aliasing, Default::default());
+    pub fn set_anti_aliasing(
+        &mut self,
+        anti_aliasing: pom::AntiAliasing,
+        temporal: pom::TemporalAntiAliasing,
+    ) {
+        pom::set_camera_anti_aliasing(&mut self.app.world, anti_aliasing, temporal);
     }
 
     /// Sets the colour the image is cleared to (alpha 0 marks pixels nothing was drawn on).

@@ -84,6 +84,15 @@ fn script_camera_taa_out_of_range() {
 }
 
 #[test]
+fn script_camera_taa_mip_bias_out_of_range() {
+    assert_script_parse(
+        "scripts/taa_mip_bias_out_of_range.ron",
+        5,
+        "camera taa.mip_bias = -4 is outside -2..=0",
+    );
+}
+
+#[test]
 fn script_camera_unknown_anti_aliasing() {
     assert_script_parse("scripts/unknown_aa.ron", 5, "msaa");
 }
