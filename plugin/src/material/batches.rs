@@ -79,6 +79,14 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) deferred: Option<ResolveTargets<'a>>,
 }
 
+/// Each followed entity's model in the last TAA frame, and this frame's as they are gathered
+/// (the two swap after each frame).
+#[derive(Default)]
+struct ModelsSeen {
+    previous: HashMap<hecs::Entity, Mat4>,
+    current: HashMap<hecs::Entity, Mat4>,
+}
+
 /// What the frame numbers across every material's draws, handed to each as it prepares.
 pub(crate) struct FrameNumbers<'a> {
     /// The deferred path's visibility ids.
@@ -121,10 +129,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     // kept from frame to frame.
     models: Vec<(Mat4, bool)>,
     transform_data: Vec<MeshTransform>,
-    // On TAA frames, each followed entity's model last frame, and this frame's as they are
-    // gathered (the two swap after each frame).
-    previous_models: HashMap<hecs::Entity, Mat4>,
-    current_models: HashMap<hecs::Entity, Mat4>,
+    // On TAA frames, each followed entity's model last frame and this frame's.
+    models_seen: ModelsSeen,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
     uniform_data: Vec<M::PerDraw>,
     sorted_uniforms: Vec<M::PerDraw>,
@@ -210,8 +216,7 @@ impl<M: Material> MaterialBatches<M> {
             order: Vec::new(),
             models: Vec::new(),
             transform_data: Vec::new(),
-            previous_models: HashMap::new(),
-            current_models: HashMap::new(),
+            models_seen: ModelsSeen::default(),
             uniform_data: Vec::new(),
             sorted_uniforms: Vec::new(),
         }
@@ -331,27 +336,28 @@ impl<M: Material> MaterialBatches<M> {
     /// frame starts still.
     fn update_motions(&mut self, draws: &[ExtractedDraw<M>], motions: Option<&mut ObjectMotions>) {
         let Some(motions) = motions else {
-            self.previous_models.clear();
+            self.models_seen.previous.clear();
             for transform in &mut self.transform_data {
                 transform.motion = 0;
             }
             return;
         };
-        self.current_models.clear();
+        let seen = &mut self.models_seen;
+        seen.current.clear();
         for (slot, entry) in self.order.iter().enumerate() {
             let draw = &draws[entry.draw];
             let mut motion = 0;
             if let Some(entity) = draw.entity {
-                if let Some(previous) = self.previous_models.get(&entity)
+                if let Some(previous) = seen.previous.get(&entity)
                     && *previous != draw.model
                 {
                     motion = motions.push(*previous, draw.model);
                 }
-                self.current_models.insert(entity, draw.model);
+                seen.current.insert(entity, draw.model);
             }
             self.transform_data[slot].motion = motion;
         }
-        std::mem::swap(&mut self.previous_models, &mut self.current_models);
+        std::mem::swap(&mut seen.previous, &mut seen.current);
     }
 
     /// Merges the sorted draws into batches (runs of opaque draws sharing key, shadow role,

@@ -193,6 +193,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
     let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
     let ambient_radiance = radiance(ambient.color, ambient.intensity, light_scale);
+    let texture_scale = temporal.map_or(1.0, |f| f.settings.texture_footprint_scale());
     let mut lights = LightExtraction {
         frame: FrameUniform {
             view_projection: columns(view_projection),
@@ -212,12 +213,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
                 temporal.map_or(0, |f| f.frame_index),
                 0,
             ],
-            texture_lod: [
-                temporal.map_or(1.0, |f| f.settings.texture_footprint_scale()),
-                0.0,
-                0.0,
-                0.0,
-            ],
+            texture_lod: [texture_scale, 0.0, 0.0, 0.0],
             directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
             point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
         },
