@@ -208,7 +208,8 @@ pub enum PathsDiffer {
     },
 }
 
-fn set_path(app: &mut App, path: RenderPath) {
+/// Asks `app`'s renderer for `path` from the next frame on.
+pub fn set_path(app: &mut App, path: RenderPath) {
     if let Some(renderer) = app.resources.get_mut::<Renderer>() {
         renderer.set_path(path);
     }

@@ -16,7 +16,7 @@ use pom::{
 use pom_tests::edge_error::{box_filtered, edge_pixels, mean_error};
 use pom_tests::nan_injection::inject_nan_at;
 use pom_tests::pom_scene::{HeightMaterial, preview_app};
-use pom_tests::{render_and_capture, render_and_capture_f32, render_on_path, run_frames};
+use pom_tests::{render_and_capture, render_and_capture_f32, render_on_path, run_frames, set_path};
 
 /// Frames a still TAA image is rendered for: one whole cycle of the default jitter, after
 /// which the history is the plain mean of its sixteen sub-pixel positions.
@@ -142,10 +142,7 @@ fn moving_square(
     pixels_per_frame: f32,
 ) -> RgbaImage {
     let mut app = turned_square(size * scale, size * scale);
-    app.resources
-        .get_mut::<pom::render::Renderer>()
-        .unwrap()
-        .set_path(path);
+    set_path(&mut app, path);
     set_anti_aliasing(&mut app, mode);
     let square = app
         .world
@@ -499,10 +496,7 @@ fn both_paths_agree_with_taa() {
         let mut app = cobblestones(96, 60.0, |material| material.jitter_march = true);
         set_anti_aliasing(&mut app, AntiAliasing::Taa);
         run_frames(&mut app, 1).unwrap();
-        app.resources
-            .get_mut::<pom::render::Renderer>()
-            .unwrap()
-            .set_path(path);
+        set_path(&mut app, path);
         app.resources.get_mut::<TemporalHistory>().unwrap().reset();
         run_frames(&mut app, SETTLE - 1).unwrap();
         images.push(render_on_path(&mut app, path).unwrap());

@@ -336,9 +336,12 @@ impl<M: Material> MaterialBatches<M> {
     /// frame starts still.
     fn update_motions(&mut self, draws: &[ExtractedDraw<M>], motions: Option<&mut ObjectMotions>) {
         let Some(motions) = motions else {
-            self.models_seen.previous.clear();
-            for transform in &mut self.transform_data {
-                transform.motion = 0;
+            // Only the frame after a TAA frame has numbers to take back.
+            if !self.models_seen.previous.is_empty() {
+                self.models_seen.previous.clear();
+                for transform in &mut self.transform_data {
+                    transform.motion = 0;
+                }
             }
             return;
         };

@@ -233,28 +233,18 @@ fn tonemapped_texture(
     layout: &wgpu::BindGroupLayout,
     compute: bool,
 ) -> TonemappedTexture {
-    let (width, height) = target.size();
     let storage = if post_process::can_store(gpu, target.format()) {
         wgpu::TextureUsages::STORAGE_BINDING
     } else {
         wgpu::TextureUsages::empty()
     };
-    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("tonemapped image (fxaa input)"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: target.format(),
-        usage: wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::RENDER_ATTACHMENT
-            | storage,
-        view_formats: &[],
-    });
+    let texture = super::target::plain_texture(
+        gpu,
+        "tonemapped image (fxaa input)",
+        target.size(),
+        target.format(),
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT | storage,
+    );
     let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
     let mut entries = vec![wgpu::BindGroupEntry {
         binding: 0,

@@ -129,21 +129,13 @@ impl ObjectMotions {
     }
 }
 
-fn motion_id_texture(gpu: &GpuContext, (width, height): (u32, u32)) -> wgpu::TextureView {
-    gpu.device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("motion ids"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: MOTION_ID_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-        .create_view(&wgpu::TextureViewDescriptor::default())
+fn motion_id_texture(gpu: &GpuContext, size: (u32, u32)) -> wgpu::TextureView {
+    super::target::plain_texture(
+        gpu,
+        "motion ids",
+        size,
+        MOTION_ID_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+    )
+    .create_view(&wgpu::TextureViewDescriptor::default())
 }

@@ -262,24 +262,16 @@ impl TaaPass {
         {
             return false;
         }
-        let (width, height) = target.size();
         let texture = |label| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: HISTORY_FORMAT,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING
+            super::target::plain_texture(
+                gpu,
+                label,
+                target.size(),
+                HISTORY_FORMAT,
+                wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
+            )
         };
         let views = [texture("taa history 0"), texture("taa history 1")]
             .map(|texture| texture.create_view(&wgpu::TextureViewDescriptor::default()));

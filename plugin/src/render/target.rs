@@ -86,6 +86,32 @@ pub struct RenderTarget {
     device: wgpu::Device,
 }
 
+/// A 2D texture of one level and one sample, `width`×`height`: what the target and the
+/// textures that follow its size (TAA's history, the post filter's input, the motion numbers)
+/// are made of.
+pub(crate) fn plain_texture(
+    gpu: &GpuContext,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 impl RenderTarget {
     /// Creates a target of `width`×`height`, each clamped to 1..=the device's 2D texture limit.
     pub fn new(gpu: &GpuContext, width: u32, height: u32, format: TargetFormat) -> Self {
@@ -103,16 +129,7 @@ impl RenderTarget {
             );
         }
         let texture = |label, format, usage| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
+            plain_texture(gpu, label, (size.width, size.height), format, usage)
         };
         let display = format.texture_format();
         // Post-processing writes it from compute where the adapter allows, else as an attachment.
