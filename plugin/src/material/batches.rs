@@ -30,9 +30,8 @@ use crate::{AssetId, Assets, Image, Mesh};
 /// One entity's draw as the Extract stage copied it.
 #[derive(Clone, Debug)]
 pub(crate) struct ExtractedDraw<M> {
-    /// The entity drawn (`None` for a mesh drawn with the default material, found by
-    /// archetype: its motion is not followed).
-    pub(crate) entity: Option<hecs::Entity>,
+    /// The entity drawn: TAA follows its motion from frame to frame.
+    pub(crate) entity: hecs::Entity,
     pub(crate) mesh: AssetId<Mesh>,
     pub(crate) model: Mat4,
     pub(crate) material: M,
@@ -332,7 +331,7 @@ impl<M: Material> MaterialBatches<M> {
     }
 
     /// On TAA frames (with `motions`), numbers each slot's motion since the last frame there
-    /// (0: still, or an entity not followed); other frames forget the models, so the next TAA
+    /// (0: still, or not drawn last frame); other frames forget the models, so the next TAA
     /// frame starts still.
     fn update_motions(&mut self, draws: &[ExtractedDraw<M>], motions: Option<&mut ObjectMotions>) {
         let Some(motions) = motions else {
@@ -350,14 +349,12 @@ impl<M: Material> MaterialBatches<M> {
         for (slot, entry) in self.order.iter().enumerate() {
             let draw = &draws[entry.draw];
             let mut motion = 0;
-            if let Some(entity) = draw.entity {
-                if let Some(previous) = seen.previous.get(&entity)
-                    && *previous != draw.model
-                {
-                    motion = motions.push(*previous, draw.model);
-                }
-                seen.current.insert(entity, draw.model);
+            if let Some(previous) = seen.previous.get(&draw.entity)
+                && *previous != draw.model
+            {
+                motion = motions.push(*previous, draw.model);
             }
+            seen.current.insert(draw.entity, draw.model);
             self.transform_data[slot].motion = motion;
         }
         std::mem::swap(&mut seen.previous, &mut seen.current);

@@ -129,7 +129,7 @@ impl<M: Material> DrawWriter<'_, M> {
                 casts: not_caster.is_none(),
                 receives: not_receiver.is_none(),
             };
-            self.push(Some(entity), mesh, transform, material, shadows);
+            self.push(entity, true, mesh, transform, material, shadows);
         }
     }
 
@@ -150,18 +150,27 @@ impl<M: Material> DrawWriter<'_, M> {
                     casts: !archetype.has::<NotShadowCaster>(),
                     receives: !archetype.has::<NotShadowReceiver>(),
                 };
-                for (mesh, transform) in meshes.iter().zip(transforms.iter()) {
-                    self.push(None, mesh, transform, &default, shadows);
+                for ((id, mesh), transform) in archetype
+                    .ids()
+                    .iter()
+                    .zip(meshes.iter())
+                    .zip(transforms.iter())
+                {
+                    // SAFETY: `id` is one of `archetype`'s, borrowed from `world` for this loop,
+                    // so it names a live entity of `world` (what hecs documents `ids` for).
+                    let entity = unsafe { world.find_entity_from_id(*id) };
+                    self.push(entity, false, mesh, transform, &default, shadows);
                 }
             }
         }
     }
 
-    /// Writes the next slot, unless the transform is not finite. `entity` is `None` for meshes
-    /// drawn with the default material (found by archetype), whose problems are not logged.
+    /// Writes the next slot, unless the transform is not finite; logs the material's problems
+    /// where `log_problems` (not for the default material of meshes without one).
     fn push(
         &mut self,
-        entity: Option<Entity>,
+        entity: Entity,
+        log_problems: bool,
         mesh: &Handle<Mesh>,
         transform: &GlobalTransform,
         material: &M,
@@ -176,7 +185,7 @@ impl<M: Material> DrawWriter<'_, M> {
             );
             return;
         }
-        if let Some(entity) = entity {
+        if log_problems {
             self.warnings.log_changed(entity, material);
         }
         match self.extracted.draws.get_mut(self.written) {
