@@ -355,9 +355,11 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
             m.lod_threshold = 16.0
         })
     };
-    let references: Vec<Rgba32FImage> = drifting(&mut scene(size * 4), size * 4, 0.4, frames)
+    // At 8x: a 4x reference shimmers itself at this angle (its change against the 8x one is
+    // 35 % of off's), a floor no anti-aliasing measured against it could go below.
+    let references: Vec<Rgba32FImage> = drifting(&mut scene(size * 8), size * 8, 0.8, frames)
         .iter()
-        .map(|image| box_filtered_f32(image, 4))
+        .map(|image| box_filtered_f32(image, 8))
         .collect();
     let mut shimmers = [0.0; 2];
     for (slot, mode) in [AntiAliasing::Off, AntiAliasing::Taa]
@@ -369,14 +371,14 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
         shimmers[slot] = shimmer(&drifting(&mut app, size, 0.1, frames), &references, SETTLE);
     }
     eprintln!(
-        "drift 0.1 px per frame at 80°: mean frame-to-frame change of the error against the 4x reference: off {:.5}, taa {:.5} ({:.0} %)",
+        "drift 0.1 px per frame at 80°: mean frame-to-frame change of the error against the 8x reference: off {:.5}, taa {:.5} ({:.0} %)",
         shimmers[0],
         shimmers[1],
         shimmers[1] / shimmers[0] * 100.0
     );
-    // The target is half of off's; measured 0.61 (0.74 before the mip bias;
-    // BENCHMARKS.md says why it is not met: each new jittered sample moves the pixel by
-    // current_weight of its difference).
+    // The target is half of off's; measured 0.54 (0.61 against a 4x reference, 0.74
+    // before the mip bias; BENCHMARKS.md says why it is not met: each new jittered sample
+    // moves the pixel by current_weight of its difference).
     assert!(shimmers[1] <= 0.7 * shimmers[0], "{shimmers:?}");
 }
 
