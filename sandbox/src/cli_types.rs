@@ -155,7 +155,8 @@ pub struct DisplayArgs {
     /// whole cycle, --taa-jitter-samples frames, for the history to settle).
     #[arg(long, value_name = "NAME", value_parser = crate::material_args::choice_parser::<pom::AntiAliasing>(), default_value = "off")]
     pub aa: pom::AntiAliasing,
-    /// TAA: share of the new frame once settled, 0.02..=1 [default: 0.1].
+    /// TAA: share of the new frame in a pixel moving half a pixel or more a frame, once its
+    /// history is long, 0.02..=1 [default: 0.1].
     #[arg(long, value_name = "X", value_parser = taa_parser(0))]
     pub taa_current_weight: Option<f32>,
     /// TAA: width of the history's clip box in standard deviations, 0.25..=4 [default: 1].
@@ -172,6 +173,10 @@ pub struct DisplayArgs {
     /// [default: -2].
     #[arg(long, value_name = "X", value_parser = taa_parser(4), allow_hyphen_values = true)]
     pub taa_mip_bias: Option<f32>,
+    /// TAA: share of the new frame in a still pixel once its history is long, 0.01..=1
+    /// [default: 0.02].
+    #[arg(long, value_name = "X", value_parser = taa_parser(5))]
+    pub taa_still_weight: Option<f32>,
 }
 
 /// The value parser of TAA parameter `index` of [`pom::TemporalAntiAliasing::LIMITS`]: its
@@ -210,6 +215,7 @@ impl DisplayArgs {
             self.taa_jitter_samples,
             self.taa_depth_tolerance,
             self.taa_mip_bias,
+            self.taa_still_weight,
         ];
         for (limit, value) in pom::TemporalAntiAliasing::LIMITS.iter().zip(given) {
             if let Some(value) = value {

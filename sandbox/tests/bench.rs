@@ -195,13 +195,22 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         let image = image::open(out.join(file)).unwrap();
         assert!(image.width() > 0 && image.height() > 0);
     }
-    // None, a tenth and all of the entities moving.
+    // None, a tenth and all of the entities moving; then a tenth and all under TAA.
     let cpu_side = json["cpu_side"].as_array().unwrap();
-    let moving: Vec<_> = cpu_side
+    let cpu_cases: Vec<_> = cpu_side
         .iter()
-        .map(|cpu| cpu["moving_percent"].clone())
+        .map(|cpu| (cpu["moving_percent"].clone(), cpu["anti_aliasing"].clone()))
         .collect();
-    assert_eq!(moving, [0, 10, 100]);
+    let expected: Vec<_> = [
+        (0, "off"),
+        (10, "off"),
+        (100, "off"),
+        (10, "taa"),
+        (100, "taa"),
+    ]
+    .map(|(moving, aa)| (serde_json::json!(moving), serde_json::json!(aa)))
+    .into();
+    assert_eq!(cpu_cases, expected);
     for cpu in cpu_side {
         assert_eq!(cpu["entities"], 200);
         assert!(cpu["total"]["median_ms"].as_f64().unwrap() > 0.0);

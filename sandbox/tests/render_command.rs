@@ -433,6 +433,7 @@ fn out_of_range_taa_parameters_are_rejected_naming_the_flag_and_the_limit() {
         ("--taa-clip-gamma", "0", "0.25..=4"),
         ("--taa-mip-bias", "1", "-2..=0"),
         ("--taa-mip-bias", "-3", "-2..=0"),
+        ("--taa-still-weight", "0", "0.01..=1"),
     ] {
         let output = sandbox(&["render", "--out", path_arg(&out), "--aa", "taa", flag, bad]);
         assert_one_line_error(&output, &[flag, limit]);

@@ -376,10 +376,10 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
         shimmers[1],
         shimmers[1] / shimmers[0] * 100.0
     );
-    // The target is half of off's; measured 0.54 (0.61 against a 4x reference, 0.74
-    // before the mip bias; BENCHMARKS.md says why it is not met: each new jittered sample
-    // moves the pixel by current_weight of its difference).
-    assert!(shimmers[1] <= 0.7 * shimmers[0], "{shimmers:?}");
+    // The target is half of off's; measured 0.41. A drift of 0.1 px a frame blurs the
+    // history little, so its pixels keep a long one (a weight of about 0.045 between
+    // still_weight and current_weight); at 0.1 for every pixel it was 0.54 (BENCHMARKS.md).
+    assert!(shimmers[1] <= 0.5 * shimmers[0], "{shimmers:?}");
 }
 
 /// A lit ground with a sphere that crosses the view at `speed` pixels per frame from frame

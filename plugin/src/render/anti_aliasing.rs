@@ -12,9 +12,14 @@
 //! with the previous camera through each pixel's depth (a depth-offset surface's depth is the
 //! displaced point's) and, where a draw moved, through its motion (object_motion.rs), samples it with a Catmull-Rom filter, clips it to the variance box of
 //! the pixel's 3×3 neighbourhood (Salvi 2016) and drops it where the depth it kept says the
-//! pixel was hidden (disocclusion). For the first `jitter_samples` frames after a reset the
-//! history is a plain mean of the frames, so a still scene settles to `jitter_samples`
-//! sub-pixel positions exactly; after that each frame adds `current_weight` of itself.
+//! pixel was hidden (disocclusion). Each pixel's history counts the frames it holds, and a new
+//! frame takes 1 / (count + 1) of it (a plain mean: a still scene settles to `jitter_samples`
+//! sub-pixel positions exactly, a pixel just revealed gathers samples as fast) but never less
+//! than a floor set by the pixel's motion: `still_weight` where it does not move, rising to
+//! `current_weight` at half a pixel a frame. The Catmull-Rom read of a history moved by a
+//! fraction f of a pixel blurs it by about f(1 − f), so a slowly drifting pixel loses little
+//! detail a frame and keeps its history longer (Yang et al. 2009, "Amortized
+//! supersampling", §4.1); faster ones keep `current_weight`, as their shading changes too.
 //! Textures are sampled `mip_bias` levels finer under TAA (the frame uniform's texture_lod
 //! scales every footprint), so the settled image averages texture detail over the pixel as a
 //! supersampled one does.
@@ -50,8 +55,8 @@ impl Default for AntiAliasing {
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TemporalAntiAliasing {
-    /// Share of the new frame in each pixel once the history has settled: lower is smoother
-    /// and slower to follow a change.
+    /// Share of the new frame in a pixel moving half a pixel or more a frame, once its history
+    /// is long enough: lower is smoother and slower to follow a change.
     pub current_weight: f32,
     /// Half-width of the colour box the history is clipped to, in standard deviations of the
     /// pixel's 3×3 neighbourhood: lower ghosts less and flickers more.
@@ -67,6 +72,9 @@ pub struct TemporalAntiAliasing {
     /// The default, −2, is 4 × 4 supersampling's: the 16 positions of a settled still image,
     /// and about the (2 − w) / w = 19 samples a history of current weight w = 0.1 averages.
     pub mip_bias: f32,
+    /// Share of the new frame in a pixel that does not move, once its history is long enough
+    /// (a pixel drifting slower than half a pixel a frame takes a share between the two).
+    pub still_weight: f32,
 }
 
 /// One declared TAA parameter: name, help and limits.
@@ -96,6 +104,7 @@ impl Default for TemporalAntiAliasing {
             jitter_samples: 16,
             depth_tolerance: 0.05,
             mip_bias: -2.0,
+            still_weight: 0.02,
         }
     }
 }
@@ -103,7 +112,7 @@ impl Default for TemporalAntiAliasing {
 impl TemporalAntiAliasing {
     /// Every parameter with its limits, in declaration order, for code that walks them (the
     /// command line, scripts' checks, the sandbox's Display panel).
-    pub const LIMITS: [TemporalLimit; 5] = [
+    pub const LIMITS: [TemporalLimit; 6] = [
         TemporalLimit {
             name: "current_weight",
             help: "Share of the new frame once the history has settled: lower is smoother, slower to follow.",
@@ -148,6 +157,15 @@ impl TemporalAntiAliasing {
             integer: false,
             get: |taa| taa.mip_bias,
             set: |taa, value| taa.mip_bias = value,
+        },
+        TemporalLimit {
+            name: "still_weight",
+            help: "Share of the new frame in a pixel that does not move: lower is smoother when still.",
+            min: 0.01,
+            max: 1.0,
+            integer: false,
+            get: |taa| taa.still_weight,
+            set: |taa, value| taa.still_weight = value,
         },
     ];
 
@@ -385,6 +403,7 @@ mod tests {
             jitter_samples: 0,
             depth_tolerance: 0.5,
             mip_bias: 1.0,
+            still_weight: 0.02,
         };
         let problems = wild.problems();
         assert_eq!(problems.len(), 4, "{problems:?}");

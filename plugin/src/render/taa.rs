@@ -1,7 +1,7 @@
 //! The temporal anti-aliasing pass (taa.wgsl): in compute, before tonemapping, the jittered
 //! HDR scene and last frame's history into this frame's history, which tonemapping then reads.
-//! Two history textures per target take turns; what the pass does and when it resets is in
-//! anti_aliasing.rs.
+//! Two histories per target take turns, each a colour texture (with the frames each pixel holds)
+//! and a depth texture; what the pass does and when it resets is in anti_aliasing.rs.
 
 use bytemuck::{Pod, Zeroable};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -22,8 +22,12 @@ pub const TAA_SHADER: ComposedShader = ComposedShader {
     files: &[super::post_process::TONEMAPPING, TAA_ENTRY],
 };
 
-/// The history's format: filterable, storable, and wide enough for the pre-exposed scene.
+/// The history's format: filterable, storable, and wide enough for the pre-exposed scene (rgb)
+/// and the count of frames a pixel holds (a: whole numbers, exact in a half float).
 pub const HISTORY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The format of the view depth the history keeps for the next frame's disocclusion test.
+const HISTORY_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
 /// One TAA frame as the shader reads it; mirrors `TaaUniform` in taa.wgsl.
 #[repr(C)]
@@ -45,9 +49,9 @@ pub struct TaaUniform {
     pub previous_view_direction: [f32; 4],
     /// Frames in the history before this one (0: dropped).
     pub accumulated: u32,
-    /// Positions of the jitter before it repeats.
-    pub jitter_samples: u32,
-    /// Share of the new frame once settled.
+    /// Least share of the new frame in a still pixel.
+    pub still_weight: f32,
+    /// Least share of the new frame in a pixel moving half a pixel or more.
     pub current_weight: f32,
     /// Half-width of the clip box in standard deviations.
     pub clip_gamma: f32,
@@ -70,7 +74,7 @@ crate::wgsl_layout!(TaaUniform {
     previous_camera_position,
     previous_view_direction,
     accumulated,
-    jitter_samples,
+    still_weight,
     current_weight,
     clip_gamma,
     depth_tolerance,
@@ -98,7 +102,7 @@ impl TaaUniform {
             previous_camera_position: frame.previous.position.extend(1.0).into(),
             previous_view_direction: frame.previous.direction.extend(0.0).into(),
             accumulated: frame.accumulated,
-            jitter_samples: settings.jitter_samples,
+            still_weight: settings.still_weight,
             current_weight: settings.current_weight,
             clip_gamma: settings.clip_gamma,
             depth_tolerance: settings.depth_tolerance,
@@ -118,7 +122,8 @@ pub(crate) struct TaaInputs<'a> {
 /// Gives every pair of history textures its own id, so a bind group can tell it is for them.
 static NEXT_HISTORY_ID: AtomicU64 = AtomicU64::new(1);
 
-/// The two history textures of one target, and the bind group that writes each.
+/// The two histories of one target (colour and depth each; the bind groups keep the depth
+/// textures), and the bind group that writes each.
 #[derive(Debug)]
 struct HistoryTextures {
     target: u64,
@@ -166,6 +171,8 @@ impl TaaPass {
                 layout::filtering_sampler(3),
                 layout::compute_storage_texture(4, HISTORY_FORMAT),
                 layout::compute_uniform_buffer(5, false),
+                layout::unfilterable_texture_2d(6),
+                layout::compute_storage_texture(7, HISTORY_DEPTH_FORMAT),
             ],
         });
         let motion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -262,19 +269,21 @@ impl TaaPass {
         {
             return false;
         }
-        let texture = |label| {
+        let view = |label, format| {
             super::target::plain_texture(
                 gpu,
                 label,
                 target.size(),
-                HISTORY_FORMAT,
+                format,
                 wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
             )
+            .create_view(&wgpu::TextureViewDescriptor::default())
         };
-        let views = [texture("taa history 0"), texture("taa history 1")]
-            .map(|texture| texture.create_view(&wgpu::TextureViewDescriptor::default()));
+        let views = ["taa history 0", "taa history 1"].map(|label| view(label, HISTORY_FORMAT));
+        let depth_views = ["taa history depth 0", "taa history depth 1"]
+            .map(|label| view(label, HISTORY_DEPTH_FORMAT));
         let bind_group = |written: usize| {
             gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("taa bind group"),
@@ -303,6 +312,14 @@ impl TaaPass {
                     wgpu::BindGroupEntry {
                         binding: 5,
                         resource: self.uniform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 6,
+                        resource: wgpu::BindingResource::TextureView(&depth_views[1 - written]),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 7,
+                        resource: wgpu::BindingResource::TextureView(&depth_views[written]),
                     },
                 ],
             })

@@ -16,7 +16,8 @@ struct TaaUniform {
     previous_view_direction: vec4<f32>,
     // Frames in the history before this one (0: dropped).
     accumulated: u32,
-    jitter_samples: u32,
+    // The least share of the new frame in a still pixel, and in one moving half a pixel or more.
+    still_weight: f32,
     current_weight: f32,
     clip_gamma: f32,
     depth_tolerance: f32,
@@ -36,9 +37,12 @@ struct ObjectMotion {
 @group(0) @binding(1) var scene_depth: texture_depth_2d;
 @group(0) @binding(2) var history: texture_2d<f32>;
 @group(0) @binding(3) var history_sampler: sampler;
-// rgb: the anti-aliased scene; a: the view depth it shows (the next frame's disocclusion test).
+// rgb: the anti-aliased scene; a: the frames it holds at that pixel.
 @group(0) @binding(4) var resolved: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(5) var<uniform> taa: TaaUniform;
+// The view depth each pixel showed, for the next frame's disocclusion test: last frame's, this one's.
+@group(0) @binding(6) var history_depth: texture_2d<f32>;
+@group(0) @binding(7) var resolved_depth: texture_storage_2d<r32float, write>;
 // Per pixel, the number of the moving draw it shows (0: none), and the motions they number.
 @group(1) @binding(0) var motion_ids: texture_2d<u32>;
 @group(1) @binding(1) var<storage, read> object_motions: array<ObjectMotion>;
@@ -125,6 +129,18 @@ fn clip_to_box(colour: vec3<f32>, low: vec3<f32>, high: vec3<f32>) -> vec3<f32> 
     return select(colour, centre + offset / most, most > 1.0);
 }
 
+// The least share of the new frame in a pixel whose history moved by `motion` pixels: the
+// Catmull-Rom read at a fraction f of a pixel blurs by about f(1 - f), so a pixel that moves
+// less keeps its history longer; from half a pixel on, `current_weight`.
+fn least_weight(motion: vec2<f32>) -> f32 {
+    let f = min(abs(motion), vec2<f32>(0.5));
+    let blur = f * (1.0 - f);
+    return mix(taa.still_weight, taa.current_weight, saturate(4.0 * (blur.x + blur.y)));
+}
+
+// The most frames a pixel's history counts (its weight is then its floor's).
+const MOST_FRAMES: f32 = 1024.0;
+
 fn project(view_projection: mat4x4<f32>, world: vec3<f32>) -> vec3<f32> {
     let clip = view_projection * vec4<f32>(world, 1.0);
     return clip.xyz / clip.w;
@@ -209,26 +225,29 @@ fn taa_main(
     let uv = (vec2<f32>(pixel) + 0.5) / vec2<f32>(size) + (before - now) * vec2<f32>(0.5, -0.5);
     let view_depth = dot(world - taa.camera_position.xyz, taa.view_direction.xyz);
 
-    var weight = select(taa.current_weight, 1.0 / f32(taa.accumulated + 1u), taa.accumulated < taa.jitter_samples);
+    // The frames the history holds where the point was; none where it was dropped: a reset,
+    // off screen, or disoccluded.
+    var frames = 0.0;
     let on_screen = all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0));
-    if taa.accumulated == 0u || !on_screen || !(world_h.w != 0.0) {
-        weight = 1.0;
-    } else {
+    if taa.accumulated != 0u && on_screen && world_h.w != 0.0 {
         // The depth the history kept where the point was: nearer than the point would have
         // been, something hid it then (disocclusion), and the history is another surface's.
         let kept_at = clamp(vec2<i32>(uv * vec2<f32>(size)), vec2<i32>(0), last);
-        let kept = textureLoad(history, kept_at, 0).a;
+        let kept = textureLoad(history_depth, kept_at, 0).r;
         let expected = dot(world_before - taa.previous_camera_position.xyz, taa.previous_view_direction.xyz);
-        // The kept depth is a half float: a rounding of it is never a disocclusion.
-        if kept < expected - (taa.depth_tolerance + 1e-3) * abs(expected) {
-            weight = 1.0;
+        if kept >= expected - (taa.depth_tolerance + 1e-5) * abs(expected) {
+            frames = textureLoad(history, kept_at, 0).a;
         }
     }
+    // A plain mean while the history is short, then at least the floor of the pixel's motion.
+    let pixel_motion = uv * vec2<f32>(size) - (vec2<f32>(pixel) + 0.5);
+    let weight = max(1.0 / (frames + 1.0), least_weight(pixel_motion));
     var blended = current;
     if weight < 1.0 {
         let remembered = clip_to_box(to_ycocg(compress(sample_history(uv, vec2<f32>(size)))), low, high);
         blended = mix(remembered, current, weight);
     }
     let colour = finite_colour(expand(max(from_ycocg(blended), vec3<f32>(0.0))));
-    textureStore(resolved, pixel, vec4<f32>(colour, clamp(view_depth, -HALF_MAX, HALF_MAX)));
+    textureStore(resolved, pixel, vec4<f32>(colour, min(frames + 1.0, MOST_FRAMES)));
+    textureStore(resolved_depth, pixel, vec4<f32>(view_depth, 0.0, 0.0, 0.0));
 }

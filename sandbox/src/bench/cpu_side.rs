@@ -2,15 +2,17 @@
 //! submission) stages timed separately with the CPU clock, by marker systems added at the end of
 //! PostUpdate, Extract, Prepare and Render. A share of the entities turns every frame, so that
 //! Prepare has their transforms to upload (with none moving it uploads nothing after frame 1:
-//! the best case).
+//! the best case). Under TAA the same frames also follow each moving entity's model (its
+//! motion for the object motion pass), which the cases with `taa` measure.
 
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use pom::glam::{Quat, Vec3};
+use pom::shader::Choice;
 use pom::{
-    App, Assets, Camera, DirectionalLight, Image, Mesh, ParallaxOcclusionMaterial, PomPlugin,
-    RenderPlugin, Resources, Stage, Transform,
+    AntiAliasing, App, Assets, Camera, DirectionalLight, Image, Mesh, ParallaxOcclusionMaterial,
+    PomPlugin, RenderPlugin, Resources, Stage, Transform,
 };
 use serde::Serialize;
 
@@ -25,6 +27,8 @@ pub struct CpuSide {
     pub entities: usize,
     /// The percentage of them that turn every frame.
     pub moving_percent: u32,
+    /// The camera's anti-aliasing, `off` or `taa` (which follows each moving entity).
+    pub anti_aliasing: &'static str,
     /// The path the frames ran, `forward` or `deferred`.
     pub path: &'static str,
     /// Extract stage.
@@ -47,9 +51,16 @@ fn mark<const INDEX: usize>(_: &mut pom::hecs::World, resources: &mut Resources)
 /// Marks an entity that turns every frame.
 struct Moving;
 
-/// The percentages of moving entities each measurement is made with: none (the best case),
-/// a tenth (a game's usual share) and all.
-pub const MOVING_PERCENTS: [u32; 3] = [0, 10, 100];
+/// The cases measured, as (percentage of moving entities, anti-aliasing): none moving (the
+/// best case), a tenth (a game's usual share) and all, without anti-aliasing; then a tenth and
+/// all under TAA, which follows every moving entity's model.
+pub const CASES: [(u32, AntiAliasing); 5] = [
+    (0, AntiAliasing::Off),
+    (10, AntiAliasing::Off),
+    (100, AntiAliasing::Off),
+    (10, AntiAliasing::Taa),
+    (100, AntiAliasing::Taa),
+];
 
 /// Turns every moving entity to a new angle about its vertical axis (every frame differs from
 /// the last, so each moving transform is uploaded again).
@@ -63,11 +74,12 @@ fn turn_moving(world: &mut pom::hecs::World, resources: &mut Resources) {
     }
 }
 
-/// Spawns `entities` small planes in a grid under one camera, `moving_percent` of them turning
-/// every frame, and times `frames` frames after `warmup` ones, rendered on `path`.
+/// Spawns `entities` small planes in a grid under one camera with `anti_aliasing`,
+/// `moving_percent` of them turning every frame, and times `frames` frames after `warmup`
+/// ones, rendered on `path`.
 pub fn measure(
     entities: usize,
-    moving_percent: u32,
+    (moving_percent, anti_aliasing): (u32, AntiAliasing),
     textures: &PreviewTextures,
     path: pom::RenderPath,
     warmup: usize,
@@ -114,6 +126,7 @@ pub fn measure(
     let extent = side as f32;
     app.world.spawn((
         Camera::perspective(60.0),
+        anti_aliasing,
         Transform::from_xyz(0.0, extent, extent).looking_at(Vec3::ZERO, Vec3::Y),
     ));
     app.world.spawn((
@@ -145,6 +158,7 @@ pub fn measure(
     Ok(CpuSide {
         entities,
         moving_percent,
+        anti_aliasing: anti_aliasing.name(),
         path: path_name(deferred),
         extract: spread(&stages[0])?,
         prepare: spread(&stages[1])?,

@@ -185,14 +185,16 @@ impl Runner<'_> {
             }
         }
         if wanted(Measurement::CpuSide) {
-            for moving_percent in cpu_side::MOVING_PERCENTS {
+            for case in cpu_side::CASES {
                 eprintln!(
-                    "timing the CPU side with {} entities, {moving_percent} % moving{on_path} ...",
-                    args.entities
+                    "timing the CPU side with {} entities, {} % moving, AA {}{on_path} ...",
+                    args.entities,
+                    case.0,
+                    case.1.name()
                 );
                 self.cpu_side.push(cpu_side::measure(
                     args.entities,
-                    moving_percent,
+                    case,
                     self.textures,
                     asked,
                     self.warmup.frames,

@@ -273,10 +273,11 @@ impl BenchReport {
         for cpu in &self.cpu_side {
             let _ = writeln!(
                 out,
-                "\nCPU, {} parallax entities ({} % moving), {}, median ms per frame: extract \
-                 {:.3}, prepare {:.3}, render (record + submit) {:.3}, total {:.3}",
+                "\nCPU, {} parallax entities ({} % moving), AA {}, {}, median ms per frame: \
+                 extract {:.3}, prepare {:.3}, render (record + submit) {:.3}, total {:.3}",
                 cpu.entities,
                 cpu.moving_percent,
+                cpu.anti_aliasing,
                 cpu.path,
                 cpu.extract.median_ms,
                 cpu.prepare.median_ms,
