@@ -124,11 +124,16 @@ fn main() -> AppExit {
     app.run()
 }
 
-/// The live GPU objects that could leak, as one line.
-fn live_objects(resources: &Resources) -> String {
+/// The live GPU objects that could leak, as one line. The GPU is waited for first: objects
+/// dropped while a submission still used them are freed only once it is done, so a count taken
+/// with frames in flight (a loaded machine) would hold some of them.
+fn live_objects(resources: &Resources, wait: bool) -> String {
     let Some(gpu) = resources.get::<GpuContext>() else {
         return "no GPU".to_owned();
     };
+    if wait {
+        let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+    }
     let hal = gpu.device.get_internal_counters().hal;
     format!(
         "buffers={} texture_memory={} texture_views={} bind_groups={}",
@@ -147,7 +152,12 @@ fn probe(world: &mut World, resources: &mut Resources) {
     let (frames, lose_device_at, resizes) = (plan.frames, plan.lose_device_at, plan.resizes);
     let panic_from = plan.panic_from;
     let held = plan.hold_until.as_ref().is_some_and(|file| !file.exists());
-    let live = live_objects(resources);
+    // Only the updates whose counts are reported wait for the GPU (the others keep its pace).
+    let counted = resizes > 0
+        && resources
+            .get::<Seen>()
+            .is_some_and(|seen| seen.updates + 1 == WARM_UP || seen.settle_from.is_some());
+    let live = live_objects(resources, counted);
     let resized = resources
         .get::<WindowEvents>()
         .is_some_and(|events| events.resized.is_some());
