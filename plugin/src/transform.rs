@@ -125,25 +125,40 @@ pub struct Parent(pub Entity);
 /// Computes every entity's [`GlobalTransform`] from its [`Transform`] and its ancestors'.
 ///
 /// Runs in [`crate::Stage::PostUpdate`]. Works iteratively, so hierarchies of any depth are fine.
+/// Entities without a [`Parent`] (most of a scene) are written in one pass over their
+/// components as they lie in memory; only children are looked up one by one.
 pub fn propagate_transforms(world: &mut World, _: &mut Resources) {
     let mut children: HashMap<Entity, Vec<Entity>> = HashMap::new();
-    let mut roots = Vec::new();
-    for (entity, _, parent) in world
-        .query::<(Entity, &Transform, Option<&Parent>)>()
-        .iter()
-    {
-        match parent {
-            Some(Parent(parent)) if world.satisfies::<&Transform>(*parent) => {
-                children.entry(*parent).or_default().push(entity);
-            }
-            _ => roots.push(entity),
+    // Children whose parent is gone (or has no Transform) are roots.
+    let mut stack: Vec<(Entity, Affine3A)> = Vec::new();
+    for (entity, _, Parent(parent)) in world.query::<(Entity, &Transform, &Parent)>().iter() {
+        if world.satisfies::<&Transform>(*parent) {
+            children.entry(*parent).or_default().push(entity);
+        } else {
+            stack.push((entity, Affine3A::IDENTITY));
         }
     }
 
-    let mut stack: Vec<(Entity, Affine3A)> = roots
-        .into_iter()
-        .map(|entity| (entity, Affine3A::IDENTITY))
-        .collect();
+    let mut without_global = Vec::new();
+    for (entity, transform, global) in world
+        .query_mut::<(Entity, &Transform, Option<&mut GlobalTransform>)>()
+        .without::<&Parent>()
+    {
+        let affine = transform.to_affine();
+        match global {
+            Some(global) => global.0 = affine,
+            None => without_global.push((entity, affine)),
+        }
+        if !children.is_empty()
+            && let Some(kids) = children.remove(&entity)
+        {
+            stack.extend(kids.into_iter().map(|kid| (kid, affine)));
+        }
+    }
+    for (entity, affine) in without_global {
+        write_global(world, entity, affine);
+    }
+
     while let Some((entity, parent_global)) = stack.pop() {
         let Ok(local) = world.get::<&Transform>(entity).map(|t| t.to_affine()) else {
             continue;

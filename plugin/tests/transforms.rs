@@ -109,3 +109,47 @@ fn looking_at_points_minus_z_at_the_target() {
     let parallel_up = Transform::IDENTITY.looking_at(Vec3::Y, Vec3::Y);
     assert_eq!(parallel_up.rotation, Quat::IDENTITY);
 }
+
+#[test]
+fn a_child_of_a_parent_without_a_transform_is_a_root() {
+    let mut world = World::new();
+    let untransformed = world.spawn(());
+    let child = world.spawn((Transform::from_xyz(5.0, 0.0, 0.0), Parent(untransformed)));
+    propagate(&mut world);
+    assert_eq!(global_translation(&world, child), Vec3::new(5.0, 0.0, 0.0));
+}
+
+#[test]
+fn roots_with_and_without_a_global_transform_carry_their_children() {
+    let mut world = World::new();
+    let fresh = world.spawn((Transform::from_xyz(1.0, 0.0, 0.0),));
+    let kept = world.spawn((
+        Transform::from_xyz(2.0, 0.0, 0.0),
+        GlobalTransform::default(),
+    ));
+    let under_fresh = world.spawn((Transform::from_xyz(0.0, 1.0, 0.0), Parent(fresh)));
+    let under_kept = world.spawn((Transform::from_xyz(0.0, 0.0, 1.0), Parent(kept)));
+    propagate(&mut world);
+    assert_eq!(global_translation(&world, fresh), Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(global_translation(&world, kept), Vec3::new(2.0, 0.0, 0.0));
+    assert_eq!(
+        global_translation(&world, under_fresh),
+        Vec3::new(1.0, 1.0, 0.0)
+    );
+    assert_eq!(
+        global_translation(&world, under_kept),
+        Vec3::new(2.0, 0.0, 1.0)
+    );
+}
+
+#[test]
+fn a_parent_cycle_keeps_its_last_global_transforms() {
+    let mut world = World::new();
+    let first = world.spawn((Transform::from_xyz(1.0, 0.0, 0.0),));
+    let second = world.spawn((Transform::from_xyz(0.0, 1.0, 0.0), Parent(first)));
+    propagate(&mut world);
+    world.insert_one(first, Parent(second)).unwrap();
+    propagate(&mut world);
+    assert_eq!(global_translation(&world, first), Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(global_translation(&world, second), Vec3::new(1.0, 1.0, 0.0));
+}

@@ -214,6 +214,7 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     for cpu in cpu_side {
         assert_eq!(cpu["entities"], 200);
         assert!(cpu["total"]["median_ms"].as_f64().unwrap() > 0.0);
+        assert!(cpu["transforms"]["median_ms"].as_f64().unwrap() > 0.0);
     }
     assert!(json["adapter"]["software_driver"].is_boolean());
     // Frames whose timestamps were rejected or missing are counted, not reused.

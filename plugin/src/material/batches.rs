@@ -5,13 +5,13 @@
 //! frame's transparent phase orders among every material's). Recording them into passes is
 //! [`super::draw`]'s.
 
-use std::collections::HashMap;
 use std::ops::Range;
 
 use glam::Mat4;
 
 use super::deferred::{DeferredResolve, ResolveTargets};
-use super::draw_order::{SortEntry, view_depth};
+use super::draw_order::{SortEntry, SortMemory, view_depth};
+use super::followed_models::FollowedModels;
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
@@ -78,14 +78,6 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) deferred: Option<ResolveTargets<'a>>,
 }
 
-/// Each followed entity's model in the last TAA frame, and this frame's as they are gathered
-/// (the two swap after each frame).
-#[derive(Default)]
-struct ModelsSeen {
-    previous: HashMap<hecs::Entity, Mat4>,
-    current: HashMap<hecs::Entity, Mat4>,
-}
-
 /// What the frame numbers across every material's draws, handed to each as it prepares.
 pub(crate) struct FrameNumbers<'a> {
     /// The deferred path's visibility ids.
@@ -124,12 +116,13 @@ pub(crate) struct MaterialBatches<M: Material> {
     /// The blended batches of the last prepared frame: (centre's view depth, batch index).
     pub(super) blended: Vec<(f32, u32)>,
     order: Vec<SortEntry<M::Key>>,
+    sort_memory: SortMemory<M::Key>,
     // The model matrix (and whether it receives shadows) and transform of each sorted slot,
     // kept from frame to frame.
     models: Vec<(Mat4, bool)>,
     transform_data: Vec<MeshTransform>,
-    // On TAA frames, each followed entity's model last frame and this frame's.
-    models_seen: ModelsSeen,
+    // On TAA frames, each followed entity's model last frame.
+    followed: FollowedModels,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
     uniform_data: Vec<M::PerDraw>,
     sorted_uniforms: Vec<M::PerDraw>,
@@ -185,15 +178,8 @@ impl<M: Material> MaterialBatches<M> {
         });
         let resolve = deferred.then(|| DeferredResolve::new(gpu, M::NAME, color_format));
         let resolve_layout = resolve.as_ref().map(|resolve| {
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(&format!("{} deferred resolve layout", M::NAME)),
-                bind_group_layouts: &[
-                    Some(frame_groups.layout()),
-                    Some(textures.layout()),
-                    Some(resolve.layout()),
-                ],
-                immediate_size: 0,
-            })
+            let groups = [frame_groups.layout(), textures.layout(), resolve.layout()];
+            resolve_pipeline_layout::<M>(device, groups)
         });
         Self {
             pipelines: MaterialPipelines::new(PipelineSetup {
@@ -213,9 +199,10 @@ impl<M: Material> MaterialBatches<M> {
             batches: Vec::new(),
             blended: Vec::new(),
             order: Vec::new(),
+            sort_memory: SortMemory::default(),
             models: Vec::new(),
             transform_data: Vec::new(),
-            models_seen: ModelsSeen::default(),
+            followed: FollowedModels::default(),
             uniform_data: Vec::new(),
             sorted_uniforms: Vec::new(),
         }
@@ -234,7 +221,7 @@ impl<M: Material> MaterialBatches<M> {
         FrameNumbers { ids, motions }: FrameNumbers<'_>,
     ) {
         self.gather(inputs, draws, assets, lod_cache, stats);
-        SortEntry::sort(&mut self.order);
+        SortEntry::sort(&mut self.order, &mut self.sort_memory);
         self.update_transforms(draws);
         self.update_motions(draws, motions);
         self.sorted_uniforms.clear();
@@ -336,28 +323,19 @@ impl<M: Material> MaterialBatches<M> {
     fn update_motions(&mut self, draws: &[ExtractedDraw<M>], motions: Option<&mut ObjectMotions>) {
         let Some(motions) = motions else {
             // Only the frame after a TAA frame has numbers to take back.
-            if !self.models_seen.previous.is_empty() {
-                self.models_seen.previous.clear();
+            if self.followed.forget() {
                 for transform in &mut self.transform_data {
                     transform.motion = 0;
                 }
             }
             return;
         };
-        let seen = &mut self.models_seen;
-        seen.current.clear();
+        let numbers = self
+            .followed
+            .number_motions(draws.iter().map(|draw| (draw.entity, draw.model)), motions);
         for (slot, entry) in self.order.iter().enumerate() {
-            let draw = &draws[entry.draw];
-            let mut motion = 0;
-            if let Some(previous) = seen.previous.get(&draw.entity)
-                && *previous != draw.model
-            {
-                motion = motions.push(*previous, draw.model);
-            }
-            seen.current.insert(draw.entity, draw.model);
-            self.transform_data[slot].motion = motion;
+            self.transform_data[slot].motion = numbers[entry.draw];
         }
-        std::mem::swap(&mut seen.previous, &mut seen.current);
     }
 
     /// Merges the sorted draws into batches (runs of opaque draws sharing key, shadow role,
@@ -485,6 +463,19 @@ impl<M: Material> MaterialBatches<M> {
             }
         }
     }
+}
+
+/// The pipeline layout of material `M`'s deferred resolve: the frame's, the textures' and the
+/// resolve's own bind groups.
+fn resolve_pipeline_layout<M: Material>(
+    device: &wgpu::Device,
+    [frame, textures, resolve]: [&wgpu::BindGroupLayout; 3],
+) -> wgpu::PipelineLayout {
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&format!("{} deferred resolve layout", M::NAME)),
+        bind_group_layouts: &[Some(frame), Some(textures), Some(resolve)],
+        immediate_size: 0,
+    })
 }
 
 /// The world-space centre and radius of the bounding sphere of a mesh with `bounds` drawn with

@@ -7,6 +7,22 @@ use super::batches::ExtractedDraw;
 use crate::render::texture_bind_groups::BoundTextures;
 use crate::{AssetId, Mesh};
 
+/// What the sort keeps from frame to frame: last frame's sorted order (the draws' indices),
+/// and storage it reuses.
+pub(super) struct SortMemory<K> {
+    last_sorted: Vec<usize>,
+    unsorted: Vec<SortEntry<K>>,
+}
+
+impl<K> Default for SortMemory<K> {
+    fn default() -> Self {
+        Self {
+            last_sorted: Vec::new(),
+            unsorted: Vec::new(),
+        }
+    }
+}
+
 /// One draw's place in the order, and what decides it.
 #[derive(Clone, Copy)]
 pub(super) struct SortEntry<K> {
@@ -60,12 +76,33 @@ impl<K: Copy + Ord> SortEntry<K> {
         }
     }
 
-    /// Sorts `order`: opaque batches first (pipeline, textures, mesh), then nearest first within
-    /// a batch: the prepass then rejects hidden copies early (measured in
-    /// sandbox/BENCHMARKS.md, "overdraw"). Blended draws after them, farthest first. Stable:
-    /// draws that share everything keep the order of the world's query. Most frames come in the
-    /// order the last one was sorted into (a still camera), which the check finds in one pass.
-    pub(super) fn sort(order: &mut [Self]) {
+    /// Sorts `order` (entries in extraction order: entry `i` is draw `i`): opaque batches first
+    /// (pipeline, textures, mesh), then nearest first within a batch: the prepass then rejects
+    /// hidden copies early (measured in sandbox/BENCHMARKS.md, "overdraw"). Blended draws after
+    /// them, farthest first. Stable: draws that share everything keep the order of the world's
+    /// query.
+    ///
+    /// The draws come in the world's order every frame, which need not be the sorted one (10,000
+    /// spawned in a grid took 1.5 ms a frame to sort, sandbox/BENCHMARKS.md, "Following
+    /// models"). So where there are as many draws as last frame, they are first put in last
+    /// frame's sorted order (kept in `memory`), which a still camera finds sorted in one pass
+    /// and a moving one nearly so.
+    pub(super) fn sort(order: &mut Vec<Self>, memory: &mut SortMemory<K>) {
+        debug_assert!(
+            order
+                .iter()
+                .enumerate()
+                .all(|(index, entry)| entry.draw == index)
+        );
+        let SortMemory {
+            last_sorted,
+            unsorted,
+        } = memory;
+        if last_sorted.len() == order.len() {
+            unsorted.clear();
+            unsorted.extend(last_sorted.iter().map(|&draw| order[draw]));
+            std::mem::swap(order, unsorted);
+        }
         let sort_key = |entry: &Self| {
             (
                 entry.blends,
@@ -75,11 +112,14 @@ impl<K: Copy + Ord> SortEntry<K> {
                 entry.textures,
                 entry.mesh,
                 entry.view_depth,
+                entry.draw,
             )
         };
         if !order.is_sorted_by_key(sort_key) {
-            order.sort_by_key(sort_key);
+            order.sort_unstable_by_key(sort_key);
         }
+        last_sorted.clear();
+        last_sorted.extend(order.iter().map(|entry| entry.draw));
     }
 }
 
@@ -91,4 +131,67 @@ pub(super) fn view_depth(point: Vec3, (eye, forward): (Vec3, Vec3)) -> f32 {
 /// `depth` as bits that order like the number (depths behind the eye count as 0).
 fn depth_order_bits(depth: f32) -> u32 {
     if depth > 0.0 { depth.to_bits() } else { 0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Assets;
+
+    /// Draw `index` with batch key `key` at `depth` (opaque, no textures, one mesh).
+    fn entry(index: usize, key: u32, depth: u32, mesh: AssetId<Mesh>) -> SortEntry<u32> {
+        SortEntry {
+            key,
+            casts_shadows: true,
+            textures: BoundTextures {
+                images: Default::default(),
+                derived: Default::default(),
+            },
+            mesh,
+            view_depth: depth,
+            nearest_depth: depth as f32,
+            blends: false,
+            far_first: 0,
+            centre_depth: 0.0,
+            draw: index,
+        }
+    }
+
+    /// The draws in the order `sort` puts them, starting from `last_sorted` (replaced by it).
+    fn sorted_draws(entries: &[SortEntry<u32>], last_sorted: &mut Vec<usize>) -> Vec<usize> {
+        let mut order = entries.to_vec();
+        let mut memory = SortMemory {
+            last_sorted: std::mem::take(last_sorted),
+            unsorted: Vec::new(),
+        };
+        SortEntry::sort(&mut order, &mut memory);
+        *last_sorted = memory.last_sorted;
+        order.iter().map(|entry| entry.draw).collect()
+    }
+
+    #[test]
+    fn last_frames_order_changes_nothing_but_the_work() {
+        let mesh = Assets::<Mesh>::default().add(Mesh::plane(1.0)).id();
+        // Keys 0..3, depths descending with the world's order, and ties (same key and depth).
+        let entries: Vec<_> = (0..40)
+            .map(|index| entry(index, (index % 3) as u32, 100 - (index / 2) as u32, mesh))
+            .collect();
+        let mut fresh = Vec::new();
+        let expected = sorted_draws(&entries, &mut fresh);
+        assert_eq!(
+            fresh, expected,
+            "the sorted order is kept for the next frame"
+        );
+        // Key first, nearest first, ties in the world's order.
+        assert!(expected.windows(2).all(|pair| {
+            let (a, b) = (&entries[pair[0]], &entries[pair[1]]);
+            (a.key, a.view_depth, a.draw) < (b.key, b.view_depth, b.draw)
+        }));
+        // Starting from last frame's order, or from any other, gives the same order.
+        assert_eq!(sorted_draws(&entries, &mut expected.clone()), expected);
+        let reversed: Vec<usize> = (0..entries.len()).rev().collect();
+        assert_eq!(sorted_draws(&entries, &mut reversed.clone()), expected);
+        // Another count of draws starts from the world's order.
+        assert_eq!(sorted_draws(&entries, &mut vec![0, 1]), expected);
+    }
 }

@@ -9,6 +9,7 @@ mod deferred;
 mod draw;
 mod draw_order;
 mod extract;
+mod followed_models;
 mod frame_bindings;
 mod layout_check;
 mod pipelines;

@@ -1,6 +1,7 @@
-//! CPU cost of many parallax entities: the Extract, Prepare and Render (command recording and
-//! submission) stages timed separately with the CPU clock, by marker systems added at the end of
-//! PostUpdate, Extract, Prepare and Render. A share of the entities turns every frame, so that
+//! CPU cost of many parallax entities: propagating their transforms (PostUpdate), and the
+//! Extract, Prepare and Render (command recording and submission) stages, timed separately with
+//! the CPU clock by marker systems added at the end of Update, PostUpdate, Extract, Prepare and
+//! Render. A share of the entities turns every frame, so that
 //! Prepare has their transforms to upload (with none moving it uploads nothing after frame 1:
 //! the best case). Under TAA the same frames also follow each moving entity's model (its
 //! motion for the object motion pass), which the cases with `taa` measure.
@@ -31,18 +32,20 @@ pub struct CpuSide {
     pub anti_aliasing: &'static str,
     /// The path the frames ran, `forward` or `deferred`.
     pub path: &'static str,
+    /// The end of Update to the end of PostUpdate: propagating the transforms.
+    pub transforms: Spread,
     /// Extract stage.
     pub extract: Spread,
     /// Prepare stage (uploads; after the first frame only per-object data changes).
     pub prepare: Spread,
     /// Render stage: recording the main pass and submitting (GPU timing off).
     pub render: Spread,
-    /// The three together.
+    /// Extract, prepare and render together.
     pub total: Spread,
 }
 
 #[derive(Default)]
-struct StageMarks([Option<Instant>; 4]);
+struct StageMarks([Option<Instant>; 5]);
 
 fn mark<const INDEX: usize>(_: &mut pom::hecs::World, resources: &mut Resources) {
     resources.get_or_default::<StageMarks>().0[INDEX] = Some(Instant::now());
@@ -96,7 +99,8 @@ pub fn measure(
         .add_system(Stage::Extract, mark::<1>)
         .add_system(Stage::Prepare, mark::<2>)
         .add_system(Stage::Render, mark::<3>)
-        .add_system(Stage::Update, turn_moving);
+        .add_system(Stage::Update, turn_moving)
+        .add_system(Stage::Update, mark::<4>);
     app.finish().context("starting the GPU")?;
     let side = (entities as f32).sqrt().ceil().max(1.0) as usize;
     let plane = app
@@ -138,14 +142,14 @@ pub fn measure(
         app.update().context("rendering a warm-up frame")?;
     }
     let deferred = last_frame_deferred(&app);
-    let mut stages = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+    let mut stages: [Vec<f64>; 5] = Default::default();
     for _ in 0..frames {
         app.update().context("rendering a timed frame")?;
         let marks = app
             .resources
             .get::<StageMarks>()
             .context("the stage markers did not run")?;
-        let [Some(a), Some(b), Some(c), Some(d)] = marks.0 else {
+        let [Some(a), Some(b), Some(c), Some(d), Some(updated)] = marks.0 else {
             anyhow::bail!("a stage marker did not run");
         };
         let ms = |from: Instant, to: Instant| to.duration_since(from).as_secs_f64() * 1e3;
@@ -153,6 +157,7 @@ pub fn measure(
         stages[1].push(ms(b, c));
         stages[2].push(ms(c, d));
         stages[3].push(ms(a, d));
+        stages[4].push(ms(updated, a));
     }
     let spread = |values: &[f64]| Spread::of(values).context("no CPU timings");
     Ok(CpuSide {
@@ -160,6 +165,7 @@ pub fn measure(
         moving_percent,
         anti_aliasing: anti_aliasing.name(),
         path: path_name(deferred),
+        transforms: spread(&stages[4])?,
         extract: spread(&stages[0])?,
         prepare: spread(&stages[1])?,
         render: spread(&stages[2])?,

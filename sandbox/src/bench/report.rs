@@ -274,11 +274,13 @@ impl BenchReport {
             let _ = writeln!(
                 out,
                 "\nCPU, {} parallax entities ({} % moving), AA {}, {}, median ms per frame: \
-                 extract {:.3}, prepare {:.3}, render (record + submit) {:.3}, total {:.3}",
+                 transforms {:.3}, extract {:.3}, prepare {:.3}, render (record + submit) {:.3}, \
+                 total {:.3}",
                 cpu.entities,
                 cpu.moving_percent,
                 cpu.anti_aliasing,
                 cpu.path,
+                cpu.transforms.median_ms,
                 cpu.extract.median_ms,
                 cpu.prepare.median_ms,
                 cpu.render.median_ms,
