@@ -53,6 +53,7 @@ pub fn march_steps(min_samples: u32, max_samples: u32, n_dot_v: f32, texels_cros
     wanted.min(needed).clamp(1.0, max_samples.max(1) as f32) as u32
 }
 
+#[derive(Clone)]
 struct Crossing {
     above_uv: Vec2,
     above_ray: f32,
@@ -124,27 +125,60 @@ fn secant_refinement(crossing: &Crossing) -> RayHit {
     }
 }
 
+/// `narrowed` of march.wgsl: `bracket` with the sample at `uv` as its end on the side the
+/// sample falls.
+fn narrowed(bracket: &Crossing, uv: Vec2, ray: f32, surface: f32) -> Crossing {
+    let mut narrower = bracket.clone();
+    narrower.samples += 1;
+    if surface >= ray {
+        (
+            narrower.below_uv,
+            narrower.below_ray,
+            narrower.below_surface,
+        ) = (uv, ray, surface);
+    } else {
+        (
+            narrower.above_uv,
+            narrower.above_ray,
+            narrower.above_surface,
+        ) = (uv, ray, surface);
+    }
+    narrower
+}
+
+/// `secant_steps_refinement` of march.wgsl: the secant `steps` times, keeping the bracket
+/// that holds the crossing each time (false position).
+fn secant_steps_refinement(field: &HeightField, crossing: &Crossing, steps: u32) -> RayHit {
+    let mut bracket = crossing.clone();
+    for _ in 1..steps {
+        let hit = secant_refinement(&bracket);
+        bracket = narrowed(
+            &bracket,
+            hit.uv,
+            hit.height,
+            field.sample(hit.uv.x, hit.uv.y),
+        );
+    }
+    secant_refinement(&bracket)
+}
+
 fn binary_refinement(field: &HeightField, crossing: &Crossing, steps: u32) -> RayHit {
-    let (mut above_uv, mut above_ray) = (crossing.above_uv, crossing.above_ray);
-    let (mut below_uv, mut below_ray) = (crossing.below_uv, crossing.below_ray);
+    let mut bracket = crossing.clone();
     for _ in 0..steps {
-        let middle_uv = (above_uv + below_uv) * 0.5;
-        let middle_ray = (above_ray + below_ray) * 0.5;
-        if field.sample(middle_uv.x, middle_uv.y) >= middle_ray {
-            (below_uv, below_ray) = (middle_uv, middle_ray);
-        } else {
-            (above_uv, above_ray) = (middle_uv, middle_ray);
-        }
+        let middle_uv = (bracket.above_uv + bracket.below_uv) * 0.5;
+        let middle_ray = (bracket.above_ray + bracket.below_ray) * 0.5;
+        let surface = field.sample(middle_uv.x, middle_uv.y);
+        bracket = narrowed(&bracket, middle_uv, middle_ray, surface);
     }
     RayHit {
-        uv: (above_uv + below_uv) * 0.5,
-        height: (above_ray + below_ray) * 0.5,
-        samples: crossing.samples + steps,
+        uv: (bracket.above_uv + bracket.below_uv) * 0.5,
+        height: (bracket.above_ray + bracket.below_ray) * 0.5,
+        samples: bracket.samples,
     }
 }
 
 /// `march_view` of march.wgsl: the visible point for the view ray entering at `uv`, relief
-/// mapping taking the material's default bisection steps.
+/// mapping and parallax occlusion mapping taking the material's default refinement steps.
 pub fn march_view(
     field: &HeightField,
     method: ParallaxMethod,
@@ -153,11 +187,15 @@ pub fn march_view(
     height_scale: f32,
     steps: u32,
 ) -> RayHit {
-    let binary_steps = crate::ParallaxOcclusionMaterial::default().relief_binary_steps;
+    let defaults = crate::ParallaxOcclusionMaterial::default();
+    let refinement_steps = match method {
+        ParallaxMethod::Relief => defaults.relief_binary_steps,
+        _ => defaults.secant_steps,
+    };
     march_view_with(
         field,
         method,
-        binary_steps,
+        refinement_steps,
         uv,
         to_eye_ts,
         height_scale,
@@ -165,12 +203,13 @@ pub fn march_view(
     )
 }
 
-/// [`march_view`] with relief mapping's bisection steps given.
+/// [`march_view`] with the refinement's steps given: relief mapping's bisections, or parallax
+/// occlusion mapping's secant steps.
 /// The parallax offset vector is P = −[`ray_offset`]`(to_eye_ts, height_scale)`.
 pub fn march_view_with(
     field: &HeightField,
     method: ParallaxMethod,
-    binary_steps: u32,
+    refinement_steps: u32,
     uv: Vec2,
     to_eye_ts: Vec3,
     height_scale: f32,
@@ -216,8 +255,8 @@ pub fn march_view_with(
             height: crossing.below_ray,
             samples: crossing.samples,
         },
-        ParallaxMethod::Relief => binary_refinement(field, &crossing, binary_steps),
-        _ => secant_refinement(&crossing),
+        ParallaxMethod::Relief => binary_refinement(field, &crossing, refinement_steps),
+        _ => secant_steps_refinement(field, &crossing, refinement_steps),
     }
 }
 

@@ -477,42 +477,60 @@ fn a_moving_sphere_leaves_no_ghost_four_frames_after() {
     );
 }
 
+/// Secant steps the jittered march takes in the test that meets the issue's target at 60°.
+const JITTERED_SECANT_STEPS: u32 = 3;
+
 #[test]
 fn the_jittered_march_at_16_samples_settles_nearer_the_march_at_50() {
     let size = 128;
     for angle in [60.0, 80.0] {
-        let app = |size, samples: u32, jitter: bool| {
+        let app = |size, samples: u32, jitter: bool, secant_steps: u32| {
             relief(size, angle, 0.15, 1.0, TargetFormat::Srgb8, |material| {
                 material.min_samples = samples.min(8);
                 material.max_samples = samples;
                 material.jitter_march = jitter;
+                material.secant_steps = secant_steps;
             })
         };
         let reference = box_filtered(
-            &settled(&mut app(size * 4, 50, false), AntiAliasing::Off),
+            &settled(&mut app(size * 4, 50, false, 1), AntiAliasing::Off),
             4,
         );
-        let many = settled(&mut app(size, 50, false), AntiAliasing::Taa);
-        let few = settled(&mut app(size, 16, false), AntiAliasing::Taa);
-        let jittered = settled(&mut app(size, 16, true), AntiAliasing::Taa);
-        let flip = |a: &RgbaImage, b: &RgbaImage| pom::flip_compare(a, b, 0.99).unwrap().mean;
-        let [many_error, few_error, jittered_error] =
-            [&many, &few, &jittered].map(|image| flip(&reference, image));
-        eprintln!(
-            "{angle}°, TAA settled, FLIP mean against the 4x reference: 50 samples {many_error:.4}, \
-             16 {few_error:.4}, 16 jittered {jittered_error:.4}; jittered 16 against 50 directly {:.4}",
-            flip(&many, &jittered)
-        );
-        save_for_looking(&format!("jittered-march-{angle}-16"), &few);
-        save_for_looking(&format!("jittered-march-{angle}-16-jittered"), &jittered);
+        let flip = |image: &RgbaImage| pom::flip_compare(&reference, image, 0.99).unwrap().mean;
+        let many = settled(&mut app(size, 50, false, 1), AntiAliasing::Taa);
+        let many_error = flip(&many);
         save_for_looking(&format!("jittered-march-{angle}-50"), &many);
-        // The issue's target, within 0.01 of 50 samples, is not met (0.017 at 60°): the
-        // jitter turns the layers of 16 samples into noise the history averages, which takes
-        // away their staircase but not all of their error.
-        assert!(
-            jittered_error < few_error,
-            "{angle}°: jittered {jittered_error}, plain {few_error}"
-        );
+        let mut jittered_errors = Vec::new();
+        for secant_steps in [1, JITTERED_SECANT_STEPS] {
+            let few = settled(&mut app(size, 16, false, secant_steps), AntiAliasing::Taa);
+            let jittered = settled(&mut app(size, 16, true, secant_steps), AntiAliasing::Taa);
+            let [few_error, jittered_error] = [&few, &jittered].map(flip);
+            eprintln!(
+                "{angle}°, TAA settled, FLIP mean against the 4x reference: 50 samples \
+                 {many_error:.4}; 16 with {secant_steps} secant steps: plain {few_error:.4}, \
+                 jittered {jittered_error:.4}"
+            );
+            let name = format!("jittered-march-{angle}-16-secant-{secant_steps}");
+            save_for_looking(&name, &few);
+            save_for_looking(&format!("{name}-jittered"), &jittered);
+            assert!(
+                jittered_error < few_error,
+                "{angle}°, {secant_steps} secant steps: jittered {jittered_error}, plain {few_error}"
+            );
+            jittered_errors.push(jittered_error);
+        }
+        // The jitter averages the layers of 16 samples away; what stays is the secant's error on
+        // the stones' curved slopes, which more secant steps take away. At 80° the issue's
+        // target is not met: crests thinner than a step are met by only some of the jittered
+        // starts, and the mean blends them with the stone behind (BENCHMARKS.md).
+        if angle == 60.0 {
+            let jittered_error = jittered_errors[1];
+            assert!(
+                jittered_error <= many_error + 0.01,
+                "{angle}°: jittered with {JITTERED_SECANT_STEPS} secant steps {jittered_error}, \
+                 50 samples {many_error}"
+            );
+        }
     }
 }
 

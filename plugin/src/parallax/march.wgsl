@@ -178,6 +178,42 @@ fn secant_refinement(crossing: Crossing) -> RayHit {
     );
 }
 
+// `bracket` with the sample at `uv` (ray height `ray`, surface height `surface`) as its new
+// end on the side the sample falls: the crossing stays between its two ends. Counts the sample.
+fn narrowed(bracket: Crossing, uv: vec2<f32>, ray: f32, surface: f32) -> Crossing {
+    var narrower = bracket;
+    narrower.samples += 1u;
+    if surface >= ray {
+        narrower.below_uv = uv;
+        narrower.below_ray = ray;
+        narrower.below_surface = surface;
+    } else {
+        narrower.above_uv = uv;
+        narrower.above_ray = ray;
+        narrower.above_surface = surface;
+    }
+    return narrower;
+}
+
+// Parallax occlusion mapping's refinement: the secant `steps` times, each time sampling the
+// height where the last secant met the ray and keeping the bracket that holds the crossing
+// (false position). One step is T's; on a curved slope the first secant lands off the surface
+// by the curvature across the bracket, and each step shrinks that error.
+fn secant_steps_refinement(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    crossing: Crossing,
+    steps: u32,
+) -> RayHit {
+    var bracket = crossing;
+    for (var i = 1u; i < steps; i += 1u) {
+        let hit = secant_refinement(bracket);
+        bracket = narrowed(bracket, hit.uv, hit.height, sample_height(height_texture, height_sampler, field, hit.uv));
+    }
+    return secant_refinement(bracket);
+}
+
 // Relief mapping (Policarpo et al.): halve the bracket `steps` times, keeping the crossing inside.
 fn binary_refinement(
     height_texture: texture_2d<f32>,
@@ -186,22 +222,14 @@ fn binary_refinement(
     crossing: Crossing,
     steps: u32,
 ) -> RayHit {
-    var above_uv = crossing.above_uv;
-    var above_ray = crossing.above_ray;
-    var below_uv = crossing.below_uv;
-    var below_ray = crossing.below_ray;
+    var bracket = crossing;
     for (var i = 0u; i < steps; i += 1u) {
-        let middle_uv = (above_uv + below_uv) * 0.5;
-        let middle_ray = (above_ray + below_ray) * 0.5;
-        if sample_height(height_texture, height_sampler, field, middle_uv) >= middle_ray {
-            below_uv = middle_uv;
-            below_ray = middle_ray;
-        } else {
-            above_uv = middle_uv;
-            above_ray = middle_ray;
-        }
+        let middle_uv = (bracket.above_uv + bracket.below_uv) * 0.5;
+        let middle_ray = (bracket.above_ray + bracket.below_ray) * 0.5;
+        bracket = narrowed(bracket, middle_uv, middle_ray, sample_height(height_texture, height_sampler, field, middle_uv));
     }
-    return RayHit((above_uv + below_uv) * 0.5, (above_ray + below_ray) * 0.5, crossing.samples + steps, true);
+    return RayHit((bracket.above_uv + bracket.below_uv) * 0.5, (bracket.above_ray + bracket.below_ray) * 0.5,
+        bracket.samples, true);
 }
 
 // The fraction of a view ray's straight path (the one that reaches the deepest height at 1) its
@@ -219,7 +247,8 @@ fn bent_span(bend: f32) -> f32 {
 }
 
 // The visible point for the view ray entering at `uv` with parallax offset vector `offset` (P),
-// by `method`, the ray bent by `bend` (`linear_search`; 0: straight). `to_eye_ts` is only used
+// by `method`, the ray bent by `bend` (`linear_search`; 0: straight), refined by
+// `refinement_steps` (relief's bisections, or occlusion's secant steps). `to_eye_ts` is only used
 // by parallax offset mapping, `pyramid` (the height's maximum pyramid, max_mip.wgsl) only by
 // MaxMip, which walks straight rays: a bent one takes the linear search instead.
 fn march_view(
@@ -233,7 +262,7 @@ fn march_view(
     to_eye_ts: vec3<f32>,
     height_scale: f32,
     steps: u32,
-    binary_steps: u32,
+    refinement_steps: u32,
     bend: f32,
 ) -> RayHit {
     if method == METHOD_NORMAL_MAPPING {
@@ -263,9 +292,9 @@ fn march_view(
         return RayHit(crossing.below_uv, crossing.below_ray, crossing.samples, true);
     }
     if method == METHOD_RELIEF {
-        return binary_refinement(height_texture, height_sampler, field, crossing, binary_steps);
+        return binary_refinement(height_texture, height_sampler, field, crossing, refinement_steps);
     }
-    return secant_refinement(crossing);
+    return secant_steps_refinement(height_texture, height_sampler, field, crossing, refinement_steps);
 }
 
 // Hard self-shadow (McGuire): march from the visible point towards the light; 0 if any sample

@@ -15,7 +15,7 @@ crate::choice_enum! {
         ParallaxOffset = "offset",
         /// Steep parallax (McGuire 2005): linear search, shades the first sample below.
         Steep = "steep",
-        /// Parallax occlusion mapping (Tatarchuk 2006): linear search, then a line intersection.
+        /// Parallax occlusion mapping (Tatarchuk 2006): linear search, then secant_steps secants.
         Occlusion = "pom",
         /// Relief mapping (Policarpo 2005): linear search, then relief_binary_steps bisections.
         Relief = "relief",
@@ -153,6 +153,10 @@ crate::with_lighting_parameters! {
             /// Bisection steps relief mapping takes after its linear search: more is sharper.
             relief_binary_steps: u32 = 6, ParamSpec::integer(1, 16)
                 .applies_when(|material| material.method == ParallaxMethod::Relief);
+            /// Secant steps parallax occlusion mapping takes after its linear search (1 is
+            /// Tatarchuk's): each more costs a sample and moves the hit onto curved slopes.
+            secant_steps: u32 = 1, ParamSpec::integer(1, 8)
+                .applies_when(|material| material.method == ParallaxMethod::Occlusion);
             /// Depth of the relief from white to black of the height map (T's fHeightMapRange).
             height_scale: f32 = 0.05, ParamSpec::float(0.0, 10.0).editor(0.0, 0.2)
                 .unit("texture units, or world units (height_units)");

@@ -209,8 +209,9 @@ fn march_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
         let bend = point.bend;
         let texels = length(offset * texture_size) / exp2(point.mip) * bent_span(bend);
         let steps = march_steps(params.min_samples, params.max_samples, dot(point.surface_frame.normal, point.to_eye), texels);
+        let refinement_steps = select(params.secant_steps, params.relief_binary_steps, METHOD == METHOD_RELIEF);
         let hit = march_view(height_texture, material_sampler, height_pyramid, point.field, METHOD, in.uv, offset,
-            point.to_eye_ts, point.height_scale, steps, params.relief_binary_steps, bend);
+            point.to_eye_ts, point.height_scale, steps, refinement_steps, bend);
         // The bent ray's height is over the curved surface; the point lies on the straight view
         // ray, t of its way down below the tangent plane (bend is 0 but for a ray march).
         let t = length(hit.uv - in.uv) / max(length(offset), 1e-30);

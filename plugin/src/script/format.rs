@@ -211,9 +211,10 @@ pub enum MaterialDesc {
         /// A preset RON file, relative to the script.
         #[serde(default)]
         preset: Option<String>,
-        /// Changes on top of the preset.
+        /// Changes on top of the preset (boxed: a patch holds every parameter, the other
+        /// variants a colour).
         #[serde(default)]
-        set: MaterialPatch,
+        set: Box<MaterialPatch>,
     },
 }
 

@@ -1,5 +1,6 @@
 //! The `antialiasing` group: the passes of TAA and the post filter, the jittered march under
-//! TAA against the plain one, and the frame under TAA with and without its mip bias.
+//! TAA (with one and three secant steps) against the plain one, and the frame under TAA with
+//! and without its mip bias.
 
 use anyhow::Result;
 use pom::ParallaxOcclusionMaterial;
@@ -9,8 +10,9 @@ use super::Runner;
 
 impl Runner<'_> {
     /// The passes of each anti-aliasing (TAA before tonemapping, the post filter after it) on
-    /// the base material's plane, and under TAA the jittered march at 16 samples against the
-    /// plain march at 50, and the 50-sample frame without TAA's mip bias.
+    /// the base material's plane, and under TAA the jittered march at 16 samples (with one and
+    /// with three secant steps) against the plain march at 50, and the 50-sample frame without
+    /// TAA's mip bias.
     pub(super) fn antialiasing(&mut self, size: (u32, u32)) -> Result<()> {
         let view = self.view;
         let mut scene = self.scene(size, &view)?;
@@ -35,21 +37,30 @@ impl Runner<'_> {
         }
         scene.set_anti_aliasing(pom::AntiAliasing::Taa, Default::default());
         let mut fifty = None;
-        for (samples, jitter) in [(50, false), (16, true)] {
+        for (samples, jitter, secant_steps) in [(50, false, 1), (16, true, 1), (16, true, 3)] {
             let material = ParallaxOcclusionMaterial {
                 max_samples: samples,
                 jitter_march: jitter,
+                secant_steps,
                 ..self.base.clone()
             };
             let variant = format!(
-                "taa, {samples} samples{}",
-                if jitter { ", jittered march" } else { "" }
+                "taa, {samples} samples{}{}",
+                if jitter { ", jittered march" } else { "" },
+                if secant_steps > 1 {
+                    format!(", {secant_steps} secant steps")
+                } else {
+                    String::new()
+                }
             );
             let ms = self.case_variant(&mut scene, "antialiasing", place, material, variant)?;
             match fifty {
                 None => fifty = Some(ms),
                 Some(fifty) => {
-                    let what = "jittered march: 16 samples / 50 samples, under TAA".to_owned();
+                    let what = format!(
+                        "jittered march: 16 samples, {secant_steps} secant steps / 50 samples, \
+                         under TAA"
+                    );
                     self.ratio(what, size, ms, fifty);
                 }
             }

@@ -129,6 +129,14 @@ fn material_relief_with_zero_binary_steps() {
 }
 
 #[test]
+fn material_occlusion_with_zero_secant_steps() {
+    clamped_with_a_warning("secant_steps is 0 but must be at least 1", |m| {
+        m.method = ParallaxMethod::Occlusion;
+        m.secant_steps = 0;
+    });
+}
+
+#[test]
 fn material_nan_base_colour() {
     clamped_with_a_warning("base_color is NaN", |m| m.base_color.g = f32::NAN);
 }
