@@ -83,7 +83,7 @@ impl<K: Copy + Ord> SortEntry<K> {
     /// query.
     ///
     /// The draws come in the world's order every frame, which need not be the sorted one (10,000
-    /// spawned in a grid took 1.5 ms a frame to sort, sandbox/BENCHMARKS.md, "Following
+    /// spawned in a grid took 3–5 ms a frame to sort, sandbox/BENCHMARKS.md, "Following
     /// models"). So where there are as many draws as last frame, they are first put in last
     /// frame's sorted order (kept in `memory`), which a still camera finds sorted in one pass
     /// and a moving one nearly so.

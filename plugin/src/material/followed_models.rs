@@ -5,9 +5,9 @@
 //! frame to frame until entities are spawned, despawned or change components. So the last
 //! frame's models are kept in that order and a draw first looks at its own position there: a
 //! sequential walk through memory. Only where the entity found there is another one is a map
-//! of last frame's entities built, once for that frame. A map looked up and filled for every
-//! draw cost about a millisecond for 10,000 draws on the benchmark host, most of it cache
-//! misses (sandbox/BENCHMARKS.md, "Following models").
+//! of last frame's entities built, once for that frame. Two maps looked up and filled for
+//! every draw (hashing, and reads scattered over memory) cost about a millisecond for 10,000
+//! draws on the benchmark host (sandbox/BENCHMARKS.md, "Following models").
 
 use std::collections::HashMap;
 
