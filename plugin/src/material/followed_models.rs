@@ -38,8 +38,8 @@ impl FollowedModels {
         self.begin_frame();
         let mut numbers = std::mem::take(&mut self.numbers);
         numbers.clear();
-        for (index, (entity, model)) in draws.enumerate() {
-            numbers.push(match self.follow(index, entity, model) {
+        for (entity, model) in draws {
+            numbers.push(match self.follow(entity, model) {
                 Some(previous) if previous != model => motions.push(previous, model),
                 _ => 0,
             });
@@ -55,16 +55,10 @@ impl FollowedModels {
         self.positions = None;
     }
 
-    /// Records `entity`'s `model`, drawn as this frame's draw number `draw` (draws are
-    /// followed in order, each once), and returns its model on the last frame, if it was
-    /// drawn then.
-    pub(super) fn follow(
-        &mut self,
-        draw: usize,
-        entity: hecs::Entity,
-        model: Mat4,
-    ) -> Option<Mat4> {
-        debug_assert_eq!(draw, self.current.len(), "draws are followed in order");
+    /// Records `entity`'s `model` as this frame's next draw and returns its model on the last
+    /// frame, if it was drawn then.
+    fn follow(&mut self, entity: hecs::Entity, model: Mat4) -> Option<Mat4> {
+        let draw = self.current.len();
         self.current.push((entity, model));
         match self.last.get(draw) {
             Some(&(last_entity, last_model)) if last_entity == entity => Some(last_model),
@@ -108,8 +102,7 @@ mod tests {
         followed.begin_frame();
         draws
             .iter()
-            .enumerate()
-            .map(|(draw, &(entity, model))| followed.follow(draw, entity, model))
+            .map(|&(entity, model)| followed.follow(entity, model))
             .collect()
     }
 
