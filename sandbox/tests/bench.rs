@@ -39,10 +39,10 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // where ours ran deferred), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip);
     // once, at the first size, max-mip's pyramid rebuilt every frame for two map sizes; and
     // 6 first-use figures (settled before, the first frame, settled after; blocking and in the
-    // background), 6 silhouette figures (the cube and the sphere with each mode), and 7
-    // 9 antialiasing figures (post for each mode, the post filter, TAA, and the march at 50
-    // and at 16 jittered samples with one and with three secant steps under TAA, and at 50
-    // without TAA's mip bias).
+    // background), 6 silhouette figures (the cube and the sphere with each mode), and
+    // 11 antialiasing figures (post for each mode, the post filter, TAA, and the march at 50
+    // and at 16 jittered samples with one and with three secant steps under TAA, at 50
+    // without TAA's mip bias, and at 50 under the post filter and off).
     let resolve_rows = cases
         .iter()
         .filter(|c| c["group"] == "seed_port" && c["pass"] == "resolve")
@@ -54,7 +54,7 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(resolve_rows, 2 * ours_deferred);
     assert_eq!(
         cases.len(),
-        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6 + 6 + 9) + 2 + resolve_rows
+        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6 + 6 + 11) + 2 + resolve_rows
     );
     let first_frames = cases
         .iter()

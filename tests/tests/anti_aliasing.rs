@@ -234,9 +234,10 @@ fn taa_and_the_post_filter_soften_the_street_corners_edges() {
     let [off, fxaa, taa] = edge_errors("street_corner", 192, 108, street_corner);
     // Most of the street corner's edge pixels are texture edges, which the reference samples
     // two mip levels finer. Under TAA textures are sampled that much finer too (the mip bias,
-    // −2) and the jitter averages them: TAA meets the issue's −60 %. FXAA leaves texture alone
-    // and smooths only the outlines, so the post filter misses its −30 % here (BENCHMARKS.md).
-    assert!(fxaa < off, "FXAA: {fxaa} against {off} without");
+    // −2) and the jitter averages them; under the post filter one level finer
+    // (`POST_FILTER_MIP_BIAS`), and FXAA softens the edges that sharpens. Without that bias
+    // FXAA smoothed only the outlines: −3 % (BENCHMARKS.md).
+    assert!(fxaa <= 0.7 * off, "FXAA: {fxaa} against {off} without");
     assert!(taa <= 0.4 * off, "TAA: {taa} against {off} without");
 }
 

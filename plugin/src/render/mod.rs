@@ -47,8 +47,8 @@ pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod visibility;
 
 pub use anti_aliasing::{
-    AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit,
-    TemporalView, jitter_offset, set_camera_anti_aliasing,
+    AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
+    TemporalLimit, TemporalView, jitter_offset, set_camera_anti_aliasing,
 };
 pub use fxaa::FXAA_SHADERS;
 pub(crate) use fxaa::FxaaPass;

@@ -1,6 +1,6 @@
 //! The `antialiasing` group: the passes of TAA and the post filter, the jittered march under
-//! TAA (with one and three secant steps) against the plain one, and the frame under TAA with
-//! and without its mip bias.
+//! TAA (with one and three secant steps) against the plain one, and the frame with and without
+//! the mip bias of TAA and of the post filter.
 
 use anyhow::Result;
 use pom::ParallaxOcclusionMaterial;
@@ -11,8 +11,8 @@ use super::Runner;
 impl Runner<'_> {
     /// The passes of each anti-aliasing (TAA before tonemapping, the post filter after it) on
     /// the base material's plane, and under TAA the jittered march at 16 samples (with one and
-    /// with three secant steps) against the plain march at 50, and the 50-sample frame without
-    /// TAA's mip bias.
+    /// with three secant steps) against the plain march at 50, the 50-sample frame without
+    /// TAA's mip bias, and the 50-sample frame under the post filter (its mip bias) and off.
     pub(super) fn antialiasing(&mut self, size: (u32, u32)) -> Result<()> {
         let view = self.view;
         let mut scene = self.scene(size, &view)?;
@@ -83,6 +83,16 @@ impl Runner<'_> {
             let what = "TAA's mip bias: -2 / 0, 50 samples".to_owned();
             self.ratio(what, size, fifty, ms);
         }
+        // The post filter samples textures a level finer too (`POST_FILTER_MIP_BIAS`).
+        let mut frames = Vec::new();
+        for aa in [pom::AntiAliasing::Fxaa, pom::AntiAliasing::Off] {
+            scene.set_anti_aliasing(aa, Default::default());
+            let variant = format!("{}, 50 samples", aa.name());
+            let material = self.base.clone();
+            frames.push(self.case_variant(&mut scene, "antialiasing", place, material, variant)?);
+        }
+        let what = "the post filter's mip bias: -1 / 0, 50 samples".to_owned();
+        self.ratio(what, size, frames[0], frames[1]);
         Ok(())
     }
 }
