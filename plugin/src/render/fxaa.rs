@@ -24,18 +24,24 @@ fn no_output() -> String {
     String::new()
 }
 
+/// FXAA's bilinear read with the sampler (8-bit displays).
+pub const FXAA_FILTERED_READ: WgslFile = crate::wgsl_file!("render/fxaa_filtered.wgsl");
+
+/// FXAA's bilinear read from four loads (float displays, which do not filter).
+pub const FXAA_LOADS_READ: WgslFile = crate::wgsl_file!("render/fxaa_loads.wgsl");
+
 /// FXAA in compute, writing an 8-bit display target.
 pub const FXAA_COMPUTE_RGBA8: ComposedShader = ComposedShader {
     name: "fxaa.wgsl (rgba8unorm)",
     constants: &[post_process::rgba8_output, srgb_input],
-    files: &[FXAA_ENTRY, FXAA_ENTRY_POINTS],
+    files: &[FXAA_ENTRY, FXAA_FILTERED_READ, FXAA_ENTRY_POINTS],
 };
 
 /// FXAA in compute, writing a float display target.
 pub const FXAA_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
     name: "fxaa.wgsl (rgba32float)",
     constants: &[post_process::rgba32f_output, linear_input],
-    files: &[FXAA_ENTRY, FXAA_ENTRY_POINTS],
+    files: &[FXAA_ENTRY, FXAA_LOADS_READ, FXAA_ENTRY_POINTS],
 };
 
 /// FXAA as a full-screen triangle (8-bit display).
@@ -44,6 +50,7 @@ pub const FXAA_FRAGMENT: ComposedShader = ComposedShader {
     constants: &[no_output, srgb_input],
     files: &[
         FXAA_ENTRY,
+        FXAA_FILTERED_READ,
         shaders::FULLSCREEN_TRIANGLE,
         FXAA_FRAGMENT_ENTRY,
     ],
@@ -55,6 +62,7 @@ pub const FXAA_FRAGMENT_LINEAR: ComposedShader = ComposedShader {
     constants: &[no_output, linear_input],
     files: &[
         FXAA_ENTRY,
+        FXAA_LOADS_READ,
         shaders::FULLSCREEN_TRIANGLE,
         FXAA_FRAGMENT_ENTRY,
     ],
@@ -91,8 +99,15 @@ struct TonemappedTexture {
 pub(crate) struct FxaaPass {
     pipeline: FxaaPipeline,
     layout: wgpu::BindGroupLayout,
+    /// The bilinear sampler of an 8-bit display's image (a float one is read with loads).
+    sampler: Option<wgpu::Sampler>,
     format: TargetFormat,
     tonemapped: Option<TonemappedTexture>,
+}
+
+/// Whether FXAA reads images of `format` through a filtering sampler: all but float ones.
+fn filters(format: TargetFormat) -> bool {
+    format != TargetFormat::Float32
 }
 
 impl FxaaPass {
@@ -101,7 +116,13 @@ impl FxaaPass {
     pub(crate) fn new(gpu: &GpuContext, format: TargetFormat, fragment: bool) -> Self {
         let device = &gpu.device;
         let display = format.texture_format();
-        let mut entries = vec![layout::unfilterable_texture_2d(0)];
+        // A float display is read with loads, an 8-bit one through the sampler at binding 1.
+        let filtered = filters(format);
+        let mut entries = if filtered {
+            vec![layout::texture_2d(0), layout::filtering_sampler(1)]
+        } else {
+            vec![layout::unfilterable_texture_2d(0)]
+        };
         if !fragment {
             // Binding 2: the output post-processing's prelude declares.
             entries.push(layout::compute_storage_texture(2, display));
@@ -146,9 +167,18 @@ impl FxaaPass {
                 },
             ))
         };
+        let sampler = filtered.then(|| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("fxaa sampler"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            })
+        });
         Self {
             pipeline,
             layout: bind_layout,
+            sampler,
             format,
             tonemapped: None,
         }
@@ -174,10 +204,10 @@ impl FxaaPass {
             self.tonemapped = None;
         }
         let compute = matches!(self.pipeline, FxaaPipeline::Compute(_));
-        let layout = &self.layout;
+        let (layout, sampler) = (&self.layout, self.sampler.as_ref());
         let texture = self
             .tonemapped
-            .get_or_insert_with(|| tonemapped_texture(gpu, target, layout, compute));
+            .get_or_insert_with(|| tonemapped_texture(gpu, target, (layout, sampler), compute));
         (texture.target, &texture.view)
     }
 
@@ -230,7 +260,7 @@ impl FxaaPass {
 fn tonemapped_texture(
     gpu: &GpuContext,
     target: &RenderTarget,
-    layout: &wgpu::BindGroupLayout,
+    (layout, sampler): (&wgpu::BindGroupLayout, Option<&wgpu::Sampler>),
     compute: bool,
 ) -> TonemappedTexture {
     let storage = if post_process::can_store(gpu, target.format()) {
@@ -250,6 +280,12 @@ fn tonemapped_texture(
         binding: 0,
         resource: wgpu::BindingResource::TextureView(&view),
     }];
+    if let Some(sampler) = sampler {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 1,
+            resource: wgpu::BindingResource::Sampler(sampler),
+        });
+    }
     if compute {
         entries.push(wgpu::BindGroupEntry {
             binding: 2,

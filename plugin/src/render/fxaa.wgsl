@@ -2,7 +2,9 @@
 // frames without a history. Each pixel on a contrasting edge finds the edge's direction and
 // ends and is blended across it by how far along it lies; a lone bright pixel is blended by
 // its contrast with the neighbourhood. The generated prelude declares `output` (the display
-// format) and `LINEAR_INPUT` (true where the display holds linear floats, not sRGB bytes).
+// format) and `LINEAR_INPUT` (true where the display holds linear floats, not sRGB bytes);
+// `sample_at`, the bilinear read along the edge, comes from fxaa_filtered.wgsl or
+// fxaa_loads.wgsl, composed after this file.
 
 @group(0) @binding(0) var tonemapped: texture_2d<f32>;
 
@@ -31,18 +33,6 @@ fn edge_step(i: u32) -> f32 {
 fn load_clamped(pixel: vec2<i32>) -> vec4<f32> {
     let last = vec2<i32>(textureDimensions(tonemapped)) - 1;
     return textureLoad(tonemapped, clamp(pixel, vec2<i32>(0), last), 0);
-}
-
-// Bilinear from four loads: the display format need not be filterable (rgba32float is not).
-// `position` is in pixels, a pixel's centre at + 0.5.
-fn sample_at(position: vec2<f32>) -> vec4<f32> {
-    let corner = position - 0.5;
-    let base = floor(corner);
-    let f = corner - base;
-    let pixel = vec2<i32>(base);
-    let top = mix(load_clamped(pixel), load_clamped(pixel + vec2<i32>(1, 0)), f.x);
-    let bottom = mix(load_clamped(pixel + vec2<i32>(0, 1)), load_clamped(pixel + vec2<i32>(1, 1)), f.x);
-    return mix(top, bottom, f.y);
 }
 
 // Perceived brightness: of the encoded values, as the eye sees steps (linear floats are
