@@ -10,8 +10,9 @@ use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewProjection, PreviewView};
 use pom::{
     AntiAliasing, App, Assets, Camera, Color, DirectionalLight, GlobalTransform, GpuContext,
-    LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPlugin,
-    TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf, patterns,
+    LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, PostProcessPath, RenderPath,
+    RenderPlugin, TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf,
+    patterns,
 };
 use pom_tests::edge_error::{box_filtered, edge_pixels, mean_error};
 use pom_tests::nan_injection::inject_nan_at;
@@ -79,9 +80,12 @@ fn edge_errors(name: &str, width: u32, height: u32, build: impl Fn(u32, u32) -> 
 /// A white square turned 30° about the view axis on a dark ground, lit from the camera's side:
 /// edges at 30° and 120°.
 fn turned_square(width: u32, height: u32) -> App {
+    turned_square_with(RenderPlugin::new(width, height))
+}
+
+fn turned_square_with(render: RenderPlugin) -> App {
     let mut app = App::new();
-    app.add_plugin(RenderPlugin::new(width, height))
-        .add_plugin(pom::lit_plugin());
+    app.add_plugin(render).add_plugin(pom::lit_plugin());
     app.finish().unwrap();
     let mesh = app
         .resources
@@ -130,6 +134,47 @@ fn taa_and_the_post_filter_smooth_diagonal_edges() {
     let [off, fxaa, taa] = edge_errors("turned_square", 96, 96, turned_square);
     assert!(taa <= 0.4 * off, "TAA: {taa} against {off} without");
     assert!(fxaa <= 0.7 * off, "FXAA: {fxaa} against {off} without");
+}
+
+#[test]
+fn the_post_filter_runs_alike_in_compute_and_fragment_on_8_bit_and_float_displays() {
+    // An 8-bit display's image is read through a bilinear sampler, a float one with loads;
+    // each in a compute pass and as a full-screen triangle. A float display blends linear
+    // values, an 8-bit one encoded values, so the two formats differ from each other.
+    let size = 64;
+    let off = settled(&mut turned_square(size, size), AntiAliasing::Off);
+    let edges = edge_pixels(&off);
+    for format in [TargetFormat::Srgb8, TargetFormat::Float32] {
+        let [compute, fragment] =
+            [PostProcessPath::Fastest, PostProcessPath::Fragment].map(|post| {
+                let render = RenderPlugin::new(size, size)
+                    .with_format(format)
+                    .with_post_process(post);
+                let mut app = turned_square_with(render);
+                set_anti_aliasing(&mut app, AntiAliasing::Fxaa);
+                if format == TargetFormat::Srgb8 {
+                    return render_and_capture(&mut app).unwrap();
+                }
+                let linear = render_and_capture_f32(&mut app).unwrap();
+                assert!(linear.pixels().all(|p| p.0.iter().all(|v| v.is_finite())));
+                let encode =
+                    |v: f32| (pom::linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
+                RgbaImage::from_fn(size, size, |x, y| {
+                    let p = linear.get_pixel(x, y).0;
+                    image::Rgba([encode(p[0]), encode(p[1]), encode(p[2]), 255])
+                })
+            });
+        let filtered = mean_error(&compute, &off, &edges);
+        let apart = mean_error(&fragment, &compute, &edges);
+        eprintln!(
+            "FXAA, {format:?}: {filtered:.4} from off on the edges; fragment {apart:.4} from compute"
+        );
+        assert!(
+            filtered > 0.02,
+            "{format:?}: FXAA changed little on the edges ({filtered})"
+        );
+        assert!(apart < 0.002, "{format:?}: fragment {apart} from compute");
+    }
 }
 
 /// How the moving square is drawn: its path, and whether it keeps its own material (or is a
