@@ -1,7 +1,8 @@
 //! The post filter pass (fxaa.wgsl): FXAA on the tonemapped image, for frames that ask for
 //! anti-aliasing without a history. Tonemapping then writes into a texture of the display's
 //! format that this pass reads, and this pass writes the display target: in compute where the
-//! adapter can store that format, else as a full-screen triangle (as post-processing does).
+//! adapter can store that format, else as a full-screen triangle (as post-processing does). An
+//! 8-bit image is read through a bilinear sampler, a float one (not filterable) with loads.
 
 use super::shaders::{self, ComposedShader, WgslFile};
 use super::{GpuContext, PassTimestamps, RenderTarget, TargetFormat, layout, post_process};
