@@ -5,18 +5,18 @@
 
 use std::path::Path;
 
-use glam::{Quat, Vec3};
+use glam::{Quat, Vec2, Vec3};
 use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewProjection, PreviewView};
 use pom::{
     AntiAliasing, App, Assets, Camera, Color, DirectionalLight, GlobalTransform, GpuContext,
-    LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, PostProcessPath, RenderPath,
-    RenderPlugin, TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf,
-    patterns,
+    HeightUnits, LitMaterial, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, PomPlugin,
+    PostProcessPath, RenderPath, RenderPlugin, TargetFormat, TemporalAntiAliasing, TemporalHistory,
+    Transform, load_gltf, patterns,
 };
 use pom_tests::edge_error::{box_filtered, edge_pixels, mean_error};
 use pom_tests::nan_injection::inject_nan_at;
-use pom_tests::pom_scene::{HeightMaterial, preview_app};
+use pom_tests::pom_scene::{HeightMaterial, preview_app, set_material, uv_app, wrapped};
 use pom_tests::{render_and_capture, render_and_capture_f32, render_on_path, run_frames, set_path};
 
 /// Frames a still TAA image is rendered for: one whole cycle of the default jitter, after
@@ -175,6 +175,56 @@ fn the_post_filter_runs_alike_in_compute_and_fragment_on_8_bit_and_float_display
         );
         assert!(apart < 0.002, "{format:?}: fragment {apart} from compute");
     }
+}
+
+#[test]
+fn the_mip_bias_reads_finer_levels_but_never_moves_the_relief() {
+    // The post filter scales every texture footprint by its mip bias, as TAA does by its own.
+    // Relief measured in world units comes from the footprint too: the march must find the
+    // same points, bar the finer heights it reads. The uv view skips the post filter.
+    let textures = HeightMaterial {
+        field: patterns::cobblestones(256, 6),
+        height_scale: 0.06,
+    };
+    let view = PreviewView {
+        view_angle: 60.0,
+        projection: PreviewProjection::Orthographic,
+        tiling: 3.0,
+        ..PreviewView::default()
+    };
+    let uv = |method, aa| {
+        let mut app = uv_app(96, &textures, &view, method).unwrap();
+        set_material(&mut app, |material| {
+            material.height_units = HeightUnits::World;
+            material.height_scale = 0.05;
+        });
+        set_anti_aliasing(&mut app, aa);
+        render_and_capture_f32(&mut app).unwrap()
+    };
+    // The mean parallax shift: where the finer levels change which stone a pixel meets,
+    // single pixels jump, but the mean follows the depth of the relief.
+    let mean_shift = |image: &Rgba32FImage, entry: &Rgba32FImage| {
+        let total = image
+            .pixels()
+            .zip(entry.pixels())
+            .fold(Vec2::ZERO, |sum, (p, q)| {
+                sum + Vec2::new(wrapped(p.0[0] - q.0[0]), wrapped(p.0[1] - q.0[1]))
+            });
+        total / (image.width() * image.height()) as f32
+    };
+    let entry = uv(ParallaxMethod::NormalMapping, AntiAliasing::Off);
+    let off = mean_shift(&uv(ParallaxMethod::Occlusion, AntiAliasing::Off), &entry);
+    let post_filter = mean_shift(&uv(ParallaxMethod::Occlusion, AntiAliasing::Fxaa), &entry);
+    let moved = (post_filter - off).length() / off.length();
+    eprintln!("world-unit relief: mean parallax shift {off}, under the post filter {post_filter}");
+    assert!(off.length() > 0.005, "the relief shifts by {off} only");
+    // The finer heights alone change it by about a tenth (a coarser level flattens the
+    // crests the rays meet first; 14 % here, 10 % in texture units); a relief taken at half
+    // its depth, as the bias once made it, changes it by half.
+    assert!(
+        moved < 0.25,
+        "the post filter moved the relief by {moved} of its shift"
+    );
 }
 
 /// How the moving square is drawn: its path, and whether it keeps its own material (or is a

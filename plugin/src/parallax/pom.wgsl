@@ -152,10 +152,12 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
     point.ddy_uv = footprint.ddy_uv;
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
     point.mip = mip_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size);
-    // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces.
+    // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces. The
+    // footprint's texture side comes scaled by anti-aliasing's mip bias (frame.texture_lod),
+    // which chooses finer levels to read but must not move the relief: divided out here.
     let world_area = length(cross(footprint.ddx_world, footprint.ddy_world));
     let uv_area = abs(point.ddx_uv.x * point.ddy_uv.y - point.ddx_uv.y * point.ddy_uv.x);
-    point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
+    point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30)) / frame.texture_lod.x;
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
     point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 

@@ -26,7 +26,8 @@
 //! A reset comes with a new target (a resize), another camera, projection or TAA parameters,
 //! another kind of anti-aliasing, or [`TemporalHistory::reset`] (a camera cut). The history
 //! holds tonemapped colour, so edges between lit surfaces and the clear colour blend as shown;
-//! debug views are averaged like any colour (use `off` to read their data exactly).
+//! debug views are averaged like any colour, and both kinds read textures finer (use `off` to
+//! read their data exactly).
 
 use glam::{Mat4, Vec2, Vec3};
 
@@ -35,7 +36,7 @@ crate::choice_enum! {
     pub enum AntiAliasing: "AA" {
         /// None: every edge is whole pixels (what reference images use).
         Off = "off",
-        /// FXAA after tonemapping: one frame, no history; softens edges and some texture.
+        /// FXAA after tonemapping: one frame, no history; softens edges, textures read a level finer.
         Fxaa = "fxaa",
         /// Temporal anti-aliasing: jittered frames accumulated in a history; sharpest when still.
         Taa = "taa",

@@ -52,7 +52,8 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
         .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
 }
 
-/// The frame uniform each shadow map sees: the same lights, the light's eye.
+/// The frame uniform each shadow map sees: the same lights, the light's eye, and textures read
+/// at the light's own footprint (anti-aliasing's mip bias is the camera's).
 fn light_views(extracted: &ExtractedFrame) -> Vec<FrameUniform> {
     extracted
         .shadow_views
@@ -64,6 +65,7 @@ fn light_views(extracted: &ExtractedFrame) -> Vec<FrameUniform> {
                 .forward
                 .extend(if plan.orthographic { 1.0 } else { 0.0 })
                 .into(),
+            texture_lod: [1.0, 0.0, 0.0, 0.0],
             ..extracted.frame
         })
         .collect()

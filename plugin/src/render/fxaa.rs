@@ -1,8 +1,9 @@
 //! The post filter pass (fxaa.wgsl): FXAA on the tonemapped image, for frames that ask for
 //! anti-aliasing without a history. Tonemapping then writes into a texture of the display's
 //! format that this pass reads, and this pass writes the display target: in compute where the
-//! adapter can store that format, else as a full-screen triangle (as post-processing does). An
-//! 8-bit image is read through a bilinear sampler, a float one (not filterable) with loads.
+//! adapter can store that format, else as a full-screen triangle (as post-processing does). The
+//! bilinear reads of the edge search go through a sampler on an 8-bit image and are four loads
+//! on a float one (not filterable); the 3 × 3 neighbourhood is loaded.
 
 use super::shaders::{self, ComposedShader, WgslFile};
 use super::{GpuContext, PassTimestamps, RenderTarget, TargetFormat, layout, post_process};
@@ -171,6 +172,9 @@ impl FxaaPass {
         let sampler = filtered.then(|| {
             device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some("fxaa sampler"),
+                // At the borders as the loads clamp (fxaa_filtered.wgsl).
+                address_mode_u: wgpu::AddressMode::ClampToEdge,
+                address_mode_v: wgpu::AddressMode::ClampToEdge,
                 mag_filter: wgpu::FilterMode::Linear,
                 min_filter: wgpu::FilterMode::Linear,
                 ..Default::default()

@@ -3,8 +3,8 @@
 // ends and is blended across it by how far along it lies; a lone bright pixel is blended by
 // its contrast with the neighbourhood. The generated prelude declares `output` (the display
 // format) and `LINEAR_INPUT` (true where the display holds linear floats, not sRGB bytes);
-// `sample_at`, the bilinear read along the edge, comes from fxaa_filtered.wgsl or
-// fxaa_loads.wgsl, composed after this file.
+// `sample_at`, the bilinear read of the edge search and of the final blend, comes from
+// fxaa_filtered.wgsl or fxaa_loads.wgsl, composed after this file.
 
 @group(0) @binding(0) var tonemapped: texture_2d<f32>;
 
