@@ -51,6 +51,18 @@ crate::choice_enum! {
 /// and −2 gave 29, 32 and 31 % (sandbox/BENCHMARKS.md).
 pub const POST_FILTER_MIP_BIAS: f32 = -1.0;
 
+impl AntiAliasing {
+    /// What a frame of this kind scales every texture footprint by: 2 to the mip bias of TAA
+    /// (`temporal`: its parameters, where the frame has a history) or of the post filter.
+    pub fn texture_footprint_scale(self, temporal: Option<TemporalAntiAliasing>) -> f32 {
+        match (self, temporal) {
+            (_, Some(taa)) => taa.texture_footprint_scale(),
+            (AntiAliasing::Fxaa, None) => POST_FILTER_MIP_BIAS.exp2(),
+            _ => 1.0,
+        }
+    }
+}
+
 impl Default for AntiAliasing {
     /// Off: a headless render shows exactly what the materials drew.
     fn default() -> Self {
@@ -386,6 +398,16 @@ pub fn jittered(projection: Mat4, jitter: Vec2, (width, height): (u32, u32)) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_kind_scales_texture_footprints_by_its_own_mip_bias() {
+        let taa = TemporalAntiAliasing::default();
+        assert_eq!(AntiAliasing::Off.texture_footprint_scale(None), 1.0);
+        assert_eq!(AntiAliasing::Fxaa.texture_footprint_scale(None), 0.5);
+        assert_eq!(AntiAliasing::Taa.texture_footprint_scale(Some(taa)), 0.25);
+        // TAA without a history (no camera to jitter) samples as without anti-aliasing.
+        assert_eq!(AntiAliasing::Taa.texture_footprint_scale(None), 1.0);
+    }
 
     #[test]
     fn the_jitter_covers_the_pixel_evenly_and_repeats() {

@@ -4,8 +4,7 @@ use glam::{Mat4, Vec3};
 use hecs::World;
 
 use super::anti_aliasing::{
-    AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
-    TemporalView, jittered,
+    AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalView, jittered,
 };
 use super::gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
@@ -194,11 +193,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
     let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
     let ambient_radiance = radiance(ambient.color, ambient.intensity, light_scale);
-    let texture_scale = match temporal {
-        Some(frame) => frame.settings.texture_footprint_scale(),
-        None if anti_aliasing == AntiAliasing::Fxaa => POST_FILTER_MIP_BIAS.exp2(),
-        None => 1.0,
-    };
+    let texture_scale = anti_aliasing.texture_footprint_scale(temporal.map(|f| f.settings));
     let mut lights = LightExtraction {
         frame: FrameUniform {
             view_projection: columns(view_projection),
