@@ -33,9 +33,12 @@ fn surface_input(vertex: VertexOut, front_facing: bool, footprint: PixelFootprin
 }
 
 // `texture` at the surface's texture coordinate, filtered over the pixel's footprint (trilinear,
-// repeating). Explicit gradients, because the deferred resolve is a compute pass.
+// repeating; finer under anti-aliasing's mip bias). Explicit gradients, because the deferred
+// resolve is a compute pass.
 fn texture_at(texture: texture_2d<f32>, surface: SurfaceInput) -> vec4<f32> {
-    return textureSampleGrad(texture, material_sampler, surface.uv, surface.footprint.ddx_uv, surface.footprint.ddy_uv);
+    let scale = texture_gradient_scale();
+    return textureSampleGrad(texture, material_sampler, surface.uv, surface.footprint.ddx_uv * scale,
+        surface.footprint.ddy_uv * scale);
 }
 
 // How much of light `light_index` (as `light_at` numbers them) reaches the surface past the

@@ -148,16 +148,15 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
     point.to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
 
     point.footprint = footprint;
-    point.ddx_uv = footprint.ddx_uv;
-    point.ddy_uv = footprint.ddy_uv;
+    // The gradients every texture read and level of the march take: finer under anti-aliasing.
+    point.ddx_uv = footprint.ddx_uv * texture_gradient_scale();
+    point.ddy_uv = footprint.ddy_uv * texture_gradient_scale();
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
     point.mip = mip_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size);
-    // Texture units per world unit (Luna §3), from the areas a pixel covers in both spaces. The
-    // footprint's texture side comes scaled by anti-aliasing's mip bias (frame.texture_lod),
-    // which chooses finer levels to read but must not move the relief: divided out here.
+    // Texture units per world unit (Luna §3), from the areas a pixel really covers in both spaces.
     let world_area = length(cross(footprint.ddx_world, footprint.ddy_world));
-    let uv_area = abs(point.ddx_uv.x * point.ddy_uv.y - point.ddx_uv.y * point.ddy_uv.x);
-    point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30)) / frame.texture_lod.x;
+    let uv_area = abs(footprint.ddx_uv.x * footprint.ddy_uv.y - footprint.ddx_uv.y * footprint.ddy_uv.x);
+    point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
     point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 

@@ -194,8 +194,7 @@ fn resolve_pixel(item: ResolveItem) -> ResolvedPixel {
     let step = 1.0 - 2.0 * vec2<f32>(item.pixel % vec2<u32>(2u));
     let across = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(step.x, 0.0)), p0, p1, p2));
     let down = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(0.0, step.y)), p0, p1, p2));
-    let uv_scale = frame.texture_lod.x * step;
-    resolved.footprint = PixelFootprint((across.uv - resolved.vertex.uv) * uv_scale.x, (down.uv - resolved.vertex.uv) * uv_scale.y,
+    resolved.footprint = PixelFootprint((across.uv - resolved.vertex.uv) * step.x, (down.uv - resolved.vertex.uv) * step.y,
         (across.world_position - resolved.vertex.world_position) * step.x,
         (down.world_position - resolved.vertex.world_position) * step.y,
         (across.world_normal - resolved.vertex.world_normal) * step.x,

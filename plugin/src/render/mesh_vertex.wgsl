@@ -88,7 +88,8 @@ fn fs_motion(in: VertexOut) -> @location(0) u32 {
 // What a pixel covers: the change of the texture coordinate and of the world position from one
 // pixel to the next, across and down. Materials take it as an argument and use no stage
 // built-in, so the deferred resolve (deferred_resolve.wgsl), which knows the pixel's rays, calls
-// them as the fragment stage does.
+// them as the fragment stage does. The true derivatives: a texture read scales them by
+// `texture_gradient_scale()` (anti-aliasing's mip bias), geometry takes them as they are.
 struct PixelFootprint {
     ddx_uv: vec2<f32>,
     ddy_uv: vec2<f32>,
@@ -102,7 +103,12 @@ struct PixelFootprint {
 
 // The fragment stage's footprint: screen-space derivatives, taken once before any branch.
 fn fragment_footprint(in: VertexOut) -> PixelFootprint {
-    let uv_scale = frame.texture_lod.x;
-    return PixelFootprint(dpdx(in.uv) * uv_scale, dpdy(in.uv) * uv_scale, dpdx(in.world_position), dpdy(in.world_position),
+    return PixelFootprint(dpdx(in.uv), dpdy(in.uv), dpdx(in.world_position), dpdy(in.world_position),
         dpdx(in.world_normal), dpdy(in.world_normal));
+}
+
+// What texture gradients (and the levels chosen from them) are scaled by: 2 to the mip bias of
+// TAA or the post filter, so textures are read finer; 1 without anti-aliasing.
+fn texture_gradient_scale() -> f32 {
+    return frame.texture_lod.x;
 }
