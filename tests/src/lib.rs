@@ -1,6 +1,7 @@
 //! Helpers for the integration tests: a headless app whose GPU work runs inside validation
 //! error scopes, reference-image comparison with NVIDIA FLIP, and procedural test textures.
 
+pub mod anti_aliasing;
 pub mod edge_error;
 mod finite;
 pub mod fixtures;

@@ -5,50 +5,21 @@
 
 use std::path::Path;
 
-use glam::{Quat, Vec2, Vec3};
+use glam::Vec3;
 use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewProjection, PreviewView};
 use pom::{
     AntiAliasing, App, Assets, Camera, Color, DirectionalLight, GlobalTransform, GpuContext,
-    HeightUnits, LitMaterial, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, PomPlugin,
-    PostProcessPath, RenderPath, RenderPlugin, TargetFormat, TemporalAntiAliasing, TemporalHistory,
-    Transform, load_gltf, patterns,
+    LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPlugin,
+    TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf, patterns,
+};
+use pom_tests::anti_aliasing::{
+    SETTLE, save_for_looking, set_anti_aliasing, settled, turned_square,
 };
 use pom_tests::edge_error::{box_filtered, edge_pixels, mean_error};
 use pom_tests::nan_injection::inject_nan_at;
-use pom_tests::pom_scene::{HeightMaterial, preview_app, set_material, uv_app, wrapped};
+use pom_tests::pom_scene::{HeightMaterial, preview_app};
 use pom_tests::{render_and_capture, render_and_capture_f32, render_on_path, run_frames, set_path};
-
-/// Frames a still TAA image is rendered for: one whole cycle of the default jitter, after
-/// which the history is the plain mean of its sixteen sub-pixel positions.
-const SETTLE: usize = 16;
-
-fn set_anti_aliasing(app: &mut App, mode: AntiAliasing) {
-    let cameras: Vec<_> = app
-        .world
-        .query::<(pom::hecs::Entity, &Camera)>()
-        .iter()
-        .map(|(entity, _)| entity)
-        .collect();
-    for camera in cameras {
-        app.world.insert_one(camera, mode).unwrap();
-    }
-}
-
-/// The image `app` shows with `mode`, settled: TAA after [`SETTLE`] frames, the others after one.
-fn settled(app: &mut App, mode: AntiAliasing) -> RgbaImage {
-    set_anti_aliasing(app, mode);
-    if mode == AntiAliasing::Taa {
-        run_frames(app, SETTLE - 1).unwrap();
-    }
-    render_and_capture(app).unwrap()
-}
-
-fn save_for_looking(name: &str, image: &RgbaImage) {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/anti-aliasing");
-    let _ = std::fs::create_dir_all(&dir);
-    let _ = image.save(dir.join(format!("{name}.png")));
-}
 
 /// The edge error of `off`, the post filter and TAA against the supersampled reference of
 /// the scene `build` makes at a size; returns them in that order.
@@ -77,49 +48,6 @@ fn edge_errors(name: &str, width: u32, height: u32, build: impl Fn(u32, u32) -> 
     errors
 }
 
-/// A white square turned 30° about the view axis on a dark ground, lit from the camera's side:
-/// edges at 30° and 120°.
-fn turned_square(width: u32, height: u32) -> App {
-    turned_square_with(RenderPlugin::new(width, height))
-}
-
-fn turned_square_with(render: RenderPlugin) -> App {
-    let mut app = App::new();
-    app.add_plugin(render).add_plugin(pom::lit_plugin());
-    app.finish().unwrap();
-    let mesh = app
-        .resources
-        .get_mut::<Assets<Mesh>>()
-        .unwrap()
-        .add(Mesh::plane(1.0));
-    let transform = Transform {
-        rotation: Quat::from_rotation_y(30_f32.to_radians()),
-        ..Transform::IDENTITY
-    };
-    app.world.spawn((
-        mesh,
-        LitMaterial {
-            base_color: Color::linear_rgb(0.9, 0.9, 0.9),
-            specular_strength: 0.0,
-            ..LitMaterial::default()
-        },
-        transform,
-        GlobalTransform(transform.to_affine()),
-    ));
-    app.world.spawn((
-        Camera {
-            clear_color: Color::linear_rgb(0.02, 0.02, 0.03),
-            ..Camera::orthographic(1.6)
-        },
-        Transform::from_xyz(0.0, 3.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
-    ));
-    app.world.spawn((
-        DirectionalLight::default(),
-        Transform::from_xyz(0.0, 3.0, 0.5).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    app
-}
-
 fn street_corner(width: u32, height: u32) -> App {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
     let mut app = App::new();
@@ -134,97 +62,6 @@ fn taa_and_the_post_filter_smooth_diagonal_edges() {
     let [off, fxaa, taa] = edge_errors("turned_square", 96, 96, turned_square);
     assert!(taa <= 0.4 * off, "TAA: {taa} against {off} without");
     assert!(fxaa <= 0.7 * off, "FXAA: {fxaa} against {off} without");
-}
-
-#[test]
-fn the_post_filter_runs_alike_in_compute_and_fragment_on_8_bit_and_float_displays() {
-    // An 8-bit display's image is read through a bilinear sampler, a float one with loads;
-    // each in a compute pass and as a full-screen triangle. A float display blends linear
-    // values, an 8-bit one encoded values, so the two formats differ from each other.
-    let size = 64;
-    let off = settled(&mut turned_square(size, size), AntiAliasing::Off);
-    let edges = edge_pixels(&off);
-    for format in [TargetFormat::Srgb8, TargetFormat::Float32] {
-        let [compute, fragment] =
-            [PostProcessPath::Fastest, PostProcessPath::Fragment].map(|post| {
-                let render = RenderPlugin::new(size, size)
-                    .with_format(format)
-                    .with_post_process(post);
-                let mut app = turned_square_with(render);
-                set_anti_aliasing(&mut app, AntiAliasing::Fxaa);
-                if format == TargetFormat::Srgb8 {
-                    return render_and_capture(&mut app).unwrap();
-                }
-                let linear = render_and_capture_f32(&mut app).unwrap();
-                assert!(linear.pixels().all(|p| p.0.iter().all(|v| v.is_finite())));
-                let encode =
-                    |v: f32| (pom::linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
-                RgbaImage::from_fn(size, size, |x, y| {
-                    let p = linear.get_pixel(x, y).0;
-                    image::Rgba([encode(p[0]), encode(p[1]), encode(p[2]), 255])
-                })
-            });
-        let filtered = mean_error(&compute, &off, &edges);
-        let apart = mean_error(&fragment, &compute, &edges);
-        eprintln!(
-            "FXAA, {format:?}: {filtered:.4} from off on the edges; fragment {apart:.4} from compute"
-        );
-        assert!(
-            filtered > 0.02,
-            "{format:?}: FXAA changed little on the edges ({filtered})"
-        );
-        assert!(apart < 0.002, "{format:?}: fragment {apart} from compute");
-    }
-}
-
-#[test]
-fn the_mip_bias_reads_finer_levels_but_never_moves_the_relief() {
-    // The post filter scales every texture footprint by its mip bias, as TAA does by its own.
-    // Relief measured in world units comes from the footprint too: the march must find the
-    // same points, bar the finer heights it reads. The uv view skips the post filter.
-    let textures = HeightMaterial {
-        field: patterns::cobblestones(256, 6),
-        height_scale: 0.06,
-    };
-    let view = PreviewView {
-        view_angle: 60.0,
-        projection: PreviewProjection::Orthographic,
-        tiling: 3.0,
-        ..PreviewView::default()
-    };
-    let uv = |method, aa| {
-        let mut app = uv_app(96, &textures, &view, method).unwrap();
-        set_material(&mut app, |material| {
-            material.height_units = HeightUnits::World;
-            material.height_scale = 0.05;
-        });
-        set_anti_aliasing(&mut app, aa);
-        render_and_capture_f32(&mut app).unwrap()
-    };
-    // The mean parallax shift: where the finer levels change which stone a pixel meets,
-    // single pixels jump, but the mean follows the depth of the relief.
-    let mean_shift = |image: &Rgba32FImage, entry: &Rgba32FImage| {
-        let total = image
-            .pixels()
-            .zip(entry.pixels())
-            .fold(Vec2::ZERO, |sum, (p, q)| {
-                sum + Vec2::new(wrapped(p.0[0] - q.0[0]), wrapped(p.0[1] - q.0[1]))
-            });
-        total / (image.width() * image.height()) as f32
-    };
-    let entry = uv(ParallaxMethod::NormalMapping, AntiAliasing::Off);
-    let off = mean_shift(&uv(ParallaxMethod::Occlusion, AntiAliasing::Off), &entry);
-    let post_filter = mean_shift(&uv(ParallaxMethod::Occlusion, AntiAliasing::Fxaa), &entry);
-    let moved = (post_filter - off).length() / off.length();
-    eprintln!("world-unit relief: mean parallax shift {off}, under the post filter {post_filter}");
-    assert!(off.length() > 0.005, "the relief shifts by {off} only");
-    // The finer heights alone change it by about a tenth (a coarser level flattens the
-    // crests the rays meet first; 14 % here, 10 % in texture units); a relief taken at half
-    // its depth, as the bias once made it, changes it by half.
-    assert!(
-        moved < 0.25,
-        "the post filter moved the relief by {moved} of its shift"
-    );
 }
 
 /// How the moving square is drawn: its path, and whether it keeps its own material (or is a

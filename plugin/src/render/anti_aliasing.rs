@@ -21,7 +21,7 @@
 //! detail a frame and keeps its history longer (Yang et al. 2009, "Amortized
 //! supersampling", §4.1); faster ones keep `current_weight`, as their shading changes too.
 //! Textures are sampled `mip_bias` levels finer under TAA (the frame uniform's texture_lod
-//! scales every footprint), so the settled image averages texture detail over the pixel as a
+//! scales the gradients of every texture read, never the geometry), so the settled image averages texture detail over the pixel as a
 //! supersampled one does; under the post filter [`POST_FILTER_MIP_BIAS`] levels finer.
 //! A reset comes with a new target (a resize), another camera, projection or TAA parameters,
 //! another kind of anti-aliasing, or [`TemporalHistory::reset`] (a camera cut). The history

@@ -42,9 +42,9 @@ struct Frame {
     // xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed of
     // per-frame noise (counts TAA frames; 0 without TAA).
     target_size: vec4<u32>,
-    // x: the scale of every texture footprint, 2 to the mip bias of TAA or the post filter (1
-    // without anti-aliasing): textures are sampled finer, and the jitter averages them over the
-    // pixel (TAA) or FXAA softens their edges.
+    // x: the scale of every texture read's gradients, 2 to the mip bias of TAA or the post
+    // filter (1 without anti-aliasing): textures are sampled finer, and the jitter averages them
+    // over the pixel (TAA) or FXAA softens their edges.
     texture_lod: vec4<f32>,
     directional_lights: array<DirectionalLight, MAX_DIRECTIONAL_LIGHTS>,
     point_lights: array<PointLight, MAX_POINT_LIGHTS>,

@@ -117,7 +117,7 @@ pub struct FrameUniform {
     /// xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed
     /// of per-frame noise (counts TAA frames; 0 without TAA).
     pub target_size: [u32; 4],
-    /// x: the scale of every texture footprint, 2 to the mip bias of TAA or of the post filter
+    /// x: the scale of every texture read's gradients, 2 to the mip bias of TAA or the post filter
     /// (1 without anti-aliasing); yzw: 0.
     pub texture_lod: [f32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
