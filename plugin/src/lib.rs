@@ -49,6 +49,7 @@ mod camera;
 mod color;
 mod default_plugins;
 mod dynamic_height;
+pub mod files;
 mod gltf_loader;
 mod height_field;
 mod image;

@@ -1,0 +1,1 @@
+//! Reading named files: regular files only, inside their allowed folder, within a bound.
