@@ -11,16 +11,21 @@
 //!   and restores the window meanwhile);
 //! - `--panic-from N`: a system panics in every update from N on;
 //! - `--exit-on-error`: sets `WindowPlugin::exit_on_error`;
+//! - `--memory-at A,B`: reports the process's resident memory and the GPU's live objects after
+//!   updates A and B (a test that a long run stays flat);
+//! - `--size WxH`: the window's size (default 320x240);
+//! - `--path forward|deferred`: the render path (default: the renderer's own choice);
 //! - always: `Time`'s smallest and largest delta and whether its elapsed time grew every frame.
 
 use std::path::PathBuf;
 use std::time::Duration;
 
 use pom::hecs::World;
+use pom::render::Renderer;
 use pom::window::{AppExit, WindowEvents, WindowPlugin};
 use pom::{glam::Vec3, *};
 
-/// The window's size before and after the resizes.
+/// The window's size before and after the resizes, unless `--size` says otherwise.
 const FIRST_SIZE: (u32, u32) = (320, 240);
 /// Updates drawn before the first count of live GPU objects (everything made and cached).
 const WARM_UP: u64 = 5;
@@ -36,6 +41,9 @@ struct Plan {
     hold_until: Option<PathBuf>,
     panic_from: Option<u64>,
     exit_on_error: bool,
+    memory_at: Vec<u64>,
+    path: Option<RenderPath>,
+    size: (u32, u32),
 }
 
 /// What the probe saw, in updates.
@@ -61,6 +69,7 @@ struct GameState(u32);
 fn parse(args: &[String]) -> Result<Plan, String> {
     let mut plan = Plan {
         frames: 30,
+        size: FIRST_SIZE,
         ..Plan::default()
     };
     let mut args = args.iter();
@@ -77,6 +86,27 @@ fn parse(args: &[String]) -> Result<Plan, String> {
             "--hold-until" => plan.hold_until = Some(PathBuf::from(value()?)),
             "--panic-from" => plan.panic_from = Some(number(value()?)?),
             "--exit-on-error" => plan.exit_on_error = true,
+            "--memory-at" => {
+                plan.memory_at = value()?
+                    .split(',')
+                    .map(|update| number(&update.to_owned()))
+                    .collect::<Result<_, _>>()?;
+            }
+            "--size" => {
+                let text = value()?;
+                let (width, height) = text.split_once('x').ok_or(format!("--size {text}: WxH"))?;
+                plan.size = (
+                    number(&width.to_owned())? as u32,
+                    number(&height.to_owned())? as u32,
+                );
+            }
+            "--path" => {
+                plan.path = Some(match value()?.as_str() {
+                    "forward" => RenderPath::Forward,
+                    "deferred" => RenderPath::Deferred,
+                    other => return Err(format!("--path {other}: forward or deferred")),
+                });
+            }
             other => return Err(format!("unknown argument {other}")),
         }
     }
@@ -95,8 +125,8 @@ fn main() -> AppExit {
     let mut app = App::new();
     app.add_plugin(DefaultPlugins::windowed(WindowPlugin {
         title: "window probe".to_owned(),
-        width: FIRST_SIZE.0,
-        height: FIRST_SIZE.1,
+        width: plan.size.0,
+        height: plan.size.1,
         exit_on_error: plan.exit_on_error,
         ..WindowPlugin::default()
     }));
@@ -150,8 +180,12 @@ fn probe(world: &mut World, resources: &mut Resources) {
     };
     let (delta, elapsed) = (time.delta(), time.elapsed());
     let (frames, lose_device_at, resizes) = (plan.frames, plan.lose_device_at, plan.resizes);
+    let (memory_at, path, first_size) = (plan.memory_at.clone(), plan.path, plan.size);
     let panic_from = plan.panic_from;
     let held = plan.hold_until.as_ref().is_some_and(|file| !file.exists());
+    if let (Some(path), Some(renderer)) = (path, resources.get_mut::<Renderer>()) {
+        renderer.set_path(path);
+    }
     // Only the updates whose counts are reported wait for the GPU (the others keep its pace).
     let counted = resizes > 0
         && resources
@@ -175,6 +209,14 @@ fn probe(world: &mut World, resources: &mut Resources) {
         seen.elapsed_always_grew = false;
     }
     seen.last_elapsed = Some(elapsed);
+    if memory_at.contains(&update) {
+        let resident = pom_tests::memory::resident_kib().unwrap_or(0);
+        let live = live_objects(resources, true);
+        eprintln!("probe: memory at update {update}: resident_kib={resident} {live}");
+    }
+    let Some(seen) = resources.get_mut::<Seen>() else {
+        return;
+    };
     if update == WARM_UP && resizes > 0 {
         seen.before_resizes = Some(live.clone());
     }
@@ -184,7 +226,7 @@ fn probe(world: &mut World, resources: &mut Resources) {
         let step = (update - WARM_UP) as u32;
         (200 + (step * 37) % 400, 150 + (step * 53) % 300)
     } else {
-        FIRST_SIZE
+        first_size
     };
     if resizes > 0 && update > WARM_UP + resizes && !held && seen.settle_from.is_none() {
         seen.settle_from = Some(update);

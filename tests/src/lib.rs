@@ -8,6 +8,7 @@ pub mod fixtures;
 pub mod fuzz_entry;
 pub mod gltf_fixture;
 mod golden;
+pub mod memory;
 pub mod nan_injection;
 pub mod parameters;
 pub mod pom_scene;

@@ -145,7 +145,8 @@ impl PostProcess {
         let settings = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("post-process settings"),
             size: std::mem::size_of::<PostSettings>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            // Bound as a read-only storage buffer (post_process.wgsl says why).
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         Self {
@@ -290,7 +291,7 @@ fn bind_group_layout(
             binding: 1,
             visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
             ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
                 has_dynamic_offset: false,
                 min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<PostSettings>() as u64),
             },

@@ -11,7 +11,9 @@ struct PostSettings {
 }
 
 @group(0) @binding(0) var scene: texture_2d<f32>;
-@group(0) @binding(1) var<uniform> settings: PostSettings;
+// A read-only storage buffer, not a uniform: Mesa's lavapipe (22.x) compiles a shader whose
+// uniforms steer its branches again each time its bind group is bound, and keeps every copy.
+@group(0) @binding(1) var<storage, read> settings: PostSettings;
 // The colour to tonemap: the scene's own, or TAA's history of it (the alpha stays the scene's).
 @group(0) @binding(3) var colour_source: texture_2d<f32>;
 

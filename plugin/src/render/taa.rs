@@ -170,7 +170,7 @@ impl TaaPass {
                 layout::texture_2d(2),
                 layout::filtering_sampler(3),
                 layout::compute_storage_texture(4, HISTORY_FORMAT),
-                layout::compute_uniform_buffer(5, false),
+                layout::compute_storage_buffer(5, true),
                 layout::unfilterable_texture_2d(6),
                 layout::compute_storage_texture(7, HISTORY_DEPTH_FORMAT),
             ],
@@ -208,7 +208,8 @@ impl TaaPass {
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("taa uniform"),
             size: std::mem::size_of::<TaaUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            // Bound as a read-only storage buffer (taa.wgsl says why).
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {

@@ -39,7 +39,9 @@ struct ObjectMotion {
 @group(0) @binding(3) var history_sampler: sampler;
 // rgb: the anti-aliased scene; a: the frames it holds at that pixel.
 @group(0) @binding(4) var resolved: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(5) var<uniform> taa: TaaUniform;
+// A read-only storage buffer, not a uniform: Mesa's lavapipe (22.x) compiles a shader whose
+// uniforms steer its branches again each time its bind group is bound, and keeps every copy.
+@group(0) @binding(5) var<storage, read> taa: TaaUniform;
 // The view depth each pixel showed, for the next frame's disocclusion test: last frame's, this one's.
 @group(0) @binding(6) var history_depth: texture_2d<f32>;
 @group(0) @binding(7) var resolved_depth: texture_storage_2d<r32float, write>;
