@@ -5,7 +5,9 @@ use crate::{App, Plugin, PomPlugin, RenderPlugin, TransformPlugin};
 
 /// The renderer, [`crate::LitMaterial`] (which also draws meshes without a material) and the
 /// parallax material: `TransformPlugin`, `RenderPlugin`, `PomPlugin` (which brings
-/// `lit_plugin()`), in that order. A plugin already added is not added again.
+/// `lit_plugin()`), in that order. A plugin already added is not added again. Unless a logger
+/// is installed already, [`crate::log_to_stderr`] installs one, so the library's warnings
+/// (clamped values, device limits) reach the terminal.
 ///
 /// # Example
 /// ```no_run
@@ -34,6 +36,7 @@ impl From<RenderPlugin> for DefaultPlugins {
 
 impl Plugin for DefaultPlugins {
     fn build(&self, app: &mut App) {
+        crate::log_to_stderr();
         app.add_plugin(TransformPlugin)
             .add_plugin(self.render)
             .add_plugin(PomPlugin);

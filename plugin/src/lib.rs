@@ -80,6 +80,7 @@ mod shader_reload;
 mod shadows;
 #[cfg(feature = "dev-tools")]
 mod split_view;
+mod stderr_log;
 mod time;
 mod tonemapping;
 mod transform;
@@ -132,6 +133,7 @@ pub use shader_reload::{
 pub use shadows::{DIRECTIONAL_CASCADES, LightShadows, NotShadowCaster, NotShadowReceiver};
 #[cfg(feature = "dev-tools")]
 pub use split_view::{SplitView, SplitViewError, render_split_view};
+pub use stderr_log::{DEFAULT_LOG_LEVEL, log_to_stderr};
 pub use time::{Time, TimeStep};
 pub use tonemapping::{Exposure, Tonemapping, set_camera_display_mapping};
 pub use transform::{

@@ -32,9 +32,7 @@ pub fn write(app: &pom::App, image: DynamicImage, path: &Path) -> Result<()> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("creating {}", parent.display()))?;
     }
-    image
-        .save(path)
-        .with_context(|| format!("writing {}", path.display()))?;
+    pom::files::write_image(path, &image)?;
     let gpu = app
         .resources
         .get::<pom::GpuContext>()

@@ -76,6 +76,8 @@ fn quiet_device_select_layer() {
 }
 
 fn main() {
+    // The library logs its clamps and device limits; without a logger they would be lost.
+    pom::log_to_stderr();
     // Every command but the window (no subcommand) is headless.
     if std::env::args_os().nth(1).is_some() {
         quiet_device_select_layer();

@@ -75,6 +75,69 @@ fn inverted_sample_bounds_are_rejected() {
 }
 
 #[test]
+fn a_sample_count_out_of_range_is_printed_as_the_whole_number_given() {
+    let dir = TempDir::new("huge-samples");
+    let out = dir.join("out.png");
+    let output = sandbox(&[
+        "render",
+        "--out",
+        path_arg(&out),
+        "--max-samples",
+        "4294967295",
+    ]);
+    assert_one_line_error(&output, &["max_samples is 4294967295", "at most 256"]);
+    assert!(!out.exists());
+}
+
+/// Renders the MaxMip method over a 34×34 height map, whose maximum pyramid stops at 17×17
+/// cells: the library logs a warning that such a march is slow.
+fn render_odd_sized_max_mip(dir: &TempDir, rust_log: Option<&str>) -> std::process::Output {
+    let height = dir.join("odd-height.png");
+    image::GrayImage::from_fn(34, 34, |x, y| image::Luma([((x * 7 + y * 3) % 256) as u8]))
+        .save(&height)
+        .unwrap();
+    let out = dir.join("out.png");
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_sandbox"));
+    command.args([
+        "render",
+        "--size",
+        "16x16",
+        "--method",
+        "maxmip",
+        "--height",
+        path_arg(&height),
+        "--out",
+        path_arg(&out),
+    ]);
+    command.env_remove("RUST_LOG");
+    if let Some(level) = rust_log {
+        command.env("RUST_LOG", level);
+    }
+    command.output().unwrap()
+}
+
+#[test]
+fn the_library_warnings_reach_stderr_by_default() {
+    let dir = TempDir::new("warning-shown");
+    let output = render_odd_sized_max_mip(&dir, None);
+    assert_success(&output);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("warning: a 34×34 height map's maximum pyramid stops at 17×17"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn rust_log_error_hides_the_library_warnings() {
+    let dir = TempDir::new("warning-hidden");
+    let output = render_odd_sized_max_mip(&dir, Some("error"));
+    assert_success(&output);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("maximum pyramid"), "{stderr}");
+}
+
+#[test]
 fn texture_bounds_of_no_area_are_rejected() {
     let dir = TempDir::new("inverted-bounds");
     let out = dir.join("out.png");

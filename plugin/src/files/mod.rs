@@ -4,3 +4,5 @@
 
 mod read;
 mod write;
+
+pub use write::{WriteError, write_file, write_image, write_png};

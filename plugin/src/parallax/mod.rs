@@ -21,7 +21,7 @@ pub use material::{
 pub use max_pyramid::read_max_pyramid;
 pub use max_pyramid::{HEIGHT_CHANNEL, MAX_PYRAMID_SHADER, MaxHeightPyramid};
 pub use pipelines::PomPipelineKey;
-pub use preset::{PresetError, write_atomically};
+pub use preset::PresetError;
 
 use crate::material::{
     Choice, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures, ShaderEntry,

@@ -44,6 +44,18 @@ pub enum PresetError {
     },
 }
 
+impl From<crate::files::WriteError> for PresetError {
+    fn from(error: crate::files::WriteError) -> Self {
+        let reason = error.reason();
+        let (crate::files::WriteError::Io { path, .. }
+        | crate::files::WriteError::Encode { path, .. }) = error;
+        PresetError::Io {
+            path: path.display().to_string(),
+            reason,
+        }
+    }
+}
+
 impl PomPreset {
     /// Parses RON text; `name` (a file name) appears in errors with the line and column. The
     /// values are validated like a material's.
@@ -82,10 +94,10 @@ impl PomPreset {
             .expect("presets always serialise")
     }
 
-    /// Writes the preset as RON, atomically: to a temporary file beside `path`, then renamed over
-    /// it, so a crash never leaves half a file.
+    /// Writes the preset as RON with [`crate::files::write_file`]: a failed write or a crash
+    /// never leaves half a file.
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), PresetError> {
-        write_atomically(path.as_ref(), self.to_ron().as_bytes())
+        crate::files::write_file(path.as_ref(), self.to_ron().as_bytes()).map_err(PresetError::from)
     }
 
     /// The preset as a Rust struct literal to paste into game code.
@@ -97,24 +109,6 @@ impl PomPreset {
         rust.push_str("    ..ParallaxOcclusionMaterial::default()\n}");
         rust
     }
-}
-
-/// Writes `bytes` to a temporary file next to `path` and renames it over `path`.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), PresetError> {
-    let io_error = |error: std::io::Error| PresetError::Io {
-        path: path.display().to_string(),
-        reason: error.to_string(),
-    };
-    let file_name = path
-        .file_name()
-        .map(|name| name.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "preset".into());
-    let temporary = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
-    std::fs::write(&temporary, bytes).map_err(io_error)?;
-    std::fs::rename(&temporary, path).map_err(|error| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error(error)
-    })
 }
 
 #[cfg(test)]

@@ -52,14 +52,14 @@ impl ParamType for f32 {
         } else if self < min {
             Err(LimitError::TooSmall {
                 field,
-                value: self,
-                min,
+                value: ParamValue::Float(self),
+                min: ParamValue::Float(min),
             })
         } else if self > max {
             Err(LimitError::TooLarge {
                 field,
-                value: self,
-                max,
+                value: ParamValue::Float(self),
+                max: ParamValue::Float(max),
             })
         } else {
             Ok(())
@@ -98,14 +98,14 @@ impl ParamType for u32 {
         if self < min {
             Err(LimitError::TooSmall {
                 field,
-                value: self as f32,
-                min: min as f32,
+                value: ParamValue::Integer(self),
+                min: ParamValue::Integer(min),
             })
         } else if self > max {
             Err(LimitError::TooLarge {
                 field,
-                value: self as f32,
-                max: max as f32,
+                value: ParamValue::Integer(self),
+                max: ParamValue::Integer(max),
             })
         } else {
             Ok(())
@@ -241,5 +241,39 @@ impl<T: Choice> ParamType for T {
             ParamValue::Choice(name) => Self::from_name(name),
             _ => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn whole_numbers_out_of_range_are_printed_exactly() {
+        let kind = ParamKind::Integer {
+            min: 1,
+            max: 256,
+            logarithmic: false,
+        };
+        let error = u32::MAX.check("max_samples", &kind).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "max_samples is 4294967295 but must be at most 256"
+        );
+    }
+
+    #[test]
+    fn real_numbers_out_of_range_are_printed_as_written() {
+        let kind = ParamKind::Float {
+            min: 0.0,
+            max: 0.5,
+            editor: (0.0, 0.5),
+            logarithmic: false,
+        };
+        let error = 0.75_f32.check("height_scale", &kind).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "height_scale is 0.75 but must be at most 0.5"
+        );
     }
 }

@@ -328,19 +328,19 @@ pub enum LimitError {
     TooSmall {
         /// The field.
         field: &'static str,
-        /// Its value.
-        value: f32,
+        /// Its value (a whole number stays one, so it prints exactly).
+        value: ParamValue,
         /// The smallest allowed value.
-        min: f32,
+        min: ParamValue,
     },
     /// A number is above its maximum.
     #[error("{field} is {value} but must be at most {max}")]
     TooLarge {
         /// The field.
         field: &'static str,
-        /// Its value.
-        value: f32,
+        /// Its value (a whole number stays one, so it prints exactly).
+        value: ParamValue,
         /// The largest allowed value.
-        max: f32,
+        max: ParamValue,
     },
 }

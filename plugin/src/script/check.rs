@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use super::ScriptError;
-use super::format::{EntityDesc, MaterialDesc, Script, Statistic, Step};
+use super::format::{EntityDesc, MAX_ADVANCE_FRAMES, MaterialDesc, Script, Statistic, Step};
 
 /// Line and column (1-based) of the first `needle` in `text` after `after` (or anywhere).
 fn locate(text: &str, needle: &str, after: &str) -> (usize, usize) {
@@ -103,6 +103,7 @@ pub(super) fn check(
     check_exposure(script, &source)?;
     check_temporal(script, &source)?;
     check_light_shadows(script, &source)?;
+    check_advances(script, &source)?;
     let names = check_entities(script, &source, dir)?;
     check_steps(script, &names, &source)
 }
@@ -138,6 +139,36 @@ fn check_temporal(script: &Script, source: &ScriptText<'_>) -> Result<(), Script
         )),
         None => Ok(()),
     }
+}
+
+/// No `Advance` step runs more than [`MAX_ADVANCE_FRAMES`] frames.
+fn check_advances(script: &Script, source: &ScriptText<'_>) -> Result<(), ScriptError> {
+    let advances = script
+        .steps
+        .iter()
+        .enumerate()
+        .filter_map(|(index, step)| match step {
+            Step::Advance { frames } => Some((index, *frames)),
+            _ => None,
+        });
+    for (nth, (index, frames)) in advances.enumerate() {
+        if frames > MAX_ADVANCE_FRAMES {
+            // The steps' `Advance`s are found in the order written.
+            let steps = uncommented(source.text, "steps", 0).next().unwrap_or(0);
+            let offset = uncommented(source.text, "Advance", steps)
+                .nth(nth)
+                .unwrap_or(steps);
+            return Err(source.invalid(
+                line_and_column(source.text, offset),
+                format!(
+                    "step {}: Advance of {frames} frames is more than the {MAX_ADVANCE_FRAMES} \
+                     one step may run",
+                    index + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Every light's shadow settings, where given, are usable.

@@ -266,6 +266,11 @@ pub enum Statistic {
     },
 }
 
+/// The most frames one `Advance` step may run: 10,000 frames are about 167 s of scene time at
+/// [`super::SCRIPT_FRAME_TIME`], more than any scene test animates, and bound how long a step
+/// renders. A script needing more writes several steps.
+pub const MAX_ADVANCE_FRAMES: u32 = 10_000;
+
 /// One step of a script.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -273,7 +278,7 @@ pub enum Statistic {
 pub enum Step {
     /// Runs `frames` updates with the fixed frame time.
     Advance {
-        /// Number of frames.
+        /// Number of frames, at most [`MAX_ADVANCE_FRAMES`].
         frames: u32,
     },
     /// Changes parameters of the parallax materials of `entity` (its own, or a glTF's).

@@ -9,8 +9,8 @@ mod runner;
 mod stats;
 
 pub use format::{
-    CameraDesc, EntityDesc, LightDesc, MaterialDesc, MaterialPatch, Rect, Script, ShapeDesc,
-    Statistic, Step, TransformDesc,
+    CameraDesc, EntityDesc, LightDesc, MAX_ADVANCE_FRAMES, MaterialDesc, MaterialPatch, Rect,
+    Script, ShapeDesc, Statistic, Step, TransformDesc,
 };
 pub use runner::{SCRIPT_FRAME_TIME, parse_script, run_script, run_script_with};
 

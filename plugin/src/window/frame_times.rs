@@ -2,7 +2,7 @@
 //! (window events and input, fitting the target, acquiring, presenting) apart from the app's
 //! stages, so the runner's cost can be measured on its own.
 
-use std::io::Write;
+use std::fmt::Write;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -56,16 +56,20 @@ impl FrameTimes {
         }
     }
 
-    /// Writes one row per presented frame, times in milliseconds.
-    pub fn write_csv(&self, path: &Path) -> std::io::Result<()> {
-        let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-        writeln!(
-            file,
-            "frame,events_ms,fit_ms,update_ms,acquire_ms,record_ms,present_ms"
-        )?;
+    /// Writes one row per presented frame, times in milliseconds, with
+    /// [`crate::files::write_file`].
+    pub fn write_csv(&self, path: &Path) -> Result<(), crate::files::WriteError> {
+        crate::files::write_file(path, self.csv().as_bytes())
+    }
+
+    /// One row per presented frame under a heading.
+    fn csv(&self) -> String {
+        let mut file = String::new();
+        file.push_str("frame,events_ms,fit_ms,update_ms,acquire_ms,record_ms,present_ms\n");
         let ms = |duration: Duration| duration.as_secs_f64() * 1000.0;
         for (frame, row) in self.rows.iter().enumerate() {
-            writeln!(
+            // Writing into a String cannot fail.
+            let _ = writeln!(
                 file,
                 "{frame},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
                 ms(row.events),
@@ -74,9 +78,9 @@ impl FrameTimes {
                 ms(row.acquire),
                 ms(row.record),
                 ms(row.present)
-            )?;
+            );
         }
-        file.flush()
+        file
     }
 }
 

@@ -269,7 +269,7 @@ impl Runner {
                     .write_csv(path)
                     .map_err(|error| WindowError::FrameTimes {
                         path: path.clone(),
-                        reason: error.to_string(),
+                        reason: error.reason(),
                     })
             }
             None => Ok(()),
@@ -283,7 +283,7 @@ impl Runner {
     fn write_screenshot(&mut self, path: &std::path::Path) -> Result<(), String> {
         let Some(open) = &self.open else {
             let image = crate::capture(&self.app).map_err(|error| error.to_string())?;
-            return image.save(path).map_err(|error| error.to_string());
+            return crate::files::write_png(path, &image).map_err(|error| error.reason());
         };
         let gpu = open.gpu.clone();
         let (format, size) = (open.surface.format(), open.surface.window_size());

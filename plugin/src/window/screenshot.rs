@@ -70,6 +70,6 @@ impl ScreenshotTexture {
             std::fs::create_dir_all(folder)
                 .map_err(|error| format!("creating {}: {error}", folder.display()))?;
         }
-        image.save(path).map_err(|error| error.to_string())
+        crate::files::write_png(path, &image).map_err(|error| error.reason())
     }
 }

@@ -82,13 +82,12 @@ pub fn generate(out: &Path) -> Result<Vec<PathBuf>> {
             ("height.png", &material.height),
         ] {
             let path = folder.join(file);
-            std::fs::write(&path, bytes).with_context(|| format!("writing {}", path.display()))?;
+            pom::files::write_file(&path, bytes)?;
             written.push(path);
         }
     }
     let scene = out.join(STREET_CORNER_FILE);
-    std::fs::write(&scene, street_corner::build(&materials))
-        .with_context(|| format!("writing {}", scene.display()))?;
+    pom::files::write_file(&scene, &street_corner::build(&materials))?;
     written.push(scene);
     Ok(written)
 }

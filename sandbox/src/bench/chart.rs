@@ -73,10 +73,9 @@ pub fn write_chart(path: &Path, adapter: &str, cases: &[CaseResult]) -> Result<(
     draw(&mut pixels, adapter, cases)
         .map_err(|error| anyhow!("drawing {}: {error}", path.display()))?;
     // plotters draws into memory; the image crate (already used for every PNG) encodes it.
-    image::RgbImage::from_raw(SIZE.0, SIZE.1, pixels)
-        .context("the chart buffer has the wrong size")?
-        .save(path)
-        .with_context(|| format!("writing {}", path.display()))
+    let chart = image::RgbImage::from_raw(SIZE.0, SIZE.1, pixels)
+        .context("the chart buffer has the wrong size")?;
+    Ok(pom::files::write_png(path, &chart)?)
 }
 
 fn draw(

@@ -623,9 +623,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         let several = (paths.len() > 1).then_some(*asked);
         for (file, image) in &versus.images {
             let path = args.out.join(versus_file(file, several));
-            image
-                .save(&path)
-                .with_context(|| format!("writing {}", path.display()))?;
+            pom::files::write_png(&path, image)?;
         }
     }
     let chart_path = args.out.join("bench.png");

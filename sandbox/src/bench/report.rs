@@ -340,11 +340,10 @@ impl BenchReport {
     pub fn write_files(&self, dir: &Path) -> Result<()> {
         let json = serde_json::to_string_pretty(self).context("encoding the JSON report")?;
         let json_path = dir.join("bench.json");
-        std::fs::write(&json_path, json)
-            .with_context(|| format!("writing {}", json_path.display()))?;
+        pom::files::write_file(&json_path, json.as_bytes())?;
         let csv_path = dir.join("bench.csv");
-        std::fs::write(&csv_path, self.csv())
-            .with_context(|| format!("writing {}", csv_path.display()))
+        pom::files::write_file(&csv_path, self.csv().as_bytes())?;
+        Ok(())
     }
 }
 

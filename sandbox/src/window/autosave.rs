@@ -93,7 +93,7 @@ impl Autosave {
         }
         let text = ron::ser::to_string_pretty(state, ron::ser::PrettyConfig::default())
             .context("serialising the tuned values")?;
-        pom::parallax::write_atomically(&self.path, text.as_bytes())?;
+        pom::files::write_file(&self.path, text.as_bytes())?;
         self.written = state.clone();
         Ok(())
     }

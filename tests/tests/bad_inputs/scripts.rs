@@ -107,6 +107,15 @@ fn script_light_shadow_map_size_out_of_range() {
 }
 
 #[test]
+fn script_advance_past_the_step_limit() {
+    assert_script_parse(
+        "scripts/advance_too_long.ron",
+        7,
+        "step 3: Advance of 4294967295 frames is more than the 10000 one step may run",
+    );
+}
+
+#[test]
 fn script_light_shadow_softness_nan() {
     assert_script_parse(
         "scripts/shadow_softness_nan.ron",

@@ -27,9 +27,7 @@ fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
     }
-    image
-        .save(path)
-        .map_err(|error| format!("{}: {error}", path.display()))
+    crate::files::write_png(path, image).map_err(|error| error.to_string())
 }
 
 /// One `ExpectMatch` step's capture and files: the reference it reads (and writes when
