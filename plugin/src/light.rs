@@ -114,7 +114,10 @@ pub(crate) fn light_output_problem(
         return Some(("color", format!("color {color:?} is not finite and ≥ 0")));
     }
     if !(intensity.is_finite() && intensity >= 0.0) {
-        return Some(("intensity", format!("intensity {intensity:?} is not finite and ≥ 0")));
+        return Some((
+            "intensity",
+            format!("intensity {intensity:?} is not finite and ≥ 0"),
+        ));
     }
     let brightest = color.iter().fold(0.0_f32, |max, c| max.max(*c));
     if f64::from(brightest) * f64::from(intensity) > f64::from(MAX_LIGHT_OUTPUT) {
@@ -132,7 +135,13 @@ pub(crate) fn light_output_problem(
 /// or intensity that is not finite or < 0 becomes 0; a product over [`MAX_LIGHT_OUTPUT`] scales
 /// the larger of the two (brightest component or intensity) down to it.
 pub(crate) fn clamped_light_output(color: [f32; 3], intensity: f32) -> ([f32; 3], f32) {
-    let usable = |value: f32| if value.is_finite() { value.max(0.0) } else { 0.0 };
+    let usable = |value: f32| {
+        if value.is_finite() {
+            value.max(0.0)
+        } else {
+            0.0
+        }
+    };
     let color = color.map(usable);
     let intensity = usable(intensity);
     let brightest = color.iter().fold(0.0_f32, |max, c| max.max(*c));

@@ -34,7 +34,10 @@ fn load_error(fixture: &GltfFixture, name: &str, needles: &[&str]) -> GltfError 
     let error = load_gltf(&mut app, fixture.write(&dir, name)).unwrap_err();
     let message = error.to_string();
     for needle in [&format!("{name}.gltf")[..]].iter().chain(needles) {
-        assert!(message.contains(needle), "{message:?} should name {needle:?}");
+        assert!(
+            message.contains(needle),
+            "{message:?} should name {needle:?}"
+        );
     }
     assert_eq!(app.world.len(), 0, "nothing half-loaded stays behind");
     error
@@ -52,7 +55,10 @@ fn load_with_warnings(fixture: &GltfFixture, name: &str) -> (App, Vec<String>) {
 fn assert_one_warning(warnings: &[String], needles: &[&str]) {
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     for needle in needles {
-        assert!(warnings[0].contains(needle), "{warnings:?} should name {needle:?}");
+        assert!(
+            warnings[0].contains(needle),
+            "{warnings:?} should name {needle:?}"
+        );
     }
 }
 
@@ -63,7 +69,10 @@ fn a_nan_normal_is_an_error_naming_the_mesh_primitive_and_attribute() {
     load_error(
         &fixture,
         "nan-normal",
-        &["mesh \"quad\" (#0), primitive 0", "NORMAL of vertex 2 is not finite"],
+        &[
+            "mesh \"quad\" (#0), primitive 0",
+            "NORMAL of vertex 2 is not finite",
+        ],
     );
 }
 
@@ -85,7 +94,11 @@ fn a_nan_texture_coordinate_in_a_glb_is_an_error_naming_the_attribute() {
 fn an_infinite_tangent_is_an_error_naming_the_attribute() {
     let mut fixture = GltfFixture::quad(1.0);
     put_f32(&mut fixture, TANGENTS + 3 * 16, f32::INFINITY);
-    load_error(&fixture, "inf-tangent", &["TANGENT of vertex 3 is not finite"]);
+    load_error(
+        &fixture,
+        "inf-tangent",
+        &["TANGENT of vertex 3 is not finite"],
+    );
 }
 
 #[test]
@@ -93,7 +106,11 @@ fn a_texture_transform_of_1e38_is_an_error_naming_the_material_and_field() {
     let mut fixture = GltfFixture::quad(1.0);
     let texture = fixture.add_texture(
         "albedo.png",
-        png(&image::RgbaImage::from_pixel(2, 2, image::Rgba([9, 9, 9, 255]))),
+        png(&image::RgbaImage::from_pixel(
+            2,
+            2,
+            image::Rgba([9, 9, 9, 255]),
+        )),
     );
     fixture.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
     fixture.json["materials"][0]["pbrMetallicRoughness"] = json!({"baseColorTexture": {
@@ -166,9 +183,24 @@ fn a_light_of_intensity_or_colour_1e38_is_clamped_with_a_warning_each() {
         "{warnings:?}"
     );
     let output = |color: pom::Color, intensity: f32| color.r.max(color.g).max(color.b) * intensity;
-    let sun = app.world.query::<&DirectionalLight>().iter().next().copied().unwrap();
-    let bulb = app.world.query::<&PointLight>().iter().next().copied().unwrap();
-    for value in [output(sun.color, sun.intensity), output(bulb.color, bulb.intensity)] {
+    let sun = app
+        .world
+        .query::<&DirectionalLight>()
+        .iter()
+        .next()
+        .copied()
+        .unwrap();
+    let bulb = app
+        .world
+        .query::<&PointLight>()
+        .iter()
+        .next()
+        .copied()
+        .unwrap();
+    for value in [
+        output(sun.color, sun.intensity),
+        output(bulb.color, bulb.intensity),
+    ] {
         assert!(value > 0.0 && value <= MAX_LIGHT_OUTPUT, "{value}");
     }
 }
@@ -187,10 +219,13 @@ fn mesh_count(app: &App) -> usize {
 
 #[test]
 fn a_node_matrix_of_3e38_or_zeros_or_a_zero_scale_leaves_the_node_out_with_a_warning() {
-    let huge = [3e38_f32, 0.0, 0.0, 0.0, 0.0, 3e38, 0.0, 0.0, 0.0, 0.0, 3e38, 0.0, 0.0, 0.0, 0.0, 1.0];
+    let zeros = [0.0_f32; 16];
+    let huge = [
+        3e38_f32, 0.0, 0.0, 0.0, 0.0, 3e38, 0.0, 0.0, 0.0, 0.0, 3e38, 0.0, 0.0, 0.0, 0.0, 1.0,
+    ];
     for (name, transform, needle) in [
         ("huge-matrix", json!({"matrix": huge}), "matrix"),
-        ("zero-matrix", json!({"matrix": [0.0; 16]}), "matrix"),
+        ("zero-matrix", json!({"matrix": zeros}), "matrix"),
         ("zero-scale", json!({"scale": [1.0, 0.0, 1.0]}), "scale"),
     ] {
         let (app, warnings) = load_with_warnings(&placed_quad(transform), name);
@@ -209,7 +244,10 @@ fn a_child_whose_world_transform_overflows_is_left_out_with_a_warning() {
         .unwrap()
         .push(json!({"name": "giant", "scale": [1e12, 1e12, 1e12], "children": [0]}));
     let (app, warnings) = load_with_warnings(&fixture, "overflowing-world");
-    assert_one_warning(&warnings, &["node \"quad\" (#0)", "world transform", "left out"]);
+    assert_one_warning(
+        &warnings,
+        &["node \"quad\" (#0)", "world transform", "left out"],
+    );
     assert_eq!(mesh_count(&app), 0);
 }
 
@@ -217,7 +255,10 @@ fn a_child_whose_world_transform_overflows_is_left_out_with_a_warning() {
 fn a_zero_rotation_is_replaced_by_none_with_a_warning() {
     let fixture = placed_quad(json!({"rotation": [0.0, 0.0, 0.0, 0.0]}));
     let (app, warnings) = load_with_warnings(&fixture, "zero-rotation");
-    assert_one_warning(&warnings, &["node \"quad\" (#0)", "rotation [0.0, 0.0, 0.0, 0.0]"]);
+    assert_one_warning(
+        &warnings,
+        &["node \"quad\" (#0)", "rotation [0.0, 0.0, 0.0, 0.0]"],
+    );
     let rotations: Vec<Quat> = app
         .world
         .query::<(&Transform, &Handle<Mesh>)>()
@@ -242,19 +283,25 @@ fn with_camera(camera: serde_json::Value) -> GltfFixture {
 #[test]
 fn a_camera_with_yfov_0_or_zfar_under_znear_is_an_error_naming_it() {
     for (name, perspective, needle) in [
-        ("zero-fov", json!({"yfov": 0.0, "znear": 0.1}), "perspective.yfov 0"),
+        (
+            "zero-fov",
+            json!({"yfov": 0.0, "znear": 0.1}),
+            "perspective.yfov 0",
+        ),
         (
             "far-under-near",
             json!({"yfov": 0.8, "znear": 10.0, "zfar": 1.0}),
             "perspective.zfar 1",
         ),
     ] {
-        let fixture = with_camera(json!({"name": "view", "type": "perspective", "perspective": perspective}));
+        let fixture =
+            with_camera(json!({"name": "view", "type": "perspective", "perspective": perspective}));
         let error = load_error(&fixture, name, &["camera \"view\" (#0)", needle]);
         assert!(matches!(error, GltfError::Camera { .. }), "{error:?}");
     }
     // The same file with a usable camera loads, so the errors above are the camera's.
-    let fixture = with_camera(json!({"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}));
+    let fixture =
+        with_camera(json!({"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}));
     let (app, warnings) = load_with_warnings(&fixture, "usable-camera");
     assert!(warnings.is_empty(), "{warnings:?}");
     assert_eq!(app.world.query::<&Camera>().iter().count(), 1);
@@ -273,6 +320,10 @@ fn a_glb_whose_header_length_is_short_of_the_file_gives_a_warning_naming_both() 
     let scene = load_gltf(&mut app, &path).unwrap();
     assert_one_warning(
         &scene.warnings,
-        &["short-header.glb", &format!("{declared} bytes"), &format!("holds {actual}")],
+        &[
+            "short-header.glb",
+            &format!("{declared} bytes"),
+            &format!("holds {actual}"),
+        ],
     );
 }

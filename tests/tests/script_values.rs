@@ -48,7 +48,12 @@ fn the_unchanged_script_loads() {
 
 #[test]
 fn a_nan_field_of_view_is_an_error_naming_it() {
-    assert_error("fov_degrees: 45.0", "fov_degrees: NaN", 2, &["camera fov_degrees NaN"]);
+    assert_error(
+        "fov_degrees: 45.0",
+        "fov_degrees: NaN",
+        2,
+        &["camera fov_degrees NaN"],
+    );
 }
 
 #[test]

@@ -96,10 +96,7 @@ fn uv_transform_of(material: &gltf::Material<'_>) -> Result<Affine2, String> {
     else {
         return Ok(Affine2::IDENTITY);
     };
-    for (field, values) in [
-        ("scale", transform.scale()),
-        ("offset", transform.offset()),
-    ] {
+    for (field, values) in [("scale", transform.scale()), ("offset", transform.offset())] {
         if !values.iter().all(|v| v.abs() <= MAX_UV_TRANSFORM) {
             return Err(format!(
                 "KHR_texture_transform {field} {values:?} is not finite or beyond ±{MAX_UV_TRANSFORM}"

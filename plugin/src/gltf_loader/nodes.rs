@@ -117,12 +117,11 @@ impl Spawner<'_> {
         parent_world: Affine3A,
     ) -> Result<Option<(Entity, Affine3A)>, GltfError> {
         let node_name = describe(node.name(), node.index());
-        let placed = node_transform(node, &node_name, &mut self.scene.warnings).and_then(
-            |transform| {
+        let placed =
+            node_transform(node, &node_name, &mut self.scene.warnings).and_then(|transform| {
                 let world = parent_world * transform.to_affine();
                 world_problem(world).map_or(Ok((transform, world)), Err)
-            },
-        );
+            });
         let (transform, world) = match placed {
             Ok(placed) => placed,
             Err(problem) => {

@@ -93,7 +93,10 @@ fn check_camera(script: &Script) -> Result<(), Problem> {
     if camera.position == camera.target {
         return Err((
             "target",
-            format!("target {:?} is its position: it looks nowhere", camera.target),
+            format!(
+                "target {:?} is its position: it looks nowhere",
+                camera.target
+            ),
         ));
     }
     if let Some(fov) = camera.fov_degrees
@@ -267,12 +270,14 @@ fn element_starts(text: &str, section: &str, names: &[&str]) -> Vec<usize> {
         .iter()
         .flat_map(|name| {
             // `Camera(` is also the end of `OrbitCamera(`: only a whole word counts.
-            uncommented(text, &format!("{name}("), start).filter(move |&offset| {
-                !text[..offset]
-                    .chars()
-                    .next_back()
-                    .is_some_and(|c| c.is_alphanumeric() || c == '_')
-            })
+            uncommented(text, &format!("{name}("), start)
+                .filter(|&offset| {
+                    !text[..offset]
+                        .chars()
+                        .next_back()
+                        .is_some_and(|c| c.is_alphanumeric() || c == '_')
+                })
+                .collect::<Vec<_>>()
         })
         .collect();
     starts.sort_unstable();
