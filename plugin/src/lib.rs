@@ -106,7 +106,7 @@ pub use image::{
 };
 #[cfg(feature = "scene-tests")]
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
-pub use light::{AmbientLight, DirectionalLight, PointLight, SpotLight};
+pub use light::{AmbientLight, DirectionalLight, MAX_LIGHT_OUTPUT, PointLight, SpotLight};
 pub use lighting::LightingModel;
 pub use lit::{AlphaMode, LitMaterial, LitParams, LitPatch, LitPreset, lit_plugin};
 pub use material::{Material, MaterialPlugin, ShadedMaterial};

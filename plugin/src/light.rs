@@ -98,6 +98,67 @@ impl SpotLight {
     }
 }
 
+/// The brightest a light may be: the largest component of its colour times its intensity at
+/// most 2⁶⁴ (about 1.8e19, the square root of `f32::MAX`), so that the shading's products of
+/// it (with the exposure, the BRDF, the falloff) stay within `f32` instead of turning into
+/// infinity and NaN.
+pub const MAX_LIGHT_OUTPUT: f32 = 18_446_744_073_709_551_616.0;
+
+/// What is wrong with a light's linear `color` and `intensity`, naming the field, if anything:
+/// each must be finite and ≥ 0, and their product at most [`MAX_LIGHT_OUTPUT`].
+pub(crate) fn light_output_problem(
+    color: [f32; 3],
+    intensity: f32,
+) -> Option<(&'static str, String)> {
+    if color.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
+        return Some(("color", format!("color {color:?} is not finite and ≥ 0")));
+    }
+    if !(intensity.is_finite() && intensity >= 0.0) {
+        return Some((
+            "intensity",
+            format!("intensity {intensity:?} is not finite and ≥ 0"),
+        ));
+    }
+    let brightest = color.iter().fold(0.0_f32, |max, c| max.max(*c));
+    if f64::from(brightest) * f64::from(intensity) > f64::from(MAX_LIGHT_OUTPUT) {
+        return Some((
+            "intensity",
+            format!(
+                "color {color:?} × intensity {intensity:?} is over the limit of {MAX_LIGHT_OUTPUT:?}"
+            ),
+        ));
+    }
+    None
+}
+
+/// `color` and `intensity` brought within [`light_output_problem`]'s rules: a colour component
+/// or intensity that is not finite or < 0 becomes 0; a product over [`MAX_LIGHT_OUTPUT`] scales
+/// the larger of the two (brightest component or intensity) down to it.
+pub(crate) fn clamped_light_output(color: [f32; 3], intensity: f32) -> ([f32; 3], f32) {
+    let usable = |value: f32| {
+        if value.is_finite() {
+            value.max(0.0)
+        } else {
+            0.0
+        }
+    };
+    let color = color.map(usable);
+    let intensity = usable(intensity);
+    let brightest = color.iter().fold(0.0_f32, |max, c| max.max(*c));
+    let output = f64::from(brightest) * f64::from(intensity);
+    if output <= f64::from(MAX_LIGHT_OUTPUT) {
+        return (color, intensity);
+    }
+    // A hair under the limit, so that rounding back to f32 cannot land over it.
+    let scale = f64::from(MAX_LIGHT_OUTPUT) / output * (1.0 - f64::from(f32::EPSILON));
+    let scaled = |value: f32| (f64::from(value) * scale) as f32;
+    if brightest > intensity {
+        (color.map(scaled), intensity)
+    } else {
+        (color, scaled(intensity))
+    }
+}
+
 /// Light arriving equally from everywhere (a sky); a resource, one per app.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AmbientLight {

@@ -6,8 +6,10 @@ use gltf::json::mesh::Semantic;
 use gltf::json::validation::Checked;
 
 /// A GLB's declared total length must cover its own 12-byte header: gltf subtracts the
-/// header's size from it unchecked (an overflow panic in debug builds).
-pub(super) fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
+/// header's size from it unchecked (an overflow panic in debug builds). A length short of the
+/// file's is read anyway (gltf splits the chunks from the whole file), so it gives a warning:
+/// the file was cut, appended to, or written by a broken exporter.
+pub(super) fn check_glb_length(bytes: &[u8]) -> Result<Option<String>, String> {
     if let [b'g', b'l', b'T', b'F', _, _, _, _, l0, l1, l2, l3, ..] = *bytes {
         let length = u32::from_le_bytes([l0, l1, l2, l3]);
         if length < 12 {
@@ -15,8 +17,14 @@ pub(super) fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
                 "the GLB header declares a length of {length} bytes, less than the header's 12"
             ));
         }
+        if (length as usize) < bytes.len() {
+            return Ok(Some(format!(
+                "the GLB header declares a length of {length} bytes but the file holds {}; read whole",
+                bytes.len()
+            )));
+        }
     }
-    Ok(())
+    Ok(None)
 }
 
 /// Checks, before gltf validates or reads the document, what it would otherwise panic on.
@@ -195,6 +203,61 @@ fn check_images(json: &gltf::json::Root) -> Result<(), String> {
                 ));
             }
             _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// A sparse accessor's indices must rise strictly and stay below its element count: gltf's
+/// reader silently skips any other index, and every sparse value after it.
+pub(super) fn check_sparse_indices(
+    document: &gltf::Document,
+    buffers: &[gltf::buffer::Data],
+) -> Result<(), String> {
+    for accessor in document.accessors() {
+        let Some(sparse) = accessor.sparse() else {
+            continue;
+        };
+        let indices = sparse.indices();
+        let view = indices.view();
+        let size = indices.index_type().size();
+        let stride = view.stride().unwrap_or(size);
+        // Data that is not there is the reader's error to report, with its own message.
+        let Some(data) = buffers
+            .get(view.buffer().index())
+            .and_then(|data| data.0.get(view.offset()..))
+            .and_then(|data| data.get(..view.length()))
+        else {
+            continue;
+        };
+        let mut previous: Option<u32> = None;
+        for entry in 0..sparse.count() {
+            let Some(bytes) = entry
+                .checked_mul(stride)
+                .and_then(|start| start.checked_add(indices.offset()))
+                .and_then(|start| data.get(start..))
+                .and_then(|rest| rest.get(..size))
+            else {
+                break;
+            };
+            // Little-endian, of whichever of the three widths.
+            let index = bytes
+                .iter()
+                .rev()
+                .fold(0_u32, |index, &byte| (index << 8) | u32::from(byte));
+            let at = accessor.index();
+            if index as usize >= accessor.count() {
+                return Err(format!(
+                    "accessor {at}: sparse index {index} (entry {entry}) is past its {} elements",
+                    accessor.count()
+                ));
+            }
+            if let Some(previous) = previous.filter(|&previous| index <= previous) {
+                return Err(format!(
+                    "accessor {at}: sparse index {index} (entry {entry}) does not rise above the one before it, {previous}"
+                ));
+            }
+            previous = Some(index);
         }
     }
     Ok(())

@@ -81,20 +81,39 @@ struct LitOnly {
     unlit: bool,
 }
 
+/// The largest texture-coordinate scale or offset `KHR_texture_transform` may give: 2²⁴, past
+/// which an `f32` coordinate has no fraction left, so every pixel would read one texel.
+const MAX_UV_TRANSFORM: f32 = 16_777_216.0;
+
 /// The renderer samples every map of a material with the same coordinates, so the base colour
-/// texture's transform (T · R · S, as the extension defines it) applies to all.
-fn uv_transform_of(material: &gltf::Material<'_>) -> Affine2 {
-    material
+/// texture's transform (T · R · S, as the extension defines it) applies to all. A value that
+/// is not finite, or a scale or offset over [`MAX_UV_TRANSFORM`], is named in the error.
+fn uv_transform_of(material: &gltf::Material<'_>) -> Result<Affine2, String> {
+    let Some(transform) = material
         .pbr_metallic_roughness()
         .base_color_texture()
         .and_then(|info| info.texture_transform())
-        .map_or(Affine2::IDENTITY, |t| {
-            Affine2::from_scale_angle_translation(
-                Vec2::from(t.scale()),
-                t.rotation(),
-                Vec2::from(t.offset()),
-            )
-        })
+    else {
+        return Ok(Affine2::IDENTITY);
+    };
+    for (field, values) in [("scale", transform.scale()), ("offset", transform.offset())] {
+        if !values.iter().all(|v| v.abs() <= MAX_UV_TRANSFORM) {
+            return Err(format!(
+                "KHR_texture_transform {field} {values:?} is not finite or beyond ±{MAX_UV_TRANSFORM}"
+            ));
+        }
+    }
+    if !transform.rotation().is_finite() {
+        return Err(format!(
+            "KHR_texture_transform rotation {} is not finite",
+            transform.rotation()
+        ));
+    }
+    Ok(Affine2::from_scale_angle_translation(
+        Vec2::from(transform.scale()),
+        transform.rotation(),
+        Vec2::from(transform.offset()),
+    ))
 }
 
 /// One glTF material being converted: the file, the image store and cache its textures go to,
@@ -133,7 +152,7 @@ impl Conversion<'_> {
         warnings: &mut Vec<String>,
     ) -> Result<LoadedMaterial, GltfError> {
         let surface = self.surface(material)?;
-        let uv_transform = uv_transform_of(material);
+        let uv_transform = uv_transform_of(material).map_err(|reason| self.error(reason))?;
         let lit_only = self.lit_only(material)?;
         let extras = PomExtras::from_extras(material.extras().as_deref().map(|raw| raw.get()))
             .map_err(|reason| self.error(reason))?;

@@ -14,6 +14,7 @@ mod materials;
 mod nodes;
 mod primitives;
 mod textures;
+mod values;
 
 pub use extras::PomExtras;
 
@@ -116,6 +117,16 @@ pub enum GltfError {
         /// What was wrong.
         reason: String,
     },
+    /// A camera's projection is unusable.
+    #[error("{path}: camera {camera}: {reason}")]
+    Camera {
+        /// The file.
+        path: PathBuf,
+        /// The camera's name or index.
+        camera: String,
+        /// What was wrong.
+        reason: String,
+    },
     /// The file has no scene to load.
     #[error("{path}: the file has no scene")]
     NoScene {
@@ -143,6 +154,8 @@ struct Source {
     unsupported_required: Vec<String>,
     /// Extensions the file uses (without requiring them) that this loader does not implement.
     unsupported_used: Vec<String>,
+    /// What reading the file found odd but read anyway.
+    warnings: Vec<String>,
 }
 
 /// The extensions this loader implements.
@@ -169,7 +182,11 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         path: path.to_owned(),
         reason,
     };
-    guards::check_glb_length(bytes).map_err(open_error)?;
+    let warnings: Vec<String> = guards::check_glb_length(bytes)
+        .map_err(open_error)?
+        .map(|warning| format!("{}: {warning}", path.display()))
+        .into_iter()
+        .collect();
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|error| open_error(error.to_string()))?;
     // Validation rejects files that require extensions it does not know; we draw what we can
@@ -217,6 +234,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         }
         buffers.push(gltf::buffer::Data(data));
     }
+    guards::check_sparse_indices(&document, &buffers).map_err(open_error)?;
     Ok(Source {
         path: path.to_owned(),
         document,
@@ -224,6 +242,7 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         base,
         unsupported_required: unsupported,
         unsupported_used,
+        warnings,
     })
 }
 
@@ -337,7 +356,10 @@ fn spawn_source(
             reason: "the file is malformed (the parser gave up)".into(),
         })
     })?;
-    let mut scene = GltfScene::default();
+    let mut scene = GltfScene {
+        warnings: source.warnings.clone(),
+        ..GltfScene::default()
+    };
     for extension in &source.unsupported_required {
         scene.warnings.push(format!(
             "required extension {extension} is not supported: ignored"

@@ -1,24 +1,16 @@
 //! The node hierarchy of a glTF scene to entities: transforms, meshes, cameras and lights.
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, Vec3};
 use hecs::Entity;
 
 use super::materials::{MaterialCache, MaterialComponent};
 use super::primitives::read_primitive;
+use super::values::{camera_of, light_output, light_range, node_transform, world_problem};
 use super::{GltfError, GltfScene, Source, describe};
 use crate::{
     App, Assets, Camera, Color, DirectionalLight, Handle, Image, Mesh, Name, Parent, PointLight,
-    Projection, SpotLight, Transform,
+    SpotLight, Transform,
 };
-
-fn transform_of(node: &gltf::Node<'_>) -> Transform {
-    let (translation, rotation, scale) = node.transform().decomposed();
-    Transform {
-        translation: Vec3::from(translation),
-        rotation: Quat::from_array(rotation).normalize(),
-        scale: Vec3::from(scale),
-    }
-}
 
 /// The world-space box of `mesh` placed by `world` (`None` without vertices).
 fn mesh_bounds(world: Affine3A, mesh: &Mesh) -> Option<(Vec3, Vec3)> {
@@ -30,25 +22,6 @@ fn mesh_bounds(world: Affine3A, mesh: &Mesh) -> Option<(Vec3, Vec3)> {
         *max = max.max(point);
     }
     bounds
-}
-
-fn camera_of(camera: &gltf::Camera<'_>) -> Camera {
-    let projection = match camera.projection() {
-        gltf::camera::Projection::Perspective(perspective) => Projection::Perspective {
-            fov_y: perspective.yfov(),
-            near: perspective.znear(),
-            far: perspective.zfar().unwrap_or(1000.0),
-        },
-        gltf::camera::Projection::Orthographic(orthographic) => Projection::Orthographic {
-            height: orthographic.ymag() * 2.0,
-            near: orthographic.znear(),
-            far: orthographic.zfar(),
-        },
-    };
-    Camera {
-        projection,
-        ..Camera::default()
-    }
 }
 
 /// Spawns the default (or first) scene's nodes, depth first, parents before children.
@@ -121,7 +94,9 @@ fn spawn_nodes(
                 ),
             });
         }
-        let (entity, world) = spawner.node(&node, parent, parent_world)?;
+        let Some((entity, world)) = spawner.node(&node, parent, parent_world)? else {
+            continue;
+        };
         let children: Vec<_> = node.children().collect();
         for child in children.into_iter().rev() {
             stack.push((child, Some(entity), world));
@@ -133,15 +108,29 @@ fn spawn_nodes(
 
 impl Spawner<'_> {
     /// Spawns `node` under `parent` with its mesh, camera and light; returns the entity and
-    /// its world transform.
+    /// its world transform, or nothing (with a warning) when its transform cannot place it:
+    /// then it and its children are left out.
     fn node(
         &mut self,
         node: &gltf::Node<'_>,
         parent: Option<Entity>,
         parent_world: Affine3A,
-    ) -> Result<(Entity, Affine3A), GltfError> {
-        let transform = transform_of(node);
-        let world = parent_world * transform.to_affine();
+    ) -> Result<Option<(Entity, Affine3A)>, GltfError> {
+        let node_name = describe(node.name(), node.index());
+        let placed =
+            node_transform(node, &node_name, &mut self.scene.warnings).and_then(|transform| {
+                let world = parent_world * transform.to_affine();
+                world_problem(world).map_or(Ok((transform, world)), Err)
+            });
+        let (transform, world) = match placed {
+            Ok(placed) => placed,
+            Err(problem) => {
+                self.scene.warnings.push(format!(
+                    "node {node_name}: {problem}; it and its children are left out"
+                ));
+                return Ok(None);
+            }
+        };
         // The file's node name, or "node N" for an unnamed node.
         let name = node
             .name()
@@ -151,7 +140,6 @@ impl Spawner<'_> {
             let _ = self.app.world.insert_one(entity, Parent(parent));
         }
         self.scene.entities.push(entity);
-        let node_name = describe(node.name(), node.index());
 
         if node.skin().is_some() {
             self.scene.warnings.push(format!(
@@ -162,10 +150,15 @@ impl Spawner<'_> {
             self.mesh(&mesh, entity, &name, world)?;
         }
         if let Some(camera) = node.camera() {
+            let loaded = camera_of(&camera).map_err(|reason| GltfError::Camera {
+                path: self.source.path.clone(),
+                camera: describe(camera.name(), camera.index()),
+                reason,
+            })?;
             // One rule everywhere: the first camera node is the one looked through.
             let camera = Camera {
                 active: self.scene.cameras.is_empty(),
-                ..camera_of(&camera)
+                ..loaded
             };
             let _ = self.app.world.insert_one(entity, camera);
             self.scene.cameras.push(entity);
@@ -173,7 +166,7 @@ impl Spawner<'_> {
         if let Some(light) = node.light() {
             self.light(&light, entity, &node_name);
         }
-        Ok((entity, world))
+        Ok(Some((entity, world)))
     }
 
     /// The drawable primitives of `mesh` on node `entity` (named `name`, placed by `world`):
@@ -250,25 +243,17 @@ impl Spawner<'_> {
         Ok(drawable)
     }
 
-    /// A `KHR_lights_punctual` light on node `entity`; a negative or non-finite intensity is
-    /// clamped to 0, with a warning.
+    /// A `KHR_lights_punctual` light on node `entity`; a colour, intensity or range it cannot
+    /// shine with is clamped, with a warning.
     fn light(
         &mut self,
         light: &gltf::khr_lights_punctual::Light<'_>,
         entity: Entity,
         node_name: &str,
     ) {
-        let [r, g, b] = light.color();
+        let ([r, g, b], intensity) = light_output(light, node_name, &mut self.scene.warnings);
         let color = Color::linear_rgb(r, g, b);
-        let mut intensity = light.intensity();
-        if !(intensity >= 0.0 && intensity.is_finite()) {
-            self.scene.warnings.push(format!(
-                "node {node_name}: light intensity {intensity} is not a finite number ≥ 0; clamped to 0"
-            ));
-            intensity = 0.0;
-        }
-        // No range: unbounded, as KHR_lights_punctual defines it.
-        let range = light.range().unwrap_or(f32::INFINITY);
+        let range = light_range(light, node_name, &mut self.scene.warnings);
         let inserted = match light.kind() {
             gltf::khr_lights_punctual::Kind::Directional => self
                 .app

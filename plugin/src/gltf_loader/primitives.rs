@@ -3,7 +3,7 @@
 use glam::{Affine2, Vec2};
 
 use super::{GltfError, Source, describe};
-use crate::Mesh;
+use crate::{Mesh, MeshError};
 
 /// The vertex data of one triangle primitive, with the material's texture transform baked into
 /// its coordinates, missing normals (flat) and tangents (MikkTSpace) generated.
@@ -68,5 +68,22 @@ pub(super) fn read_primitive(
         indices,
     }
     .with_generated_attributes()
-    .map_err(|error| mesh_error(error.to_string()))
+    .map_err(|error| mesh_error(in_gltf_terms(&error)))
+}
+
+/// `error` with the attribute named as the file names it.
+fn in_gltf_terms(error: &MeshError) -> String {
+    match error {
+        MeshError::NonFiniteAttribute { attribute, vertex } => {
+            let semantic = match *attribute {
+                "normals" => "NORMAL",
+                "uvs" => "TEXCOORD_0 (after KHR_texture_transform, if any)",
+                "tangents" => "TANGENT",
+                "colors" => "COLOR_0",
+                other => other,
+            };
+            format!("{semantic} of vertex {vertex} is not finite")
+        }
+        other => other.to_string(),
+    }
 }

@@ -37,6 +37,14 @@ pub enum MeshError {
     /// A position is NaN or infinite.
     #[error("mesh position {0} is not finite")]
     NonFinitePosition(usize),
+    /// A normal, texture coordinate, tangent or colour is NaN or infinite.
+    #[error("mesh {attribute} of vertex {vertex} is not finite")]
+    NonFiniteAttribute {
+        /// The attribute's name (`normals`, `uvs`, `tangents` or `colors`).
+        attribute: &'static str,
+        /// The vertex.
+        vertex: usize,
+    },
     /// The mesh has no triangles.
     #[error("mesh has no triangles")]
     Empty,
@@ -71,7 +79,8 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// Checks that every attribute matches the position count and every index is in range.
+    /// Checks that every attribute matches the position count, every index is in range and
+    /// every value is finite.
     pub fn validate(&self) -> Result<(), MeshError> {
         let expected = self.positions.len();
         for (attribute, found) in [
@@ -112,6 +121,27 @@ impl Mesh {
             .position(|p| p.iter().any(|c| !c.is_finite()))
         {
             return Err(MeshError::NonFinitePosition(at));
+        }
+        self.check_finite_attributes()
+    }
+
+    /// Every normal, texture coordinate, tangent and colour is finite: one NaN would shade its
+    /// triangles (and, through filtering, their neighbours) with NaN.
+    fn check_finite_attributes(&self) -> Result<(), MeshError> {
+        fn first_non_finite<const N: usize>(values: &[[f32; N]]) -> Option<usize> {
+            values
+                .iter()
+                .position(|value| value.iter().any(|c| !c.is_finite()))
+        }
+        for (attribute, vertex) in [
+            ("normals", first_non_finite(&self.normals)),
+            ("uvs", first_non_finite(&self.uvs)),
+            ("tangents", first_non_finite(&self.tangents)),
+            ("colors", first_non_finite(&self.colors)),
+        ] {
+            if let Some(vertex) = vertex {
+                return Err(MeshError::NonFiniteAttribute { attribute, vertex });
+            }
         }
         Ok(())
     }

@@ -1,5 +1,7 @@
 //! Checking a script's names and files before anything runs, with line and column.
 
+mod values;
+
 use std::path::Path;
 
 use super::ScriptError;
@@ -104,6 +106,7 @@ pub(super) fn check(
     check_temporal(script, &source)?;
     check_light_shadows(script, &source)?;
     check_advances(script, &source)?;
+    values::check_values(script, &source)?;
     let names = check_entities(script, &source, dir)?;
     check_steps(script, &names, &source)
 }

@@ -54,6 +54,10 @@ impl Runner<'_> {
     fn spawn_gltf(&mut self, file: &str, transform: Transform) -> Result<Vec<Entity>, String> {
         let scene =
             load_gltf(&mut self.app, self.dir.join(file)).map_err(|error| error.to_string())?;
+        // What the loader fixed (a clamped light, a node left out) must not pass unsaid.
+        for warning in &scene.warnings {
+            log::warn!("{file}: {warning}");
+        }
         // Place the whole file by moving its root nodes.
         for entity in &scene.entities {
             if self.app.world.get::<&crate::Parent>(*entity).is_err()
