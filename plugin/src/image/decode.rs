@@ -7,6 +7,7 @@ use image::DynamicImage;
 
 use super::ImageError;
 use super::budget::ImageBudget;
+use crate::files::FileError;
 
 /// Longest side, in pixels, of an image file the loader decodes: twice the largest texture
 /// limit of today's GPUs, so any texture a device can hold loads (and larger ones are halved
@@ -31,8 +32,13 @@ pub(super) fn decode_file(
     budget: &mut ImageBudget,
 ) -> Result<(DynamicImage, u64), ImageError> {
     let name = path.display().to_string();
-    let bytes = crate::files::read_bounded(path, crate::files::MAX_IMAGE_FILE_BYTES)
-        .map_err(|error| ImageError::File(Box::new(error)))?;
+    let bytes =
+        crate::files::read_bounded(path, crate::files::MAX_IMAGE_FILE_BYTES).map_err(|error| {
+            match error {
+                FileError::Io { reason, .. } => load_error(&name, reason),
+                other => load_error(&name, other),
+            }
+        })?;
     // As `ImageReader::open` does: the extension names the format when the content cannot.
     let decoded = decode_bytes(
         &bytes,
@@ -57,7 +63,7 @@ pub(crate) fn decode_bytes(
     budget: &mut ImageBudget,
 ) -> Result<DynamicImage, ImageError> {
     check_png_palette(bytes).map_err(|reason| load_error(name, reason))?;
-    let reader = |max_alloc: u64| {
+    let reader = |limits: image::Limits| {
         let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
         if let Some(format) = format_hint {
             reader.set_format(format);
@@ -65,16 +71,15 @@ pub(crate) fn decode_bytes(
         let mut reader = reader
             .with_guessed_format()
             .map_err(|error| load_error(name, error))?;
-        let mut limits = image::Limits::default();
-        limits.max_image_width = Some(MAX_IMAGE_SIDE);
-        limits.max_image_height = Some(MAX_IMAGE_SIDE);
-        limits.max_alloc = Some(max_alloc);
         reader.limits(limits);
         Ok(reader)
     };
+    let mut limits = image::Limits::default();
     let header = {
         use image::ImageDecoder;
-        let decoder = reader(DECODER_SLACK_BYTES)?
+        // No size limits yet: the header's size is checked below, with its own message.
+        limits.max_alloc = Some(DECODER_SLACK_BYTES);
+        let decoder = reader(limits.clone())?
             .into_decoder()
             .map_err(|error| load_error(name, error))?;
         (decoder.dimensions(), decoder.color_type().bytes_per_pixel())
@@ -98,7 +103,10 @@ pub(crate) fn decode_bytes(
         (width, height),
         u64::from(bytes_per_texel),
     )?;
-    let reader = reader(decoded_bytes + DECODER_SLACK_BYTES)?;
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(decoded_bytes + DECODER_SLACK_BYTES);
+    let reader = reader(limits)?;
     // zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
     // builds): a broken file is an error, not a crash.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| reader.decode()))

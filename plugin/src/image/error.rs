@@ -57,9 +57,6 @@ pub enum ImageError {
         /// The file or image name.
         name: String,
     },
-    /// The file could not be read: not a regular file, too large, outside its folder.
-    #[error("cannot load image: {0}")]
-    File(Box<crate::files::FileError>),
     /// Decoding the image (with the other images of its load) would pass the memory budget.
     #[error(
         "image {name} ({file_bytes} bytes, {width}×{height} pixels) needs {needed} bytes of \
