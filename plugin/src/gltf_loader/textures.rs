@@ -47,12 +47,15 @@ fn origin(source: &Source, image: &gltf::Image<'_>) -> Result<Origin, String> {
     }
 }
 
-/// `image`'s encoded bytes, a name for messages, and the format its MIME type or extension gives.
+/// An image's encoded bytes, a name for messages, and the format its MIME type or extension gives.
+type Encoded<'a> = (Cow<'a, [u8]>, String, Option<image::ImageFormat>);
+
+/// `image`'s encoded bytes, a name for messages, and its format.
 fn encoded<'a>(
     source: &'a Source,
     image: &gltf::Image<'_>,
     origin: &Origin,
-) -> Result<(Cow<'a, [u8]>, String, Option<image::ImageFormat>), String> {
+) -> Result<Encoded<'a>, String> {
     let mime = |mime_type: Option<&str>| mime_type.and_then(image::ImageFormat::from_mime_type);
     match (image.source(), origin) {
         (gltf::image::Source::Uri { uri, mime_type }, Origin::File(path)) => {
