@@ -98,11 +98,13 @@ pub use default_plugins::DefaultPlugins;
 pub use dynamic_height::{
     DynamicHeightError, DynamicHeightField, SobelPass, derive_dynamic_normals,
 };
-pub use gltf_loader::{GltfError, GltfScene, PomExtras, load_gltf, load_gltf_bytes};
+pub use gltf_loader::{
+    GltfError, GltfOptions, GltfScene, PomExtras, load_gltf, load_gltf_bytes, load_gltf_with,
+};
 pub use height_field::{HeightField, patterns};
 pub use image::{
-    Channel, FilterMode, Image, ImageError, ImageSampler, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Pixels,
-    TextureKind, WrapMode,
+    Channel, FilterMode, IMAGE_MEMORY_BUDGET, Image, ImageError, ImageSampler, MAX_IMAGE_PIXELS,
+    MAX_IMAGE_SIDE, Pixels, TextureKind, WrapMode,
 };
 #[cfg(feature = "scene-tests")]
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};

@@ -223,10 +223,11 @@ pub fn compose_checked(
     let mut starts: FileLines = Vec::new();
     for file in shader.files {
         let path = source_dir.join(file.path);
-        let text = std::fs::read_to_string(&path).map_err(|error| ShaderReloadError::Read {
-            path: path.clone(),
-            reason: error.to_string(),
-        })?;
+        let text = crate::files::read_text_bounded(&path, crate::files::MAX_TEXT_FILE_BYTES)
+            .map_err(|error| ShaderReloadError::Read {
+                path: path.clone(),
+                reason: error.to_string(),
+            })?;
         // The same layout as ComposedShader::source: a comment line, the file, a newline.
         source.push_str("// ---- ");
         source.push_str(file.path);

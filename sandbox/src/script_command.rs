@@ -20,6 +20,10 @@ pub struct ScriptArgs {
     /// each reference].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Let scripts name files outside their own folder (maps, glTF files, presets, references
+    /// written by --bless): only for scripts you trust.
+    #[arg(long)]
+    pub allow_outside_paths: bool,
     #[command(flatten)]
     pub path: PathArgs,
 }
@@ -32,6 +36,11 @@ pub fn run(args: &ScriptArgs) -> Result<()> {
         bless: args.bless,
         out_dir: args.out.clone(),
         path: args.path.path,
+        file_access: if args.allow_outside_paths {
+            pom::files::FileAccess::AnyPath
+        } else {
+            pom::files::FileAccess::InsideFolder
+        },
     };
     let mut failed = 0;
     for script in &args.scripts {

@@ -58,6 +58,44 @@ fn a_truncated_height_png_is_named() {
 }
 
 #[test]
+fn a_device_or_a_fifo_as_height_is_refused_at_once() {
+    let dir = TempDir::new("special-height");
+    let out = dir.join("out.png");
+    let fifo = dir.join("pipe.png");
+    mkfifo(&fifo);
+    for (height, kind) in [
+        ("/dev/zero", "a character device"),
+        ("/dev/urandom", "a character device"),
+        (path_arg(&fifo), "a FIFO"),
+    ] {
+        let output = sandbox_within_20_s(&["render", "--out", path_arg(&out), "--height", height]);
+        assert_one_line_error(&output, &["--height", height, kind, "not a regular file"]);
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn a_scene_that_is_a_symlink_to_a_device_or_a_fifo_is_refused_at_once() {
+    let dir = TempDir::new("special-scene");
+    let out = dir.join("out.png");
+    let link = dir.join("level.glb");
+    std::os::unix::fs::symlink("/dev/zero", &link).unwrap();
+    let fifo = dir.join("level.gltf");
+    mkfifo(&fifo);
+    for (scene, kind) in [(&link, "a character device"), (&fifo, "a FIFO")] {
+        let output = sandbox_within_20_s(&[
+            "render",
+            "--out",
+            path_arg(&out),
+            "--scene",
+            path_arg(scene),
+        ]);
+        assert_one_line_error(&output, &[path_arg(scene), kind]);
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn inverted_sample_bounds_are_rejected() {
     let dir = TempDir::new("inverted-samples");
     let out = dir.join("out.png");

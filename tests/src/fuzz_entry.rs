@@ -88,13 +88,14 @@ pub fn preset(data: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// RON scene scripts: the bytes as UTF-8 text given to [`pom::script::parse_script`], which
+/// RON scene scripts: the bytes as UTF-8 text given to [`pom::script::parse_script_with`], which
 /// parses and checks names and files. The script is placed in `tests/scenes/`, so relative
-/// paths to the shipped maps and presets resolve as they do for the real scripts.
+/// paths to the shipped maps and presets resolve as they do for the real scripts (which reach
+/// `assets/` outside their folder with the same opt-in).
 pub fn script(data: &[u8]) -> Result<(), String> {
     let text = std::str::from_utf8(data).map_err(|e| e.to_string())?;
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz_input.ron");
-    pom::script::parse_script(text, &path)
+    pom::script::parse_script_with(text, &path, pom::files::FileAccess::AnyPath)
         .map(|_| ())
         .map_err(|e| e.to_string())
 }

@@ -43,6 +43,8 @@ fn every_shipped_script_passes() {
             bless: bless() && path == RenderPath::Forward,
             out_dir: None,
             path,
+            // The scripts share the repository's assets, outside their own folder.
+            file_access: pom::files::FileAccess::AnyPath,
         };
         for script in &scripts {
             match run_script_with(script, &options) {

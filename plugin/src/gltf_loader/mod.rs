@@ -24,6 +24,27 @@ use glam::Vec3;
 use hecs::Entity;
 
 use crate::App;
+use crate::files::{FileAccess, MAX_SCENE_FILE_BYTES, read_bounded, resolve_inside};
+
+/// How a glTF file may reach other files, and how much memory its images may claim.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GltfOptions {
+    /// Which files its buffer and image URIs may name: by default only files inside the glTF
+    /// file's folder ([`FileAccess::InsideFolder`]); [`FileAccess::AnyPath`] for trusted files.
+    pub file_access: FileAccess,
+    /// Bytes its images may claim, decoded and while their mips are built (see
+    /// [`crate::IMAGE_MEMORY_BUDGET`], the default).
+    pub image_memory_budget: u64,
+}
+
+impl Default for GltfOptions {
+    fn default() -> Self {
+        Self {
+            file_access: FileAccess::InsideFolder,
+            image_memory_budget: crate::IMAGE_MEMORY_BUDGET,
+        }
+    }
+}
 
 /// What a loaded scene added to the world.
 #[derive(Debug, Default)]
@@ -150,6 +171,8 @@ struct Source {
     buffers: Vec<gltf::buffer::Data>,
     /// Where relative URIs point; `None` for documents loaded from memory.
     base: Option<PathBuf>,
+    /// Which files URIs may name, and the images' memory budget.
+    options: GltfOptions,
     /// Extensions the file requires that this loader does not implement.
     unsupported_required: Vec<String>,
     /// Extensions the file uses (without requiring them) that this loader does not implement.
@@ -166,18 +189,23 @@ const SUPPORTED_EXTENSIONS: [&str; 4] = [
     "KHR_materials_unlit",
 ];
 
-fn open(path: &Path) -> Result<Source, GltfError> {
-    let bytes = std::fs::read(path).map_err(|error| GltfError::Open {
+fn open(path: &Path, options: GltfOptions) -> Result<Source, GltfError> {
+    let bytes = read_bounded(path, MAX_SCENE_FILE_BYTES).map_err(|error| GltfError::Open {
         path: path.to_owned(),
         reason: error.to_string(),
     })?;
     let base = path.parent().unwrap_or(Path::new(".")).to_owned();
-    parse(path, &bytes, Some(base))
+    parse(path, &bytes, Some(base), options)
 }
 
 /// Parses a document held in memory; `base` resolves relative URIs (none: only `data:` URIs and
 /// the GLB binary chunk can be used).
-fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, GltfError> {
+fn parse(
+    path: &Path,
+    bytes: &[u8],
+    base: Option<PathBuf>,
+    options: GltfOptions,
+) -> Result<Source, GltfError> {
     let open_error = |reason: String| GltfError::Open {
         path: path.to_owned(),
         reason,
@@ -210,6 +238,8 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         gltf::Document::from_json(json).map_err(|error| open_error(error.to_string()))?;
     let mut blob = blob;
     let mut buffers = Vec::new();
+    // The file and its buffer files share one bound.
+    let mut unread = MAX_SCENE_FILE_BYTES.saturating_sub(bytes.len() as u64);
     for buffer in document.buffers() {
         let index = buffer.index();
         let buffer_error = |reason: String| GltfError::Buffer {
@@ -222,9 +252,10 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
                 .take()
                 .ok_or_else(|| buffer_error("the GLB has no binary chunk".into()))?,
             gltf::buffer::Source::Uri(uri) => {
-                read_uri(base.as_deref(), uri).map_err(buffer_error)?
+                read_uri(base.as_deref(), uri, options.file_access, unread).map_err(buffer_error)?
             }
         };
+        unread = unread.saturating_sub(data.len() as u64);
         if data.len() < buffer.length() {
             return Err(buffer_error(format!(
                 "holds {} bytes but declares {}",
@@ -240,25 +271,61 @@ fn parse(path: &Path, bytes: &[u8], base: Option<PathBuf>) -> Result<Source, Glt
         document,
         buffers,
         base,
+        options,
         unsupported_required: unsupported,
         unsupported_used,
         warnings,
     })
 }
 
-/// Reads a buffer URI: a `data:` URI, or a file relative to the glTF file.
-fn read_uri(base: Option<&Path>, uri: &str) -> Result<Vec<u8>, String> {
-    if let Some(data) = uri.strip_prefix("data:") {
-        let (_, encoded) = data
-            .split_once(";base64,")
-            .ok_or("only base64 data URIs are supported")?;
-        return decode_base64(encoded).ok_or_else(|| "the data URI is not valid base64".into());
-    }
+/// The bytes of a `data:` URI.
+fn decode_data_uri(data: &str) -> Result<Vec<u8>, String> {
+    let (_, encoded) = data
+        .split_once(";base64,")
+        .ok_or("only base64 data URIs are supported")?;
+    decode_base64(encoded).ok_or_else(|| "the data URI is not valid base64".into())
+}
+
+/// The file a (non-`data:`) URI names, relative to the glTF file's folder `base`, as `access`
+/// allows: percent-escapes decoded; `file:` URIs only with [`FileAccess::AnyPath`].
+fn locate_uri(base: Option<&Path>, uri: &str, access: FileAccess) -> Result<PathBuf, String> {
     let base =
         base.ok_or_else(|| format!("{uri}: a document loaded from memory cannot refer to files"))?;
     let decoded = percent_decode(uri);
-    let file = base.join(&decoded);
-    std::fs::read(&file).map_err(|error| format!("{}: {error}", file.display()))
+    // A scheme is letters (and digits, `+`, `-`, `.`) before the first `:`, ahead of any `/`.
+    let scheme = decoded
+        .split_once(':')
+        .map(|(scheme, _)| scheme)
+        .filter(|scheme| !scheme.contains('/'));
+    let relative = match (scheme, access) {
+        (None, _) => decoded.as_str(),
+        (Some(_), FileAccess::InsideFolder) => {
+            return Err(format!(
+                "uri {uri:?} has a scheme: only paths relative to the glTF file's folder, \
+                 inside it, may be named unless FileAccess::AnyPath allows any"
+            ));
+        }
+        (Some(_), _) => decoded
+            .strip_prefix("file://")
+            .ok_or_else(|| format!("uri {uri:?}: only file: URIs and paths are supported"))?,
+    };
+    resolve_inside(base, Path::new(relative), access)
+        .map_err(|error| format!("uri {uri:?}: {error}"))
+}
+
+/// Reads a buffer URI: a `data:` URI, or a file relative to the glTF file (of at most `limit`
+/// bytes).
+fn read_uri(
+    base: Option<&Path>,
+    uri: &str,
+    access: FileAccess,
+    limit: u64,
+) -> Result<Vec<u8>, String> {
+    if let Some(data) = uri.strip_prefix("data:") {
+        return decode_data_uri(data);
+    }
+    let file = locate_uri(base, uri, access)?;
+    read_bounded(&file, limit).map_err(|error| format!("uri {uri:?}: {error}"))
 }
 
 fn percent_decode(uri: &str) -> String {
@@ -332,15 +399,41 @@ fn decode_base64(text: &str) -> Option<Vec<u8>> {
 /// # Ok(()) }
 /// ```
 pub fn load_gltf(app: &mut App, path: impl AsRef<Path>) -> Result<GltfScene, GltfError> {
+    load_gltf_with(app, path, GltfOptions::default())
+}
+
+/// [`load_gltf`] with `options`: which files the glTF file may name, and its images' memory
+/// budget.
+///
+/// # Example
+/// ```no_run
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let mut app = pom::App::new();
+/// app.add_plugin(pom::RenderPlugin::new(640, 360)).add_plugin(pom::PomPlugin);
+/// // A trusted file whose textures live in a shared folder beside its own.
+/// let options = pom::GltfOptions {
+///     file_access: pom::files::FileAccess::AnyPath,
+///     ..pom::GltfOptions::default()
+/// };
+/// pom::load_gltf_with(&mut app, "assets/street_corner.gltf", options)?;
+/// # Ok(()) }
+/// ```
+pub fn load_gltf_with(
+    app: &mut App,
+    path: impl AsRef<Path>,
+    options: GltfOptions,
+) -> Result<GltfScene, GltfError> {
     let path = path.as_ref();
-    spawn_source(app, path, || open(path))
+    spawn_source(app, path, || open(path, options))
 }
 
 /// Loads a `.glb` (or a self-contained `.gltf`) held in memory, such as one embedded in a
 /// binary with `include_bytes!`. `name` stands for the file in messages.
 pub fn load_gltf_bytes(app: &mut App, bytes: &[u8], name: &str) -> Result<GltfScene, GltfError> {
     let path = Path::new(name);
-    spawn_source(app, path, || parse(path, bytes, None))
+    spawn_source(app, path, || {
+        parse(path, bytes, None, GltfOptions::default())
+    })
 }
 
 fn spawn_source(

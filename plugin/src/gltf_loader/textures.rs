@@ -1,80 +1,84 @@
-//! glTF textures to [`Image`]s: pixel formats, samplers, and a cache so that each image is
-//! decoded once per way it is used.
+//! glTF textures to [`Image`]s: samplers, and caches so that each file is read and decoded
+//! once per load, and converted once per way it is used, within the load's memory budget.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
+use std::path::PathBuf;
 
 use image::DynamicImage;
 
 use super::{GltfError, Source, describe};
+use crate::files::{MAX_IMAGE_FILE_BYTES, read_bounded};
+use crate::image::{ImageBudget, decode_bytes};
 use crate::{Assets, Channel, FilterMode, Handle, Image, ImageSampler, TextureKind, WrapMode};
 
-/// Decoded images by glTF image, kind, height channel and sampler.
-#[derive(Default)]
-pub(super) struct TextureCache {
-    images: HashMap<(usize, TextureKind, Channel, ImageSampler), Handle<Image>>,
+/// Where a glTF image's bytes come from: a file (by its resolved path, so entries naming one
+/// file share it), or the document itself (a buffer view or a `data:` URI, by image index).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum Origin {
+    File(PathBuf),
+    Embedded(usize),
 }
 
-/// glTF's decoded pixels as an image of the same layout (`None` where they are fewer than the
-/// size needs).
-fn to_dynamic(data: gltf::image::Data) -> Option<DynamicImage> {
-    use gltf::image::Format;
-    let (width, height) = (data.width, data.height);
-    let sixteen = |bytes: &[u8]| -> Vec<u16> {
-        bytes
-            .chunks_exact(2)
-            .map(|pair| u16::from_ne_bytes([pair[0], pair[1]]))
-            .collect()
-    };
-    let float = |bytes: &[u8]| -> Vec<f32> {
-        bytes
-            .chunks_exact(4)
-            .map(|quad| f32::from_ne_bytes([quad[0], quad[1], quad[2], quad[3]]))
-            .collect()
-    };
-    Some(match data.format {
-        Format::R8 => {
-            DynamicImage::ImageLuma8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+/// A decoded image, with its file's size for messages.
+struct Decoded {
+    image: DynamicImage,
+    file_bytes: u64,
+    name: String,
+}
+
+/// Decoded images by origin, and images by origin, kind, height channel and sampler.
+#[derive(Default)]
+pub(super) struct TextureCache {
+    decoded: HashMap<Origin, Decoded>,
+    images: HashMap<(Origin, TextureKind, Channel, ImageSampler), Handle<Image>>,
+    /// Created at the first image, from the load's options.
+    budget: Option<ImageBudget>,
+}
+
+/// Where `image`'s bytes come from (the file it names, resolved as the load's options allow).
+fn origin(source: &Source, image: &gltf::Image<'_>) -> Result<Origin, String> {
+    match image.source() {
+        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+            super::locate_uri(source.base.as_deref(), uri, source.options.file_access)
+                .map(Origin::File)
         }
-        Format::R8G8 => {
-            DynamicImage::ImageLumaA8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        _ => Ok(Origin::Embedded(image.index())),
+    }
+}
+
+/// An image's encoded bytes, a name for messages, and the format its MIME type or extension gives.
+type Encoded<'a> = (Cow<'a, [u8]>, String, Option<image::ImageFormat>);
+
+/// `image`'s encoded bytes, a name for messages, and its format.
+fn encoded<'a>(
+    source: &'a Source,
+    image: &gltf::Image<'_>,
+    origin: &Origin,
+) -> Result<Encoded<'a>, String> {
+    let mime = |mime_type: Option<&str>| mime_type.and_then(image::ImageFormat::from_mime_type);
+    match (image.source(), origin) {
+        (gltf::image::Source::Uri { uri, mime_type }, Origin::File(path)) => {
+            let bytes = read_bounded(path, MAX_IMAGE_FILE_BYTES)
+                .map_err(|error| format!("uri {uri:?}: {error}"))?;
+            let format = mime(mime_type).or_else(|| image::ImageFormat::from_path(path).ok());
+            Ok((Cow::Owned(bytes), uri.to_owned(), format))
         }
-        Format::R8G8B8 => {
-            DynamicImage::ImageRgb8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        (gltf::image::Source::Uri { uri, mime_type }, Origin::Embedded(_)) => {
+            let data = uri.strip_prefix("data:").unwrap_or(uri);
+            let format = mime(mime_type).or_else(|| mime(data.split(';').next()));
+            let name = describe(image.name(), image.index());
+            Ok((Cow::Owned(super::decode_data_uri(data)?), name, format))
         }
-        Format::R8G8B8A8 => {
-            DynamicImage::ImageRgba8(image::ImageBuffer::from_raw(width, height, data.pixels)?)
+        (gltf::image::Source::View { view, mime_type }, _) => {
+            // The guards checked the view lies inside its buffer's declared length, and the
+            // loader that the buffer holds at least that.
+            let buffer = &source.buffers[view.buffer().index()].0;
+            let bytes = &buffer[view.offset()..view.offset() + view.length()];
+            let name = describe(image.name(), image.index());
+            Ok((Cow::Borrowed(bytes), name, mime(Some(mime_type))))
         }
-        Format::R16 => DynamicImage::ImageLuma16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R16G16 => DynamicImage::ImageLumaA16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R16G16B16 => DynamicImage::ImageRgb16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R16G16B16A16 => DynamicImage::ImageRgba16(image::ImageBuffer::from_raw(
-            width,
-            height,
-            sixteen(&data.pixels),
-        )?),
-        Format::R32G32B32FLOAT => DynamicImage::ImageRgb32F(image::ImageBuffer::from_raw(
-            width,
-            height,
-            float(&data.pixels),
-        )?),
-        Format::R32G32B32A32FLOAT => DynamicImage::ImageRgba32F(image::ImageBuffer::from_raw(
-            width,
-            height,
-            float(&data.pixels),
-        )?),
-    })
+    }
 }
 
 /// A glTF sampler as the renderer samples: wrap modes as given; no filter given is linear.
@@ -119,41 +123,45 @@ impl TextureCache {
     ) -> Result<Handle<Image>, GltfError> {
         let image = texture.source();
         let sampler = sampler_of(&texture.sampler());
-        let key = (image.index(), kind, channel, sampler);
-        if let Some(handle) = self.images.get(&key) {
-            return Ok(handle.clone());
-        }
         let name = describe(image.name(), image.index());
         let image_error = |reason: String| GltfError::Image {
             path: source.path.clone(),
             image: name.clone(),
             reason,
         };
-        // A file the image names is reported by its URI and the path looked at.
-        let location = match image.source() {
-            gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-                let tried = source
-                    .base
-                    .as_deref()
-                    .map(|base| base.join(super::percent_decode(uri)));
-                Some(match tried {
-                    Some(tried) => format!("{uri} (looked for {})", tried.display()),
-                    None => uri.to_owned(),
-                })
-            }
-            _ => None,
-        };
-        let data =
-            gltf::image::Data::from_source(image.source(), source.base.as_deref(), &source.buffers)
-                .map_err(|error| match &location {
-                    Some(location) => image_error(format!("{location}: {error}")),
-                    None => image_error(error.to_string()),
-                })?;
-        let decoded = to_dynamic(data)
-            .ok_or_else(|| image_error("pixel data is shorter than its size".into()))?;
-        let loaded = Image::from_decoded(decoded, kind, channel, &name)
-            .map_err(|error| image_error(error.to_string()))?
-            .with_sampler(sampler);
+        let origin = origin(source, &image).map_err(image_error)?;
+        let key = (origin.clone(), kind, channel, sampler);
+        if let Some(handle) = self.images.get(&key) {
+            return Ok(handle.clone());
+        }
+        let budget = self
+            .budget
+            .get_or_insert_with(|| ImageBudget::new(source.options.image_memory_budget));
+        if !self.decoded.contains_key(&origin) {
+            let (bytes, file_name, format) =
+                encoded(source, &image, &origin).map_err(image_error)?;
+            let decoded = decode_bytes(&bytes, &file_name, format, budget)
+                .map_err(|error| image_error(error.to_string()))?;
+            self.decoded.insert(
+                origin.clone(),
+                Decoded {
+                    image: decoded,
+                    file_bytes: bytes.len() as u64,
+                    name: file_name,
+                },
+            );
+        }
+        let decoded = &self.decoded[&origin];
+        let loaded = Image::from_decoded_within(
+            decoded.image.clone(),
+            kind,
+            channel,
+            &decoded.name,
+            decoded.file_bytes,
+            budget,
+        )
+        .map_err(|error| image_error(error.to_string()))?
+        .with_sampler(sampler);
         let handle = images.add(loaded);
         self.images.insert(key, handle.clone());
         Ok(handle)

@@ -6,6 +6,8 @@ use std::path::Path;
 use image::DynamicImage;
 
 use super::ImageError;
+use super::budget::ImageBudget;
+use crate::files::FileError;
 
 /// Longest side, in pixels, of an image file the loader decodes: twice the largest texture
 /// limit of today's GPUs, so any texture a device can hold loads (and larger ones are halved
@@ -23,33 +25,66 @@ pub(super) fn load_error(name: &str, error: impl std::fmt::Display) -> ImageErro
     }
 }
 
-pub(super) fn decode_file(path: &Path) -> Result<DynamicImage, ImageError> {
+/// Reads (a regular file, within [`crate::files::MAX_IMAGE_FILE_BYTES`]) and decodes `path`;
+/// returns the image and the file's size.
+pub(super) fn decode_file(
+    path: &Path,
+    budget: &mut ImageBudget,
+) -> Result<(DynamicImage, u64), ImageError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|error| load_error(&name, error))?;
+    let bytes =
+        crate::files::read_bounded(path, crate::files::MAX_IMAGE_FILE_BYTES).map_err(|error| {
+            match error {
+                FileError::Io { reason, .. } => load_error(&name, reason),
+                other => load_error(&name, other),
+            }
+        })?;
     // As `ImageReader::open` does: the extension names the format when the content cannot.
-    decode_bytes(&bytes, &name, image::ImageFormat::from_path(path).ok())
+    let decoded = decode_bytes(
+        &bytes,
+        &name,
+        image::ImageFormat::from_path(path).ok(),
+        budget,
+    )?;
+    Ok((decoded, bytes.len() as u64))
 }
 
-/// Reads the header first and refuses sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`],
-/// then decodes under the same limits (so a header that lies is caught by the decoder too).
-pub(super) fn decode_bytes(
+/// Most bytes a decoder may allocate beyond the decoded pixels (its row buffers, a PNG's
+/// compressed metadata such as an ICC profile), and all it may allocate to read a header.
+const DECODER_SLACK_BYTES: u64 = 16 << 20;
+
+/// Reads the header first and refuses sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`] and
+/// what would pass `budget`, then decodes with allocations capped at the decoded size (so a
+/// header that lies, or metadata that inflates, is caught by the decoder too).
+pub(crate) fn decode_bytes(
     bytes: &[u8],
     name: &str,
     format_hint: Option<image::ImageFormat>,
+    budget: &mut ImageBudget,
 ) -> Result<DynamicImage, ImageError> {
     check_png_palette(bytes).map_err(|reason| load_error(name, reason))?;
-    let guessed = || {
+    let reader = |limits: image::Limits| {
         let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
         if let Some(format) = format_hint {
             reader.set_format(format);
         }
-        reader
+        let mut reader = reader
             .with_guessed_format()
-            .map_err(|error| load_error(name, error))
+            .map_err(|error| load_error(name, error))?;
+        reader.limits(limits);
+        Ok(reader)
     };
-    let (width, height) = guessed()?
-        .into_dimensions()
-        .map_err(|error| load_error(name, error))?;
+    let mut limits = image::Limits::default();
+    let header = {
+        use image::ImageDecoder;
+        // No size limits yet: the header's size is checked below, with its own message.
+        limits.max_alloc = Some(DECODER_SLACK_BYTES);
+        let decoder = reader(limits.clone())?
+            .into_decoder()
+            .map_err(|error| load_error(name, error))?;
+        (decoder.dimensions(), decoder.color_type().bytes_per_pixel())
+    };
+    let ((width, height), bytes_per_texel) = header;
     if width > MAX_IMAGE_SIDE
         || height > MAX_IMAGE_SIDE
         || u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS
@@ -62,13 +97,16 @@ pub(super) fn decode_bytes(
             max_pixels: MAX_IMAGE_PIXELS,
         });
     }
-    let mut limits = image::Limits::default();
+    let decoded_bytes = budget.reserve_decode(
+        name,
+        bytes.len() as u64,
+        (width, height),
+        u64::from(bytes_per_texel),
+    )?;
     limits.max_image_width = Some(MAX_IMAGE_SIDE);
     limits.max_image_height = Some(MAX_IMAGE_SIDE);
-    // Four 32-bit float channels per pixel: the largest decoded form of an allowed image.
-    limits.max_alloc = Some(MAX_IMAGE_PIXELS * 16);
-    let mut reader = guessed()?;
-    reader.limits(limits);
+    limits.max_alloc = Some(decoded_bytes + DECODER_SLACK_BYTES);
+    let reader = reader(limits)?;
     // zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
     // builds): a broken file is an error, not a crash.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| reader.decode()))

@@ -57,4 +57,24 @@ pub enum ImageError {
         /// The file or image name.
         name: String,
     },
+    /// Decoding the image (with the other images of its load) would pass the memory budget.
+    #[error(
+        "image {name} ({file_bytes} bytes, {width}×{height} pixels) needs {needed} bytes of \
+         memory with the images loaded before it, over the budget of {budget} bytes"
+    )]
+    OverBudget {
+        /// The file or image name.
+        name: String,
+        /// The file's size in bytes.
+        file_bytes: u64,
+        /// Declared width.
+        width: u32,
+        /// Declared height.
+        height: u32,
+        /// Bytes the load would claim with this image.
+        needed: u64,
+        /// The budget ([`IMAGE_MEMORY_BUDGET`](super::IMAGE_MEMORY_BUDGET) unless the load
+        /// chose another).
+        budget: u64,
+    },
 }

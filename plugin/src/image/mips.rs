@@ -14,17 +14,16 @@ pub(super) enum Reduce {
 }
 
 /// Stored 0..=1 values to the space mips are filtered in: linear light for colour, −1..=1 vectors
-/// for normals (alpha stays as is).
-fn decode(kind: TextureKind, channels: usize, values: &[f32]) -> Vec<f32> {
-    values
-        .iter()
-        .enumerate()
-        .map(|(i, v)| match (kind, i % channels) {
+/// for normals (alpha stays as is). In place: a full-size level of floats is the chain's peak.
+fn decode(kind: TextureKind, channels: usize, mut values: Vec<f32>) -> Vec<f32> {
+    for (i, v) in values.iter_mut().enumerate() {
+        *v = match (kind, i % channels) {
             (TextureKind::Color, 0..=2) => srgb_to_linear(*v),
-            (TextureKind::Normal, 0..=2) if channels == 4 => v * 2.0 - 1.0,
+            (TextureKind::Normal, 0..=2) if channels == 4 => *v * 2.0 - 1.0,
             _ => *v,
-        })
-        .collect()
+        };
+    }
+    values
 }
 
 fn encode(kind: TextureKind, channels: usize, values: &[f32]) -> Vec<f32> {
@@ -106,7 +105,7 @@ fn reduce_level(
 pub(super) fn chain(pixels: &Pixels, kind: TextureKind, reduce: Reduce) -> Vec<Pixels> {
     let channels = pixels.channels();
     let (mut width, mut height) = pixels.dimensions();
-    let mut level = decode(kind, channels, &pixels.to_unit_floats());
+    let mut level = decode(kind, channels, pixels.to_unit_floats());
     let mut levels = vec![pixels.clone()];
     while width > 1 || height > 1 {
         let (next_width, next_height, next) = reduce_level(width, height, channels, &level, reduce);

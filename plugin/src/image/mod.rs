@@ -4,14 +4,18 @@ use std::path::Path;
 
 use image::{DynamicImage, GrayImage, ImageBuffer, Luma, RgbaImage};
 
+mod budget;
 mod decode;
 mod error;
 mod mips;
 mod pixels;
 mod sampler;
 
+pub use budget::IMAGE_MEMORY_BUDGET;
+pub(crate) use budget::ImageBudget;
+pub(crate) use decode::decode_bytes;
+use decode::decode_file;
 pub use decode::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
-use decode::{decode_bytes, decode_file};
 pub use error::ImageError;
 use mips::Reduce;
 pub use pixels::Pixels;
@@ -122,25 +126,24 @@ impl Image {
         }
     }
 
-    /// Decodes a PNG or JPEG file. Height maps keep one channel (red; see
+    /// Decodes a PNG or JPEG file (a regular file, within [`crate::files::MAX_IMAGE_FILE_BYTES`]
+    /// and [`IMAGE_MEMORY_BUDGET`]). Height maps keep one channel (red; see
     /// [`Image::load_height`]) at their bit depth; everything else becomes 8-bit RGBA.
     pub fn load(path: impl AsRef<Path>, kind: TextureKind) -> Result<Self, ImageError> {
-        let path = path.as_ref();
-        let decoded = decode_file(path)?;
-        Self::from_decoded(decoded, kind, Channel::Red, &path.display().to_string())
+        Self::load_alone(path.as_ref(), kind, Channel::Red)
     }
 
     /// Decodes a height map from `channel` of a PNG or JPEG file, keeping 16 bits when the file
     /// has them.
     pub fn load_height(path: impl AsRef<Path>, channel: Channel) -> Result<Self, ImageError> {
-        let path = path.as_ref();
-        let decoded = decode_file(path)?;
-        Self::from_decoded(
-            decoded,
-            TextureKind::Height,
-            channel,
-            &path.display().to_string(),
-        )
+        Self::load_alone(path.as_ref(), TextureKind::Height, channel)
+    }
+
+    fn load_alone(path: &Path, kind: TextureKind, channel: Channel) -> Result<Self, ImageError> {
+        let mut budget = ImageBudget::new(IMAGE_MEMORY_BUDGET);
+        let (decoded, file_bytes) = decode_file(path, &mut budget)?;
+        let name = path.display().to_string();
+        Self::from_decoded_within(decoded, kind, channel, &name, file_bytes, &mut budget)
     }
 
     /// Decodes an image held in memory (a glTF buffer view, say); `name` appears in errors.
@@ -150,7 +153,35 @@ impl Image {
         kind: TextureKind,
         channel: Channel,
     ) -> Result<Self, ImageError> {
-        let decoded = decode_bytes(bytes, name, None)?;
+        let mut budget = ImageBudget::new(IMAGE_MEMORY_BUDGET);
+        let decoded = decode_bytes(bytes, name, None, &mut budget)?;
+        Self::from_decoded_within(
+            decoded,
+            kind,
+            channel,
+            name,
+            bytes.len() as u64,
+            &mut budget,
+        )
+    }
+
+    /// [`Image::from_decoded`] once `budget` allows the pixels it keeps (of a file of
+    /// `file_bytes`).
+    pub(crate) fn from_decoded_within(
+        decoded: DynamicImage,
+        kind: TextureKind,
+        channel: Channel,
+        name: &str,
+        file_bytes: u64,
+        budget: &mut ImageBudget,
+    ) -> Result<Self, ImageError> {
+        let size = (decoded.width(), decoded.height());
+        let bytes_per_texel = match kind {
+            TextureKind::Height => 2,
+            _ => 4,
+        };
+        let kept = u64::from(size.0) * u64::from(size.1) * bytes_per_texel;
+        budget.reserve_kept(name, file_bytes, size, kept)?;
         Self::from_decoded(decoded, kind, channel, name)
     }
 

@@ -77,13 +77,15 @@ impl PomPreset {
         Ok(preset)
     }
 
-    /// Reads and parses a RON file.
+    /// Reads (a regular file, within [`crate::files::MAX_TEXT_FILE_BYTES`]) and parses a RON
+    /// file.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, PresetError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|error| PresetError::Io {
-            path: path.display().to_string(),
-            reason: error.to_string(),
-        })?;
+        let text = crate::files::read_text_bounded(path, crate::files::MAX_TEXT_FILE_BYTES)
+            .map_err(|error| PresetError::Io {
+                path: path.display().to_string(),
+                reason: error.to_string(),
+            })?;
         Self::from_ron(&text, &path.display().to_string())
     }
 

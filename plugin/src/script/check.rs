@@ -4,6 +4,8 @@ mod values;
 
 use std::path::Path;
 
+use crate::files::{FileAccess, FileError, check_regular, resolve_inside};
+
 use super::ScriptError;
 use super::format::{EntityDesc, MAX_ADVANCE_FRAMES, MaterialDesc, Script, Statistic, Step};
 
@@ -56,6 +58,8 @@ fn locate_light_shadows(text: &str, nth: usize, field: &str) -> (usize, usize) {
 struct ScriptText<'a> {
     text: &'a str,
     path: &'a Path,
+    /// Which files the script may name.
+    access: FileAccess,
 }
 
 impl ScriptText<'_> {
@@ -100,8 +104,9 @@ pub(super) fn check(
     text: &str,
     path: &Path,
     dir: &Path,
+    access: FileAccess,
 ) -> Result<(), ScriptError> {
-    let source = ScriptText { text, path };
+    let source = ScriptText { text, path, access };
     check_exposure(script, &source)?;
     check_temporal(script, &source)?;
     check_light_shadows(script, &source)?;
@@ -226,12 +231,12 @@ fn check_shape_or_gltf(
     let name = &entity.name;
     match (&entity.shape, &entity.gltf, &entity.material) {
         (Some(_), None, _) => Ok(()),
-        (None, Some(file), None) if dir.join(file).is_file() => Ok(()),
-        (None, Some(file), None) => Err(source.missing(
-            file,
-            "entities",
-            format!("glTF file {file:?} does not exist"),
-        )),
+        (None, Some(file), None) => match file_problem(dir, Path::new(file), source.access) {
+            None => Ok(()),
+            Some(problem) => {
+                Err(source.missing(file, "entities", format!("glTF file {file:?} {problem}")))
+            }
+        },
         (None, Some(_), Some(_)) => Err(source.missing(
             name,
             "entities",
@@ -253,20 +258,34 @@ fn check_pom_files(
     dir: &Path,
 ) -> Result<(), ScriptError> {
     for file in ["albedo.png", "normal.png", "height.png"] {
-        if !dir.join(maps).join(file).is_file() {
-            return Err(source.missing(maps, "entities", format!("{maps}/{file} does not exist")));
+        if let Some(problem) = file_problem(dir, &Path::new(maps).join(file), source.access) {
+            return Err(source.missing(maps, "entities", format!("{maps}/{file} {problem}")));
         }
     }
     if let Some(preset) = preset
-        && !dir.join(preset).is_file()
+        && let Some(problem) = file_problem(dir, Path::new(preset), source.access)
     {
         return Err(source.missing(
             preset,
             "entities",
-            format!("preset file {preset:?} does not exist"),
+            format!("preset file {preset:?} {problem}"),
         ));
     }
     Ok(())
+}
+
+/// Why file `name` (relative to the script's folder `dir`) cannot be read: it leads outside the
+/// folder `access` allows, does not exist, or is not a regular file; `None` when it can.
+fn file_problem(dir: &Path, name: &Path, access: FileAccess) -> Option<String> {
+    let path = match resolve_inside(dir, name, access) {
+        Ok(path) => path,
+        Err(error) => return Some(format!("is refused: {error}")),
+    };
+    match check_regular(&path, u64::MAX) {
+        Ok(_) => None,
+        Err(FileError::Io { .. }) => Some("does not exist".into()),
+        Err(error) => Some(format!("cannot be read: {error}")),
+    }
 }
 
 /// Every step refers to entities, lights and earlier captures that exist.

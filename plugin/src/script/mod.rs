@@ -12,7 +12,7 @@ pub use format::{
     CameraDesc, EntityDesc, LightDesc, MAX_ADVANCE_FRAMES, MaterialDesc, MaterialPatch, Rect,
     Script, ShapeDesc, Statistic, Step, TransformDesc,
 };
-pub use runner::{SCRIPT_FRAME_TIME, parse_script, run_script, run_script_with};
+pub use runner::{SCRIPT_FRAME_TIME, parse_script, parse_script_with, run_script, run_script_with};
 
 use std::fmt;
 use std::path::PathBuf;
@@ -29,6 +29,9 @@ pub struct RunOptions {
     /// The render path ([`crate::RenderPath::Auto`] by default: forward on the software driver
     /// CI runs on, where the references were made).
     pub path: crate::RenderPath,
+    /// Which files the script may name (its glTF files, maps, presets and references): only
+    /// files inside its own folder by default.
+    pub file_access: crate::files::FileAccess,
 }
 
 /// What became of one step.

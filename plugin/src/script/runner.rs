@@ -15,6 +15,7 @@ use super::check::check;
 use super::format::{CameraDesc, Script, Step};
 use super::lights::spawn_light;
 use super::{CapturePath, Report, RunOptions, ScriptError, StepReport};
+use crate::files::{FileAccess, MAX_TEXT_FILE_BYTES, read_text_bounded};
 use crate::{
     AmbientLight, App, Camera, Color, DebugView, Exposure, PomPlugin, Projection, RenderPlugin,
     Transform,
@@ -36,11 +37,11 @@ pub fn run_script_with(
     options: &RunOptions,
 ) -> Result<Report, ScriptError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|error| ScriptError::Io {
+    let text = read_text_bounded(path, MAX_TEXT_FILE_BYTES).map_err(|error| ScriptError::Io {
         path: path.to_owned(),
         reason: error.to_string(),
     })?;
-    let script = parse_script(&text, path)?;
+    let script = parse_script_with(&text, path, options.file_access)?;
     let dir = path.parent().unwrap_or(Path::new(".")).to_owned();
     Runner::new(&script, path, &dir, options)?.run(&script)
 }
@@ -54,6 +55,15 @@ pub fn run_script_with(
 /// assert!(error.to_string().starts_with("scene.ron:1:"), "{error}");
 /// ```
 pub fn parse_script(text: &str, path: &Path) -> Result<Script, ScriptError> {
+    parse_script_with(text, path, FileAccess::InsideFolder)
+}
+
+/// [`parse_script`], letting the script name the files `access` allows.
+pub fn parse_script_with(
+    text: &str,
+    path: &Path,
+    access: FileAccess,
+) -> Result<Script, ScriptError> {
     // Optional fields may be written as plain values (`min: 0.5`) as well as `Some(0.5)`.
     let parser =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
@@ -64,7 +74,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Script, ScriptError> {
         reason: error.code.to_string(),
     })?;
     let dir = path.parent().unwrap_or(Path::new("."));
-    check(&script, text, path, dir)?;
+    check(&script, text, path, dir, access)?;
     Ok(script)
 }
 

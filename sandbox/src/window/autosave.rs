@@ -44,11 +44,11 @@ pub fn default_state_path() -> PathBuf {
 
 /// Reads the state file; a missing file is an empty state.
 pub fn load(path: &Path) -> Result<TunedState> {
-    match std::fs::read_to_string(path) {
-        Ok(text) => ron::from_str(&text).with_context(|| format!("reading {}", path.display())),
-        Err(error) if error.kind() == std::io::ErrorKind::NotFound => Ok(TunedState::default()),
-        Err(error) => Err(error).with_context(|| format!("reading {}", path.display())),
+    if !path.exists() {
+        return Ok(TunedState::default());
     }
+    let text = pom::files::read_text_bounded(path, pom::files::MAX_TEXT_FILE_BYTES)?;
+    ron::from_str(&text).with_context(|| format!("reading {}", path.display()))
 }
 
 /// Writes `state` when it differs from what was last written and a second has passed.

@@ -141,7 +141,10 @@ fn list_dir(dir: &Path) -> Result<Vec<(PathBuf, bool)>, String> {
     let mut entries: Vec<(PathBuf, bool)> = read
         .filter_map(Result::ok)
         .map(|entry| (entry.path(), entry.path().is_dir()))
-        .filter(|(path, is_dir)| *is_dir || is_scene_file(path) || is_image_file(path))
+        // Only regular files: a FIFO or a device named like an image is not offered.
+        .filter(|(path, is_dir)| {
+            *is_dir || (path.is_file() && (is_scene_file(path) || is_image_file(path)))
+        })
         .take(MAX_ENTRIES)
         .collect();
     entries.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));

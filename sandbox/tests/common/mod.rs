@@ -71,3 +71,32 @@ pub fn assert_success(output: &Output) {
         String::from_utf8_lossy(&output.stderr)
     );
 }
+
+/// Runs the sandbox binary with `args`, killing it and failing the test if it has not exited
+/// within 20 s (a read that never ends, an open that waits for a FIFO's writer).
+pub fn sandbox_within_20_s(args: &[&str]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sandbox"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("running the sandbox binary");
+    let started = std::time::Instant::now();
+    while child.try_wait().expect("waiting for the sandbox").is_none() {
+        if started.elapsed() > std::time::Duration::from_secs(20) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("sandbox {args:?} did not exit within 20 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child
+        .wait_with_output()
+        .expect("collecting the sandbox's output")
+}
+
+/// Makes a FIFO at `path`.
+pub fn mkfifo(path: &Path) {
+    let made = Command::new("mkfifo").arg(path).status().expect("mkfifo");
+    assert!(made.success(), "mkfifo {}", path.display());
+}

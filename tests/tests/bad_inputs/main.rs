@@ -17,6 +17,7 @@ use pom::{
 use pom_tests::pom_scene::pom_app;
 use pom_tests::render_and_capture_finite;
 
+mod files;
 mod gltf;
 mod images;
 mod parameters;

@@ -163,7 +163,12 @@ fn script_missing_gltf_file() {
 
 #[test]
 fn script_with_an_invalid_preset() {
-    match script_error("scripts/bad_preset_inside.ron") {
+    // The corpus's presets live beside the scripts' folder, which only the opt-in reaches.
+    let options = RunOptions {
+        file_access: pom::files::FileAccess::AnyPath,
+        ..RunOptions::default()
+    };
+    match run_script_with(corpus("scripts/bad_preset_inside.ron"), &options).unwrap_err() {
         ScriptError::Setup { reason, .. } => assert!(
             reason.contains("min_over_max.ron")
                 && reason.contains("min_samples (60) is greater than max_samples (4)"),

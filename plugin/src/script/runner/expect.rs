@@ -9,7 +9,7 @@ use super::Runner;
 use crate::script::Outcome;
 use crate::script::format::{Rect, Statistic};
 use crate::script::stats::{measure, required_view};
-use crate::{FlipComparison, FlipTolerance, flip_compare};
+use crate::{FlipComparison, FlipTolerance, Image, TextureKind, flip_compare};
 
 /// How a statistic is named in a report.
 fn stat_name(stat: &Statistic) -> String {
@@ -42,7 +42,7 @@ struct ReferenceMatch<'a> {
 
 impl ReferenceMatch<'_> {
     /// The reference could not be read: written when blessing, else a failure.
-    fn missing(&self, error: &image::ImageError) -> Result<Outcome, String> {
+    fn missing(&self, error: &crate::ImageError) -> Result<Outcome, String> {
         if self.bless {
             save(self.actual, &self.reference)?;
             return Ok(Outcome::Blessed(format!(
@@ -118,8 +118,8 @@ impl Runner<'_> {
         reference: &str,
         tolerance: &FlipTolerance,
     ) -> Result<Outcome, String> {
-        let check = self.reference_match(capture, reference);
-        let expected = match image::open(&check.reference) {
+        let check = self.reference_match(capture, reference)?;
+        let expected = match Image::load(&check.reference, TextureKind::Color) {
             Ok(expected) => expected.to_rgba8(),
             Err(error) => return check.missing(&error),
         };
@@ -131,8 +131,13 @@ impl Runner<'_> {
 
     /// The files of comparing `capture` with `reference`: failure images are named after the
     /// reference and go to the options' folder, or next to the reference.
-    fn reference_match(&self, capture: &str, reference: &str) -> ReferenceMatch<'_> {
-        let reference_path = self.dir.join(reference);
+    fn reference_match(
+        &self,
+        capture: &str,
+        reference: &str,
+    ) -> Result<ReferenceMatch<'_>, String> {
+        // Blessing writes it: it must stay where the script may write.
+        let reference_path = self.resolve(reference)?;
         let stem = Path::new(reference)
             .file_stem()
             .map(|stem| stem.to_string_lossy().into_owned())
@@ -142,13 +147,13 @@ impl Runner<'_> {
             .out_dir
             .clone()
             .unwrap_or_else(|| reference_path.parent().unwrap_or(self.dir).to_owned());
-        ReferenceMatch {
+        Ok(ReferenceMatch {
             actual: &self.captures[capture].image,
             actual_path: out_dir.join(format!("{stem}-actual.png")),
             difference_path: out_dir.join(format!("{stem}-difference.png")),
             reference: reference_path,
             bless: self.options.bless,
-        }
+        })
     }
 
     /// `ExpectStat`: the statistic of a capture (over `rect`) within `min..=max` (each open

@@ -1,13 +1,16 @@
 //! Spawning a script's entities: a shape with its material, or a whole glTF file.
 
+use std::path::Path;
+
 use glam::{EulerRot, Quat};
 use hecs::Entity;
 
 use super::{Runner, vec3};
+use crate::files::resolve_inside;
 use crate::script::format::{EntityDesc, MaterialDesc, MaterialPatch, ShapeDesc, TransformDesc};
 use crate::{
-    Assets, Camera, Color, DirectionalLight, HeightSource, Image, LitMaterial, Mesh,
-    ParallaxOcclusionMaterial, PointLight, PomPreset, TextureKind, Transform, load_gltf,
+    Assets, Camera, Color, DirectionalLight, GltfOptions, HeightSource, Image, LitMaterial, Mesh,
+    ParallaxOcclusionMaterial, PointLight, PomPreset, TextureKind, Transform, load_gltf_with,
 };
 
 /// The placement a script gives (Euler degrees applied X, then Y, then Z).
@@ -26,6 +29,12 @@ fn transform_of(desc: &TransformDesc) -> Transform {
 }
 
 impl Runner<'_> {
+    /// Where file `name` of the script leads, refused outside the folder its options allow.
+    pub(super) fn resolve(&self, name: &str) -> Result<std::path::PathBuf, String> {
+        resolve_inside(self.dir, Path::new(name), self.options.file_access)
+            .map_err(|error| error.to_string())
+    }
+
     /// Spawns one script entity; returns every entity it made.
     pub(super) fn spawn(&mut self, desc: &EntityDesc) -> Result<Vec<Entity>, String> {
         let transform = transform_of(&desc.transform);
@@ -52,8 +61,13 @@ impl Runner<'_> {
     /// Loads glTF `file` placed by `transform`, its cameras (and lights, if the script has
     /// its own) removed.
     fn spawn_gltf(&mut self, file: &str, transform: Transform) -> Result<Vec<Entity>, String> {
+        let path = self.resolve(file)?;
+        let options = GltfOptions {
+            file_access: self.options.file_access,
+            ..GltfOptions::default()
+        };
         let scene =
-            load_gltf(&mut self.app, self.dir.join(file)).map_err(|error| error.to_string())?;
+            load_gltf_with(&mut self.app, path, options).map_err(|error| error.to_string())?;
         // What the loader fixed (a clamped light, a node left out) must not pass unsaid.
         for warning in &scene.warnings {
             log::warn!("{file}: {warning}");
@@ -103,9 +117,9 @@ impl Runner<'_> {
         preset: Option<&str>,
         set: &MaterialPatch,
     ) -> Result<ParallaxOcclusionMaterial, String> {
-        let folder = self.dir.join(maps);
         let load = |file: &str, kind| {
-            Image::load(folder.join(file), kind).map_err(|error| error.to_string())
+            let path = self.resolve(&format!("{maps}/{file}"))?;
+            Image::load(path, kind).map_err(|error| error.to_string())
         };
         let (albedo, normal, height) = (
             load("albedo.png", TextureKind::Color)?,
@@ -125,7 +139,7 @@ impl Runner<'_> {
         };
         if let Some(preset) = preset {
             let preset =
-                PomPreset::load(self.dir.join(preset)).map_err(|error| error.to_string())?;
+                PomPreset::load(self.resolve(preset)?).map_err(|error| error.to_string())?;
             material.apply_preset(&preset);
         }
         set.apply(&mut material);
