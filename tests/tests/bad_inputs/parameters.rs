@@ -99,7 +99,7 @@ fn material_nan_texture_bound() {
 
 #[test]
 fn material_absurd_sample_count() {
-    clamped_with_a_warning("max_samples is 4294967300 but must be at most 256", |m| {
+    clamped_with_a_warning("max_samples is 4294967295 but must be at most 256", |m| {
         m.max_samples = u32::MAX
     });
     let clamped = ParallaxOcclusionMaterial {
