@@ -170,9 +170,10 @@ impl TaaPass {
                 layout::texture_2d(2),
                 layout::filtering_sampler(3),
                 layout::compute_storage_texture(4, HISTORY_FORMAT),
-                layout::compute_storage_buffer(5, true),
+                layout::compute_uniform_buffer(5, false),
                 layout::unfilterable_texture_2d(6),
                 layout::compute_storage_texture(7, HISTORY_DEPTH_FORMAT),
+                layout::compute_storage_buffer(8, true),
             ],
         });
         let motion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -208,8 +209,10 @@ impl TaaPass {
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("taa uniform"),
             size: std::mem::size_of::<TaaUniform>() as u64,
-            // Bound as a read-only storage buffer (taa.wgsl says why).
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            // Bound twice: as a uniform, and as storage where it chooses a branch (taa.wgsl).
+            usage: wgpu::BufferUsages::UNIFORM
+                | wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -321,6 +324,10 @@ impl TaaPass {
                     wgpu::BindGroupEntry {
                         binding: 7,
                         resource: wgpu::BindingResource::TextureView(&depth_views[written]),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 8,
+                        resource: self.uniform.as_entire_binding(),
                     },
                 ],
             })

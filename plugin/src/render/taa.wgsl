@@ -39,9 +39,11 @@ struct ObjectMotion {
 @group(0) @binding(3) var history_sampler: sampler;
 // rgb: the anti-aliased scene; a: the frames it holds at that pixel.
 @group(0) @binding(4) var resolved: texture_storage_2d<rgba16float, write>;
-// A read-only storage buffer, not a uniform: Mesa's lavapipe (22.x) compiles a shader whose
-// uniforms steer its branches again each time its bind group is bound, and keeps every copy.
-@group(0) @binding(5) var<storage, read> taa: TaaUniform;
+@group(0) @binding(5) var<uniform> taa: TaaUniform;
+// The same bytes, read where they alone choose a branch: Mesa's lavapipe (22.x) compiles a
+// shader again each time its bind group is bound when a uniform alone decides a branch, and
+// keeps every copy. Everything else reads the uniform, which is faster on GPUs.
+@group(0) @binding(8) var<storage, read> taa_branches: TaaUniform;
 // The view depth each pixel showed, for the next frame's disocclusion test: last frame's, this one's.
 @group(0) @binding(6) var history_depth: texture_2d<f32>;
 @group(0) @binding(7) var resolved_depth: texture_storage_2d<r32float, write>;
@@ -86,7 +88,7 @@ fn from_ycocg(c: vec3<f32>) -> vec3<f32> {
 // A scene sample as the display shows it (before the sRGB curve).
 fn display_colour(sample: vec4<f32>) -> vec3<f32> {
     let colour = finite_colour(sample.rgb);
-    return select(tonemap(colour, taa.tonemapping), colour, sample.a < 0.0);
+    return select(tonemap(colour, taa_branches.tonemapping), colour, sample.a < 0.0);
 }
 
 // Every history texel was written through `finite_colour`, so a filtered tap of it is finite.
@@ -215,7 +217,7 @@ fn taa_main(
     let world = world_h.xyz / world_h.w;
     // A moving draw's point was elsewhere a frame ago: its motion takes it there.
     var world_before = world;
-    if taa.object_motion != 0u {
+    if taa_branches.object_motion != 0u {
         let motion = textureLoad(motion_ids, nearest, 0).r;
         if motion != 0u {
             let moved = object_motions[motion - 1u].previous_from_current * vec4<f32>(world, 1.0);
@@ -231,7 +233,7 @@ fn taa_main(
     // off screen, or disoccluded.
     var frames = 0.0;
     let on_screen = all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0));
-    if taa.accumulated != 0u && on_screen && world_h.w != 0.0 {
+    if taa_branches.accumulated != 0u && on_screen && world_h.w != 0.0 {
         // The depth the history kept where the point was: nearer than the point would have
         // been, something hid it then (disocclusion), and the history is another surface's.
         let kept_at = clamp(vec2<i32>(uv * vec2<f32>(size)), vec2<i32>(0), last);
