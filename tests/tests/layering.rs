@@ -13,8 +13,10 @@ use pom_tests::sources::{plugin_src, rust_files};
 
 /// The top-level modules, lowest layer first.
 const LAYERS: &[&str] = &[
-    // The shader vocabulary and the app.
+    // The shader vocabulary and the app, and the named files and log lines under them.
     "shader",
+    "files",
+    "stderr_log",
     "time",
     "app",
     "assets",
