@@ -29,6 +29,12 @@ pub const HISTORY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float
 /// The format of the view depth the history keeps for the next frame's disocclusion test.
 const HISTORY_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
+/// How TAA's uniform is used: bound twice, as a uniform and as storage where it alone chooses a
+/// branch (taa.wgsl says why).
+const UNIFORM_USAGE: wgpu::BufferUsages = wgpu::BufferUsages::UNIFORM
+    .union(wgpu::BufferUsages::STORAGE)
+    .union(wgpu::BufferUsages::COPY_DST);
+
 /// One TAA frame as the shader reads it; mirrors `TaaUniform` in taa.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -209,10 +215,7 @@ impl TaaPass {
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("taa uniform"),
             size: std::mem::size_of::<TaaUniform>() as u64,
-            // Bound twice: as a uniform, and as storage where it chooses a branch (taa.wgsl).
-            usage: wgpu::BufferUsages::UNIFORM
-                | wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST,
+            usage: UNIFORM_USAGE,
             mapped_at_creation: false,
         });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
