@@ -239,7 +239,7 @@ impl GpuTimer {
     /// submission), and returns the newest reading that is ready, if any.
     fn end_frame(&mut self, gpu: &GpuContext, timings: &mut GpuTimings) {
         self.frame += 1;
-        self.collect_ready(timings);
+        self.collect_ready(&gpu.device, timings);
         let names = std::mem::take(&mut self.names);
         if names.is_empty() {
             return;
@@ -285,11 +285,11 @@ impl GpuTimer {
         if let Err(error) = gpu.device.poll(poll) {
             log::warn!("GPU timing: polling the device failed: {error}");
         }
-        self.collect_ready(timings);
+        self.collect_ready(&gpu.device, timings);
     }
 
     // Reads every mapped slot, oldest frame first, so `timings` ends at the newest.
-    fn collect_ready(&mut self, timings: &mut GpuTimings) {
+    fn collect_ready(&mut self, device: &wgpu::Device, timings: &mut GpuTimings) {
         let mut ready: Vec<usize> = (0..self.ring.len())
             .filter(|&i| {
                 matches!(
@@ -303,7 +303,11 @@ impl GpuTimer {
             let slot = &mut self.ring[index];
             if slot.state.load(Ordering::Acquire) == SLOT_MAPPED {
                 let reading = read_slot(slot, self.period_ns);
+                // A device lost since the map destroyed the buffer with it; unmapping it then is
+                // an error of no consequence, kept out of the uncaptured errors.
+                let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
                 slot.buffer.unmap();
+                let _ = pollster::block_on(scope.pop());
                 if let GpuTimings::Supported {
                     passes,
                     frame,

@@ -15,7 +15,8 @@ impl DeviceWatch {
         let watch = Self::default();
         let lost = Arc::clone(&watch.lost);
         device.set_device_lost_callback(move |reason, message| {
-            log::error!("GPU device lost ({reason:?}): {message}");
+            // A warning: the runner recovers, and says so.
+            log::warn!("GPU device lost ({reason:?}): {message}");
             if let Ok(mut lost) = lost.lock() {
                 *lost = Some(format!("{reason:?}: {message}"));
             }
