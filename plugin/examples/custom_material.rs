@@ -2,7 +2,7 @@
 //! (plugin/docs/custom-material.md), in a window: a spinning cube over a floor, both `Matte`,
 //! the cube's shadow on the floor, with the orbit camera.
 //!
-//! `cargo run --release -p pom --example custom_material --features window`
+//! `cargo run --release -p parallax-occlusion --example custom_material --features window`
 
 // The document's code, kept identical to it by tests/tests/custom_material.rs.
 #[rustfmt::skip]

@@ -1,7 +1,7 @@
 //! Any glTF file in a window, with an orbit camera (left drag orbits, right drag pans, the
 //! wheel zooms, arrows and W/A/S/D move) and the file's own lights, or a sun where it has none.
 //!
-//! `cargo run --release -p pom --example gltf_viewer --features window -- assets/street_corner.glb`
+//! `cargo run --release -p parallax-occlusion --example gltf_viewer --features window -- assets/street_corner.glb`
 
 use pom::glam::Vec3;
 use pom::window::{AppExit, OrbitCamera, OrbitCameraPlugin, WindowPlugin};

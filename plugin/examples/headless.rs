@@ -1,7 +1,7 @@
 //! No window: renders one frame of a parallax plane to a PNG (the path given, else
 //! `headless.png`). Builds and runs without the `window` feature.
 //!
-//! `cargo run --release -p pom --example headless -- bricks.png`
+//! `cargo run --release -p parallax-occlusion --example headless -- bricks.png`
 
 use pom::{glam::Vec3, *};
 

@@ -1,5 +1,5 @@
 //! The README's game in a window: a parallax brick plane, lit, seen from above.
-//! `cargo run --release -p pom --example minimal --features window`
+//! `cargo run --release -p parallax-occlusion --example minimal --features window`
 use pom::prelude::*;
 
 fn main() -> AppExit {

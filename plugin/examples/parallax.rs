@@ -3,7 +3,7 @@
 //! Space the next method, arrows move the light; the values are in the window's title. The
 //! camera flies (`FlyCameraPlugin`): W/A/S/D and Q/E, drag with a mouse button held to look.
 //!
-//! `cargo run --release -p pom --example parallax --features window`
+//! `cargo run --release -p parallax-occlusion --example parallax --features window`
 
 use pom::glam::{Quat, Vec3};
 use pom::hecs::World;

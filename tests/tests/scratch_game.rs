@@ -1,5 +1,6 @@
-//! A game outside this workspace, as a new user makes one: a scratch crate depending on `pom`
-//! by path with the `window` feature, its `main.rs` the README's window game copied verbatim.
+//! A game outside this workspace, as a new user makes one: a scratch crate with the README's
+//! dependency line (the registry's crate patched to this checkout) and the README's window game
+//! copied verbatim as its `main.rs`.
 //! It must build on its own (no workspace setting, dev-dependency or unified feature helps
 //! it), open its window under Xvfb on the software driver, draw 60 frames and exit 0 with a
 //! screenshot of the scene.
@@ -20,8 +21,18 @@ fn readme_game() -> &'static str {
     )
 }
 
-/// Writes the scratch crate under `dir`: its manifest, the workspace's lock file (so it builds
-/// the versions the workspace tested, offline) and the README's game as `src/main.rs`.
+/// The README's dependency section for that game.
+fn readme_dependencies() -> &'static str {
+    fenced_block(
+        include_str!("../../README.md"),
+        "## A game in a window",
+        "toml",
+    )
+}
+
+/// Writes the scratch crate under `dir`: its manifest (the README's dependency line, the
+/// registry's crate patched to this checkout), the workspace's lock file (so it builds the
+/// versions the workspace tested, offline) and the README's game as `src/main.rs`.
 fn write_scratch_crate(dir: &Path) {
     let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let plugin = repository.join("plugin").canonicalize().unwrap();
@@ -30,10 +41,12 @@ fn write_scratch_crate(dir: &Path) {
         dir.join("Cargo.toml"),
         format!(
             "[package]\nname = \"scratch-game\"\nversion = \"0.1.0\"\nedition = \"2024\"\n\n\
-             [dependencies]\npom = {{ path = {plugin:?}, features = [\"window\"] }}\n\n\
+             {dependencies}\n\
+             [patch.crates-io]\nparallax-occlusion = {{ path = {plugin:?} }}\n\n\
              # A workspace of its own: nothing of ours is inherited.\n[workspace]\n\n\
              # Debug info is what a 2-core build spends most on; this test does not need it.\n\
-             [profile.dev]\ndebug = false\n"
+             [profile.dev]\ndebug = false\n",
+            dependencies = readme_dependencies(),
         ),
     )
     .unwrap();

@@ -27,7 +27,7 @@ fn example(name: &str) -> PathBuf {
     let path = profile.join("examples").join(name);
     assert!(
         path.is_file(),
-        "{} is missing: `cargo test --workspace` builds the examples (a filtered run builds none: `cargo build -p pom --examples --features window`)",
+        "{} is missing: `cargo test --workspace` builds the examples (a filtered run builds none: `cargo build -p parallax-occlusion --examples --features window`)",
         path.display()
     );
     path

@@ -15,7 +15,7 @@ use super::object_buffer::ObjectBuffer;
 use super::{GpuContext, RenderTarget};
 
 /// The format of the motion numbers: 0 for a pixel no moving draw shows, else its motion's
-/// number (its index in [`ObjectMotions`] plus one).
+/// number (its index in the frame's list of moving draws, plus one).
 pub const MOTION_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// One moving draw's motion as TAA reads it; mirrors `ObjectMotion` in taa.wgsl.

@@ -26,7 +26,7 @@ pub struct RenderPlugin {
     pub height: u32,
     /// What the target stores: display pixels or raw floats.
     pub format: TargetFormat,
-    /// GPU pass timing ([`GpuTimings`]), when the adapter supports it; `None` turns it off.
+    /// GPU pass timing ([`GpuTimings`](crate::GpuTimings)), when the adapter supports it; `None` turns it off.
     pub gpu_timing: Option<TimingMode>,
     /// Whether opaque geometry is drawn into a depth prepass first, so the opaque phase
     /// shades each pixel once (on by default; off draws and shades in one pass).

@@ -174,7 +174,7 @@ pub(crate) fn phase_bindings<'a>(
 }
 
 impl Renderer {
-    /// The texture an image was uploaded to, for reading it back ([`read_rgba8`]); `None`
+    /// The texture an image was uploaded to, for reading it back ([`read_rgba8`](super::read_rgba8)); `None`
     /// until the Prepare stage has uploaded it.
     pub fn gpu_texture(&self, image: crate::AssetId<Image>) -> Option<&wgpu::Texture> {
         self.assets.image(image).map(|image| &image.texture)
