@@ -10,10 +10,7 @@
 mod matte;
 
 use matte::Matte;
-use pom::glam::{Quat, Vec3};
-use pom::hecs::World;
-use pom::window::{AppExit, OrbitCamera, OrbitCameraPlugin, WindowPlugin};
-use pom::*;
+use pom::prelude::*;
 
 /// Marks the cube that spins.
 struct Spinning;

@@ -3,9 +3,7 @@
 //!
 //! `cargo run --release -p parallax-occlusion --example gltf_viewer --features window -- assets/street_corner.glb`
 
-use pom::glam::Vec3;
-use pom::window::{AppExit, OrbitCamera, OrbitCameraPlugin, WindowPlugin};
-use pom::*;
+use pom::prelude::*;
 
 fn main() -> AppExit {
     let Some(path) = std::env::args().nth(1) else {

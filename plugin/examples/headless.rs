@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p parallax-occlusion --example headless -- bricks.png`
 
-use pom::{glam::Vec3, *};
+use pom::prelude::*;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = std::env::args()

@@ -5,11 +5,7 @@
 //!
 //! `cargo run --release -p parallax-occlusion --example parallax --features window`
 
-use pom::glam::{Quat, Vec3};
-use pom::hecs::World;
-use pom::material::Choice;
-use pom::window::{AppExit, ButtonInput, FlyCamera, FlyCameraPlugin, KeyCode, WindowPlugin};
-use pom::*;
+use pom::prelude::*;
 
 /// Marks the cube that spins.
 struct Spinning;

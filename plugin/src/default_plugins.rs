@@ -5,7 +5,7 @@ use crate::{App, Plugin, PomPlugin, RenderPlugin, TransformPlugin};
 
 /// The renderer, [`crate::LitMaterial`] (which also draws meshes without a material) and the
 /// parallax material: `TransformPlugin`, `RenderPlugin`, `PomPlugin` (which brings
-/// `lit_plugin()`), in that order. A plugin already added is not added again. Unless a logger
+/// `LitPlugin`), in that order. A plugin already added is not added again. Unless a logger
 /// is installed already, [`crate::log_to_stderr`] installs one, so the library's warnings
 /// (clamped values, device limits) reach the terminal.
 ///

@@ -87,10 +87,14 @@ mod transform;
 #[cfg(feature = "window")]
 pub mod window;
 
-pub use app::{
-    App, AppError, BoxedError, Fallible, Infallible, IntoSystem, Plugin, Resources, Schedule,
-    Stage, System,
-};
+pub use app::{App, AppError, BoxedError, IntoSystem, Plugin, Resources, Schedule, Stage, System};
+
+/// The markers that tell [`IntoSystem`]'s two kinds of function apart (returning nothing, or a
+/// `Result`); only code generic over systems names them. Not at the root, where `Infallible`
+/// would shadow `std::convert::Infallible` for a `use pom::*`.
+pub mod system_kinds {
+    pub use crate::app::{Fallible, Infallible};
+}
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection, active_camera, active_cameras};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
@@ -110,7 +114,7 @@ pub use image::{
 pub use image_compare::{FlipComparison, FlipTolerance, flip_compare};
 pub use light::{AmbientLight, DirectionalLight, MAX_LIGHT_OUTPUT, PointLight, SpotLight};
 pub use lighting::LightingModel;
-pub use lit::{AlphaMode, LitMaterial, LitParams, LitPatch, LitPreset, lit_plugin};
+pub use lit::{AlphaMode, LitMaterial, LitParams, LitPatch, LitPlugin, LitPreset};
 pub use material::{Material, MaterialPlugin, ShadedMaterial};
 pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;

@@ -1,5 +1,5 @@
 //! The names a game uses, for `use pom::prelude::*;`: the app and its plugins, transforms,
-//! cameras and lights, meshes and images, the two shipped materials and what writing one takes
+//! cameras and lights, meshes and images, reading a frame back (`capture`), the two shipped materials and what writing one takes
 //! (`ShadedMaterial`, `ParamSpec`, `WgslFile`), time, glam's vectors,
 //! hecs's world, and (with the `window` feature) the window, its input and the cameras that
 //! move with it.
@@ -20,13 +20,14 @@ pub use hecs::{Entity, World};
 
 pub use crate::{
     AmbientLight, AntiAliasing, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight,
-    Exposure, GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, Material,
-    MaterialPlugin, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Parent, Plugin, PointLight,
-    PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial, SpotLight, Stage,
-    TemporalAntiAliasing, Time, Tonemapping, Transform, load_gltf, patterns,
+    Exposure, GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, LitPlugin,
+    Material, MaterialPlugin, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Parent, Plugin,
+    PointLight, PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial, SpotLight, Stage,
+    TemporalAntiAliasing, Time, Tonemapping, Transform, capture, load_gltf, patterns,
 };
-// Writing a material: its parameters' limits and its shading file.
-pub use crate::material::ParamSpec;
+// Writing a material: its parameters' limits and its shading file; a choice parameter's values
+// and names (`ParallaxMethod::VALUES`, `method.name()`).
+pub use crate::material::{Choice, ParamSpec};
 pub use crate::shader::WgslFile;
 
 #[cfg(feature = "window")]

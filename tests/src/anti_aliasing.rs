@@ -54,7 +54,7 @@ pub fn turned_square(width: u32, height: u32) -> App {
 /// The turned square rendered by `render` (its size, format or post-processing path).
 pub fn turned_square_with(render: RenderPlugin) -> App {
     let mut app = App::new();
-    app.add_plugin(render).add_plugin(pom::lit_plugin());
+    app.add_plugin(render).add_plugin(pom::LitPlugin);
     app.finish().unwrap();
     let mesh = app
         .resources

@@ -50,7 +50,7 @@ pub enum HarnessError {
 pub fn headless_app(width: u32, height: u32) -> Result<App, HarnessError> {
     let mut app = App::new();
     app.add_plugin(RenderPlugin::new(width, height))
-        .add_plugin(pom::lit_plugin());
+        .add_plugin(pom::LitPlugin);
     app.finish()?;
     let gpu = app
         .resources

@@ -320,7 +320,7 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
 fn sphere_crossing(size: u32, with_sphere: bool, frames: usize, speed: f32) -> Vec<RgbaImage> {
     let mut app = App::new();
     app.add_plugin(RenderPlugin::new(size, size))
-        .add_plugin(pom::lit_plugin());
+        .add_plugin(pom::LitPlugin);
     app.finish().unwrap();
     let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
     let (ground, ball) = (

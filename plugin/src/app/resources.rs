@@ -101,6 +101,15 @@ impl Resources {
         scoped(self, f)
     }
 
+    /// [`Resources::scope`] for a fallible `f`: a missing `T` is the error
+    /// [`AppError::missing`](super::AppError::missing) names it with.
+    pub fn require_scope<T: 'static, R>(
+        &mut self,
+        f: impl FnOnce(&mut Self, &mut T) -> Result<R, super::AppError>,
+    ) -> Result<R, super::AppError> {
+        scoped(self, f).unwrap_or_else(|| Err(super::AppError::missing::<T>()))
+    }
+
     /// The type name of `T`, for error messages about a missing resource.
     pub(crate) fn name_of<T: 'static>() -> &'static str {
         type_name::<T>()

@@ -216,13 +216,11 @@ pub fn derive_dynamic_normals(
     world: &mut World,
     resources: &mut Resources,
 ) -> Result<(), AppError> {
-    resources
-        .scope(|resources, pass: &mut SobelPass| {
-            resources
-                .scope(|resources, renderer: &mut Renderer| run(world, resources, pass, renderer))
-                .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+    resources.require_scope(|resources, pass: &mut SobelPass| {
+        resources.require_scope(|resources, renderer: &mut Renderer| {
+            run(world, resources, pass, renderer)
         })
-        .unwrap_or_else(|| Err(AppError::missing::<SobelPass>()))
+    })
 }
 
 fn run(

@@ -216,6 +216,13 @@ impl Material for LitMaterial {
 }
 
 /// Draws [`LitMaterial`]s, and every mesh that has no material at all.
-pub fn lit_plugin() -> MaterialPlugin<LitMaterial> {
-    MaterialPlugin::for_meshes_without_material()
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LitPlugin;
+
+impl crate::Plugin for LitPlugin {
+    fn build(&self, app: &mut crate::App) {
+        app.add_plugin(MaterialPlugin::<LitMaterial>::for_meshes_without_material());
+        // A lit material plugin added before without that setting still draws the other meshes.
+        crate::material::draw_meshes_without_material::<LitMaterial>(app);
+    }
 }

@@ -263,19 +263,13 @@ fn prepare_materials<M: Material>(
     _: &mut World,
     resources: &mut Resources,
 ) -> Result<(), AppError> {
-    resources
-        .scope(|resources, batches: &mut MaterialBatches<M>| {
-            resources
-                .scope(|resources, renderer: &mut Renderer| {
-                    resources
-                        .scope(|resources, lod_cache: &mut MeshLodCache| {
-                            prepare_frame(resources, batches, renderer, lod_cache)
-                        })
-                        .unwrap_or_else(|| Err(AppError::missing::<MeshLodCache>()))
-                })
-                .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+    resources.require_scope(|resources, batches: &mut MaterialBatches<M>| {
+        resources.require_scope(|resources, renderer: &mut Renderer| {
+            resources.require_scope(|resources, lod_cache: &mut MeshLodCache| {
+                prepare_frame(resources, batches, renderer, lod_cache)
+            })
         })
-        .unwrap_or_else(|| Err(AppError::missing::<MaterialBatches<M>>()))
+    })
 }
 
 /// Prepares `batches` for this frame's extracted draws of `M`, hands the prepass its batches

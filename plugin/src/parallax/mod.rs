@@ -255,17 +255,15 @@ impl ParallaxOcclusionMaterial {
 
 /// The product's materials: draws every entity that has a [`ParallaxOcclusionMaterial`], a
 /// `Handle<Mesh>` and a transform, keeps dynamic height fields' normals up to date, and adds
-/// [`crate::lit_plugin`] (which draws every other mesh) unless it is there. Add it after
+/// [`crate::LitPlugin`] (which draws every other mesh) unless it is there. Add it after
 /// [`crate::RenderPlugin`] (or use [`crate::DefaultPlugins`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PomPlugin;
 
 impl Plugin for PomPlugin {
     fn build(&self, app: &mut App) {
-        app.add_plugin(crate::lit_plugin())
+        app.add_plugin(crate::LitPlugin)
             .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
-        // A lit plugin added before without that setting still draws the other meshes.
-        crate::material::draw_meshes_without_material::<crate::LitMaterial>(app);
         app.add_system(crate::Stage::Prepare, crate::derive_dynamic_normals);
         app.add_system(crate::Stage::Extract, warn_about_meshes_without_curvature);
     }

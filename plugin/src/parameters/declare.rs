@@ -93,6 +93,35 @@ macro_rules! material_parameters {
             }
         }
     };
+    // A parameter list the arm above did not take: say which parameter is malformed.
+    (@struct [$(#[$attr:meta])*] $material:ident {
+        $(inputs { $($inputs:tt)* })?
+        $(textures { $($textures:tt)* })?
+        parameters { $($parameters:tt)* }
+    }) => {
+        $crate::material_parameters!(@malformed $($parameters)*);
+    };
+    (@malformed) => {};
+    (@malformed
+        #[doc = $help:literal]
+        $(#[doc = $more:literal])*
+        $field:ident : $ty:ty = $default:expr, $spec:expr;
+        $($rest:tt)*
+    ) => {
+        $crate::material_parameters!(@malformed $($rest)*);
+    };
+    (@malformed $field:ident $($rest:tt)*) => {
+        compile_error!(concat!(
+            "material_parameters!: parameter `", stringify!($field), "` has no doc line: write \
+             `/// what it does` above it (the CLI, scene scripts and the sandbox show it as help)"
+        ));
+    };
+    (@malformed $($rest:tt)*) => {
+        compile_error!(
+            "material_parameters!: each parameter is a doc line, then \
+             `name: Type = default, ParamSpec;`"
+        );
+    };
     // Everything else, with the names of the preset, patch and GPU structs.
     (@items [$preset:ident $patch:ident $gpu:ident] $material:ident {
         // Inputs are the struct's alone.
@@ -332,6 +361,8 @@ macro_rules! material_parameters {
             }
         }
     };
+    // A malformed list: the `@struct` arms have said what is wrong.
+    (@items [$($names:tt)*] $material:ident { $($body:tt)* }) => {};
     // The full form: the preset, patch and GPU structs under the given names.
     (
         $(#[$attr:meta])*

@@ -14,42 +14,39 @@ use crate::{AppError, Assets, Image, Mesh, Resources};
 /// It runs before every material's Prepare system (materials need [`super::RenderPlugin`]
 /// first), and starts this frame's [`Renderer::last_upload`] count.
 pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    resources
-        .scope(|resources, renderer: &mut Renderer| {
-            let gpu = resources.require::<GpuContext>()?;
-            let extracted = resources.require::<ExtractedFrame>()?;
-            let meshes = resources.require::<Assets<Mesh>>()?;
-            let images = resources.require::<Assets<Image>>()?;
-            let target = resources.require::<RenderTarget>()?;
-            renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
-            renderer.visibility_ids.reset();
-            renderer.object_motions.reset();
-            if let (true, Some(background), Some(visibility)) = (
-                renderer.deferred,
-                &mut renderer.background,
-                &renderer.visibility,
-            ) {
-                background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
-            }
-            renderer.assets.release_freed(meshes, images);
-            // TAA's history holds display values already.
-            let tonemapping = match extracted.temporal {
-                Some(_) => crate::Tonemapping::None,
-                None => extracted.tonemapping,
-            };
-            let settings = PostSettings::new(tonemapping, target.target_format());
-            renderer.last_upload = UploadStats {
-                uniform_bytes: renderer.frame.upload(
-                    gpu,
-                    &extracted.frame,
-                    &light_views(extracted),
-                ) + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views)
-                    + renderer.post.upload(gpu, settings),
-                ..UploadStats::default()
-            };
-            Ok(())
-        })
-        .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+    resources.require_scope(|resources, renderer: &mut Renderer| {
+        let gpu = resources.require::<GpuContext>()?;
+        let extracted = resources.require::<ExtractedFrame>()?;
+        let meshes = resources.require::<Assets<Mesh>>()?;
+        let images = resources.require::<Assets<Image>>()?;
+        let target = resources.require::<RenderTarget>()?;
+        renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
+        renderer.visibility_ids.reset();
+        renderer.object_motions.reset();
+        if let (true, Some(background), Some(visibility)) = (
+            renderer.deferred,
+            &mut renderer.background,
+            &renderer.visibility,
+        ) {
+            background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
+        }
+        renderer.assets.release_freed(meshes, images);
+        // TAA's history holds display values already.
+        let tonemapping = match extracted.temporal {
+            Some(_) => crate::Tonemapping::None,
+            None => extracted.tonemapping,
+        };
+        let settings = PostSettings::new(tonemapping, target.target_format());
+        renderer.last_upload = UploadStats {
+            uniform_bytes: renderer
+                .frame
+                .upload(gpu, &extracted.frame, &light_views(extracted))
+                + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views)
+                + renderer.post.upload(gpu, settings),
+            ..UploadStats::default()
+        };
+        Ok(())
+    })
 }
 
 /// The frame uniform each shadow map sees: the same lights, the light's eye, and textures read
@@ -82,14 +79,12 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     let plan = FramePlan::new(resources)?;
     if plan.object_motion {
         // The materials have numbered their moving draws.
-        resources
-            .scope(|resources, renderer: &mut Renderer| {
-                let gpu = resources.require::<GpuContext>()?;
-                let target = resources.require::<RenderTarget>()?;
-                renderer.object_motions.prepare(gpu, target);
-                Ok(())
-            })
-            .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))?;
+        resources.require_scope(|resources, renderer: &mut Renderer| {
+            let gpu = resources.require::<GpuContext>()?;
+            let target = resources.require::<RenderTarget>()?;
+            renderer.object_motions.prepare(gpu, target);
+            Ok(())
+        })?;
     }
     resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
     let times = PhaseTimes::reserve(&plan, resources);

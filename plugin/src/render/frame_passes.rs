@@ -268,80 +268,78 @@ pub(super) fn post_process(
     plan: &FramePlan,
     times: PostTimes<'_>,
 ) -> Result<(), AppError> {
-    resources
-        .scope(|resources, renderer: &mut Renderer| {
-            renderer.assets.derived_builds_submitted();
-            let gpu = resources.require::<GpuContext>()?;
-            let target = resources.require::<RenderTarget>()?;
-            let extracted = resources.require::<ExtractedFrame>()?;
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("post-process encoder"),
-                });
-            let colour = match extracted.temporal.filter(|_| plan.taa) {
-                Some(frame) => {
-                    let jittered = glam::Mat4::from_cols_array_2d(&extracted.frame.view_projection);
-                    renderer
-                        .taa
-                        .get_or_insert_with(|| TaaPass::new(gpu))
-                        .record(
-                            gpu,
-                            target,
-                            TaaInputs {
-                                uniform: TaaUniform::new(
-                                    &frame,
-                                    jittered,
-                                    extracted.tonemapping,
-                                    plan.object_motion,
-                                ),
-                                motions: &renderer.object_motions,
-                            },
-                            &mut encoder,
-                            times.taa,
-                        )
-                }
-                None => None,
-            };
-            let format = target.target_format();
-            let filter = if plan.post_filter {
-                if !renderer
-                    .fxaa
-                    .as_ref()
-                    .is_some_and(|fxaa| fxaa.is_for(format))
-                {
-                    renderer.fxaa = Some(FxaaPass::new(gpu, format, !renderer.post.is_compute()));
-                }
-                renderer.fxaa.as_mut()
-            } else {
-                None
-            };
-            let (output, filter) = match filter {
-                Some(fxaa) => {
-                    let (id, view) = fxaa.tonemapped_view(gpu, target);
-                    (Some((id, view.clone())), Some(&*fxaa))
-                }
-                None => (None, None),
-            };
-            let routing = PostRouting {
-                colour,
-                output: output.as_ref().map(|(id, view)| (*id, view)),
-            };
-            renderer
-                .post
-                .record(gpu, target, routing, &mut encoder, times.post);
-            if let Some(fxaa) = filter {
-                fxaa.record(target, &mut encoder, times.post_filter);
+    resources.require_scope(|resources, renderer: &mut Renderer| {
+        renderer.assets.derived_builds_submitted();
+        let gpu = resources.require::<GpuContext>()?;
+        let target = resources.require::<RenderTarget>()?;
+        let extracted = resources.require::<ExtractedFrame>()?;
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("post-process encoder"),
+            });
+        let colour = match extracted.temporal.filter(|_| plan.taa) {
+            Some(frame) => {
+                let jittered = glam::Mat4::from_cols_array_2d(&extracted.frame.view_projection);
+                renderer
+                    .taa
+                    .get_or_insert_with(|| TaaPass::new(gpu))
+                    .record(
+                        gpu,
+                        target,
+                        TaaInputs {
+                            uniform: TaaUniform::new(
+                                &frame,
+                                jittered,
+                                extracted.tonemapping,
+                                plan.object_motion,
+                            ),
+                            motions: &renderer.object_motions,
+                        },
+                        &mut encoder,
+                        times.taa,
+                    )
             }
-            if let Some(phases) = resources.get::<RenderPhases>() {
-                for work in phases.work(RenderPhase::PostProcess) {
-                    work(resources, &mut encoder);
-                }
+            None => None,
+        };
+        let format = target.target_format();
+        let filter = if plan.post_filter {
+            if !renderer
+                .fxaa
+                .as_ref()
+                .is_some_and(|fxaa| fxaa.is_for(format))
+            {
+                renderer.fxaa = Some(FxaaPass::new(gpu, format, !renderer.post.is_compute()));
             }
-            gpu.queue.submit([encoder.finish()]);
-            Ok(())
-        })
-        .unwrap_or_else(|| Err(AppError::missing::<Renderer>()))
+            renderer.fxaa.as_mut()
+        } else {
+            None
+        };
+        let (output, filter) = match filter {
+            Some(fxaa) => {
+                let (id, view) = fxaa.tonemapped_view(gpu, target);
+                (Some((id, view.clone())), Some(&*fxaa))
+            }
+            None => (None, None),
+        };
+        let routing = PostRouting {
+            colour,
+            output: output.as_ref().map(|(id, view)| (*id, view)),
+        };
+        renderer
+            .post
+            .record(gpu, target, routing, &mut encoder, times.post);
+        if let Some(fxaa) = filter {
+            fxaa.record(target, &mut encoder, times.post_filter);
+        }
+        if let Some(phases) = resources.get::<RenderPhases>() {
+            for work in phases.work(RenderPhase::PostProcess) {
+                work(resources, &mut encoder);
+            }
+        }
+        gpu.queue.submit([encoder.finish()]);
+        Ok(())
+    })
 }
 
 /// What the scene is cleared to: the clear colour as set, its negative alpha marking it
