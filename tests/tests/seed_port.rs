@@ -71,7 +71,7 @@ fn render(view_angle: f32, drawn: Drawn) -> [image::Rgba32FImage; 2] {
         },
     )
     .unwrap();
-    app.add_plugin(pom::seed_port::seed_port_plugin());
+    app.add_plugin(pom::seed_port::SeedPortPlugin);
     app.finish().unwrap();
     if drawn == Drawn::Port {
         let images = app.resources.get_mut::<pom::Assets<pom::Image>>().unwrap();
@@ -210,7 +210,7 @@ fn fragment_and_compute(view_angle: f32) -> [image::Rgba32FImage; 2] {
         ..PreviewView::default()
     };
     let mut app = preview_app(SIZE, TargetFormat::Float32, &textures, &view, |m| m).unwrap();
-    app.add_plugin(pom::seed_port::seed_port_plugin());
+    app.add_plugin(pom::seed_port::SeedPortPlugin);
     app.finish().unwrap();
     let images = app.resources.get_mut::<pom::Assets<pom::Image>>().unwrap();
     pom::seed_port::replace_parallax_materials(&mut app.world, images).unwrap();

@@ -290,8 +290,13 @@ pub fn replace_parallax_materials(
 }
 
 /// Draws [`SeedPortMaterial`]s (the bench adds it beside the parallax plugin).
-pub fn seed_port_plugin() -> MaterialPlugin<SeedPortMaterial> {
-    MaterialPlugin::default()
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SeedPortPlugin;
+
+impl crate::Plugin for SeedPortPlugin {
+    fn build(&self, app: &mut crate::App) {
+        app.add_plugin(MaterialPlugin::<SeedPortMaterial>::default());
+    }
 }
 
 #[cfg(test)]

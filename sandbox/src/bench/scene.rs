@@ -112,7 +112,7 @@ impl BenchScene {
         );
         app.add_plugin(PomPlugin);
         if options.seed_port {
-            app.add_plugin(pom::seed_port::seed_port_plugin());
+            app.add_plugin(pom::seed_port::SeedPortPlugin);
         }
         app.finish().context("starting the GPU")?;
         let images = app
