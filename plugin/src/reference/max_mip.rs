@@ -90,30 +90,48 @@ impl MaxPyramid {
 /// Most traversal steps one ray takes (`MAX_MIP_STEPS` in WGSL).
 pub(crate) const MAX_MIP_STEPS: u32 = 2048;
 
-/// The first t in `[from, to]` where `c2 t² + c1 t + c0` reaches 0 from below, if any.
+/// Largest gap (field above the ray) that still counts as the ray touching the field: the
+/// rounding of a patch's f32 heights along the ray (`MAX_MIP_TOUCH` in WGSL).
+pub(crate) const MAX_MIP_TOUCH: f32 = 1e-6;
+
+/// The first t in `[from, to]` where the gap `c2 t² + c1 t + c0` (field above the ray) turns
+/// positive: where the ray goes below the field, not where it merely touches it (a ray that
+/// enters on the top plane at a rim and passes above the drop goes on).
 fn first_root(c2: f32, c1: f32, c0: f32, from: f32, to: f32) -> Option<f32> {
-    let at = |t: f32| (c2 * t + c1) * t + c0;
-    if at(from) >= 0.0 {
+    let gap = (c2 * from + c1) * from + c0;
+    if gap > MAX_MIP_TOUCH {
         return Some(from);
     }
-    let mut roots = if c2.abs() < 1e-9 {
-        if c1.abs() < 1e-9 {
+    // An interval of no length (the ray starts on the cell's far edge) says nothing of where
+    // the ray goes: the patch beyond the edge is the next cell's.
+    if to <= from {
+        return None;
+    }
+    // Touching at `from`: a hit where the gap grows from there.
+    let slope = 2.0 * c2 * from + c1;
+    if gap >= -MAX_MIP_TOUCH && (slope > 0.0 || (slope == 0.0 && c2 > 0.0)) {
+        return Some(from);
+    }
+    // The one root where the gap turns positive: the gap is positive past the larger root
+    // where it opens upwards, before the smaller where it opens downwards; a double root only
+    // touches.
+    let rising = if c2.abs() < 1e-9 {
+        if c1 < 1e-9 {
             return None;
         }
-        [-c0 / c1, f32::INFINITY]
+        -c0 / c1
     } else {
         let discriminant = c1 * c1 - 4.0 * c2 * c0;
-        if discriminant < 0.0 {
+        if discriminant <= 0.0 {
             return None;
         }
         // The stable pair: no cancellation between c1 and the square root.
         let q = -0.5 * (c1 + c1.signum() * discriminant.sqrt());
         let a = q / c2;
         let b = if q != 0.0 { c0 / q } else { a };
-        [a, b]
+        if c2 > 0.0 { a.max(b) } else { a.min(b) }
     };
-    roots.sort_by(f32::total_cmp);
-    roots.into_iter().find(|t| (from..=to).contains(t))
+    (from..=to).contains(&rising).then_some(rising)
 }
 
 /// Where a ray along `axis_travel` (cells per unit of t) from `axis_start` leaves the cell
@@ -424,6 +442,49 @@ mod tests {
             MaxPyramid::new(&HeightField::new(12, 8, vec![0.5; 96]).unwrap()).level_count(),
             3
         );
+    }
+
+    /// A ray that enters on the top plane at the rim of a plateau at exactly 1 (texels 56..=64,
+    /// wrapping to texel 0; a floor at 0.5 beyond it) touches the field there. Falling 1/20 of
+    /// the height range a texel it passes above the drop (0.5 in a texel) and meets the floor
+    /// 10 texels on; falling 2/3 a texel it goes under the drop at once, and so does a ray over
+    /// the plateau. The march and the exact reference both say so.
+    #[test]
+    fn a_ray_that_touches_the_top_at_a_rim_goes_on_unless_it_falls_faster_than_the_drop() {
+        const SIZE: u32 = 64;
+        let heights = (0..SIZE * SIZE)
+            .map(|i| {
+                if matches!(i % SIZE, 0 | 56..) {
+                    1.0
+                } else {
+                    0.5
+                }
+            })
+            .collect();
+        let field = HeightField::new(SIZE, SIZE, heights).unwrap();
+        let pyramid = MaxPyramid::new(&field);
+        let entry = Vec2::splat(0.5 / SIZE as f32);
+        let in_cells = |uv: Vec2| uv.x * SIZE as f32 - 0.5;
+        // (texels travelled along u, where the ray meets the field in cells).
+        for (travel, expected) in [(20.0, 10.0), (1.5, 0.0), (-20.0, 0.0)] {
+            let offset = Vec2::new(travel / SIZE as f32, 0.0);
+            let ray = FieldRay {
+                uv: entry,
+                offset,
+                start_height: 1.0,
+                rise: -1.0,
+            };
+            let found = first_hit(&pyramid, &ray);
+            let marched = in_cells(entry + offset * found.t);
+            let exact = in_cells(crate::reference::exact_intersection_along(
+                &field, entry, offset,
+            ));
+            assert!(found.hit, "travel {travel}: no hit");
+            assert!(
+                (marched - expected).abs() < 1e-3 && (exact - expected).abs() < 1e-3,
+                "travel {travel}: marched {marched}, exact {exact}, expected {expected}"
+            );
+        }
     }
 
     #[test]
