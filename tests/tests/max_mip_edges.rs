@@ -212,6 +212,53 @@ fn some_rays_touch_the_top_at_the_rim_and_go_on_at_every_angle() {
     }
 }
 
+/// A ray from the rim of a plateau at exactly 1 (texel columns 56..=64, wrapping to column 0;
+/// a floor at 0.5 beyond) enters on the top plane and touches the field there. Falling 1/20 of
+/// the height range a texel it passes above the drop (0.5 in a texel) and meets the floor 10
+/// texels on; falling 2/3 a texel it goes under the drop at once, and so does a ray towards the
+/// plateau. The CPU reference, the GPU and the exact intersection all say so.
+#[test]
+fn a_ray_touching_the_top_at_a_rim_goes_on_unless_it_falls_faster_than_the_drop() {
+    let field = HeightField::from_fn(SIZE, SIZE, |u, _| {
+        let column = (u * SIZE as f32) as u32;
+        if column == 0 || column >= 56 {
+            1.0
+        } else {
+            0.5
+        }
+    })
+    .quantized();
+    let floor = field.texel(10, 0);
+    // (eye vector, height range: texels travelled along u = 0.75 × 64 × range, expected hit
+    // along u in cells).
+    let cases = [
+        (Vec3::new(-0.6, 0.0, 0.8), 20.0 / 48.0, 20.0 * (1.0 - floor)),
+        (Vec3::new(-0.6, 0.0, 0.8), 1.5 / 48.0, 0.0),
+        (Vec3::new(0.6, 0.0, 0.8), 20.0 / 48.0, 0.0),
+    ];
+    let entry = Vec2::splat(0.5 / SIZE as f32);
+    let gpu = GpuContext::headless().unwrap();
+    for (to_eye, height_scale, expected) in cases {
+        let offset = -ray_offset(to_eye, height_scale);
+        let ray = ViewRay {
+            uv: entry,
+            to_eye,
+            offset,
+        };
+        let cpu = march_max_mip(&MaxPyramid::new(&field), entry, to_eye, height_scale).uv;
+        let exact = exact_intersection_along(&field, entry, offset);
+        let on_gpu = gpu_hits(&gpu, &field, wgpu::AddressMode::Repeat, &[ray])[0];
+        for (name, hit) in [("CPU", cpu), ("exact", exact), ("GPU", on_gpu)] {
+            let along = pom_tests::pom_scene::wrapped(hit.x) * SIZE as f32 - 0.5;
+            assert!(
+                (along - expected).abs() < 1e-3,
+                "{name}: travelling {} texels the ray meets the field at {along}, not {expected}",
+                offset.x * SIZE as f32
+            );
+        }
+    }
+}
+
 /// The compute entry point that runs max_mip.wgsl's `march_max_mip` on each of `rays` (entry
 /// uv, offset) and stores (hit uv, height, fetches) in `hits`, one texel per ray.
 const MARCH_RAYS: &str = "
