@@ -357,6 +357,7 @@ mod tests {
             format!("const HARD_SHADOW_BIAS: f32 = {HARD_SHADOW_BIAS:?};"),
             format!("const SEED_SHADOW_SOFTENING: f32 = {SEED_SHADOW_SOFTENING:?};"),
             format!("const MAX_MIP_STEPS: u32 = {}u;", max_mip::MAX_MIP_STEPS),
+            format!("const MAX_MIP_TOUCH: f32 = {:?};", max_mip::MAX_MIP_TOUCH),
         ] {
             assert!(source.contains(&declaration), "WGSL lacks `{declaration}`");
         }

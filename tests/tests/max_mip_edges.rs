@@ -4,7 +4,9 @@
 //! 80° and 88°, along ±u, ±v and the four diagonals, the CPU reference and the GPU's march
 //! (max_mip.wgsl, run by a compute pass on exactly these rays) both equal the exact
 //! intersection (`pom::reference::exact_intersection_along`, piecewise along texel-centre
-//! lines, no pyramid) on every ray, whatever the height sampler's address mode.
+//! lines, no pyramid) on every ray, whatever the height sampler's address mode. Among them are
+//! rays that enter on the top's rim, touch the field there and pass above the drop: they hit
+//! further on, not at the touch.
 
 use pom::glam::{Vec2, Vec3};
 use pom::reference::{MaxPyramid, exact_intersection_along, march_max_mip, ray_offset};
@@ -181,6 +183,79 @@ fn the_cpu_reference_is_exact_on_rays_entering_on_boundaries() {
     for (name, field) in maps() {
         let (cpu, exact) = cpu_and_exact_hits(&field, &rays);
         assert_hits_agree(name, &rays, ("CPU", &cpu), ("exact", &exact));
+    }
+}
+
+/// At every angle some boundary rays enter on the flat top's rim at its height (1), touch the
+/// field there and pass above the drop, meeting it more than a texel on: the tests above hold
+/// their hits to the exact ones.
+#[test]
+fn some_rays_touch_the_top_at_the_rim_and_go_on_at_every_angle() {
+    let field = flat_top_next_to_a_drop();
+    let rays = boundary_rays();
+    let (_, exact) = cpu_and_exact_hits(&field, &rays);
+    let per_angle = rays.len() / 3;
+    for (angle, chunk) in [60, 80, 88]
+        .into_iter()
+        .zip(rays.chunks(per_angle).zip(exact.chunks(per_angle)))
+    {
+        let gone_on = chunk
+            .0
+            .iter()
+            .zip(chunk.1)
+            .filter(|(ray, hit)| {
+                field.sample(ray.uv.x, ray.uv.y) == 1.0 && texels_apart(ray.uv, **hit) > 1.0
+            })
+            .count();
+        eprintln!("{angle}°: {gone_on} rays touch the top at the rim and go on");
+        assert!(gone_on > 0, "{angle}°: no ray touches the rim and goes on");
+    }
+}
+
+/// A ray from the rim of a plateau at exactly 1 (texel columns 56..=64, wrapping to column 0;
+/// a floor at 0.5 beyond) enters on the top plane and touches the field there. Falling 1/20 of
+/// the height range a texel it passes above the drop (0.5 in a texel) and meets the floor 10
+/// texels on; falling 2/3 a texel it goes under the drop at once, and so does a ray towards the
+/// plateau. The CPU reference, the GPU and the exact intersection all say so.
+#[test]
+fn a_ray_touching_the_top_at_a_rim_goes_on_unless_it_falls_faster_than_the_drop() {
+    let field = HeightField::from_fn(SIZE, SIZE, |u, _| {
+        let column = (u * SIZE as f32) as u32;
+        if column == 0 || column >= 56 {
+            1.0
+        } else {
+            0.5
+        }
+    })
+    .quantized();
+    let floor = field.texel(10, 0);
+    // (eye vector, height range: texels travelled along u = 0.75 × 64 × range, expected hit
+    // along u in cells).
+    let cases = [
+        (Vec3::new(-0.6, 0.0, 0.8), 20.0 / 48.0, 20.0 * (1.0 - floor)),
+        (Vec3::new(-0.6, 0.0, 0.8), 1.5 / 48.0, 0.0),
+        (Vec3::new(0.6, 0.0, 0.8), 20.0 / 48.0, 0.0),
+    ];
+    let entry = Vec2::splat(0.5 / SIZE as f32);
+    let gpu = GpuContext::headless().unwrap();
+    for (to_eye, height_scale, expected) in cases {
+        let offset = -ray_offset(to_eye, height_scale);
+        let ray = ViewRay {
+            uv: entry,
+            to_eye,
+            offset,
+        };
+        let cpu = march_max_mip(&MaxPyramid::new(&field), entry, to_eye, height_scale).uv;
+        let exact = exact_intersection_along(&field, entry, offset);
+        let on_gpu = gpu_hits(&gpu, &field, wgpu::AddressMode::Repeat, &[ray])[0];
+        for (name, hit) in [("CPU", cpu), ("exact", exact), ("GPU", on_gpu)] {
+            let along = pom_tests::pom_scene::wrapped(hit.x) * SIZE as f32 - 0.5;
+            assert!(
+                (along - expected).abs() < 1e-3,
+                "{name}: travelling {} texels the ray meets the field at {along}, not {expected}",
+                offset.x * SIZE as f32
+            );
+        }
     }
 }
 

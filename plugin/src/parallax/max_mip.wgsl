@@ -86,22 +86,40 @@ fn axis_exit(axis_start: f32, axis_travel: f32, axis_cell: i32, cell_size: f32) 
     return (edge - axis_start) / axis_travel;
 }
 
-// The first t in [earliest, latest] where c2 t² + c1 t + c0 reaches 0 from below, or −1.
+// Largest gap (field above the ray) that still counts as the ray touching the field: the
+// rounding of a patch's f32 heights along the ray.
+const MAX_MIP_TOUCH: f32 = 1e-6;
+
+// The first t in [earliest, latest] where the gap c2 t² + c1 t + c0 (field above the ray) turns
+// positive, or −1: where the ray goes below the field, not where it merely touches it (a ray
+// that enters on the top plane at a rim and passes above the drop goes on).
 fn first_root(c2: f32, c1: f32, c0: f32, earliest: f32, latest: f32) -> f32 {
-    if (c2 * earliest + c1) * earliest + c0 >= 0.0 {
+    let gap = (c2 * earliest + c1) * earliest + c0;
+    if gap > MAX_MIP_TOUCH {
         return earliest;
     }
-    var low: f32;
-    var high: f32;
+    // An interval of no length (the ray starts on the cell's far edge) says nothing of where
+    // the ray goes: the patch beyond the edge is the next cell's.
+    if latest <= earliest {
+        return -1.0;
+    }
+    // Touching at `earliest`: a hit where the gap grows from there.
+    let slope = 2.0 * c2 * earliest + c1;
+    if gap >= -MAX_MIP_TOUCH && (slope > 0.0 || (slope == 0.0 && c2 > 0.0)) {
+        return earliest;
+    }
+    // The one root where the gap turns positive: the gap is positive past the larger root
+    // where it opens upwards, before the smaller where it opens downwards; a double root only
+    // touches.
+    var rising: f32;
     if abs(c2) < 1e-9 {
-        if abs(c1) < 1e-9 {
+        if c1 < 1e-9 {
             return -1.0;
         }
-        low = -c0 / c1;
-        high = 3.4e38;
+        rising = -c0 / c1;
     } else {
         let discriminant = c1 * c1 - 4.0 * c2 * c0;
-        if discriminant < 0.0 {
+        if discriminant <= 0.0 {
             return -1.0;
         }
         // The stable pair: no cancellation between c1 and the square root.
@@ -109,14 +127,10 @@ fn first_root(c2: f32, c1: f32, c0: f32, earliest: f32, latest: f32) -> f32 {
         let q = -0.5 * (c1 + sign_c1 * sqrt(discriminant));
         let a = q / c2;
         let b = select(a, c0 / q, q != 0.0);
-        low = min(a, b);
-        high = max(a, b);
+        rising = select(min(a, b), max(a, b), c2 > 0.0);
     }
-    if low >= earliest && low <= latest {
-        return low;
-    }
-    if high >= earliest && high <= latest {
-        return high;
+    if rising >= earliest && rising <= latest {
+        return rising;
     }
     return -1.0;
 }

@@ -2,8 +2,12 @@
 //! method's error is measured against. In f64, without a march: the ray is cut where it crosses
 //! a row or column of texel centres; between two cuts the field is one bilinear patch, so the
 //! gap between field and ray is a quadratic whose highest point is known from three values, and
-//! the first piece where the gap reaches 0 is bisected. No ridge tip or saddle top the ray only
-//! clips is stepped over, however thin.
+//! the first piece where the gap turns positive is bisected. No ridge tip or saddle top the ray
+//! only clips is stepped over, however thin.
+//!
+//! The ray hits where it goes *below* the field, not where it merely touches it: a ray that
+//! enters on the top plane at a rim (a texel of height 1 with lower ones after it along the ray)
+//! touches the field there, and passes above the drop when the field falls faster than the ray.
 
 use glam::{Vec2, Vec3};
 
@@ -12,11 +16,15 @@ use crate::HeightField;
 
 /// Halvings of the piece that holds the hit: more than f64 resolves on a fraction of the ray.
 const BISECTIONS: u32 = 64;
+/// Largest gap (field above the ray) that still counts as the ray touching the field: rounding
+/// of f64 heights, far below any height a texel holds.
+const TOUCH: f64 = 1e-12;
 
 /// The true first intersection of the view ray entering at `uv` with the bilinear height field
 /// (texel centres at (i + ½) / size, wrapping): the ray falls from the top (1) at `uv` to the
 /// bottom (0) at `uv` + P, P = −[`ray_offset`]`(to_eye_ts, height_scale)`. `uv` itself where
-/// the field is at the top there.
+/// the ray goes below the field at once (on a plateau at the top), not where it only touches
+/// the top there and the field falls away faster than the ray.
 pub fn exact_intersection(
     field: &HeightField,
     uv: Vec2,
@@ -30,7 +38,8 @@ pub fn exact_intersection(
 pub fn exact_intersection_along(field: &HeightField, uv: Vec2, offset: Vec2) -> Vec2 {
     let ray = CellRay::new(field, uv, offset);
     let mut from = 0.0;
-    // The ray reaches the bottom at t = 1, where the gap cannot be negative: the last piece hits.
+    // The ray reaches the bottom at t = 1, where the gap cannot be negative: a ray that goes
+    // below the field nowhere before ends there.
     let mut hit = 1.0;
     for to in ray.cuts().chain([1.0]) {
         if let Some(t) = ray.first_hit_between(from, to) {
@@ -78,9 +87,11 @@ impl<'a> CellRay<'a> {
         let column = x0.rem_euclid(f64::from(width)) as i64;
         let row = y0.rem_euclid(f64::from(height)) as i64;
         let texel = |dx, dy| f64::from(self.field.texel(column + dx, row + dy));
-        let top = texel(0, 0) * (1.0 - fx) + texel(1, 0) * fx;
-        let bottom = texel(0, 1) * (1.0 - fx) + texel(1, 1) * fx;
-        top * (1.0 - fy) + bottom * fy - (1.0 - t)
+        // a + (b − a) f: exactly a where a = b, so a plateau at the top is exactly 1.
+        let mix = |a: f64, b: f64, f: f64| a + (b - a) * f;
+        let top = mix(texel(0, 0), texel(1, 0), fx);
+        let bottom = mix(texel(0, 1), texel(1, 1), fx);
+        mix(top, bottom, fy) - (1.0 - t)
     }
 
     /// The fractions of the ray in [0, 1] where it crosses a row or column of texel centres, in
@@ -94,29 +105,41 @@ impl<'a> CellRay<'a> {
         })
     }
 
-    /// The first t from `from` to `to` where the gap reaches 0, the ray being over one patch
-    /// there (`gap` quadratic in t).
+    /// The first t from `from` to `to` where the ray goes below the field (the gap turns
+    /// positive), the ray being over one patch there (`gap` quadratic in t).
     fn first_hit_between(&self, from: f64, to: f64) -> Option<f64> {
         let (at_from, at_middle, at_to) =
             (self.gap(from), self.gap(0.5 * (from + to)), self.gap(to));
-        if at_from >= 0.0 {
-            return Some(from);
-        }
         // gap(from + s (to − from)) = at_from + linear s + quadratic s².
         let linear = 4.0 * at_middle - 3.0 * at_from - at_to;
         let quadratic = 2.0 * (at_from + at_to) - 4.0 * at_middle;
-        // A gap that peaks inside the piece may reach 0 there and fall below again by `to`.
+        if at_from > TOUCH {
+            return Some(from);
+        }
+        // A piece of no length (the ray starts on a texel-centre line) says nothing of where
+        // the ray goes: the next piece does.
+        if to <= from {
+            return None;
+        }
+        // Touching at `from`: a hit where the gap grows from there, not where the field falls
+        // away faster than the ray.
+        if at_from >= -TOUCH && (linear > 0.0 || (linear == 0.0 && quadratic > 0.0)) {
+            return Some(from);
+        }
+        // A gap that peaks inside the piece may turn positive there and fall below again by
+        // `to`.
         let peak = (quadratic < 0.0)
             .then(|| -linear / (2.0 * quadratic))
             .filter(|s| (0.0..1.0).contains(s))
             .map(|s| from + (to - from) * s)
-            .filter(|&t| self.gap(t) >= 0.0);
-        // The gap rises from below 0 at `from` to at least 0 at `reached`, crossing 0 once.
-        let reached = peak.or((at_to >= 0.0).then_some(to))?;
+            .filter(|&t| self.gap(t) > TOUCH);
+        // The gap rises from at most 0 after `from` to above 0 at `reached`, crossing 0 once; a
+        // gap that only touches 0 at `to` is the next piece's to judge.
+        let reached = peak.or((at_to > TOUCH).then_some(to))?;
         let (mut below, mut above) = (from, reached);
         for _ in 0..BISECTIONS {
             let middle = 0.5 * (below + above);
-            if self.gap(middle) >= 0.0 {
+            if self.gap(middle) > 0.0 {
                 above = middle;
             } else {
                 below = middle;

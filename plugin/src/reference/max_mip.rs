@@ -90,30 +90,47 @@ impl MaxPyramid {
 /// Most traversal steps one ray takes (`MAX_MIP_STEPS` in WGSL).
 pub(crate) const MAX_MIP_STEPS: u32 = 2048;
 
-/// The first t in `[from, to]` where `c2 t² + c1 t + c0` reaches 0 from below, if any.
+/// Largest gap (field above the ray) that still counts as the ray touching the field: the
+/// rounding of a patch's f32 heights along the ray (`MAX_MIP_TOUCH` in WGSL).
+pub(crate) const MAX_MIP_TOUCH: f32 = 1e-6;
+
+/// The first t in `[from, to]` where the gap `c2 t² + c1 t + c0` (field above the ray) turns
+/// positive: where the ray goes below the field, not where it merely touches it.
 fn first_root(c2: f32, c1: f32, c0: f32, from: f32, to: f32) -> Option<f32> {
-    let at = |t: f32| (c2 * t + c1) * t + c0;
-    if at(from) >= 0.0 {
+    let gap = (c2 * from + c1) * from + c0;
+    if gap > MAX_MIP_TOUCH {
         return Some(from);
     }
-    let mut roots = if c2.abs() < 1e-9 {
-        if c1.abs() < 1e-9 {
+    // An interval of no length (the ray starts on the cell's far edge) says nothing of where
+    // the ray goes: the patch beyond the edge is the next cell's.
+    if to <= from {
+        return None;
+    }
+    // Touching at `from`: a hit where the gap grows from there.
+    let slope = 2.0 * c2 * from + c1;
+    if gap >= -MAX_MIP_TOUCH && (slope > 0.0 || (slope == 0.0 && c2 > 0.0)) {
+        return Some(from);
+    }
+    // The one root where the gap turns positive: the gap is positive past the larger root
+    // where it opens upwards, before the smaller where it opens downwards; a double root only
+    // touches.
+    let rising = if c2.abs() < 1e-9 {
+        if c1 < 1e-9 {
             return None;
         }
-        [-c0 / c1, f32::INFINITY]
+        -c0 / c1
     } else {
         let discriminant = c1 * c1 - 4.0 * c2 * c0;
-        if discriminant < 0.0 {
+        if discriminant <= 0.0 {
             return None;
         }
         // The stable pair: no cancellation between c1 and the square root.
         let q = -0.5 * (c1 + c1.signum() * discriminant.sqrt());
         let a = q / c2;
         let b = if q != 0.0 { c0 / q } else { a };
-        [a, b]
+        if c2 > 0.0 { a.max(b) } else { a.min(b) }
     };
-    roots.sort_by(f32::total_cmp);
-    roots.into_iter().find(|t| (from..=to).contains(t))
+    (from..=to).contains(&rising).then_some(rising)
 }
 
 /// Where a ray along `axis_travel` (cells per unit of t) from `axis_start` leaves the cell
