@@ -4,7 +4,7 @@
 //! TAA the samples stay Tatarchuk's. Both paths; each test prints what it measured.
 
 use image::{Rgba32FImage, RgbaImage};
-use pom::glam::Vec2;
+use pom::glam::{Vec2, Vec3};
 use pom::preview::PreviewView;
 use pom::reference::{ray_offset, soft_shadow, soft_shadow_many_taps};
 use pom::{
@@ -126,7 +126,7 @@ impl PixelGrid {
 fn light_offset() -> Vec2 {
     let to_light = view().light_transform().translation.normalize();
     ray_offset(
-        pom::glam::Vec3::new(to_light.x, to_light.z, to_light.y),
+        Vec3::new(to_light.x, to_light.z, to_light.y),
         bricks().height_scale,
     )
 }
@@ -176,6 +176,7 @@ fn step_error(image: &[f32], reference: &[f32], pixels: &[usize]) -> f32 {
         / pixels.len() as f32
 }
 
+/// The mean absolute error of `image` against `reference` over `pixels`.
 fn mean_error(image: &[f32], reference: &[f32], pixels: &[usize]) -> f32 {
     pixels
         .iter()
@@ -262,6 +263,7 @@ fn without_taa_the_samples_stay_where_tatarchuk_puts_them() {
         eprintln!(
             "{path:?}, no anti-aliasing: mean visibility error against the CPU's seven samples {error:.5}"
         );
-        assert!(error < 0.01, "{path:?}: {error}");
+        // Bilinear weights of a few bits on the GPU: a few ten-thousandths apart.
+        assert!(error < 0.002, "{path:?}: {error}");
     }
 }
