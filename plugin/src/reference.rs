@@ -287,17 +287,45 @@ pub fn hard_shadow(field: &HeightField, uv: Vec2, light_offset: Vec2, steps: u32
     if crossing.found { 0.0 } else { 1.0 }
 }
 
-/// `soft_shadow` of march.wgsl: Tatarchuk's seven weighted samples along the light ray.
-pub fn soft_shadow(field: &HeightField, uv: Vec2, light_offset: Vec2, softening: f32) -> f32 {
+/// `soft_shadow` of march.wgsl: Tatarchuk's seven weighted samples along the light ray, moved
+/// `tap_shift` (−0.5..0.5, 0 for his places) of their spacing along it, as TAA's noise moves them.
+pub fn soft_shadow(
+    field: &HeightField,
+    uv: Vec2,
+    light_offset: Vec2,
+    softening: f32,
+    tap_shift: f32,
+) -> f32 {
     let start = field.sample(uv.x, uv.y);
     let strongest = (0..7).fold(0.0_f32, |strongest, k| {
-        let fraction = 0.88 - 0.11 * k as f32;
-        let weight = (2.0 * k as f32).max(1.0);
+        let place = k as f32 + tap_shift;
+        let fraction = 0.88 - 0.11 * place;
+        let weight = (2.0 * place).max(1.0);
         let at = uv + light_offset * fraction;
         strongest.max((field.sample(at.x, at.y) - start - fraction) * weight)
     });
     let sharpness = SEED_SHADOW_SOFTENING * SEED_SHADOW_SOFTENING / softening.max(1e-4);
     (1.0 - strongest * sharpness).clamp(0.0, 1.0)
+}
+
+/// The soft shadow of many samples: `soft_shadow`'s seven at `shifts_per_spacing` evenly spaced
+/// shifts together, the strongest of all of them winning (what the shifted samples of a pixel
+/// reach between them as the shifts fill the spacing).
+pub fn soft_shadow_many_taps(
+    field: &HeightField,
+    uv: Vec2,
+    light_offset: Vec2,
+    softening: f32,
+    shifts_per_spacing: u32,
+) -> f32 {
+    let count = shifts_per_spacing.max(1);
+    // The darkest visibility is the strongest blocker's: the clamp keeps the order.
+    (0..count)
+        .map(|i| {
+            let shift = (i as f32 + 0.5) / count as f32 - 0.5;
+            soft_shadow(field, uv, light_offset, softening, shift)
+        })
+        .fold(1.0_f32, f32::min)
 }
 
 /// Distance, in texels, between `method`'s answer at `steps` samples and the exact
@@ -437,7 +465,7 @@ mod tests {
         let in_front = Vec2::new(0.22, 0.5);
         assert_eq!(hard_shadow(&block, behind, light_offset, 32), 0.0);
         assert_eq!(hard_shadow(&block, in_front, light_offset, 32), 1.0);
-        assert!(soft_shadow(&block, behind, light_offset, 0.58) < 0.5);
-        assert_eq!(soft_shadow(&block, in_front, light_offset, 0.58), 1.0);
+        assert!(soft_shadow(&block, behind, light_offset, 0.58, 0.0) < 0.5);
+        assert_eq!(soft_shadow(&block, in_front, light_offset, 0.58, 0.0), 1.0);
     }
 }

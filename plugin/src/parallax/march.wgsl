@@ -336,6 +336,9 @@ fn hard_shadow(
 // 0.22 … 0.88 of the height range above the visible point. Each sample's height over the ray is
 // weighted more the nearer it is (near blockers cast sharp penumbrae), the strongest one wins.
 // `bend` raises the ray by bend · fraction² where the surface curves away (0: straight).
+// `tap_shift` (−0.5..0.5) moves every sample that part of their spacing along the ray, its weight
+// following its place: per pixel and frame noise under TAA, whose history then holds the
+// penumbra of many samples rather than seven steps; 0 samples where Tatarchuk does.
 fn soft_shadow(
     height_texture: texture_2d<f32>,
     height_sampler: sampler,
@@ -344,13 +347,15 @@ fn soft_shadow(
     light_offset: vec2<f32>,
     softening: f32,
     bend: f32,
+    tap_shift: f32,
 ) -> f32 {
     let start = sample_height(height_texture, height_sampler, field, uv);
     var strongest = 0.0;
     for (var k = 0u; k < 7u; k += 1u) {
         // Fractions 0.88, 0.77, …, 0.22 with weights 1, 2, 4, 6, 8, 10, 12, as in the listing.
-        let fraction = 0.88 - 0.11 * f32(k);
-        let weight = max(1.0, 2.0 * f32(k));
+        let place = f32(k) + tap_shift;
+        let fraction = 0.88 - 0.11 * place;
+        let weight = max(1.0, 2.0 * place);
         let blocker = sample_height(height_texture, height_sampler, field, uv + light_offset * fraction);
         strongest = max(strongest, (blocker - start - fraction - bend * fraction * fraction) * weight);
     }

@@ -133,6 +133,13 @@ fn march_noise(pixel: vec2<f32>) -> f32 {
     return fract(52.9829189 * fract(dot(p, vec2<f32>(0.06711056, 0.00583715))));
 }
 
+// The part of their spacing by which the soft shadow's samples move (`soft_shadow`): the
+// march's noise, centred, under TAA, whose history averages it whether or not the march is
+// jittered; 0 without TAA, where the noise would stay in the image as grain.
+fn shadow_tap_shift(pixel: vec2<f32>) -> f32 {
+    return select(0.0, march_noise(pixel) - 0.5, frame.target_size.w != 0u);
+}
+
 // The march: the same code for the prepass, which only needs the depth, and the shading.
 fn find_surface(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> SurfacePoint {
     return march_surface(in, view_ray(in, front_facing, footprint));
@@ -280,7 +287,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
                 along_plane(surface_frame, light.to_light)), light_offset, point);
             if SHADOW_MODE == SHADOWS_SOFT {
                 visibility = soft_shadow(height_texture, material_sampler, point.field, uv, light_offset, params.shadow_softening,
-                    light_bend);
+                    light_bend, shadow_tap_shift(in.clip_position.xy));
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(point.mip);
                 visibility = hard_shadow(height_texture, material_sampler, height_pyramid, point.field, METHOD, uv,

@@ -206,12 +206,13 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
                 0.0,
             ],
             light_counts: [0; 4],
-            // z: the seed of per-frame noise (the jittered march), still without TAA.
+            // z: the seed of per-frame noise (the jittered march), still without TAA; w: whether
+            // TAA averages that noise (the soft shadow's samples move only then).
             target_size: [
                 target_size.0,
                 target_size.1,
                 temporal.map_or(0, |f| f.frame_index),
-                0,
+                u32::from(temporal.is_some()),
             ],
             texture_lod: [texture_scale, 0.0, 0.0, 0.0],
             directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],

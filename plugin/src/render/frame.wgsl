@@ -40,7 +40,8 @@ struct Frame {
     // x: directional light count, y: point and spot light count.
     light_counts: vec4<u32>,
     // xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed of
-    // per-frame noise (counts TAA frames; 0 without TAA).
+    // per-frame noise (counts TAA frames; 0 without TAA); w: 1 under TAA, whose history averages
+    // per-frame noise away (the soft shadow's samples move only then).
     target_size: vec4<u32>,
     // x: the scale of every texture read's gradients, 2 to the mip bias of TAA or the post
     // filter (1 without anti-aliasing): textures are sampled finer, and the jitter averages them

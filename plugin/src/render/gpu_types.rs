@@ -115,7 +115,8 @@ pub struct FrameUniform {
     /// x: directional light count, y: point and spot light count.
     pub light_counts: [u32; 4],
     /// xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed
-    /// of per-frame noise (counts TAA frames; 0 without TAA).
+    /// of per-frame noise (counts TAA frames; 0 without TAA); w: 1 under TAA, whose history
+    /// averages per-frame noise away.
     pub target_size: [u32; 4],
     /// x: the scale of every texture read's gradients, 2 to the mip bias of TAA or the post filter
     /// (1 without anti-aliasing); yzw: 0.
