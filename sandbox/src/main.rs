@@ -10,6 +10,8 @@ mod demo_command;
 mod demo_scene;
 mod frame_output;
 mod material_args;
+#[cfg(test)]
+mod preset_flag_tests;
 mod preview_textures;
 mod render_command;
 mod scene_preview;

@@ -120,10 +120,11 @@ const PREVIEW_ONLY: [&str; 8] = [
     "shape",
 ];
 
-/// Every option `--scene` conflicts with: [`PREVIEW_ONLY`] and every material flag.
+/// Every option `--scene` conflicts with: [`PREVIEW_ONLY`], `--preset` and every material flag.
 fn material_preview_only() -> Vec<&'static str> {
     PREVIEW_ONLY
         .into_iter()
+        .chain([material_args::PRESET])
         .chain(material_args::flag_parameters().map(|param| param.name))
         .collect()
 }
