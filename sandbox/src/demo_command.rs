@@ -19,18 +19,19 @@ pub struct DemoArgs {
     /// Where to write the PNG.
     #[arg(
         long,
+        long_help,
         value_name = "FILE",
         default_value = "target/sandbox-preview.png"
     )]
     pub out: PathBuf,
     /// Image size as WIDTHxHEIGHT, each 1..=8192.
-    #[arg(long, value_name = "WxH", default_value = "960x540", value_parser = parse_size)]
+    #[arg(long, long_help, value_name = "WxH", default_value = "960x540", value_parser = parse_size)]
     pub size: (u32, u32),
     /// RON material preset, as the window saves it (the format is in
     /// plugin/docs/authoring-materials.md), put on every parallax material of the scene: each
     /// keeps its textures and takes the preset's parameters, all but its debug view (a
     /// snapshot shows the lit scene).
-    #[arg(long, value_name = "FILE.ron", value_parser = parse_preset)]
+    #[arg(long, long_help, value_name = "FILE.ron", value_parser = parse_preset)]
     pub preset: Option<PomPreset>,
     #[command(flatten)]
     pub display: DisplayArgs,

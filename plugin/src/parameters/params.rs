@@ -217,7 +217,7 @@ impl<M> ParamSpec<M> {
 pub struct Param<M> {
     /// The field name: the RON and glTF key; `--name-with-dashes` on the command line.
     pub name: &'static str,
-    /// One line saying what it does.
+    /// What it does: its whole doc comment, the lines joined (trim it before showing).
     pub help: &'static str,
     /// Type, limits, unit, editor hints.
     pub spec: ParamSpec<M>,
