@@ -52,30 +52,37 @@ macro_rules! with_lighting_parameters {
                     $($parameters)*
                     /// Linear RGBA multiplied with the colour texture.
                     base_color: $crate::Color = $crate::Color::WHITE,
-                        $crate::parameters::ParamSpec::color();
+                        $crate::parameters::ParamSpec::color()
+                        .group($crate::parameters::ParamGroup::Lighting);
                     /// Scales the normal map's tilt: 0 is flat, 1 as authored.
                     normal_strength: f32 = 1.0,
-                        $crate::parameters::ParamSpec::float(0.0, 100.0).editor(0.0, 4.0);
+                        $crate::parameters::ParamSpec::float(0.0, 100.0).editor(0.0, 4.0)
+                        .group($crate::parameters::ParamGroup::Lighting);
                     /// Weight of the Phong / Blinn-Phong highlight.
                     specular_strength: f32 = 0.3,
                         $crate::parameters::ParamSpec::float(0.0, 100.0).editor(0.0, 2.0)
+                        .group($crate::parameters::ParamGroup::Lighting)
                         .applies_when(|material| !material.lighting.uses_roughness());
                     /// Phong / Blinn-Phong exponent: higher is a smaller, sharper highlight.
                     shininess: f32 = 32.0,
                         $crate::parameters::ParamSpec::float(1.0, 10_000.0).editor(1.0, 512.0)
                         .logarithmic()
+                        .group($crate::parameters::ParamGroup::Lighting)
                         .applies_when(|material| !material.lighting.uses_roughness());
                     /// Cook-Torrance / GGX-Lambert roughness (glTF roughnessFactor): 0 is a
                     /// mirror, 1 fully rough.
                     roughness: f32 = 0.6, $crate::parameters::ParamSpec::float(0.0, 1.0)
+                        .group($crate::parameters::ParamGroup::Lighting)
                         .applies_when(|material| material.lighting.uses_roughness());
                     /// Cook-Torrance / GGX-Lambert metalness (glTF metallicFactor): 0 is a
                     /// dielectric, 1 a metal.
                     metallic: f32 = 0.0, $crate::parameters::ParamSpec::float(0.0, 1.0)
+                        .group($crate::parameters::ParamGroup::Lighting)
                         .applies_when(|material| material.lighting.uses_roughness());
                     /// Draw and light both sides (glTF doubleSided): the back gets the reversed
                     /// normal.
-                    double_sided: bool = false, $crate::parameters::ParamSpec::toggle();
+                    double_sided: bool = false, $crate::parameters::ParamSpec::toggle()
+                        .group($crate::parameters::ParamGroup::Lighting);
                 }
             }
             $($trailer)*

@@ -263,7 +263,13 @@ pub fn parse_shadow_map_size(text: &str) -> Result<u32, String> {
 pub struct ShadowArgs {
     /// Whether the lights cast scene shadows (shadow maps); the parallax materials'
     /// self-shadows do not depend on it.
-    #[arg(long, value_name = "on|off", value_enum, default_value = "on")]
+    #[arg(
+        long,
+        long_help,
+        value_name = "on|off",
+        value_enum,
+        default_value = "on"
+    )]
     pub scene_shadows: Switch,
     /// Texels along each side of every light's shadow map (per cascade or cube face),
     /// 16..=8192 [default: 2048].

@@ -9,7 +9,11 @@ mod cli_types;
 mod demo_command;
 mod demo_scene;
 mod frame_output;
+#[cfg(test)]
+mod help_text_tests;
 mod material_args;
+#[cfg(test)]
+mod preset_flag_tests;
 mod preview_textures;
 mod render_command;
 mod scene_preview;

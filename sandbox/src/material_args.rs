@@ -3,13 +3,16 @@
 //! value spellings all come from `ParallaxOcclusionMaterial::PARAMETERS`, so a new parameter is
 //! a new flag without an edit here. Numbers are checked by `ParallaxOcclusionMaterial::validate`,
 //! not by the parser, so the limits live in one place; NaN and negative numbers must parse.
+//! `--preset FILE.ron` gives the values the material starts from; the flags given on the command
+//! line override them.
 
 use std::sync::OnceLock;
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser, ValueParser};
+use clap::parser::ValueSource;
 use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
-use pom::ParallaxOcclusionMaterial;
 use pom::material::{Choice, Param, ParamKind, ParamValue};
+use pom::{ParallaxOcclusionMaterial, PomPreset};
 
 /// Parameters set elsewhere on the command line: the debug view is an output option
 /// (`--debug-view`, which also applies to scenes).
@@ -17,6 +20,30 @@ const NOT_FLAGS: [&str; 1] = ["debug_view"];
 
 /// The id of the group holding every material flag.
 pub const GROUP: &str = "MaterialArgs";
+
+/// The id of `--preset`.
+pub const PRESET: &str = "preset";
+
+/// Reads the preset file named on the command line: a regular file, read within the plugin's
+/// bound and checked like a material. The error names the file and, for a bad value, its line,
+/// column and field.
+pub fn parse_preset(path: &str) -> Result<PomPreset, String> {
+    PomPreset::load(path).map_err(|error| error.to_string())
+}
+
+/// `--preset FILE.ron`, the values the material flags start from.
+fn preset_flag() -> Arg {
+    Arg::new(PRESET)
+        .long("preset")
+        .value_name("FILE.ron")
+        .help(
+            "RON material preset to start from, as the window saves it (the format is in \
+             plugin/docs/authoring-materials.md). Material flags given on the command line \
+             override its values; the others take the preset's, not their defaults. Its \
+             debug_view is not used (an inspection view is an output option, --debug-view).",
+        )
+        .value_parser(ValueParser::new(parse_preset))
+}
 
 /// The declared parameters that are material flags.
 pub fn flag_parameters() -> impl Iterator<Item = &'static Param<ParallaxOcclusionMaterial>> {
@@ -104,16 +131,25 @@ fn flag(param: &'static Param<ParallaxOcclusionMaterial>) -> Arg {
     }
 }
 
-/// The material's flags, as given (or defaulted) on the command line.
+/// The material's flags as given on the command line, and the preset they override.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MaterialArgs {
+    /// `--preset`'s values, when given.
+    preset: Option<PomPreset>,
+    /// The flags given explicitly (a flag left out keeps the preset's value or the default).
     values: Vec<(&'static str, ParamValue)>,
 }
 
 impl MaterialArgs {
-    /// The material these flags describe (no textures, default debug view).
+    /// The material these flags describe: the default or the preset, with every flag given
+    /// on the command line over it (no textures, default debug view).
     pub fn settings(&self) -> ParallaxOcclusionMaterial {
         let mut material = ParallaxOcclusionMaterial::default();
+        if let Some(preset) = &self.preset {
+            material.apply_preset(preset);
+            // The debug view is an output option, like in NOT_FLAGS.
+            material.debug_view = ParallaxOcclusionMaterial::default().debug_view;
+        }
         for (name, value) in &self.values {
             if let Some(param) = ParallaxOcclusionMaterial::PARAMETERS
                 .iter()
@@ -130,13 +166,15 @@ impl MaterialArgs {
 impl FromArgMatches for MaterialArgs {
     fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
         let values = flag_parameters()
+            .filter(|param| matches.value_source(param.name) != Some(ValueSource::DefaultValue))
             .filter_map(|param| {
                 matches
                     .get_one::<ParamValue>(param.name)
                     .map(|value| (param.name, *value))
             })
             .collect();
-        Ok(Self { values })
+        let preset = matches.get_one::<PomPreset>(PRESET).cloned();
+        Ok(Self { preset, values })
     }
 
     fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
@@ -147,12 +185,13 @@ impl FromArgMatches for MaterialArgs {
 
 impl Args for MaterialArgs {
     fn augment_args(command: Command) -> Command {
-        let command = command.next_help_heading("Material");
+        let command = command.next_help_heading("Material").arg(preset_flag());
         let command = flag_parameters().fold(command, |command, param| command.arg(flag(param)));
         command.group(
             ArgGroup::new(GROUP)
                 .multiple(true)
                 .required(false)
+                .arg(PRESET)
                 .args(flag_parameters().map(|param| param.name)),
         )
     }

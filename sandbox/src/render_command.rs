@@ -98,7 +98,7 @@ pub struct OutputArgs {
     #[arg(long, value_name = "FILE.png", value_parser = parse_png_path)]
     pub out: PathBuf,
     /// Image size as WIDTHxHEIGHT, each 1..=8192.
-    #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = parse_size)]
+    #[arg(long, long_help, value_name = "WxH", default_value = "512x512", value_parser = parse_size)]
     pub size: (u32, u32),
     /// Output an inspection view instead of the lit colour (in a scene: on every parallax
     /// material).
@@ -120,10 +120,11 @@ const PREVIEW_ONLY: [&str; 8] = [
     "shape",
 ];
 
-/// Every option `--scene` conflicts with: [`PREVIEW_ONLY`] and every material flag.
+/// Every option `--scene` conflicts with: [`PREVIEW_ONLY`], `--preset` and every material flag.
 fn material_preview_only() -> Vec<&'static str> {
     PREVIEW_ONLY
         .into_iter()
+        .chain([material_args::PRESET])
         .chain(material_args::flag_parameters().map(|param| param.name))
         .collect()
 }
@@ -137,6 +138,7 @@ pub struct SceneArgs {
     /// without lights gets a default light (a sun and a soft ambient light), with a warning.
     #[arg(
         long,
+        long_help,
         value_name = "PATH",
         conflicts_with_all = material_preview_only()
     )]
@@ -198,6 +200,7 @@ pub struct ViewArgs {
     /// Degrees around the normal, from +u towards +v, as for the view.
     #[arg(
         long,
+        long_help,
         value_name = "DEG",
         allow_negative_numbers = true,
         value_parser = parse_finite,
@@ -205,7 +208,7 @@ pub struct ViewArgs {
     )]
     pub light_azimuth: f32,
     /// How the camera projects.
-    #[arg(long, value_enum, default_value_t = view_default().projection.into())]
+    #[arg(long, long_help, value_enum, default_value_t = view_default().projection.into())]
     pub projection: ProjectionArg,
     /// Camera distance as a multiple of the default framing distance; < 1 zooms in (in a
     /// scene, for the automatic camera) [default: 1].
@@ -226,7 +229,7 @@ pub struct ViewArgs {
     )]
     pub tiling: f32,
     /// What the material is shown on; each value's texture layout is listed with it.
-    #[arg(long, value_enum, default_value = "plane")]
+    #[arg(long, long_help, value_enum, default_value = "plane")]
     pub shape: ShapeArg,
 }
 

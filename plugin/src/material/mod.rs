@@ -25,8 +25,8 @@ pub use crate::shader::{
 };
 // The parameter layer's names, where materials have always found them.
 pub use crate::parameters::{
-    DeclaredMaterial, GpuParam, LimitError, Param, ParamError, ParamKind, ParamSpec, ParamType,
-    ParamValue, every_parameter_changed,
+    DeclaredMaterial, GpuParam, LimitError, Param, ParamError, ParamGroup, ParamKind, ParamSpec,
+    ParamType, ParamValue, every_parameter_changed,
 };
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;

@@ -2,7 +2,7 @@
 //! default, limits, unit and help (`material_parameters!`; the lighting ones shared with the
 //! lit material, `with_lighting_parameters!`), and the checks between them.
 
-use crate::material::{LimitError, ParamSpec};
+use crate::material::{LimitError, ParamGroup, ParamSpec};
 use crate::{Handle, Image, LightingModel};
 
 crate::choice_enum! {
@@ -149,31 +149,39 @@ crate::with_lighting_parameters! {
         }
         parameters {
             /// How the view ray meets the height field.
-            method: ParallaxMethod = ParallaxMethod::Occlusion, ParamSpec::choice::<ParallaxMethod>();
+            method: ParallaxMethod = ParallaxMethod::Occlusion, ParamSpec::choice::<ParallaxMethod>()
+                .group(ParamGroup::Method);
             /// Bisection steps relief mapping takes after its linear search: more is sharper.
             relief_binary_steps: u32 = 6, ParamSpec::integer(1, 16)
+                .group(ParamGroup::Method)
                 .applies_when(|material| material.method == ParallaxMethod::Relief);
             /// Secant steps parallax occlusion mapping takes after its linear search (1 is
             /// Tatarchuk's): each more costs a sample and moves the hit onto curved slopes.
             secant_steps: u32 = 1, ParamSpec::integer(1, 8)
+                .group(ParamGroup::Method)
                 .applies_when(|material| material.method == ParallaxMethod::Occlusion);
-            /// Depth of the relief from white to black of the height map (T's fHeightMapRange).
+            /// Depth of the relief from white to black of the height map, in the units
+            /// height_units picks (T's fHeightMapRange).
             height_scale: f32 = 0.05, ParamSpec::float(0.0, 10.0).editor(0.0, 0.2)
-                .unit("texture units, or world units (height_units)");
+                .unit("texture/world units");
             /// Texture units change the depth with tiling and object scale; world units do not.
-            height_units: HeightUnits = HeightUnits::Texture, ParamSpec::choice::<HeightUnits>();
+            height_units: HeightUnits = HeightUnits::Texture, ParamSpec::choice::<HeightUnits>()
+                .group(ParamGroup::Method);
             /// Whether white in the height map is the top (height) or the deepest point (depth).
             height_convention: HeightConvention = HeightConvention::Height,
-                ParamSpec::choice::<HeightConvention>();
+                ParamSpec::choice::<HeightConvention>()
+                .group(ParamGroup::Method);
             /// Write the displaced depth, so other geometry meets the relief where it is (slower).
-            depth_offset: bool = false, ParamSpec::toggle();
+            depth_offset: bool = false, ParamSpec::toggle()
+                .group(ParamGroup::Method);
             /// Height samples looking straight at the surface (T eq. 1's n_min): fewer is faster.
             min_samples: u32 = 8, ParamSpec::integer(1, MAX_SAMPLES_LIMIT).logarithmic();
             /// Height samples at grazing angles (T eq. 1's n_max): raise it if layers show.
             max_samples: u32 = 50, ParamSpec::integer(1, MAX_SAMPLES_LIMIT).logarithmic();
             /// Start each march a per-pixel, per-frame part of a step early: with TAA, few
             /// samples settle to the image of many (without it, layers turn to noise).
-            jitter_march: bool = false, ParamSpec::toggle();
+            jitter_march: bool = false, ParamSpec::toggle()
+                .group(ParamGroup::Method);
             /// Mip level past which only normal mapping runs (T's nLODThreshold).
             lod_threshold: f32 = 4.0, ParamSpec::float(0.0, 16.0).editor(0.0, 12.0)
                 .unit("mip levels");
@@ -182,19 +190,24 @@ crate::with_lighting_parameters! {
                 .unit("mip levels");
             /// Whether the relief shows at the outline: off, clipped where the view ray leaves
             /// the texture bounds (uv_bounds), or where it rises out of a curved surface (curved).
-            silhouette: Silhouette = Silhouette::Off, ParamSpec::choice::<Silhouette>();
+            silhouette: Silhouette = Silhouette::Off, ParamSpec::choice::<Silhouette>()
+                .group(ParamGroup::Silhouette);
             /// Smallest u of the surface's texture (uv_bounds): 0, or an atlas rectangle's edge.
             bounds_u_min: f32 = 0.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
-                .editor(-1.0, 1.0).unit("texture units").applies_when(clips_at_bounds);
+                .editor(-1.0, 1.0).unit("texture units").group(ParamGroup::Silhouette)
+                .applies_when(clips_at_bounds);
             /// Largest u (uv_bounds): 1, or the count of repeats across the surface.
             bounds_u_max: f32 = 1.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
-                .editor(0.0, 8.0).unit("texture units").applies_when(clips_at_bounds);
+                .editor(0.0, 8.0).unit("texture units").group(ParamGroup::Silhouette)
+                .applies_when(clips_at_bounds);
             /// Smallest v of the surface's texture (uv_bounds).
             bounds_v_min: f32 = 0.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
-                .editor(-1.0, 1.0).unit("texture units").applies_when(clips_at_bounds);
+                .editor(-1.0, 1.0).unit("texture units").group(ParamGroup::Silhouette)
+                .applies_when(clips_at_bounds);
             /// Largest v (uv_bounds).
             bounds_v_max: f32 = 1.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
-                .editor(0.0, 8.0).unit("texture units").applies_when(clips_at_bounds);
+                .editor(0.0, 8.0).unit("texture units").group(ParamGroup::Silhouette)
+                .applies_when(clips_at_bounds);
             /// Whether bumps cast shadows on the surface: off, hard-edged, or soft.
             shadows: ShadowMode = ShadowMode::Soft, ParamSpec::choice::<ShadowMode>();
             /// Penumbra width of soft shadows: larger is softer (0.58 is Tatarchuk's look).
@@ -203,9 +216,11 @@ crate::with_lighting_parameters! {
                 .applies_when(|material| material.shadows == ShadowMode::Soft);
             /// Reflection model: Phong and Blinn-Phong use specular and shininess, Cook-Torrance
             /// and GGX-Lambert roughness and metallic.
-            lighting: LightingModel = LightingModel::Phong, ParamSpec::choice::<LightingModel>();
+            lighting: LightingModel = LightingModel::Phong, ParamSpec::choice::<LightingModel>()
+                .group(ParamGroup::Lighting);
             /// An inspection image instead of the lit surface (LOD, mip, samples, uv, ...).
-            debug_view: DebugView = DebugView::None, ParamSpec::choice::<DebugView>();
+            debug_view: DebugView = DebugView::None, ParamSpec::choice::<DebugView>()
+                .group(ParamGroup::Debug);
         }
     }
     preset PomPreset;

@@ -1,6 +1,7 @@
 //! Material presets ([`PomPreset`]: every parameter of a [`ParallaxOcclusionMaterial`] without
 //! its textures) saved and loaded as RON, and printed as a Rust struct literal. In RON every field
-//! is optional (missing ones keep the default) and unknown ones are errors:
+//! is optional (missing ones take the default, `lighting` too: `phong`), unknown ones are errors,
+//! and a saved preset names every field; plugin/docs/authoring-materials.md documents the format:
 //!
 //! ```ron
 //! (height_scale: 0.06, max_samples: 64, shadows: soft, method: relief, relief_binary_steps: 6)
@@ -117,6 +118,7 @@ impl PomPreset {
 mod tests {
     use super::super::material::{ParallaxMethod, ShadowMode};
     use super::*;
+    use crate::LightingModel;
 
     #[test]
     fn presets_round_trip_through_ron() {
@@ -187,6 +189,52 @@ mod tests {
         let leftovers = std::fs::read_dir(&dir).unwrap().count();
         assert_eq!(leftovers, 1, "no temporary file stays behind");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The example of the "Presets" section of plugin/docs/authoring-materials.md.
+    fn documented_example() -> &'static str {
+        let doc = include_str!("../../docs/authoring-materials.md");
+        let (_, section) = doc
+            .split_once("\n## Presets\n")
+            .expect("authoring-materials.md has a Presets section");
+        let (_, from_example) = section
+            .split_once("```ron\n")
+            .expect("the Presets section has a RON example");
+        let (example, _) = from_example
+            .split_once("```")
+            .expect("the example's block is closed");
+        example
+    }
+
+    #[test]
+    fn the_documented_example_preset_loads() {
+        let preset = PomPreset::from_ron(documented_example(), "authoring-materials.md").unwrap();
+        assert_eq!(preset.lighting, LightingModel::GgxLambert);
+        assert_eq!((preset.max_samples, preset.secant_steps), (64, 2));
+        assert_eq!(preset.roughness, 0.75);
+    }
+
+    #[test]
+    fn saved_presets_name_every_parameter_lighting_included() {
+        let text = PomPreset::default().to_ron();
+        for param in ParallaxOcclusionMaterial::PARAMETERS {
+            assert!(
+                text.contains(&format!("{}:", param.name)),
+                "{} is missing from\n{text}",
+                param.name
+            );
+        }
+    }
+
+    #[test]
+    fn a_preset_without_lighting_is_phong_whatever_it_is_loaded_into() {
+        let preset = PomPreset::from_ron("(height_scale: 0.03)", "partial.ron").unwrap();
+        let mut material = ParallaxOcclusionMaterial {
+            lighting: LightingModel::GgxLambert,
+            ..ParallaxOcclusionMaterial::default()
+        };
+        material.apply_preset(&preset);
+        assert_eq!(material.lighting, LightingModel::Phong);
     }
 
     #[test]

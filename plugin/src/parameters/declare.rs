@@ -186,7 +186,8 @@ macro_rules! material_parameters {
                 $(
                     $crate::parameters::Param {
                         name: stringify!($field),
-                        help: $help,
+                        // The whole doc comment: each line after the first starts with a space.
+                        help: concat!($help $(, $more)*),
                         spec: $spec,
                         get: |material: &$material| {
                             $crate::parameters::ParamType::to_value(material.$field)

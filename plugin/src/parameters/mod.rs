@@ -11,5 +11,6 @@ mod params;
 pub use declare::DeclaredMaterial;
 pub use param_types::{GpuParam, ParamType};
 pub use params::{
-    LimitError, Param, ParamError, ParamKind, ParamSpec, ParamValue, every_parameter_changed,
+    LimitError, Param, ParamError, ParamGroup, ParamKind, ParamSpec, ParamValue,
+    every_parameter_changed,
 };

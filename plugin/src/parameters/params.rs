@@ -67,14 +67,56 @@ pub enum ParamKind {
     Color,
 }
 
+/// Where an editor lists a parameter: under one heading per group, the groups in this order,
+/// so the values an artist tunes all the time come first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum ParamGroup {
+    /// The values tuned all the time (for the parallax material, the seed's artist parameters:
+    /// height range, samples, LOD, shadow softening). Editors show this group open.
+    Essential,
+    /// How the effect is computed: the method, its refinement and its conventions.
+    Method,
+    /// Where the surface's outline lies.
+    Silhouette,
+    /// The reflection model and its parameters.
+    Lighting,
+    /// Inspection views.
+    Debug,
+}
+
+impl ParamGroup {
+    /// Every group, in the order editors show them.
+    pub const ALL: [ParamGroup; 5] = [
+        ParamGroup::Essential,
+        ParamGroup::Method,
+        ParamGroup::Silhouette,
+        ParamGroup::Lighting,
+        ParamGroup::Debug,
+    ];
+
+    /// The group's heading in an editor.
+    pub fn heading(self) -> &'static str {
+        match self {
+            ParamGroup::Essential => "Relief",
+            ParamGroup::Method => "Method",
+            ParamGroup::Silhouette => "Silhouette",
+            ParamGroup::Lighting => "Lighting",
+            ParamGroup::Debug => "Debug",
+        }
+    }
+}
+
 /// Limits, unit and editor hints of one parameter: the part of its declaration that is not its
 /// name, type, default or help. Built with `const` functions inside
 /// [`crate::material_parameters!`].
 pub struct ParamSpec<M> {
     /// Type and limits.
     pub kind: ParamKind,
-    /// Unit, for help texts ("" when it has none).
+    /// Unit, for help texts and beside the editor's value ("" when it has none).
     pub unit: &'static str,
+    /// The editor heading it is listed under.
+    pub group: ParamGroup,
     /// Whether the parameter has an effect with the material's other values (the editor greys
     /// it out otherwise).
     pub applies: fn(&M) -> bool,
@@ -123,6 +165,7 @@ impl<M> ParamSpec<M> {
         Self {
             kind,
             unit: "",
+            group: ParamGroup::Essential,
             applies: always::<M>,
         }
     }
@@ -157,6 +200,12 @@ impl<M> ParamSpec<M> {
         self
     }
 
+    /// The same, listed under `group` in editors.
+    pub const fn group(mut self, group: ParamGroup) -> Self {
+        self.group = group;
+        self
+    }
+
     /// The same, marked as having an effect only when `applies` holds.
     pub const fn applies_when(mut self, applies: fn(&M) -> bool) -> Self {
         self.applies = applies;
@@ -168,7 +217,7 @@ impl<M> ParamSpec<M> {
 pub struct Param<M> {
     /// The field name: the RON and glTF key; `--name-with-dashes` on the command line.
     pub name: &'static str,
-    /// One line saying what it does.
+    /// What it does: its whole doc comment, the lines joined (trim it before showing).
     pub help: &'static str,
     /// Type, limits, unit, editor hints.
     pub spec: ParamSpec<M>,

@@ -1,16 +1,34 @@
 //! The editor rows of a material: one per declared parameter, made from its declaration (label,
-//! range, unit, tooltip), so a new parameter shows up here without an edit. Sliders span the
-//! range artists use; a value typed past it is kept within the parameter's declared limits.
+//! range, unit, tooltip, group), so a new parameter shows up here without an edit. Rows sit
+//! under a collapsing heading per declared group, the essential group open. Sliders span the
+//! range artists use and show the unit beside the value; a value typed past the range is kept
+//! within the parameter's declared limits.
 
-use egui::{ComboBox, Slider, SliderClamping, Ui};
-use pom::material::{Param, ParamKind, ParamValue};
+use egui::{CollapsingHeader, ComboBox, Slider, SliderClamping, Ui};
+use pom::material::{Param, ParamGroup, ParamKind, ParamValue};
 use pom::{ParallaxMethod, ParallaxOcclusionMaterial};
 
-/// Shows a row for every parameter of the parallax material; returns whether anything changed.
+/// Shows a row for every parameter of the parallax material, group by group; returns whether
+/// anything changed.
 pub fn edit_material(ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) -> bool {
     let before = material.clone();
-    for param in ParallaxOcclusionMaterial::PARAMETERS {
-        parameter_row(ui, param, material);
+    // Narrower sliders leave room for the units beside the values within the panel's width.
+    ui.spacing_mut().slider_width = 80.0;
+    for group in ParamGroup::ALL {
+        let mut params = ParallaxOcclusionMaterial::PARAMETERS
+            .iter()
+            .filter(|param| param.spec.group == group)
+            .peekable();
+        if params.peek().is_none() {
+            continue;
+        }
+        CollapsingHeader::new(group.heading())
+            .default_open(group == ParamGroup::Essential)
+            .show(ui, |ui| {
+                for param in params {
+                    parameter_row(ui, param, material);
+                }
+            });
     }
     // Keep the pair ordered while dragging either one, rather than showing an invalid state.
     if material.min_samples > material.max_samples {
@@ -28,9 +46,19 @@ fn tooltip<M>(param: &Param<M>) -> String {
     }
 }
 
+/// The text after a slider's value: its unit, when it has one.
+fn unit_suffix<M>(param: &Param<M>) -> String {
+    if param.spec.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", param.spec.unit)
+    }
+}
+
 /// One control for `param`, labelled with its name, greyed out where it has no effect.
 pub fn parameter_row<M>(ui: &mut Ui, param: &Param<M>, material: &mut M) {
     let label = param.label();
+    let suffix = unit_suffix(param);
     let before = (param.get)(material);
     let mut value = before;
     let enabled = (param.spec.applies)(material);
@@ -47,6 +75,7 @@ pub fn parameter_row<M>(ui: &mut Ui, param: &Param<M>, material: &mut M) {
                 ui.add(
                     Slider::new(number, low..=high)
                         .text(label)
+                        .suffix(suffix)
                         .logarithmic(logarithmic)
                         .clamping(SliderClamping::Never),
                 );
@@ -62,6 +91,7 @@ pub fn parameter_row<M>(ui: &mut Ui, param: &Param<M>, material: &mut M) {
                 ui.add(
                     Slider::new(number, min..=max)
                         .text(label)
+                        .suffix(suffix)
                         .logarithmic(logarithmic),
                 );
             }

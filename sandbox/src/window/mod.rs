@@ -21,6 +21,8 @@ mod split_controls;
 mod window_app;
 
 #[cfg(test)]
+mod panel_layout_tests;
+#[cfg(test)]
 mod panel_tests;
 
 use std::path::PathBuf;

@@ -69,9 +69,17 @@ fn moving_the_height_scale_slider_changes_the_component() {
 
 #[test]
 fn the_selected_material_is_listed_and_every_group_of_controls_is_there() {
-    let harness = harness();
+    let mut harness = harness();
     let entity = harness.state().material;
     harness.get_by_label(&format!("entity {}", entity.id()));
+    // The essential group is open; open the others.
+    for group in pom::material::ParamGroup::ALL
+        .into_iter()
+        .filter(|group| *group != pom::material::ParamGroup::Essential)
+    {
+        harness.get_by_label(group.heading()).click();
+        harness.run();
+    }
     // One control per declared parameter, labelled with its name.
     for param in pom::ParallaxOcclusionMaterial::PARAMETERS {
         let label = param.label();

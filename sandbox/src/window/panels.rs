@@ -2,7 +2,9 @@
 //! lights, spin and the screenshot button. It works on a `pom::App` and needs no window or GPU,
 //! so egui_kittest can drive it.
 
-use egui::{Color32, ScrollArea, Ui};
+use egui::scroll_area::ScrollBarVisibility;
+use egui::style::ScrollStyle;
+use egui::{Color32, Panel, ScrollArea, Ui};
 use pom::hecs::Entity;
 use pom::{App, ParallaxOcclusionMaterial};
 
@@ -66,9 +68,25 @@ impl Default for PanelState {
     }
 }
 
+/// Width of the side panel when it opens, in points.
+pub const PANEL_WIDTH: f32 = 380.0;
+
+/// The side panel on the left of `ui`, as the window shows it.
+pub fn side_panel(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
+    Panel::left("controls")
+        .default_size(PANEL_WIDTH)
+        .resizable(true)
+        .show(ui, |ui| side_panel_contents(ui, app, state));
+}
+
 /// Draws the panel's contents into `ui`, editing `app`'s world directly.
 pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
-    ScrollArea::vertical().show(ui, |ui| {
+    // A solid bar that always shows: a floating one appears only on hover, and nothing else
+    // says that the panel goes on below the window's edge.
+    ui.spacing_mut().scroll = ScrollStyle::solid();
+    ScrollArea::vertical()
+        .scroll_bar_visibility(ScrollBarVisibility::AlwaysVisible)
+        .show(ui, |ui| {
         ui.heading("POM sandbox");
         for message in &state.messages {
             ui.colored_label(Color32::from_rgb(255, 190, 90), message);
@@ -179,11 +197,14 @@ fn material_list(ui: &mut Ui, app: &App, state: &mut PanelState) {
     {
         state.selected = materials.first().map(|(entity, _)| *entity);
     }
-    ui.label("Parallax materials")
-        .on_hover_text("Pick the object whose material the controls below edit.");
-    for (entity, name) in materials {
-        ui.selectable_value(&mut state.selected, Some(entity), name);
-    }
+    // One wrapped row, not a line each: the editor below stays in view.
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Parallax materials")
+            .on_hover_text("Pick the object whose material the controls below edit.");
+        for (entity, name) in materials {
+            ui.selectable_value(&mut state.selected, Some(entity), name);
+        }
+    });
 }
 
 fn selected_material(ui: &mut Ui, app: &mut App, state: &mut PanelState, entity: Entity) {

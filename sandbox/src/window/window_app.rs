@@ -8,7 +8,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Result, anyhow};
-use egui::{CentralPanel, Panel, Sense};
+use egui::{CentralPanel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
 use pom::render::{RenderTarget, ScreenRect};
@@ -29,12 +29,10 @@ use super::autosave::{self, Autosave, TunedState};
 use super::camera_control::{active_camera_transform, from_viewport, write_to_camera};
 use super::egui_painter::{EguiFrame, EguiPainter};
 use super::guarded_update::catching_panics;
-use super::panels::{PanelState, side_panel_contents};
+use super::panels::{PanelState, side_panel};
 
 /// The window's size when it opens, in logical pixels.
-const INITIAL_SIZE: (u32, u32) = (1280, 720);
-/// Width of the side panel when it opens, in points.
-const PANEL_WIDTH: f32 = 380.0;
+pub(super) const INITIAL_SIZE: (u32, u32) = (1280, 720);
 
 /// Opens the sandbox window on `args`' scene and runs it until it is closed (or
 /// `--exit-after-frames` is reached).
@@ -242,10 +240,7 @@ impl WindowOverlay for SandboxOverlay {
         let split_texture = on_window.painter.split_texture;
         let panel = &mut self.panel;
         let output = self.egui.run_ui(raw_input, |ui| {
-            Panel::left("controls")
-                .default_size(PANEL_WIDTH)
-                .resizable(true)
-                .show(ui, |ui| side_panel_contents(ui, app, panel));
+            side_panel(ui, app, panel);
             let wipe = panel.split.enabled.then_some(panel.split.wipe);
             CentralPanel::default()
                 .frame(egui::Frame::NONE)
