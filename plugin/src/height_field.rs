@@ -2,7 +2,24 @@
 
 use image::{GrayImage, ImageBuffer, Luma};
 
-use crate::{Image, ImageError, Pixels, TextureKind};
+use crate::{Channel, Image, ImageError, Pixels, TextureKind};
+
+crate::choice_enum! {
+    /// What the height texture's values mean.
+    pub enum HeightConvention: "CONVENTION" {
+        /// White is the top (the polygon's surface), black the deepest point (Tatarchuk).
+        Height = "height",
+        /// White is the deepest point: LearnOpenGL's and Bevy's depth maps.
+        Depth = "depth",
+    }
+}
+
+impl Default for HeightConvention {
+    /// Tatarchuk's: white is the top.
+    fn default() -> Self {
+        Self::Height
+    }
+}
 
 /// A grid of heights in 0..=1 (1 = top), sampled with wrapping like a repeating texture.
 #[derive(Clone, Debug, PartialEq)]
@@ -91,15 +108,16 @@ impl HeightField {
         top * (1.0 - fy) + bottom * fy
     }
 
-    /// The field stored in `channel` (0 = red … 3 = alpha) of an image; with `depth` set, white
-    /// is deepest and the values are flipped.
-    pub fn from_image(image: &Image, channel: usize, depth: bool) -> Self {
+    /// The field stored in `channel` of an image, whose values mean what `convention` says
+    /// (a depth map's are flipped, so that 1 is the top).
+    pub fn from_image(image: &Image, channel: Channel, convention: HeightConvention) -> Self {
+        let depth = convention == HeightConvention::Depth;
         let (width, height) = image.size();
         let pixels = image.pixels();
         // Grey images hold the height in their only channel, whichever was asked for.
         let (stride, offset) = match pixels.channels() {
             1 => (1, 0),
-            channels => (channels, channel.min(channels - 1)),
+            channels => (channels, channel.index().min(channels - 1)),
         };
         let values = pixels
             .to_unit_floats()

@@ -105,7 +105,7 @@ pub use dynamic_height::{
 pub use gltf_loader::{
     GltfError, GltfOptions, GltfScene, PomExtras, load_gltf, load_gltf_bytes, load_gltf_with,
 };
-pub use height_field::{HeightField, patterns};
+pub use height_field::{HeightConvention, HeightField, patterns};
 pub use image::{
     Channel, FilterMode, IMAGE_MEMORY_BUDGET, Image, ImageError, ImageSampler, MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE, Pixels, TextureKind, WrapMode,
@@ -120,9 +120,9 @@ pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
-    CurvedSilhouetteWarnings, DebugView, HeightConvention, HeightSource, HeightUnits,
-    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset,
-    PresetError, ShadowMode, Silhouette,
+    CurvedSilhouetteWarnings, DebugView, HeightSource, HeightUnits, ParallaxMethod,
+    ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset, PresetError,
+    ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::{AntiAliasing, TemporalAntiAliasing, TemporalHistory, set_camera_anti_aliasing};

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use pom::{
-    Assets, Channel, HeightField, HeightSource, Image, ParallaxOcclusionMaterial, TextureKind,
+    Assets, Channel, HeightConvention, HeightField, HeightSource, Image, ParallaxOcclusionMaterial,
+    TextureKind,
 };
 
 /// The stand-in height map: the shipped bricks (assets/bricks), embedded in the binary.
@@ -24,10 +25,10 @@ fn embedded(bytes: &[u8], name: &str, kind: TextureKind) -> Result<Image> {
 /// The texture files the user named; `None` means "use the stand-in".
 #[derive(Clone, Copy, Debug, Default)]
 pub struct TextureFiles<'a> {
-    /// Height (or, with `depth_map`, depth) map; its red channel is read.
+    /// Height (or depth) map; its red channel is read.
     pub height: Option<&'a Path>,
-    /// Whether white is the deepest point of `height`.
-    pub depth_map: bool,
+    /// What the values of `height` mean.
+    pub convention: HeightConvention,
     /// Tangent-space normal map (OpenGL convention).
     pub normal: Option<&'a Path>,
     /// sRGB colour texture.
@@ -66,7 +67,8 @@ impl PreviewTextures {
             Some(path) => load(path, TextureKind::Normal, "--normal")?,
             // `from_image` flips a depth map into heights, so the Sobel slopes point the way
             // the shader's depth convention will displace the surface.
-            None => HeightField::from_image(&height, 0, files.depth_map).normal_map(height_scale),
+            None => HeightField::from_image(&height, Channel::Red, files.convention)
+                .normal_map(height_scale),
         };
         let albedo = match (files.albedo, files.height) {
             (Some(path), _) => load(path, TextureKind::Color, "--albedo")?,
@@ -116,7 +118,8 @@ mod tests {
         assert_eq!(textures.height, height);
         assert_eq!(
             textures.normal,
-            HeightField::from_image(&height, 0, false).normal_map(0.05),
+            HeightField::from_image(&height, Channel::Red, HeightConvention::Height)
+                .normal_map(0.05),
             "normals of the height map as the GPU sees it, at the asked height scale"
         );
         assert_eq!(textures.albedo, shipped("albedo.png", TextureKind::Color));

@@ -249,17 +249,17 @@ impl RenderArgs {
 
     fn texture_files(&self) -> TextureFiles<'_> {
         self.textures
-            .files(self.material.settings().height_convention == HeightConvention::Depth)
+            .files(self.material.settings().height_convention)
     }
 }
 
 impl TextureArgs {
-    /// The files named, for [`PreviewTextures::load`]; `depth_map` says whether the height
-    /// file is a depth map.
-    pub fn files(&self, depth_map: bool) -> TextureFiles<'_> {
+    /// The files named, for [`PreviewTextures::load`]; `convention` says what the height
+    /// file's values mean.
+    pub fn files(&self, convention: HeightConvention) -> TextureFiles<'_> {
         TextureFiles {
             height: self.height.as_deref(),
-            depth_map,
+            convention,
             normal: self.normal.as_deref(),
             albedo: self.albedo.as_deref(),
         }

@@ -3,8 +3,8 @@
 use pom::preview::{PreviewView, spawn_preview};
 use pom::render::{Renderer, read_rgba8};
 use pom::{
-    Assets, DynamicHeightField, GpuContext, HeightField, HeightSource, Image,
-    ParallaxOcclusionMaterial, TargetFormat,
+    Assets, Channel, DynamicHeightField, GpuContext, HeightConvention, HeightField, HeightSource,
+    Image, ParallaxOcclusionMaterial, TargetFormat,
 };
 use pom_tests::pom_scene::pom_app;
 use pom_tests::{render_and_capture, render_both_paths};
@@ -62,7 +62,11 @@ fn gpu_normals_match_the_cpu_sobel_filter() {
     render_and_capture(&mut app).unwrap();
     let gpu = gpu_normals(&app, &field);
     let images = app.resources.get::<Assets<Image>>().unwrap();
-    let heights = HeightField::from_image(images.get(&field.height).unwrap(), 0, false);
+    let heights = HeightField::from_image(
+        images.get(&field.height).unwrap(),
+        Channel::Red,
+        HeightConvention::Height,
+    );
     let cpu = heights.normal_map(HEIGHT_SCALE).to_rgba8();
     let worst = gpu
         .as_raw()

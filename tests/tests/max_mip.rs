@@ -2,14 +2,19 @@
 //! every channel, convention and size, and rebuilt when a dynamic height field changes.
 
 use pom::reference::MaxPyramid;
-use pom::{GpuContext, HeightField, Image, TextureKind, patterns};
+use pom::{Channel, GpuContext, HeightConvention, HeightField, Image, TextureKind, patterns};
 
 /// The GPU's pyramid of `image` (height in `channel`, `depth` convention) equals the CPU
 /// reference's of the field the image holds, level by level.
-fn assert_pyramid_matches(gpu: &GpuContext, image: Image, channel: u8, depth: bool) {
-    let field = HeightField::from_image(&image, usize::from(channel), depth);
+fn assert_pyramid_matches(
+    gpu: &GpuContext,
+    image: Image,
+    channel: Channel,
+    convention: HeightConvention,
+) {
+    let field = HeightField::from_image(&image, channel, convention);
     let reference = MaxPyramid::new(&field);
-    let levels = pom::parallax::read_max_pyramid(gpu, image, channel, depth).unwrap();
+    let levels = pom::parallax::read_max_pyramid(gpu, image, channel, convention).unwrap();
     assert_eq!(levels.len(), reference.level_count());
     for (level, (width, height, maxima)) in levels.iter().enumerate() {
         for y in 0..*height {
@@ -19,7 +24,7 @@ fn assert_pyramid_matches(gpu: &GpuContext, image: Image, channel: u8, depth: bo
                 // 16-bit unorm decodes within an ulp of the CPU's division.
                 assert!(
                     (gpu - cpu).abs() < 1e-6,
-                    "channel {channel}, depth {depth}, level {level} ({x}, {y}): GPU {gpu}, CPU {cpu}"
+                    "{channel:?} {convention:?}, level {level} ({x}, {y}): GPU {gpu}, CPU {cpu}"
                 );
             }
         }
@@ -30,8 +35,18 @@ fn assert_pyramid_matches(gpu: &GpuContext, image: Image, channel: u8, depth: bo
 fn the_gpu_pyramid_equals_the_cpu_reference_for_every_channel_and_convention() {
     let gpu = GpuContext::headless().unwrap();
     let cobbles = patterns::cobblestones(64, 4).quantized();
-    assert_pyramid_matches(&gpu, cobbles.to_image(), 0, false);
-    assert_pyramid_matches(&gpu, cobbles.to_image(), 0, true);
+    assert_pyramid_matches(
+        &gpu,
+        cobbles.to_image(),
+        Channel::Red,
+        HeightConvention::Height,
+    );
+    assert_pyramid_matches(
+        &gpu,
+        cobbles.to_image(),
+        Channel::Red,
+        HeightConvention::Depth,
+    );
     // A 16-bit map whose sides are not powers of two: 48 × 40 halves three times.
     let cones = patterns::cones(48, 3.0);
     let npot = HeightField::new(
@@ -40,7 +55,12 @@ fn the_gpu_pyramid_equals_the_cpu_reference_for_every_channel_and_convention() {
         (0..48 * 40).map(|i| cones.texel(i % 48, i / 48)).collect(),
     )
     .unwrap();
-    assert_pyramid_matches(&gpu, npot.to_image_16(), 0, false);
+    assert_pyramid_matches(
+        &gpu,
+        npot.to_image_16(),
+        Channel::Red,
+        HeightConvention::Height,
+    );
     // Height in the alpha of a normal map, as a depth map; red, green and blue hold other
     // values that must not leak in.
     let rgba: Vec<u8> = (0..64 * 64)
@@ -50,8 +70,13 @@ fn the_gpu_pyramid_equals_the_cpu_reference_for_every_channel_and_convention() {
         })
         .collect();
     let packed = Image::from_rgba8(64, 64, rgba, TextureKind::Normal).unwrap();
-    assert_pyramid_matches(&gpu, packed.clone(), 3, false);
-    assert_pyramid_matches(&gpu, packed, 3, true);
+    assert_pyramid_matches(
+        &gpu,
+        packed.clone(),
+        Channel::Alpha,
+        HeightConvention::Height,
+    );
+    assert_pyramid_matches(&gpu, packed, Channel::Alpha, HeightConvention::Depth);
 }
 
 /// The `uv` debug view of max-mip on a 32² plane seen at 50°, after `change` rewrote the
@@ -376,7 +401,11 @@ fn max_mip_is_exact_on_every_pixel_of_the_bricks_at_grazing_angles() {
 
     const HEIGHT_SCALE: f32 = 0.05;
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/bricks/height.png");
-    let field = HeightField::from_image(&Image::load_height(path, Channel::Red).unwrap(), 0, false);
+    let field = HeightField::from_image(
+        &Image::load_height(path, Channel::Red).unwrap(),
+        Channel::Red,
+        HeightConvention::Height,
+    );
     let textures = HeightMaterial {
         field: field.clone(),
         height_scale: HEIGHT_SCALE,

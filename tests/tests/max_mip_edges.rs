@@ -11,7 +11,7 @@
 use pom::glam::{Vec2, Vec3};
 use pom::reference::{MaxPyramid, exact_intersection_along, march_max_mip, ray_offset};
 use pom::wgpu;
-use pom::{GpuContext, HeightField};
+use pom::{Channel, GpuContext, HeightConvention, HeightField};
 
 /// Side of the maps, in texels: a power of two, so that texel centres are exact in uv.
 const SIZE: u32 = 64;
@@ -339,7 +339,9 @@ fn gpu_hits(
         wgpu::TextureUsages::TEXTURE_BINDING,
         Some(&image.pixels().bytes()),
     );
-    let levels = pom::parallax::read_max_pyramid(gpu, image, 0, false).unwrap();
+    let levels =
+        pom::parallax::read_max_pyramid(gpu, image, Channel::Red, HeightConvention::Height)
+            .unwrap();
     let maxima: Vec<f32> = levels
         .iter()
         .flat_map(|(_, _, maxima)| maxima.iter().copied())

@@ -3,7 +3,9 @@
 //! for the passes that write depth (prepass, shadow maps) and one for those that shade.
 
 use crate::render::object_buffer::ObjectBuffer;
-use crate::render::{FrameUniformBuffer, GpuContext, MeshTransform, PhaseBindings, frame_group};
+use crate::render::{
+    BoundResources, FrameUniformBuffer, GpuContext, MeshTransform, PhaseBindings, frame_group,
+};
 
 /// The buffers and textures group 0 binds.
 struct FrameBindings<'a> {
@@ -170,7 +172,7 @@ pub(crate) struct FrameBindGroups {
     writing: wgpu::BindGroup,
     /// For the shading passes and the deferred resolve.
     shading: wgpu::BindGroup,
-    bound: (u64, u64, bool),
+    bound: BoundResources,
     /// The fragment invocation counter (tests), bound at binding 4 when present.
     counter: Option<wgpu::Buffer>,
     visibility_keys: bool,

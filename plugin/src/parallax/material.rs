@@ -3,7 +3,7 @@
 //! lit material, `with_lighting_parameters!`), and the checks between them.
 
 use crate::material::{LimitError, ParamGroup, ParamSpec};
-use crate::{Handle, Image, LightingModel};
+use crate::{Handle, HeightConvention, Image, LightingModel};
 
 crate::choice_enum! {
     /// How the ray/height-field intersection is found. One march serves every method; they
@@ -56,16 +56,6 @@ crate::choice_enum! {
 }
 
 crate::choice_enum! {
-    /// What the height texture's values mean.
-    pub enum HeightConvention: "CONVENTION" {
-        /// White is the top (the polygon's surface), black the deepest point (Tatarchuk).
-        Height = "height",
-        /// White is the deepest point: LearnOpenGL's and Bevy's depth maps.
-        Depth = "depth",
-    }
-}
-
-crate::choice_enum! {
     /// The unit of `height_scale`.
     pub enum HeightUnits: "UNITS" {
         /// Texture units (T's fHeightMapRange): depth changes with tiling and object scale.
@@ -108,11 +98,11 @@ pub enum HeightSource {
 }
 
 impl HeightSource {
-    /// The texture channel holding the height: 0 = red (own texture), 3 = alpha.
-    pub fn channel(&self) -> u8 {
+    /// The texture channel holding the height: red (its own texture) or alpha.
+    pub fn channel(&self) -> crate::Channel {
         match self {
-            HeightSource::Texture(_) => 0,
-            HeightSource::NormalMapAlpha => 3,
+            HeightSource::Texture(_) => crate::Channel::Red,
+            HeightSource::NormalMapAlpha => crate::Channel::Alpha,
         }
     }
 }

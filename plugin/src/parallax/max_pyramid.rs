@@ -6,13 +6,13 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use crate::GpuContext;
 use crate::render::layout;
 use crate::render::shaders::{ComposedShader, WgslFile};
 use crate::render::{
     ComputeDispatch, ComputeDispatches, DerivedStorage, DerivedTextureBuilder, TextureDerivation,
     TextureDeriver,
 };
+use crate::{Channel, GpuContext, HeightConvention};
 
 /// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
 pub const HEIGHT_CHANNEL: WgslFile = crate::wgsl_file!("parallax/height_channel.wgsl");
@@ -32,12 +32,13 @@ const MAX_PYRAMID: WgslFile = crate::wgsl_file!("parallax/max_pyramid.wgsl");
 pub struct MaxHeightPyramid;
 
 impl MaxHeightPyramid {
-    /// The pyramid of the height in `channel` (0 = red .. 3 = alpha) of a source, inverted where
-    /// white means deepest (`depth_convention`: depth maps).
-    pub fn derivation(channel: u8, depth_convention: bool) -> TextureDerivation {
+    /// The pyramid of the height in `channel` of a source, inverted where white means deepest
+    /// (depth maps).
+    pub fn derivation(channel: Channel, convention: HeightConvention) -> TextureDerivation {
+        let depth = convention == HeightConvention::Depth;
         TextureDerivation {
             deriver: &MaxHeightPyramid,
-            parameters: [u32::from(channel), u32::from(depth_convention)],
+            parameters: [channel.index() as u32, u32::from(depth)],
         }
     }
 }
@@ -312,8 +313,8 @@ fn create_pyramid(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
 pub fn read_max_pyramid(
     gpu: &GpuContext,
     image: crate::Image,
-    channel: u8,
-    depth_convention: bool,
+    channel: Channel,
+    convention: HeightConvention,
 ) -> Result<Vec<(u32, u32, Vec<f32>)>, crate::render::CaptureError> {
     let mut images = crate::Assets::default();
     let source = images.add(image).id();
@@ -321,7 +322,7 @@ pub fn read_max_pyramid(
     assets.prepare_image(gpu, &images, source);
     let derived = crate::render::DerivedTexture {
         source,
-        derivation: MaxHeightPyramid::derivation(channel, depth_convention),
+        derivation: MaxHeightPyramid::derivation(channel, convention),
     };
     assets.prepare_derived(gpu, derived);
     assets.pending_derived_builds().submit(gpu);

@@ -13,9 +13,9 @@ pub use curvature::{
 };
 pub use gpu::PomUniform;
 pub use material::{
-    BOUNDS_LIMIT, DebugView, HeightConvention, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT,
-    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset,
-    ShadowMode, Silhouette,
+    BOUNDS_LIMIT, DebugView, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT, ParallaxMethod,
+    ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset, ShadowMode,
+    Silhouette,
 };
 #[cfg(feature = "scene-tests")]
 pub use max_pyramid::read_max_pyramid;
@@ -135,10 +135,7 @@ impl Material for ParallaxOcclusionMaterial {
         {
             derived[0] = Some(DerivedTexture {
                 source: image,
-                derivation: MaxHeightPyramid::derivation(
-                    source.channel(),
-                    self.height_convention == HeightConvention::Depth,
-                ),
+                derivation: MaxHeightPyramid::derivation(source.channel(), self.height_convention),
             });
         }
         derived

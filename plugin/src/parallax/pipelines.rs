@@ -9,11 +9,10 @@
 //! (sandbox/BENCHMARKS.md).
 
 use super::material::{
-    DebugView, HeightConvention, HeightSource, ParallaxMethod, ParallaxOcclusionMaterial,
-    ShadowMode, Silhouette,
+    DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, Silhouette,
 };
-use crate::LightingModel;
 use crate::material::{Choice, ShaderEntry};
+use crate::{HeightConvention, LightingModel};
 
 /// What one parallax pipeline is compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -52,7 +51,7 @@ impl PomPipelineKey {
             height_channel: material
                 .height_map
                 .as_ref()
-                .map_or(0, HeightSource::channel),
+                .map_or(0, |source| source.channel().index() as u8),
             height_is_depth: material.height_convention == HeightConvention::Depth,
         }
     }
@@ -189,7 +188,7 @@ mod tests {
                 ..base.clone()
             },
             ParallaxOcclusionMaterial {
-                height_map: Some(HeightSource::NormalMapAlpha),
+                height_map: Some(crate::HeightSource::NormalMapAlpha),
                 ..base.clone()
             },
             ParallaxOcclusionMaterial {

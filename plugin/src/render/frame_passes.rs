@@ -309,7 +309,7 @@ pub(super) fn post_process(
                 .as_ref()
                 .is_some_and(|fxaa| fxaa.is_for(format))
             {
-                renderer.fxaa = Some(FxaaPass::new(gpu, format, !renderer.post.is_compute()));
+                renderer.fxaa = Some(FxaaPass::new(gpu, format, renderer.post.stage()));
             }
             renderer.fxaa.as_mut()
         } else {

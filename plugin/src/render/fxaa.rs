@@ -5,6 +5,7 @@
 //! bilinear reads of the edge search go through a sampler on an 8-bit image and are four loads
 //! on a float one (not filterable); the 3 × 3 neighbourhood is loaded.
 
+use super::post_process::FullScreenStage;
 use super::shaders::{self, ComposedShader, WgslFile};
 use super::{GpuContext, PassTimestamps, RenderTarget, TargetFormat, layout, post_process};
 
@@ -113,9 +114,10 @@ fn filters(format: TargetFormat) -> bool {
 }
 
 impl FxaaPass {
-    /// The pass for display targets of `format`, compute unless `fragment` (post-processing's
-    /// own choice, so both run the same way).
-    pub(crate) fn new(gpu: &GpuContext, format: TargetFormat, fragment: bool) -> Self {
+    /// The pass for display targets of `format`, run in `stage` (post-processing's own, so
+    /// both run the same way).
+    pub(crate) fn new(gpu: &GpuContext, format: TargetFormat, stage: FullScreenStage) -> Self {
+        let fragment = stage == FullScreenStage::Fragment;
         let device = &gpu.device;
         let display = format.texture_format();
         // A float display is read with loads, an 8-bit one through the sampler at binding 1.

@@ -102,7 +102,7 @@ pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub use renderer::Renderer;
-pub(crate) use renderer::{PhaseBindings, phase_bindings};
+pub(crate) use renderer::{BoundResources, PhaseBindings, phase_bindings};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub(crate) use sorted_draws::SortedDraws;

@@ -162,11 +162,7 @@ impl Plugin for RenderPlugin {
             prepass_order: SortedDraws::new(DrawPhase::Prepass),
             transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,
-            post: PostProcess::new(
-                gpu,
-                self.format,
-                self.post_process == PostProcessPath::Fragment,
-            ),
+            post: PostProcess::new(gpu, self.format, self.post_process),
             object_motions: super::object_motion::ObjectMotions::new(gpu),
             taa: None,
             fxaa: None,

@@ -127,21 +127,33 @@ pub(super) fn can_store(gpu: &GpuContext, format: wgpu::TextureFormat) -> bool {
         .contains(wgpu::TextureUsages::STORAGE_BINDING)
 }
 
+/// Where a full-screen pass of the post phase runs on this adapter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FullScreenStage {
+    /// A compute pass, writing the display target as a storage texture.
+    Compute,
+    /// A full-screen triangle.
+    Fragment,
+}
+
 impl PostProcess {
     /// The pass for display targets of `format`: compute when the adapter can store that
-    /// format, else the fragment fallback (`force_fragment` picks the fallback anyway, for
-    /// tests and benchmarks).
-    pub fn new(gpu: &GpuContext, format: TargetFormat, force_fragment: bool) -> Self {
+    /// format, else the fragment fallback (which `path` may also ask for, for tests and
+    /// benchmarks).
+    pub fn new(gpu: &GpuContext, format: TargetFormat, path: super::PostProcessPath) -> Self {
         let device = &gpu.device;
         let display = format.texture_format();
-        let compute = !force_fragment && can_store(gpu, display);
-        let layout = bind_group_layout(device, display, compute);
+        let stage = match path {
+            super::PostProcessPath::Fastest if can_store(gpu, display) => FullScreenStage::Compute,
+            _ => FullScreenStage::Fragment,
+        };
+        let layout = bind_group_layout(device, display, stage);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("post-process pipeline layout"),
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = pipeline(device, &pipeline_layout, format, compute);
+        let pipeline = pipeline(device, &pipeline_layout, format, stage);
         let settings = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("post-process settings"),
             size: std::mem::size_of::<PostSettings>() as u64,
@@ -160,7 +172,15 @@ impl PostProcess {
 
     /// Whether the pass runs as compute (else as a full-screen triangle).
     pub fn is_compute(&self) -> bool {
-        matches!(self.pipeline, PostPipeline::Compute(_))
+        self.stage() == FullScreenStage::Compute
+    }
+
+    /// Where the pass runs; the post filter runs the same way.
+    pub(crate) fn stage(&self) -> FullScreenStage {
+        match self.pipeline {
+            PostPipeline::Compute(_) => FullScreenStage::Compute,
+            PostPipeline::Fragment(_) => FullScreenStage::Fragment,
+        }
     }
 
     /// Writes `settings` if they changed; returns the bytes written.
@@ -283,7 +303,7 @@ pub(crate) const POST_SHADERS: [ComposedShader; 3] =
 fn bind_group_layout(
     device: &wgpu::Device,
     display: wgpu::TextureFormat,
-    compute: bool,
+    stage: FullScreenStage,
 ) -> wgpu::BindGroupLayout {
     let mut entries = vec![
         super::layout::unfilterable_texture_2d(0),
@@ -299,7 +319,7 @@ fn bind_group_layout(
         },
         super::layout::unfilterable_texture_2d(3),
     ];
-    if compute {
+    if stage == FullScreenStage::Compute {
         entries.push(super::layout::compute_storage_texture(2, display));
     }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -314,10 +334,10 @@ fn pipeline(
     device: &wgpu::Device,
     pipeline_layout: &wgpu::PipelineLayout,
     format: TargetFormat,
-    compute: bool,
+    stage: FullScreenStage,
 ) -> PostPipeline {
     let display = format.texture_format();
-    if compute {
+    if stage == FullScreenStage::Compute {
         let shader = match format {
             TargetFormat::Float32 => POST_COMPUTE_RGBA32F,
             _ => POST_COMPUTE_RGBA8,

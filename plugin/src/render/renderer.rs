@@ -169,7 +169,11 @@ pub(crate) fn phase_bindings<'a>(
         dummy_shadow_maps: shadow_maps.dummy_view(),
         shadow_views: shadow_maps.views_buffer(),
         shadow_sampler: shadow_maps.sampler(),
-        bound: (target.id(), shadow_maps.generation(), visibility.is_some()),
+        bound: BoundResources {
+            target: target.id(),
+            shadow_maps: shadow_maps.generation(),
+            has_visibility_buffer: visibility.is_some(),
+        },
     }
 }
 
@@ -214,8 +218,17 @@ pub(crate) struct PhaseBindings<'a> {
     pub(crate) visibility: &'a wgpu::Buffer,
     /// The one-key stand-in, bound where the keys are not written.
     pub(crate) dummy_visibility: &'a wgpu::Buffer,
-    /// The target ([`crate::render::RenderTarget::id`]) and shadow-map texture the views
-    /// belong to, and whether the target's visibility buffer exists: bind groups follow when
-    /// any changes.
-    pub(crate) bound: (u64, u64, bool),
+    /// What the views belong to: bind groups follow when it changes.
+    pub(crate) bound: BoundResources,
+}
+
+/// What a material's frame bind groups were made for; a new one is made when it changes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct BoundResources {
+    /// The target ([`crate::render::RenderTarget::id`]).
+    pub(crate) target: u64,
+    /// The shadow-map texture's generation.
+    pub(crate) shadow_maps: u64,
+    /// Whether the target's visibility buffer exists.
+    pub(crate) has_visibility_buffer: bool,
 }

@@ -15,6 +15,9 @@ use crate::shader::Choice;
 /// The pass's WGSL file.
 pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/taa.wgsl");
 
+/// The side of TAA's square workgroup in pixels (taa.wgsl's `GROUP`).
+const GROUP: u32 = 16;
+
 /// The pass's shader.
 pub const TAA_SHADER: ComposedShader = ComposedShader {
     name: "taa.wgsl",
@@ -376,7 +379,7 @@ impl TaaPass {
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &history.bind_groups[history.written], &[]);
             pass.set_bind_group(1, &motion_group, &[]);
-            pass.dispatch_workgroups(width.div_ceil(16), height.div_ceil(16), 1);
+            pass.dispatch_workgroups(width.div_ceil(GROUP), height.div_ceil(GROUP), 1);
         }
         let written = history.written;
         Some((history.id * 2 + written as u64, &history.views[written]))
@@ -392,5 +395,11 @@ mod tests {
         let layout =
             crate::shader::check_wgsl_layout::<TaaUniform>(&TAA_SHADER.source(), "TaaUniform");
         assert_eq!(layout, Ok(()));
+    }
+
+    #[test]
+    fn the_dispatch_covers_the_shaders_workgroup() {
+        let declaration = format!("const GROUP: i32 = {GROUP};");
+        assert!(TAA_SHADER.source().contains(&declaration), "{declaration}");
     }
 }

@@ -157,9 +157,9 @@ fn project(view_projection: mat4x4<f32>, world: vec3<f32>) -> vec3<f32> {
 // vec3 and an f32 array (sandbox/BENCHMARKS.md).
 const GROUP: i32 = 16;
 const TILE: i32 = GROUP + 2;
-var<workgroup> tile: array<vec4<f32>, 324>;
+var<workgroup> tile: array<vec4<f32>, TILE * TILE>;
 
-@compute @workgroup_size(16, 16, 1)
+@compute @workgroup_size(GROUP, GROUP, 1)
 fn taa_main(
     @builtin(global_invocation_id) id: vec3<u32>,
     @builtin(local_invocation_index) local_index: u32,

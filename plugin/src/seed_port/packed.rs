@@ -4,10 +4,8 @@
 use image::RgbaImage;
 
 use super::SeedPortError;
-use crate::{
-    Assets, HeightConvention, HeightField, HeightSource, Image, ParallaxOcclusionMaterial,
-};
-use crate::{Pixels, TextureKind};
+use crate::{Assets, HeightField, HeightSource, Image, ParallaxOcclusionMaterial};
+use crate::{Channel, Pixels, TextureKind};
 
 /// A flat normal's texel, where the material has no normal map.
 const FLAT_NORMAL: [u8; 3] = [128, 128, 255];
@@ -28,13 +26,15 @@ pub fn packed_normal_height(
     let lookup =
         |handle: &crate::Handle<Image>| images.get(handle.id()).ok_or(SeedPortError::MissingImage);
     let normal = material.normal_map.as_ref().map(lookup).transpose()?;
-    let depth = material.height_convention == HeightConvention::Depth;
+    let convention = material.height_convention;
     let height = match &material.height_map {
-        Some(HeightSource::Texture(handle)) => {
-            Some(HeightField::from_image(lookup(handle)?, 0, depth))
-        }
+        Some(HeightSource::Texture(handle)) => Some(HeightField::from_image(
+            lookup(handle)?,
+            Channel::Red,
+            convention,
+        )),
         Some(HeightSource::NormalMapAlpha) => {
-            normal.map(|normal| HeightField::from_image(normal, 3, depth))
+            normal.map(|normal| HeightField::from_image(normal, Channel::Alpha, convention))
         }
         None => None,
     };

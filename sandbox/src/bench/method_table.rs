@@ -10,7 +10,7 @@ use anyhow::Result;
 use pom::material::Choice;
 use pom::parallax::MAX_SAMPLES_LIMIT;
 use pom::reference::errors_in_texels;
-use pom::{HeightConvention, HeightField, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode};
+use pom::{Channel, HeightField, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode};
 use serde::Serialize;
 
 use super::Runner;
@@ -90,8 +90,8 @@ impl Runner<'_> {
     pub(super) fn method_table(&mut self, scene: &mut BenchScene, size: (u32, u32)) -> Result<()> {
         // The errors depend on neither the size nor the path: computed in the first table.
         if self.method_errors.is_empty() {
-            let depth = self.base.height_convention == HeightConvention::Depth;
-            let field = HeightField::from_image(&self.textures.height, 0, depth);
+            let convention = self.base.height_convention;
+            let field = HeightField::from_image(&self.textures.height, Channel::Red, convention);
             self.method_errors = table_rows()
                 .map(|(method, samples)| {
                     errors(&field, method, samples.unwrap_or(0), self.base.height_scale)

@@ -518,8 +518,8 @@ impl Runner<'_> {
 pub fn run(args: &BenchArgs) -> Result<()> {
     let base = args.material.settings();
     base.validate().context("invalid material")?;
-    let depth_map = base.height_convention == pom::HeightConvention::Depth;
-    let textures = PreviewTextures::load(&args.textures.files(depth_map), base.height_scale)?;
+    let files = args.textures.files(base.height_convention);
+    let textures = PreviewTextures::load(&files, base.height_scale)?;
     let view = args.view.preview_view();
     let paths = args.path.paths();
     let sizes: Vec<(u32, u32)> = match (args.sizes.is_empty(), args.quick) {

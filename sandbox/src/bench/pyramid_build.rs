@@ -5,7 +5,9 @@
 
 use anyhow::Result;
 use pom::render::DERIVED_TEXTURES_PASS;
-use pom::{HeightField, Image, ParallaxMethod, ParallaxOcclusionMaterial};
+use pom::{
+    Channel, HeightConvention, HeightField, Image, ParallaxMethod, ParallaxOcclusionMaterial,
+};
 
 use super::Runner;
 use super::scene::{BenchScene, SceneOptions};
@@ -51,7 +53,7 @@ impl Runner<'_> {
 /// `height`'s red channel repeated over `side` × `side` texels, at 16 bits (as a dynamic
 /// height field stores it).
 fn tiled(height: &Image, side: u32) -> Image {
-    let field = HeightField::from_image(height, 0, false);
+    let field = HeightField::from_image(height, Channel::Red, HeightConvention::Height);
     let texel = |coordinate: f32| (coordinate * side as f32) as i64;
     HeightField::from_fn(side, side, |u, v| field.texel(texel(u), texel(v))).to_image_16()
 }
@@ -63,7 +65,11 @@ mod tests {
     #[test]
     fn a_tiled_map_repeats_the_source_texel_for_texel() {
         let source = HeightField::from_fn(4, 2, |u, v| u * 0.5 + v * 0.25);
-        let big = HeightField::from_image(&tiled(&source.to_image_16(), 8), 0, false);
+        let big = HeightField::from_image(
+            &tiled(&source.to_image_16(), 8),
+            Channel::Red,
+            HeightConvention::Height,
+        );
         assert_eq!(big.size(), (8, 8));
         for (x, y) in [(0, 0), (5, 1), (7, 6), (2, 3)] {
             let expected = source.texel(x, y);

@@ -211,8 +211,8 @@ pub fn compare(setup: &Setup) -> Result<VersusMesh> {
     };
     let field = HeightField::from_image(
         &setup.textures.height,
-        0,
-        base.height_convention == pom::HeightConvention::Depth,
+        pom::Channel::Red,
+        base.height_convention,
     );
     let tiling = setup.view.tiling.max(f32::MIN_POSITIVE);
     let depth = match base.height_units {
