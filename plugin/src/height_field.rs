@@ -203,7 +203,7 @@ pub mod patterns {
     }
 
     /// Cobblestones: a `cells`×`cells` periodic Voronoi pattern of stones with rounded tops and
-    /// grout at 0.08, like the seed's sidewalk.
+    /// grout at 0.08, like Tatarchuk's sidewalk.
     pub fn cobblestones(size: u32, cells: i32) -> HeightField {
         let cells = cells.max(1);
         HeightField::from_fn(size, size, |u, v| {

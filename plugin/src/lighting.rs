@@ -29,7 +29,7 @@ impl LightingModel {
 /// and `shininess` (Phong and Blinn-Phong), `roughness` and `metallic` (Cook-Torrance and
 /// GGX-Lambert), and `double_sided`. Each is declared here once, help, limits and default
 /// (the parallax material's values: specular 0.3, roughness 0.6); the material declares its
-/// `lighting: LightingModel` itself, whose default is its own choice (the seed's Phong for the
+/// `lighting: LightingModel` itself, whose default is its own choice (Tatarchuk's Phong for the
 /// parallax material, Blinn-Phong for the lit one).
 #[macro_export]
 #[doc(hidden)]

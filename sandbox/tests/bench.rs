@@ -354,7 +354,7 @@ fn both_paths_are_timed_side_by_side_in_one_run() {
     assert_eq!(ran("seed port, fragment pass"), ["forward"; 4]);
     assert_eq!(ran("seed port, compute pass"), ["compute"; 4]);
     assert_eq!(ran("ours"), ["forward", "forward", "deferred", "deferred"]);
-    // Ours' resolve only where it ran deferred, and divided by the seed's compute pass there.
+    // Ours' resolve only where it ran deferred, and divided by the seed port's compute pass there.
     assert_eq!(ran("ours, resolve"), ["deferred"; 2]);
     let ratios = json["ratios"].as_array().unwrap();
     assert!(ratios.iter().any(|r| r["path"] == "deferred"));

@@ -136,8 +136,8 @@ pub fn render_and_capture_f32(app: &mut App) -> Result<image::Rgba32FImage, Harn
     })
 }
 
-/// Most a deferred frame may differ from the forward one (mean FLIP), as the deferred-path issue
-/// sets it.
+/// Most a deferred frame may differ from the forward one (mean FLIP): the deferred path's
+/// acceptance target.
 pub const PATHS_AGREE_MEAN: f32 = 0.005;
 
 /// Most the 99th percentile of the FLIP error may reach between the two paths: a few pixels

@@ -18,7 +18,7 @@ pub struct HeightMaterial {
 
 impl HeightMaterial {
     /// Adds the height map, its Sobel normal map and a light grey albedo to `app`, and returns
-    /// a material using them with the seed's defaults otherwise.
+    /// a material using them with Tatarchuk's defaults otherwise.
     pub fn material(&self, app: &mut App) -> ParallaxOcclusionMaterial {
         let images = app
             .resources

@@ -115,10 +115,10 @@ fn moving_square(
 #[test]
 fn a_moving_draw_keeps_its_history_through_its_motion() {
     // A third of a pixel a frame. Without following the square, TAA reprojects its history
-    // from where the square no longer is: its edges smear, 2.5 times off's error (measured
-    // with the motion numbers switched off). Followed, the edges are smooth, softer than a
-    // still square's (each frame resamples the history between pixels: −19 % here, −59 %
-    // still, −60 % at a whole pixel a frame; BENCHMARKS.md).
+    // from where the square no longer is: its edges smear, worse than off's (seen with the
+    // motion numbers switched off). Followed, the edges are smooth, softer than a still
+    // square's (each frame resamples the history between pixels; sandbox/BENCHMARKS.md,
+    // "Anti-aliasing").
     let (size, frames, speed) = (96, 24, 0.37);
     let forward = RenderPath::Forward;
     // A mesh without a material is followed too (the default material's draws, found by
@@ -168,7 +168,7 @@ fn taa_and_the_post_filter_soften_the_street_corners_edges() {
     // two mip levels finer. Under TAA textures are sampled that much finer too (the mip bias,
     // −2) and the jitter averages them; under the post filter one level finer
     // (`POST_FILTER_MIP_BIAS`), and FXAA softens the edges that sharpens. Without that bias
-    // FXAA smoothed only the outlines: −3 % (BENCHMARKS.md).
+    // FXAA smoothed only the outlines (sandbox/BENCHMARKS.md, "Anti-aliasing").
     assert!(fxaa <= 0.7 * off, "FXAA: {fxaa} against {off} without");
     assert!(taa <= 0.4 * off, "TAA: {taa} against {off} without");
 }
@@ -288,8 +288,8 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
             m.lod_threshold = 16.0
         })
     };
-    // At 8x: a 4x reference shimmers itself at this angle (its change against the 8x one is
-    // 35 % of off's), a floor no anti-aliasing measured against it could go below.
+    // At 8x: a 4x reference shimmers itself at this angle (its change against the 8x one is a
+    // large share of off's), a floor no anti-aliasing measured against it could go below.
     let references: Vec<Rgba32FImage> = drifting(&mut scene(size * 8), size * 8, 0.8, frames)
         .iter()
         .map(|image| box_filtered_f32(image, 8))
@@ -309,9 +309,10 @@ fn taa_calms_the_shimmer_of_the_relief_under_a_drifting_camera() {
         shimmers[1],
         shimmers[1] / shimmers[0] * 100.0
     );
-    // The target is half of off's; measured 0.41. A drift of 0.1 px a frame blurs the
-    // history little, so its pixels keep a long one (a weight of about 0.045 between
-    // still_weight and current_weight); at 0.1 for every pixel it was 0.54 (BENCHMARKS.md).
+    // The target is half of off's. A drift of 0.1 px a frame blurs the history little, so its
+    // pixels keep a long one (a weight of about 0.045 between still_weight and current_weight);
+    // with a weight of 0.1 for every pixel it missed the target (sandbox/BENCHMARKS.md,
+    // "Anti-aliasing").
     assert!(shimmers[1] <= 0.5 * shimmers[0], "{shimmers:?}");
 }
 
@@ -410,7 +411,7 @@ fn a_moving_sphere_leaves_no_ghost_four_frames_after() {
     );
 }
 
-/// Secant steps the jittered march takes in the test that meets the target at 60°.
+/// Secant steps the jittered march takes in the test that meets its target at 60°.
 const JITTERED_SECANT_STEPS: u32 = 3;
 
 #[test]
@@ -453,9 +454,9 @@ fn the_jittered_march_at_16_samples_settles_nearer_the_march_at_50() {
             jittered_errors.push(jittered_error);
         }
         // The jitter averages the layers of 16 samples away; what stays is the secant's error on
-        // the stones' curved slopes, which more secant steps take away. At 80° the issue's
-        // target is not met: crests thinner than a step are met by only some of the jittered
-        // starts, and the mean blends them with the stone behind (BENCHMARKS.md).
+        // the stones' curved slopes, which more secant steps take away. At 80° the target is not
+        // met: crests thinner than a step are met by only some of the jittered starts, and the
+        // mean blends them with the stone behind (sandbox/BENCHMARKS.md, "Anti-aliasing").
         if angle == 60.0 {
             let jittered_error = jittered_errors[1];
             assert!(

@@ -527,7 +527,7 @@ fn the_readme_and_the_custom_material_doc_show_this_example_verbatim() {
         include_str!("custom_material/lattice.wgsl").contains(covers),
         "custom-material.md's `covers` and tests/tests/custom_material/lattice.wgsl differ"
     );
-    // The measure: a material in at most 15 lines of Rust and 10 of WGSL.
+    // The promise: a material in at most 15 lines of Rust and 10 of WGSL.
     assert!(rust.lines().count() <= 15, "the Rust grew past 15 lines");
     assert!(wgsl.lines().count() <= 10, "the WGSL grew past 10 lines");
 }

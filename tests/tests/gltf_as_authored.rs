@@ -1,5 +1,5 @@
-//! glTF files render as their authors meant them (issue 17): each feature on a small scene the
-//! test writes itself, with a reference image where the look matters.
+//! glTF files render as their authors meant them: each feature on a small scene the test writes
+//! itself, with a reference image where the look matters.
 
 use glam::Vec3;
 use pom::{

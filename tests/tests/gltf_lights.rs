@@ -1,4 +1,4 @@
-//! glTF lights as authored (issue 17): `KHR_lights_punctual` in physical units (lux, candela),
+//! glTF lights as authored: `KHR_lights_punctual` in physical units (lux, candela),
 //! no range = unbounded, spot cones, and bad values clamped with one warning each.
 
 use glam::Vec3;

@@ -1,4 +1,4 @@
-//! The GPU march matches the CPU reference, and the methods rank as the seed claims.
+//! The GPU march matches the CPU reference, and the methods rank as Tatarchuk's text claims.
 
 use glam::{Vec2, Vec3};
 use pom::preview::PreviewView;

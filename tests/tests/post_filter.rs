@@ -96,7 +96,7 @@ fn the_mip_bias_reads_finer_levels_but_never_moves_the_relief() {
     eprintln!("world-unit relief: mean parallax shift {off}, under the post filter {post_filter}");
     assert!(off.length() > 0.005, "the relief shifts by {off} only");
     // The finer heights alone change it by about a tenth (a coarser level flattens the
-    // crests the rays meet first; 14 % here, 10 % in texture units); a relief taken at half
+    // crests the rays meet first); a relief taken at half
     // its depth, as the bias once made it, changes it by half.
     assert!(
         moved < 0.25,

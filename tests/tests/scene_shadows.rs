@@ -140,7 +140,7 @@ fn measure_step(light_angle_degrees: f32) {
     );
 }
 
-/// The analytic test of the issue: the bar's shadow on the lower level is displaced from its
+/// The analytic test of scene shadows: the bar's shadow on the lower level is displaced from its
 /// shadow on the upper level by depth · tan θL. Looked up at the polygon instead of the
 /// displaced point, both stripes would lie at the same x (shift 0, this fails); with the
 /// polygon's flat depth in the map instead of the relief's, the whole lower level would lie

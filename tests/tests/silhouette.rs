@@ -166,7 +166,7 @@ fn the_clipped_cube_has_no_nan_and_no_speckle_over_the_angle_sweep() {
     }
 }
 
-/// The lit cube (soft self-shadows, the seed's defaults) with `silhouette`, on both paths.
+/// The lit cube (soft self-shadows, Tatarchuk's defaults) with `silhouette`, on both paths.
 fn lit_shape(name: &str, shape: PreviewShape, view_angle: f32, silhouette: Silhouette) {
     let view = PreviewView {
         view_angle,

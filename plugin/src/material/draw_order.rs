@@ -78,15 +78,15 @@ impl<K: Copy + Ord> SortEntry<K> {
 
     /// Sorts `order` (entries in extraction order: entry `i` is draw `i`): opaque batches first
     /// (pipeline, textures, mesh), then nearest first within a batch: the prepass then rejects
-    /// hidden copies early (measured in sandbox/BENCHMARKS.md, "overdraw"). Blended draws after
-    /// them, farthest first. Stable: draws that share everything keep the order of the world's
-    /// query.
+    /// hidden copies early (sandbox/BENCHMARKS.md, "Stacked planes (overdraw) and depth offset").
+    /// Blended draws after them, farthest first. Stable: draws that share everything keep the
+    /// order of the world's query.
     ///
-    /// The draws come in the world's order every frame, which need not be the sorted one (10,000
-    /// spawned in a grid took 3–5 ms a frame to sort, sandbox/BENCHMARKS.md, "Following
-    /// models"). So where there are as many draws as last frame, they are first put in last
-    /// frame's sorted order (kept in `memory`), which a still camera finds sorted in one pass
-    /// and a moving one nearly so.
+    /// The draws come in the world's order every frame, which need not be the sorted one (many
+    /// draws spawned in a grid took milliseconds a frame to sort, sandbox/BENCHMARKS.md,
+    /// "Following models"). So where there are as many draws as last frame, they are first put
+    /// in last frame's sorted order (kept in `memory`), which a still camera finds sorted in one
+    /// pass and a moving one nearly so.
     pub(super) fn sort(order: &mut Vec<Self>, memory: &mut SortMemory<K>) {
         debug_assert!(
             order

@@ -6,8 +6,8 @@
 //! frame's models are kept in that order and a draw first looks at its own position there: a
 //! sequential walk through memory. Only where the entity found there is another one is a map
 //! of last frame's entities built, once for that frame. Two maps looked up and filled for
-//! every draw (hashing, and reads scattered over memory) cost about a millisecond for 10,000
-//! draws on the benchmark host (sandbox/BENCHMARKS.md, "Following models").
+//! every draw (hashing, and reads scattered over memory) cost a large share of the CPU frame
+//! with many draws (sandbox/BENCHMARKS.md, "Following models").
 
 use std::collections::HashMap;
 

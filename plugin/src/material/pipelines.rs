@@ -91,7 +91,7 @@ struct Background<M: Material> {
 
 /// The pipeline-overridable constant of shadows.wgsl that compiles the shadow-map lookups in:
 /// a frame without shadow maps uses pipelines without them (code that is there costs registers
-/// even where it does not run; measured in sandbox/BENCHMARKS.md, "scene shadows").
+/// even where it does not run; sandbox/BENCHMARKS.md, "Street corner: scene shadows").
 const SCENE_SHADOWS: &str = "SCENE_SHADOWS";
 
 /// How a material's pipelines are made: its module and layouts, the scene format and whether

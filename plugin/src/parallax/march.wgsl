@@ -32,9 +32,9 @@ struct HeightField {
     // The mip level every height sample of the march reads (`sampler_level` of the pixel's
     // footprint), taken once outside every loop: nothing in a march uses implicit derivatives
     // (T samples with tex2Dgrad, Luna with SampleGrad, for the same reason). An explicit level
-    // rather than the gradients themselves: the same filtering, and on the H200 a sample at a
-    // given level costs less than one the sampler must find the level of
-    // (sandbox/BENCHMARKS.md, "explicit sample level").
+    // rather than the gradients themselves: the same filtering, and on the GPUs we measure a
+    // sample at a given level costs less than one the sampler must find the level of
+    // (sandbox/BENCHMARKS.md, "History": the explicit sample level).
     level: f32,
     // 1 where the surface ends at `bounds` (min u, min v, max u, max v; the material's
     // uv_bounds silhouette): a sample outside reads as the deepest height, so no ray meets the

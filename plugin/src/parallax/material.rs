@@ -122,7 +122,7 @@ crate::with_lighting_parameters! {
     /// A surface that looks displaced: Tatarchuk's parallax occlusion mapping with soft
     /// self-shadows and per-pixel LOD. Put it on an entity with a `Handle<Mesh>` and a transform.
     ///
-    /// Defaults are the seed's: samples 8..50, LOD threshold 4, soft shadows with softening 0.58.
+    /// Defaults are Tatarchuk's: samples 8..50, LOD threshold 4, soft shadows with softening 0.58.
     /// The height field is pushed *down* from the polygon: the brightest height is at the surface.
     /// Every parameter is declared once, below; [`ParallaxOcclusionMaterial::PARAMETERS`] lists
     /// them with their limits and help.

@@ -15,8 +15,8 @@
 const MAX_MIP_STEPS: u32 = 2048u;
 
 // `cell` wrapped into [0, size). Rays start in the first repetition, so most cells are within
-// one repetition of it: a shift by one size does; the integer remainder (slow on GPUs: measured
-// 0.2 ms at 4K when every gather paid it) only for the rest.
+// one repetition of it: a shift by one size does; the integer remainder (slow on GPUs, and
+// measurably so when every gather paid it) only for the rest.
 fn wrapped_cell(cell: vec2<i32>, size: vec2<i32>) -> vec2<i32> {
     let shifted = select(select(cell, cell - size, cell >= size), cell + size, cell < vec2<i32>(0));
     if all(shifted >= vec2<i32>(0)) && all(shifted < size) {

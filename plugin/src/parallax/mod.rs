@@ -153,7 +153,7 @@ impl Material for ParallaxOcclusionMaterial {
         (!key.double_sided).then_some(wgpu::Face::Back)
     }
 
-    // While a variant compiles: the same surface, normal-mapped (the seed's own LOD fallback).
+    // While a variant compiles: the same surface, normal-mapped (Tatarchuk's own LOD fallback).
     fn fallback_key(key: PomPipelineKey) -> Option<PomPipelineKey> {
         Some(PomPipelineKey {
             method: ParallaxMethod::NormalMapping,
@@ -210,8 +210,9 @@ impl Material for ParallaxOcclusionMaterial {
     /// Per-object LOD: a draw on which every pixel is past the LOD threshold uses the
     /// normal-mapping pipeline. Per pixel the shader would skip the march there anyway
     /// (T §5.4.3) and the image is the same, but a pipeline that holds the march is slower even
-    /// where it does not run (more registers per pixel: on the H100 the far-field bench read
-    /// 1.33× normal mapping with the POM pipeline). The mip bound is conservative.
+    /// where it does not run (more registers per pixel: on the far-field bench, normal mapping
+    /// drawn with the POM pipeline was markedly slower than with its own). The mip bound is
+    /// conservative.
     fn draw_key(
         &self,
         key: PomPipelineKey,

@@ -2,11 +2,10 @@
 //! offset, silhouette, and the height's channel and convention. `pom.wgsl` reads all but
 //! double-sidedness (culling) as pipeline-overridable constants (depth offset and silhouette
 //! also pick the entry points that march for their depth), so each
-//! pipeline holds only its own code path: on the H100 the single pipeline that branched on them
-//! per pixel took 27 % longer on POM without shadows and 52 % longer on normal mapping; on the
-//! H200, folding the channel pick out of every height sample (with a multiplication for the
-//! division per step) took forward POM from 11.14 / 15.18 / 16.69 to 10.59 / 13.85 / 15.41 ms
-//! (sandbox/BENCHMARKS.md).
+//! pipeline holds only its own code path: a single pipeline that branched on them per pixel was
+//! markedly slower on POM and slower still on normal mapping, and folding the channel pick out
+//! of every height sample (with a multiplication for the division per step) made forward POM
+//! faster again (sandbox/BENCHMARKS.md, "What the numbers mean": specialized pipelines).
 
 use super::material::{
     DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, Silhouette,

@@ -418,8 +418,8 @@ fn covering_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
 // `depth_offset` or a silhouette in the opaque phase after the prepass. The hardware test
 // (rasterized depth ≤ prepass depth, forced early) drops fragments hidden behind nearer
 // geometry before they march; the point then recomputes its depth with the same code as the
-// prepass and shades only where that is the depth the prepass kept (bit for bit: see the
-// closing note of issue 16 and tests/tests/render_phases.rs), which a clipped pixel never is.
+// prepass and shades only where that is the depth the prepass kept (bit for bit, as
+// tests/tests/render_phases.rs checks), which a clipped pixel never is.
 @fragment @early_depth_test(force)
 fn fs_main_after_marched_prepass(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     count_fragment_invocation();

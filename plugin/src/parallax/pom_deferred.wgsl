@@ -7,9 +7,9 @@
 // which is also the depth the id is merged with, so the pixel keeps whichever surface is really
 // nearest, and no id where the view ray left the surface. A fragment already behind what its
 // pixel kept is dropped before it marches: with a depth write and the merge's side effect the
-// GPU tests depth late, whatever the attribute promises (bench --only overdraw measured 3.25×
-// one plane for four without this, 2.11× with it). The footprint's derivatives come first, while
-// the whole quad still runs.
+// GPU tests depth late, whatever the attribute promises (without this, hidden planes cost far
+// more: sandbox/BENCHMARKS.md, "Stacked planes (overdraw) and depth offset"). The footprint's
+// derivatives come first, while the whole quad still runs.
 @fragment @early_depth_test(greater_equal)
 fn fs_visibility_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: bool,
     @builtin(primitive_index) triangle: u32) -> @builtin(frag_depth) f32 {

@@ -47,8 +47,8 @@ crate::choice_enum! {
 /// filter (TAA has its own, [`TemporalAntiAliasing::mip_bias`]). A trilinear read at the
 /// footprint's level is blurrier than the supersampled pixel it stands for; one level finer
 /// keeps the detail, and FXAA softens what that sharpens. On the street corner the post
-/// filter's edge error against the 4× reference falls by 36 % with it, 3 % without; −0.5, −1.5
-/// and −2 gave 29, 32 and 31 % (sandbox/BENCHMARKS.md).
+/// filter's edge error against the 4× reference falls many times further with it than without,
+/// and further with −1 than with −0.5, −1.5 or −2 (sandbox/BENCHMARKS.md, "Anti-aliasing").
 pub const POST_FILTER_MIP_BIAS: f32 = -1.0;
 
 impl AntiAliasing {

@@ -1,7 +1,7 @@
 // The deferred path's background: where no opaque draw covers a pixel (visibility id 0), the
 // clear colour, written from compute. On a deferred frame whose opaque phase has nothing to draw
 // this replaces that phase's render pass, which would only clear the scene (a full-screen
-// fragment pass: measured in sandbox/BENCHMARKS.md).
+// fragment pass: sandbox/BENCHMARKS.md, "What the numbers mean").
 
 // Mirrors `BackgroundParams` in deferred_background.rs (the layout test checks them).
 struct BackgroundParams {

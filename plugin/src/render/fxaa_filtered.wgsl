@@ -1,6 +1,6 @@
 // FXAA's bilinear read where the display format filters (rgba8unorm): one sampler tap instead
-// of four loads. The edge search reads up to 22 of them a pixel: on finely detailed texture at
-// 4K, 45°, the pass took 0.19-0.22 ms with loads and takes 0.11-0.12 ms so (sandbox/BENCHMARKS.md).
+// of four loads. The edge search reads up to 22 of them a pixel: on finely detailed texture the
+// pass takes about half the time it took with loads (sandbox/BENCHMARKS.md, "Anti-aliasing").
 // Clamped at the borders, as the loads are.
 @group(0) @binding(1) var tonemapped_sampler: sampler;
 

@@ -56,8 +56,8 @@ fn ggx_specular(surface: Surface, n_dot_l: f32, n_dot_v: f32, normal: vec3<f32>,
     return Specular(fresnel * distribution * visibility * 0.25 * PI, fresnel);
 }
 
-// Cook-Torrance specular over an Oren-Nayar diffuse term, as in the "Parallax Mapping with Self
-// Shadowing" seed.
+// Cook-Torrance specular over an Oren-Nayar diffuse term, as in the source text "Parallax
+// Mapping with Self Shadowing" (../shared/seeds).
 fn cook_torrance_oren_nayar(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
     let n_dot_v = max(dot(normal, to_eye), 1e-4);
     let half_vector = safe_normalize(to_light + to_eye, normal);

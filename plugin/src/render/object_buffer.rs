@@ -88,9 +88,9 @@ impl<T: Pod + PartialEq> ObjectBuffer<T> {
 
 /// The runs of `entries` that differ from `uploaded` (an entry past its end differs), each to
 /// be written with one call: unchanged gaps of up to `merge_gap` entries are written again
-/// inside a run, because a write call costs far more than copying a few KiB (10 % of 10,000
-/// draws moving, scattered, made a thousand calls a buffer, and their frame was slower than all
-/// of them moving: sandbox/BENCHMARKS.md, "CPU side").
+/// inside a run, because a write call costs far more than copying a few KiB (a tenth of the
+/// draws moving, scattered, made a call each, and their frame was slower than all of them
+/// moving: sandbox/BENCHMARKS.md, "CPU side").
 fn changed_runs<T: PartialEq>(
     uploaded: &[T],
     entries: &[T],

@@ -2,8 +2,9 @@
 //! display target, as a compute pass where the adapter can write the display format from
 //! compute, else as a full-screen triangle.
 //!
-//! Why compute first: on the benchmark H200 a full-screen fragment pass that only writes a
-//! colour costs 1.18 ms at 4K, the same pass in compute 0.082 ms (2026-11-29, DESIGN.md).
+//! Why compute first: on the GPUs we measure, a full-screen fragment pass that only writes a
+//! colour costs far more than the same pass in compute (sandbox/BENCHMARKS.md, "What the
+//! numbers mean").
 
 use bytemuck::{Pod, Zeroable};
 

@@ -24,7 +24,8 @@ pub enum RenderPath {
     Deferred,
     /// Deferred on a GPU that can run it, forward on a CPU rasterizer (lavapipe, where the two
     /// stages cost the same and forward is the reference) and wherever deferred cannot run.
-    /// On the H200 the deferred frame is 5–6× faster at 4K (sandbox/BENCHMARKS.md).
+    /// On a GPU the deferred frame is several times faster at 4K (sandbox/BENCHMARKS.md, "The
+    /// cobblestone frame at 4K").
     #[default]
     Auto,
 }

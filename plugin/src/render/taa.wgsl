@@ -153,8 +153,8 @@ fn project(view_projection: mat4x4<f32>, world: vec3<f32>) -> vec3<f32> {
 // The workgroup's 16×16 pixels and a border of one: each neighbourhood's colour (compressed,
 // in YCoCg; xyz) and depth (w), loaded and tonemapped once per workgroup instead of nine times
 // per pixel (1.27 loads a pixel; an 8×8 group's border made it 1.56). One vec4 a pixel, so
-// each of the nine taps is one workgroup read: 0.289 -> 0.274 ms at 4K on the H200 against a
-// vec3 and an f32 array (sandbox/BENCHMARKS.md).
+// each of the nine taps is one workgroup read, which timed faster than a vec3 and an f32 array
+// (sandbox/BENCHMARKS.md, "History").
 const GROUP: i32 = 16;
 const TILE: i32 = GROUP + 2;
 var<workgroup> tile: array<vec4<f32>, TILE * TILE>;

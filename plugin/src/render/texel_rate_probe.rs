@@ -1,6 +1,7 @@
 //! A measurement of the bilinear texel rate the fragment stage reaches on the adapter: the
 //! limit of the path the parallax material runs on, which on some GPUs is far below the whole
-//! chip's (on an H100 only a few SMs run pixel shaders).
+//! chip's (only a few of their SMs run pixel shaders: sandbox/BENCHMARKS.md, "What the numbers
+//! mean").
 
 use wgpu::util::DeviceExt;
 

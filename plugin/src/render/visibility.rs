@@ -24,8 +24,8 @@ const MAX_GROUPS_ACROSS: u64 = 65_535;
 /// visibility id, which every fragment of the visibility pass merges with `atomicMax`, so the
 /// nearest wins whatever the order fragments arrive in (each deferred draw owns a run of ids,
 /// one per triangle, handed out per frame). A storage buffer, not a colour attachment: on the
-/// H200 a full-screen 4K pass that writes depth and an `R32Uint` attachment takes 2.39 ms,
-/// depth and a 64-bit atomic 1.23 ms (sandbox/BENCHMARKS.md).
+/// GPUs we measure, a full-screen pass that writes depth and an `R32Uint` attachment takes about
+/// twice as long as depth and a 64-bit atomic (sandbox/BENCHMARKS.md, "What the numbers mean").
 pub const VISIBILITY_BYTES_PER_PIXEL: u64 = 8;
 
 /// Hands out a frame's visibility ids: each batch of deferred draws a run of one id per

@@ -1,7 +1,8 @@
-//! The seed's shader as a material, for the bench: Tatarchuk's listings 1 and 2 transliterated
-//! to WGSL (see seed_port.wgsl for every deviation from them), so every bench run can time the
-//! seed beside our parallax material on the same workload and GPU: as written (a material in
-//! the opaque raster pass) and as one compute dispatch over the target ([`SeedPortCompute`]).
+//! The seed (Tatarchuk's shader: plugin/docs/authoring-materials.md, "The seed") as a
+//! material, for the bench: its listings 1 and 2 transliterated to WGSL (see seed_port.wgsl for
+//! every deviation from them), so every bench run can time the seed beside our parallax material
+//! on the same workload and GPU: as written (a material in the opaque raster pass) and as one
+//! compute dispatch over the target ([`SeedPortCompute`]).
 
 mod compute;
 mod packed;

@@ -32,7 +32,7 @@
 //   mViewWS, which are used.
 // - ComputeIllumination's `normalize(tex2D(tNormalMap, texCoord) * 2 - 1)` normalizes all four
 //   channels, the height in alpha among them, before HLSL's implicit truncation to float3 keeps
-//   xyz: a normal shortened by up to 1/√2 where the height is 0 or 1 (13–17 % darker diffuse on
+//   xyz: a normal shortened by up to 1/√2 where the height is 0 or 1 (visibly darker diffuse on
 //   the cobblestones), an artefact of the packing the text never describes. The port
 //   normalizes xyz, the normal the text shades with; the cost is the same.
 // - pow() gets max(R·L, 0) (HLSL's saturate(pow(negative)) is 0, WGSL's pow of a negative

@@ -1,4 +1,4 @@
-//! Issue 20's table: the marching methods at 8, 16, 32 and 64 samples and MaxMip over its
+//! The method table: the marching methods at 8, 16, 32 and 64 samples and MaxMip over its
 //! pyramid, each with its hit error against the exact intersection (the CPU reference on the
 //! bench's height map, 70° from the normal), its height fetches per pixel (the `samples` view
 //! of the timed scene, view ray only) and its time. The seed port's row comes from
@@ -23,7 +23,7 @@ const MARCHING: [ParallaxMethod; 3] = [
     ParallaxMethod::Occlusion,
     ParallaxMethod::Relief,
 ];
-/// Issue 20's angle for the error columns, and the entry points per side of the grid.
+/// The angle of the error columns (a grazing view, where the methods differ most), and the entry points per side of the grid.
 const ERROR_ANGLE_DEGREES: f32 = 70.0;
 const ERROR_GRID: u32 = 24;
 

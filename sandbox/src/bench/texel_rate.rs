@@ -17,8 +17,8 @@ pub struct TexelRate {
 const KNOWN: [(&str, u32, u32, f64); 2] = [
     // 1.98 GHz: the SM clock seen steady under load on the project's machine (TOOLCHAIN.md).
     ("H100", 132, 4, 1.98),
-    // The same chip (GH100, 132 SMs enabled) with more memory: the benchmark machine since
-    // 2026-11-29 (../shared/DESIGN.md).
+    // The same chip (GH100, 132 SMs enabled) with more memory: the benchmark machine
+    // (sandbox/BENCHMARKS.md, "Current figures").
     ("H200", 132, 4, 1.98),
 ];
 
