@@ -1,5 +1,6 @@
 //! Checking a script's names and files before anything runs, with line and column.
 
+mod expectations;
 mod values;
 
 use std::path::Path;
@@ -113,7 +114,8 @@ pub(super) fn check(
     check_advances(script, &source)?;
     values::check_values(script, &source)?;
     let names = check_entities(script, &source, dir)?;
-    check_steps(script, &names, &source)
+    check_steps(script, &names, &source)?;
+    expectations::check_expectations(script, &source)
 }
 
 /// The camera's exposure, if given, is within [`crate::Exposure::RANGE`].

@@ -355,10 +355,13 @@ pub enum Step {
     },
     /// Checks a statistic grows (or shrinks) strictly along a list of captures.
     ExpectMonotonic {
-        /// The captures, in order.
+        /// The captures, in order (at least two).
         captures: Vec<String>,
         /// What to measure.
         stat: Statistic,
+        /// The region of every capture, default the whole image.
+        #[serde(default)]
+        rect: Option<Rect>,
         /// Whether it must grow (true) or shrink.
         #[serde(default = "yes")]
         increasing: bool,

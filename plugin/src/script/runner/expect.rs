@@ -8,19 +8,8 @@ use image::RgbaImage;
 use super::Runner;
 use crate::script::Outcome;
 use crate::script::format::{Rect, Statistic};
-use crate::script::stats::{measure, required_view};
+use crate::script::stats::{Measured, measure, stat_name};
 use crate::{FlipComparison, FlipTolerance, Image, TextureKind, flip_compare};
-
-/// How a statistic is named in a report.
-fn stat_name(stat: &Statistic) -> String {
-    match stat {
-        Statistic::MeanLuminance => "mean luminance".into(),
-        Statistic::LodBandFraction => "LOD band fraction".into(),
-        Statistic::NormalMappingFraction => "normal-mapping fraction".into(),
-        Statistic::ShadowedFraction => "shadowed fraction".into(),
-        Statistic::UvShift { baseline } => format!("UV shift from {baseline:?}"),
-    }
-}
 
 /// Writes `image` as a PNG at `path`, making its folder first.
 fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {
@@ -177,16 +166,18 @@ impl Runner<'_> {
         })
     }
 
-    /// `ExpectMonotonic`: the statistic grows (or shrinks) strictly along `captures`.
+    /// `ExpectMonotonic`: the statistic (over `rect`) grows (or shrinks) strictly along
+    /// `captures`.
     pub(super) fn expect_monotonic(
         &self,
         captures: &[String],
         stat: &Statistic,
+        rect: Option<Rect>,
         increasing: bool,
     ) -> Result<Outcome, String> {
         let values = captures
             .iter()
-            .map(|capture| self.statistic(capture, stat, None))
+            .map(|capture| self.statistic(capture, stat, rect))
             .collect::<Result<Vec<f32>, String>>()?;
         let ordered = values.windows(2).all(|pair| {
             if increasing {
@@ -213,27 +204,31 @@ impl Runner<'_> {
         })
     }
 
-    /// `stat` of capture `capture` over `rect`; fails if the capture lacks the debug view
-    /// the statistic reads.
+    /// `stat` of capture `capture` over `rect`; fails when the rectangle holds nothing the
+    /// statistic counts (the loader checked the capture's debug view).
     fn statistic(
         &self,
         capture: &str,
         stat: &Statistic,
         rect: Option<Rect>,
     ) -> Result<f32, String> {
-        let taken = &self.captures[capture];
-        if let Some(view) = required_view(stat)
-            && taken.view != Some(view)
-        {
-            return Err(format!(
-                "{} needs capture {capture:?} taken with debug_view: {view:?}",
-                stat_name(stat)
-            ));
-        }
+        let measured = |name: &str| {
+            let taken = &self.captures[name];
+            Measured {
+                image: &taken.image,
+                surface: taken.surface.as_ref(),
+            }
+        };
         let baseline = match stat {
-            Statistic::UvShift { baseline } => Some(&self.captures[baseline].image),
+            Statistic::UvShift { baseline } => Some(measured(baseline)),
             _ => None,
         };
-        Ok(measure(stat, &taken.image, rect, baseline))
+        measure(stat, measured(capture), rect, baseline).ok_or_else(|| {
+            let region = rect.map_or("the whole image".to_owned(), |rect| format!("rect {rect:?}"));
+            format!(
+                "{} of capture {capture:?} over {region}: no pixel of a parallax surface to count",
+                stat_name(stat)
+            )
+        })
     }
 }
