@@ -1,6 +1,7 @@
 //! Checking a script's names and files before anything runs, with line and column.
 
 mod expectations;
+mod materials;
 mod values;
 
 use std::path::Path;
@@ -115,6 +116,7 @@ pub(super) fn check(
     values::check_values(script, &source)?;
     let names = check_entities(script, &source, dir)?;
     check_steps(script, &names, &source)?;
+    materials::check_materials(script, &source, dir)?;
     expectations::check_expectations(script, &source)
 }
 

@@ -136,7 +136,13 @@ impl Runner<'_> {
         for target in targets {
             if let Ok(mut component) = self.app.world.get::<&mut ParallaxOcclusionMaterial>(target)
             {
-                patch.apply(&mut component);
+                // The loader could check a glTF file's materials only parameter by parameter.
+                let mut changed = component.clone();
+                patch.apply(&mut changed);
+                changed
+                    .validate()
+                    .map_err(|problem| format!("entity {name:?}: {problem}"))?;
+                *component = changed;
             }
         }
         Ok(())
