@@ -30,14 +30,25 @@ struct ReferenceMatch<'a> {
 }
 
 impl ReferenceMatch<'_> {
+    /// Blessing: writes the capture as the reference, and removes the failure images an earlier
+    /// run left, which showed a difference the new reference no longer has.
+    fn write_reference(&self, detail: String) -> Result<Outcome, String> {
+        save(self.actual, &self.reference)?;
+        for stale in [&self.actual_path, &self.difference_path] {
+            match std::fs::remove_file(stale) {
+                Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
+                    return Err(format!("{}: {error}", stale.display()));
+                }
+                _ => {}
+            }
+        }
+        Ok(Outcome::Blessed(detail))
+    }
+
     /// The reference could not be read: written when blessing, else a failure.
     fn missing(&self, error: &crate::ImageError) -> Result<Outcome, String> {
         if self.bless {
-            save(self.actual, &self.reference)?;
-            return Ok(Outcome::Blessed(format!(
-                "wrote {}",
-                self.reference.display()
-            )));
+            return self.write_reference(format!("wrote {}", self.reference.display()));
         }
         save(self.actual, &self.actual_path)?;
         Ok(Outcome::Failed(format!(
@@ -50,11 +61,10 @@ impl ReferenceMatch<'_> {
     /// The capture and the reference differ in size: rewritten when blessing, else a failure.
     fn size_differs(&self, expected: &RgbaImage) -> Result<Outcome, String> {
         if self.bless {
-            save(self.actual, &self.reference)?;
-            return Ok(Outcome::Blessed(format!(
+            return self.write_reference(format!(
                 "rewrote {} at the new size",
                 self.reference.display()
-            )));
+            ));
         }
         save(self.actual, &self.actual_path)?;
         Ok(Outcome::Failed(format!(
@@ -83,11 +93,10 @@ impl ReferenceMatch<'_> {
             return Ok(Outcome::Passed(detail));
         }
         if self.bless {
-            save(self.actual, &self.reference)?;
-            return Ok(Outcome::Blessed(format!(
+            return self.write_reference(format!(
                 "{detail}; rewrote {}",
                 self.reference.display()
-            )));
+            ));
         }
         save(self.actual, &self.actual_path)?;
         save(&comparison.error_map, &self.difference_path)?;
