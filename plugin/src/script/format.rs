@@ -191,6 +191,14 @@ pub enum ShapeDesc {
         /// Radius.
         radius: f32,
     },
+    /// A closed cylinder about +Y, centred on the origin: the side wraps the texture once
+    /// around and once along its height, each cap holds the unit square.
+    Cylinder {
+        /// Radius.
+        radius: f32,
+        /// Height along Y.
+        height: f32,
+    },
 }
 
 /// What an entity looks like.

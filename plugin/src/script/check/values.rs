@@ -203,6 +203,10 @@ fn check_entity(entity: &crate::script::EntityDesc) -> Result<(), Problem> {
         }
         Some(ShapeDesc::Cube { size }) => need_positive("size", *size)?,
         Some(ShapeDesc::Sphere { radius }) => need_positive("radius", *radius)?,
+        Some(ShapeDesc::Cylinder { radius, height }) => {
+            need_positive("radius", *radius)?;
+            need_positive("height", *height)?;
+        }
         None => {}
     }
     if let Some(MaterialDesc::Lit { color }) = &entity.material
