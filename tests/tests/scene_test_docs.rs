@@ -74,7 +74,9 @@ fn every_ron_example_of_the_scene_test_page_does_what_it_says() {
         } else if let Some(expected) = first.strip_prefix("// refused: ") {
             match parse_script(block, &script) {
                 Err(error) if error.to_string().contains(expected) => {}
-                other => failures.push(format!("block {index}: expected {expected:?}, got {other:?}")),
+                other => failures.push(format!(
+                    "block {index}: expected {expected:?}, got {other:?}"
+                )),
             }
         } else {
             std::fs::write(&script, block).unwrap();

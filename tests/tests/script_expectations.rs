@@ -96,7 +96,10 @@ fn a_monotonic_rectangle_outside_the_image_is_an_error() {
         "ExpectMonotonic(captures: [\"uv\", \"uv2\"], stat: NormalMappingFraction)",
         "ExpectMonotonic(captures: [\"uv\", \"uv2\"], stat: NormalMappingFraction, rect: (60, 0, 8, 8))",
         11,
-        &["step 7 (ExpectMonotonic): rect (60, 0, 8, 8)", "outside the 64×48 image"],
+        &[
+            "step 7 (ExpectMonotonic): rect (60, 0, 8, 8)",
+            "outside the 64×48 image",
+        ],
     );
 }
 

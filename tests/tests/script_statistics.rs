@@ -172,6 +172,10 @@ fn a_wrong_reference_fails_and_blessing_it_removes_the_failure_images() {
     let stale = [&actual, &difference].map(|path| path.exists());
     let passed = run_in(&dir, &text, false).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
-    assert_eq!(stale, [false, false], "failure images left beside the reference");
+    assert_eq!(
+        stale,
+        [false, false],
+        "failure images left beside the reference"
+    );
     assert!(passed.passed(), "{passed}");
 }

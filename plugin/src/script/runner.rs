@@ -18,8 +18,7 @@ use super::stats::SurfaceMask;
 use super::{CapturePath, Report, RunOptions, ScriptError, StepReport};
 use crate::files::{FileAccess, MAX_TEXT_FILE_BYTES, read_text_bounded};
 use crate::{
-    AmbientLight, App, Camera, Color, Exposure, PomPlugin, Projection, RenderPlugin,
-    Transform,
+    AmbientLight, App, Camera, Color, Exposure, PomPlugin, Projection, RenderPlugin, Transform,
 };
 
 /// The time between two frames of a scene script ([`crate::Time`] advances by it).

@@ -121,9 +121,7 @@ pub fn measure(
             fraction(capture, rect, |x, y| linear(image, x, y, 2) < 0.25)
         }
         // The shadow view's visibility: 1 lit, 0 fully in the height field's shadow.
-        Statistic::ShadowedFraction => {
-            fraction(capture, rect, |x, y| linear(image, x, y, 0) < 0.5)
-        }
+        Statistic::ShadowedFraction => fraction(capture, rect, |x, y| linear(image, x, y, 0) < 0.5),
         Statistic::UvShift { .. } => {
             let baseline = baseline?;
             let both = region(image, rect)

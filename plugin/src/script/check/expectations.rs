@@ -89,7 +89,10 @@ fn need_rect(rect: Option<Rect>, (width, height): (u32, u32)) -> Result<(), Prob
     if w == 0 || h == 0 {
         return Err((
             "rect",
-            format!("rect {:?} (x, y, width, height) has no pixels", (x, y, w, h)),
+            format!(
+                "rect {:?} (x, y, width, height) has no pixels",
+                (x, y, w, h)
+            ),
         ));
     }
     let (right, bottom) = (u64::from(x) + u64::from(w), u64::from(y) + u64::from(h));

@@ -93,10 +93,7 @@ impl ReferenceMatch<'_> {
             return Ok(Outcome::Passed(detail));
         }
         if self.bless {
-            return self.write_reference(format!(
-                "{detail}; rewrote {}",
-                self.reference.display()
-            ));
+            return self.write_reference(format!("{detail}; rewrote {}", self.reference.display()));
         }
         save(self.actual, &self.actual_path)?;
         save(&comparison.error_map, &self.difference_path)?;
@@ -233,7 +230,9 @@ impl Runner<'_> {
             _ => None,
         };
         measure(stat, measured(capture), rect, baseline).ok_or_else(|| {
-            let region = rect.map_or("the whole image".to_owned(), |rect| format!("rect {rect:?}"));
+            let region = rect.map_or("the whole image".to_owned(), |rect| {
+                format!("rect {rect:?}")
+            });
             format!(
                 "{} of capture {capture:?} over {region}: no pixel of a parallax surface to count",
                 stat_name(stat)

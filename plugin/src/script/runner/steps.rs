@@ -6,9 +6,9 @@ use hecs::Entity;
 use image::RgbaImage;
 
 use super::{Capture, Runner, look, vec3};
+use crate::picking::camera_ray;
 use crate::render::Renderer;
 use crate::script::format::{MaterialPatch, Step};
-use crate::picking::camera_ray;
 use crate::script::lights::light_towards;
 use crate::script::stats::SurfaceMask;
 use crate::script::{CapturePath, Outcome};
