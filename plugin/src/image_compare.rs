@@ -26,6 +26,46 @@ impl Default for FlipTolerance {
     }
 }
 
+impl FlipTolerance {
+    /// The first field that cannot mean anything, and why: a `mean` or `percentile_max` that is
+    /// not a finite number ≥ 0 (NaN would pass or fail everything), a `percentile` outside
+    /// 0..=1 (it is a fraction: 0.95, not 95).
+    ///
+    /// # Example
+    /// ```
+    /// let tolerance = pom::FlipTolerance { percentile: 95.0, ..Default::default() };
+    /// assert_eq!(tolerance.problem().unwrap().0, "percentile");
+    /// assert!(pom::FlipTolerance::default().problem().is_none());
+    /// ```
+    pub fn problem(&self) -> Option<(&'static str, String)> {
+        let not_a_bound = |value: f32| !(value.is_finite() && value >= 0.0);
+        if not_a_bound(self.mean) {
+            Some((
+                "mean",
+                format!("mean {} is not a finite number ≥ 0", self.mean),
+            ))
+        } else if !(0.0..=1.0).contains(&self.percentile) {
+            Some((
+                "percentile",
+                format!(
+                    "percentile {} is outside 0..=1 (a fraction: 0.99 is the 99th percentile)",
+                    self.percentile
+                ),
+            ))
+        } else if not_a_bound(self.percentile_max) {
+            Some((
+                "percentile_max",
+                format!(
+                    "percentile_max {} is not a finite number ≥ 0",
+                    self.percentile_max
+                ),
+            ))
+        } else {
+            None
+        }
+    }
+}
+
 /// The outcome of one comparison.
 #[derive(Clone, Debug)]
 pub struct FlipComparison {

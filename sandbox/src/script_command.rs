@@ -7,8 +7,13 @@ use clap::Args;
 
 use crate::cli_types::PathArgs;
 
+/// Where `run-script --help` sends a reader for the script format.
+pub const FORMAT_DOC: &str = "The script format (entities, steps, statistics, tolerances, \
+    with examples): plugin/docs/scene-tests.md";
+
 /// Options of `run-script`.
 #[derive(Debug, Args)]
+#[command(after_help = FORMAT_DOC)]
 pub struct ScriptArgs {
     /// Scene script files (RON).
     #[arg(required = true, value_name = "FILE")]
@@ -63,4 +68,21 @@ pub fn run(args: &ScriptArgs) -> Result<()> {
         bail!("{failed} of {} scripts failed", args.scripts.len());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    use super::*;
+
+    #[test]
+    fn help_points_to_the_script_format() {
+        let mut command = crate::Cli::command();
+        let run_script = command
+            .find_subcommand_mut("run-script")
+            .expect("sandbox has run-script");
+        let help = run_script.render_long_help().to_string();
+        assert!(help.contains(FORMAT_DOC), "{help}");
+    }
 }

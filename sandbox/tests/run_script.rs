@@ -50,7 +50,10 @@ fn a_script_that_fails_midway_still_prints_the_steps_it_ran() {
     );
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
-        stderr.contains("fails_midway.ron: step 4: entity \"plane\" has no parallax material"),
+        stderr.contains(
+            "fails_midway.ron: step 4: shadowed fraction of capture \"before\" over the whole \
+             image: no pixel of a parallax surface to count"
+        ),
         "{stderr}"
     );
 }

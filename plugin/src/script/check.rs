@@ -1,5 +1,7 @@
 //! Checking a script's names and files before anything runs, with line and column.
 
+mod expectations;
+mod materials;
 mod values;
 
 use std::path::Path;
@@ -113,7 +115,9 @@ pub(super) fn check(
     check_advances(script, &source)?;
     values::check_values(script, &source)?;
     let names = check_entities(script, &source, dir)?;
-    check_steps(script, &names, &source)
+    check_steps(script, &names, &source)?;
+    materials::check_materials(script, &source, dir)?;
+    expectations::check_expectations(script, &source)
 }
 
 /// The camera's exposure, if given, is within [`crate::Exposure::RANGE`].

@@ -191,6 +191,14 @@ pub enum ShapeDesc {
         /// Radius.
         radius: f32,
     },
+    /// A closed cylinder about +Y, centred on the origin: the side wraps the texture once
+    /// around and once along its height, each cap holds the unit square.
+    Cylinder {
+        /// Radius.
+        radius: f32,
+        /// Height along Y.
+        height: f32,
+    },
 }
 
 /// What an entity looks like.
@@ -245,18 +253,20 @@ pub type MaterialPatch = crate::PomPatch;
 /// A rectangle of a capture in pixels: x, y, width, height.
 pub type Rect = (u32, u32, u32, u32);
 
-/// A number measured over a rectangle of a capture.
+/// A number measured over a rectangle of a capture. The debug-view statistics count only the
+/// pixels of parallax surfaces; one with no such pixel in its rectangle is an error.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 #[non_exhaustive]
 pub enum Statistic {
-    /// Mean Rec. 709 luminance of the linear colour, 0..1.
+    /// Mean Rec. 709 luminance of the linear colour, 0..1, over every pixel.
     MeanLuminance,
     /// Fraction of pixels in the LOD transition band (needs a capture with `debug_view: uv`).
     LodBandFraction,
     /// Fraction of pixels where only normal mapping ran (needs `debug_view: uv`).
     NormalMappingFraction,
-    /// Fraction of pixels less than half lit (needs `debug_view: shadow`).
+    /// Fraction of pixels less than half lit by the height field's self-shadowing of the first
+    /// light (needs `debug_view: shadow`).
     ShadowedFraction,
     /// Mean distance in texture units between this capture's coordinates and `baseline`'s
     /// (both with `debug_view: uv`): how far parallax moved the texture.
@@ -346,7 +356,7 @@ pub enum Step {
         /// The region, default the whole image.
         #[serde(default)]
         rect: Option<Rect>,
-        /// Smallest allowed value.
+        /// Smallest allowed value (at least one of `min` and `max` is given).
         #[serde(default)]
         min: Option<f32>,
         /// Largest allowed value.
@@ -355,10 +365,13 @@ pub enum Step {
     },
     /// Checks a statistic grows (or shrinks) strictly along a list of captures.
     ExpectMonotonic {
-        /// The captures, in order.
+        /// The captures, in order (at least two).
         captures: Vec<String>,
         /// What to measure.
         stat: Statistic,
+        /// The region of every capture, default the whole image.
+        #[serde(default)]
+        rect: Option<Rect>,
         /// Whether it must grow (true) or shrink.
         #[serde(default = "yes")]
         increasing: bool,

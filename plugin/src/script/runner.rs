@@ -14,11 +14,11 @@ use image::RgbaImage;
 use super::check::check;
 use super::format::{CameraDesc, Script, Step};
 use super::lights::spawn_light;
+use super::stats::SurfaceMask;
 use super::{CapturePath, Report, RunOptions, ScriptError, StepReport};
 use crate::files::{FileAccess, MAX_TEXT_FILE_BYTES, read_text_bounded};
 use crate::{
-    AmbientLight, App, Camera, Color, DebugView, Exposure, PomPlugin, Projection, RenderPlugin,
-    Transform,
+    AmbientLight, App, Camera, Color, Exposure, PomPlugin, Projection, RenderPlugin, Transform,
 };
 
 /// The time between two frames of a scene script ([`crate::Time`] advances by it).
@@ -78,10 +78,12 @@ pub fn parse_script_with(
     Ok(script)
 }
 
-/// A frame a `Capture` step kept, with the debug view it was drawn with and the path it ran on.
+/// A frame a `Capture` step kept, with the debug view it was drawn with, the pixels of its
+/// parallax surfaces (debug views only: the statistics that read them count nothing else) and
+/// the path it ran on.
 struct Capture {
     image: RgbaImage,
-    view: Option<DebugView>,
+    surface: Option<SurfaceMask>,
     path: CapturePath,
 }
 

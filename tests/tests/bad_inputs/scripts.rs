@@ -168,13 +168,15 @@ fn script_with_an_invalid_preset() {
         file_access: pom::files::FileAccess::AnyPath,
         ..RunOptions::default()
     };
+    // Found when the script is loaded, before anything renders, at the entity's line.
     match run_script_with(corpus("scripts/bad_preset_inside.ron"), &options).unwrap_err() {
-        ScriptError::Setup { reason, .. } => assert!(
-            reason.contains("min_over_max.ron")
+        ScriptError::Parse { line, reason, .. } => assert!(
+            line == 5
+                && reason.contains("min_over_max.ron")
                 && reason.contains("min_samples (60) is greater than max_samples (4)"),
-            "{reason}"
+            "{line}: {reason}"
         ),
-        other => panic!("expected ScriptError::Setup, got {other:?}"),
+        other => panic!("expected ScriptError::Parse, got {other:?}"),
     }
 }
 
@@ -199,7 +201,10 @@ fn script_that_fails_midway_still_reports_the_steps_it_ran() {
             ..
         } => {
             assert_eq!(step, 4);
-            assert!(reason.contains("has no parallax material"), "{reason}");
+            assert!(
+                reason.contains("no pixel of a parallax surface to count"),
+                "{reason}"
+            );
             let numbers: Vec<usize> = report.steps.iter().map(|s| s.number).collect();
             assert_eq!(numbers, [1, 2, 3], "{report}");
             assert!(report.passed(), "{report}");

@@ -203,6 +203,10 @@ fn check_entity(entity: &crate::script::EntityDesc) -> Result<(), Problem> {
         }
         Some(ShapeDesc::Cube { size }) => need_positive("size", *size)?,
         Some(ShapeDesc::Sphere { radius }) => need_positive("radius", *radius)?,
+        Some(ShapeDesc::Cylinder { radius, height }) => {
+            need_positive("radius", *radius)?;
+            need_positive("height", *height)?;
+        }
         None => {}
     }
     if let Some(MaterialDesc::Lit { color }) = &entity.material
@@ -248,7 +252,7 @@ fn check_step(step: &Step) -> Result<(), Problem> {
 }
 
 /// The name a step is written with.
-fn step_kind(step: &Step) -> &'static str {
+pub(super) fn step_kind(step: &Step) -> &'static str {
     match step {
         Step::Advance { .. } => "Advance",
         Step::Set { .. } => "Set",
@@ -305,7 +309,7 @@ fn locate_light(text: &str, nth: usize, field: &str) -> (usize, usize) {
 
 /// Line and column of `field` of step `nth` (0-based) of `steps` as written: the step is the
 /// how-manieth of its kind.
-fn locate_step(text: &str, steps: &[Step], nth: usize, field: &str) -> (usize, usize) {
+pub(super) fn locate_step(text: &str, steps: &[Step], nth: usize, field: &str) -> (usize, usize) {
     let Some(step) = steps.get(nth) else {
         return line_and_column(text, 0);
     };

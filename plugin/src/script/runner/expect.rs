@@ -8,19 +8,8 @@ use image::RgbaImage;
 use super::Runner;
 use crate::script::Outcome;
 use crate::script::format::{Rect, Statistic};
-use crate::script::stats::{measure, required_view};
+use crate::script::stats::{Measured, measure, stat_name};
 use crate::{FlipComparison, FlipTolerance, Image, TextureKind, flip_compare};
-
-/// How a statistic is named in a report.
-fn stat_name(stat: &Statistic) -> String {
-    match stat {
-        Statistic::MeanLuminance => "mean luminance".into(),
-        Statistic::LodBandFraction => "LOD band fraction".into(),
-        Statistic::NormalMappingFraction => "normal-mapping fraction".into(),
-        Statistic::ShadowedFraction => "shadowed fraction".into(),
-        Statistic::UvShift { baseline } => format!("UV shift from {baseline:?}"),
-    }
-}
 
 /// Writes `image` as a PNG at `path`, making its folder first.
 fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {
@@ -41,14 +30,25 @@ struct ReferenceMatch<'a> {
 }
 
 impl ReferenceMatch<'_> {
+    /// Blessing: writes the capture as the reference, and removes the failure images an earlier
+    /// run left, which showed a difference the new reference no longer has.
+    fn write_reference(&self, detail: String) -> Result<Outcome, String> {
+        save(self.actual, &self.reference)?;
+        for stale in [&self.actual_path, &self.difference_path] {
+            match std::fs::remove_file(stale) {
+                Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
+                    return Err(format!("{}: {error}", stale.display()));
+                }
+                _ => {}
+            }
+        }
+        Ok(Outcome::Blessed(detail))
+    }
+
     /// The reference could not be read: written when blessing, else a failure.
     fn missing(&self, error: &crate::ImageError) -> Result<Outcome, String> {
         if self.bless {
-            save(self.actual, &self.reference)?;
-            return Ok(Outcome::Blessed(format!(
-                "wrote {}",
-                self.reference.display()
-            )));
+            return self.write_reference(format!("wrote {}", self.reference.display()));
         }
         save(self.actual, &self.actual_path)?;
         Ok(Outcome::Failed(format!(
@@ -61,11 +61,10 @@ impl ReferenceMatch<'_> {
     /// The capture and the reference differ in size: rewritten when blessing, else a failure.
     fn size_differs(&self, expected: &RgbaImage) -> Result<Outcome, String> {
         if self.bless {
-            save(self.actual, &self.reference)?;
-            return Ok(Outcome::Blessed(format!(
+            return self.write_reference(format!(
                 "rewrote {} at the new size",
                 self.reference.display()
-            )));
+            ));
         }
         save(self.actual, &self.actual_path)?;
         Ok(Outcome::Failed(format!(
@@ -94,11 +93,7 @@ impl ReferenceMatch<'_> {
             return Ok(Outcome::Passed(detail));
         }
         if self.bless {
-            save(self.actual, &self.reference)?;
-            return Ok(Outcome::Blessed(format!(
-                "{detail}; rewrote {}",
-                self.reference.display()
-            )));
+            return self.write_reference(format!("{detail}; rewrote {}", self.reference.display()));
         }
         save(self.actual, &self.actual_path)?;
         save(&comparison.error_map, &self.difference_path)?;
@@ -177,16 +172,18 @@ impl Runner<'_> {
         })
     }
 
-    /// `ExpectMonotonic`: the statistic grows (or shrinks) strictly along `captures`.
+    /// `ExpectMonotonic`: the statistic (over `rect`) grows (or shrinks) strictly along
+    /// `captures`.
     pub(super) fn expect_monotonic(
         &self,
         captures: &[String],
         stat: &Statistic,
+        rect: Option<Rect>,
         increasing: bool,
     ) -> Result<Outcome, String> {
         let values = captures
             .iter()
-            .map(|capture| self.statistic(capture, stat, None))
+            .map(|capture| self.statistic(capture, stat, rect))
             .collect::<Result<Vec<f32>, String>>()?;
         let ordered = values.windows(2).all(|pair| {
             if increasing {
@@ -213,27 +210,33 @@ impl Runner<'_> {
         })
     }
 
-    /// `stat` of capture `capture` over `rect`; fails if the capture lacks the debug view
-    /// the statistic reads.
+    /// `stat` of capture `capture` over `rect`; fails when the rectangle holds nothing the
+    /// statistic counts (the loader checked the capture's debug view).
     fn statistic(
         &self,
         capture: &str,
         stat: &Statistic,
         rect: Option<Rect>,
     ) -> Result<f32, String> {
-        let taken = &self.captures[capture];
-        if let Some(view) = required_view(stat)
-            && taken.view != Some(view)
-        {
-            return Err(format!(
-                "{} needs capture {capture:?} taken with debug_view: {view:?}",
-                stat_name(stat)
-            ));
-        }
+        let measured = |name: &str| {
+            let taken = &self.captures[name];
+            Measured {
+                image: &taken.image,
+                surface: taken.surface.as_ref(),
+            }
+        };
         let baseline = match stat {
-            Statistic::UvShift { baseline } => Some(&self.captures[baseline].image),
+            Statistic::UvShift { baseline } => Some(measured(baseline)),
             _ => None,
         };
-        Ok(measure(stat, &taken.image, rect, baseline))
+        measure(stat, measured(capture), rect, baseline).ok_or_else(|| {
+            let region = rect.map_or("the whole image".to_owned(), |rect| {
+                format!("rect {rect:?}")
+            });
+            format!(
+                "{} of capture {capture:?} over {region}: no pixel of a parallax surface to count",
+                stat_name(stat)
+            )
+        })
     }
 }

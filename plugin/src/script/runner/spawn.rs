@@ -99,6 +99,7 @@ impl Runner<'_> {
             ShapeDesc::Plane { size, tiling } => Mesh::plane_tiled(*size, *tiling),
             ShapeDesc::Cube { size } => Mesh::cube(*size),
             ShapeDesc::Sphere { radius } => Mesh::uv_sphere(*radius, 32, 16),
+            ShapeDesc::Cylinder { radius, height } => Mesh::cylinder(*radius, *height, 32),
         };
         let mesh = self
             .app

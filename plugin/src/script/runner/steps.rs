@@ -1,16 +1,20 @@
 //! Carrying out a script's steps: frames, material changes, camera and light moves, spins and
 //! captures here; the expectations in `expect`.
 
-use glam::{Quat, Vec3};
+use glam::{Quat, Vec2, Vec3};
 use hecs::Entity;
 use image::RgbaImage;
 
 use super::{Capture, Runner, look, vec3};
+use crate::picking::camera_ray;
 use crate::render::Renderer;
 use crate::script::format::{MaterialPatch, Step};
 use crate::script::lights::light_towards;
+use crate::script::stats::SurfaceMask;
 use crate::script::{CapturePath, Outcome};
-use crate::{DebugView, GpuContext, ParallaxOcclusionMaterial, Transform};
+use crate::{
+    Assets, DebugView, GpuContext, Mesh, ParallaxOcclusionMaterial, Transform, pick_entity,
+};
 
 /// How a step is named in the report.
 fn description(step: &Step) -> String {
@@ -85,8 +89,9 @@ impl Runner<'_> {
             Step::ExpectMonotonic {
                 captures,
                 stat,
+                rect,
                 increasing,
-            } => self.expect_monotonic(captures, stat, *increasing)?,
+            } => self.expect_monotonic(captures, stat, *rect, *increasing)?,
         };
         Ok((description(step), outcome))
     }
@@ -131,7 +136,13 @@ impl Runner<'_> {
         for target in targets {
             if let Ok(mut component) = self.app.world.get::<&mut ParallaxOcclusionMaterial>(target)
             {
-                patch.apply(&mut component);
+                // The loader could check a glTF file's materials only parameter by parameter.
+                let mut changed = component.clone();
+                patch.apply(&mut changed);
+                changed
+                    .validate()
+                    .map_err(|problem| format!("entity {name:?}: {problem}"))?;
+                *component = changed;
             }
         }
         Ok(())
@@ -217,9 +228,37 @@ impl Runner<'_> {
     fn keep_capture(&mut self, name: &str, view: Option<DebugView>) -> Result<(), String> {
         let image = self.capture(view)?;
         let path = self.last_frame_path()?;
-        self.captures
-            .insert(name.to_owned(), Capture { image, view, path });
+        let surface = match view {
+            Some(_) => Some(self.parallax_surface(image.dimensions())?),
+            None => None,
+        };
+        self.captures.insert(
+            name.to_owned(),
+            Capture {
+                image,
+                surface,
+                path,
+            },
+        );
         Ok(())
+    }
+
+    /// The pixels of a `size` frame, as the camera now sees it, whose nearest polygon has a
+    /// parallax material: what a debug view's statistic counts.
+    fn parallax_surface(&self, (width, height): (u32, u32)) -> Result<SurfaceMask, String> {
+        let world = &self.app.world;
+        let meshes = self
+            .app
+            .resources
+            .get::<Assets<Mesh>>()
+            .ok_or("no mesh store")?;
+        let viewport = Vec2::new(width as f32, height as f32);
+        Ok(SurfaceMask::new(width, height, |x, y| {
+            let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            camera_ray(world, viewport, centre)
+                .and_then(|ray| pick_entity(world, meshes, ray))
+                .is_some_and(|hit| world.satisfies::<&ParallaxOcclusionMaterial>(hit.entity))
+        }))
     }
 
     /// Renders one frame and reads it back; a debug view is set for this frame only.
