@@ -12,6 +12,8 @@ pub mod memory;
 pub mod nan_injection;
 pub mod parameters;
 pub mod pom_scene;
+pub mod scratch_crate;
+pub mod script_edits;
 pub mod sources;
 pub mod xvfb;
 

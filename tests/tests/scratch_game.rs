@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 
+use pom_tests::scratch_crate;
 use pom_tests::sources::fenced_block;
 use pom_tests::xvfb::{Xvfb, distinct_colours};
 
@@ -31,42 +32,21 @@ fn readme_dependencies() -> &'static str {
 }
 
 /// Writes the scratch crate under `dir`: its manifest (the README's dependency line, the
-/// registry's crate patched to this checkout), the workspace's lock file (so it builds the
-/// versions the workspace tested, offline) and the README's game as `src/main.rs`.
+/// registry's crate patched to this checkout) and the README's game as `src/main.rs`.
 fn write_scratch_crate(dir: &Path) {
-    let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let plugin = repository.join("plugin").canonicalize().unwrap();
-    std::fs::create_dir_all(dir.join("src")).unwrap();
-    std::fs::write(
-        dir.join("Cargo.toml"),
-        format!(
-            "[package]\nname = \"scratch-game\"\nversion = \"0.1.0\"\nedition = \"2024\"\n\n\
-             {dependencies}\n\
-             [patch.crates-io]\nparallax-occlusion = {{ path = {plugin:?} }}\n\n\
-             # A workspace of its own: nothing of ours is inherited.\n[workspace]\n\n\
-             # Debug info is what a 2-core build spends most on; this test does not need it.\n\
-             [profile.dev]\ndebug = false\n",
-            dependencies = readme_dependencies(),
-        ),
-    )
-    .unwrap();
-    std::fs::copy(repository.join("Cargo.lock"), dir.join("Cargo.lock")).unwrap();
-    std::fs::write(dir.join("src/main.rs"), readme_game()).unwrap();
+    let sections = format!(
+        "{dependencies}\n[patch.crates-io]\nparallax-occlusion = {{ path = {plugin:?} }}\n",
+        dependencies = readme_dependencies(),
+        plugin = scratch_crate::plugin_dir(),
+    );
+    scratch_crate::write(dir, "scratch-game", &sections, readme_game());
 }
 
 #[test]
 fn the_readmes_window_game_builds_outside_the_workspace_and_runs_sixty_frames() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("scratch-game");
     write_scratch_crate(&dir);
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let built = Command::new(cargo)
-        .args(["build", "--offline", "--quiet"])
-        .current_dir(&dir)
-        // Its own target folder, under ours: the lock on ours is held by this test run.
-        .env("CARGO_TARGET_DIR", dir.join("target"))
-        .env_remove("RUSTFLAGS")
-        .output()
-        .expect("running cargo");
+    let built = scratch_crate::build(&dir, &dir.join("target"));
     assert!(
         built.status.success(),
         "the scratch game does not build:\n{}",

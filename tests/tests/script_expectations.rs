@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use pom::ScriptError;
 use pom::script::parse_script;
+use pom_tests::script_edits::assert_load_error;
 
 /// A script every test changes one expectation of; it loads as it is.
 const SCRIPT: &str = r#"(
@@ -25,22 +25,8 @@ const SCRIPT: &str = r#"(
     ],
 )"#;
 
-/// `SCRIPT` with `from` replaced by `to` (which must be in it); the error's line and reason.
-fn error_of(from: &str, to: &str) -> (usize, String) {
-    assert!(SCRIPT.contains(from), "{from:?}");
-    let text = SCRIPT.replacen(from, to, 1);
-    match parse_script(&text, Path::new("expectations.ron")) {
-        Err(ScriptError::Parse { line, reason, .. }) => (line, reason),
-        other => panic!("{from:?} → {to:?}: expected a load error, got {other:?}"),
-    }
-}
-
 fn assert_error(from: &str, to: &str, at_line: usize, needles: &[&str]) {
-    let (line, reason) = error_of(from, to);
-    assert_eq!(line, at_line, "{reason}");
-    for needle in needles {
-        assert!(reason.contains(needle), "{reason:?} should name {needle:?}");
-    }
+    assert_load_error((SCRIPT, "expectations.ron"), (from, to), at_line, needles);
 }
 
 #[test]
