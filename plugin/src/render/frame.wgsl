@@ -60,13 +60,13 @@ const DEBUG_VIEW_ALPHA: f32 = -2.0;
 
 // Unit vector from a surface point towards the eye: along the view ray through that point,
 // which for an orthographic camera is the same everywhere.
+// A select, not a branch: a shadow map binds the frame at its own slot, and a branch on a
+// uniform makes some drivers (Mesa 22's lavapipe) compile the shader again at every bind.
 fn direction_to_eye(world_position: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
-    if frame.view_direction.w > 0.5 {
-        return -frame.view_direction.xyz;
-    }
     let offset = frame.camera_position.xyz - world_position;
     let length_squared = dot(offset, offset);
-    return select(fallback, offset * inverseSqrt(length_squared), length_squared > 1e-20);
+    let perspective = select(fallback, offset * inverseSqrt(length_squared), length_squared > 1e-20);
+    return select(perspective, -frame.view_direction.xyz, frame.view_direction.w > 0.5);
 }
 
 struct LightSample {
