@@ -17,8 +17,8 @@ use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::render::MAX_DERIVED_TEXTURES;
 use crate::render::PhaseBindings;
+use crate::render::anti_aliasing::ObjectMotions;
 use crate::render::object_buffer::ObjectBuffer;
-use crate::render::object_motion::ObjectMotions;
 use crate::render::shaders::ComposedShader;
 use crate::render::texture_bind_groups::{BoundTextures, TextureBindGroups};
 use crate::render::{

@@ -13,7 +13,7 @@ use std::collections::HashMap;
 
 use glam::Mat4;
 
-use crate::render::object_motion::ObjectMotions;
+use crate::render::anti_aliasing::ObjectMotions;
 
 /// Last TAA frame's entities and models in draw order, and this frame's as they come; and
 /// this frame's motion number of each draw.

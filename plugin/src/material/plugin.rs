@@ -14,6 +14,7 @@ use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
 use crate::render::PhaseBindings;
+use crate::render::anti_aliasing::ObjectMotions;
 use crate::render::{
     DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, PipelineCompilation,
     RenderPhases, RenderTarget, Renderer, UploadStats, VisibilityBuffer, phase_bindings,
@@ -263,13 +264,19 @@ fn prepare_materials<M: Material>(
     _: &mut World,
     resources: &mut Resources,
 ) -> Result<(), AppError> {
-    resources.require_scope(|resources, batches: &mut MaterialBatches<M>| {
+    // TAA's list of moving draws, where the anti-aliasing plugin keeps one.
+    let mut motions = resources.remove::<ObjectMotions>();
+    let prepared = resources.require_scope(|resources, batches: &mut MaterialBatches<M>| {
         resources.require_scope(|resources, renderer: &mut Renderer| {
             resources.require_scope(|resources, lod_cache: &mut MeshLodCache| {
-                prepare_frame(resources, batches, renderer, lod_cache)
+                prepare_frame(resources, batches, (renderer, lod_cache), motions.as_mut())
             })
         })
-    })
+    });
+    if let Some(motions) = motions {
+        resources.insert(motions);
+    }
+    prepared
 }
 
 /// Prepares `batches` for this frame's extracted draws of `M`, hands the prepass its batches
@@ -277,8 +284,8 @@ fn prepare_materials<M: Material>(
 fn prepare_frame<M: Material>(
     resources: &Resources,
     batches: &mut MaterialBatches<M>,
-    renderer: &mut Renderer,
-    lod_cache: &mut MeshLodCache,
+    (renderer, lod_cache): (&mut Renderer, &mut MeshLodCache),
+    motions: Option<&mut ObjectMotions>,
 ) -> Result<(), AppError> {
     let extracted = resources.require::<ExtractedMaterials<M>>()?;
     let frame = resources.require::<ExtractedFrame>()?;
@@ -314,10 +321,7 @@ fn prepare_frame<M: Material>(
         &mut stats,
         FrameNumbers {
             ids: &mut renderer.visibility_ids,
-            motions: frame
-                .temporal
-                .is_some()
-                .then_some(&mut renderer.object_motions),
+            motions: motions.filter(|_| frame.temporal.is_some()),
         },
     );
     renderer

@@ -65,6 +65,14 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
+    /// Whether the adapter can write `format` from a compute shader (as a storage texture).
+    pub fn can_store(&self, format: wgpu::TextureFormat) -> bool {
+        self.adapter
+            .get_texture_format_features(format)
+            .allowed_usages
+            .contains(wgpu::TextureUsages::STORAGE_BINDING)
+    }
+
     /// A context for offscreen rendering, with a device and queue of its own. Honours wgpu's
     /// environment variables (`WGPU_BACKEND`, `WGPU_ADAPTER_NAME`, `WGPU_POWER_PREF`).
     ///

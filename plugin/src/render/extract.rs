@@ -50,6 +50,8 @@ pub struct ExtractedFrame {
 struct ShadowViewList {
     views: Vec<ShadowViewPlan>,
     overflowed: bool,
+    /// Whether a node of the frame draws the shadows phase (without one no light has maps).
+    drawn: bool,
 }
 
 impl ShadowViewList {
@@ -66,7 +68,7 @@ impl ShadowViewList {
                 .all(|value| value.is_finite())
                 && view.gpu.texel_world_size.is_finite()
         };
-        if views.is_empty() || !views.iter().all(finite) {
+        if !self.drawn || views.is_empty() || !views.iter().all(finite) {
             return (0, 0);
         }
         if self.views.len() + views.len() > MAX_SHADOW_VIEWS {
@@ -221,6 +223,9 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         shadow_views: ShadowViewList {
             views: Vec::new(),
             overflowed: false,
+            drawn: resources
+                .get::<super::FrameNodes>()
+                .is_some_and(|nodes| nodes.has_phase(super::RenderPhase::Shadows)),
         },
         map_cap: shadow_map_cap(world, device_texture_limit(resources)),
         light_scale,

@@ -1,12 +1,15 @@
 //! The renderer's Prepare and Render stage systems: [`prepare_frame`] uploads the frame's data,
-//! [`render_frame`] decides what the frame runs ([`FramePlan`]) and runs one function per
-//! phase (frame_passes.rs), in the order `phases.rs` documents.
+//! [`render_frame`] decides what the core runs ([`FramePlan`]) and which feature nodes have
+//! work, then runs each phase's core pass (frame_passes.rs) and nodes, in the order
+//! `phases.rs` documents, and the post chain (post_chain.rs).
 
-use super::frame_passes::{FramePasses, PostTimes, clear_value, post_process};
+use super::frame_nodes::{FrameView, NodeWork};
+use super::frame_passes::{FramePasses, clear_value};
+use super::post_chain::{self, ChainLink};
 use super::{
-    DERIVED_TEXTURES_PASS, DrawPhase, ExtractedFrame, FrameUniform, GpuContext, PassTimestamps,
-    PostSettings, RenderPhase, RenderPhases, RenderTarget, Renderer, UploadStats, render_path,
-    time_pass,
+    DERIVED_TEXTURES_PASS, DrawPhase, ExtractedFrame, FrameNodes, FrameUniform, GpuContext,
+    PassTimestamps, RenderError, RenderPhase, RenderPhases, RenderTarget, Renderer, UploadStats,
+    render_path, time_pass,
 };
 use crate::{AppError, Assets, Image, Mesh, Resources};
 
@@ -22,7 +25,6 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
         let target = resources.require::<RenderTarget>()?;
         renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
         renderer.visibility_ids.reset();
-        renderer.object_motions.reset();
         if let (true, Some(background), Some(visibility)) = (
             renderer.deferred,
             &mut renderer.background,
@@ -31,18 +33,11 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
         }
         renderer.assets.release_freed(meshes, images);
-        // TAA's history holds display values already.
-        let tonemapping = match extracted.temporal {
-            Some(_) => crate::Tonemapping::None,
-            None => extracted.tonemapping,
-        };
-        let settings = PostSettings::new(tonemapping, target.target_format());
         renderer.last_upload = UploadStats {
             uniform_bytes: renderer
                 .frame
                 .upload(gpu, &extracted.frame, &light_views(extracted))
-                + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views)
-                + renderer.post.upload(gpu, settings),
+                + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views),
             ..UploadStats::default()
         };
         Ok(())
@@ -69,67 +64,179 @@ fn light_views(extracted: &ExtractedFrame) -> Vec<FrameUniform> {
 }
 
 /// The Render stage's system: builds the textures derived this frame, then runs the phases in
-/// order (prepass, shadows, opaque, resolve, transparent; then post-processing in a second
-/// submission; the overlay belongs to the application), each timed under its name.
-pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
+/// order, each phase's core pass followed by the feature nodes ([`FrameNodes`]) and the
+/// materials' work of that phase (prepass, shadows, opaque, resolve, transparent; then the post
+/// chain in a second submission; the overlay belongs to the application), each timed under its
+/// name.
+pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(), RenderError> {
     // Every material has prepared its draws: order the sorted phases across materials.
     let renderer = resources.require_mut::<Renderer>()?;
     renderer.prepass_order.sort();
     renderer.transparent.sort();
-    let plan = FramePlan::new(resources)?;
-    if plan.object_motion {
-        // The materials have numbered their moving draws.
-        resources.require_scope(|resources, renderer: &mut Renderer| {
-            let gpu = resources.require::<GpuContext>()?;
-            let target = resources.require::<RenderTarget>()?;
-            renderer.object_motions.prepare(gpu, target);
-            Ok(())
-        })?;
-    }
+    resources
+        .scope(|resources, nodes: &mut FrameNodes| render_nodes(resources, nodes))
+        .unwrap_or_else(|| Err(AppError::missing::<FrameNodes>().into()))
+}
+
+/// [`render_frame`] once the frame's nodes are taken out of the resources (they record with
+/// the resources borrowed).
+fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(), RenderError> {
+    nodes.order()?;
+    let runs = running_nodes(resources, nodes)?;
+    prepare_nodes(resources, nodes, &runs)?;
+    let reads_depth = nodes
+        .iter()
+        .zip(&runs)
+        .any(|(node, runs)| *runs && node.work.reads_scene_depth());
+    let plan = FramePlan::new(resources, reads_depth)?;
     resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
-    let times = PhaseTimes::reserve(&plan, resources);
+    let times = PhaseTimes::reserve(&plan, nodes, &runs, resources);
     let passes = FramePasses::new(resources, &plan)?;
+    let view = passes.view();
+    let record = |phase, nodes: &mut FrameNodes, encoder: &mut wgpu::CommandEncoder| {
+        record_nodes(phase, (nodes, &runs, &times.nodes), view, encoder)
+    };
     let mut encoder = passes.encoder("frame encoder");
     // Textures derived in the Prepare stage are built before every phase that may read them.
     passes.derived_textures(&mut encoder, times.derived.as_ref());
     if plan.prepass {
         passes.prepass(&mut encoder, times.prepass.as_ref());
     }
-    if plan.shadow_maps {
-        passes.shadow_maps(&mut encoder, times.shadows.as_ref());
-    }
-    if plan.shadow_work {
-        passes.shadow_work(&mut encoder);
-    }
+    record(RenderPhase::Prepass, nodes, &mut encoder)?;
+    passes.work(RenderPhase::Prepass, &mut encoder);
+    record(RenderPhase::Shadows, nodes, &mut encoder)?;
+    passes.work(RenderPhase::Shadows, &mut encoder);
     if plan.opaque_pass {
         passes.opaque(&mut encoder, times.opaque.as_ref());
     }
+    record(RenderPhase::Opaque, nodes, &mut encoder)?;
     passes.work(RenderPhase::Opaque, &mut encoder);
     if plan.resolve {
         passes.resolve(&mut encoder, times.resolve.as_ref());
     }
+    record(RenderPhase::Resolve, nodes, &mut encoder)?;
     passes.work(RenderPhase::Resolve, &mut encoder);
     if plan.transparent {
         passes.transparent(&mut encoder, times.transparent.as_ref());
     }
+    record(RenderPhase::Transparent, nodes, &mut encoder)?;
     passes.work(RenderPhase::Transparent, &mut encoder);
-    if plan.object_motion {
-        passes.object_motion(&mut encoder, times.object_motion.as_ref());
-    }
     passes.submit(encoder);
-    // Post-processing borrows the renderer mutably (its bind group follows the target).
-    post_process(
-        resources,
-        &plan,
-        PostTimes {
-            taa: times.taa.as_ref(),
-            post: times.post.as_ref(),
-            post_filter: times.post_filter.as_ref(),
-        },
-    )
+    post_chain(resources, nodes, &runs, times.nodes)
 }
 
-/// What this frame runs, decided once from the camera, the path and what the materials queued.
+/// Which of `nodes` have work this frame, in their order.
+fn running_nodes(resources: &Resources, nodes: &FrameNodes) -> Result<Vec<bool>, RenderError> {
+    let view = FrameView {
+        resources,
+        gpu: resources.require::<GpuContext>()?,
+        target: resources.require::<RenderTarget>()?,
+        has_camera: resources.require::<ExtractedFrame>()?.has_camera,
+    };
+    Ok(nodes.iter().map(|node| node.work.runs(view)).collect())
+}
+
+/// Prepares the nodes that run, adding what they upload to [`Renderer::last_upload`].
+fn prepare_nodes(
+    resources: &mut Resources,
+    nodes: &mut FrameNodes,
+    runs: &[bool],
+) -> Result<(), RenderError> {
+    let hdr_input = post_chain::hdr_input(
+        nodes
+            .iter()
+            .zip(runs)
+            .filter(|(_, runs)| **runs)
+            .filter_map(|(node, _)| node.work.post_effect()),
+    );
+    let mut uploaded = 0;
+    for (node, _) in nodes.iter_mut().zip(runs).filter(|(_, runs)| **runs) {
+        uploaded += match &mut node.work {
+            NodeWork::Frame(work) => work.prepare(resources)?,
+            NodeWork::Post(effect) => effect.prepare(resources, hdr_input)?,
+        };
+    }
+    resources
+        .require_mut::<Renderer>()?
+        .last_upload
+        .uniform_bytes += uploaded;
+    Ok(())
+}
+
+/// Records the nodes of `phase` that run, each with its timestamps.
+fn record_nodes(
+    phase: RenderPhase,
+    (nodes, runs, times): (&mut FrameNodes, &[bool], &[Option<PassTimestamps>]),
+    view: FrameView<'_>,
+    encoder: &mut wgpu::CommandEncoder,
+) -> Result<(), RenderError> {
+    for ((node, runs), time) in nodes.iter_mut().zip(runs).zip(times) {
+        if let (true, true, NodeWork::Frame(work)) =
+            (node.place.phase == phase, *runs, &mut node.work)
+        {
+            work.record(view, encoder, time.as_ref())?;
+        }
+    }
+    Ok(())
+}
+
+/// The post chain and the materials' work of the post phase, in a submission after the
+/// frame's.
+fn post_chain(
+    resources: &mut Resources,
+    nodes: &mut FrameNodes,
+    runs: &[bool],
+    times: Vec<Option<PassTimestamps>>,
+) -> Result<(), RenderError> {
+    let renderer = resources.require_mut::<Renderer>()?;
+    renderer.assets.derived_builds_submitted();
+    let mut images = std::mem::take(&mut renderer.post_images);
+    let result = (|| {
+        let view = FrameView {
+            resources,
+            gpu: resources.require::<GpuContext>()?,
+            target: resources.require::<RenderTarget>()?,
+            has_camera: resources.require::<ExtractedFrame>()?.has_camera,
+        };
+        let mut links: Vec<ChainLink<'_>> = nodes
+            .iter_mut()
+            .zip(runs)
+            .zip(times)
+            .filter(|((_, runs), _)| **runs)
+            .filter_map(|((node, _), time)| {
+                let name = node.place.name;
+                match &mut node.work {
+                    NodeWork::Post(effect) => Some(ChainLink {
+                        name,
+                        effect: effect.as_mut(),
+                        time,
+                    }),
+                    NodeWork::Frame(_) => None,
+                }
+            })
+            .collect();
+        links.sort_by_key(|link| post_chain::stage_rank(link.effect.stage()));
+        let mut encoder = view
+            .gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("post-process encoder"),
+            });
+        post_chain::record_chain(&mut images, view, links, &mut encoder)?;
+        if let Some(phases) = resources.get::<RenderPhases>() {
+            for work in phases.work(RenderPhase::PostProcess) {
+                work(resources, &mut encoder);
+            }
+        }
+        view.gpu.queue.submit([encoder.finish()]);
+        Ok(())
+    })();
+    resources.require_mut::<Renderer>()?.post_images = images;
+    result
+}
+
+/// What this frame runs of the core's own passes, decided once from the camera, the path and
+/// what the materials queued.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct FramePlan {
     /// A camera sees the frame (without one, nothing is drawn; the target is still cleared).
@@ -138,13 +245,11 @@ pub(super) struct FramePlan {
     pub deferred: bool,
     /// The depth prepass (the visibility pass, deferred) runs.
     pub prepass: bool,
-    /// Shadow maps are drawn.
-    pub shadow_maps: bool,
-    /// Materials' own work of the shadows phase runs.
-    pub shadow_work: bool,
     /// The opaque render pass runs: a deferred frame whose opaque phase draws nothing writes
     /// the background from compute instead of clearing the scene in an empty render pass.
     pub opaque_pass: bool,
+    /// The opaque pass keeps the depth it writes: a later pass reads it.
+    pub keep_depth: bool,
     /// The deferred compute resolve runs.
     pub resolve: bool,
     /// The resolve also writes the background.
@@ -153,27 +258,18 @@ pub(super) struct FramePlan {
     pub transparent: bool,
     /// Textures derived from images are built this frame.
     pub derived_textures: bool,
-    /// Temporal anti-aliasing runs before tonemapping.
-    pub taa: bool,
-    /// TAA's object motion pass runs (a draw moved since the last frame).
-    pub object_motion: bool,
-    /// The post filter runs after tonemapping.
-    pub post_filter: bool,
 }
 
 impl FramePlan {
-    fn new(resources: &Resources) -> Result<Self, AppError> {
+    /// The plan of this frame; `nodes_read_depth`: a feature node that runs reads the scene's
+    /// depth.
+    fn new(resources: &Resources, nodes_read_depth: bool) -> Result<Self, AppError> {
         let extracted = resources.require::<ExtractedFrame>()?;
         let renderer = resources.require::<Renderer>()?;
         let has_camera = extracted.has_camera;
         let phases = resources.get::<RenderPhases>();
         let has =
             |phase: DrawPhase| has_camera && phases.is_some_and(|p| p.has_draws(phase, resources));
-        let has_work = |phase: RenderPhase| {
-            has_camera && phases.is_some_and(|p| p.work(phase).next().is_some())
-        };
-        let shadow_maps = !extracted.shadow_views.is_empty()
-            && phases.is_some_and(|p| p.shadow_draws().next().is_some());
         let prepass = renderer.depth_prepass
             && (has(DrawPhase::Prepass)
                 || (has_camera
@@ -183,55 +279,57 @@ impl FramePlan {
             && has_camera
             && phases.is_some_and(|p| p.has_resolves(resources));
         let background_in_compute = resolve && !has(DrawPhase::Opaque);
-        let anti_aliasing = extracted.anti_aliasing;
-        let taa = has_camera && extracted.temporal.is_some();
+        let transparent =
+            has(DrawPhase::Transparent) || (has_camera && !renderer.transparent.is_empty());
         Ok(Self {
-            taa,
-            object_motion: taa && renderer.object_motions.any() && has(DrawPhase::Motion),
-            post_filter: anti_aliasing == super::AntiAliasing::Fxaa,
             has_camera,
             deferred: renderer.deferred,
             prepass,
-            shadow_maps,
-            shadow_work: shadow_maps || has_work(RenderPhase::Shadows),
             opaque_pass: !background_in_compute,
+            keep_depth: transparent || nodes_read_depth,
             resolve,
             background_in_compute,
-            transparent: has(DrawPhase::Transparent)
-                || (has_camera && !renderer.transparent.is_empty()),
+            transparent,
             derived_textures: !renderer.assets.pending_derived_builds().is_empty(),
         })
     }
 }
 
-/// The timestamps each phase writes, reserved before recording (the timer is borrowed
-/// mutably).
+/// The timestamps each phase and node writes, reserved before recording (the timer is
+/// borrowed mutably).
 struct PhaseTimes {
     prepass: Option<PassTimestamps>,
-    shadows: Option<PassTimestamps>,
     opaque: Option<PassTimestamps>,
     resolve: Option<PassTimestamps>,
     transparent: Option<PassTimestamps>,
-    object_motion: Option<PassTimestamps>,
-    taa: Option<PassTimestamps>,
-    post: Option<PassTimestamps>,
-    post_filter: Option<PassTimestamps>,
+    /// Each node's, in the nodes' order (`None` for those that do not run).
+    nodes: Vec<Option<PassTimestamps>>,
     derived: Option<PassTimestamps>,
 }
 
 impl PhaseTimes {
-    fn reserve(plan: &FramePlan, resources: &mut Resources) -> Self {
+    fn reserve(
+        plan: &FramePlan,
+        nodes: &FrameNodes,
+        runs: &[bool],
+        resources: &mut Resources,
+    ) -> Self {
         let mut time = |run: bool, name: &str| run.then(|| time_pass(resources, name)).flatten();
+        let prepass = time(plan.prepass, RenderPhase::Prepass.name());
+        let opaque = time(plan.opaque_pass, RenderPhase::Opaque.name());
+        let resolve = time(plan.resolve, RenderPhase::Resolve.name());
+        let transparent = time(plan.transparent, RenderPhase::Transparent.name());
+        let nodes = nodes
+            .iter()
+            .zip(runs)
+            .map(|(node, runs)| time(*runs, node.place.name))
+            .collect();
         Self {
-            prepass: time(plan.prepass, RenderPhase::Prepass.name()),
-            shadows: time(plan.shadow_maps, RenderPhase::Shadows.name()),
-            opaque: time(plan.opaque_pass, RenderPhase::Opaque.name()),
-            resolve: time(plan.resolve, RenderPhase::Resolve.name()),
-            transparent: time(plan.transparent, RenderPhase::Transparent.name()),
-            object_motion: time(plan.object_motion, super::OBJECT_MOTION_PASS),
-            taa: time(plan.taa, super::TAA_PASS),
-            post: time(true, RenderPhase::PostProcess.name()),
-            post_filter: time(plan.post_filter, super::POST_FILTER_PASS),
+            prepass,
+            opaque,
+            resolve,
+            transparent,
+            nodes,
             // Reserved last: where a frame times more passes than the timer holds, the phases
             // keep theirs.
             derived: time(plan.derived_textures, DERIVED_TEXTURES_PASS),

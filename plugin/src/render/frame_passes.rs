@@ -1,10 +1,11 @@
-//! The passes of a frame, one function per phase, recorded into the frame's encoder by
-//! [`super::render_frame`] as its [`FramePlan`] says; post-processing in its own submission.
+//! The core's passes of a frame, one function per phase, recorded into the frame's encoder by
+//! [`super::render_frame`] as its [`FramePlan`] says.
 
 use super::frame::FramePlan;
+use super::frame_nodes::FrameView;
 use super::{
-    DrawPhase, ExtractedFrame, FxaaPass, GpuContext, PassTimestamps, PostRouting, RenderPhase,
-    RenderPhases, RenderTarget, Renderer, TaaInputs, TaaPass, TaaUniform, clearing_attachment,
+    DrawPhase, ExtractedFrame, GpuContext, PassTimestamps, RenderPhase, RenderPhases, RenderTarget,
+    Renderer, clearing_attachment,
 };
 use crate::{AppError, Resources};
 
@@ -30,6 +31,16 @@ impl<'a> FramePasses<'a> {
             renderer: resources.require::<Renderer>()?,
             phases: resources.get::<RenderPhases>(),
         })
+    }
+
+    /// What the frame's nodes read of it.
+    pub fn view(&self) -> FrameView<'a> {
+        FrameView {
+            resources: self.resources,
+            gpu: self.gpu,
+            target: self.target,
+            has_camera: self.plan.has_camera,
+        }
     }
 
     /// A command encoder on the frame's device.
@@ -109,51 +120,6 @@ impl<'a> FramePasses<'a> {
         self.draw_phase(DrawPhase::Prepass, &mut pass);
     }
 
-    /// One pass per shadow map, each drawing every shadow caster from its light.
-    pub fn shadow_maps(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
-        let Some(phases) = self.phases else {
-            return;
-        };
-        let shadow_maps = &self.renderer.shadow_maps;
-        let layer_size = shadow_maps.layer_size();
-        let count = self.extracted.shadow_views.len();
-        for (index, plan) in self.extracted.shadow_views.iter().enumerate() {
-            let Some(layer) = shadow_maps.layer_view(plan.gpu.layer) else {
-                continue;
-            };
-            let (first, last) = (index == 0, index + 1 == count);
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("shadow map"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: layer,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                // The phase's span: the first map's pass begins it, the last one ends it.
-                timestamp_writes: time
-                    .filter(|_| first || last)
-                    .map(|time| time.render_part(first, last)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            // A smaller map draws into a corner of its layer.
-            let size = plan.map_size.min(layer_size) as f32;
-            pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-            for draw in phases.shadow_draws() {
-                draw(self.resources, &mut pass, 1 + index as u32);
-            }
-        }
-    }
-
-    /// The materials' own work of the shadows phase.
-    pub fn shadow_work(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.work(RenderPhase::Shadows, encoder);
-    }
-
     /// The encoder work plugins added to `phase`, after its pass (with a camera).
     pub fn work(&self, phase: RenderPhase, encoder: &mut wgpu::CommandEncoder) {
         if let (true, Some(phases)) = (self.plan.has_camera, self.phases) {
@@ -169,8 +135,7 @@ impl<'a> FramePasses<'a> {
         let [r, g, b, a] = clear_value(self.extracted.clear_color).map(f64::from);
         let depth_ops = (!self.plan.prepass).then_some(wgpu::Operations {
             load: wgpu::LoadOp::Clear(1.0),
-            // TAA reprojects through the depth.
-            store: if self.plan.transparent || self.plan.taa {
+            store: if self.plan.keep_depth {
                 wgpu::StoreOp::Store
             } else {
                 wgpu::StoreOp::Discard
@@ -235,111 +200,6 @@ impl<'a> FramePasses<'a> {
         }
         self.draw_phase(DrawPhase::Transparent, &mut pass);
     }
-
-    /// TAA's object motion pass: every moving draw writes its motion's number where it shows
-    /// (tested against the finished depth, never writing it); elsewhere the numbers are 0.
-    pub fn object_motion(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
-        let Some(ids) = self.renderer.object_motions.ids_view() else {
-            return;
-        };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("object motion"),
-            color_attachments: &[Some(clearing_attachment(ids, wgpu::Color::TRANSPARENT))],
-            depth_stencil_attachment: self.depth_attachment(None),
-            timestamp_writes: time.map(PassTimestamps::render),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        self.draw_phase(DrawPhase::Motion, &mut pass);
-    }
-}
-
-/// The timestamps of the post phase's passes.
-pub(super) struct PostTimes<'a> {
-    pub taa: Option<&'a PassTimestamps>,
-    pub post: Option<&'a PassTimestamps>,
-    pub post_filter: Option<&'a PassTimestamps>,
-}
-
-/// Post-processing and the materials' work of that phase, in a submission after the frame's:
-/// TAA on the HDR scene, tonemapping, the post filter, as `plan` says.
-pub(super) fn post_process(
-    resources: &mut Resources,
-    plan: &FramePlan,
-    times: PostTimes<'_>,
-) -> Result<(), AppError> {
-    resources.require_scope(|resources, renderer: &mut Renderer| {
-        renderer.assets.derived_builds_submitted();
-        let gpu = resources.require::<GpuContext>()?;
-        let target = resources.require::<RenderTarget>()?;
-        let extracted = resources.require::<ExtractedFrame>()?;
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("post-process encoder"),
-            });
-        let colour = match extracted.temporal.filter(|_| plan.taa) {
-            Some(frame) => {
-                let jittered = glam::Mat4::from_cols_array_2d(&extracted.frame.view_projection);
-                renderer
-                    .taa
-                    .get_or_insert_with(|| TaaPass::new(gpu))
-                    .record(
-                        gpu,
-                        target,
-                        TaaInputs {
-                            uniform: TaaUniform::new(
-                                &frame,
-                                jittered,
-                                extracted.tonemapping,
-                                plan.object_motion,
-                            ),
-                            motions: &renderer.object_motions,
-                        },
-                        &mut encoder,
-                        times.taa,
-                    )
-            }
-            None => None,
-        };
-        let format = target.target_format();
-        let filter = if plan.post_filter {
-            if !renderer
-                .fxaa
-                .as_ref()
-                .is_some_and(|fxaa| fxaa.is_for(format))
-            {
-                renderer.fxaa = Some(FxaaPass::new(gpu, format, renderer.post.stage()));
-            }
-            renderer.fxaa.as_mut()
-        } else {
-            None
-        };
-        let (output, filter) = match filter {
-            Some(fxaa) => {
-                let (id, view) = fxaa.tonemapped_view(gpu, target);
-                (Some((id, view.clone())), Some(&*fxaa))
-            }
-            None => (None, None),
-        };
-        let routing = PostRouting {
-            colour,
-            output: output.as_ref().map(|(id, view)| (*id, view)),
-        };
-        renderer
-            .post
-            .record(gpu, target, routing, &mut encoder, times.post);
-        if let Some(fxaa) = filter {
-            fxaa.record(target, &mut encoder, times.post_filter);
-        }
-        if let Some(phases) = resources.get::<RenderPhases>() {
-            for work in phases.work(RenderPhase::PostProcess) {
-                work(resources, &mut encoder);
-            }
-        }
-        gpu.queue.submit([encoder.finish()]);
-        Ok(())
-    })
 }
 
 /// What the scene is cleared to: the clear colour as set, its negative alpha marking it

@@ -234,7 +234,7 @@ pub(crate) fn mesh_pipeline(
     };
     let color_targets = [Some(wgpu::ColorTargetState {
         format: match pass {
-            MeshPass::Motion => super::object_motion::MOTION_ID_FORMAT,
+            MeshPass::Motion => super::MOTION_ID_FORMAT,
             _ => color_format,
         },
         blend: (pass == MeshPass::Transparent)

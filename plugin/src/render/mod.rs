@@ -6,7 +6,7 @@
 //! [`prepare_frame`] and [`render_frame`] (frame.rs) upload it and run the phases, one function
 //! each (frame_passes.rs); `capture.rs` reads images back, `present.rs` shows them in a window.
 
-pub(crate) mod anti_aliasing;
+pub mod anti_aliasing;
 mod capture;
 mod context;
 mod deferred_background;
@@ -17,53 +17,42 @@ mod extract;
 mod fragment_counter;
 mod frame;
 pub mod frame_group;
+mod frame_nodes;
 mod frame_passes;
 mod frame_uniform;
-mod fxaa;
 mod gpu_assets;
 mod gpu_timing;
 pub(crate) mod gpu_types;
 pub(crate) mod layout;
 mod lowest_mip;
 pub(crate) mod object_buffer;
-pub(crate) mod object_motion;
-mod phases;
+pub(crate) mod phases;
 mod pipeline_compilation;
 mod plugin;
-mod post_process;
+mod post_chain;
 mod present;
 mod render_path;
 mod renderer;
 pub mod shaders;
 mod shadow_maps;
 mod shadow_views;
+pub mod shadows;
 mod sorted_draws;
-mod taa;
+mod standard_features;
 mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
 pub(crate) mod texture_bind_groups;
+pub mod tonemapping;
 pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod visibility;
 
 pub use anti_aliasing::{
-    AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
-    TemporalLimit, TemporalView, jitter_offset, set_camera_anti_aliasing,
+    AntiAliasing, AntiAliasingPlugin, FXAA_SHADERS, HISTORY_FORMAT, MOTION_ID_FORMAT,
+    OBJECT_MOTION_PASS, ObjectMotion, POST_FILTER_MIP_BIAS, POST_FILTER_PASS, TAA_PASS, TAA_SHADER,
+    TaaUniform, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit, TemporalView,
+    jitter_offset, set_camera_anti_aliasing,
 };
-pub use fxaa::FXAA_SHADERS;
-pub(crate) use fxaa::FxaaPass;
-pub use object_motion::{MOTION_ID_FORMAT, ObjectMotion};
-pub(crate) use taa::TaaInputs;
-pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
-
-/// The name the TAA pass is timed under in [`GpuTimings`] (in the post phase, before
-/// tonemapping).
-pub const TAA_PASS: &str = "taa";
-/// The name TAA's object motion pass is timed under in [`GpuTimings`] (frames in which a draw
-/// moved).
-pub const OBJECT_MOTION_PASS: &str = "object_motion";
-/// The name the post filter (FXAA) is timed under in [`GpuTimings`] (after tonemapping).
-pub const POST_FILTER_PASS: &str = "post_filter";
 pub use capture::{
     CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture, read_texture_level,
 };
@@ -80,6 +69,7 @@ pub use error::RenderError;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use fragment_counter::FragmentInvocationCounter;
 pub use frame::{prepare_frame, render_frame};
+pub use frame_nodes::{FrameNode, FrameNodes, FrameView, NodeOrderError, NodePlace};
 pub(crate) use frame_uniform::FrameUniformBuffer;
 pub(crate) use gpu_assets::GpuAssets;
 pub use gpu_assets::{DefaultTexture, TextureFacts, UploadStats};
@@ -95,9 +85,9 @@ pub use phases::{
 };
 pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use plugin::{PostProcessPath, RenderPlugin};
-pub(crate) use post_process::POST_SHADERS;
-pub(crate) use post_process::PostRouting;
-pub use post_process::{PostProcess, PostSettings};
+pub use post_chain::{
+    FullScreenStage, HdrInput, PostChainError, PostEffect, PostImage, PostIo, PostStage,
+};
 pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
@@ -105,11 +95,15 @@ pub use renderer::Renderer;
 pub(crate) use renderer::{BoundResources, PhaseBindings, phase_bindings};
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
+pub use shadows::ShadowsPlugin;
 pub(crate) use sorted_draws::SortedDraws;
-pub(crate) use taa::TaaPass;
+pub use standard_features::{RenderFeature, RenderFeatures};
+pub(crate) use target::plain_texture;
 pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
+pub(crate) use tonemapping::POST_SHADERS;
+pub use tonemapping::{PostSettings, TonemappingPlugin};
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub use visibility::VISIBILITY_CLEAR_SHADER;
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};

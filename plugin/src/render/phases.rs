@@ -53,7 +53,7 @@ impl RenderPhase {
     ];
 
     /// The name the phase is timed under in [`super::GpuTimings`].
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             RenderPhase::Prepass => "prepass",
             RenderPhase::Shadows => "shadows",

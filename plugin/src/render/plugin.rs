@@ -1,11 +1,12 @@
 //! [`RenderPlugin`]: the renderer's settings, the stores and systems it adds, and the GPU
 //! state it makes when the app finishes its plugins.
 
+use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
-    DrawPhase, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodCache, PostProcess, RenderPath,
-    RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat, TimingMode,
-    UploadStats, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame,
-    render_frame, resolve_gpu_timings, set_gpu_timing, target,
+    DrawPhase, FrameNodes, FrameUniformBuffer, FullScreenStage, GpuAssets, GpuContext,
+    MeshLodCache, RenderPath, RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws,
+    TargetFormat, TimingMode, UploadStats, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds,
+    extract_frame, prepare_frame, render_frame, resolve_gpu_timings, set_gpu_timing, target,
 };
 use crate::{
     AmbientLight, App, Assets, BoxedError, Image, Mesh, Plugin, Stage, TransformPlugin,
@@ -35,6 +36,8 @@ pub struct RenderPlugin {
     pub post_process: PostProcessPath,
     /// Where opaque surfaces are shaded: forward, deferred, or the faster on the adapter.
     pub path: RenderPath,
+    /// The standard features added with the core (all by default).
+    pub features: RenderFeatures,
 }
 
 /// Where the post-processing phase runs.
@@ -61,6 +64,15 @@ impl RenderPlugin {
             depth_prepass: true,
             post_process: PostProcessPath::Fastest,
             path: RenderPath::Auto,
+            features: RenderFeatures::default(),
+        }
+    }
+
+    /// The same plugin without the standard `feature` (its plugin is not added).
+    pub fn without(self, feature: RenderFeature) -> Self {
+        Self {
+            features: self.features.without(feature),
+            ..self
         }
     }
 
@@ -111,6 +123,7 @@ impl Plugin for RenderPlugin {
         app.resources.get_or_default::<Assets<Image>>();
         app.resources.get_or_default::<AmbientLight>();
         app.resources.get_or_default::<RenderPhases>();
+        app.resources.get_or_default::<FrameNodes>();
         app.resources.get_or_default::<MeshLodCache>();
         app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
             .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
@@ -118,6 +131,7 @@ impl Plugin for RenderPlugin {
             .add_system(Stage::Prepare, prepare_frame)
             .add_system(Stage::Render, render_frame)
             .add_system(Stage::Render, resolve_gpu_timings);
+        self.features.add_to(app);
     }
 
     fn finish(&self, app: &mut App) -> Result<(), BoxedError> {
@@ -162,14 +176,27 @@ impl Plugin for RenderPlugin {
             prepass_order: SortedDraws::new(DrawPhase::Prepass),
             transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,
-            post: PostProcess::new(gpu, self.format, self.post_process),
-            object_motions: super::object_motion::ObjectMotions::new(gpu),
-            taa: None,
-            fxaa: None,
+            full_screen_stage: full_screen_stage(gpu, self.format, self.post_process),
+            post_images: Default::default(),
             last_upload: UploadStats::default(),
         };
         app.insert_resource(target).insert_resource(renderer);
         set_gpu_timing(&mut app.resources, self.gpu_timing);
         Ok(())
+    }
+}
+
+/// Where full-screen passes run for display targets of `format`: compute where the adapter
+/// can write that format from compute, unless `path` asks for the full-screen triangle.
+fn full_screen_stage(
+    gpu: &GpuContext,
+    format: TargetFormat,
+    path: PostProcessPath,
+) -> FullScreenStage {
+    match path {
+        PostProcessPath::Fastest if gpu.can_store(format.texture_format()) => {
+            FullScreenStage::Compute
+        }
+        _ => FullScreenStage::Fragment,
     }
 }

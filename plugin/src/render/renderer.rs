@@ -1,15 +1,17 @@
 //! [`Renderer`]: the renderer's GPU state between frames (uploaded assets, the frame uniform,
-//! shadow maps, the deferred path's buffers, post-processing), the choice of path, and what a
+//! shadow maps, the deferred path's buffers, the post chain's images), the choice of path, and what a
 //! material's group 0 binds of it ([`PhaseBindings`]).
 
+use super::post_chain::PostImages;
 use super::{
-    DeferredBackground, DeferredUnavailable, FrameUniformBuffer, GpuAssets, GpuContext,
-    PostProcess, RenderPath, RenderTarget, ShadowMaps, SortedDraws, UploadStats, VisibilityBuffer,
+    DeferredBackground, DeferredUnavailable, FrameUniformBuffer, FullScreenStage, GpuAssets,
+    GpuContext, RenderPath, RenderTarget, ShadowMaps, SortedDraws, UploadStats, VisibilityBuffer,
     VisibilityIds, render_path,
 };
 use crate::{Image, Mesh};
 
-/// The renderer's GPU state: uploaded assets, the frame uniform, post-processing. A resource.
+/// The renderer's GPU state: uploaded assets, the frame uniform, the post chain's images. A
+/// resource.
 #[derive(Debug)]
 pub struct Renderer {
     /// GPU copies of meshes and images.
@@ -45,14 +47,10 @@ pub struct Renderer {
     pub(crate) transparent: SortedDraws,
     /// No frame has chosen its path yet (the first choice is always logged).
     pub(super) first_frame: bool,
-    /// Tonemapping (the lights carry the exposure).
-    pub(super) post: PostProcess,
-    /// This frame's moving draws, for TAA.
-    pub(crate) object_motions: super::object_motion::ObjectMotions,
-    /// Temporal anti-aliasing, once a frame has asked for it.
-    pub(super) taa: Option<super::TaaPass>,
-    /// The post filter, once a frame has asked for it.
-    pub(super) fxaa: Option<super::FxaaPass>,
+    /// Where full-screen passes run on this adapter (post effects follow it).
+    pub(super) full_screen_stage: FullScreenStage,
+    /// The images between the post chain's effects.
+    pub(super) post_images: PostImages,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
 }
@@ -65,7 +63,13 @@ impl Renderer {
 
     /// Whether post-processing runs as a compute pass (else as a full-screen triangle).
     pub fn post_process_is_compute(&self) -> bool {
-        self.post.is_compute()
+        self.full_screen_stage == FullScreenStage::Compute
+    }
+
+    /// Where full-screen passes run on this adapter: compute where it can write the display
+    /// format from compute (and the render plugin allows it), else a full-screen triangle.
+    pub fn full_screen_stage(&self) -> FullScreenStage {
+        self.full_screen_stage
     }
 
     /// The path asked for (see [`Renderer::runs_deferred`] for the one that runs).

@@ -1,19 +1,21 @@
 //! The post filter pass (fxaa.wgsl): FXAA on the tonemapped image, for frames that ask for
-//! anti-aliasing without a history. Tonemapping then writes into a texture of the display's
-//! format that this pass reads, and this pass writes the display target: in compute where the
-//! adapter can store that format, else as a full-screen triangle (as post-processing does). The
+//! anti-aliasing without a history: a display effect of the post chain, in compute where the
+//! adapter can store the display format, else as a full-screen triangle. The
 //! bilinear reads of the edge search go through a sampler on an 8-bit image and are four loads
 //! on a float one (not filterable); the 3 × 3 neighbourhood is loaded.
 
-use super::post_process::FullScreenStage;
-use super::shaders::{self, ComposedShader, WgslFile};
-use super::{GpuContext, PassTimestamps, RenderTarget, TargetFormat, layout, post_process};
+use crate::render::shaders::{self, ComposedShader, WgslFile};
+use crate::render::tonemapping::{rgba8_output, rgba32f_output};
+use crate::render::{
+    FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat,
+    clearing_attachment, layout,
+};
 
 /// The pass's WGSL file.
-pub const FXAA_ENTRY: WgslFile = crate::wgsl_file!("render/fxaa.wgsl");
+pub const FXAA_ENTRY: WgslFile = crate::wgsl_file!("render/anti_aliasing/fxaa.wgsl");
 
 /// The compute and fragment entry points.
-pub const FXAA_ENTRY_POINTS: WgslFile = crate::wgsl_file!("render/fxaa_entry.wgsl");
+pub const FXAA_ENTRY_POINTS: WgslFile = crate::wgsl_file!("render/anti_aliasing/fxaa_entry.wgsl");
 
 fn srgb_input() -> String {
     "const LINEAR_INPUT: bool = false;\n".to_owned()
@@ -28,22 +30,23 @@ fn no_output() -> String {
 }
 
 /// FXAA's bilinear read with the sampler (8-bit displays).
-pub const FXAA_FILTERED_READ: WgslFile = crate::wgsl_file!("render/fxaa_filtered.wgsl");
+pub const FXAA_FILTERED_READ: WgslFile =
+    crate::wgsl_file!("render/anti_aliasing/fxaa_filtered.wgsl");
 
 /// FXAA's bilinear read from four loads (float displays, which do not filter).
-pub const FXAA_LOADS_READ: WgslFile = crate::wgsl_file!("render/fxaa_loads.wgsl");
+pub const FXAA_LOADS_READ: WgslFile = crate::wgsl_file!("render/anti_aliasing/fxaa_loads.wgsl");
 
 /// FXAA in compute, writing an 8-bit display target.
 pub const FXAA_COMPUTE_RGBA8: ComposedShader = ComposedShader {
     name: "fxaa.wgsl (rgba8unorm)",
-    constants: &[post_process::rgba8_output, srgb_input],
+    constants: &[rgba8_output, srgb_input],
     files: &[FXAA_ENTRY, FXAA_FILTERED_READ, FXAA_ENTRY_POINTS],
 };
 
 /// FXAA in compute, writing a float display target.
 pub const FXAA_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
     name: "fxaa.wgsl (rgba32float)",
-    constants: &[post_process::rgba32f_output, linear_input],
+    constants: &[rgba32f_output, linear_input],
     files: &[FXAA_ENTRY, FXAA_LOADS_READ, FXAA_ENTRY_POINTS],
 };
 
@@ -72,7 +75,8 @@ pub const FXAA_FRAGMENT_LINEAR: ComposedShader = ComposedShader {
 };
 
 /// The full-screen triangle's entry point.
-pub const FXAA_FRAGMENT_ENTRY: WgslFile = crate::wgsl_file!("render/fxaa_fragment.wgsl");
+pub const FXAA_FRAGMENT_ENTRY: WgslFile =
+    crate::wgsl_file!("render/anti_aliasing/fxaa_fragment.wgsl");
 
 /// Every FXAA shader, for validation.
 pub const FXAA_SHADERS: [ComposedShader; 4] = [
@@ -88,16 +92,8 @@ enum FxaaPipeline {
     Fragment(wgpu::RenderPipeline),
 }
 
-/// The tonemapped image of one target, which this pass reads, and the bind group for it.
-#[derive(Debug)]
-struct TonemappedTexture {
-    target: u64,
-    view: wgpu::TextureView,
-    bind_group: wgpu::BindGroup,
-}
-
-/// The FXAA pipeline and the tonemapped texture of the current target. Made on the first
-/// frame that asks for it; a part of [`super::Renderer`].
+/// The FXAA pipeline and the bind groups of the images it last read and wrote. Made on the
+/// first frame that asks for it.
 #[derive(Debug)]
 pub(crate) struct FxaaPass {
     pipeline: FxaaPipeline,
@@ -105,7 +101,9 @@ pub(crate) struct FxaaPass {
     /// The bilinear sampler of an 8-bit display's image (a float one is read with loads).
     sampler: Option<wgpu::Sampler>,
     format: TargetFormat,
-    tonemapped: Option<TonemappedTexture>,
+    /// Bind groups by the ids of the image read and the image written: the chain's images
+    /// change only with the target.
+    bind_groups: Vec<((u64, u64), wgpu::BindGroup)>,
 }
 
 /// Whether FXAA reads images of `format` through a filtering sampler: all but float ones.
@@ -187,7 +185,7 @@ impl FxaaPass {
             layout: bind_layout,
             sampler,
             format,
-            tonemapped: None,
+            bind_groups: Vec::new(),
         }
     }
 
@@ -196,42 +194,57 @@ impl FxaaPass {
         self.format == format
     }
 
-    /// The texture tonemapping writes for this pass on `target` (its id, for bind groups, and
-    /// its view), made unless the current one is for `target`.
-    pub(crate) fn tonemapped_view(
+    /// The bind group reading `input` and, in compute, writing `output`, made unless the pass
+    /// has one.
+    fn bind_group(
+        &mut self,
+        gpu: &GpuContext,
+        input: &PostImage,
+        output: &PostImage,
+    ) -> wgpu::BindGroup {
+        let key = (input.id, output.id);
+        if let Some((_, group)) = self.bind_groups.iter().find(|(k, _)| *k == key) {
+            return group.clone();
+        }
+        let mut entries = vec![wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(&input.view),
+        }];
+        if let Some(sampler) = &self.sampler {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            });
+        }
+        if matches!(self.pipeline, FxaaPipeline::Compute(_)) {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&output.view),
+            });
+        }
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("fxaa bind group"),
+            layout: &self.layout,
+            entries: &entries,
+        });
+        // Groups of earlier targets' images are stale; a target's chain has few.
+        if self.bind_groups.len() >= 4 {
+            self.bind_groups.remove(0);
+        }
+        self.bind_groups.push((key, group.clone()));
+        group
+    }
+
+    /// Records the pass: the tonemapped `input`, the size of `target`, into `output`.
+    pub(crate) fn record(
         &mut self,
         gpu: &GpuContext,
         target: &RenderTarget,
-    ) -> (u64, &wgpu::TextureView) {
-        if self
-            .tonemapped
-            .as_ref()
-            .is_some_and(|texture| texture.target != target.id())
-        {
-            self.tonemapped = None;
-        }
-        let compute = matches!(self.pipeline, FxaaPipeline::Compute(_));
-        let (layout, sampler) = (&self.layout, self.sampler.as_ref());
-        let texture = self
-            .tonemapped
-            .get_or_insert_with(|| tonemapped_texture(gpu, target, (layout, sampler), compute));
-        (texture.target, &texture.view)
-    }
-
-    /// Records the pass: the tonemapped image of `target` into its display target.
-    pub(crate) fn record(
-        &self,
-        target: &RenderTarget,
+        (input, output): (&PostImage, &PostImage),
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&PassTimestamps>,
     ) {
-        let Some(texture) = self
-            .tonemapped
-            .as_ref()
-            .filter(|texture| texture.target == target.id())
-        else {
-            return;
-        };
+        let bind_group = self.bind_group(gpu, input, output);
         let (width, height) = target.size();
         match &self.pipeline {
             FxaaPipeline::Compute(pipeline) => {
@@ -240,14 +253,14 @@ impl FxaaPass {
                     timestamp_writes: timestamps.map(PassTimestamps::compute),
                 });
                 pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &texture.bind_group, &[]);
+                pass.set_bind_group(0, &bind_group, &[]);
                 pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
             }
             FxaaPipeline::Fragment(pipeline) => {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("fxaa pass"),
-                    color_attachments: &[Some(super::clearing_attachment(
-                        &target.color_view,
+                    color_attachments: &[Some(clearing_attachment(
+                        &output.view,
                         wgpu::Color::TRANSPARENT,
                     ))],
                     depth_stencil_attachment: None,
@@ -256,57 +269,9 @@ impl FxaaPass {
                     multiview_mask: None,
                 });
                 pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &texture.bind_group, &[]);
+                pass.set_bind_group(0, &bind_group, &[]);
                 pass.draw(0..3, 0..1);
             }
         }
-    }
-}
-
-/// The texture tonemapping writes for the pass on `target`, with the pass's bind group.
-fn tonemapped_texture(
-    gpu: &GpuContext,
-    target: &RenderTarget,
-    (layout, sampler): (&wgpu::BindGroupLayout, Option<&wgpu::Sampler>),
-    compute: bool,
-) -> TonemappedTexture {
-    let storage = if post_process::can_store(gpu, target.format()) {
-        wgpu::TextureUsages::STORAGE_BINDING
-    } else {
-        wgpu::TextureUsages::empty()
-    };
-    let texture = super::target::plain_texture(
-        gpu,
-        "tonemapped image (fxaa input)",
-        target.size(),
-        target.format(),
-        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT | storage,
-    );
-    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-    let mut entries = vec![wgpu::BindGroupEntry {
-        binding: 0,
-        resource: wgpu::BindingResource::TextureView(&view),
-    }];
-    if let Some(sampler) = sampler {
-        entries.push(wgpu::BindGroupEntry {
-            binding: 1,
-            resource: wgpu::BindingResource::Sampler(sampler),
-        });
-    }
-    if compute {
-        entries.push(wgpu::BindGroupEntry {
-            binding: 2,
-            resource: wgpu::BindingResource::TextureView(&target.color_view),
-        });
-    }
-    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("fxaa bind group"),
-        layout,
-        entries: &entries,
-    });
-    TonemappedTexture {
-        target: target.id(),
-        view,
-        bind_group,
     }
 }

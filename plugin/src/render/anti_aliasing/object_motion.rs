@@ -11,8 +11,8 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::object_buffer::ObjectBuffer;
-use super::{GpuContext, RenderTarget};
+use crate::render::object_buffer::ObjectBuffer;
+use crate::render::{GpuContext, RenderTarget};
 
 /// The format of the motion numbers: 0 for a pixel no moving draw shows, else its motion's
 /// number (its index in the frame's list of moving draws, plus one).
@@ -130,7 +130,7 @@ impl ObjectMotions {
 }
 
 fn motion_id_texture(gpu: &GpuContext, size: (u32, u32)) -> wgpu::TextureView {
-    super::target::plain_texture(
+    crate::render::plain_texture(
         gpu,
         "motion ids",
         size,

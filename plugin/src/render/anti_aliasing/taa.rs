@@ -4,16 +4,15 @@
 //! and a depth texture; what the pass does and when it resets is in anti_aliasing.rs.
 
 use bytemuck::{Pod, Zeroable};
-use std::sync::atomic::{AtomicU64, Ordering};
 
-use super::anti_aliasing::TemporalFrame;
 use super::object_motion::ObjectMotions;
-use super::shaders::{ComposedShader, WgslFile};
-use super::{GpuContext, PassTimestamps, RenderTarget, layout};
+use super::temporal::TemporalFrame;
+use crate::render::shaders::{ComposedShader, WgslFile};
+use crate::render::{GpuContext, PassTimestamps, PostImage, RenderTarget, layout};
 use crate::shader::Choice;
 
 /// The pass's WGSL file.
-pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/taa.wgsl");
+pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/anti_aliasing/taa.wgsl");
 
 /// The side of TAA's square workgroup in pixels (taa.wgsl's `GROUP`).
 const GROUP: u32 = 16;
@@ -22,7 +21,7 @@ const GROUP: u32 = 16;
 pub const TAA_SHADER: ComposedShader = ComposedShader {
     name: "taa.wgsl",
     constants: &[crate::Tonemapping::wgsl_constants],
-    files: &[super::post_process::TONEMAPPING, TAA_ENTRY],
+    files: &[crate::render::tonemapping::TONEMAPPING, TAA_ENTRY],
 };
 
 /// The history's format: filterable, storable, and wide enough for the pre-exposed scene (rgb)
@@ -128,15 +127,13 @@ pub(crate) struct TaaInputs<'a> {
     pub(crate) motions: &'a ObjectMotions,
 }
 
-/// Gives every pair of history textures its own id, so a bind group can tell it is for them.
-static NEXT_HISTORY_ID: AtomicU64 = AtomicU64::new(1);
-
 /// The two histories of one target (colour and depth each; the bind groups keep the depth
 /// textures), and the bind group that writes each.
 #[derive(Debug)]
 struct HistoryTextures {
     target: u64,
-    id: u64,
+    /// Each history's id as an image of the post chain.
+    ids: [u64; 2],
     views: [wgpu::TextureView; 2],
     /// `bind_groups[i]` reads history `1 - i` and writes history `i`.
     bind_groups: [wgpu::BindGroup; 2],
@@ -280,7 +277,7 @@ impl TaaPass {
             return false;
         }
         let view = |label, format| {
-            super::target::plain_texture(
+            crate::render::plain_texture(
                 gpu,
                 label,
                 target.size(),
@@ -341,7 +338,7 @@ impl TaaPass {
         let bind_groups = [bind_group(0), bind_group(1)];
         self.history = Some(HistoryTextures {
             target: target.id(),
-            id: NEXT_HISTORY_ID.fetch_add(1, Ordering::Relaxed),
+            ids: [PostImage::new_id(), PostImage::new_id()],
             views,
             bind_groups,
             written: 1,
@@ -349,8 +346,8 @@ impl TaaPass {
         true
     }
 
-    /// Records the pass for `target`; returns the history it writes, what tonemapping reads
-    /// (its id, for bind groups, and its view).
+    /// Records the pass for `target`; returns the history it writes, what the post chain reads
+    /// next.
     pub(crate) fn record(
         &mut self,
         gpu: &GpuContext,
@@ -361,7 +358,7 @@ impl TaaPass {
         }: TaaInputs<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&PassTimestamps>,
-    ) -> Option<(u64, &wgpu::TextureView)> {
+    ) -> Option<PostImage> {
         if self.follow(gpu, target) {
             uniform.accumulated = 0;
         }
@@ -382,7 +379,10 @@ impl TaaPass {
             pass.dispatch_workgroups(width.div_ceil(GROUP), height.div_ceil(GROUP), 1);
         }
         let written = history.written;
-        Some((history.id * 2 + written as u64, &history.views[written]))
+        Some(PostImage {
+            id: history.ids[written],
+            view: history.views[written].clone(),
+        })
     }
 }
 

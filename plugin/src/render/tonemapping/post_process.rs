@@ -8,25 +8,28 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::shaders::{self, ComposedShader, WgslFile};
-use super::{GpuContext, RenderTarget, TargetFormat};
 use crate::Tonemapping;
+use crate::render::shaders::{self, ComposedShader, WgslFile};
+use crate::render::{
+    FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat, layout,
+};
 use crate::shader::Choice;
 
 /// Shared post-processing functions (settings, tonemapping, sRGB encoding).
-pub const POST_PROCESS: WgslFile = crate::wgsl_file!("render/post_process.wgsl");
+pub const POST_PROCESS: WgslFile = crate::wgsl_file!("render/tonemapping/post_process.wgsl");
 /// The tonemapping operators.
-pub const TONEMAPPING: WgslFile = crate::wgsl_file!("render/tonemapping.wgsl");
+pub const TONEMAPPING: WgslFile = crate::wgsl_file!("render/tonemapping/tonemapping.wgsl");
 /// The compute entry point.
-pub const POST_COMPUTE_ENTRY: WgslFile = crate::wgsl_file!("render/post_compute.wgsl");
+pub const POST_COMPUTE_ENTRY: WgslFile = crate::wgsl_file!("render/tonemapping/post_compute.wgsl");
 /// The full-screen triangle fallback.
-pub const POST_FRAGMENT_ENTRY: WgslFile = crate::wgsl_file!("render/post_fragment.wgsl");
+pub const POST_FRAGMENT_ENTRY: WgslFile =
+    crate::wgsl_file!("render/tonemapping/post_fragment.wgsl");
 
-pub(super) fn rgba8_output() -> String {
+pub(crate) fn rgba8_output() -> String {
     "@group(0) @binding(2) var output: texture_storage_2d<rgba8unorm, write>;\n".to_owned()
 }
 
-pub(super) fn rgba32f_output() -> String {
+pub(crate) fn rgba32f_output() -> String {
     "@group(0) @binding(2) var output: texture_storage_2d<rgba32float, write>;\n".to_owned()
 }
 
@@ -93,61 +96,29 @@ enum PostPipeline {
     Fragment(wgpu::RenderPipeline),
 }
 
-/// The post-processing pass: pipeline, settings buffer, and the bind groups of the current
-/// target (by what they read and write). A resource of the render plugin.
+/// The tonemapping pass: pipeline, settings buffer, and the bind groups of the current target
+/// (by what they read and write).
 #[derive(Debug)]
 pub struct PostProcess {
     pipeline: PostPipeline,
     layout: wgpu::BindGroupLayout,
     settings: wgpu::Buffer,
     uploaded: Option<PostSettings>,
-    // Bind groups by what they bind: the target, the colour read (0: the scene; else TAA's
-    // history) and the image written (0: the display; else the post filter's input). A few
-    // at most: TAA's two histories take turns.
+    // Bind groups by what they bind: the target, the colour read (the scene, or an HDR
+    // effect's image) and the image written (the display, or the chain's image before a
+    // display effect). A few at most: TAA's two histories take turns.
     bind_groups: Vec<(BindingKey, wgpu::BindGroup)>,
+    format: TargetFormat,
 }
 
 /// What one bind group of the pass binds: (target id, colour source id, output id).
 type BindingKey = (u64, u64, u64);
 
-/// Where post-processing reads its colour and writes its image, other than the target's own
-/// scene and display textures (each with an id that changes when the texture does).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct PostRouting<'a> {
-    /// The colour to tonemap instead of the scene's (TAA's history); alpha stays the scene's.
-    pub colour: Option<(u64, &'a wgpu::TextureView)>,
-    /// The texture to write instead of the display (the post filter's input).
-    pub output: Option<(u64, &'a wgpu::TextureView)>,
-}
-
-/// Whether the adapter can write `format` from a compute shader.
-pub(super) fn can_store(gpu: &GpuContext, format: wgpu::TextureFormat) -> bool {
-    gpu.adapter
-        .get_texture_format_features(format)
-        .allowed_usages
-        .contains(wgpu::TextureUsages::STORAGE_BINDING)
-}
-
-/// Where a full-screen pass of the post phase runs on this adapter.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum FullScreenStage {
-    /// A compute pass, writing the display target as a storage texture.
-    Compute,
-    /// A full-screen triangle.
-    Fragment,
-}
-
 impl PostProcess {
-    /// The pass for display targets of `format`: compute when the adapter can store that
-    /// format, else the fragment fallback (which `path` may also ask for, for tests and
-    /// benchmarks).
-    pub fn new(gpu: &GpuContext, format: TargetFormat, path: super::PostProcessPath) -> Self {
+    /// The pass for display targets of `format`, run in `stage`.
+    pub fn new(gpu: &GpuContext, format: TargetFormat, stage: FullScreenStage) -> Self {
         let device = &gpu.device;
         let display = format.texture_format();
-        let stage = match path {
-            super::PostProcessPath::Fastest if can_store(gpu, display) => FullScreenStage::Compute,
-            _ => FullScreenStage::Fragment,
-        };
         let layout = bind_group_layout(device, display, stage);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("post-process pipeline layout"),
@@ -168,20 +139,17 @@ impl PostProcess {
             settings,
             uploaded: None,
             bind_groups: Vec::new(),
+            format,
         }
     }
 
-    /// Whether the pass runs as compute (else as a full-screen triangle).
-    pub fn is_compute(&self) -> bool {
-        self.stage() == FullScreenStage::Compute
+    /// Whether the pass was made for display targets of `format`.
+    pub(crate) fn is_for(&self, format: TargetFormat) -> bool {
+        self.format == format
     }
 
-    /// Where the pass runs; the post filter runs the same way.
-    pub(crate) fn stage(&self) -> FullScreenStage {
-        match self.pipeline {
-            PostPipeline::Compute(_) => FullScreenStage::Compute,
-            PostPipeline::Fragment(_) => FullScreenStage::Fragment,
-        }
+    fn is_compute(&self) -> bool {
+        matches!(self.pipeline, PostPipeline::Compute(_))
     }
 
     /// Writes `settings` if they changed; returns the bytes written.
@@ -195,26 +163,22 @@ impl PostProcess {
         std::mem::size_of::<PostSettings>() as u64
     }
 
-    /// The bind group for `target` as `routing` routes it, made unless one exists.
+    /// The bind group reading `colour` (alpha from `target`'s scene) and writing `output`,
+    /// made unless one exists.
     fn bind_group(
         &mut self,
         gpu: &GpuContext,
         target: &RenderTarget,
-        routing: PostRouting<'_>,
+        (colour, output): (&PostImage, &PostImage),
     ) -> &wgpu::BindGroup {
-        let key = (
-            target.id(),
-            routing.colour.map_or(0, |(id, _)| id),
-            routing.output.map_or(0, |(id, _)| id),
-        );
+        let key = (target.id(), colour.id, output.id);
         // Groups of other targets are stale; a few of this one's are kept.
         self.bind_groups
             .retain(|((id, _, _), _)| *id == target.id());
         if let Some(index) = self.bind_groups.iter().position(|(k, _)| *k == key) {
             return &self.bind_groups[index].1;
         }
-        let colour = routing.colour.map_or(&target.scene_view, |(_, view)| view);
-        let output = routing.output.map_or(&target.color_view, |(_, view)| view);
+        let (colour, output) = (&colour.view, &output.view);
         let mut entries = vec![
             wgpu::BindGroupEntry {
                 binding: 0,
@@ -247,24 +211,24 @@ impl PostProcess {
         &self.bind_groups[self.bind_groups.len() - 1].1
     }
 
-    /// Records the pass: the scene target of `target` (or the colour `routing` names) into
-    /// its display target (or the texture `routing` names).
+    /// Records the pass: `colour` (with the alpha of `target`'s scene) tonemapped into
+    /// `output`.
     pub(crate) fn record(
         &mut self,
         gpu: &GpuContext,
         target: &RenderTarget,
-        routing: PostRouting<'_>,
+        (colour, output): (&PostImage, &PostImage),
         encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<&super::PassTimestamps>,
+        timestamps: Option<&PassTimestamps>,
     ) {
         let (width, height) = target.size();
-        let output = routing.output.map_or(&target.color_view, |(_, view)| view);
-        let bind_group = self.bind_group(gpu, target, routing).clone();
+        let bind_group = self.bind_group(gpu, target, (colour, output)).clone();
+        let output = &output.view;
         match &self.pipeline {
             PostPipeline::Compute(pipeline) => {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("post-process pass"),
-                    timestamp_writes: timestamps.map(super::PassTimestamps::compute),
+                    timestamp_writes: timestamps.map(PassTimestamps::compute),
                 });
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(0, &bind_group, &[]);
@@ -283,7 +247,7 @@ impl PostProcess {
                         },
                     })],
                     depth_stencil_attachment: None,
-                    timestamp_writes: timestamps.map(super::PassTimestamps::render),
+                    timestamp_writes: timestamps.map(PassTimestamps::render),
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
@@ -307,7 +271,7 @@ fn bind_group_layout(
     stage: FullScreenStage,
 ) -> wgpu::BindGroupLayout {
     let mut entries = vec![
-        super::layout::unfilterable_texture_2d(0),
+        layout::unfilterable_texture_2d(0),
         wgpu::BindGroupLayoutEntry {
             binding: 1,
             visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
@@ -318,10 +282,10 @@ fn bind_group_layout(
             },
             count: None,
         },
-        super::layout::unfilterable_texture_2d(3),
+        layout::unfilterable_texture_2d(3),
     ];
     if stage == FullScreenStage::Compute {
-        entries.push(super::layout::compute_storage_texture(2, display));
+        entries.push(layout::compute_storage_texture(2, display));
     }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("post-process layout"),
@@ -356,7 +320,7 @@ fn pipeline(
         )
     } else {
         let shader = POST_FRAGMENT.create_module(device);
-        PostPipeline::Fragment(super::layout::fullscreen_pipeline(
+        PostPipeline::Fragment(layout::fullscreen_pipeline(
             device,
             "post-process fragment pipeline",
             Some(pipeline_layout),

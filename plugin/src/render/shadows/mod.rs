@@ -1,0 +1,89 @@
+//! Scene shadows' pass: [`ShadowsPlugin`] joins the shadows phase with one depth pass per
+//! shadow map (a cascade, a spot light's map, a cube face), into which every material draws
+//! its casters from the light's view, timed as "shadows". Which lights cast and how is the
+//! [`crate::LightShadows`] component; the maps themselves, and what receivers read of them,
+//! belong to the frame's bindings (shadow_maps.rs, shadow_views.rs, shadows.wgsl), so that
+//! every material can sample them whether or not this pass runs.
+
+use crate::render::{
+    ExtractedFrame, FrameNode, FrameNodes, FrameView, NodePlace, PassTimestamps, RenderError,
+    RenderPhase, RenderPhases, Renderer,
+};
+use crate::{App, Plugin};
+
+/// The node name the shadow maps are timed under.
+pub const SHADOW_MAPS_NODE: &str = RenderPhase::Shadows.name();
+
+/// Draws the shadow maps the lights ask for (the render plugin adds it with its standard
+/// features). Without it the frame plans no shadow map: lights cast no scene shadow.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ShadowsPlugin;
+
+impl Plugin for ShadowsPlugin {
+    fn build(&self, app: &mut App) {
+        app.resources.get_or_default::<FrameNodes>().add(
+            NodePlace::new(SHADOW_MAPS_NODE, RenderPhase::Shadows),
+            ShadowMapsNode,
+        );
+    }
+}
+
+/// One pass per shadow map, each drawing every shadow caster from its light.
+struct ShadowMapsNode;
+
+impl FrameNode for ShadowMapsNode {
+    fn runs(&self, frame: FrameView<'_>) -> bool {
+        let resources = frame.resources;
+        resources
+            .get::<ExtractedFrame>()
+            .is_some_and(|extracted| !extracted.shadow_views.is_empty())
+            && resources
+                .get::<RenderPhases>()
+                .is_some_and(|phases| phases.shadow_draws().next().is_some())
+    }
+
+    fn record(
+        &mut self,
+        frame: FrameView<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) -> Result<(), RenderError> {
+        let resources = frame.resources;
+        let phases = resources.require::<RenderPhases>()?;
+        let extracted = resources.require::<ExtractedFrame>()?;
+        let shadow_maps = &resources.require::<Renderer>()?.shadow_maps;
+        let layer_size = shadow_maps.layer_size();
+        let count = extracted.shadow_views.len();
+        for (index, plan) in extracted.shadow_views.iter().enumerate() {
+            let Some(layer) = shadow_maps.layer_view(plan.gpu.layer) else {
+                continue;
+            };
+            let (first, last) = (index == 0, index + 1 == count);
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow map"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: layer,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                // The node's span: the first map's pass begins it, the last one ends it.
+                timestamp_writes: time
+                    .filter(|_| first || last)
+                    .map(|time| time.render_part(first, last)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            // A smaller map draws into a corner of its layer.
+            let size = plan.map_size.min(layer_size) as f32;
+            pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+            for draw in phases.shadow_draws() {
+                draw(resources, &mut pass, 1 + index as u32);
+            }
+        }
+        Ok(())
+    }
+}
