@@ -14,7 +14,7 @@ use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
 use crate::render::PhaseBindings;
-use crate::render::anti_aliasing::ObjectMotions;
+use crate::render::anti_aliasing::{AntiAliasingFrame, ObjectMotions};
 use crate::render::{
     DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, PipelineCompilation,
     RenderPhases, RenderTarget, Renderer, UploadStats, VisibilityBuffer, phase_bindings,
@@ -321,7 +321,11 @@ fn prepare_frame<M: Material>(
         &mut stats,
         FrameNumbers {
             ids: &mut renderer.visibility_ids,
-            motions: motions.filter(|_| frame.temporal.is_some()),
+            motions: motions.filter(|_| {
+                resources
+                    .get::<AntiAliasingFrame>()
+                    .is_some_and(|aa| aa.temporal.is_some())
+            }),
         },
     );
     renderer

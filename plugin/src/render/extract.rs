@@ -3,9 +3,6 @@
 use glam::{Mat4, Vec3};
 use hecs::World;
 
-use super::anti_aliasing::{
-    AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalView, jittered,
-};
 use super::gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
 };
@@ -35,11 +32,6 @@ pub struct ExtractedFrame {
     pub exposure: Exposure,
     /// The active camera's tonemapping operator.
     pub tonemapping: Tonemapping,
-    /// The active camera's anti-aliasing (its component, else the app's resource, else off).
-    pub anti_aliasing: AntiAliasing,
-    /// This frame's temporal anti-aliasing, on TAA frames with a camera (the frame uniform's
-    /// projection is then jittered by its offset).
-    pub temporal: Option<TemporalFrame>,
     /// The shadow maps to render this frame, in the order the lights reference them.
     pub shadow_views: Vec<ShadowViewPlan>,
     /// Whether the lights asked for more than [`MAX_SHADOW_VIEWS`] maps.
@@ -128,15 +120,13 @@ fn enabled_shadows(shadows: Option<&LightShadows>, cap: u32) -> Option<LightShad
         })
 }
 
-/// What the active camera's entity says of its image: exposure, tonemapping, anti-aliasing
-/// (each `None` where it has no such component).
+/// What the active camera's entity says of its image: exposure and tonemapping (their
+/// defaults where it has no such component).
 #[derive(Default)]
 struct CameraDisplay {
-    camera: Option<(hecs::Entity, Camera, GlobalTransform)>,
+    camera: Option<(Camera, GlobalTransform)>,
     exposure: Exposure,
     tonemapping: Tonemapping,
-    anti_aliasing: Option<AntiAliasing>,
-    temporal: TemporalAntiAliasing,
 }
 
 /// The active camera (as [`crate::active_camera`] finds it) with its entity's display
@@ -144,26 +134,19 @@ struct CameraDisplay {
 fn active_camera_and_display(world: &World) -> CameraDisplay {
     world
         .query::<(
-            hecs::Entity,
             &Camera,
             &GlobalTransform,
             Option<&Exposure>,
             Option<&Tonemapping>,
-            Option<&AntiAliasing>,
-            Option<&TemporalAntiAliasing>,
         )>()
         .iter()
-        .find(|(_, camera, ..)| camera.active)
+        .find(|(camera, ..)| camera.active)
         .map_or_else(
             Default::default,
-            |(entity, camera, transform, exposure, tonemapping, anti_aliasing, temporal)| {
-                CameraDisplay {
-                    camera: Some((entity, *camera, *transform)),
-                    exposure: exposure.copied().unwrap_or_default(),
-                    tonemapping: tonemapping.copied().unwrap_or_default(),
-                    anti_aliasing: anti_aliasing.copied(),
-                    temporal: temporal.copied().unwrap_or_default(),
-                }
+            |(camera, transform, exposure, tonemapping)| CameraDisplay {
+                camera: Some((*camera, *transform)),
+                exposure: exposure.copied().unwrap_or_default(),
+                tonemapping: tonemapping.copied().unwrap_or_default(),
             },
         )
 }
@@ -176,18 +159,12 @@ fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
 /// material's plugin extracts its own draws).
 pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(), AppError> {
     let target = resources.require::<RenderTarget>()?;
-    let (aspect, target_size, target_id) = (target.aspect(), target.size(), target.id());
+    let (aspect, target_size) = (target.aspect(), target.size());
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
     let display = active_camera_and_display(world);
     let (exposure, tonemapping) = (display.exposure, display.tonemapping);
-    let camera = display
-        .camera
-        .map(|(_, camera, transform)| (camera, transform));
+    let camera = display.camera;
     let view = CameraView::of(camera.as_ref(), aspect);
-    let (anti_aliasing, temporal) = temporal_frame(resources, &display, &view, target_id);
-    let view_projection = temporal.map_or(view.view_projection, |frame| {
-        jittered(view.view_projection, frame.jitter, target_size)
-    });
     // Lux and candela to what the shaders multiply with the albedo: a Lambertian surface of
     // albedo ρ lit with illuminance E sends radiance ρ·E/π towards the eye (Lagarde & de
     // Rousiers §4.1), times the camera's exposure: the scene target holds pre-exposed values
@@ -195,10 +172,9 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
     let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
     let ambient_radiance = radiance(ambient.color, ambient.intensity, light_scale);
-    let texture_scale = anti_aliasing.texture_footprint_scale(temporal.map(|f| f.settings));
     let mut lights = LightExtraction {
         frame: FrameUniform {
-            view_projection: columns(view_projection),
+            view_projection: columns(view.view_projection),
             camera_position: view.position.extend(1.0).into(),
             view_direction: view.direction.into(),
             ambient: [
@@ -208,15 +184,10 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
                 0.0,
             ],
             light_counts: [0; 4],
-            // z: the seed of per-frame noise (the jittered march), still without TAA; w: whether
-            // TAA averages that noise (the soft shadow's samples move only then).
-            target_size: [
-                target_size.0,
-                target_size.1,
-                temporal.map_or(0, |f| f.frame_index),
-                u32::from(temporal.is_some()),
-            ],
-            texture_lod: [texture_scale, 0.0, 0.0, 0.0],
+            // z: the seed of per-frame noise, w: whether it moves from frame to frame, and the
+            // texture footprints' scale: still without anti-aliasing, which sets them.
+            target_size: [target_size.0, target_size.1, 0, 0],
+            texture_lod: [1.0, 0.0, 0.0, 0.0],
             directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
             point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
         },
@@ -242,8 +213,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         clear_color: view.clear_color,
         exposure,
         tonemapping,
-        anti_aliasing,
-        temporal,
         shadow_maps_overflowed: overflowed,
         shadow_views: if camera.is_some() {
             lights.shadow_views.views
@@ -268,41 +237,6 @@ fn warn_of_shadow_overflow(resources: &Resources, overflowed: bool) {
             "the lights ask for more than {MAX_SHADOW_VIEWS} shadow maps: the rest cast no scene shadow"
         );
     }
-}
-
-/// The active camera's anti-aliasing (its component, else the app's resource, else off) and,
-/// under TAA, this frame of its history.
-fn temporal_frame(
-    resources: &mut Resources,
-    display: &CameraDisplay,
-    view: &CameraView,
-    target: u64,
-) -> (AntiAliasing, Option<TemporalFrame>) {
-    let anti_aliasing = display
-        .anti_aliasing
-        .or_else(|| resources.get::<AntiAliasing>().copied())
-        .unwrap_or_default();
-    let history = resources.get_or_default::<TemporalHistory>();
-    let temporal = match display.camera {
-        Some((entity, camera, _)) if anti_aliasing == AntiAliasing::Taa => {
-            Some(history.next_frame(
-                target,
-                entity,
-                camera.projection,
-                TemporalView {
-                    view_projection: view.view_projection,
-                    position: view.position,
-                    direction: view.direction.truncate(),
-                },
-                &display.temporal,
-            ))
-        }
-        _ => {
-            history.skip();
-            None
-        }
-    };
-    (anti_aliasing, temporal)
 }
 
 /// The largest texture side the device allows (the shadow maps' cap), or the maps' own cap

@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use super::layout::{fullscreen_pipeline, unfilterable_texture_2d};
-use super::shaders::{ComposedShader, FULLSCREEN_TRIANGLE, WgslFile};
+use super::shaders::{self, ComposedShader, FULLSCREEN_TRIANGLE, WgslFile};
 use super::{GpuContext, RenderTarget, TargetFormat};
 
 /// present.wgsl: the two fragment entries of the present pass.
@@ -15,7 +15,7 @@ const PRESENT: WgslFile = crate::wgsl_file!("render/present.wgsl");
 pub const PRESENT_SHADER: ComposedShader = ComposedShader {
     name: "present",
     constants: &[],
-    files: &[FULLSCREEN_TRIANGLE, PRESENT],
+    files: &[shaders::SRGB, FULLSCREEN_TRIANGLE, PRESENT],
 };
 
 /// Why a frame could not be presented.

@@ -6,11 +6,6 @@
 
 @group(0) @binding(0) var display: texture_2d<f32>;
 
-// The inverse of post_process.wgsl's `encode_srgb` (IEC 61966-2-1).
-fn decode_srgb(encoded: vec3<f32>) -> vec3<f32> {
-    return select(pow((encoded + 0.055) / 1.055, vec3<f32>(2.4)), encoded / 12.92, encoded <= vec3<f32>(0.04045));
-}
-
 fn display_texel(viewport_uv: vec2<f32>) -> vec3<f32> {
     // The target follows the viewport's size; for the frame in which they differ, the nearest
     // texel (clamped: the edge).

@@ -22,6 +22,8 @@ pub const MESH_VERTEX: WgslFile = crate::wgsl_file!("render/mesh_vertex.wgsl");
 pub const SHADOWS: WgslFile = crate::wgsl_file!("render/shadows.wgsl");
 /// The depth prepass's result, bound for materials that test a depth of their own against it.
 pub const PREPASS_DEPTH: WgslFile = crate::wgsl_file!("render/prepass_depth.wgsl");
+/// The sRGB transfer function both ways (display images hold encoded values).
+pub const SRGB: WgslFile = crate::wgsl_file!("render/srgb.wgsl");
 /// `fullscreen_vertex`: the vertex stage of full-screen passes.
 pub const FULLSCREEN_TRIANGLE: WgslFile = crate::wgsl_file!("render/fullscreen_triangle.wgsl");
 /// The visibility pass of the deferred path: `visibility_id()` and the default `fs_visibility`.

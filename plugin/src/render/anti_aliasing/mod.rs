@@ -10,18 +10,20 @@
 //! Without the plugin a camera's [`AntiAliasing`] has no pass to run: the frame shows the
 //! scene as rendered.
 
+mod extract;
 mod fxaa;
 mod object_motion;
 mod taa;
 mod temporal;
 
+pub use extract::AntiAliasingFrame;
 pub use fxaa::FXAA_SHADERS;
 pub(crate) use object_motion::ObjectMotions;
 pub use object_motion::{MOTION_ID_FORMAT, ObjectMotion};
 pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
 pub use temporal::{
     AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
-    TemporalLimit, TemporalView, jitter_offset, jittered, set_camera_anti_aliasing,
+    TemporalLimit, TemporalView, jitter_offset, set_camera_anti_aliasing,
 };
 
 use fxaa::FxaaPass;
@@ -58,6 +60,8 @@ impl Plugin for AntiAliasingPlugin {
         );
         nodes.add_post_effect(TAA_PASS, Taa::default());
         nodes.add_post_effect(POST_FILTER_PASS, Fxaa::default());
+        // After the renderer's extraction, before the materials': they read the jitter.
+        app.add_system(Stage::Extract, extract::extract_anti_aliasing);
         // Before the materials prepare: they add this frame's moving draws.
         app.add_system(Stage::Prepare, forget_last_motions);
     }
@@ -81,8 +85,8 @@ fn taa_runs(frame: FrameView<'_>) -> bool {
     frame.has_camera
         && frame
             .resources
-            .get::<ExtractedFrame>()
-            .is_some_and(|extracted| extracted.temporal.is_some())
+            .get::<AntiAliasingFrame>()
+            .is_some_and(|aa| aa.temporal.is_some())
 }
 
 /// Whether this frame runs the object motion pass: TAA runs and a drawn object moved.
@@ -187,7 +191,8 @@ impl PostEffect for Taa {
         time: Option<&PassTimestamps>,
     ) -> Result<Option<PostImage>, RenderError> {
         let extracted = frame.resources.require::<ExtractedFrame>()?;
-        let Some(temporal) = extracted.temporal else {
+        let aa = frame.resources.require::<AntiAliasingFrame>()?;
+        let Some(temporal) = aa.temporal else {
             return Ok(None);
         };
         let motions = frame.resources.require::<ObjectMotions>()?;
@@ -225,8 +230,8 @@ impl PostEffect for Fxaa {
     fn runs(&self, frame: FrameView<'_>) -> bool {
         frame
             .resources
-            .get::<ExtractedFrame>()
-            .is_some_and(|extracted| extracted.anti_aliasing == AntiAliasing::Fxaa)
+            .get::<AntiAliasingFrame>()
+            .is_some_and(|aa| aa.kind == AntiAliasing::Fxaa)
     }
 
     fn prepare(&mut self, resources: &mut Resources, _: HdrInput) -> Result<u64, RenderError> {

@@ -37,14 +37,14 @@ pub(crate) fn rgba32f_output() -> String {
 pub const POST_COMPUTE_RGBA8: ComposedShader = ComposedShader {
     name: "post_compute.wgsl (rgba8unorm)",
     constants: &[Tonemapping::wgsl_constants, rgba8_output],
-    files: &[TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
+    files: &[shaders::SRGB, TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
 };
 
 /// Post-processing in compute, writing a float display target.
 pub const POST_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
     name: "post_compute.wgsl (rgba32float)",
     constants: &[Tonemapping::wgsl_constants, rgba32f_output],
-    files: &[TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
+    files: &[shaders::SRGB, TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
 };
 
 /// Post-processing as a full-screen triangle.
@@ -52,6 +52,7 @@ pub const POST_FRAGMENT: ComposedShader = ComposedShader {
     name: "post_fragment.wgsl",
     constants: &[Tonemapping::wgsl_constants],
     files: &[
+        shaders::SRGB,
         TONEMAPPING,
         POST_PROCESS,
         shaders::FULLSCREEN_TRIANGLE,

@@ -17,12 +17,6 @@ struct PostSettings {
 // The colour to tonemap: the scene's own, or TAA's history of it (the alpha stays the scene's).
 @group(0) @binding(3) var colour_source: texture_2d<f32>;
 
-// The sRGB transfer function (IEC 61966-2-1), exact: the storage target is plain Unorm.
-fn encode_srgb(linear: vec3<f32>) -> vec3<f32> {
-    let c = clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0));
-    return select(1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055, c * 12.92, c <= vec3<f32>(0.0031308));
-}
-
 // The display value of one pixel. A negative alpha `a` marks a display-referred pixel (the
 // clear colour, a debug view's data: `DEBUG_VIEW_ALPHA` in frame.wgsl): its colour is written
 // as it is, with alpha −1 − a.
