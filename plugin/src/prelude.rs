@@ -1,6 +1,7 @@
 //! The names a game uses, for `use pom::prelude::*;`: the app and its plugins, transforms,
 //! cameras and lights, meshes and images, reading a frame back (`capture`), the two shipped materials and what writing one takes
-//! (`ShadedMaterial`, `ParamSpec`, `WgslFile`), time, glam's vectors,
+//! (`ShadedMaterial`, `ParamSpec`, `WgslFile`) or a post effect (`PostEffect`,
+//! `FullScreenPass`), time, glam's vectors,
 //! hecs's world, and (with the `window` feature) the window, its input and the cameras that
 //! move with it.
 //!
@@ -29,6 +30,11 @@ pub use crate::{
 // and names (`ParallaxMethod::VALUES`, `method.name()`).
 pub use crate::material::{Choice, ParamSpec};
 pub use crate::shader::WgslFile;
+// Writing a post effect: a node of the post chain and its full-screen pass.
+pub use crate::render::{
+    FrameNodes, FrameView, FullScreenPass, PassTimestamps, PostEffect, PostImage, PostIo,
+    PostStage, RenderError,
+};
 
 #[cfg(feature = "window")]
 pub use crate::window::{

@@ -58,6 +58,21 @@ const LAYERS: &[&str] = &[
     "prelude",
 ];
 
+/// The parts of `render/`, lowest first: the core (every file of the folder but the ones below,
+/// and any subfolder not named here), then each feature's folder, then what assembles them.
+/// A part may use only parts before it: the core names no feature.
+const RENDER_PARTS: &[&str] = &[
+    "core",
+    "tonemapping",
+    "shadows",
+    "anti_aliasing",
+    "assembly",
+];
+
+/// The files of `render/` that assemble the core and the standard features: the folder's face
+/// and the plugin that adds them.
+const RENDER_ASSEMBLY: &[&str] = &["mod", "standard_features", "plugin"];
+
 /// One `crate::…` use that goes up or sideways.
 #[derive(Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct BackImport {
@@ -259,6 +274,153 @@ fn read(src: &Path) -> Vec<(PathBuf, String)> {
             (file, source)
         })
         .collect()
+}
+
+/// The part of `render/` a submodule of it (a file or folder name) belongs to.
+fn render_part(submodule: &str) -> &'static str {
+    if RENDER_ASSEMBLY.contains(&submodule) {
+        return "assembly";
+    }
+    RENDER_PARTS
+        .iter()
+        .find(|part| **part == submodule)
+        .copied()
+        .unwrap_or("core")
+}
+
+/// What `render/mod.rs` says: its submodules, and the submodule each name it re-exports comes
+/// from.
+fn render_names(src: &Path) -> HashMap<String, String> {
+    let code = library_code(&std::fs::read_to_string(src.join("render/mod.rs")).expect("mod.rs"));
+    let mut names = HashMap::new();
+    for statement in code.split(';') {
+        let words: Vec<&str> = identifiers(statement).collect();
+        if let Some(at) = words.iter().position(|word| *word == "mod")
+            && let Some(name) = words.get(at + 1)
+        {
+            names.insert((*name).to_owned(), (*name).to_owned());
+        }
+        if let Some(at) = statement.find("use ") {
+            let path = &statement[at + "use ".len()..];
+            if let Some((module, items)) = path.split_once("::") {
+                let module = module.trim();
+                for name in identifiers(items) {
+                    names.entry(name.to_owned()).or_insert(module.to_owned());
+                }
+            }
+        }
+    }
+    names
+}
+
+/// The first names after `prefix` in every path of `code` that starts with it, use groups
+/// included.
+fn paths_after(code: &str, prefix: &str) -> BTreeSet<String> {
+    let marked = code.replace("crate::", "krate::");
+    crate_paths(&marked.replace(&prefix.replace("crate::", "krate::"), "crate::"))
+}
+
+/// Every use inside `render/` of a part at or above the user's own part.
+fn render_back_imports(src: &Path, files: &[(PathBuf, String)]) -> Vec<BackImport> {
+    let render = src.join("render");
+    let names = render_names(src);
+    let root = crate_root(src, files);
+    let rank = |part: &str| RENDER_PARTS.iter().position(|p| *p == part).unwrap_or(0);
+    let mut found = Vec::new();
+    for (file, source) in files {
+        let Ok(relative) = file.strip_prefix(&render) else {
+            continue;
+        };
+        let first = relative
+            .components()
+            .next()
+            .and_then(|c| c.as_os_str().to_str());
+        let Some(first) = first.map(|name| name.strip_suffix(".rs").unwrap_or(name)) else {
+            continue;
+        };
+        let from = render_part(first);
+        let code = library_code(source);
+        let mut used: BTreeSet<String> = paths_after(&code, "crate::render::");
+        if relative.components().count() == 1 {
+            used.extend(paths_after(&code, "super::"));
+        }
+        // Names the crate root re-exports from the renderer.
+        used.extend(
+            crate_paths(&code)
+                .into_iter()
+                .filter(|name| root.reexports.get(name).is_some_and(|m| m == "render")),
+        );
+        for name in used {
+            let Some(submodule) = names.get(&name) else {
+                continue;
+            };
+            let to = render_part(submodule);
+            if to != from && rank(to) > rank(from) {
+                found.push(BackImport {
+                    file: relative.display().to_string(),
+                    from: from.to_owned(),
+                    to: to.to_owned(),
+                    through: name,
+                });
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+#[test]
+fn the_renderers_core_names_no_feature_and_features_only_those_before_them() {
+    let src = plugin_src();
+    let files = read(&src);
+    let found = render_back_imports(&src, &files);
+    assert!(
+        found.is_empty(),
+        "{} back imports inside render/:\n{}",
+        found.len(),
+        found
+            .iter()
+            .map(|b| format!(
+                "  {}: {} uses {} (through {})",
+                b.file, b.from, b.to, b.through
+            ))
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+    // Every feature part is a folder of render/.
+    for part in &RENDER_PARTS[1..RENDER_PARTS.len() - 1] {
+        assert!(
+            src.join("render").join(part).join("mod.rs").is_file(),
+            "{part}"
+        );
+    }
+}
+
+#[test]
+fn a_core_file_naming_a_feature_is_caught() {
+    let src = plugin_src();
+    let mut files = read(&src);
+    let frame = src.join("render/frame.rs");
+    let (_, source) = files
+        .iter_mut()
+        .find(|(file, _)| *file == frame)
+        .expect("render/frame.rs");
+    source.push_str(
+        "\nuse super::anti_aliasing::TAA_PASS;\n\
+         fn back() { let _ = crate::render::TonemappingPlugin; let _ = crate::AntiAliasing::Off; }\n",
+    );
+    let found: Vec<(String, String)> = render_back_imports(&src, &files)
+        .into_iter()
+        .map(|b| (b.to, b.through))
+        .collect();
+    assert_eq!(
+        found,
+        [
+            ("anti_aliasing".to_owned(), "AntiAliasing".to_owned()),
+            ("anti_aliasing".to_owned(), "anti_aliasing".to_owned()),
+            ("tonemapping".to_owned(), "TonemappingPlugin".to_owned()),
+        ]
+    );
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! Every WGSL file in the plugin is part of a composed shader, and every composed shader parses
-//! and validates with naga: the plugin's own (`pom::SHADERS`), and those the core composes
-//! around a shaded material's `shade` (the README's `Matte`, and `Lattice`, which cuts holes).
+//! and validates with naga: the plugin's own (`pom::SHADERS`), those the core composes
+//! around a shaded material's `shade` (the README's `Matte`, and `Lattice`, which cuts holes),
+//! and those a `FullScreenPass` composes around a post effect (one with parameters here).
 
 #[rustfmt::skip]
 #[path = "custom_material/matte.rs"]
@@ -46,22 +47,32 @@ fn wgsl_files(dir: &Path, found: &mut Vec<PathBuf>) {
     }
 }
 
+/// A post effect reading its parameters and the helpers every effect may call.
+const EFFECT: &str = "struct EffectParams { gain: f32 }
+fn effect(pixel: vec2<u32>) -> vec4<f32> {
+    let c = textureLoad(input, pixel, 0);
+    return vec4<f32>(from_linear(to_linear(c.rgb) * params.gain), c.a);
+}
+";
+
 #[test]
 fn every_composed_shader_validates() {
     let shaders = every_shader();
     assert!(!pom::SHADERS.is_empty());
     let mut failures = Vec::new();
     // Each shader as games compile it, and as FragmentInvocationCounter compiles it for tests.
-    let sources = shaders.iter().flat_map(|shader| {
+    let composed = shaders.iter().flat_map(|shader| {
         [shader.source(), shader.counting_source(&Default::default())]
-            .map(|source| (shader, source))
-            .into_iter()
+            .map(|source| (shader.name.to_owned(), source))
     });
+    // A post effect's every composition.
+    let effects = pom::render::FullScreenPass::compositions(EFFECT, true);
+    let sources = composed.chain(effects);
     for (shader, source) in sources {
         let module = match naga::front::wgsl::parse_str(&source) {
             Ok(module) => module,
             Err(error) => {
-                failures.push(error.emit_to_string_with_path(&source, shader.name));
+                failures.push(error.emit_to_string_with_path(&source, &shader));
                 continue;
             }
         };
@@ -74,7 +85,7 @@ fn every_composed_shader_validates() {
                 | naga::valid::Capabilities::SHADER_INT64_ATOMIC_MIN_MAX,
         );
         if let Err(error) = validator.validate(&module) {
-            failures.push(error.emit_to_string_with_path(&source, shader.name));
+            failures.push(error.emit_to_string_with_path(&source, &shader));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -92,7 +103,9 @@ fn every_wgsl_file_on_disk_is_validated_as_embedded() {
     let shaders = every_shader();
     let composed: BTreeSet<(&str, &str)> = shaders
         .iter()
-        .flat_map(|shader| shader.files.iter().map(|file| (file.path, file.source)))
+        .flat_map(|shader| shader.files.iter())
+        .chain(&pom::render::EFFECT_FILES)
+        .map(|file| (file.path, file.source))
         .collect();
     for path in &on_disk {
         let relative = path

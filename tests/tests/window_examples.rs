@@ -328,3 +328,63 @@ fn the_readmes_window_game_is_the_minimal_example_and_runs() {
     let colours = distinct_colours(&image, 0..1280, 0..720);
     assert!(colours > 100, "only {colours} distinct colours: no bricks");
 }
+
+/// The luminance of an sRGB-encoded pixel, encoded: what the post-effect example writes.
+fn encoded_luminance([r, g, b, _]: [u8; 4]) -> f32 {
+    let linear = |value: u8| pom::srgb_to_linear(f32::from(value) / 255.0);
+    let luminance = 0.2126 * linear(r) + 0.7152 * linear(g) + 0.0722 * linear(b);
+    pom::linear_to_srgb(luminance.clamp(0.0, 1.0)) * 255.0
+}
+
+#[test]
+fn the_post_effect_example_turns_the_street_corner_grey() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("post-effect-example.png");
+    let _ = std::fs::remove_file(&out);
+    let output = Command::new(example("post_effect"))
+        .arg(&out)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let grey = image::open(&out).unwrap().to_rgba8();
+    // The same frame without the effect.
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
+    let mut app = pom::App::new();
+    app.add_plugin(pom::DefaultPlugins::headless(384, 216));
+    pom::load_gltf(&mut app, &scene).unwrap();
+    let colour = pom_tests::render_and_capture(&mut app).unwrap();
+    assert_eq!(grey.dimensions(), colour.dimensions());
+    for (x, y, pixel) in grey.enumerate_pixels() {
+        let [r, g, b, a] = pixel.0;
+        assert!(
+            r == g && g == b,
+            "pixel ({x}, {y}) is not grey: {:?}",
+            pixel.0
+        );
+        let before = colour.get_pixel(x, y).0;
+        let expected = encoded_luminance(before);
+        assert!(
+            (f32::from(r) - expected).abs() <= 1.0 && a == before[3],
+            "pixel ({x}, {y}) is {r}, the luminance of {before:?} is {expected}"
+        );
+    }
+    assert!(distinct_colours(&grey, 0..384, 0..216) > 50, "no scene");
+}
+
+#[test]
+fn the_renderer_guide_shows_the_post_effect_example() {
+    let guide = include_str!("../../plugin/docs/renderer.md");
+    let example = include_str!("../../plugin/examples/post_effect.rs");
+    let code = &example[example
+        .find("use pom::prelude")
+        .expect("the example's code")..];
+    let section = &guide[guide
+        .find("## A post effect of your own")
+        .expect("the guide's section")..];
+    assert!(
+        section.contains(code),
+        "the renderer guide's post effect and plugin/examples/post_effect.rs differ"
+    );
+}

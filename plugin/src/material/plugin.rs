@@ -441,8 +441,8 @@ mod tests {
         );
         assert_eq!(
             app.schedule.len(Stage::Extract),
-            4,
-            "core + two materials + the curved silhouette's mesh check"
+            5,
+            "core + anti-aliasing + two materials + the curved silhouette's mesh check"
         );
     }
 

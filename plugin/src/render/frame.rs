@@ -82,6 +82,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
 /// the resources borrowed).
 fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(), RenderError> {
     nodes.order()?;
+    nodes.follow_device(&resources.require::<GpuContext>()?.device);
     let runs = running_nodes(resources, nodes)?;
     prepare_nodes(resources, nodes, &runs)?;
     let reads_depth = nodes

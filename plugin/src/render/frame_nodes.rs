@@ -143,18 +143,24 @@ impl NodeWork {
     }
 }
 
-/// One node: where it sits and its work.
+/// One node: where it sits, its work, and how to make its work afresh (on a new GPU device:
+/// what it made on the old one is gone).
 pub(crate) struct Node {
     pub(crate) place: NodePlace,
     pub(crate) work: NodeWork,
+    make: Box<dyn Fn() -> NodeWork>,
 }
 
 /// Every node of the frame, in order within each phase once [`FrameNodes::order`] has run. A
-/// resource of the render plugin; feature plugins add to it as they build.
+/// resource of the render plugin; feature plugins add to it as they build. Nodes are added as
+/// functions that make them: when the GPU device is replaced (after a lost one), every node is
+/// made again, so none keeps objects of the old device.
 #[derive(Default)]
 pub struct FrameNodes {
     nodes: Vec<Node>,
     ordered: bool,
+    /// The device the nodes' work was made for (set by the first frame).
+    device: Option<wgpu::Device>,
 }
 
 impl std::fmt::Debug for FrameNodes {
@@ -166,30 +172,56 @@ impl std::fmt::Debug for FrameNodes {
 }
 
 impl FrameNodes {
-    /// Adds `node` at `place`, replacing a node of the same name (a plugin added twice adds
-    /// its node once).
-    pub fn add(&mut self, place: NodePlace, node: impl FrameNode) {
-        self.insert(place, NodeWork::Frame(Box::new(node)));
+    /// Adds the node `make` makes at `place`, replacing a node of the same name (a plugin
+    /// added twice adds its node once).
+    pub fn add<N: FrameNode>(&mut self, place: NodePlace, make: impl Fn() -> N + 'static) {
+        self.insert(place, Box::new(move || NodeWork::Frame(Box::new(make()))));
     }
 
-    /// Adds the full-screen `effect` of the post chain at `place`, whose phase is
+    /// Adds the full-screen effect `make` makes to the post chain, as the node `name` of
     /// [`RenderPhase::PostProcess`] (see [`PostEffect`]).
-    pub fn add_post_effect(&mut self, name: &'static str, effect: impl PostEffect) {
-        self.add_post_effect_at(NodePlace::new(name, RenderPhase::PostProcess), effect);
+    pub fn add_post_effect<E: PostEffect>(
+        &mut self,
+        name: &'static str,
+        make: impl Fn() -> E + 'static,
+    ) {
+        self.add_post_effect_at(NodePlace::new(name, RenderPhase::PostProcess), make);
     }
 
     /// Like [`FrameNodes::add_post_effect`], placed against other effects of its stage.
-    pub fn add_post_effect_at(&mut self, place: NodePlace, effect: impl PostEffect) {
+    pub fn add_post_effect_at<E: PostEffect>(
+        &mut self,
+        place: NodePlace,
+        make: impl Fn() -> E + 'static,
+    ) {
         let place = NodePlace {
             phase: RenderPhase::PostProcess,
             ..place
         };
-        self.insert(place, NodeWork::Post(Box::new(effect)));
+        self.insert(place, Box::new(move || NodeWork::Post(Box::new(make()))));
     }
 
-    fn insert(&mut self, place: NodePlace, work: NodeWork) {
+    /// Makes every node's work again when `device` is not the one it was made for.
+    pub(crate) fn follow_device(&mut self, device: &wgpu::Device) {
+        if self
+            .device
+            .as_ref()
+            .is_some_and(|made_for| made_for != device)
+        {
+            for node in &mut self.nodes {
+                node.work = (node.make)();
+            }
+        }
+        self.device = Some(device.clone());
+    }
+
+    fn insert(&mut self, place: NodePlace, make: Box<dyn Fn() -> NodeWork>) {
         self.ordered = false;
-        let node = Node { place, work };
+        let node = Node {
+            place,
+            work: make(),
+            make,
+        };
         match self
             .nodes
             .iter_mut()

@@ -65,6 +65,21 @@ pub(crate) fn compute_storage_texture(
     }
 }
 
+/// A read-only storage buffer of at least `size` bytes for a full-screen pass (compute or
+/// fragment): settings that steer branches (post_process.wgsl says why not a uniform).
+pub(crate) fn read_only_storage_buffer(binding: u32, size: u64) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(size),
+        },
+        count: None,
+    }
+}
+
 /// A filtering sampler visible to the fragment stage and the deferred resolve.
 pub(crate) fn filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {

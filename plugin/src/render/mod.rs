@@ -20,6 +20,7 @@ pub mod frame_group;
 mod frame_nodes;
 mod frame_passes;
 mod frame_uniform;
+mod full_screen_pass;
 mod gpu_assets;
 mod gpu_timing;
 pub(crate) mod gpu_types;
@@ -48,9 +49,9 @@ pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod visibility;
 
 pub use anti_aliasing::{
-    AntiAliasing, AntiAliasingPlugin, FXAA_SHADERS, HISTORY_FORMAT, MOTION_ID_FORMAT,
-    OBJECT_MOTION_PASS, ObjectMotion, POST_FILTER_MIP_BIAS, POST_FILTER_PASS, TAA_PASS, TAA_SHADER,
-    TaaUniform, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit, TemporalView,
+    AntiAliasing, AntiAliasingPlugin, FXAA_SHADERS, HISTORY_FORMAT, OBJECT_MOTION_PASS,
+    ObjectMotion, POST_FILTER_MIP_BIAS, POST_FILTER_PASS, TAA_PASS, TAA_SHADER, TaaUniform,
+    TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit, TemporalView,
     jitter_offset, set_camera_anti_aliasing,
 };
 pub use capture::{
@@ -71,6 +72,7 @@ pub use fragment_counter::FragmentInvocationCounter;
 pub use frame::{prepare_frame, render_frame};
 pub use frame_nodes::{FrameNode, FrameNodes, FrameView, NodeOrderError, NodePlace};
 pub(crate) use frame_uniform::FrameUniformBuffer;
+pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
 pub(crate) use gpu_assets::GpuAssets;
 pub use gpu_assets::{DefaultTexture, TextureFacts, UploadStats};
 pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_gpu_timing};
@@ -80,8 +82,8 @@ pub use gpu_types::MeshTransform;
 pub use layout::ShaderEntry;
 pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
 pub use phases::{
-    DrawPhase, HasDraws, PhaseDraw, PhaseWork, RenderPhase, RenderPhases, ResolveDispatch,
-    ShadowDraw, SortedDraw,
+    DrawPhase, HasDraws, MOTION_ID_FORMAT, PhaseDraw, PhaseWork, RenderPhase, RenderPhases,
+    ResolveDispatch, ShadowDraw, SortedDraw,
 };
 pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use plugin::{PostProcessPath, RenderPlugin};

@@ -93,6 +93,10 @@ impl From<DrawPhase> for RenderPhase {
     }
 }
 
+/// The format of the [`DrawPhase::Motion`] pass's colour target: 0 for a pixel no moving draw
+/// shows, else its motion's number (its index in the frame's list of moving draws, plus one).
+pub const MOTION_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+
 /// Records draws into a phase's open render pass, given the resources.
 pub type PhaseDraw = fn(&Resources, &mut wgpu::RenderPass<'_>);
 

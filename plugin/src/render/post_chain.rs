@@ -15,7 +15,8 @@ use crate::Resources;
 #[non_exhaustive]
 pub enum PostStage {
     /// On the HDR scene (linear, pre-exposed colour in the target's scene format), before
-    /// tonemapping.
+    /// tonemapping. A negative alpha marks a display-referred pixel (the clear colour, a debug
+    /// view's data), which tonemapping passes through: leave such pixels as they are.
     Hdr,
     /// From the HDR scene to the display image: one effect per frame (tonemapping).
     ToDisplay,

@@ -17,15 +17,22 @@ impl WgslFile {
     }
 }
 
-/// A [`WgslFile`] of the plugin's own, embedded from `plugin/src/<path>` (from any module: the
-/// path is taken from the package's folder).
+/// A [`WgslFile`] of the plugin's own, embedded from `plugin/src/<path>`: invoked from a module
+/// one folder below `src`, or with `nested` from one two folders below (`include_str!` reads
+/// relative to the invoking file).
 #[macro_export]
 #[doc(hidden)]
 macro_rules! wgsl_file {
     ($path:literal) => {
         $crate::shader::WgslFile {
             path: $path,
-            source: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/", $path)),
+            source: include_str!(concat!("../", $path)),
+        }
+    };
+    (nested $path:literal) => {
+        $crate::shader::WgslFile {
+            path: $path,
+            source: include_str!(concat!("../../", $path)),
         }
     };
 }

@@ -12,10 +12,11 @@ use crate::render::{
 };
 
 /// The pass's WGSL file.
-pub const FXAA_ENTRY: WgslFile = crate::wgsl_file!("render/anti_aliasing/fxaa.wgsl");
+pub const FXAA_ENTRY: WgslFile = crate::wgsl_file!(nested "render/anti_aliasing/fxaa.wgsl");
 
 /// The compute and fragment entry points.
-pub const FXAA_ENTRY_POINTS: WgslFile = crate::wgsl_file!("render/anti_aliasing/fxaa_entry.wgsl");
+pub const FXAA_ENTRY_POINTS: WgslFile =
+    crate::wgsl_file!(nested "render/anti_aliasing/fxaa_entry.wgsl");
 
 fn srgb_input() -> String {
     "const LINEAR_INPUT: bool = false;\n".to_owned()
@@ -31,10 +32,11 @@ fn no_output() -> String {
 
 /// FXAA's bilinear read with the sampler (8-bit displays).
 pub const FXAA_FILTERED_READ: WgslFile =
-    crate::wgsl_file!("render/anti_aliasing/fxaa_filtered.wgsl");
+    crate::wgsl_file!(nested "render/anti_aliasing/fxaa_filtered.wgsl");
 
 /// FXAA's bilinear read from four loads (float displays, which do not filter).
-pub const FXAA_LOADS_READ: WgslFile = crate::wgsl_file!("render/anti_aliasing/fxaa_loads.wgsl");
+pub const FXAA_LOADS_READ: WgslFile =
+    crate::wgsl_file!(nested "render/anti_aliasing/fxaa_loads.wgsl");
 
 /// FXAA in compute, writing an 8-bit display target.
 pub const FXAA_COMPUTE_RGBA8: ComposedShader = ComposedShader {
@@ -76,7 +78,7 @@ pub const FXAA_FRAGMENT_LINEAR: ComposedShader = ComposedShader {
 
 /// The full-screen triangle's entry point.
 pub const FXAA_FRAGMENT_ENTRY: WgslFile =
-    crate::wgsl_file!("render/anti_aliasing/fxaa_fragment.wgsl");
+    crate::wgsl_file!(nested "render/anti_aliasing/fxaa_fragment.wgsl");
 
 /// Every FXAA shader, for validation.
 pub const FXAA_SHADERS: [ComposedShader; 4] = [

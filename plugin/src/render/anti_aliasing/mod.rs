@@ -18,8 +18,8 @@ mod temporal;
 
 pub use extract::AntiAliasingFrame;
 pub use fxaa::FXAA_SHADERS;
+pub use object_motion::ObjectMotion;
 pub(crate) use object_motion::ObjectMotions;
-pub use object_motion::{MOTION_ID_FORMAT, ObjectMotion};
 pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
 pub use temporal::{
     AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
@@ -56,10 +56,10 @@ impl Plugin for AntiAliasingPlugin {
         let nodes = app.resources.get_or_default::<FrameNodes>();
         nodes.add(
             NodePlace::new(OBJECT_MOTION_PASS, RenderPhase::Transparent),
-            MotionNode,
+            || MotionNode,
         );
-        nodes.add_post_effect(TAA_PASS, Taa::default());
-        nodes.add_post_effect(POST_FILTER_PASS, Fxaa::default());
+        nodes.add_post_effect(TAA_PASS, Taa::default);
+        nodes.add_post_effect(POST_FILTER_PASS, Fxaa::default);
         // After the renderer's extraction, before the materials': they read the jitter.
         app.add_system(Stage::Extract, extract::extract_anti_aliasing);
         // Before the materials prepare: they add this frame's moving draws.
@@ -68,15 +68,17 @@ impl Plugin for AntiAliasingPlugin {
 }
 
 /// Empties the list of moving draws before the materials fill it for this frame (making it on
-/// the first frame: the GPU context exists once every plugin has finished).
+/// the first frame, when every plugin has finished, and again on a new GPU device).
 fn forget_last_motions(_: &mut hecs::World, resources: &mut Resources) -> Result<(), AppError> {
-    match resources.get_mut::<ObjectMotions>() {
-        Some(motions) => motions.reset(),
-        None => {
-            let motions = ObjectMotions::new(resources.require::<GpuContext>()?);
+    let gpu = resources.require::<GpuContext>()?;
+    match resources.get::<ObjectMotions>() {
+        Some(motions) if motions.made_on(gpu) => {}
+        _ => {
+            let motions = ObjectMotions::new(gpu);
             resources.insert(motions);
         }
     }
+    resources.require_mut::<ObjectMotions>()?.reset();
     Ok(())
 }
 

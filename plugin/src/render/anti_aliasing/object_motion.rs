@@ -12,11 +12,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::render::object_buffer::ObjectBuffer;
-use crate::render::{GpuContext, RenderTarget};
-
-/// The format of the motion numbers: 0 for a pixel no moving draw shows, else its motion's
-/// number (its index in the frame's list of moving draws, plus one).
-pub const MOTION_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+use crate::render::{GpuContext, MOTION_ID_FORMAT, RenderTarget};
 
 /// One moving draw's motion as TAA reads it; mirrors `ObjectMotion` in taa.wgsl.
 #[repr(C)]
@@ -38,9 +34,11 @@ struct MotionIds {
 }
 
 /// This frame's moving draws (the materials add theirs as they prepare), their buffer, and the
-/// texture of motion numbers. A part of [`super::Renderer`].
+/// texture of motion numbers. A resource of the anti-aliasing plugin.
 #[derive(Debug)]
 pub(crate) struct ObjectMotions {
+    /// The device its buffer and textures live on.
+    device: wgpu::Device,
     entries: Vec<ObjectMotion>,
     buffer: ObjectBuffer<ObjectMotion>,
     /// Counts the buffer's replacements (a bind group of it must then be rebuilt).
@@ -53,12 +51,18 @@ pub(crate) struct ObjectMotions {
 impl ObjectMotions {
     pub(crate) fn new(gpu: &GpuContext) -> Self {
         Self {
+            device: gpu.device.clone(),
             entries: Vec::new(),
             buffer: ObjectBuffer::new(gpu, "object motions", 16),
             generation: 0,
             ids: None,
             still_ids: motion_id_texture(gpu, (1, 1)),
         }
+    }
+
+    /// Whether its buffer and textures live on `gpu`'s device (not on one since replaced).
+    pub(crate) fn made_on(&self, gpu: &GpuContext) -> bool {
+        self.device == gpu.device
     }
 
     /// Forgets last frame's motions (the Prepare stage starts here).

@@ -12,7 +12,7 @@ use crate::render::{GpuContext, PassTimestamps, PostImage, RenderTarget, layout}
 use crate::shader::Choice;
 
 /// The pass's WGSL file.
-pub const TAA_ENTRY: WgslFile = crate::wgsl_file!("render/anti_aliasing/taa.wgsl");
+pub const TAA_ENTRY: WgslFile = crate::wgsl_file!(nested "render/anti_aliasing/taa.wgsl");
 
 /// The side of TAA's square workgroup in pixels (taa.wgsl's `GROUP`).
 const GROUP: u32 = 16;

@@ -23,7 +23,7 @@ impl Plugin for ShadowsPlugin {
     fn build(&self, app: &mut App) {
         app.resources.get_or_default::<FrameNodes>().add(
             NodePlace::new(SHADOW_MAPS_NODE, RenderPhase::Shadows),
-            ShadowMapsNode,
+            || ShadowMapsNode,
         );
     }
 }

@@ -34,7 +34,7 @@ impl Plugin for TonemappingPlugin {
     fn build(&self, app: &mut App) {
         app.resources
             .get_or_default::<FrameNodes>()
-            .add_post_effect(TONEMAPPING_NODE, Tonemap::default());
+            .add_post_effect(TONEMAPPING_NODE, Tonemap::default);
     }
 }
 

@@ -16,14 +16,15 @@ use crate::render::{
 use crate::shader::Choice;
 
 /// Shared post-processing functions (settings, tonemapping, sRGB encoding).
-pub const POST_PROCESS: WgslFile = crate::wgsl_file!("render/tonemapping/post_process.wgsl");
+pub const POST_PROCESS: WgslFile = crate::wgsl_file!(nested "render/tonemapping/post_process.wgsl");
 /// The tonemapping operators.
-pub const TONEMAPPING: WgslFile = crate::wgsl_file!("render/tonemapping/tonemapping.wgsl");
+pub const TONEMAPPING: WgslFile = crate::wgsl_file!(nested "render/tonemapping/tonemapping.wgsl");
 /// The compute entry point.
-pub const POST_COMPUTE_ENTRY: WgslFile = crate::wgsl_file!("render/tonemapping/post_compute.wgsl");
+pub const POST_COMPUTE_ENTRY: WgslFile =
+    crate::wgsl_file!(nested "render/tonemapping/post_compute.wgsl");
 /// The full-screen triangle fallback.
 pub const POST_FRAGMENT_ENTRY: WgslFile =
-    crate::wgsl_file!("render/tonemapping/post_fragment.wgsl");
+    crate::wgsl_file!(nested "render/tonemapping/post_fragment.wgsl");
 
 pub(crate) fn rgba8_output() -> String {
     "@group(0) @binding(2) var output: texture_storage_2d<rgba8unorm, write>;\n".to_owned()
@@ -273,16 +274,7 @@ fn bind_group_layout(
 ) -> wgpu::BindGroupLayout {
     let mut entries = vec![
         layout::unfilterable_texture_2d(0),
-        wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<PostSettings>() as u64),
-            },
-            count: None,
-        },
+        layout::read_only_storage_buffer(1, std::mem::size_of::<PostSettings>() as u64),
         layout::unfilterable_texture_2d(3),
     ];
     if stage == FullScreenStage::Compute {

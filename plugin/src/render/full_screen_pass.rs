@@ -1,0 +1,324 @@
+//! [`FullScreenPass`]: a post effect's pass from one WGSL function, `effect(pixel)`, run as a
+//! compute pass or a full-screen triangle wherever the renderer runs full-screen work, with
+//! its input image, its parameters and its output bound for it.
+
+use super::shaders::{self, WgslFile};
+use super::{FrameView, FullScreenStage, PassTimestamps, PostImage, PostIo, PostStage, layout};
+
+/// How big a compute pass's workgroups are, per side.
+const GROUP: u32 = 8;
+
+/// A full-screen pass from an effect's WGSL, which defines
+/// `fn effect(pixel: vec2<u32>) -> vec4<f32>`: the value of output pixel `pixel`. It may read
+/// `input` (a `texture_2d<f32>`, the image the effect reads, with `textureLoad`), call
+/// `to_linear(rgb)` / `from_linear(rgb)` (what the stage's images hold to linear colour and
+/// back: the sRGB curve on 8-bit display images, nothing elsewhere) and, when made
+/// [`FullScreenPass::with_params`], read `params`, a read-only storage buffer of the WGSL struct
+/// `EffectParams` (check its layout against the Rust struct with
+/// [`crate::shader::check_wgsl_layout`]).
+#[derive(Debug)]
+pub struct FullScreenPass {
+    pipeline: Pipeline,
+    layout: wgpu::BindGroupLayout,
+    params: Option<wgpu::Buffer>,
+    uploaded: Vec<u8>,
+    /// Bind groups by the ids of the images read and written.
+    bind_groups: Vec<((u64, u64), wgpu::BindGroup)>,
+}
+
+#[derive(Debug)]
+enum Pipeline {
+    Compute(wgpu::ComputePipeline),
+    Fragment(wgpu::RenderPipeline),
+}
+
+impl FullScreenPass {
+    /// The pass of an effect of `stage` for `frame`'s target, from `effect_wgsl`.
+    pub fn new(frame: FrameView<'_>, stage: PostStage, label: &str, effect_wgsl: &str) -> Self {
+        Self::build(frame, stage, (label, effect_wgsl), 0)
+    }
+
+    /// [`FullScreenPass::new`] for an effect that reads `params` of type `P` (upload them
+    /// with [`FullScreenPass::write_params`]).
+    pub fn with_params<P: bytemuck::Pod>(
+        frame: FrameView<'_>,
+        stage: PostStage,
+        label: &str,
+        effect_wgsl: &str,
+    ) -> Self {
+        Self::build(frame, stage, (label, effect_wgsl), size_of::<P>() as u64)
+    }
+
+    fn build(
+        frame: FrameView<'_>,
+        stage: PostStage,
+        (label, effect_wgsl): (&str, &str),
+        params_size: u64,
+    ) -> Self {
+        let device = &frame.gpu.device;
+        let format = match stage {
+            PostStage::Hdr => frame.target.scene_format(),
+            _ => frame.target.format(),
+        };
+        let storage = storage_format_name(format);
+        let run_in = frame.resources.get::<super::Renderer>().map_or(
+            FullScreenStage::Fragment,
+            super::Renderer::full_screen_stage,
+        );
+        let compute = match (run_in, storage) {
+            (FullScreenStage::Compute, Some(name)) if frame.gpu.can_store(format) => Some(name),
+            _ => None,
+        };
+        let mut entries = vec![layout::unfilterable_texture_2d(0)];
+        if params_size > 0 {
+            entries.push(layout::read_only_storage_buffer(1, params_size));
+        }
+        if compute.is_some() {
+            entries.push(layout::compute_storage_texture(2, format));
+        }
+        let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries: &entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&bind_layout)],
+            immediate_size: 0,
+        });
+        let source = effect_source(effect_wgsl, (format, compute), params_size > 0);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let pipeline = match compute {
+            Some(_) => Pipeline::Compute(device.create_compute_pipeline(
+                &wgpu::ComputePipelineDescriptor {
+                    label: Some(label),
+                    layout: Some(&pipeline_layout),
+                    module: &module,
+                    entry_point: Some("effect_compute"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                },
+            )),
+            None => Pipeline::Fragment(layout::fullscreen_pipeline(
+                device,
+                label,
+                Some(&pipeline_layout),
+                &module,
+                "effect_fragment",
+                format,
+            )),
+        };
+        let params = (params_size > 0).then(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: params_size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        });
+        Self {
+            pipeline,
+            layout: bind_layout,
+            params,
+            uploaded: Vec::new(),
+            bind_groups: Vec::new(),
+        }
+    }
+
+    /// Every shader a pass of `effect_wgsl` may compile (each format of the chain's images, in
+    /// compute and as a full-screen triangle), named, to validate an effect without a GPU.
+    pub fn compositions(effect_wgsl: &str, params: bool) -> Vec<(String, String)> {
+        let formats = [
+            wgpu::TextureFormat::Rgba8Unorm,
+            wgpu::TextureFormat::Rgba16Float,
+            wgpu::TextureFormat::Rgba32Float,
+        ];
+        formats
+            .into_iter()
+            .flat_map(|format| {
+                [storage_format_name(format), None].map(|compute| {
+                    let name = format!("post effect ({format:?}, {compute:?})");
+                    (name, effect_source(effect_wgsl, (format, compute), params))
+                })
+            })
+            .collect()
+    }
+
+    /// Whether the pass runs in compute (else as a full-screen triangle).
+    pub fn is_compute(&self) -> bool {
+        matches!(self.pipeline, Pipeline::Compute(_))
+    }
+
+    /// Uploads `params` if they changed (a pass made without parameters ignores them);
+    /// returns the bytes written.
+    pub fn write_params<P: bytemuck::Pod>(&mut self, frame: FrameView<'_>, params: &P) -> u64 {
+        let bytes = bytemuck::bytes_of(params);
+        match &self.params {
+            Some(buffer) if self.uploaded != bytes && bytes.len() as u64 == buffer.size() => {
+                frame.gpu.queue.write_buffer(buffer, 0, bytes);
+                self.uploaded = bytes.to_vec();
+                bytes.len() as u64
+            }
+            _ => 0,
+        }
+    }
+
+    /// Records the pass from `io.input` into `io.output` (nothing without an output).
+    pub fn record(
+        &mut self,
+        frame: FrameView<'_>,
+        io: PostIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) {
+        let Some(output) = io.output else {
+            return;
+        };
+        let bind_group = self.bind_group(frame, io.input, output);
+        let (width, height) = frame.target.size();
+        match &self.pipeline {
+            Pipeline::Compute(pipeline) => {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("post effect"),
+                    timestamp_writes: time.map(PassTimestamps::compute),
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(width.div_ceil(GROUP), height.div_ceil(GROUP), 1);
+            }
+            Pipeline::Fragment(pipeline) => {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("post effect"),
+                    color_attachments: &[Some(super::clearing_attachment(
+                        &output.view,
+                        wgpu::Color::TRANSPARENT,
+                    ))],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: time.map(PassTimestamps::render),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+    }
+
+    /// The bind group reading `input` and writing `output`, made unless the pass has one.
+    fn bind_group(
+        &mut self,
+        frame: FrameView<'_>,
+        input: &PostImage,
+        output: &PostImage,
+    ) -> wgpu::BindGroup {
+        let key = (input.id, output.id);
+        if let Some((_, group)) = self.bind_groups.iter().find(|(k, _)| *k == key) {
+            return group.clone();
+        }
+        let mut entries = vec![wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(&input.view),
+        }];
+        if let Some(params) = &self.params {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 1,
+                resource: params.as_entire_binding(),
+            });
+        }
+        if self.is_compute() {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&output.view),
+            });
+        }
+        let group = frame
+            .gpu
+            .device
+            .create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("post effect"),
+                layout: &self.layout,
+                entries: &entries,
+            });
+        // A target's chain has few images; older groups are of earlier targets.
+        if self.bind_groups.len() >= 4 {
+            self.bind_groups.remove(0);
+        }
+        self.bind_groups.push((key, group.clone()));
+        group
+    }
+}
+
+/// The WGSL name of `format` as a storage texture's, for the formats the post chain's images
+/// have.
+fn storage_format_name(format: wgpu::TextureFormat) -> Option<&'static str> {
+    match format {
+        wgpu::TextureFormat::Rgba8Unorm => Some("rgba8unorm"),
+        wgpu::TextureFormat::Rgba16Float => Some("rgba16float"),
+        wgpu::TextureFormat::Rgba32Float => Some("rgba32float"),
+        _ => None,
+    }
+}
+
+/// The library's WGSL files an effect is composed with, besides [`shaders::SRGB`] and
+/// [`shaders::FULLSCREEN_TRIANGLE`].
+pub const EFFECT_FILES: [WgslFile; 3] = [EFFECT_HELPERS, EFFECT_COMPUTE, EFFECT_FRAGMENT];
+
+/// `to_linear` and `from_linear`.
+const EFFECT_HELPERS: WgslFile = crate::wgsl_file!("render/effect_helpers.wgsl");
+/// The compute entry point.
+const EFFECT_COMPUTE: WgslFile = crate::wgsl_file!("render/effect_compute.wgsl");
+/// The full-screen triangle's entry point.
+const EFFECT_FRAGMENT: WgslFile = crate::wgsl_file!("render/effect_fragment.wgsl");
+
+/// The whole shader of an effect writing `format`, in compute where `compute` names its
+/// storage format: generated declarations, the helpers, the entry point, the effect.
+fn effect_source(
+    effect: &str,
+    (format, compute): (wgpu::TextureFormat, Option<&str>),
+    params: bool,
+) -> String {
+    let encoded = format == wgpu::TextureFormat::Rgba8Unorm;
+    let mut source = format!(
+        "@group(0) @binding(0) var input: texture_2d<f32>;\nconst ENCODED_SRGB: bool = {encoded};\n"
+    );
+    if params {
+        source.push_str("@group(0) @binding(1) var<storage, read> params: EffectParams;\n");
+    }
+    let files = match compute {
+        Some(name) => {
+            source.push_str(&format!(
+                "@group(0) @binding(2) var output: texture_storage_2d<{name}, write>;\n"
+            ));
+            vec![shaders::SRGB, EFFECT_HELPERS, EFFECT_COMPUTE]
+        }
+        None => vec![
+            shaders::SRGB,
+            EFFECT_HELPERS,
+            shaders::FULLSCREEN_TRIANGLE,
+            EFFECT_FRAGMENT,
+        ],
+    };
+    for file in files {
+        source.push_str(file.source);
+        source.push('\n');
+    }
+    source.push_str(effect);
+    source
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_dispatch_covers_the_shaders_workgroup() {
+        assert!(
+            EFFECT_COMPUTE
+                .source
+                .contains(&format!("@workgroup_size({GROUP}, {GROUP}, 1)"))
+        );
+    }
+}

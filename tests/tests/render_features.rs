@@ -1,0 +1,218 @@
+//! The renderer's features join the frame as plugins: an app without anti-aliasing or scene
+//! shadows runs none of their passes or timings and shows what the frame rendered; a game's
+//! own post effect runs where its stage puts it; nodes that cannot be ordered are errors that
+//! name them.
+
+use std::path::Path;
+
+use pom::render::{
+    FrameNodes, FrameView, FullScreenPass, NodePlace, PassTimestamps, PostEffect, PostImage,
+    PostIo, PostStage, RenderError, RenderFeature, RenderPhase,
+};
+use pom::{AntiAliasing, App, GpuTimings, PomPlugin, RenderPlugin, TimingMode, load_gltf};
+use pom_tests::anti_aliasing::{set_anti_aliasing, turned_square_with};
+use pom_tests::{render_and_capture, run_frames};
+
+/// The names of the passes the last read frame timed.
+fn timed_passes(app: &App) -> Vec<String> {
+    match app.resources.get::<GpuTimings>() {
+        Some(GpuTimings::Supported { passes, .. }) => passes.keys().cloned().collect(),
+        other => panic!("no timings: {other:?}"),
+    }
+}
+
+fn blocking(render: RenderPlugin) -> RenderPlugin {
+    render.with_gpu_timing(Some(TimingMode::Blocking))
+}
+
+#[test]
+fn without_anti_aliasing_a_camera_asking_for_it_gets_the_frame_as_rendered() {
+    let plain = |render: RenderPlugin, mode| {
+        let mut app = turned_square_with(blocking(render));
+        set_anti_aliasing(&mut app, mode);
+        run_frames(&mut app, 3).unwrap();
+        let image = render_and_capture(&mut app).unwrap();
+        (image, timed_passes(&app), app)
+    };
+    let (off, _, _) = plain(RenderPlugin::new(48, 48), AntiAliasing::Off);
+    for mode in [AntiAliasing::Taa, AntiAliasing::Fxaa] {
+        let without = RenderPlugin::new(48, 48).without(RenderFeature::AntiAliasing);
+        let (image, passes, app) = plain(without, mode);
+        assert!(
+            !passes
+                .iter()
+                .any(|pass| ["taa", "post_filter", "object_motion"].contains(&pass.as_str())),
+            "{mode:?}: {passes:?}"
+        );
+        let nodes = app.resources.get::<FrameNodes>().unwrap();
+        assert!(!nodes.contains("taa") && !nodes.contains("post_filter"));
+        assert!(image == off, "{mode:?} without the plugin differs from off");
+        // With the plugin the same camera's pass runs and is timed.
+        let (_, passes, _) = plain(RenderPlugin::new(48, 48), mode);
+        let name = if mode == AntiAliasing::Taa {
+            "taa"
+        } else {
+            "post_filter"
+        };
+        assert!(passes.iter().any(|pass| pass == name), "{passes:?}");
+    }
+}
+
+/// The street corner with its sun casting scene shadows, rendered by `render`.
+fn shadowed_street_corner(render: RenderPlugin, shadows: bool) -> App {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
+    let mut app = App::new();
+    app.add_plugin(blocking(render)).add_plugin(PomPlugin);
+    let scene = load_gltf(&mut app, &path).unwrap();
+    if shadows {
+        for &light in &scene.lights {
+            app.world
+                .insert_one(light, pom::LightShadows::default())
+                .unwrap();
+        }
+    }
+    app
+}
+
+#[test]
+fn without_scene_shadows_lights_cast_none_and_no_shadow_pass_runs() {
+    let render = RenderPlugin::new(96, 54);
+    let mut without = shadowed_street_corner(render.without(RenderFeature::SceneShadows), true);
+    run_frames(&mut without, 2).unwrap();
+    let image = render_and_capture(&mut without).unwrap();
+    let passes = timed_passes(&without);
+    assert!(!passes.iter().any(|pass| pass == "shadows"), "{passes:?}");
+    let mut unshadowed = shadowed_street_corner(render, false);
+    assert!(image == render_and_capture(&mut unshadowed).unwrap());
+    let mut shadowed = shadowed_street_corner(render, true);
+    run_frames(&mut shadowed, 2).unwrap();
+    let with_shadows = render_and_capture(&mut shadowed).unwrap();
+    assert!(timed_passes(&shadowed).iter().any(|pass| pass == "shadows"));
+    assert!(with_shadows != image, "the shadows plugin changed nothing");
+}
+
+/// An HDR effect that scales the scene's colour by its parameter.
+struct Gain {
+    gain: f32,
+    pass: Option<FullScreenPass>,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GainParams {
+    gain: f32,
+}
+
+/// A negative alpha marks a display-referred pixel (the clear colour), which it leaves alone.
+const GAIN: &str = "
+struct EffectParams { gain: f32 }
+fn effect(pixel: vec2<u32>) -> vec4<f32> {
+    let colour = textureLoad(input, pixel, 0);
+    if colour.a < 0.0 {
+        return colour;
+    }
+    return vec4<f32>(from_linear(to_linear(colour.rgb) * params.gain), colour.a);
+}
+";
+
+impl PostEffect for Gain {
+    fn stage(&self) -> PostStage {
+        PostStage::Hdr
+    }
+
+    fn runs(&self, _: FrameView<'_>) -> bool {
+        true
+    }
+
+    fn record(
+        &mut self,
+        frame: FrameView<'_>,
+        io: PostIo<'_>,
+        encoder: &mut pom::wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) -> Result<Option<PostImage>, RenderError> {
+        let pass = self.pass.get_or_insert_with(|| {
+            FullScreenPass::with_params::<GainParams>(frame, PostStage::Hdr, "gain", GAIN)
+        });
+        pass.write_params(frame, &GainParams { gain: self.gain });
+        pass.record(frame, io, encoder, time);
+        Ok(None)
+    }
+}
+
+#[test]
+fn an_hdr_effect_with_parameters_darkens_the_scene_but_not_the_clear_colour() {
+    let render = |path| blocking(RenderPlugin::new(48, 48).with_post_process(path));
+    for path in [
+        pom::PostProcessPath::Fastest,
+        pom::PostProcessPath::Fragment,
+    ] {
+        let mut plain = turned_square_with(render(path));
+        let before = render_and_capture(&mut plain).unwrap();
+        let mut app = turned_square_with(render(path));
+        app.resources
+            .get_or_default::<FrameNodes>()
+            .add_post_effect("gain", || Gain {
+                gain: 0.0,
+                pass: None,
+            });
+        run_frames(&mut app, 2).unwrap();
+        let after = render_and_capture(&mut app).unwrap();
+        assert!(timed_passes(&app).iter().any(|pass| pass == "gain"));
+        // The square turns black; the clear colour, display-referred, stays.
+        let clear = *before.get_pixel(0, 0);
+        let mut square = 0;
+        for (x, y, pixel) in after.enumerate_pixels() {
+            let was = *before.get_pixel(x, y);
+            if was == clear {
+                assert_eq!(*pixel, clear, "{path:?} ({x}, {y})");
+            } else {
+                square += 1;
+                assert_eq!(&pixel.0[..3], &[0, 0, 0], "{path:?} ({x}, {y}) was {was:?}");
+            }
+        }
+        assert!(square > 200, "{path:?}: only {square} pixels of the square");
+    }
+}
+
+#[test]
+fn nodes_placed_against_unknown_names_or_in_a_cycle_are_errors_naming_them() {
+    let mut app = turned_square_with(RenderPlugin::new(16, 16));
+    let place = NodePlace::new("grade", RenderPhase::PostProcess).after("bloom");
+    app.resources
+        .get_or_default::<FrameNodes>()
+        .add_post_effect_at(place, || Gain {
+            gain: 1.0,
+            pass: None,
+        });
+    let error = app.update().unwrap_err().to_string();
+    assert!(
+        error.contains("\"grade\"") && error.contains("\"bloom\""),
+        "{error}"
+    );
+
+    let mut app = turned_square_with(RenderPlugin::new(16, 16));
+    let nodes = app.resources.get_or_default::<FrameNodes>();
+    let a = NodePlace::new("a", RenderPhase::PostProcess).after("b");
+    let b = NodePlace::new("b", RenderPhase::PostProcess).after("a");
+    nodes.add_post_effect_at(a, || Gain {
+        gain: 1.0,
+        pass: None,
+    });
+    nodes.add_post_effect_at(b, || Gain {
+        gain: 1.0,
+        pass: None,
+    });
+    let error = app.update().unwrap_err().to_string();
+    assert!(
+        error.contains("cycle") && error.contains("\"a\""),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_frame_without_tonemapping_is_an_error_naming_it() {
+    let mut app = turned_square_with(RenderPlugin::new(16, 16).without(RenderFeature::Tonemapping));
+    let error = app.update().unwrap_err().to_string();
+    assert!(error.contains("tonemapping"), "{error}");
+}
