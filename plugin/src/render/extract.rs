@@ -4,7 +4,8 @@ use glam::{Mat4, Vec3};
 use hecs::World;
 
 use super::anti_aliasing::{
-    AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalView, jittered,
+    AntiAliasing, FastApproximateAntiAliasing, TemporalAntiAliasing, TemporalFrame,
+    TemporalHistory, TemporalView, jittered,
 };
 use super::gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
@@ -40,6 +41,8 @@ pub struct ExtractedFrame {
     /// This frame's temporal anti-aliasing, on TAA frames with a camera (the frame uniform's
     /// projection is then jittered by its offset).
     pub temporal: Option<TemporalFrame>,
+    /// The active camera's FXAA parameters (its component, else the defaults), as given.
+    pub fxaa: FastApproximateAntiAliasing,
     /// The shadow maps to render this frame, in the order the lights reference them.
     pub shadow_views: Vec<ShadowViewPlan>,
     /// Whether the lights asked for more than [`MAX_SHADOW_VIEWS`] maps.
@@ -137,6 +140,7 @@ struct CameraDisplay {
     tonemapping: Tonemapping,
     anti_aliasing: Option<AntiAliasing>,
     temporal: TemporalAntiAliasing,
+    fxaa: FastApproximateAntiAliasing,
 }
 
 /// The active camera (as [`crate::active_camera`] finds it) with its entity's display
@@ -151,18 +155,20 @@ fn active_camera_and_display(world: &World) -> CameraDisplay {
             Option<&Tonemapping>,
             Option<&AntiAliasing>,
             Option<&TemporalAntiAliasing>,
+            Option<&FastApproximateAntiAliasing>,
         )>()
         .iter()
         .find(|(_, camera, ..)| camera.active)
         .map_or_else(
             Default::default,
-            |(entity, camera, transform, exposure, tonemapping, anti_aliasing, temporal)| {
+            |(entity, camera, transform, exposure, tonemapping, anti_aliasing, temporal, fxaa)| {
                 CameraDisplay {
                     camera: Some((entity, *camera, *transform)),
                     exposure: exposure.copied().unwrap_or_default(),
                     tonemapping: tonemapping.copied().unwrap_or_default(),
                     anti_aliasing: anti_aliasing.copied(),
                     temporal: temporal.copied().unwrap_or_default(),
+                    fxaa: fxaa.copied().unwrap_or_default(),
                 }
             },
         )
@@ -244,6 +250,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         tonemapping,
         anti_aliasing,
         temporal,
+        fxaa: display.fxaa,
         shadow_maps_overflowed: overflowed,
         shadow_views: if camera.is_some() {
             lights.shadow_views.views

@@ -1,6 +1,6 @@
 //! Anti-aliasing: temporal anti-aliasing (TAA) with its object motion, and FXAA. Which a
-//! camera uses, and TAA's parameters, are camera components (temporal.rs); this folder's
-//! [`AntiAliasingPlugin`] joins the frame with three nodes:
+//! camera uses, and the parameters of TAA (temporal.rs) and FXAA (fxaa.rs), are camera
+//! components; this folder's [`AntiAliasingPlugin`] joins the frame with three nodes:
 //!
 //! ```text
 //! transparent  object_motion  moving draws write their motion's number (frames where one moved)
@@ -15,18 +15,19 @@ mod object_motion;
 mod taa;
 mod temporal;
 
-pub use fxaa::FXAA_SHADERS;
+pub use fxaa::{FXAA_SHADERS, FastApproximateAntiAliasing, set_camera_fxaa};
 pub(crate) use object_motion::ObjectMotions;
 pub use object_motion::{MOTION_ID_FORMAT, ObjectMotion};
 pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
 pub use temporal::{
     AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
-    TemporalLimit, TemporalView, jitter_offset, jittered, set_camera_anti_aliasing,
+    TemporalView, jitter_offset, jittered, set_camera_anti_aliasing,
 };
 
 use fxaa::FxaaPass;
 use taa::{TaaInputs, TaaPass};
 
+use crate::parameters::ClampWarnings;
 use crate::render::{
     DrawPhase, ExtractedFrame, FrameNode, FrameNodes, FrameView, GpuContext, HdrInput, NodePlace,
     PassTimestamps, PostEffect, PostImage, PostIo, PostStage, RenderError, RenderPhase,
@@ -215,6 +216,7 @@ impl PostEffect for Taa {
 #[derive(Default)]
 struct Fxaa {
     pass: Option<FxaaPass>,
+    warnings: ClampWarnings<FastApproximateAntiAliasing>,
 }
 
 impl PostEffect for Fxaa {
@@ -239,7 +241,12 @@ impl PostEffect for Fxaa {
                 stage,
             ));
         }
-        Ok(0)
+        let fxaa = resources.require::<ExtractedFrame>()?.fxaa;
+        let settings = self.warnings.sanitized("FXAA", &fxaa);
+        Ok(match &mut self.pass {
+            Some(pass) => pass.upload(resources.require::<GpuContext>()?, settings.into()),
+            None => 0,
+        })
     }
 
     fn record(
