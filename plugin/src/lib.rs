@@ -125,7 +125,10 @@ pub use parallax::{
     ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
-pub use render::{AntiAliasing, TemporalAntiAliasing, TemporalHistory, set_camera_anti_aliasing};
+pub use render::{
+    AntiAliasing, FastApproximateAntiAliasing, TemporalAntiAliasing, TemporalHistory,
+    set_camera_anti_aliasing, set_camera_fxaa,
+};
 pub use render::{
     GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
     TargetFormat, TimingMode, capture, capture_f32, capture_scene,

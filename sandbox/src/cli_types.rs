@@ -9,6 +9,8 @@ use pom::hecs::{Entity, World};
 use pom::preview::{MAX_VIEW_ANGLE, PreviewProjection, PreviewShape};
 use pom::{DirectionalLight, LightShadows, PointLight, RenderPath, RenderPlugin, SpotLight};
 
+use crate::settings_args::SettingsArgs;
+
 /// `--projection`: how the preview camera projects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ProjectionArg {
@@ -140,8 +142,9 @@ pub fn parse_exposure(text: &str) -> Result<f32, String> {
     }
 }
 
-/// How the camera maps scene light to the display: `--exposure` and `--tonemap`.
-#[derive(Clone, Copy, Debug, clap::Args)]
+/// How the camera maps scene light to the display: `--exposure`, `--tonemap`, `--aa` and the
+/// anti-aliasing parameters.
+#[derive(Clone, Debug, clap::Args)]
 #[command(next_help_heading = "Display")]
 pub struct DisplayArgs {
     /// Camera exposure in EV100, -16..=24; +1 halves the light [default: 14.7, daylight: white
@@ -155,45 +158,12 @@ pub struct DisplayArgs {
     /// whole cycle, --taa-jitter-samples frames, for the history to settle).
     #[arg(long, value_name = "NAME", value_parser = crate::material_args::choice_parser::<pom::AntiAliasing>(), default_value = "off")]
     pub aa: pom::AntiAliasing,
-    /// TAA: share of the new frame in a pixel moving half a pixel or more a frame, once its
-    /// history is long, 0.02..=1 [default: 0.1].
-    #[arg(long, value_name = "X", value_parser = taa_parser(0))]
-    pub taa_current_weight: Option<f32>,
-    /// TAA: width of the history's clip box in standard deviations, 0.25..=4 [default: 1].
-    #[arg(long, value_name = "X", value_parser = taa_parser(1))]
-    pub taa_clip_gamma: Option<f32>,
-    /// TAA: sub-pixel positions of the jitter, 1..=64 [default: 16].
-    #[arg(long, value_name = "N", value_parser = taa_parser(2))]
-    pub taa_jitter_samples: Option<f32>,
-    /// TAA: how much nearer a remembered depth may be before the history is dropped, 0..=1
-    /// [default: 0.05].
-    #[arg(long, value_name = "X", value_parser = taa_parser(3))]
-    pub taa_depth_tolerance: Option<f32>,
-    /// TAA: mip levels finer than the footprint that textures are sampled at, -2..=0
-    /// [default: -2].
-    #[arg(long, value_name = "X", value_parser = taa_parser(4), allow_hyphen_values = true)]
-    pub taa_mip_bias: Option<f32>,
-    /// TAA: share of the new frame in a still pixel once its history is long, 0.01..=1
-    /// [default: 0.02].
-    #[arg(long, value_name = "X", value_parser = taa_parser(5))]
-    pub taa_still_weight: Option<f32>,
-}
-
-/// The value parser of TAA parameter `index` of [`pom::TemporalAntiAliasing::LIMITS`]: its
-/// limits, and whole numbers where it is one.
-fn taa_parser(index: usize) -> impl Fn(&str) -> Result<f32, String> + Clone {
-    move |text| {
-        let limit = &pom::TemporalAntiAliasing::LIMITS[index];
-        let value = parse_finite(text)?;
-        if limit.integer && value.fract() != 0.0 {
-            return Err(format!("{value} is not a whole number"));
-        }
-        if (limit.min..=limit.max).contains(&value) {
-            Ok(value)
-        } else {
-            Err(format!("{value} is outside {}..={}", limit.min, limit.max))
-        }
-    }
+    /// TAA's parameters: `--taa-current-weight` and the rest of its table.
+    #[command(flatten)]
+    pub taa: SettingsArgs<pom::TemporalAntiAliasing>,
+    /// FXAA's parameters: `--fxaa-contrast-threshold` and the rest of its table.
+    #[command(flatten)]
+    pub fxaa: SettingsArgs<pom::FastApproximateAntiAliasing>,
 }
 
 impl DisplayArgs {
@@ -204,25 +174,12 @@ impl DisplayArgs {
             .map_or_else(pom::Exposure::default, |ev100| pom::Exposure { ev100 });
         pom::set_camera_display_mapping(&mut app.world, exposure, self.tonemap);
         pom::set_camera_anti_aliasing(&mut app.world, self.aa, self.temporal());
+        pom::set_camera_fxaa(&mut app.world, self.fxaa.settings());
     }
 
     /// The TAA parameters the flags give (the defaults for those not given).
     pub fn temporal(&self) -> pom::TemporalAntiAliasing {
-        let mut temporal = pom::TemporalAntiAliasing::default();
-        let given = [
-            self.taa_current_weight,
-            self.taa_clip_gamma,
-            self.taa_jitter_samples,
-            self.taa_depth_tolerance,
-            self.taa_mip_bias,
-            self.taa_still_weight,
-        ];
-        for (limit, value) in pom::TemporalAntiAliasing::LIMITS.iter().zip(given) {
-            if let Some(value) = value {
-                (limit.set)(&mut temporal, value);
-            }
-        }
-        temporal
+        self.taa.settings()
     }
 
     /// Frames a still image is rendered for: TAA's settling frames, else one.

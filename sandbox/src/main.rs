@@ -18,6 +18,7 @@ mod preview_textures;
 mod render_command;
 mod scene_preview;
 mod script_command;
+mod settings_args;
 mod window;
 
 use clap::{Parser, Subcommand};

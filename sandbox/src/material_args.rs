@@ -96,38 +96,48 @@ pub fn choice_parser<T: Choice + Clone + Send + Sync>() -> impl TypedValueParser
     })
 }
 
-/// The flag of one parameter.
-fn flag(param: &'static Param<ParallaxOcclusionMaterial>) -> Arg {
-    let (long, default) = texts_of(param);
+/// The flag of one parameter of any declared table, `--long` with id `id`; `checked`: a value
+/// outside the parameter's limits is a usage error naming the limit (settings, which have no
+/// `validate` of their own), else it is left to the material's `validate`.
+pub fn flag<M>(
+    param: &'static Param<M>,
+    (id, long, default): (&'static str, &'static str, &'static str),
+    checked: bool,
+) -> Arg {
     let help = if param.spec.unit.is_empty() {
         param.help.trim().to_owned()
     } else {
         format!("{} [unit: {}]", param.help.trim(), param.spec.unit)
     };
-    let arg = Arg::new(param.name)
+    let parse = move |text: &str| {
+        let value = param.parse(text).map_err(|error| error.to_string())?;
+        if checked {
+            param.check(value).map_err(|error| error.to_string())?;
+        }
+        Ok::<_, String>(value)
+    };
+    let arg = Arg::new(id)
         .long(long)
         .help(help)
         .default_value(default)
         .allow_negative_numbers(true);
     match (&param.spec.kind, possible_values(&param.spec.kind)) {
         (_, Some(values)) => arg.value_name("NAME").value_parser(
-            PossibleValuesParser::new(values).try_map(move |text: String| param.parse(&text)),
+            PossibleValuesParser::new(values).try_map(move |text: String| parse(&text)),
         ),
         (ParamKind::Toggle, None) => arg
             .num_args(0..=1)
             .default_missing_value("true")
             .action(ArgAction::Set)
             .value_name("BOOL")
-            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
+            .value_parser(ValueParser::new(parse)),
         (ParamKind::Color, None) => arg
             .value_name("R,G,B[,A]")
-            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
-        (ParamKind::Integer { .. }, None) => arg
-            .value_name("N")
-            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
-        _ => arg
-            .value_name("F")
-            .value_parser(ValueParser::new(move |text: &str| param.parse(text))),
+            .value_parser(ValueParser::new(parse)),
+        (ParamKind::Integer { .. }, None) => {
+            arg.value_name("N").value_parser(ValueParser::new(parse))
+        }
+        _ => arg.value_name("F").value_parser(ValueParser::new(parse)),
     }
 }
 
@@ -186,7 +196,10 @@ impl FromArgMatches for MaterialArgs {
 impl Args for MaterialArgs {
     fn augment_args(command: Command) -> Command {
         let command = command.next_help_heading("Material").arg(preset_flag());
-        let command = flag_parameters().fold(command, |command, param| command.arg(flag(param)));
+        let command = flag_parameters().fold(command, |command, param| {
+            let (long, default) = texts_of(param);
+            command.arg(flag(param, (param.name, long, default), false))
+        });
         command.group(
             ArgGroup::new(GROUP)
                 .multiple(true)

@@ -523,18 +523,21 @@ fn an_unknown_anti_aliasing_is_rejected_with_the_valid_ones() {
 }
 
 #[test]
-fn out_of_range_taa_parameters_are_rejected_naming_the_flag_and_the_limit() {
+fn out_of_range_anti_aliasing_parameters_are_rejected_naming_the_flag_and_the_limit() {
     let dir = TempDir::new("bad-taa");
     let out = dir.join("out.png");
     for (flag, bad, limit) in [
-        ("--taa-current-weight", "5", "0.02..=1"),
+        ("--taa-current-weight", "5", "at most 1"),
         ("--taa-current-weight", "NaN", "NaN"),
-        ("--taa-jitter-samples", "100", "1..=64"),
+        ("--taa-jitter-samples", "100", "at most 64"),
         ("--taa-jitter-samples", "2.5", "whole number"),
-        ("--taa-clip-gamma", "0", "0.25..=4"),
-        ("--taa-mip-bias", "1", "-2..=0"),
-        ("--taa-mip-bias", "-3", "-2..=0"),
-        ("--taa-still-weight", "0", "0.01..=1"),
+        ("--taa-clip-gamma", "0", "at least 0.25"),
+        ("--taa-mip-bias", "1", "at most 0"),
+        ("--taa-mip-bias", "-3", "at least -2"),
+        ("--taa-still-weight", "0", "at least 0.01"),
+        ("--fxaa-subpixel-blending", "2", "at most 1"),
+        ("--fxaa-contrast-threshold", "-0.5", "at least 0"),
+        ("--fxaa-relative-threshold", "inf", "not a finite number"),
     ] {
         let output = sandbox(&["render", "--out", path_arg(&out), "--aa", "taa", flag, bad]);
         assert_one_line_error(&output, &[flag, limit]);

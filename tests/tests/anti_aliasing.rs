@@ -9,9 +9,10 @@ use glam::Vec3;
 use image::{Rgba32FImage, RgbaImage};
 use pom::preview::{PreviewProjection, PreviewView};
 use pom::{
-    AntiAliasing, App, Assets, Camera, Color, DirectionalLight, GlobalTransform, GpuContext,
-    LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPlugin,
-    TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform, load_gltf, patterns,
+    AntiAliasing, App, Assets, Camera, Color, DirectionalLight, FastApproximateAntiAliasing,
+    GlobalTransform, GpuContext, LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin,
+    RenderPath, RenderPlugin, TargetFormat, TemporalAntiAliasing, TemporalHistory, Transform,
+    load_gltf, patterns,
 };
 use pom_tests::anti_aliasing::{
     SETTLE, save_for_looking, set_anti_aliasing, settled, turned_square,
@@ -607,11 +608,39 @@ fn out_of_range_taa_parameters_are_clamped_with_a_warning() {
     app.world.insert_one(camera, wild).unwrap();
     let image = render_and_capture(&mut app).unwrap();
     assert!(image.pixels().any(|p| p.0[0] > 0));
+    let problems: Vec<String> = wild.problems().iter().map(ToString::to_string).collect();
     assert_eq!(
-        wild.problems(),
+        problems,
         [
-            "taa.current_weight = NaN is outside 0.02..=1",
-            "taa.jitter_samples = 1000 is outside 1..=64"
+            "current_weight is NaN, which is not a finite number",
+            "jitter_samples is 1000 but must be at most 64"
         ]
     );
+}
+
+#[test]
+fn out_of_range_fxaa_parameters_are_clamped_with_a_warning() {
+    let render = |fxaa: FastApproximateAntiAliasing| {
+        let mut app = cobblestones(32, 45.0, |_| {});
+        set_anti_aliasing(&mut app, AntiAliasing::Fxaa);
+        assert_eq!(pom::set_camera_fxaa(&mut app.world, fxaa), 1);
+        render_and_capture(&mut app).unwrap()
+    };
+    let wild = FastApproximateAntiAliasing {
+        contrast_threshold: -1.0,
+        relative_threshold: f32::NAN,
+        subpixel_blending: 2.0,
+    };
+    let problems: Vec<String> = wild.problems().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        problems,
+        [
+            "contrast_threshold is -1 but must be at least 0",
+            "relative_threshold is NaN, which is not a finite number",
+            "subpixel_blending is 2 but must be at most 1"
+        ]
+    );
+    // The pass draws what the clamped values draw, and they are not the defaults.
+    assert_eq!(render(wild), render(wild.sanitized()));
+    assert_ne!(render(wild), render(FastApproximateAntiAliasing::default()));
 }

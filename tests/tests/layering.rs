@@ -33,10 +33,10 @@ const LAYERS: &[&str] = &[
     "light",
     "shadows",
     "tonemapping",
+    // Parameters: declaration, limits, tables (no GPU).
+    "parameters",
     // The renderer core.
     "render",
-    // Parameters: declaration, limits, presets (no GPU).
-    "parameters",
     // The material seam.
     "material",
     // The materials.

@@ -5,6 +5,7 @@
 //! `ParallaxOcclusionMaterial` are two materials like any other.
 
 mod batches;
+mod declare;
 mod deferred;
 mod draw;
 mod draw_order;
@@ -25,9 +26,10 @@ pub use crate::shader::{
 };
 // The parameter layer's names, where materials have always found them.
 pub use crate::parameters::{
-    DeclaredMaterial, GpuParam, LimitError, Param, ParamError, ParamGroup, ParamKind, ParamSpec,
-    ParamType, ParamValue, every_parameter_changed,
+    GpuParam, LimitError, Param, ParamError, ParamGroup, ParamKind, ParamSpec, ParamType,
+    ParamValue, every_parameter_changed,
 };
+pub use declare::DeclaredMaterial;
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
 pub use plugin::{

@@ -5,6 +5,7 @@
 
 use std::fmt;
 
+use super::param_types::ParamType;
 use crate::shader::{Choice, ChoiceInfo};
 
 /// A parameter's value as tables walked at run time (command line, editor) see it.
@@ -255,8 +256,22 @@ impl<M> Param<M> {
         (self.get)(&M::default())
     }
 
+    /// Whether `value` lies within this parameter's declared limits (the error names it and
+    /// the limit); values of other kinds are not checked here (`set` rejects them).
+    pub fn check(&self, value: ParamValue) -> Result<(), LimitError> {
+        match (self.spec.kind, value) {
+            (ParamKind::Float { .. }, ParamValue::Integer(number)) => {
+                (number as f32).check(self.name, &self.spec.kind)
+            }
+            (_, ParamValue::Float(number)) => number.check(self.name, &self.spec.kind),
+            (_, ParamValue::Integer(number)) => number.check(self.name, &self.spec.kind),
+            _ => Ok(()),
+        }
+    }
+
     /// Parses `text` as this parameter's value (the command line's spelling). Numbers are not
-    /// range-checked here: the material's `validate` names the limit.
+    /// range-checked here: the material's `validate` names the limit ([`Param::check`] does
+    /// for settings, whose flags reject a value out of range).
     pub fn parse(&self, text: &str) -> Result<ParamValue, ParamError> {
         let invalid = |expected: String| ParamError::Parse {
             name: self.name,
@@ -360,7 +375,7 @@ pub enum ParamError {
     },
 }
 
-/// A material parameter's value out of its declared limits.
+/// A parameter's value out of its declared limits.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum LimitError {

@@ -49,10 +49,10 @@ pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod visibility;
 
 pub use anti_aliasing::{
-    AntiAliasing, AntiAliasingPlugin, FXAA_SHADERS, HISTORY_FORMAT, OBJECT_MOTION_PASS,
-    ObjectMotion, POST_FILTER_MIP_BIAS, POST_FILTER_PASS, TAA_PASS, TAA_SHADER, TaaUniform,
-    TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalLimit, TemporalView,
-    jitter_offset, set_camera_anti_aliasing,
+    AntiAliasing, AntiAliasingFrame, AntiAliasingPlugin, FXAA_SHADERS, FastApproximateAntiAliasing,
+    HISTORY_FORMAT, OBJECT_MOTION_PASS, ObjectMotion, POST_FILTER_MIP_BIAS, POST_FILTER_PASS,
+    TAA_PASS, TAA_SHADER, TaaUniform, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
+    TemporalView, jitter_offset, set_camera_anti_aliasing, set_camera_fxaa,
 };
 pub use capture::{
     CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture, read_texture_level,

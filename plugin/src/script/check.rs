@@ -7,6 +7,7 @@ mod values;
 use std::path::Path;
 
 use crate::files::{FileAccess, FileError, check_regular, resolve_inside};
+use crate::parameters::DeclaredSettings;
 
 use super::ScriptError;
 use super::format::{EntityDesc, MAX_ADVANCE_FRAMES, MaterialDesc, Script, Statistic, Step};
@@ -110,7 +111,7 @@ pub(super) fn check(
 ) -> Result<(), ScriptError> {
     let source = ScriptText { text, path, access };
     check_exposure(script, &source)?;
-    check_temporal(script, &source)?;
+    check_anti_aliasing(script, &source)?;
     check_light_shadows(script, &source)?;
     check_advances(script, &source)?;
     values::check_values(script, &source)?;
@@ -137,17 +138,23 @@ fn check_exposure(script: &Script, source: &ScriptText<'_>) -> Result<(), Script
     Ok(())
 }
 
-/// TAA's parameters, if given, are within their limits.
-fn check_temporal(script: &Script, source: &ScriptText<'_>) -> Result<(), ScriptError> {
-    let problems = script
-        .camera
-        .taa
-        .map(|taa| taa.problems())
-        .unwrap_or_default();
-    match problems.first() {
+/// The parameters of TAA and FXAA, if given, are within their limits.
+fn check_anti_aliasing(script: &Script, source: &ScriptText<'_>) -> Result<(), ScriptError> {
+    check_settings(script.camera.taa, "taa", source)?;
+    check_settings(script.camera.fxaa, "fxaa", source)
+}
+
+/// The camera's settings under `key`, if given, are within their declared limits; the error
+/// names the first parameter that is not.
+fn check_settings<S: DeclaredSettings>(
+    settings: Option<S>,
+    key: &str,
+    source: &ScriptText<'_>,
+) -> Result<(), ScriptError> {
+    match settings.and_then(|settings| settings.problems().into_iter().next()) {
         Some(problem) => Err(source.invalid(
-            locate(source.text, "taa", "camera"),
-            format!("camera {problem}"),
+            locate(source.text, key, "camera"),
+            format!("camera {key}.{problem}"),
         )),
         None => Ok(()),
     }

@@ -56,9 +56,14 @@ pub struct CameraDesc {
     /// and a `Camera` or `OrbitCamera` step is a cut that drops the history.
     #[serde(default)]
     pub aa: Option<crate::AntiAliasing>,
-    /// TAA's parameters, absent fields at their defaults (`TemporalAntiAliasing::LIMITS`).
+    /// TAA's parameters, absent fields at their defaults
+    /// (`TemporalAntiAliasing::PARAMETERS`).
     #[serde(default)]
     pub taa: Option<crate::TemporalAntiAliasing>,
+    /// FXAA's parameters, absent fields at their defaults
+    /// (`FastApproximateAntiAliasing::PARAMETERS`).
+    #[serde(default)]
+    pub fxaa: Option<crate::FastApproximateAntiAliasing>,
 }
 
 /// A light.

@@ -171,6 +171,7 @@ impl<'a> Runner<'a> {
             script.camera.tonemap.unwrap_or_default(),
             script.camera.aa.unwrap_or_default(),
             script.camera.taa.unwrap_or_default(),
+            script.camera.fxaa.unwrap_or_default(),
         ));
         let lights = script
             .lights

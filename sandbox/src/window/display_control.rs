@@ -1,13 +1,17 @@
 //! The display controls: the active camera's exposure (EV100), tonemapping operator and
-//! anti-aliasing (with TAA's parameters), written into its `Exposure`, `Tonemapping`,
-//! `AntiAliasing` and `TemporalAntiAliasing` components, and kept with the tuned state.
+//! anti-aliasing (with the parameters of TAA or FXAA, a row each from their declared tables as a
+//! material's), written into its `Exposure`, `Tonemapping`, `AntiAliasing`,
+//! `TemporalAntiAliasing` and `FastApproximateAntiAliasing` components, and kept with the tuned
+//! state.
 
 use egui::{Slider, Ui};
 use pom::hecs::World;
-use pom::{AntiAliasing, Camera, Exposure, TemporalAntiAliasing, Tonemapping};
+use pom::{
+    AntiAliasing, Camera, Exposure, FastApproximateAntiAliasing, TemporalAntiAliasing, Tonemapping,
+};
 use serde::{Deserialize, Serialize};
 
-use super::material_editor::choose;
+use super::material_editor::{choose, parameter_row};
 
 /// What the state file keeps of the display controls.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -22,6 +26,9 @@ pub struct DisplayState {
     /// TAA's parameters.
     #[serde(default)]
     pub taa: TemporalAntiAliasing,
+    /// FXAA's parameters.
+    #[serde(default)]
+    pub fxaa: FastApproximateAntiAliasing,
 }
 
 /// What a window's camera without an `AntiAliasing` runs (`WindowPlugin`'s resource).
@@ -38,14 +45,16 @@ pub fn active_display(world: &World) -> Option<DisplayState> {
             Option<&Tonemapping>,
             Option<&AntiAliasing>,
             Option<&TemporalAntiAliasing>,
+            Option<&FastApproximateAntiAliasing>,
         )>()
         .iter()
         .find(|(camera, ..)| camera.active)
-        .map(|(_, exposure, tonemap, aa, taa)| DisplayState {
+        .map(|(_, exposure, tonemap, aa, taa, fxaa)| DisplayState {
             ev100: exposure.copied().unwrap_or_default().ev100,
             tonemap: tonemap.copied().unwrap_or_default(),
             aa: aa.copied().unwrap_or_else(window_default),
             taa: taa.copied().unwrap_or_default(),
+            fxaa: fxaa.copied().unwrap_or_default(),
         })
 }
 
@@ -53,6 +62,7 @@ pub fn active_display(world: &World) -> Option<DisplayState> {
 pub fn apply_display(world: &mut World, state: DisplayState) {
     pom::set_camera_display_mapping(world, Exposure { ev100: state.ev100 }, state.tonemap);
     pom::set_camera_anti_aliasing(world, state.aa, state.taa);
+    pom::set_camera_fxaa(world, state.fxaa);
 }
 
 /// Shows the exposure slider and the operator choice; edits the active camera.
@@ -79,19 +89,18 @@ pub fn display_controls(ui: &mut Ui, world: &mut World) {
     }
     choose(ui, "tonemapping", &mut state.tonemap);
     choose(ui, "anti-aliasing", &mut state.aa);
-    if state.aa == AntiAliasing::Taa {
-        for limit in &TemporalAntiAliasing::LIMITS {
-            let mut value = (limit.get)(&state.taa);
-            let slider =
-                Slider::new(&mut value, limit.min..=limit.max).text(limit.name.replace('_', " "));
-            let slider = if limit.integer {
-                slider.step_by(1.0)
-            } else {
-                slider
-            };
-            ui.add(slider).on_hover_text(limit.help);
-            (limit.set)(&mut state.taa, value);
+    match state.aa {
+        AntiAliasing::Taa => {
+            for param in TemporalAntiAliasing::PARAMETERS {
+                parameter_row(ui, param, &mut state.taa);
+            }
         }
+        AntiAliasing::Fxaa => {
+            for param in FastApproximateAntiAliasing::PARAMETERS {
+                parameter_row(ui, param, &mut state.fxaa);
+            }
+        }
+        _ => {}
     }
     if state != before {
         apply_display(world, state);

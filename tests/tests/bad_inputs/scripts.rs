@@ -79,7 +79,7 @@ fn script_camera_taa_out_of_range() {
     assert_script_parse(
         "scripts/taa_out_of_range.ron",
         5,
-        "camera taa.current_weight = 5 is outside 0.02..=1",
+        "camera taa.current_weight is 5 but must be at most 1",
     );
 }
 
@@ -88,7 +88,16 @@ fn script_camera_taa_mip_bias_out_of_range() {
     assert_script_parse(
         "scripts/taa_mip_bias_out_of_range.ron",
         5,
-        "camera taa.mip_bias = -4 is outside -2..=0",
+        "camera taa.mip_bias is -4 but must be at least -2",
+    );
+}
+
+#[test]
+fn script_camera_fxaa_out_of_range() {
+    assert_script_parse(
+        "scripts/fxaa_out_of_range.ron",
+        5,
+        "camera fxaa.subpixel_blending is 2 but must be at most 1",
     );
 }
 

@@ -2,6 +2,7 @@
 //! and under TAA the frame of its history, whose sub-pixel jitter moves the frame uniform's
 //! projection (and seeds the jittered march). Textures are read finer as the kind asks.
 
+use super::fxaa::FastApproximateAntiAliasing;
 use super::temporal::{
     AntiAliasing, TemporalAntiAliasing, TemporalFrame, TemporalHistory, TemporalView, jittered,
 };
@@ -17,6 +18,8 @@ pub struct AntiAliasingFrame {
     /// This frame's temporal anti-aliasing, on TAA frames with a camera (the frame uniform's
     /// projection is then jittered by its offset).
     pub temporal: Option<TemporalFrame>,
+    /// The active camera's FXAA parameters (its component, else the defaults), as given.
+    pub fxaa: FastApproximateAntiAliasing,
 }
 
 /// The Extract stage's system, after the renderer's: jitters the frame's projection under TAA
@@ -33,20 +36,27 @@ pub(super) fn extract_anti_aliasing(
             &Camera,
             Option<&AntiAliasing>,
             Option<&TemporalAntiAliasing>,
+            Option<&FastApproximateAntiAliasing>,
         )>()
         .iter()
         .find(|(_, camera, ..)| camera.active)
-        .map(|(entity, camera, kind, settings)| {
-            (entity, *camera, kind.copied(), settings.copied())
+        .map(|(entity, camera, kind, settings, fxaa)| {
+            (
+                entity,
+                *camera,
+                kind.copied(),
+                settings.copied(),
+                fxaa.copied(),
+            )
         });
     let kind = camera
-        .and_then(|(_, _, kind, _)| kind)
+        .and_then(|(_, _, kind, _, _)| kind)
         .or_else(|| resources.get::<AntiAliasing>().copied())
         .unwrap_or_default();
     let frame = resources.require::<ExtractedFrame>()?.frame;
     let history = resources.get_or_default::<TemporalHistory>();
     let temporal = match camera {
-        Some((entity, camera, _, settings)) if kind == AntiAliasing::Taa => {
+        Some((entity, camera, _, settings, _)) if kind == AntiAliasing::Taa => {
             Some(history.next_frame(
                 target_id,
                 entity,
@@ -76,6 +86,11 @@ pub(super) fn extract_anti_aliasing(
         uniform.target_size[3] = 1;
     }
     uniform.texture_lod[0] = kind.texture_footprint_scale(temporal.map(|f| f.settings));
-    resources.insert(AntiAliasingFrame { kind, temporal });
+    let fxaa = camera.and_then(|(.., fxaa)| fxaa).unwrap_or_default();
+    resources.insert(AntiAliasingFrame {
+        kind,
+        temporal,
+        fxaa,
+    });
     Ok(())
 }

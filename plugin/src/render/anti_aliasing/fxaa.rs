@@ -2,14 +2,86 @@
 //! anti-aliasing without a history: a display effect of the post chain, in compute where the
 //! adapter can store the display format, else as a full-screen triangle. The
 //! bilinear reads of the edge search go through a sampler on an 8-bit image and are four loads
-//! on a float one (not filterable); the 3 × 3 neighbourhood is loaded.
+//! on a float one (not filterable); the 3 × 3 neighbourhood is loaded. Its thresholds and
+//! sub-pixel blend are the camera's [`FastApproximateAntiAliasing`], read from a small storage
+//! buffer.
 
+use bytemuck::{Pod, Zeroable};
+
+use crate::parameters::ParamSpec;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::render::tonemapping::{rgba8_output, rgba32f_output};
 use crate::render::{
     FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat,
     clearing_attachment, layout,
 };
+
+crate::settings_parameters! {
+    /// The parameters of FXAA, a component of the camera entity (the defaults, Lottes's
+    /// "quality" ones, where it has none). Each is declared once, in
+    /// [`FastApproximateAntiAliasing::PARAMETERS`]; values outside their limits are clamped,
+    /// with one logged warning.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct FastApproximateAntiAliasing {
+        /// Edges of less luma contrast than this stay as they are (in dark regions, where the
+        /// relative threshold is small): higher leaves more faint edges jagged.
+        contrast_threshold: f32 = 0.0312, ParamSpec::float(0.0, 0.5);
+        /// Edges of less luma contrast than this share of the neighbourhood's brightest luma
+        /// stay as they are: higher filters fewer edges, lower softens more texture.
+        relative_threshold: f32 = 0.125, ParamSpec::float(0.0, 0.5);
+        /// How much of the sub-pixel blend a pixel standing out of its neighbourhood gets:
+        /// higher removes more sub-pixel aliasing and softens more.
+        subpixel_blending: f32 = 0.75, ParamSpec::float(0.0, 1.0);
+    }
+}
+
+/// Puts `fxaa` on every active camera of `world` (replacing what they had); returns how many
+/// cameras that was.
+pub fn set_camera_fxaa(world: &mut hecs::World, fxaa: FastApproximateAntiAliasing) -> usize {
+    let cameras = crate::camera::active_cameras(world);
+    for camera in &cameras {
+        // The entity was just found, so inserting cannot fail.
+        let _ = world.insert_one(*camera, fxaa);
+    }
+    cameras.len()
+}
+
+/// FXAA's settings as the shader reads them; mirrors `FxaaSettings` in fxaa.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FxaaSettings {
+    /// [`FastApproximateAntiAliasing::contrast_threshold`].
+    pub contrast_threshold: f32,
+    /// [`FastApproximateAntiAliasing::relative_threshold`].
+    pub relative_threshold: f32,
+    /// [`FastApproximateAntiAliasing::subpixel_blending`].
+    pub subpixel_blending: f32,
+    /// Padding to 16 bytes.
+    pub _padding: f32,
+}
+
+crate::wgsl_layout!(FxaaSettings {
+    contrast_threshold,
+    relative_threshold,
+    subpixel_blending,
+    _padding
+});
+
+impl From<FastApproximateAntiAliasing> for FxaaSettings {
+    /// The settings as uploaded (sanitize them first).
+    fn from(fxaa: FastApproximateAntiAliasing) -> Self {
+        Self {
+            contrast_threshold: fxaa.contrast_threshold,
+            relative_threshold: fxaa.relative_threshold,
+            subpixel_blending: fxaa.subpixel_blending,
+            _padding: 0.0,
+        }
+    }
+}
+
+/// The binding of [`FxaaSettings`] (0 to 2 are the image read, its sampler and the output).
+const SETTINGS_BINDING: u32 = 3;
 
 /// The pass's WGSL file.
 pub const FXAA_ENTRY: WgslFile = crate::wgsl_file!(nested "render/anti_aliasing/fxaa.wgsl");
@@ -103,6 +175,9 @@ pub(crate) struct FxaaPass {
     /// The bilinear sampler of an 8-bit display's image (a float one is read with loads).
     sampler: Option<wgpu::Sampler>,
     format: TargetFormat,
+    /// The settings buffer, and what it holds.
+    settings: wgpu::Buffer,
+    uploaded: Option<FxaaSettings>,
     /// Bind groups by the ids of the image read and the image written: the chain's images
     /// change only with the target.
     bind_groups: Vec<((u64, u64), wgpu::BindGroup)>,
@@ -113,6 +188,34 @@ fn filters(format: TargetFormat) -> bool {
     format != TargetFormat::Float32
 }
 
+/// The pass's bindings for display targets of `format`, drawn as a full-screen triangle
+/// (`fragment`) or in compute.
+fn bind_group_layout(
+    device: &wgpu::Device,
+    format: TargetFormat,
+    fragment: bool,
+) -> wgpu::BindGroupLayout {
+    // A float display is read with loads, an 8-bit one through the sampler at binding 1.
+    let mut entries = if filters(format) {
+        vec![layout::texture_2d(0), layout::filtering_sampler(1)]
+    } else {
+        vec![layout::unfilterable_texture_2d(0)]
+    };
+    if !fragment {
+        // Binding 2: the output post-processing's prelude declares.
+        entries.push(layout::compute_storage_texture(2, format.texture_format()));
+    }
+    // Read-only storage, not a uniform (fxaa.wgsl says why).
+    entries.push(wgpu::BindGroupLayoutEntry {
+        visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
+        ..layout::compute_storage_buffer(SETTINGS_BINDING, true)
+    });
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("fxaa layout"),
+        entries: &entries,
+    })
+}
+
 impl FxaaPass {
     /// The pass for display targets of `format`, run in `stage` (post-processing's own, so
     /// both run the same way).
@@ -120,21 +223,8 @@ impl FxaaPass {
         let fragment = stage == FullScreenStage::Fragment;
         let device = &gpu.device;
         let display = format.texture_format();
-        // A float display is read with loads, an 8-bit one through the sampler at binding 1.
         let filtered = filters(format);
-        let mut entries = if filtered {
-            vec![layout::texture_2d(0), layout::filtering_sampler(1)]
-        } else {
-            vec![layout::unfilterable_texture_2d(0)]
-        };
-        if !fragment {
-            // Binding 2: the output post-processing's prelude declares.
-            entries.push(layout::compute_storage_texture(2, display));
-        }
-        let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("fxaa layout"),
-            entries: &entries,
-        });
+        let bind_layout = bind_group_layout(device, format, fragment);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("fxaa pipeline layout"),
             bind_group_layouts: &[Some(&bind_layout)],
@@ -182,13 +272,32 @@ impl FxaaPass {
                 ..Default::default()
             })
         });
+        let settings = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("fxaa settings"),
+            size: std::mem::size_of::<FxaaSettings>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         Self {
             pipeline,
             layout: bind_layout,
             sampler,
             format,
+            settings,
+            uploaded: None,
             bind_groups: Vec::new(),
         }
+    }
+
+    /// Writes `settings` if they changed; returns the bytes written.
+    pub(crate) fn upload(&mut self, gpu: &GpuContext, settings: FxaaSettings) -> u64 {
+        if self.uploaded == Some(settings) {
+            return 0;
+        }
+        gpu.queue
+            .write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
+        self.uploaded = Some(settings);
+        std::mem::size_of::<FxaaSettings>() as u64
     }
 
     /// Whether the pass was made for targets of `format`.
@@ -224,6 +333,10 @@ impl FxaaPass {
                 resource: wgpu::BindingResource::TextureView(&output.view),
             });
         }
+        entries.push(wgpu::BindGroupEntry {
+            binding: SETTINGS_BINDING,
+            resource: self.settings.as_entire_binding(),
+        });
         let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("fxaa bind group"),
             layout: &self.layout,
@@ -275,5 +388,55 @@ impl FxaaPass {
                 pass.draw(0..3, 0..1);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_settings_match_their_wgsl() {
+        for shader in FXAA_SHADERS {
+            let layout =
+                crate::shader::check_wgsl_layout::<FxaaSettings>(&shader.source(), "FxaaSettings");
+            assert_eq!(layout, Ok(()), "{}", shader.name);
+        }
+    }
+
+    #[test]
+    fn the_defaults_are_the_shaders_former_constants() {
+        let defaults = FxaaSettings::from(FastApproximateAntiAliasing::default());
+        assert_eq!(
+            (
+                defaults.contrast_threshold,
+                defaults.relative_threshold,
+                defaults.subpixel_blending
+            ),
+            (0.0312, 0.125, 0.75)
+        );
+    }
+
+    #[test]
+    fn out_of_range_settings_are_named_and_clamped() {
+        let wild = FastApproximateAntiAliasing {
+            contrast_threshold: -1.0,
+            relative_threshold: f32::INFINITY,
+            subpixel_blending: 2.0,
+        };
+        let problems: Vec<String> = wild.problems().iter().map(ToString::to_string).collect();
+        assert_eq!(
+            problems,
+            [
+                "contrast_threshold is -1 but must be at least 0",
+                "relative_threshold is inf, which is not a finite number",
+                "subpixel_blending is 2 but must be at most 1",
+            ]
+        );
+        let clean = wild.sanitized();
+        assert_eq!(clean.contrast_threshold, 0.0);
+        assert_eq!(clean.relative_threshold, 0.125);
+        assert_eq!(clean.subpixel_blending, 1.0);
+        assert!(clean.problems().is_empty());
     }
 }

@@ -8,11 +8,19 @@
 
 @group(0) @binding(0) var tonemapped: texture_2d<f32>;
 
-// Lottes's "quality" defaults: edges of less contrast than either threshold stay as they are.
-const CONTRAST_THRESHOLD: f32 = 0.0312;
-const RELATIVE_THRESHOLD: f32 = 0.125;
-// How much of the sub-pixel blend a lone bright pixel gets (his 0.75).
-const SUBPIXEL_BLENDING: f32 = 0.75;
+// The camera's FastApproximateAntiAliasing, within its limits (Lottes's "quality" defaults:
+// 0.0312, 0.125 and his 0.75). Edges of less contrast than either threshold stay as they are;
+// a lone bright pixel gets `subpixel_blending` of the sub-pixel blend.
+struct FxaaSettings {
+    contrast_threshold: f32,
+    relative_threshold: f32,
+    subpixel_blending: f32,
+    _padding: f32,
+}
+
+// A read-only storage buffer, not a uniform: the thresholds steer branches, and Mesa's
+// lavapipe compiles a shader whose uniforms steer its branches again at each bind.
+@group(0) @binding(3) var<storage, read> settings: FxaaSettings;
 // The search along the edge: ten steps of growing length, at most 25 pixels each way.
 const EDGE_STEPS: u32 = 10u;
 
@@ -57,7 +65,7 @@ fn fxaa(pixel: vec2<i32>) -> vec4<f32> {
     let highest = max(max(max(n, s), max(e, w)), m);
     let lowest = min(min(min(n, s), min(e, w)), m);
     let contrast = highest - lowest;
-    if contrast < max(CONTRAST_THRESHOLD, RELATIVE_THRESHOLD * highest) {
+    if contrast < max(settings.contrast_threshold, settings.relative_threshold * highest) {
         return centre_colour;
     }
     let ne = luma_at(pixel + vec2<i32>(1, -1));
@@ -69,7 +77,7 @@ fn fxaa(pixel: vec2<i32>) -> vec4<f32> {
     let neighbourhood = (2.0 * (n + s + e + w) + ne + nw + se + sw) / 12.0;
     let standing_out = clamp(abs(neighbourhood - m) / contrast, 0.0, 1.0);
     let smooth_out = smoothstep(0.0, 1.0, standing_out);
-    let subpixel_blend = smooth_out * smooth_out * SUBPIXEL_BLENDING;
+    let subpixel_blend = smooth_out * smooth_out * settings.subpixel_blending;
 
     // The edge runs along rows where luma changes most from row to row.
     let horizontal = 2.0 * abs(n + s - 2.0 * m) + abs(ne + se - 2.0 * e) + abs(nw + sw - 2.0 * w);

@@ -1,6 +1,6 @@
 //! Anti-aliasing: temporal anti-aliasing (TAA) with its object motion, and FXAA. Which a
-//! camera uses, and TAA's parameters, are camera components (temporal.rs); this folder's
-//! [`AntiAliasingPlugin`] joins the frame with three nodes:
+//! camera uses, and the parameters of TAA (temporal.rs) and FXAA (fxaa.rs), are camera
+//! components; this folder's [`AntiAliasingPlugin`] joins the frame with three nodes:
 //!
 //! ```text
 //! transparent  object_motion  moving draws write their motion's number (frames where one moved)
@@ -17,18 +17,19 @@ mod taa;
 mod temporal;
 
 pub use extract::AntiAliasingFrame;
-pub use fxaa::FXAA_SHADERS;
+pub use fxaa::{FXAA_SHADERS, FastApproximateAntiAliasing, set_camera_fxaa};
 pub use object_motion::ObjectMotion;
 pub(crate) use object_motion::ObjectMotions;
 pub use taa::{HISTORY_FORMAT, TAA_SHADER, TaaUniform};
 pub use temporal::{
     AntiAliasing, POST_FILTER_MIP_BIAS, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
-    TemporalLimit, TemporalView, jitter_offset, set_camera_anti_aliasing,
+    TemporalView, jitter_offset, set_camera_anti_aliasing,
 };
 
 use fxaa::FxaaPass;
 use taa::{TaaInputs, TaaPass};
 
+use crate::parameters::ClampWarnings;
 use crate::render::{
     DrawPhase, ExtractedFrame, FrameNode, FrameNodes, FrameView, GpuContext, HdrInput, NodePlace,
     PassTimestamps, PostEffect, PostImage, PostIo, PostStage, RenderError, RenderPhase,
@@ -222,6 +223,7 @@ impl PostEffect for Taa {
 #[derive(Default)]
 struct Fxaa {
     pass: Option<FxaaPass>,
+    warnings: ClampWarnings<FastApproximateAntiAliasing>,
 }
 
 impl PostEffect for Fxaa {
@@ -246,7 +248,12 @@ impl PostEffect for Fxaa {
                 stage,
             ));
         }
-        Ok(0)
+        let fxaa = resources.require::<AntiAliasingFrame>()?.fxaa;
+        let settings = self.warnings.sanitized("FXAA", &fxaa);
+        Ok(match &mut self.pass {
+            Some(pass) => pass.upload(resources.require::<GpuContext>()?, settings.into()),
+            None => 0,
+        })
     }
 
     fn record(

@@ -31,6 +31,8 @@
 
 use glam::{Mat4, Vec2, Vec3};
 
+use crate::parameters::{ClampWarnings, ParamSpec};
+
 crate::choice_enum! {
     /// How a camera's image is anti-aliased.
     pub enum AntiAliasing: "AA" {
@@ -70,145 +72,42 @@ impl Default for AntiAliasing {
     }
 }
 
-/// The parameters of temporal anti-aliasing, a component of the camera entity (the defaults
-/// where it has none). Each is declared once, in [`TemporalAntiAliasing::LIMITS`]; values
-/// outside their limits are clamped, with one logged warning.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct TemporalAntiAliasing {
-    /// Share of the new frame in a pixel moving half a pixel or more a frame, once its history
-    /// is long enough: lower is smoother and slower to follow a change.
-    pub current_weight: f32,
-    /// Half-width of the colour box the history is clipped to, in standard deviations of the
-    /// pixel's 3×3 neighbourhood: lower ghosts less and flickers more.
-    pub clip_gamma: f32,
-    /// Sub-pixel positions of the Halton (2, 3) jitter before it repeats: a still image
-    /// settles after this many frames.
-    pub jitter_samples: u32,
-    /// How much nearer than expected (as a share of the depth) a pixel's remembered depth may
-    /// be before its history counts as disoccluded and is dropped.
-    pub depth_tolerance: f32,
-    /// Mip levels finer than the pixel's footprint that textures are sampled at: the jitter
-    /// averages the detail over the pixel, as a supersampled image would (0: as without TAA).
-    /// The default, −2, is 4 × 4 supersampling's: the 16 positions of a settled still image,
-    /// and about the (2 − w) / w = 19 samples a history of current weight w = 0.1 averages.
-    pub mip_bias: f32,
-    /// Share of the new frame in a pixel that does not move, once its history is long enough
-    /// (a pixel drifting slower than half a pixel a frame takes a share between the two).
-    pub still_weight: f32,
-}
-
-/// One declared TAA parameter: name, help and limits.
-#[derive(Clone, Copy, Debug)]
-pub struct TemporalLimit {
-    /// The field name: the RON key, `--taa-name-with-dashes` on the command line.
-    pub name: &'static str,
-    /// One line saying what it does.
-    pub help: &'static str,
-    /// Smallest value allowed.
-    pub min: f32,
-    /// Largest value allowed.
-    pub max: f32,
-    /// Whether it is a whole number.
-    pub integer: bool,
-    /// Reads it (as a float).
-    pub get: fn(&TemporalAntiAliasing) -> f32,
-    /// Writes it (a whole number is rounded).
-    pub set: fn(&mut TemporalAntiAliasing, f32),
-}
-
-impl Default for TemporalAntiAliasing {
-    fn default() -> Self {
-        Self {
-            current_weight: 0.1,
-            clip_gamma: 1.0,
-            jitter_samples: 16,
-            depth_tolerance: 0.05,
-            mip_bias: -2.0,
-            still_weight: 0.02,
-        }
+crate::settings_parameters! {
+    /// The parameters of temporal anti-aliasing, a component of the camera entity (the defaults
+    /// where it has none). Each is declared once, in [`TemporalAntiAliasing::PARAMETERS`];
+    /// values outside their limits are clamped, with one logged warning.
+    #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    #[serde(default, deny_unknown_fields)]
+    pub struct TemporalAntiAliasing {
+        /// Share of the new frame in a pixel moving half a pixel or more a frame, once its
+        /// history is long enough: lower is smoother and slower to follow a change.
+        current_weight: f32 = 0.1, ParamSpec::float(0.02, 1.0);
+        /// Half-width of the colour box the history is clipped to, in standard deviations of
+        /// the pixel's 3×3 neighbourhood: lower ghosts less and flickers more.
+        clip_gamma: f32 = 1.0, ParamSpec::float(0.25, 4.0);
+        /// Sub-pixel positions of the Halton (2, 3) jitter before it repeats: a still image
+        /// settles after this many frames.
+        jitter_samples: u32 = 16, ParamSpec::integer(1, 64);
+        /// How much nearer than expected (as a share of the depth) a pixel's remembered depth
+        /// may be before its history counts as disoccluded and is dropped.
+        depth_tolerance: f32 = 0.05, ParamSpec::float(0.0, 1.0);
+        /// Mip levels finer than the pixel's footprint that textures are sampled at: the jitter
+        /// averages the detail over the pixel, as a supersampled image would (0: as without
+        /// TAA). The default, −2, is 4 × 4 supersampling's: the 16 positions of a settled
+        /// still image, and about the (2 − w) / w = 19 samples a history of current weight
+        /// w = 0.1 averages.
+        mip_bias: f32 = -2.0, ParamSpec::float(-2.0, 0.0);
+        /// Share of the new frame in a pixel that does not move, once its history is long
+        /// enough (a pixel drifting slower than half a pixel a frame takes a share between the
+        /// two).
+        still_weight: f32 = 0.02, ParamSpec::float(0.01, 1.0);
     }
 }
 
 impl TemporalAntiAliasing {
-    /// Every parameter with its limits, in declaration order, for code that walks them (the
-    /// command line, scripts' checks, the sandbox's Display panel).
-    pub const LIMITS: [TemporalLimit; 6] = [
-        TemporalLimit {
-            name: "current_weight",
-            help: "Share of the new frame once the history has settled: lower is smoother, slower to follow.",
-            min: 0.02,
-            max: 1.0,
-            integer: false,
-            get: |taa| taa.current_weight,
-            set: |taa, value| taa.current_weight = value,
-        },
-        TemporalLimit {
-            name: "clip_gamma",
-            help: "Width of the colour box the history is clipped to, in standard deviations: lower ghosts less.",
-            min: 0.25,
-            max: 4.0,
-            integer: false,
-            get: |taa| taa.clip_gamma,
-            set: |taa, value| taa.clip_gamma = value,
-        },
-        TemporalLimit {
-            name: "jitter_samples",
-            help: "Sub-pixel positions of the jitter before it repeats: a still image settles after this many frames.",
-            min: 1.0,
-            max: 64.0,
-            integer: true,
-            get: |taa| taa.jitter_samples as f32,
-            set: |taa, value| taa.jitter_samples = value.round().clamp(0.0, u32::MAX as f32) as u32,
-        },
-        TemporalLimit {
-            name: "depth_tolerance",
-            help: "How much nearer than expected a remembered depth may be before the history is dropped as disoccluded.",
-            min: 0.0,
-            max: 1.0,
-            integer: false,
-            get: |taa| taa.depth_tolerance,
-            set: |taa, value| taa.depth_tolerance = value,
-        },
-        TemporalLimit {
-            name: "mip_bias",
-            help: "Mip levels finer than the footprint that textures are sampled at: the jitter averages the detail.",
-            min: -2.0,
-            max: 0.0,
-            integer: false,
-            get: |taa| taa.mip_bias,
-            set: |taa, value| taa.mip_bias = value,
-        },
-        TemporalLimit {
-            name: "still_weight",
-            help: "Share of the new frame in a pixel that does not move: lower is smoother when still.",
-            min: 0.01,
-            max: 1.0,
-            integer: false,
-            get: |taa| taa.still_weight,
-            set: |taa, value| taa.still_weight = value,
-        },
-    ];
-
     /// What every texture footprint is scaled by: 2 to the mip bias.
     pub fn texture_footprint_scale(&self) -> f32 {
         self.sanitized().mip_bias.exp2()
-    }
-
-    /// Every parameter outside its limits (or not finite), one line each naming it and them.
-    pub fn problems(&self) -> Vec<String> {
-        Self::LIMITS
-            .iter()
-            .filter_map(|limit| {
-                let value = (limit.get)(self);
-                (!(limit.min..=limit.max).contains(&value)).then(|| {
-                    format!(
-                        "taa.{} = {value} is outside {}..={}",
-                        limit.name, limit.min, limit.max
-                    )
-                })
-            })
-            .collect()
     }
 
     /// Frames a still image takes to settle under TAA with these parameters: one whole cycle
@@ -216,22 +115,6 @@ impl TemporalAntiAliasing {
     /// (what `render --aa taa` and scripts' renders wait for).
     pub fn settling_frames(&self) -> u32 {
         self.sanitized().jitter_samples
-    }
-
-    /// Every parameter brought within its limits (not finite: its default).
-    pub fn sanitized(&self) -> Self {
-        let defaults = Self::default();
-        let mut clean = *self;
-        for limit in &Self::LIMITS {
-            let value = (limit.get)(self);
-            let value = if value.is_finite() {
-                value.clamp(limit.min, limit.max)
-            } else {
-                (limit.get)(&defaults)
-            };
-            (limit.set)(&mut clean, value);
-        }
-        clean
     }
 }
 
@@ -320,7 +203,7 @@ pub struct TemporalHistory {
     accumulated: u32,
     frame_index: u32,
     reset_requested: bool,
-    warned_settings: Option<TemporalAntiAliasing>,
+    warnings: ClampWarnings<TemporalAntiAliasing>,
 }
 
 impl TemporalHistory {
@@ -345,12 +228,7 @@ impl TemporalHistory {
         current: TemporalView,
         settings: &TemporalAntiAliasing,
     ) -> TemporalFrame {
-        let problems = settings.problems();
-        if !problems.is_empty() && self.warned_settings != Some(*settings) {
-            log::warn!("temporal anti-aliasing: {}; clamped", problems.join("; "));
-            self.warned_settings = Some(*settings);
-        }
-        let settings = settings.sanitized();
+        let settings = self.warnings.sanitized("temporal anti-aliasing", settings);
         let owner = HistoryOwner {
             target,
             camera,
@@ -438,7 +316,10 @@ mod tests {
         };
         let problems = wild.problems();
         assert_eq!(problems.len(), 4, "{problems:?}");
-        assert_eq!(problems[0], "taa.current_weight = 5 is outside 0.02..=1");
+        assert_eq!(
+            problems[0].to_string(),
+            "current_weight is 5 but must be at most 1"
+        );
         let clean = wild.sanitized();
         assert_eq!(clean.current_weight, 1.0);
         assert_eq!(clean.clip_gamma, TemporalAntiAliasing::default().clip_gamma);

@@ -1,6 +1,9 @@
 //! The declaration macro [`crate::material_parameters!`]: a material's parameters and texture
 //! inputs, each written once (the enums a parameter chooses between are
-//! [`crate::choice_enum!`]s), and [`DeclaredMaterial`], what it says of the material.
+//! [`crate::choice_enum!`]s), and [`DeclaredMaterial`], what it says of the material. The
+//! parameter table and limit checks come from the parameter layer's
+//! [`crate::parameter_table!`], as those of plain settings do; the GPU struct and texture
+//! slots, which name the renderer, are this layer's.
 
 use crate::render::{DefaultTexture, MaterialTextures};
 use crate::shader::WgslLayout;
@@ -30,12 +33,12 @@ pub trait DeclaredMaterial: Clone {
 }
 
 /// Declares a material struct from one list of parameters, each written once: doc line (its
-/// help), name, type, default and [`ParamSpec`](super::ParamSpec). Optional sections come first:
+/// help), name, type, default and [`ParamSpec`](crate::parameters::ParamSpec). Optional sections come first:
 /// `inputs { name: Type = default, }` (fields that are not parameters, a height source say) and
 /// `textures { name: DefaultTexture, }` (an `Option<Handle<Image>>` each, bound in declaration
 /// order at group 1, with the [`DefaultTexture`] bound when the field is `None`).
 ///
-/// Generates the struct, `Default`, the [`Param`](super::Param) table `PARAMETERS`, a preset
+/// Generates the struct, `Default`, the [`Param`](crate::parameters::Param) table `PARAMETERS`, a preset
 /// struct of every parameter and an all-optional patch struct (both serde, unknown fields
 /// rejected), the limit checks and clamps of every parameter, the GPU struct of the parameters
 /// with its generated WGSL declaration, and [`DeclaredMaterial`]. With the trailing
@@ -140,7 +143,7 @@ macro_rules! material_parameters {
             )*
         }
     }) => {
-        impl $crate::parameters::DeclaredMaterial for $material {
+        impl $crate::material::DeclaredMaterial for $material {
             type Params = $gpu;
             const TYPE_NAME: &'static str = stringify!($material);
             const PARAMS_WGSL_NAME: &'static str = stringify!($gpu);
@@ -181,82 +184,9 @@ macro_rules! material_parameters {
         }
 
         impl $material {
-            /// Every parameter, in declaration order, for code that walks them at run time.
-            pub const PARAMETERS: &'static [$crate::parameters::Param<$material>] = &[
-                $(
-                    $crate::parameters::Param {
-                        name: stringify!($field),
-                        // The whole doc comment: each line after the first starts with a space.
-                        help: concat!($help $(, $more)*),
-                        spec: $spec,
-                        get: |material: &$material| {
-                            $crate::parameters::ParamType::to_value(material.$field)
-                        },
-                        set: |material: &mut $material, value| {
-                            match $crate::parameters::ParamType::from_value(value) {
-                                Some(value) => {
-                                    material.$field = value;
-                                    Ok(())
-                                }
-                                None => Err($crate::parameters::ParamError::WrongKind {
-                                    name: stringify!($field),
-                                    value,
-                                }),
-                            }
-                        },
-                    },
-                )*
-            ];
-
-            /// The first parameter outside its declared limits, if any (no allocation).
-            fn first_limit_problem(&self) -> Option<$crate::parameters::LimitError> {
-                $(
-                    {
-                        const SPEC: $crate::parameters::ParamSpec<$material> = $spec;
-                        if let Err(problem) = $crate::parameters::ParamType::check(
-                            self.$field,
-                            stringify!($field),
-                            &SPEC.kind,
-                        ) {
-                            return Some(problem);
-                        }
-                    }
-                )*
-                None
-            }
-
-            /// Every parameter outside its declared limits, in declaration order.
-            fn limit_problems(&self) -> Vec<$crate::parameters::LimitError> {
-                let mut problems = Vec::new();
-                $(
-                    {
-                        const SPEC: $crate::parameters::ParamSpec<$material> = $spec;
-                        if let Err(problem) = $crate::parameters::ParamType::check(
-                            self.$field,
-                            stringify!($field),
-                            &SPEC.kind,
-                        ) {
-                            problems.push(problem);
-                        }
-                    }
-                )*
-                problems
-            }
-
-            /// Every parameter brought within its declared limits (NaN becomes the default).
-            fn clamp_to_limits(&mut self) {
-                let defaults = Self::default();
-                $(
-                    {
-                        const SPEC: $crate::parameters::ParamSpec<$material> = $spec;
-                        self.$field = $crate::parameters::ParamType::clamped(
-                            self.$field,
-                            &SPEC.kind,
-                            defaults.$field,
-                        );
-                    }
-                )*
-            }
+            $crate::parameter_table!($material {
+                $($field: $ty, concat!($help $(, $more)*), $spec;)*
+            });
 
             /// The material's parameters without its inputs (textures).
             pub fn preset(&self) -> $preset {
