@@ -66,7 +66,7 @@ fn every_composed_shader_validates() {
             .map(|source| (shader.name.to_owned(), source))
     });
     // A post effect's every composition.
-    let effects = pom::render::FullScreenPass::compositions(EFFECT, true);
+    let effects = pom::render::FullScreenPass::compositions::<f32>(EFFECT);
     let sources = composed.chain(effects);
     for (shader, source) in sources {
         let module = match naga::front::wgsl::parse_str(&source) {

@@ -127,9 +127,11 @@ impl FullScreenPass {
         }
     }
 
-    /// Every shader a pass of `effect_wgsl` may compile (each format of the chain's images, in
-    /// compute and as a full-screen triangle), named, to validate an effect without a GPU.
-    pub fn compositions(effect_wgsl: &str, params: bool) -> Vec<(String, String)> {
+    /// Every shader a pass of `effect_wgsl` reading parameters `P` (`()`: none) may compile
+    /// (each format of the chain's images, in compute and as a full-screen triangle), named,
+    /// to validate an effect without a GPU.
+    pub fn compositions<P: bytemuck::Pod>(effect_wgsl: &str) -> Vec<(String, String)> {
+        let params = size_of::<P>() > 0;
         let formats = [
             wgpu::TextureFormat::Rgba8Unorm,
             wgpu::TextureFormat::Rgba16Float,
