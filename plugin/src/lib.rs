@@ -49,6 +49,7 @@ mod camera;
 mod color;
 mod default_plugins;
 mod dynamic_height;
+mod exposure;
 pub mod files;
 mod gltf_loader;
 mod height_field;
@@ -82,7 +83,6 @@ mod shadows;
 mod split_view;
 mod stderr_log;
 mod time;
-mod tonemapping;
 mod transform;
 #[cfg(feature = "window")]
 pub mod window;
@@ -102,6 +102,7 @@ pub use default_plugins::DefaultPlugins;
 pub use dynamic_height::{
     DynamicHeightError, DynamicHeightField, SobelPass, derive_dynamic_normals,
 };
+pub use exposure::Exposure;
 pub use gltf_loader::{
     GltfError, GltfOptions, GltfScene, PomExtras, load_gltf, load_gltf_bytes, load_gltf_with,
 };
@@ -133,6 +134,7 @@ pub use render::{
     GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
     TargetFormat, TimingMode, capture, capture_f32, capture_scene,
 };
+pub use render::{Tonemapping, set_camera_display_mapping};
 #[cfg(feature = "scene-tests")]
 pub use script::{Report, RunOptions, ScriptError, run_script, run_script_with};
 #[cfg(feature = "dev-tools")]
@@ -144,7 +146,6 @@ pub use shadows::{DIRECTIONAL_CASCADES, LightShadows, NotShadowCaster, NotShadow
 pub use split_view::{SplitView, SplitViewError, render_split_view};
 pub use stderr_log::{DEFAULT_LOG_LEVEL, log_to_stderr};
 pub use time::{Time, TimeStep};
-pub use tonemapping::{Exposure, Tonemapping, set_camera_display_mapping};
 pub use transform::{
     GlobalTransform, Parent, Transform, TransformPlugin, despawn_recursive, propagate_transforms,
 };

@@ -32,7 +32,7 @@ const LAYERS: &[&str] = &[
     "camera",
     "light",
     "shadows",
-    "tonemapping",
+    "exposure",
     // Parameters: declaration, limits, tables (no GPU).
     "parameters",
     // The renderer core.
@@ -369,24 +369,40 @@ fn render_back_imports(src: &Path, files: &[(PathBuf, String)]) -> Vec<BackImpor
     found
 }
 
-#[test]
-fn the_renderers_core_names_no_feature_and_features_only_those_before_them() {
-    let src = plugin_src();
-    let files = read(&src);
-    let found = render_back_imports(&src, &files);
+/// Fails listing `found`, if any.
+fn assert_none(found: &[BackImport], what: &str, path_prefix: &str) {
     assert!(
         found.is_empty(),
-        "{} back imports inside render/:\n{}",
+        "{} back imports{what}:\n{}",
         found.len(),
         found
             .iter()
             .map(|b| format!(
-                "  {}: {} uses {} (through {})",
+                "  {}: {} uses {} (through {path_prefix}{})",
                 b.file, b.from, b.to, b.through
             ))
             .collect::<Vec<_>>()
             .join("\n")
     );
+}
+
+/// The library's files with `code` appended to render/frame.rs.
+fn with_frame_rs_ending(src: &Path, code: &str) -> Vec<(PathBuf, String)> {
+    let mut files = read(src);
+    let frame = src.join("render/frame.rs");
+    let (_, source) = files
+        .iter_mut()
+        .find(|(file, _)| *file == frame)
+        .expect("render/frame.rs");
+    source.push_str(code);
+    files
+}
+
+#[test]
+fn the_renderers_core_names_no_feature_and_features_only_those_before_them() {
+    let src = plugin_src();
+    let files = read(&src);
+    assert_none(&render_back_imports(&src, &files), " inside render/", "");
     // Every feature part is a folder of render/.
     for part in &RENDER_PARTS[1..RENDER_PARTS.len() - 1] {
         assert!(
@@ -399,13 +415,8 @@ fn the_renderers_core_names_no_feature_and_features_only_those_before_them() {
 #[test]
 fn a_core_file_naming_a_feature_is_caught() {
     let src = plugin_src();
-    let mut files = read(&src);
-    let frame = src.join("render/frame.rs");
-    let (_, source) = files
-        .iter_mut()
-        .find(|(file, _)| *file == frame)
-        .expect("render/frame.rs");
-    source.push_str(
+    let files = with_frame_rs_ending(
+        &src,
         "\nuse super::anti_aliasing::TAA_PASS;\n\
          fn back() { let _ = crate::render::TonemappingPlugin; let _ = crate::AntiAliasing::Off; }\n",
     );
@@ -434,33 +445,15 @@ fn every_module_uses_only_the_layers_below_it() {
             "module {module} has no place in LAYERS"
         );
     }
-    let found = back_imports(&src, &files);
-    assert!(
-        found.is_empty(),
-        "{} back imports:\n{}",
-        found.len(),
-        found
-            .iter()
-            .map(|b| format!(
-                "  {}: {} uses {} (through crate::{})",
-                b.file, b.from, b.to, b.through
-            ))
-            .collect::<Vec<_>>()
-            .join("\n")
-    );
+    assert_none(&back_imports(&src, &files), "", "crate::");
 }
 
 #[test]
 fn a_back_import_is_caught_whichever_way_it_is_written() {
     let src = plugin_src();
-    let mut files = read(&src);
-    let frame = src.join("render/frame.rs");
-    let (_, source) = files
-        .iter_mut()
-        .find(|(file, _)| *file == frame)
-        .expect("render/frame.rs");
     // A path, a use group and a root re-export, each reaching up from the renderer.
-    source.push_str(
+    let files = with_frame_rs_ending(
+        &src,
         "\nfn back() { let _ = crate::material::MAX_MATERIAL_TEXTURES; }\n\
          use crate::{Color, lit::LitMaterial};\n\
          use crate::{ParallaxOcclusionMaterial as _};\n\

@@ -119,19 +119,24 @@ fn a_bad_automation_variable_is_a_one_line_error_and_a_failing_status() {
     }
 }
 
-#[test]
-fn the_headless_example_writes_its_frame_without_a_display() {
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("headless-example.png");
+/// Runs the headless example `name` with no display and returns the PNG it wrote.
+fn headless_output(name: &str) -> image::RgbaImage {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-example.png"));
     let _ = std::fs::remove_file(&out);
-    let output = Command::new(example("headless"))
+    let output = Command::new(example(name))
         .arg(&out)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{stderr}");
-    let image = image::open(&out).unwrap().to_rgba8();
+    assert!(output.status.success(), "{name}: {stderr}");
+    image::open(&out).unwrap().to_rgba8()
+}
+
+#[test]
+fn the_headless_example_writes_its_frame_without_a_display() {
+    let image = headless_output("headless");
     assert_eq!(image.dimensions(), (512, 512));
     let colours = distinct_colours(&image, 0..512, 0..512);
     assert!(colours > 100, "only {colours} distinct colours: no bricks");
@@ -338,17 +343,7 @@ fn encoded_luminance([r, g, b, _]: [u8; 4]) -> f32 {
 
 #[test]
 fn the_post_effect_example_turns_the_street_corner_grey() {
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("post-effect-example.png");
-    let _ = std::fs::remove_file(&out);
-    let output = Command::new(example("post_effect"))
-        .arg(&out)
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{stderr}");
-    let grey = image::open(&out).unwrap().to_rgba8();
+    let grey = headless_output("post_effect");
     // The same frame without the effect.
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/street_corner.glb");
     let mut app = pom::App::new();

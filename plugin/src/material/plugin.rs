@@ -441,8 +441,8 @@ mod tests {
         );
         assert_eq!(
             app.schedule.len(Stage::Extract),
-            5,
-            "core + anti-aliasing + two materials + the curved silhouette's mesh check"
+            6,
+            "core + tonemapping + anti-aliasing + two materials + the curved silhouette's mesh check"
         );
     }
 

@@ -13,7 +13,7 @@ use super::shadow_views::{
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform,
-    LightShadows, PointLight, Projection, Resources, SpotLight, Tonemapping,
+    LightShadows, PointLight, Projection, Resources, SpotLight,
 };
 
 /// Everything the Prepare and Render stages read about the current frame.
@@ -30,8 +30,6 @@ pub struct ExtractedFrame {
     /// The active camera's exposure (the default without a camera or component), already
     /// applied to the lights.
     pub exposure: Exposure,
-    /// The active camera's tonemapping operator.
-    pub tonemapping: Tonemapping,
     /// The shadow maps to render this frame, in the order the lights reference them.
     pub shadow_views: Vec<ShadowViewPlan>,
     /// Whether the lights asked for more than [`MAX_SHADOW_VIEWS`] maps.
@@ -120,35 +118,27 @@ fn enabled_shadows(shadows: Option<&LightShadows>, cap: u32) -> Option<LightShad
         })
 }
 
-/// What the active camera's entity says of its image: exposure and tonemapping (their
-/// defaults where it has no such component).
+/// What the active camera's entity says of its image: its exposure (the default where it has
+/// none).
 #[derive(Default)]
 struct CameraDisplay {
     camera: Option<(Camera, GlobalTransform)>,
     exposure: Exposure,
-    tonemapping: Tonemapping,
 }
 
 /// The active camera (as [`crate::active_camera`] finds it) with its entity's display
 /// components (their defaults where it has none), in one query.
 fn active_camera_and_display(world: &World) -> CameraDisplay {
     world
-        .query::<(
-            &Camera,
-            &GlobalTransform,
-            Option<&Exposure>,
-            Option<&Tonemapping>,
-        )>()
+        .query::<(&Camera, &GlobalTransform, Option<&Exposure>)>()
         .iter()
         .find(|(camera, ..)| camera.active)
-        .map_or_else(
-            Default::default,
-            |(camera, transform, exposure, tonemapping)| CameraDisplay {
+        .map_or_else(Default::default, |(camera, transform, exposure)| {
+            CameraDisplay {
                 camera: Some((*camera, *transform)),
                 exposure: exposure.copied().unwrap_or_default(),
-                tonemapping: tonemapping.copied().unwrap_or_default(),
-            },
-        )
+            }
+        })
 }
 
 fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
@@ -162,7 +152,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     let (aspect, target_size) = (target.aspect(), target.size());
     let ambient = resources.get::<AmbientLight>().copied().unwrap_or_default();
     let display = active_camera_and_display(world);
-    let (exposure, tonemapping) = (display.exposure, display.tonemapping);
+    let exposure = display.exposure;
     let camera = display.camera;
     let view = CameraView::of(camera.as_ref(), aspect);
     // Lux and candela to what the shaders multiply with the albedo: a Lambertian surface of
@@ -212,7 +202,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         frame: lights.frame,
         clear_color: view.clear_color,
         exposure,
-        tonemapping,
         shadow_maps_overflowed: overflowed,
         shadow_views: if camera.is_some() {
             lights.shadow_views.views

@@ -2,11 +2,9 @@
 //! compute pass or a full-screen triangle wherever the renderer runs full-screen work, with
 //! its input image, its parameters and its output bound for it.
 
+use super::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
 use super::shaders::{self, WgslFile};
 use super::{FrameView, FullScreenStage, PassTimestamps, PostImage, PostIo, PostStage, layout};
-
-/// How big a compute pass's workgroups are, per side.
-const GROUP: u32 = 8;
 
 /// A full-screen pass from an effect's WGSL, which defines
 /// `fn effect(pixel: vec2<u32>) -> vec4<f32>`: the value of output pixel `pixel`. It may read
@@ -18,18 +16,12 @@ const GROUP: u32 = 8;
 /// [`crate::shader::check_wgsl_layout`]).
 #[derive(Debug)]
 pub struct FullScreenPass {
-    pipeline: Pipeline,
+    pipeline: FullScreenPipeline,
     layout: wgpu::BindGroupLayout,
     params: Option<wgpu::Buffer>,
     uploaded: Vec<u8>,
     /// Bind groups by the ids of the images read and written.
-    bind_groups: Vec<((u64, u64), wgpu::BindGroup)>,
-}
-
-#[derive(Debug)]
-enum Pipeline {
-    Compute(wgpu::ComputePipeline),
-    Fragment(wgpu::RenderPipeline),
+    bind_groups: BindGroupCache<(u64, u64)>,
 }
 
 impl FullScreenPass {
@@ -91,7 +83,7 @@ impl FullScreenPass {
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
         let pipeline = match compute {
-            Some(_) => Pipeline::Compute(device.create_compute_pipeline(
+            Some(_) => FullScreenPipeline::Compute(device.create_compute_pipeline(
                 &wgpu::ComputePipelineDescriptor {
                     label: Some(label),
                     layout: Some(&pipeline_layout),
@@ -101,7 +93,7 @@ impl FullScreenPass {
                     cache: None,
                 },
             )),
-            None => Pipeline::Fragment(layout::fullscreen_pipeline(
+            None => FullScreenPipeline::Fragment(layout::fullscreen_pipeline(
                 device,
                 label,
                 Some(&pipeline_layout),
@@ -123,7 +115,7 @@ impl FullScreenPass {
             layout: bind_layout,
             params,
             uploaded: Vec::new(),
-            bind_groups: Vec::new(),
+            bind_groups: BindGroupCache::default(),
         }
     }
 
@@ -150,7 +142,7 @@ impl FullScreenPass {
 
     /// Whether the pass runs in compute (else as a full-screen triangle).
     pub fn is_compute(&self) -> bool {
-        matches!(self.pipeline, Pipeline::Compute(_))
+        self.pipeline.is_compute()
     }
 
     /// Uploads `params` if they changed (a pass made without parameters ignores them);
@@ -179,34 +171,13 @@ impl FullScreenPass {
             return;
         };
         let bind_group = self.bind_group(frame, io.input, output);
-        let (width, height) = frame.target.size();
-        match &self.pipeline {
-            Pipeline::Compute(pipeline) => {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("post effect"),
-                    timestamp_writes: time.map(PassTimestamps::compute),
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.dispatch_workgroups(width.div_ceil(GROUP), height.div_ceil(GROUP), 1);
-            }
-            Pipeline::Fragment(pipeline) => {
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("post effect"),
-                    color_attachments: &[Some(super::clearing_attachment(
-                        &output.view,
-                        wgpu::Color::TRANSPARENT,
-                    ))],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: time.map(PassTimestamps::render),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.draw(0..3, 0..1);
-            }
-        }
+        self.pipeline.record(
+            "post effect",
+            encoder,
+            (&bind_group, &output.view),
+            frame.target.size(),
+            time,
+        );
     }
 
     /// The bind group reading `input` and writing `output`, made unless the pass has one.
@@ -216,40 +187,34 @@ impl FullScreenPass {
         input: &PostImage,
         output: &PostImage,
     ) -> wgpu::BindGroup {
-        let key = (input.id, output.id);
-        if let Some((_, group)) = self.bind_groups.iter().find(|(k, _)| *k == key) {
-            return group.clone();
-        }
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::TextureView(&input.view),
-        }];
-        if let Some(params) = &self.params {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 1,
-                resource: params.as_entire_binding(),
-            });
-        }
-        if self.is_compute() {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&output.view),
-            });
-        }
-        let group = frame
-            .gpu
-            .device
-            .create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("post effect"),
-                layout: &self.layout,
-                entries: &entries,
-            });
-        // A target's chain has few images; older groups are of earlier targets.
-        if self.bind_groups.len() >= 4 {
-            self.bind_groups.remove(0);
-        }
-        self.bind_groups.push((key, group.clone()));
-        group
+        let is_compute = self.is_compute();
+        let (layout, params) = (&self.layout, self.params.as_ref());
+        self.bind_groups.get_or_make((input.id, output.id), || {
+            let mut entries = vec![wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&input.view),
+            }];
+            if let Some(params) = params {
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: params.as_entire_binding(),
+                });
+            }
+            if is_compute {
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&output.view),
+                });
+            }
+            frame
+                .gpu
+                .device
+                .create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("post effect"),
+                    layout,
+                    entries: &entries,
+                })
+        })
     }
 }
 
@@ -314,13 +279,12 @@ fn effect_source(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::full_screen_pipeline::FULL_SCREEN_GROUP;
 
     #[test]
     fn the_dispatch_covers_the_shaders_workgroup() {
-        assert!(
-            EFFECT_COMPUTE
-                .source
-                .contains(&format!("@workgroup_size({GROUP}, {GROUP}, 1)"))
-        );
+        assert!(EFFECT_COMPUTE.source.contains(&format!(
+            "@workgroup_size({FULL_SCREEN_GROUP}, {FULL_SCREEN_GROUP}, 1)"
+        )));
     }
 }

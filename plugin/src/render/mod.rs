@@ -21,6 +21,7 @@ mod frame_nodes;
 mod frame_passes;
 mod frame_uniform;
 mod full_screen_pass;
+mod full_screen_pipeline;
 mod gpu_assets;
 mod gpu_timing;
 pub(crate) mod gpu_types;
@@ -105,7 +106,9 @@ pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_tar
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 pub(crate) use tonemapping::POST_SHADERS;
-pub use tonemapping::{PostSettings, TonemappingPlugin};
+pub use tonemapping::{
+    CameraTonemapping, PostSettings, Tonemapping, TonemappingPlugin, set_camera_display_mapping,
+};
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub use visibility::VISIBILITY_CLEAR_SHADER;
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};

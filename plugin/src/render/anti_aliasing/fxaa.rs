@@ -9,11 +9,11 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::parameters::ParamSpec;
+use crate::render::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::render::tonemapping::{rgba8_output, rgba32f_output};
 use crate::render::{
-    FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat,
-    clearing_attachment, layout,
+    FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat, layout,
 };
 
 crate::settings_parameters! {
@@ -160,17 +160,11 @@ pub const FXAA_SHADERS: [ComposedShader; 4] = [
     FXAA_FRAGMENT_LINEAR,
 ];
 
-#[derive(Debug)]
-enum FxaaPipeline {
-    Compute(wgpu::ComputePipeline),
-    Fragment(wgpu::RenderPipeline),
-}
-
 /// The FXAA pipeline and the bind groups of the images it last read and wrote. Made on the
 /// first frame that asks for it.
 #[derive(Debug)]
 pub(crate) struct FxaaPass {
-    pipeline: FxaaPipeline,
+    pipeline: FullScreenPipeline,
     layout: wgpu::BindGroupLayout,
     /// The bilinear sampler of an 8-bit display's image (a float one is read with loads).
     sampler: Option<wgpu::Sampler>,
@@ -180,7 +174,7 @@ pub(crate) struct FxaaPass {
     uploaded: Option<FxaaSettings>,
     /// Bind groups by the ids of the image read and the image written: the chain's images
     /// change only with the target.
-    bind_groups: Vec<((u64, u64), wgpu::BindGroup)>,
+    bind_groups: BindGroupCache<(u64, u64)>,
 }
 
 /// Whether FXAA reads images of `format` through a filtering sampler: all but float ones.
@@ -236,7 +230,7 @@ impl FxaaPass {
                 _ => FXAA_FRAGMENT,
             }
             .create_module(device);
-            FxaaPipeline::Fragment(layout::fullscreen_pipeline(
+            FullScreenPipeline::Fragment(layout::fullscreen_pipeline(
                 device,
                 "fxaa fragment pipeline",
                 Some(&pipeline_layout),
@@ -250,7 +244,7 @@ impl FxaaPass {
                 _ => FXAA_COMPUTE_RGBA8,
             }
             .create_module(device);
-            FxaaPipeline::Compute(device.create_compute_pipeline(
+            FullScreenPipeline::Compute(device.create_compute_pipeline(
                 &wgpu::ComputePipelineDescriptor {
                     label: Some("fxaa compute pipeline"),
                     layout: Some(&pipeline_layout),
@@ -285,7 +279,7 @@ impl FxaaPass {
             format,
             settings,
             uploaded: None,
-            bind_groups: Vec::new(),
+            bind_groups: BindGroupCache::default(),
         }
     }
 
@@ -313,41 +307,35 @@ impl FxaaPass {
         input: &PostImage,
         output: &PostImage,
     ) -> wgpu::BindGroup {
-        let key = (input.id, output.id);
-        if let Some((_, group)) = self.bind_groups.iter().find(|(k, _)| *k == key) {
-            return group.clone();
-        }
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::TextureView(&input.view),
-        }];
-        if let Some(sampler) = &self.sampler {
+        let is_compute = self.pipeline.is_compute();
+        let (layout, sampler, settings) = (&self.layout, self.sampler.as_ref(), &self.settings);
+        self.bind_groups.get_or_make((input.id, output.id), || {
+            let mut entries = vec![wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&input.view),
+            }];
+            if let Some(sampler) = sampler {
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(sampler),
+                });
+            }
+            if is_compute {
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&output.view),
+                });
+            }
             entries.push(wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::Sampler(sampler),
+                binding: SETTINGS_BINDING,
+                resource: settings.as_entire_binding(),
             });
-        }
-        if matches!(self.pipeline, FxaaPipeline::Compute(_)) {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&output.view),
-            });
-        }
-        entries.push(wgpu::BindGroupEntry {
-            binding: SETTINGS_BINDING,
-            resource: self.settings.as_entire_binding(),
-        });
-        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("fxaa bind group"),
-            layout: &self.layout,
-            entries: &entries,
-        });
-        // Groups of earlier targets' images are stale; a target's chain has few.
-        if self.bind_groups.len() >= 4 {
-            self.bind_groups.remove(0);
-        }
-        self.bind_groups.push((key, group.clone()));
-        group
+            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("fxaa bind group"),
+                layout,
+                entries: &entries,
+            })
+        })
     }
 
     /// Records the pass: the tonemapped `input`, the size of `target`, into `output`.
@@ -360,34 +348,13 @@ impl FxaaPass {
         timestamps: Option<&PassTimestamps>,
     ) {
         let bind_group = self.bind_group(gpu, input, output);
-        let (width, height) = target.size();
-        match &self.pipeline {
-            FxaaPipeline::Compute(pipeline) => {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("fxaa pass"),
-                    timestamp_writes: timestamps.map(PassTimestamps::compute),
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
-            }
-            FxaaPipeline::Fragment(pipeline) => {
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("fxaa pass"),
-                    color_attachments: &[Some(clearing_attachment(
-                        &output.view,
-                        wgpu::Color::TRANSPARENT,
-                    ))],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: timestamps.map(PassTimestamps::render),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.draw(0..3, 0..1);
-            }
-        }
+        self.pipeline.record(
+            "fxaa pass",
+            encoder,
+            (&bind_group, &output.view),
+            target.size(),
+            timestamps,
+        );
     }
 }
 

@@ -30,6 +30,7 @@ use fxaa::FxaaPass;
 use taa::{TaaInputs, TaaPass};
 
 use crate::parameters::ClampWarnings;
+use crate::render::tonemapping::CameraTonemapping;
 use crate::render::{
     DrawPhase, ExtractedFrame, FrameNode, FrameNodes, FrameView, GpuContext, HdrInput, NodePlace,
     PassTimestamps, PostEffect, PostImage, PostIo, PostStage, RenderError, RenderPhase,
@@ -203,7 +204,10 @@ impl PostEffect for Taa {
         let uniform = taa::TaaUniform::new(
             &temporal,
             jittered,
-            extracted.tonemapping,
+            frame
+                .resources
+                .get::<CameraTonemapping>()
+                .map_or_else(Default::default, |operator| operator.0),
             motion_runs(frame),
         );
         Ok(self

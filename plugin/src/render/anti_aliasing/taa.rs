@@ -20,7 +20,7 @@ const GROUP: u32 = 16;
 /// The pass's shader.
 pub const TAA_SHADER: ComposedShader = ComposedShader {
     name: "taa.wgsl",
-    constants: &[crate::Tonemapping::wgsl_constants],
+    constants: &[crate::render::Tonemapping::wgsl_constants],
     files: &[crate::render::tonemapping::TONEMAPPING, TAA_ENTRY],
 };
 
@@ -97,7 +97,7 @@ impl TaaUniform {
     pub fn new(
         frame: &TemporalFrame,
         jittered_view_projection: glam::Mat4,
-        tonemapping: crate::Tonemapping,
+        tonemapping: crate::render::Tonemapping,
         object_motion: bool,
     ) -> Self {
         let settings = frame.settings;

@@ -5,8 +5,10 @@
 //! Pixels whose alpha marks them display-referred (the clear colour, debug views) pass
 //! through unchanged (post_process.wgsl).
 
+mod operators;
 mod post_process;
 
+pub use operators::{Tonemapping, set_camera_display_mapping};
 pub(crate) use post_process::POST_SHADERS;
 pub use post_process::{
     POST_COMPUTE_ENTRY, POST_COMPUTE_RGBA8, POST_COMPUTE_RGBA32F, POST_FRAGMENT,
@@ -18,10 +20,10 @@ use post_process::PostProcess;
 
 use crate::render::GpuContext;
 use crate::render::{
-    ExtractedFrame, FrameNodes, FrameView, HdrInput, PassTimestamps, PostEffect, PostImage, PostIo,
-    PostStage, RenderError, RenderPhase, RenderTarget, Renderer,
+    FrameNodes, FrameView, HdrInput, PassTimestamps, PostEffect, PostImage, PostIo, PostStage,
+    RenderError, RenderPhase, RenderTarget, Renderer,
 };
-use crate::{App, Plugin, Resources};
+use crate::{App, Plugin, Resources, Stage};
 
 /// The node name tonemapping is timed under.
 pub const TONEMAPPING_NODE: &str = RenderPhase::PostProcess.name();
@@ -35,7 +37,24 @@ impl Plugin for TonemappingPlugin {
         app.resources
             .get_or_default::<FrameNodes>()
             .add_post_effect(TONEMAPPING_NODE, Tonemap::default);
+        app.add_system(Stage::Extract, extract_tonemapping);
     }
+}
+
+/// The active camera's operator this frame (its component, else the default). A resource of
+/// the tonemapping plugin; TAA tonemaps its history with it too.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CameraTonemapping(pub Tonemapping);
+
+/// The Extract stage's system: the active camera's operator.
+fn extract_tonemapping(world: &mut hecs::World, resources: &mut Resources) {
+    let operator = world
+        .query::<(&crate::Camera, Option<&Tonemapping>)>()
+        .iter()
+        .find(|(camera, _)| camera.active)
+        .and_then(|(_, operator)| operator.copied())
+        .unwrap_or_default();
+    resources.insert(CameraTonemapping(operator));
 }
 
 /// The display conversion of the post chain; its pass is made on the first frame.
@@ -58,8 +77,8 @@ impl PostEffect for Tonemap {
         let format = resources.require::<RenderTarget>()?.target_format();
         let stage = resources.require::<Renderer>()?.full_screen_stage();
         let operator = match input {
-            HdrInput::Tonemapped => crate::Tonemapping::None,
-            HdrInput::SceneColour => resources.require::<ExtractedFrame>()?.tonemapping,
+            HdrInput::Tonemapped => Tonemapping::None,
+            HdrInput::SceneColour => resources.require::<CameraTonemapping>()?.0,
         };
         if !self.pass.as_ref().is_some_and(|pass| pass.is_for(format)) {
             self.pass = Some(PostProcess::new(gpu, format, stage));

@@ -8,7 +8,8 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::Tonemapping;
+use super::Tonemapping;
+use crate::render::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::render::{
     FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat, layout,
@@ -91,25 +92,18 @@ impl PostSettings {
     }
 }
 
-/// How post-processing runs on this adapter.
-#[derive(Debug)]
-enum PostPipeline {
-    Compute(wgpu::ComputePipeline),
-    Fragment(wgpu::RenderPipeline),
-}
-
 /// The tonemapping pass: pipeline, settings buffer, and the bind groups of the current target
 /// (by what they read and write).
 #[derive(Debug)]
 pub struct PostProcess {
-    pipeline: PostPipeline,
+    pipeline: FullScreenPipeline,
     layout: wgpu::BindGroupLayout,
     settings: wgpu::Buffer,
     uploaded: Option<PostSettings>,
     // Bind groups by what they bind: the target, the colour read (the scene, or an HDR
     // effect's image) and the image written (the display, or the chain's image before a
     // display effect). A few at most: TAA's two histories take turns.
-    bind_groups: Vec<(BindingKey, wgpu::BindGroup)>,
+    bind_groups: BindGroupCache<BindingKey>,
     format: TargetFormat,
 }
 
@@ -140,7 +134,7 @@ impl PostProcess {
             layout,
             settings,
             uploaded: None,
-            bind_groups: Vec::new(),
+            bind_groups: BindGroupCache::default(),
             format,
         }
     }
@@ -148,10 +142,6 @@ impl PostProcess {
     /// Whether the pass was made for display targets of `format`.
     pub(crate) fn is_for(&self, format: TargetFormat) -> bool {
         self.format == format
-    }
-
-    fn is_compute(&self) -> bool {
-        matches!(self.pipeline, PostPipeline::Compute(_))
     }
 
     /// Writes `settings` if they changed; returns the bytes written.
@@ -172,45 +162,39 @@ impl PostProcess {
         gpu: &GpuContext,
         target: &RenderTarget,
         (colour, output): (&PostImage, &PostImage),
-    ) -> &wgpu::BindGroup {
-        let key = (target.id(), colour.id, output.id);
+    ) -> wgpu::BindGroup {
         // Groups of other targets are stale; a few of this one's are kept.
+        self.bind_groups.retain(|(id, _, _)| *id == target.id());
+        let is_compute = self.pipeline.is_compute();
+        let (layout, settings) = (&self.layout, &self.settings);
         self.bind_groups
-            .retain(|((id, _, _), _)| *id == target.id());
-        if let Some(index) = self.bind_groups.iter().position(|(k, _)| *k == key) {
-            return &self.bind_groups[index].1;
-        }
-        let (colour, output) = (&colour.view, &output.view);
-        let mut entries = vec![
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&target.scene_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: self.settings.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: wgpu::BindingResource::TextureView(colour),
-            },
-        ];
-        if self.is_compute() {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(output),
-            });
-        }
-        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("post-process bind group"),
-            layout: &self.layout,
-            entries: &entries,
-        });
-        if self.bind_groups.len() >= 4 {
-            self.bind_groups.remove(0);
-        }
-        self.bind_groups.push((key, group));
-        &self.bind_groups[self.bind_groups.len() - 1].1
+            .get_or_make((target.id(), colour.id, output.id), || {
+                let mut entries = vec![
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&target.scene_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: settings.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(&colour.view),
+                    },
+                ];
+                if is_compute {
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(&output.view),
+                    });
+                }
+                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("post-process bind group"),
+                    layout,
+                    entries: &entries,
+                })
+            })
     }
 
     /// Records the pass: `colour` (with the alpha of `target`'s scene) tonemapped into
@@ -223,41 +207,14 @@ impl PostProcess {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&PassTimestamps>,
     ) {
-        let (width, height) = target.size();
-        let bind_group = self.bind_group(gpu, target, (colour, output)).clone();
-        let output = &output.view;
-        match &self.pipeline {
-            PostPipeline::Compute(pipeline) => {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("post-process pass"),
-                    timestamp_writes: timestamps.map(PassTimestamps::compute),
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
-            }
-            PostPipeline::Fragment(pipeline) => {
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("post-process pass"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: output,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                            store: wgpu::StoreOp::Store,
-                        },
-                    })],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: timestamps.map(PassTimestamps::render),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.draw(0..3, 0..1);
-            }
-        }
+        let bind_group = self.bind_group(gpu, target, (colour, output));
+        self.pipeline.record(
+            "post-process pass",
+            encoder,
+            (&bind_group, &output.view),
+            target.size(),
+            timestamps,
+        );
     }
 }
 
@@ -293,7 +250,7 @@ fn pipeline(
     pipeline_layout: &wgpu::PipelineLayout,
     format: TargetFormat,
     stage: FullScreenStage,
-) -> PostPipeline {
+) -> FullScreenPipeline {
     let display = format.texture_format();
     if stage == FullScreenStage::Compute {
         let shader = match format {
@@ -301,19 +258,19 @@ fn pipeline(
             _ => POST_COMPUTE_RGBA8,
         }
         .create_module(device);
-        PostPipeline::Compute(
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        FullScreenPipeline::Compute(device.create_compute_pipeline(
+            &wgpu::ComputePipelineDescriptor {
                 label: Some("post-process compute pipeline"),
                 layout: Some(pipeline_layout),
                 module: &shader,
                 entry_point: Some("post_main"),
                 compilation_options: Default::default(),
                 cache: None,
-            }),
-        )
+            },
+        ))
     } else {
         let shader = POST_FRAGMENT.create_module(device);
-        PostPipeline::Fragment(layout::fullscreen_pipeline(
+        FullScreenPipeline::Fragment(layout::fullscreen_pipeline(
             device,
             "post-process fragment pipeline",
             Some(pipeline_layout),
