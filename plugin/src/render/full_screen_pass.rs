@@ -187,8 +187,7 @@ impl FullScreenPass {
         input: &PostImage,
         output: &PostImage,
     ) -> wgpu::BindGroup {
-        let is_compute = self.is_compute();
-        let (layout, params) = (&self.layout, self.params.as_ref());
+        let (pipeline, layout, params) = (&self.pipeline, &self.layout, self.params.as_ref());
         self.bind_groups.get_or_make((input.id, output.id), || {
             let mut entries = vec![wgpu::BindGroupEntry {
                 binding: 0,
@@ -200,20 +199,12 @@ impl FullScreenPass {
                     resource: params.as_entire_binding(),
                 });
             }
-            if is_compute {
-                entries.push(wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&output.view),
-                });
-            }
-            frame
-                .gpu
-                .device
-                .create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("post effect"),
-                    layout,
-                    entries: &entries,
-                })
+            pipeline.bind_group(
+                &frame.gpu.device,
+                ("post effect", layout),
+                entries,
+                &output.view,
+            )
         })
     }
 }

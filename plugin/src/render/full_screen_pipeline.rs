@@ -23,6 +23,28 @@ impl FullScreenPipeline {
         matches!(self, FullScreenPipeline::Compute(_))
     }
 
+    /// A bind group of `layout` with `entries` and, in compute, `output` as binding 2 (the
+    /// storage texture the pass writes).
+    pub(crate) fn bind_group<'a>(
+        &self,
+        device: &wgpu::Device,
+        (label, layout): (&str, &wgpu::BindGroupLayout),
+        mut entries: Vec<wgpu::BindGroupEntry<'a>>,
+        output: &'a wgpu::TextureView,
+    ) -> wgpu::BindGroup {
+        if self.is_compute() {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(output),
+            });
+        }
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &entries,
+        })
+    }
+
     /// Records one pass over `size` pixels with `bind_group`, writing `output` (attached and
     /// cleared first for the triangle; bound in the group for compute).
     pub(crate) fn record(

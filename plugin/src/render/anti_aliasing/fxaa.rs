@@ -307,34 +307,31 @@ impl FxaaPass {
         input: &PostImage,
         output: &PostImage,
     ) -> wgpu::BindGroup {
-        let is_compute = self.pipeline.is_compute();
-        let (layout, sampler, settings) = (&self.layout, self.sampler.as_ref(), &self.settings);
+        let (pipeline, layout) = (&self.pipeline, &self.layout);
+        let (sampler, settings) = (self.sampler.as_ref(), &self.settings);
         self.bind_groups.get_or_make((input.id, output.id), || {
-            let mut entries = vec![wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&input.view),
-            }];
+            let mut entries = vec![
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&input.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: SETTINGS_BINDING,
+                    resource: settings.as_entire_binding(),
+                },
+            ];
             if let Some(sampler) = sampler {
                 entries.push(wgpu::BindGroupEntry {
                     binding: 1,
                     resource: wgpu::BindingResource::Sampler(sampler),
                 });
             }
-            if is_compute {
-                entries.push(wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&output.view),
-                });
-            }
-            entries.push(wgpu::BindGroupEntry {
-                binding: SETTINGS_BINDING,
-                resource: settings.as_entire_binding(),
-            });
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("fxaa bind group"),
-                layout,
-                entries: &entries,
-            })
+            pipeline.bind_group(
+                &gpu.device,
+                ("fxaa bind group", layout),
+                entries,
+                &output.view,
+            )
         })
     }
 

@@ -165,11 +165,10 @@ impl PostProcess {
     ) -> wgpu::BindGroup {
         // Groups of other targets are stale; a few of this one's are kept.
         self.bind_groups.retain(|(id, _, _)| *id == target.id());
-        let is_compute = self.pipeline.is_compute();
-        let (layout, settings) = (&self.layout, &self.settings);
+        let (pipeline, layout, settings) = (&self.pipeline, &self.layout, &self.settings);
         self.bind_groups
             .get_or_make((target.id(), colour.id, output.id), || {
-                let mut entries = vec![
+                let entries = vec![
                     wgpu::BindGroupEntry {
                         binding: 0,
                         resource: wgpu::BindingResource::TextureView(&target.scene_view),
@@ -183,17 +182,12 @@ impl PostProcess {
                         resource: wgpu::BindingResource::TextureView(&colour.view),
                     },
                 ];
-                if is_compute {
-                    entries.push(wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(&output.view),
-                    });
-                }
-                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("post-process bind group"),
-                    layout,
-                    entries: &entries,
-                })
+                pipeline.bind_group(
+                    &gpu.device,
+                    ("post-process bind group", layout),
+                    entries,
+                    &output.view,
+                )
             })
     }
 
