@@ -216,3 +216,68 @@ fn a_frame_without_tonemapping_is_an_error_naming_it() {
     let error = app.update().unwrap_err().to_string();
     assert!(error.contains("tonemapping"), "{error}");
 }
+
+/// An HDR effect that writes its input through and counts the frames whose input it was told
+/// TAA had tonemapped.
+struct Probe {
+    pass: Option<FullScreenPass>,
+    tonemapped_frames: std::rc::Rc<std::cell::Cell<u32>>,
+}
+
+impl PostEffect for Probe {
+    fn stage(&self) -> PostStage {
+        PostStage::Hdr
+    }
+
+    fn runs(&self, _: FrameView<'_>) -> bool {
+        true
+    }
+
+    fn record(
+        &mut self,
+        frame: FrameView<'_>,
+        io: PostIo<'_>,
+        encoder: &mut pom::wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) -> Result<Option<PostImage>, RenderError> {
+        if io.holds == pom::render::HdrInput::Tonemapped {
+            self.tonemapped_frames.set(self.tonemapped_frames.get() + 1);
+        }
+        let copy =
+            "fn effect(pixel: vec2<u32>) -> vec4<f32> { return textureLoad(input, pixel, 0); }";
+        self.pass
+            .get_or_insert_with(|| FullScreenPass::new(frame, PostStage::Hdr, "probe", copy))
+            .record(frame, io, encoder, time);
+        Ok(None)
+    }
+}
+
+#[test]
+fn hdr_effects_run_after_taa_and_are_told_its_history_is_tonemapped() {
+    let tonemapped_frames = std::rc::Rc::new(std::cell::Cell::new(0));
+    let count = tonemapped_frames.clone();
+    let probe = move || Probe {
+        pass: None,
+        tonemapped_frames: count.clone(),
+    };
+    let mut app = turned_square_with(RenderPlugin::new(32, 32));
+    set_anti_aliasing(&mut app, AntiAliasing::Taa);
+    app.resources
+        .get_or_default::<FrameNodes>()
+        .add_post_effect("probe", probe.clone());
+    run_frames(&mut app, 3).unwrap();
+    assert_eq!(tonemapped_frames.get(), 3);
+
+    // Placed before TAA, which reads the scene itself, it would be lost: an error naming both.
+    let mut app = turned_square_with(RenderPlugin::new(32, 32));
+    set_anti_aliasing(&mut app, AntiAliasing::Taa);
+    let place = NodePlace::new("probe", RenderPhase::PostProcess).before("taa");
+    app.resources
+        .get_or_default::<FrameNodes>()
+        .add_post_effect_at(place, probe);
+    let error = app.update().unwrap_err().to_string();
+    assert!(
+        error.contains("\"taa\"") && error.contains("\"probe\""),
+        "{error}"
+    );
+}

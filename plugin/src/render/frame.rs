@@ -199,23 +199,29 @@ fn post_chain(
             target: resources.require::<RenderTarget>()?,
             has_camera: resources.require::<ExtractedFrame>()?.has_camera,
         };
-        let mut links: Vec<ChainLink<'_>> = nodes
+        // The chain's effects, and the frame nodes of the post and overlay phases, which
+        // record after it.
+        let mut links: Vec<ChainLink<'_>> = Vec::new();
+        let mut late = Vec::new();
+        for ((node, _), time) in nodes
             .iter_mut()
             .zip(runs)
             .zip(times)
-            .filter(|((_, runs), _)| **runs)
-            .filter_map(|((node, _), time)| {
-                let name = node.place.name;
-                match &mut node.work {
-                    NodeWork::Post(effect) => Some(ChainLink {
-                        name,
-                        effect: effect.as_mut(),
-                        time,
-                    }),
-                    NodeWork::Frame(_) => None,
+            .filter(|((_, r), _)| **r)
+        {
+            let name = node.place.name;
+            match &mut node.work {
+                NodeWork::Post(effect) => links.push(ChainLink {
+                    name,
+                    effect: effect.as_mut(),
+                    time,
+                }),
+                NodeWork::Frame(work) if node.place.phase >= RenderPhase::PostProcess => {
+                    late.push((work, time));
                 }
-            })
-            .collect();
+                NodeWork::Frame(_) => {}
+            }
+        }
         links.sort_by_key(|link| post_chain::stage_rank(link.effect.stage()));
         let mut encoder = view
             .gpu
@@ -228,6 +234,9 @@ fn post_chain(
             for work in phases.work(RenderPhase::PostProcess) {
                 work(resources, &mut encoder);
             }
+        }
+        for (work, time) in late {
+            work.record(view, &mut encoder, time.as_ref())?;
         }
         view.gpu.queue.submit([encoder.finish()]);
         Ok(())

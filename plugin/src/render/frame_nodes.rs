@@ -1,8 +1,9 @@
 //! The frame as a list that features join: [`FrameNodes`] holds every render feature's work
 //! as named nodes of a [`RenderPhase`], each placed before or after other nodes of its phase.
 //! The core runs its own passes (prepass, opaque, resolve, transparent) and, after each phase's
-//! pass, that phase's nodes in order; the post phase's nodes form the post chain
-//! (post_chain.rs). A node that has nothing to do in a frame says so and costs nothing: no
+//! pass, that phase's nodes in order; the post phase's effects form the post chain
+//! (post_chain.rs), after which the post and overlay phases' other nodes record, in the same
+//! submission. A node that has nothing to do in a frame says so and costs nothing: no
 //! pass, no bind group, no timing.
 
 use super::{GpuContext, PassTimestamps, PostEffect, RenderError, RenderPhase, RenderTarget};
@@ -149,6 +150,8 @@ pub(crate) struct Node {
     pub(crate) place: NodePlace,
     pub(crate) work: NodeWork,
     make: Box<dyn Fn() -> NodeWork>,
+    /// The type of its work, to tell a plugin added twice from two features sharing a name.
+    kind: std::any::TypeId,
 }
 
 /// Every node of the frame, in order within each phase once [`FrameNodes::order`] has run. A
@@ -173,9 +176,11 @@ impl std::fmt::Debug for FrameNodes {
 
 impl FrameNodes {
     /// Adds the node `make` makes at `place`, replacing a node of the same name (a plugin
-    /// added twice adds its node once).
+    /// added twice adds its node once; another kind of node of that name is replaced with a
+    /// warning).
     pub fn add<N: FrameNode>(&mut self, place: NodePlace, make: impl Fn() -> N + 'static) {
-        self.insert(place, Box::new(move || NodeWork::Frame(Box::new(make()))));
+        let make = Box::new(move || NodeWork::Frame(Box::new(make())));
+        self.insert(place, make, std::any::TypeId::of::<N>());
     }
 
     /// Adds the full-screen effect `make` makes to the post chain, as the node `name` of
@@ -198,7 +203,8 @@ impl FrameNodes {
             phase: RenderPhase::PostProcess,
             ..place
         };
-        self.insert(place, Box::new(move || NodeWork::Post(Box::new(make()))));
+        let make = Box::new(move || NodeWork::Post(Box::new(make())));
+        self.insert(place, make, std::any::TypeId::of::<E>());
     }
 
     /// Makes every node's work again when `device` is not the one it was made for.
@@ -215,19 +221,33 @@ impl FrameNodes {
         self.device = Some(device.clone());
     }
 
-    fn insert(&mut self, place: NodePlace, make: Box<dyn Fn() -> NodeWork>) {
+    fn insert(
+        &mut self,
+        place: NodePlace,
+        make: Box<dyn Fn() -> NodeWork>,
+        kind: std::any::TypeId,
+    ) {
         self.ordered = false;
         let node = Node {
             place,
             work: make(),
             make,
+            kind,
         };
         match self
             .nodes
             .iter_mut()
             .find(|old| old.place.name == node.place.name)
         {
-            Some(old) => *old = node,
+            Some(old) => {
+                if old.kind != node.kind {
+                    log::warn!(
+                        "frame node {:?} is replaced by another of that name: name yours apart from the renderer's nodes",
+                        node.place.name
+                    );
+                }
+                *old = node;
+            }
             None => self.nodes.push(node),
         }
     }

@@ -20,8 +20,21 @@ pub struct FullScreenPass {
     layout: wgpu::BindGroupLayout,
     params: Option<wgpu::Buffer>,
     uploaded: Vec<u8>,
-    /// Bind groups by the ids of the images read and written.
-    bind_groups: BindGroupCache<(u64, u64)>,
+    /// Bind groups by the ids of the target and the images read and written.
+    bind_groups: BindGroupCache<(u64, u64, u64)>,
+    /// What the pass was made from, to make it again for a target of another format.
+    source: EffectSource,
+}
+
+/// What a pass is made from.
+#[derive(Debug)]
+struct EffectSource {
+    stage: PostStage,
+    label: String,
+    wgsl: String,
+    params_size: u64,
+    /// The format of the images it writes.
+    format: wgpu::TextureFormat,
 }
 
 impl FullScreenPass {
@@ -48,19 +61,8 @@ impl FullScreenPass {
         params_size: u64,
     ) -> Self {
         let device = &frame.gpu.device;
-        let format = match stage {
-            PostStage::Hdr => frame.target.scene_format(),
-            _ => frame.target.format(),
-        };
-        let storage = storage_format_name(format);
-        let run_in = frame.resources.get::<super::Renderer>().map_or(
-            FullScreenStage::Fragment,
-            super::Renderer::full_screen_stage,
-        );
-        let compute = match (run_in, storage) {
-            (FullScreenStage::Compute, Some(name)) if frame.gpu.can_store(format) => Some(name),
-            _ => None,
-        };
+        let format = image_format(frame, stage);
+        let compute = compute_storage(frame, format);
         let mut entries = vec![layout::unfilterable_texture_2d(0)];
         if params_size > 0 {
             entries.push(layout::read_only_storage_buffer(1, params_size));
@@ -116,6 +118,27 @@ impl FullScreenPass {
             params,
             uploaded: Vec::new(),
             bind_groups: BindGroupCache::default(),
+            source: EffectSource {
+                stage,
+                label: label.to_owned(),
+                wgsl: effect_wgsl.to_owned(),
+                params_size,
+                format,
+            },
+        }
+    }
+
+    /// Makes the pass again when `frame`'s target stores another format than it was made for
+    /// (its parameters are then uploaded again).
+    fn follow(&mut self, frame: FrameView<'_>) {
+        let source = &self.source;
+        if image_format(frame, source.stage) != source.format {
+            *self = Self::build(
+                frame,
+                source.stage,
+                (&source.label.clone(), &source.wgsl.clone()),
+                source.params_size,
+            );
         }
     }
 
@@ -148,6 +171,7 @@ impl FullScreenPass {
     /// Uploads `params` if they changed (a pass made without parameters ignores them);
     /// returns the bytes written.
     pub fn write_params<P: bytemuck::Pod>(&mut self, frame: FrameView<'_>, params: &P) -> u64 {
+        self.follow(frame);
         let bytes = bytemuck::bytes_of(params);
         match &self.params {
             Some(buffer) if self.uploaded != bytes && bytes.len() as u64 == buffer.size() => {
@@ -170,6 +194,7 @@ impl FullScreenPass {
         let Some(output) = io.output else {
             return;
         };
+        self.follow(frame);
         let bind_group = self.bind_group(frame, io.input, output);
         self.pipeline.record(
             "post effect",
@@ -187,25 +212,50 @@ impl FullScreenPass {
         input: &PostImage,
         output: &PostImage,
     ) -> wgpu::BindGroup {
+        // Groups of another target's images would keep them alive.
+        let target = frame.target.id();
+        self.bind_groups.retain(|(id, _, _)| *id == target);
         let (pipeline, layout, params) = (&self.pipeline, &self.layout, self.params.as_ref());
-        self.bind_groups.get_or_make((input.id, output.id), || {
-            let mut entries = vec![wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&input.view),
-            }];
-            if let Some(params) = params {
-                entries.push(wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: params.as_entire_binding(),
-                });
-            }
-            pipeline.bind_group(
-                &frame.gpu.device,
-                ("post effect", layout),
-                entries,
-                &output.view,
-            )
-        })
+        self.bind_groups
+            .get_or_make((target, input.id, output.id), || {
+                let mut entries = vec![wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&input.view),
+                }];
+                if let Some(params) = params {
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: params.as_entire_binding(),
+                    });
+                }
+                pipeline.bind_group(
+                    &frame.gpu.device,
+                    ("post effect", layout),
+                    entries,
+                    &output.view,
+                )
+            })
+    }
+}
+
+/// The format of the images an effect of `stage` writes on `frame`'s target.
+fn image_format(frame: FrameView<'_>, stage: PostStage) -> wgpu::TextureFormat {
+    match stage {
+        PostStage::Hdr => frame.target.scene_format(),
+        _ => frame.target.format(),
+    }
+}
+
+/// The WGSL storage format a pass writing `format` on `frame` declares, where it runs in
+/// compute (where the renderer runs full-screen work in compute and can store the format).
+fn compute_storage(frame: FrameView<'_>, format: wgpu::TextureFormat) -> Option<&'static str> {
+    let run_in = frame.resources.get::<super::Renderer>().map_or(
+        FullScreenStage::Fragment,
+        super::Renderer::full_screen_stage,
+    );
+    match (run_in, storage_format_name(format)) {
+        (FullScreenStage::Compute, Some(name)) if frame.gpu.can_store(format) => Some(name),
+        _ => None,
     }
 }
 

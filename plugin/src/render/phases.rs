@@ -6,11 +6,12 @@
 //!              material draws its casters from the light's view
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! resolve      deferred path: materials shade their pixels of the visibility buffer in compute
-//! transparent  blended draws of every material in one list, farthest first; depth read-only
-//! post         TAA's object motion pass (moving draws write which motion each pixel follows),
-//!              TAA on the HDR scene (compute), tonemapping, HDR scene → display target
-//!              (compute where allowed; the scene is pre-exposed: the lights carry the
-//!              camera's exposure), then the post filter (FXAA) where the camera asks for it
+//! transparent  blended draws of every material in one list, farthest first; depth read-only;
+//!              then TAA's object motion pass (moving draws write which motion each pixel
+//!              follows)
+//! post         the post chain: HDR effects (TAA), tonemapping from the HDR scene to the
+//!              display image (compute where allowed; the scene is pre-exposed: the lights
+//!              carry the camera's exposure), display effects (FXAA where the camera asks)
 //! overlay      UI drawn over the result by the application (the sandbox's egui)
 //! ```
 //! Each phase that has work is timed in [`super::GpuTimings`] under [`RenderPhase::name`].
@@ -34,7 +35,8 @@ pub enum RenderPhase {
     Resolve,
     /// Blended draws of every material in one list, farthest first.
     Transparent,
-    /// TAA, tonemapping into the display target, the post filter.
+    /// The post chain: HDR effects (TAA), tonemapping into the display image, display effects
+    /// (the post filter).
     PostProcess,
     /// The application's UI over the finished image.
     Overlay,
@@ -77,8 +79,8 @@ pub enum DrawPhase {
     Opaque,
     /// Colour blended over the opaque result; depth tested, never written.
     Transparent,
-    /// TAA frames in which a draw moved, before TAA: each moving draw writes its motion's
-    /// number where it shows; depth tested, never written.
+    /// TAA frames in which a draw moved, after the transparent phase: each moving draw writes
+    /// its motion's number where it shows; depth tested, never written.
     Motion,
 }
 
@@ -88,7 +90,7 @@ impl From<DrawPhase> for RenderPhase {
             DrawPhase::Prepass => RenderPhase::Prepass,
             DrawPhase::Opaque => RenderPhase::Opaque,
             DrawPhase::Transparent => RenderPhase::Transparent,
-            DrawPhase::Motion => RenderPhase::PostProcess,
+            DrawPhase::Motion => RenderPhase::Transparent,
         }
     }
 }

@@ -14,9 +14,10 @@ use crate::Resources;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum PostStage {
-    /// On the HDR scene (linear, pre-exposed colour in the target's scene format), before
-    /// tonemapping. A negative alpha marks a display-referred pixel (the clear colour, a debug
-    /// view's data), which tonemapping passes through: leave such pixels as they are.
+    /// On the HDR image before tonemapping, in the target's scene format: linear, pre-exposed
+    /// colour, or after TAA its history's tonemapped colour ([`PostIo::holds`] says which). A
+    /// negative alpha marks a display-referred pixel (the clear colour, a debug view's data),
+    /// which tonemapping passes through: leave such pixels as they are.
     Hdr,
     /// From the HDR scene to the display image: one effect per frame (tonemapping).
     ToDisplay,
@@ -70,6 +71,9 @@ pub struct PostIo<'a> {
     /// last effect; `None` for effects that write images of their own
     /// ([`PostEffect::writes_own_image`]).
     pub output: Option<&'a PostImage>,
+    /// What an HDR effect's input holds: the scene colour, or colour an HDR effect before it
+    /// (TAA) has tonemapped already; display effects always read display values.
+    pub holds: HdrInput,
 }
 
 /// What the input of the chain's display conversion holds.
@@ -115,6 +119,12 @@ pub trait PostEffect: 'static {
         false
     }
 
+    /// Whether it reads the target's scene itself rather than its input (TAA, which keeps a
+    /// history of the scene): it must then run before every other HDR effect.
+    fn reads_the_scene(&self) -> bool {
+        false
+    }
+
     /// Whether it reads the scene's depth (the opaque phase then keeps it).
     fn reads_scene_depth(&self) -> bool {
         false
@@ -143,6 +153,17 @@ pub enum PostChainError {
     /// An effect after the HDR stage wrote an image of its own.
     #[error("post effect {0:?} writes an image of its own; only HDR effects may")]
     OwnImageAfterHdr(&'static str),
+    /// An effect that reads the scene itself runs after another HDR effect, whose work it
+    /// would drop.
+    #[error(
+        "post effect {reader:?} reads the scene itself, so HDR effect {before:?} must run after it (place it with NodePlace::after({reader:?}))"
+    )]
+    SceneReaderNotFirst {
+        /// The effect reading the scene.
+        reader: &'static str,
+        /// The HDR effect placed before it.
+        before: &'static str,
+    },
 }
 
 /// The images between effects, for the current target: two of the scene's format and two of
@@ -250,8 +271,24 @@ pub(crate) fn record_chain(
     let (Some(scene), Some(display)) = (images.scene.clone(), images.display.clone()) else {
         return Ok(());
     };
-    let last = links.len() - 1;
+    let first_hdr = links
+        .first()
+        .filter(|link| link.effect.stage() == PostStage::Hdr);
+    if let Some(reader) = links
+        .iter()
+        .skip(1)
+        .find(|link| link.effect.reads_the_scene())
+        && let Some(before) = first_hdr
+    {
+        return Err(PostChainError::SceneReaderNotFirst {
+            reader: reader.name,
+            before: before.name,
+        }
+        .into());
+    }
+    let last = links.len().saturating_sub(1);
     let mut current = scene;
+    let mut holds = HdrInput::SceneColour;
     for (index, link) in links.into_iter().enumerate() {
         let stage = link.effect.stage();
         let output = if index == last {
@@ -268,8 +305,10 @@ pub(crate) fn record_chain(
         let io = PostIo {
             input: &current,
             output: output.as_ref(),
+            holds,
         };
         let own = link.effect.record(frame, io, encoder, link.time.as_ref())?;
+        let wrote = own.is_some() || output.is_some();
         current = match (own, output) {
             (Some(_), _) if stage != PostStage::Hdr => {
                 return Err(PostChainError::OwnImageAfterHdr(link.name).into());
@@ -278,6 +317,9 @@ pub(crate) fn record_chain(
             (None, Some(output)) => output,
             (None, None) => current,
         };
+        if wrote && stage == PostStage::Hdr && link.effect.output_is_tonemapped() {
+            holds = HdrInput::Tonemapped;
+        }
     }
     Ok(())
 }

@@ -87,7 +87,7 @@ pub struct RenderTarget {
 }
 
 /// A 2D texture of one level and one sample, `width`×`height`: what the target and the
-/// textures that follow its size (TAA's history, the post filter's input, the motion numbers)
+/// textures that follow its size (TAA's history, the post chain's images, the motion numbers)
 /// are made of.
 pub(crate) fn plain_texture(
     gpu: &GpuContext,

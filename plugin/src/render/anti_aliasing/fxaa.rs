@@ -172,9 +172,8 @@ pub(crate) struct FxaaPass {
     /// The settings buffer, and what it holds.
     settings: wgpu::Buffer,
     uploaded: Option<FxaaSettings>,
-    /// Bind groups by the ids of the image read and the image written: the chain's images
-    /// change only with the target.
-    bind_groups: BindGroupCache<(u64, u64)>,
+    /// Bind groups by the ids of the target, the image read and the image written.
+    bind_groups: BindGroupCache<(u64, u64, u64)>,
 }
 
 /// Whether FXAA reads images of `format` through a filtering sampler: all but float ones.
@@ -303,36 +302,39 @@ impl FxaaPass {
     /// has one.
     fn bind_group(
         &mut self,
-        gpu: &GpuContext,
+        (gpu, target): (&GpuContext, &RenderTarget),
         input: &PostImage,
         output: &PostImage,
     ) -> wgpu::BindGroup {
+        // Groups of another target's images would keep them alive.
+        self.bind_groups.retain(|(id, _, _)| *id == target.id());
         let (pipeline, layout) = (&self.pipeline, &self.layout);
         let (sampler, settings) = (self.sampler.as_ref(), &self.settings);
-        self.bind_groups.get_or_make((input.id, output.id), || {
-            let mut entries = vec![
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&input.view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: SETTINGS_BINDING,
-                    resource: settings.as_entire_binding(),
-                },
-            ];
-            if let Some(sampler) = sampler {
-                entries.push(wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(sampler),
-                });
-            }
-            pipeline.bind_group(
-                &gpu.device,
-                ("fxaa bind group", layout),
-                entries,
-                &output.view,
-            )
-        })
+        self.bind_groups
+            .get_or_make((target.id(), input.id, output.id), || {
+                let mut entries = vec![
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&input.view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: SETTINGS_BINDING,
+                        resource: settings.as_entire_binding(),
+                    },
+                ];
+                if let Some(sampler) = sampler {
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Sampler(sampler),
+                    });
+                }
+                pipeline.bind_group(
+                    &gpu.device,
+                    ("fxaa bind group", layout),
+                    entries,
+                    &output.view,
+                )
+            })
     }
 
     /// Records the pass: the tonemapped `input`, the size of `target`, into `output`.
@@ -344,7 +346,7 @@ impl FxaaPass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&PassTimestamps>,
     ) {
-        let bind_group = self.bind_group(gpu, input, output);
+        let bind_group = self.bind_group((gpu, target), input, output);
         self.pipeline.record(
             "fxaa pass",
             encoder,

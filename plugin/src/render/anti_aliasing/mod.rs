@@ -182,6 +182,11 @@ impl PostEffect for Taa {
         true
     }
 
+    fn reads_the_scene(&self) -> bool {
+        // Its history is of the jittered scene.
+        true
+    }
+
     fn reads_scene_depth(&self) -> bool {
         // It reprojects through the depth.
         true

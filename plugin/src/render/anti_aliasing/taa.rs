@@ -1,7 +1,7 @@
 //! The temporal anti-aliasing pass (taa.wgsl): in compute, before tonemapping, the jittered
 //! HDR scene and last frame's history into this frame's history, which tonemapping then reads.
 //! Two histories per target take turns, each a colour texture (with the frames each pixel holds)
-//! and a depth texture; what the pass does and when it resets is in anti_aliasing.rs.
+//! and a depth texture; what the pass does and when it resets is in temporal.rs.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -142,7 +142,7 @@ struct HistoryTextures {
 }
 
 /// The TAA pipeline, its uniform, and the history of the current target. Made on the first
-/// TAA frame; a part of [`super::Renderer`].
+/// TAA frame; the TAA effect's (mod.rs).
 #[derive(Debug)]
 pub(crate) struct TaaPass {
     pipeline: wgpu::ComputePipeline,

@@ -1,4 +1,4 @@
-// Temporal anti-aliasing (anti_aliasing.rs says what and why), one invocation per pixel: the
+// Temporal anti-aliasing (temporal.rs says what and why), one invocation per pixel: the
 // jittered HDR scene and the history reprojected through the depth become the new history,
 // which post-processing then writes as it is. Each sample is tonemapped first (display-referred
 // ones, alpha < 0, are kept as they are), so an edge between the two kinds blends in display
