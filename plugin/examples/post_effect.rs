@@ -41,7 +41,7 @@ impl PostEffect for Greyscale {
             .get_or_insert_with(|| {
                 FullScreenPass::new(frame, PostStage::Display, "greyscale", GREYSCALE)
             })
-            .record(frame, io, encoder, time);
+            .record(frame, io, encoder, time)?;
         Ok(None)
     }
 }

@@ -135,7 +135,7 @@ impl PostEffect for Gain {
             FullScreenPass::with_params::<GainParams>(frame, PostStage::Hdr, "gain", GAIN)
         });
         pass.write_params(frame, &GainParams { gain: self.gain });
-        pass.record(frame, io, encoder, time);
+        pass.record(frame, io, encoder, time)?;
         Ok(None)
     }
 }
@@ -247,7 +247,7 @@ impl PostEffect for Probe {
             "fn effect(pixel: vec2<u32>) -> vec4<f32> { return textureLoad(input, pixel, 0); }";
         self.pass
             .get_or_insert_with(|| FullScreenPass::new(frame, PostStage::Hdr, "probe", copy))
-            .record(frame, io, encoder, time);
+            .record(frame, io, encoder, time)?;
         Ok(None)
     }
 }
@@ -278,6 +278,58 @@ fn hdr_effects_run_after_taa_and_are_told_its_history_is_tonemapped() {
     let error = app.update().unwrap_err().to_string();
     assert!(
         error.contains("\"taa\"") && error.contains("\"probe\""),
+        "{error}"
+    );
+}
+
+/// A display effect whose WGSL names a variable it never declares, on line 3 of its own code.
+struct Broken {
+    pass: Option<FullScreenPass>,
+}
+
+const BROKEN: &str = "
+fn effect(pixel: vec2<u32>) -> vec4<f32> {
+    return textureLoad(input, pixel, 0) * missing_gain;
+}
+";
+
+impl PostEffect for Broken {
+    fn stage(&self) -> PostStage {
+        PostStage::Display
+    }
+
+    fn runs(&self, _: FrameView<'_>) -> bool {
+        true
+    }
+
+    fn record(
+        &mut self,
+        frame: FrameView<'_>,
+        io: PostIo<'_>,
+        encoder: &mut pom::wgpu::CommandEncoder,
+        time: Option<&PassTimestamps>,
+    ) -> Result<Option<PostImage>, RenderError> {
+        self.pass
+            .get_or_insert_with(|| FullScreenPass::new(frame, PostStage::Display, "broken", BROKEN))
+            .record(frame, io, encoder, time)?;
+        Ok(None)
+    }
+}
+
+#[test]
+fn an_effect_whose_wgsl_does_not_compile_is_an_error_naming_it_and_its_line() {
+    let mut app = turned_square_with(RenderPlugin::new(16, 16));
+    app.resources
+        .get_or_default::<FrameNodes>()
+        .add_post_effect("broken", || Broken { pass: None });
+    // No wgpu validation error: the WGSL is checked before any GPU object is made of it.
+    let error = pom_tests::in_error_scopes(&mut app, "broken effect", |app| {
+        Ok(app.update().unwrap_err().to_string())
+    })
+    .unwrap();
+    eprintln!("{error}");
+    assert!(
+        error.contains("\"broken\"") && error.contains("line 3") && error.contains("missing_gain"),
         "{error}"
     );
 }

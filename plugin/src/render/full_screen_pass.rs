@@ -4,7 +4,10 @@
 
 use super::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
 use super::shaders::{self, WgslFile};
-use super::{FrameView, FullScreenStage, PassTimestamps, PostImage, PostIo, PostStage, layout};
+use super::{
+    FrameView, FullScreenStage, PassTimestamps, PostChainError, PostImage, PostIo, PostStage,
+    RenderError, layout,
+};
 
 /// A full-screen pass from an effect's WGSL, which defines
 /// `fn effect(pixel: vec2<u32>) -> vec4<f32>`: the value of output pixel `pixel`. It may read
@@ -16,7 +19,8 @@ use super::{FrameView, FullScreenStage, PassTimestamps, PostImage, PostIo, PostS
 /// [`crate::shader::check_wgsl_layout`]).
 #[derive(Debug)]
 pub struct FullScreenPass {
-    pipeline: FullScreenPipeline,
+    /// The pipeline, or why the effect's WGSL does not compile.
+    pipeline: Result<FullScreenPipeline, PostChainError>,
     layout: wgpu::BindGroupLayout,
     params: Option<wgpu::Buffer>,
     uploaded: Vec<u8>,
@@ -80,30 +84,32 @@ impl FullScreenPass {
             immediate_size: 0,
         });
         let source = effect_source(effect_wgsl, (format, compute), params_size > 0);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
+        let pipeline = check_effect(label, &source, effect_wgsl).map(|()| {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            match compute {
+                Some(_) => FullScreenPipeline::Compute(device.create_compute_pipeline(
+                    &wgpu::ComputePipelineDescriptor {
+                        label: Some(label),
+                        layout: Some(&pipeline_layout),
+                        module: &module,
+                        entry_point: Some("effect_compute"),
+                        compilation_options: Default::default(),
+                        cache: None,
+                    },
+                )),
+                None => FullScreenPipeline::Fragment(layout::fullscreen_pipeline(
+                    device,
+                    label,
+                    Some(&pipeline_layout),
+                    &module,
+                    "effect_fragment",
+                    format,
+                )),
+            }
         });
-        let pipeline = match compute {
-            Some(_) => FullScreenPipeline::Compute(device.create_compute_pipeline(
-                &wgpu::ComputePipelineDescriptor {
-                    label: Some(label),
-                    layout: Some(&pipeline_layout),
-                    module: &module,
-                    entry_point: Some("effect_compute"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                },
-            )),
-            None => FullScreenPipeline::Fragment(layout::fullscreen_pipeline(
-                device,
-                label,
-                Some(&pipeline_layout),
-                &module,
-                "effect_fragment",
-                format,
-            )),
-        };
         let params = (params_size > 0).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -165,7 +171,9 @@ impl FullScreenPass {
 
     /// Whether the pass runs in compute (else as a full-screen triangle).
     pub fn is_compute(&self) -> bool {
-        self.pipeline.is_compute()
+        self.pipeline
+            .as_ref()
+            .is_ok_and(FullScreenPipeline::is_compute)
     }
 
     /// Uploads `params` if they changed (a pass made without parameters ignores them);
@@ -183,59 +191,101 @@ impl FullScreenPass {
         }
     }
 
-    /// Records the pass from `io.input` into `io.output` (nothing without an output).
+    /// Records the pass from `io.input` into `io.output` (nothing without an output); an
+    /// effect whose WGSL does not compile records nothing and returns the error, each frame.
     pub fn record(
         &mut self,
         frame: FrameView<'_>,
         io: PostIo<'_>,
         encoder: &mut wgpu::CommandEncoder,
         time: Option<&PassTimestamps>,
-    ) {
+    ) -> Result<(), RenderError> {
         let Some(output) = io.output else {
-            return;
+            return Ok(());
         };
         self.follow(frame);
-        let bind_group = self.bind_group(frame, io.input, output);
-        self.pipeline.record(
+        let pipeline = self.pipeline.as_ref().map_err(Clone::clone)?;
+        let bind_group = Self::bind_group(
+            (pipeline, &self.layout, self.params.as_ref()),
+            &mut self.bind_groups,
+            frame,
+            (io.input, output),
+        );
+        pipeline.record(
             "post effect",
             encoder,
             (&bind_group, &output.view),
             frame.target.size(),
             time,
         );
+        Ok(())
     }
 
-    /// The bind group reading `input` and writing `output`, made unless the pass has one.
+    /// The bind group reading `input` and writing `output`, made unless `cache` has one.
     fn bind_group(
-        &mut self,
+        (pipeline, layout, params): (
+            &FullScreenPipeline,
+            &wgpu::BindGroupLayout,
+            Option<&wgpu::Buffer>,
+        ),
+        cache: &mut BindGroupCache<(u64, u64, u64)>,
         frame: FrameView<'_>,
-        input: &PostImage,
-        output: &PostImage,
+        (input, output): (&PostImage, &PostImage),
     ) -> wgpu::BindGroup {
         // Groups of another target's images would keep them alive.
         let target = frame.target.id();
-        self.bind_groups.retain(|(id, _, _)| *id == target);
-        let (pipeline, layout, params) = (&self.pipeline, &self.layout, self.params.as_ref());
-        self.bind_groups
-            .get_or_make((target, input.id, output.id), || {
-                let mut entries = vec![wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&input.view),
-                }];
-                if let Some(params) = params {
-                    entries.push(wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: params.as_entire_binding(),
-                    });
-                }
-                pipeline.bind_group(
-                    &frame.gpu.device,
-                    ("post effect", layout),
-                    entries,
-                    &output.view,
-                )
-            })
+        cache.retain(|(id, _, _)| *id == target);
+        cache.get_or_make((target, input.id, output.id), || {
+            let mut entries = vec![wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&input.view),
+            }];
+            if let Some(params) = params {
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: params.as_entire_binding(),
+                });
+            }
+            pipeline.bind_group(
+                &frame.gpu.device,
+                ("post effect", layout),
+                entries,
+                &output.view,
+            )
+        })
     }
+}
+
+/// Whether `source`, the whole shader composed around `effect`, compiles: its error names the
+/// effect by `label` and the line in `effect` (the effect comes last in `source`).
+fn check_effect(label: &str, source: &str, effect: &str) -> Result<(), PostChainError> {
+    let effect_starts = source
+        .lines()
+        .count()
+        .saturating_sub(effect.lines().count());
+    let error = |line: Option<u32>, message: String| PostChainError::EffectShader {
+        effect: label.to_owned(),
+        line: line.map_or(0, |line| line.saturating_sub(effect_starts as u32)),
+        message,
+    };
+    let module = naga::front::wgsl::parse_str(source).map_err(|parse| {
+        error(
+            parse.location(source).map(|at| at.line_number),
+            parse.message().to_owned(),
+        )
+    })?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|invalid| {
+        error(
+            invalid.location(source).map(|at| at.line_number),
+            invalid.as_inner().to_string(),
+        )
+    })?;
+    Ok(())
 }
 
 /// The format of the images an effect of `stage` writes on `frame`'s target.

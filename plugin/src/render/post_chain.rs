@@ -153,6 +153,18 @@ pub enum PostChainError {
     /// An effect after the HDR stage wrote an image of its own.
     #[error("post effect {0:?} writes an image of its own; only HDR effects may")]
     OwnImageAfterHdr(&'static str),
+    /// A post effect's WGSL does not compile.
+    #[error(
+        "post effect {effect:?}: its WGSL does not compile (line {line} of the effect): {message}"
+    )]
+    EffectShader {
+        /// The effect's label.
+        effect: String,
+        /// The line in the effect's own WGSL (0: in the code composed around it).
+        line: u32,
+        /// What naga says.
+        message: String,
+    },
     /// An effect that reads the scene itself runs after another HDR effect, whose work it
     /// would drop.
     #[error(
