@@ -6,8 +6,8 @@
 use std::path::Path;
 
 use pom::render::{
-    FrameNodes, FrameView, FullScreenPass, NodePlace, PassTimestamps, PostEffect, PostImage,
-    PostIo, PostStage, RenderError, RenderFeature, RenderPhase,
+    FrameNode, FrameNodes, FrameView, FullScreenPass, NodePlace, PassTimestamps, PostEffect,
+    PostImage, PostIo, PostStage, RenderError, RenderFeature, RenderPhase,
 };
 use pom::{AntiAliasing, App, GpuTimings, PomPlugin, RenderPlugin, TimingMode, load_gltf};
 use pom_tests::anti_aliasing::{set_anti_aliasing, turned_square_with};
@@ -84,11 +84,38 @@ fn without_scene_shadows_lights_cast_none_and_no_shadow_pass_runs() {
     assert!(!passes.iter().any(|pass| pass == "shadows"), "{passes:?}");
     let mut unshadowed = shadowed_street_corner(render, false);
     assert!(image == render_and_capture(&mut unshadowed).unwrap());
+    // A node of a game's own in the shadows phase does not make the frame plan maps that no
+    // one draws (they would shadow every receiver).
+    let mut own_node = shadowed_street_corner(render.without(RenderFeature::SceneShadows), true);
+    own_node
+        .resources
+        .get_or_default::<FrameNodes>()
+        .add(NodePlace::new("own", RenderPhase::Shadows), || Idle);
+    run_frames(&mut own_node, 2).unwrap();
+    assert!(render_and_capture(&mut own_node).unwrap() == image);
     let mut shadowed = shadowed_street_corner(render, true);
     run_frames(&mut shadowed, 2).unwrap();
     let with_shadows = render_and_capture(&mut shadowed).unwrap();
     assert!(timed_passes(&shadowed).iter().any(|pass| pass == "shadows"));
     assert!(with_shadows != image, "the shadows plugin changed nothing");
+}
+
+/// A frame node with nothing to do.
+struct Idle;
+
+impl FrameNode for Idle {
+    fn runs(&self, _: FrameView<'_>) -> bool {
+        false
+    }
+
+    fn record(
+        &mut self,
+        _: FrameView<'_>,
+        _: &mut pom::wgpu::CommandEncoder,
+        _: Option<&PassTimestamps>,
+    ) -> Result<(), RenderError> {
+        Ok(())
+    }
 }
 
 /// An HDR effect that scales the scene's colour by its parameter.

@@ -40,7 +40,8 @@ pub struct ExtractedFrame {
 struct ShadowViewList {
     views: Vec<ShadowViewPlan>,
     overflowed: bool,
-    /// Whether a node of the frame draws the shadows phase (without one no light has maps).
+    /// Whether a feature draws the maps the frame plans ([`super::ShadowMapsDrawn`]; without
+    /// one no light has maps).
     drawn: bool,
 }
 
@@ -184,9 +185,7 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         shadow_views: ShadowViewList {
             views: Vec::new(),
             overflowed: false,
-            drawn: resources
-                .get::<super::FrameNodes>()
-                .is_some_and(|nodes| nodes.has_phase(super::RenderPhase::Shadows)),
+            drawn: resources.contains::<super::ShadowMapsDrawn>(),
         },
         map_cap: shadow_map_cap(world, device_texture_limit(resources)),
         light_scale,

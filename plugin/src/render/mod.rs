@@ -96,6 +96,7 @@ pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub use renderer::Renderer;
 pub(crate) use renderer::{BoundResources, PhaseBindings, phase_bindings};
+pub use shadow_maps::ShadowMapsDrawn;
 pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use shadows::ShadowsPlugin;

@@ -6,6 +6,12 @@ use super::GpuContext;
 use super::gpu_types::ShadowViewGpu;
 use super::shadow_views::{MAX_SHADOW_VIEWS, ShadowViewPlan};
 
+/// Says that a feature draws the shadow maps the frame plans (the shadows plugin inserts it). A
+/// resource: without it the frame plans no map, and lights cast no scene shadow, since maps
+/// nobody draws would shadow every receiver.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ShadowMapsDrawn;
+
 /// The maps' depth format.
 pub const SHADOW_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 

@@ -7,7 +7,7 @@
 
 use crate::render::{
     ExtractedFrame, FrameNode, FrameNodes, FrameView, NodePlace, PassTimestamps, RenderError,
-    RenderPhase, RenderPhases, Renderer,
+    RenderPhase, RenderPhases, Renderer, ShadowMapsDrawn,
 };
 use crate::{App, Plugin};
 
@@ -25,6 +25,7 @@ impl Plugin for ShadowsPlugin {
             NodePlace::new(SHADOW_MAPS_NODE, RenderPhase::Shadows),
             || ShadowMapsNode,
         );
+        app.insert_resource(ShadowMapsDrawn);
     }
 }
 
