@@ -209,11 +209,10 @@ impl FrameNodes {
 
     /// Makes every node's work again when `device` is not the one it was made for.
     pub(crate) fn follow_device(&mut self, device: &wgpu::Device) {
-        if self
-            .device
-            .as_ref()
-            .is_some_and(|made_for| made_for != device)
-        {
+        if self.device.as_ref() == Some(device) {
+            return;
+        }
+        if self.device.is_some() {
             for node in &mut self.nodes {
                 node.work = (node.make)();
             }

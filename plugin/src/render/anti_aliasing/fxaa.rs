@@ -199,10 +199,10 @@ fn bind_group_layout(
         entries.push(layout::compute_storage_texture(2, format.texture_format()));
     }
     // Read-only storage, not a uniform (fxaa.wgsl says why).
-    entries.push(wgpu::BindGroupLayoutEntry {
-        visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
-        ..layout::compute_storage_buffer(SETTINGS_BINDING, true)
-    });
+    entries.push(layout::read_only_storage_buffer(
+        SETTINGS_BINDING,
+        std::mem::size_of::<FxaaSettings>() as u64,
+    ));
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("fxaa layout"),
         entries: &entries,
