@@ -52,6 +52,7 @@ mod dynamic_height;
 mod exposure;
 pub mod files;
 mod gltf_loader;
+pub mod gpu;
 mod height_field;
 mod image;
 #[cfg(feature = "scene-tests")]
@@ -106,6 +107,7 @@ pub use exposure::Exposure;
 pub use gltf_loader::{
     GltfError, GltfOptions, GltfScene, PomExtras, load_gltf, load_gltf_bytes, load_gltf_with,
 };
+pub use gpu::{GpuContext, GpuTimings, TimingMode};
 pub use height_field::{HeightConvention, HeightField, patterns};
 pub use image::{
     Channel, FilterMode, IMAGE_MEMORY_BUDGET, Image, ImageError, ImageSampler, MAX_IMAGE_PIXELS,
@@ -131,8 +133,8 @@ pub use render::{
     set_camera_anti_aliasing, set_camera_fxaa,
 };
 pub use render::{
-    GpuContext, GpuTimings, PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin,
-    TargetFormat, TimingMode, capture, capture_f32, capture_scene,
+    PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin, TargetFormat, capture,
+    capture_f32, capture_scene,
 };
 pub use render::{Tonemapping, set_camera_display_mapping};
 #[cfg(feature = "scene-tests")]

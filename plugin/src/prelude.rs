@@ -31,9 +31,9 @@ pub use crate::{
 pub use crate::material::{Choice, ParamSpec};
 pub use crate::shader::WgslFile;
 // Writing a post effect: a node of the post chain and its full-screen pass.
+pub use crate::gpu::PassTimestamps;
 pub use crate::render::{
-    FrameNodes, FrameView, FullScreenPass, PassTimestamps, PostEffect, PostImage, PostIo,
-    PostStage, RenderError,
+    FrameNodes, FrameView, FullScreenPass, PostEffect, PostImage, PostIo, PostStage, RenderError,
 };
 
 #[cfg(feature = "window")]

@@ -6,8 +6,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
+use crate::gpu::GpuContext;
 use crate::material::MaterialRegistry;
-use crate::render::GpuContext;
 use crate::render::shaders::{ComposedShader, ShaderTarget};
 use crate::{App, AppError, Plugin, Resources, Stage};
 

@@ -6,7 +6,8 @@ use std::collections::HashMap;
 
 use hecs::Entity;
 
-use crate::render::{GpuTimer, RenderTarget, TargetFormat};
+use crate::gpu::GpuTimer;
+use crate::render::{RenderTarget, TargetFormat};
 use crate::{App, AppError, GpuContext, ParallaxOcclusionMaterial, Stage};
 
 /// The second image of a split view and what differs in it. A resource: insert it to turn the

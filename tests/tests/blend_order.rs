@@ -4,9 +4,10 @@
 //! paths; a pane moving through another swaps the result.
 
 use pom::glam::Vec3;
+use pom::gpu::DefaultTexture;
 use pom::material::{MAX_MATERIAL_TEXTURES, MaterialTextures, ShaderEntry, TextureFacts};
+use pom::render::Renderer;
 use pom::render::shaders::{self, ComposedShader, FRAME, MESH_VERTEX, WgslFile};
-use pom::render::{DefaultTexture, Renderer};
 use pom::{
     AlphaMode, App, Assets, Camera, Color, LitMaterial, Material, MaterialPlugin, Mesh, RenderPath,
     Tonemapping, Transform,

@@ -258,7 +258,7 @@ macro_rules! test_material {
             type Key = ();
             const NAME: &'static str = $name;
             const PER_DRAW_WGSL_NAME: &'static str = "MaterialParams";
-            const TEXTURE_SLOTS: &'static [pom::render::DefaultTexture] = &[];
+            const TEXTURE_SLOTS: &'static [pom::gpu::DefaultTexture] = &[];
             const SURFACE_ON_POLYGON: bool = $on_polygon;
             fn shader() -> ComposedShader {
                 ComposedShader {

@@ -254,7 +254,8 @@ fn instanced_parallax_cubes_resolve_each_instance_and_triangle() {
 
 #[test]
 fn a_prepass_draw_of_no_material_keeps_frames_forward_and_a_fragment_counter_does_not() {
-    use pom::render::{DeferredUnavailable, DrawPhase, FragmentInvocationCounter, RenderPhases};
+    use pom::gpu::FragmentInvocationCounter;
+    use pom::render::{DeferredUnavailable, DrawPhase, RenderPhases};
     let deferred_frame = |app: &mut pom::App| {
         render_on_path(app, RenderPath::Deferred).unwrap();
         let renderer = app.resources.get::<Renderer>().unwrap();

@@ -1,7 +1,8 @@
 //! Dynamic height fields: heights rewritten every frame, normals derived on the GPU.
 
+use pom::gpu::read_rgba8;
 use pom::preview::{PreviewView, spawn_preview};
-use pom::render::{Renderer, read_rgba8};
+use pom::render::Renderer;
 use pom::{
     Assets, Channel, DynamicHeightField, GpuContext, HeightConvention, HeightField, HeightSource,
     Image, ParallaxOcclusionMaterial, TargetFormat,

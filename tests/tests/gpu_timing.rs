@@ -2,8 +2,8 @@
 //! timestamp work raises no validation error. (lavapipe exposes timestamps; its figures say
 //! nothing about speed.)
 
+use pom::gpu::{GpuTimer, set_gpu_timing};
 use pom::preview::{PreviewView, spawn_preview};
-use pom::render::{GpuTimer, set_gpu_timing};
 use pom::{
     App, Assets, DynamicHeightField, GpuTimings, HeightField, HeightSource, Image,
     ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, TimingMode,
@@ -72,7 +72,7 @@ fn blocking_timings_cover_the_phases_and_the_sobel_pass_from_the_first_frame() {
 
 #[test]
 fn frames_that_build_a_max_pyramid_time_the_build_and_only_those() {
-    use pom::render::DERIVED_TEXTURES_PASS;
+    use pom::gpu::DERIVED_TEXTURES_PASS;
     let mut app = timed_app(TimingMode::Blocking);
     pom_tests::pom_scene::set_material(&mut app, |material| {
         material.method = pom::ParallaxMethod::MaxMip;
@@ -165,7 +165,8 @@ fn timing_can_be_turned_off_and_says_so() {
 
 #[test]
 fn the_texel_rate_probe_samples_its_texture_and_is_timed() {
-    use pom::render::{PROBE_PASS, TexelRateProbe, resolve_gpu_timings};
+    use pom::gpu::resolve_gpu_timings;
+    use pom::render::{PROBE_PASS, TexelRateProbe};
     let mut app = App::new();
     app.add_plugin(RenderPlugin::new(32, 16).with_gpu_timing(Some(TimingMode::Blocking)));
     app.finish().unwrap();

@@ -35,6 +35,8 @@ const LAYERS: &[&str] = &[
     "exposure",
     // Parameters: declaration, limits, tables (no GPU).
     "parameters",
+    // The GPU layer: the device, pipelines, timing, readback, meshes and images on the GPU.
+    "gpu",
     // The renderer core.
     "render",
     // The material seam.

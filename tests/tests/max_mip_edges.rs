@@ -435,7 +435,7 @@ fn gpu_hits(
         pass.dispatch_workgroups(HITS_WIDTH / 64, rows, 1);
     }
     gpu.queue.submit([encoder.finish()]);
-    let texels = pom::render::read_texture(gpu, &hits).unwrap();
+    let texels = pom::gpu::read_texture(gpu, &hits).unwrap();
     for scope in [validation, out_of_memory] {
         if let Some(error) = pollster::block_on(scope.pop()) {
             panic!("wgpu error while marching the rays: {error}");

@@ -4,8 +4,8 @@
 //! draws as a blocking compile would have drawn it from the start.
 
 use pom::glam::Vec3;
+use pom::gpu::{PipelineCompilation, wait_for_pipelines};
 use pom::material::pipelines_ready;
-use pom::render::{PipelineCompilation, wait_for_pipelines};
 use pom::{
     App, Assets, Camera, DirectionalLight, HeightSource, Image, Material, Mesh, ParallaxMethod,
     ParallaxOcclusionMaterial, PomPlugin, RenderPlugin, ShadowMode, Transform, patterns,

@@ -5,9 +5,10 @@
 
 use std::path::Path;
 
+use pom::gpu::PassTimestamps;
 use pom::render::{
-    FrameNode, FrameNodes, FrameView, FullScreenPass, NodePlace, PassTimestamps, PostEffect,
-    PostImage, PostIo, PostStage, RenderError, RenderFeature, RenderPhase,
+    FrameNode, FrameNodes, FrameView, FullScreenPass, NodePlace, PostEffect, PostImage, PostIo,
+    PostStage, RenderError, RenderFeature, RenderPhase,
 };
 use pom::{AntiAliasing, App, GpuTimings, PomPlugin, RenderPlugin, TimingMode, load_gltf};
 use pom_tests::anti_aliasing::{set_anti_aliasing, turned_square_with};

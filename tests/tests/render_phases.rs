@@ -3,9 +3,9 @@
 //! in its fragment fallback, and each phase is timed.
 
 use glam::Vec3;
+use pom::gpu::FragmentInvocationCounter;
 use pom::hecs;
 use pom::preview::PreviewView;
-use pom::render::FragmentInvocationCounter;
 use pom::{
     App, Assets, Camera, Color, DirectionalLight, Exposure, GlobalTransform, GpuContext,
     LitMaterial, Mesh, ParallaxOcclusionMaterial, PomPlugin, PostProcessPath, RenderPath,

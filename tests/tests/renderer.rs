@@ -69,7 +69,7 @@ fn only_what_changed_is_uploaded() {
     run_frames(&mut app, 1).unwrap();
     assert_eq!(
         stats(&app),
-        pom::render::UploadStats::default(),
+        pom::gpu::UploadStats::default(),
         "nothing changed"
     );
 

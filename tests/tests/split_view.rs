@@ -1,8 +1,9 @@
 //! The split view's second image: the same scene with material overrides, the world and the
 //! main image untouched.
 
+use pom::gpu::read_rgba8;
 use pom::preview::PreviewView;
-use pom::render::{RenderTarget, read_rgba8};
+use pom::render::RenderTarget;
 use pom::{
     GpuContext, ParallaxMethod, ParallaxOcclusionMaterial, SplitView, TargetFormat, patterns,
     render_split_view,
@@ -92,7 +93,7 @@ fn an_override_changes_only_the_second_image_and_not_the_world() {
 #[test]
 fn the_second_image_is_not_timed() {
     let mut app = app();
-    pom::render::set_gpu_timing(&mut app.resources, Some(pom::TimingMode::Blocking));
+    pom::gpu::set_gpu_timing(&mut app.resources, Some(pom::TimingMode::Blocking));
     app.insert_resource(SplitView::default());
     let frame_of = |app: &pom::App| match app.resources.get::<pom::GpuTimings>() {
         Some(pom::GpuTimings::Supported { frame, .. }) => Some(*frame),
@@ -108,6 +109,6 @@ fn the_second_image_is_not_timed() {
             first + 1,
             "one timed frame per update, none per split image"
         );
-        assert!(app.resources.get::<pom::render::GpuTimer>().is_some());
+        assert!(app.resources.get::<pom::gpu::GpuTimer>().is_some());
     }
 }

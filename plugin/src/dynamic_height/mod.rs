@@ -7,7 +7,8 @@ use bytemuck::{Pod, Zeroable};
 use hecs::{Entity, World};
 use wgpu::util::DeviceExt;
 
-use crate::render::{GpuContext, PassTimestamps, Renderer, layout, shaders, time_pass};
+use crate::gpu::{GpuContext, PassTimestamps, layout, time_pass};
+use crate::render::{Renderer, shaders};
 use crate::{AppError, Assets, Handle, HeightField, Image, ImageError, Resources, TextureKind};
 
 /// A height field that changes while the game runs. User code rewrites the `height` image (through

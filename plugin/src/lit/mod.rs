@@ -3,12 +3,12 @@
 //! points: on the deferred path its opaque and masked draws shade in the compute resolve. With
 //! [`MaterialPlugin::for_meshes_without_material`] it also draws meshes that have no material.
 
+use crate::gpu::DefaultTexture;
 use crate::material::{
     Choice, DeclaredMaterial, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures,
     ParamSpec, SHADED_CUT_OUT, SHADED_CUT_OUT_VISIBILITY, SHADED_FORWARD, SHADED_RESOLVE,
     SURFACE_INPUT, ShaderEntry, TextureFacts,
 };
-use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{Color, LightingModel};
 

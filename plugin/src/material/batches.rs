@@ -15,15 +15,16 @@ use super::followed_models::FollowedModels;
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
-use crate::render::MAX_DERIVED_TEXTURES;
+use crate::gpu::MAX_DERIVED_TEXTURES;
+use crate::gpu::{BoundTextures, TextureBindGroups};
+use crate::gpu::{GpuAssets, GpuContext, UploadStats};
 use crate::render::PhaseBindings;
 use crate::render::anti_aliasing::ObjectMotions;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;
-use crate::render::texture_bind_groups::{BoundTextures, TextureBindGroups};
 use crate::render::{
-    DrawView, FrameUniformBuffer, GpuAssets, GpuContext, MeshLodBounds, MeshLodCache,
-    MeshTransform, PixelFootprint, UploadStats, VisibilityIds,
+    DrawView, FrameUniformBuffer, MeshLodBounds, MeshLodCache, MeshTransform, PixelFootprint,
+    VisibilityIds,
 };
 use crate::{AssetId, Assets, Image, Mesh};
 

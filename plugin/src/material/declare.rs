@@ -5,7 +5,7 @@
 //! [`crate::parameter_table!`], as those of plain settings do; the GPU struct and texture
 //! slots, which name the renderer, are this layer's.
 
-use crate::render::{DefaultTexture, MaterialTextures};
+use crate::gpu::{DefaultTexture, MaterialTextures};
 use crate::shader::WgslLayout;
 
 /// What [`crate::material_parameters!`] declares of a material: its GPU parameter struct and
@@ -147,8 +147,8 @@ macro_rules! material_parameters {
             type Params = $gpu;
             const TYPE_NAME: &'static str = stringify!($material);
             const PARAMS_WGSL_NAME: &'static str = stringify!($gpu);
-            const TEXTURE_SLOTS: &'static [$crate::render::DefaultTexture] =
-                &[$($($crate::render::DefaultTexture::$texture_default,)*)?];
+            const TEXTURE_SLOTS: &'static [$crate::gpu::DefaultTexture] =
+                &[$($($crate::gpu::DefaultTexture::$texture_default,)*)?];
             const TEXTURE_NAMES: &'static [&'static str] = &[$($(stringify!($texture),)*)?];
 
             fn params_wgsl() -> String {
@@ -172,10 +172,10 @@ macro_rules! material_parameters {
                 self.limit_problems().iter().map(ToString::to_string).collect()
             }
 
-            fn texture_images(&self) -> $crate::render::MaterialTextures {
+            fn texture_images(&self) -> $crate::gpu::MaterialTextures {
                 let images: &[&Option<$crate::Handle<$crate::Image>>] =
                     &[$($(&self.$texture,)*)?];
-                let mut textures = [None; $crate::render::MAX_MATERIAL_TEXTURES];
+                let mut textures = [None; $crate::gpu::MAX_MATERIAL_TEXTURES];
                 for (slot, image) in textures.iter_mut().zip(images) {
                     *slot = image.as_ref().map($crate::Handle::id);
                 }

@@ -9,8 +9,8 @@ use glam::Mat4;
 
 use super::batches::Batch;
 use super::resolve_tiles::ResolveTiles;
-use crate::render::layout::compute_storage_buffer;
-use crate::render::{GpuAssets, GpuContext};
+use crate::gpu::layout::compute_storage_buffer;
+use crate::gpu::{GpuAssets, GpuContext};
 use crate::{AssetId, Mesh};
 
 /// What one dispatch resolves. Mirrors `ResolveBatch` in deferred_resolve.wgsl.
@@ -395,8 +395,8 @@ impl DeferredResolve {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gpu::Vertex;
     use crate::material::check_wgsl_layout;
-    use crate::render::gpu_types::Vertex;
 
     #[test]
     fn the_resolve_inputs_match_their_wgsl() {

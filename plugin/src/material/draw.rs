@@ -7,9 +7,10 @@ use std::ops::Range;
 use super::Material;
 use super::batches::{Batch, MaterialBatches};
 use super::deferred::DeferredResolve;
-use crate::render::layout::MeshPass;
-use crate::render::texture_bind_groups::BoundTextures;
-use crate::render::{DrawPhase, GpuAssets};
+use super::mesh_pipeline::MeshPass;
+use crate::gpu::BoundTextures;
+use crate::gpu::GpuAssets;
+use crate::render::DrawPhase;
 use crate::{AssetId, Mesh};
 
 /// One `draw_indexed` of a run of instances with one pipeline, texture set and mesh.

@@ -4,7 +4,7 @@
 use glam::Vec3;
 
 use super::batches::ExtractedDraw;
-use crate::render::texture_bind_groups::BoundTextures;
+use crate::gpu::BoundTextures;
 use crate::{AssetId, Mesh};
 
 /// What the sort keeps from frame to frame: last frame's sorted order (the draws' indices),

@@ -2,9 +2,10 @@
 //! shadow maps, visibility keys, the test counter) and the two bind groups made from it, one
 //! for the passes that write depth (prepass, shadow maps) and one for those that shade.
 
+use crate::gpu::GpuContext;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::{
-    BoundResources, FrameUniformBuffer, GpuContext, MeshTransform, PhaseBindings, frame_group,
+    BoundResources, FrameUniformBuffer, MeshTransform, PhaseBindings, frame_group,
 };
 
 /// The buffers and textures group 0 binds.

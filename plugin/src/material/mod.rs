@@ -13,6 +13,7 @@ mod extract;
 mod followed_models;
 mod frame_bindings;
 mod layout_check;
+mod mesh_pipeline;
 mod pipelines;
 mod plugin;
 mod registry;
@@ -20,7 +21,7 @@ mod resolve_tiles;
 mod shaded;
 mod shader_check;
 
-pub use crate::render::{MAX_MATERIAL_TEXTURES, MaterialTextures, ShaderEntry, TextureFacts};
+pub use crate::gpu::{MAX_MATERIAL_TEXTURES, MaterialTextures, ShaderEntry, TextureFacts};
 pub use crate::shader::{
     Choice, ChoiceInfo, LayoutMismatch, MemberLayout, WgslLayout, check_wgsl_layout,
 };
@@ -49,8 +50,9 @@ pub use shader_check::MaterialShaderError;
 use std::fmt::Debug;
 use std::hash::Hash;
 
+use crate::gpu::{DefaultTexture, DerivedTextures, MAX_DERIVED_TEXTURES};
+use crate::render::DrawView;
 use crate::render::shaders::ComposedShader;
-use crate::render::{DefaultTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES};
 
 /// A surface type the renderer can draw: put it on an entity with a `Handle<Mesh>` and a
 /// transform, and add [`MaterialPlugin<Self>`].
@@ -111,7 +113,7 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     /// textures (`textureLoad`). 0 by default.
     const DERIVED_TEXTURE_SLOTS: usize = 0;
     /// The textures derived from the material's images, one per derived slot, each by a
-    /// [`crate::render::TextureDeriver`] the material names (the parallax material's
+    /// [`crate::gpu::TextureDeriver`] the material names (the parallax material's
     /// `MaxHeightPyramid`): built on the GPU when first used and after every re-upload of their
     /// source; `None` binds one texel of
     /// 1.0. None by default.
@@ -149,7 +151,7 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
         Self::SURFACE_ON_POLYGON.then(|| crate::render::shaders::deferred_twin(&Self::shader()))
     }
     /// The variant drawn in `key`'s place while `key`'s pipelines compile on a worker thread
-    /// ([`crate::render::PipelineCompilation::background`]): a cheap one that looks alike. The
+    /// ([`crate::gpu::PipelineCompilation::background`]): a cheap one that looks alike. The
     /// fallback of the default material's key is compiled when the plugin starts and stands in
     /// for any variant whose own fallback is not ready either. `None` (the default): the
     /// default material's key itself stands in.

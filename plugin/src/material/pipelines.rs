@@ -1,6 +1,6 @@
 //! A material's render pipelines, one per [`Material::Key`] and pass, compiled on first use:
 //! in that frame, or on a worker thread while the variant's draws use a fallback
-//! ([`crate::render::PipelineCompilation`]).
+//! ([`crate::gpu::PipelineCompilation`]).
 
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
@@ -8,8 +8,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
 use super::Material;
+use super::mesh_pipeline::{MeshPass, MeshPipelineDescriptor, mesh_pipeline};
+use crate::gpu::ShaderEntry;
 use crate::render::DrawPhase;
-use crate::render::layout::{MeshPass, MeshPipelineDescriptor, ShaderEntry, mesh_pipeline};
 
 /// The compiled shader of material `M` and every pipeline made from it so far.
 pub(crate) struct MaterialPipelines<M: Material> {
@@ -80,7 +81,7 @@ struct Background<M: Material> {
     sender: Sender<Compiled<M>>,
     receiver: Receiver<Compiled<M>>,
     pending: HashSet<Pending<M::Key>>,
-    /// The app's count of compiles in flight ([`crate::render::wait_for_pipelines`]).
+    /// The app's count of compiles in flight ([`crate::gpu::wait_for_pipelines`]).
     in_flight: Arc<AtomicUsize>,
     /// The variant that stands in for any variant not ready (compiled at start).
     stand_in: M::Key,

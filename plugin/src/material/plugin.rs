@@ -13,11 +13,12 @@ use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
+use crate::gpu::{FragmentInvocationCounter, PipelineCompilation, UploadStats};
 use crate::render::PhaseBindings;
 use crate::render::anti_aliasing::{AntiAliasingFrame, ObjectMotions};
 use crate::render::{
-    DrawPhase, ExtractedFrame, FragmentInvocationCounter, MeshLodCache, PipelineCompilation,
-    RenderPhases, RenderTarget, Renderer, UploadStats, VisibilityBuffer, phase_bindings,
+    DrawPhase, ExtractedFrame, MeshLodCache, RenderPhases, RenderTarget, Renderer,
+    VisibilityBuffer, phase_bindings,
 };
 use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
 
@@ -77,7 +78,7 @@ pub struct TooManyTextureSlots {
 
 /// A material declares more derived texture slots than a material can bind.
 #[derive(Debug, thiserror::Error)]
-#[error("material {material} declares {slots} derived texture slots; at most {max} are bound", max = crate::render::MAX_DERIVED_TEXTURES)]
+#[error("material {material} declares {slots} derived texture slots; at most {max} are bound", max = crate::gpu::MAX_DERIVED_TEXTURES)]
 pub struct TooManyDerivedTextureSlots {
     /// The material's name.
     pub material: &'static str,
@@ -232,7 +233,7 @@ fn check_texture_slots<M: Material>() -> Result<(), BoxedError> {
         }
         .into());
     }
-    if M::DERIVED_TEXTURE_SLOTS > crate::render::MAX_DERIVED_TEXTURES {
+    if M::DERIVED_TEXTURE_SLOTS > crate::gpu::MAX_DERIVED_TEXTURES {
         return Err(TooManyDerivedTextureSlots {
             material: M::NAME,
             slots: M::DERIVED_TEXTURE_SLOTS,
@@ -246,7 +247,7 @@ fn check_texture_slots<M: Material>() -> Result<(), BoxedError> {
 /// adapter the visibility pass, else its forward one.
 fn material_shader<M: Material>(device: &wgpu::Device) -> MaterialShader {
     match M::deferred_shader() {
-        Some(composed) if device.features().contains(crate::render::DEFERRED_FEATURES) => {
+        Some(composed) if device.features().contains(crate::gpu::DEFERRED_FEATURES) => {
             MaterialShader {
                 composed,
                 deferred: true,
@@ -388,7 +389,7 @@ fn draw_listed<M: Material>(
 /// The pipeline keys of material `M`'s batches in the last prepared frame, in draw order: which
 /// variant each object drew with (one entry per batch of instances).
 /// Whether every pipeline `key` of material `M` needs in the last prepared frame's setting is
-/// compiled (not standing in for it: [`crate::render::PipelineCompilation::background`]).
+/// compiled (not standing in for it: [`crate::gpu::PipelineCompilation::background`]).
 #[doc(hidden)] // A test hook.
 pub fn pipelines_ready<M: Material>(resources: &Resources, key: M::Key) -> bool {
     resources
@@ -455,8 +456,8 @@ mod tests {
         type Key = ();
         const NAME: &'static str = "too many textures";
         const PER_DRAW_WGSL_NAME: &'static str = "LitParams";
-        const TEXTURE_SLOTS: &'static [crate::render::DefaultTexture] =
-            &[crate::render::DefaultTexture::WhiteSrgb; super::super::MAX_MATERIAL_TEXTURES + 1];
+        const TEXTURE_SLOTS: &'static [crate::gpu::DefaultTexture] =
+            &[crate::gpu::DefaultTexture::WhiteSrgb; super::super::MAX_MATERIAL_TEXTURES + 1];
         fn shader() -> crate::render::shaders::ComposedShader {
             crate::lit::LIT_SHADER
         }

@@ -4,8 +4,8 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::render::GpuContext;
-use crate::render::layout::{compute_storage_buffer, compute_uniform_buffer};
+use crate::gpu::GpuContext;
+use crate::gpu::layout::{compute_storage_buffer, compute_uniform_buffer};
 use crate::render::shaders::{self, ComposedShader};
 
 /// The classification's shader.

@@ -2,9 +2,9 @@
 //! input; the core writes every entry point around it, so it runs on both paths.
 
 use super::{DeclaredMaterial, Material};
+use crate::gpu::{DefaultTexture, MaterialTextures, ShaderEntry, TextureFacts};
 use crate::render::frame_group::MATERIAL_UNIFORMS;
 use crate::render::shaders::{self, ComposedShader, GeneratedWgsl, WgslFile};
-use crate::render::{DefaultTexture, MaterialTextures, ShaderEntry, TextureFacts};
 
 /// The surface input, and the helpers a shading function samples textures and shadows with.
 pub const SURFACE_INPUT: WgslFile = crate::wgsl_file!("material/surface_input.wgsl");
@@ -171,10 +171,7 @@ impl<T: ShadedMaterial> Material for T {
         Some(ShaderEntry::entry("cs_resolve"))
     }
 
-    fn per_draw(
-        &self,
-        _: &[Option<TextureFacts>; crate::render::MAX_MATERIAL_TEXTURES],
-    ) -> T::Params {
+    fn per_draw(&self, _: &[Option<TextureFacts>; crate::gpu::MAX_MATERIAL_TEXTURES]) -> T::Params {
         self.params()
     }
 

@@ -6,12 +6,12 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use crate::render::layout;
-use crate::render::shaders::{ComposedShader, WgslFile};
-use crate::render::{
+use crate::gpu::layout;
+use crate::gpu::{
     ComputeDispatch, ComputeDispatches, DerivedStorage, DerivedTextureBuilder, TextureDerivation,
     TextureDeriver,
 };
+use crate::render::shaders::{ComposedShader, WgslFile};
 use crate::{Channel, GpuContext, HeightConvention};
 
 /// Heights in Tatarchuk's convention from one channel of a texture (`height_in_channel`).
@@ -315,12 +315,12 @@ pub fn read_max_pyramid(
     image: crate::Image,
     channel: Channel,
     convention: HeightConvention,
-) -> Result<Vec<(u32, u32, Vec<f32>)>, crate::render::CaptureError> {
+) -> Result<Vec<(u32, u32, Vec<f32>)>, crate::gpu::CaptureError> {
     let mut images = crate::Assets::default();
     let source = images.add(image).id();
-    let mut assets = crate::render::GpuAssets::new(gpu);
+    let mut assets = crate::gpu::GpuAssets::new(gpu);
     assets.prepare_image(gpu, &images, source);
-    let derived = crate::render::DerivedTexture {
+    let derived = crate::gpu::DerivedTexture {
         source,
         derivation: MaxHeightPyramid::derivation(channel, convention),
     };
@@ -329,11 +329,11 @@ pub fn read_max_pyramid(
     assets.derived_builds_submitted();
     let pyramid = assets
         .derived(&derived)
-        .ok_or_else(|| crate::render::CaptureError::Map("the image was not uploaded".into()))?
+        .ok_or_else(|| crate::gpu::CaptureError::Map("the image was not uploaded".into()))?
         .texture();
     (0..pyramid.mip_level_count())
         .map(|level| {
-            let texels = crate::render::read_texture_level(gpu, pyramid, level)?;
+            let texels = crate::gpu::read_texture_level(gpu, pyramid, level)?;
             let size = pyramid.size().mip_level_size(level, pyramid.dimension());
             let maxima = bytemuck::pod_collect_to_vec::<u8, f32>(&texels);
             Ok((size.width, size.height, maxima))

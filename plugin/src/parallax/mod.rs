@@ -23,14 +23,13 @@ pub use max_pyramid::{HEIGHT_CHANNEL, MAX_PYRAMID_SHADER, MaxHeightPyramid};
 pub use pipelines::PomPipelineKey;
 pub use preset::PresetError;
 
+use crate::gpu::{DefaultTexture, DerivedTexture, DerivedTextures, MAX_DERIVED_TEXTURES};
 use crate::material::{
     Choice, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures, ShaderEntry,
     TextureFacts,
 };
+use crate::render::DrawView;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
-use crate::render::{
-    DefaultTexture, DerivedTexture, DerivedTextures, DrawView, MAX_DERIVED_TEXTURES,
-};
 use crate::{App, AssetId, Handle, Image, Plugin};
 
 /// The ray march, LOD and self-shadow functions of the parallax material.

@@ -3,7 +3,8 @@
 //! nothing to draw (it then skips that phase's render pass).
 
 use super::shaders::{self, ComposedShader, WgslFile};
-use super::{GpuContext, RenderTarget, VisibilityBuffer};
+use super::{RenderTarget, VisibilityBuffer};
+use crate::gpu::GpuContext;
 
 /// The background pass's WGSL file.
 pub const DEFERRED_BACKGROUND_ENTRY: WgslFile =

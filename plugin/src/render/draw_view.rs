@@ -3,8 +3,8 @@
 
 use glam::Mat4;
 
-use super::TextureFacts;
 use super::lowest_mip::{MeshLodBounds, PixelFootprint, lowest_mip};
+use crate::gpu::TextureFacts;
 
 /// One draw as the view sees it: its mesh's bounds, its transform and the camera's pixel size.
 pub struct DrawView<'a> {

@@ -1,7 +1,8 @@
 //! What can go wrong rendering or capturing a frame.
 
-use super::{CaptureError, GpuError, NodeOrderError, PostChainError};
+use super::{NodeOrderError, PostChainError};
 use crate::AppError;
+use crate::gpu::{CaptureError, GpuError};
 
 /// Everything that can go wrong when rendering or capturing a frame.
 #[derive(Debug, thiserror::Error)]

@@ -7,10 +7,10 @@ use super::frame_nodes::{FrameView, NodeWork};
 use super::frame_passes::{FramePasses, clear_value};
 use super::post_chain::{self, ChainLink};
 use super::{
-    DERIVED_TEXTURES_PASS, DrawPhase, ExtractedFrame, FrameNodes, FrameUniform, GpuContext,
-    PassTimestamps, RenderError, RenderPhase, RenderPhases, RenderTarget, Renderer, UploadStats,
-    render_path, time_pass,
+    DrawPhase, ExtractedFrame, FrameNodes, FrameUniform, RenderError, RenderPhase, RenderPhases,
+    RenderTarget, Renderer, render_path,
 };
+use crate::gpu::{DERIVED_TEXTURES_PASS, GpuContext, PassTimestamps, UploadStats, time_pass};
 use crate::{AppError, Assets, Image, Mesh, Resources};
 
 /// The Prepare stage's system: frees GPU copies of dropped assets and uploads the frame uniform.

@@ -6,8 +6,9 @@
 //! submission. A node that has nothing to do in a frame says so and costs nothing: no
 //! pass, no bind group, no timing.
 
-use super::{GpuContext, PassTimestamps, PostEffect, RenderError, RenderPhase, RenderTarget};
+use super::{PostEffect, RenderError, RenderPhase, RenderTarget};
 use crate::Resources;
+use crate::gpu::{GpuContext, PassTimestamps};
 
 /// What a node reads of the frame it records into.
 #[derive(Clone, Copy)]
@@ -50,7 +51,7 @@ pub trait FrameNode: 'static {
     ) -> Result<(), RenderError>;
 }
 
-/// Where a node sits: its name (also its timing name in [`super::GpuTimings`]), its phase, and
+/// Where a node sits: its name (also its timing name in [`crate::gpu::GpuTimings`]), its phase, and
 /// the nodes of that phase it runs after and before.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct NodePlace {

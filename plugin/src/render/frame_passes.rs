@@ -3,10 +3,8 @@
 
 use super::frame::FramePlan;
 use super::frame_nodes::FrameView;
-use super::{
-    DrawPhase, ExtractedFrame, GpuContext, PassTimestamps, RenderPhase, RenderPhases, RenderTarget,
-    Renderer, clearing_attachment,
-};
+use super::{DrawPhase, ExtractedFrame, RenderPhase, RenderPhases, RenderTarget, Renderer};
+use crate::gpu::{GpuContext, PassTimestamps, clearing_attachment};
 use crate::{AppError, Resources};
 
 /// What the phases of one frame read: the app's resources and the frame's plan.

@@ -4,9 +4,9 @@
 
 use bytemuck::Zeroable;
 
-use super::GpuContext;
 use super::gpu_types::FrameUniform;
 use super::shadow_views::MAX_SHADOW_VIEWS;
+use crate::gpu::GpuContext;
 
 /// The frame uniform on the GPU, each slot rewritten only when it changes.
 #[derive(Debug)]

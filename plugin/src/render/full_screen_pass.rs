@@ -2,12 +2,12 @@
 //! compute pass or a full-screen triangle wherever the renderer runs full-screen work, with
 //! its input image, its parameters and its output bound for it.
 
-use super::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
 use super::shaders::{self, WgslFile};
 use super::{
-    FrameView, FullScreenStage, PassTimestamps, PostChainError, PostImage, PostIo, PostStage,
-    RenderError, layout,
+    FrameView, FullScreenStage, PostChainError, PostImage, PostIo, PostStage, RenderError,
 };
+use crate::gpu::{BindGroupCache, FullScreenPipeline};
+use crate::gpu::{PassTimestamps, layout};
 
 /// A full-screen pass from an effect's WGSL, which defines
 /// `fn effect(pixel: vec2<u32>) -> vec4<f32>`: the value of output pixel `pixel`. It may read
@@ -370,7 +370,7 @@ fn effect_source(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::full_screen_pipeline::FULL_SCREEN_GROUP;
+    use crate::gpu::FULL_SCREEN_GROUP;
 
     #[test]
     fn the_dispatch_covers_the_shaders_workgroup() {

@@ -8,28 +8,20 @@
 
 pub mod anti_aliasing;
 mod capture;
-mod context;
 mod deferred_background;
-mod derived_textures;
 mod draw_view;
 mod error;
 mod extract;
-mod fragment_counter;
 mod frame;
 pub mod frame_group;
 mod frame_nodes;
 mod frame_passes;
 mod frame_uniform;
 mod full_screen_pass;
-mod full_screen_pipeline;
-mod gpu_assets;
-mod gpu_timing;
 pub(crate) mod gpu_types;
-pub(crate) mod layout;
 mod lowest_mip;
 pub(crate) mod object_buffer;
 pub(crate) mod phases;
-mod pipeline_compilation;
 mod plugin;
 mod post_chain;
 mod present;
@@ -44,9 +36,7 @@ mod standard_features;
 mod target;
 #[cfg(feature = "dev-tools")]
 mod texel_rate_probe;
-pub(crate) mod texture_bind_groups;
 pub mod tonemapping;
-pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 mod visibility;
 
 pub use anti_aliasing::{
@@ -55,55 +45,40 @@ pub use anti_aliasing::{
     TAA_PASS, TAA_SHADER, TaaUniform, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
     TemporalView, jitter_offset, set_camera_anti_aliasing, set_camera_fxaa,
 };
-pub use capture::{
-    CaptureError, capture, capture_f32, capture_scene, read_rgba8, read_texture, read_texture_level,
-};
-pub use context::{GpuContext, GpuError};
+pub use capture::{capture, capture_f32, capture_scene};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
-pub use derived_textures::{
-    ComputeDispatch, ComputeDispatches, DERIVED_TEXTURES_PASS, DerivedStorage, DerivedTexture,
-    DerivedTextureBuilder, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
-    TextureDeriver,
-};
 pub use draw_view::DrawView;
 pub use error::RenderError;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
-pub use fragment_counter::FragmentInvocationCounter;
 pub use frame::{prepare_frame, render_frame};
 pub use frame_nodes::{FrameNode, FrameNodes, FrameView, NodeOrderError, NodePlace};
 pub(crate) use frame_uniform::FrameUniformBuffer;
 pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
-pub(crate) use gpu_assets::GpuAssets;
-pub use gpu_assets::{DefaultTexture, TextureFacts, UploadStats};
-pub use gpu_timing::{GpuTimer, GpuTimings, TimingMode, resolve_gpu_timings, set_gpu_timing};
-pub use gpu_timing::{PassTimestamps, time_pass};
 pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
-pub use layout::ShaderEntry;
 pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
 pub use phases::{
     DrawPhase, HasDraws, MOTION_ID_FORMAT, PhaseDraw, PhaseWork, RenderPhase, RenderPhases,
     ResolveDispatch, ShadowDraw, SortedDraw,
 };
-pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use plugin::{PostProcessPath, RenderPlugin};
 pub use post_chain::{
     FullScreenStage, HdrInput, PostChainError, PostEffect, PostImage, PostIo, PostStage,
 };
 pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
-pub(crate) use render_path::DEFERRED_FEATURES;
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub use renderer::Renderer;
 pub(crate) use renderer::{BoundResources, PhaseBindings, phase_bindings};
+pub use shadow_maps::SHADOW_MAP_FORMAT;
+pub(crate) use shadow_maps::ShadowMaps;
 pub use shadow_maps::ShadowMapsDrawn;
-pub(crate) use shadow_maps::{SHADOW_MAP_FORMAT, ShadowMaps};
 pub use shadow_views::MAX_SHADOW_VIEWS;
 pub use shadows::ShadowsPlugin;
 pub(crate) use sorted_draws::SortedDraws;
 pub use standard_features::{RenderFeature, RenderFeatures};
 pub(crate) use target::plain_texture;
-pub use target::{RenderTarget, TargetFormat, clearing_attachment, fit_render_target};
+pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat, fit_render_target};
 #[cfg(feature = "dev-tools")]
 pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 pub(crate) use tonemapping::POST_SHADERS;

@@ -14,7 +14,7 @@
 //!              carry the camera's exposure), display effects (FXAA where the camera asks)
 //! overlay      UI drawn over the result by the application (the sandbox's egui)
 //! ```
-//! Each phase that has work is timed in [`super::GpuTimings`] under [`RenderPhase::name`].
+//! Each phase that has work is timed in [`crate::gpu::GpuTimings`] under [`RenderPhase::name`].
 
 use std::any::TypeId;
 
@@ -54,7 +54,7 @@ impl RenderPhase {
         RenderPhase::Overlay,
     ];
 
-    /// The name the phase is timed under in [`super::GpuTimings`].
+    /// The name the phase is timed under in [`crate::gpu::GpuTimings`].
     pub const fn name(self) -> &'static str {
         match self {
             RenderPhase::Prepass => "prepass",

@@ -3,10 +3,12 @@
 
 use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
-    DrawPhase, FrameNodes, FrameUniformBuffer, FullScreenStage, GpuAssets, GpuContext,
-    MeshLodCache, RenderPath, RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws,
-    TargetFormat, TimingMode, UploadStats, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds,
-    extract_frame, prepare_frame, render_frame, resolve_gpu_timings, set_gpu_timing, target,
+    DrawPhase, FrameNodes, FrameUniformBuffer, FullScreenStage, MeshLodCache, RenderPath,
+    RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat,
+    VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame, target,
+};
+use crate::gpu::{
+    GpuAssets, GpuContext, TimingMode, UploadStats, resolve_gpu_timings, set_gpu_timing,
 };
 use crate::{
     AmbientLight, App, Assets, BoxedError, Image, Mesh, Plugin, Stage, TransformPlugin,

@@ -6,9 +6,10 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::RenderError;
+use super::RenderTarget;
 use super::frame_nodes::FrameView;
-use super::{GpuContext, PassTimestamps, RenderTarget};
 use crate::Resources;
+use crate::gpu::{GpuContext, PassTimestamps};
 
 /// Where in the post chain an effect runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -4,9 +4,10 @@
 
 use std::collections::HashMap;
 
-use super::layout::{fullscreen_pipeline, unfilterable_texture_2d};
 use super::shaders::{self, ComposedShader, FULLSCREEN_TRIANGLE, WgslFile};
-use super::{GpuContext, RenderTarget, TargetFormat};
+use super::{RenderTarget, TargetFormat};
+use crate::gpu::GpuContext;
+use crate::gpu::layout::{fullscreen_pipeline, unfilterable_texture_2d};
 
 /// present.wgsl: the two fragment entries of the present pass.
 const PRESENT: WgslFile = crate::wgsl_file!("render/present.wgsl");

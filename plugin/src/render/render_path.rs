@@ -8,8 +8,9 @@
 
 use std::str::FromStr;
 
-use super::{DrawPhase, GpuContext, RenderPhases, RenderTarget, visibility};
+use super::{DrawPhase, RenderPhases, RenderTarget, visibility};
 use crate::Resources;
+use crate::gpu::{DEFERRED_FEATURES, GpuContext};
 
 /// How opaque surfaces are shaded: [`super::RenderPlugin::path`], switchable at run time with
 /// [`super::Renderer::set_path`].
@@ -94,12 +95,6 @@ pub enum DeferredUnavailable {
         bytes: u64,
     },
 }
-
-/// The adapter features the deferred path needs: each pixel's triangle, and 64-bit atomic max
-/// on the visibility keys.
-pub(crate) const DEFERRED_FEATURES: wgpu::Features = wgpu::Features::PRIMITIVE_INDEX
-    .union(wgpu::Features::SHADER_INT64)
-    .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
 /// Whether the adapter, the renderer's settings and `target`'s size allow the deferred path.
 pub(crate) fn deferred_support(

@@ -4,10 +4,10 @@
 
 use super::post_chain::PostImages;
 use super::{
-    DeferredBackground, DeferredUnavailable, FrameUniformBuffer, FullScreenStage, GpuAssets,
-    GpuContext, RenderPath, RenderTarget, ShadowMaps, SortedDraws, UploadStats, VisibilityBuffer,
-    VisibilityIds, render_path,
+    DeferredBackground, DeferredUnavailable, FrameUniformBuffer, FullScreenStage, RenderPath,
+    RenderTarget, ShadowMaps, SortedDraws, VisibilityBuffer, VisibilityIds, render_path,
 };
+use crate::gpu::{GpuAssets, GpuContext, UploadStats};
 use crate::{Image, Mesh};
 
 /// The renderer's GPU state: uploaded assets, the frame uniform, the post chain's images. A
@@ -182,7 +182,7 @@ pub(crate) fn phase_bindings<'a>(
 }
 
 impl Renderer {
-    /// The texture an image was uploaded to, for reading it back ([`read_rgba8`](super::read_rgba8)); `None`
+    /// The texture an image was uploaded to, for reading it back ([`read_rgba8`](crate::gpu::read_rgba8)); `None`
     /// until the Prepare stage has uploaded it.
     pub fn gpu_texture(&self, image: crate::AssetId<Image>) -> Option<&wgpu::Texture> {
         self.assets.image(image).map(|image| &image.texture)

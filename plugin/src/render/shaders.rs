@@ -92,7 +92,7 @@ pub(crate) const RESOLVE_TILES_PER_ROW: u32 = 256;
 // The renderer's part of composing: the counting twin and the module on a device.
 impl ComposedShader {
     /// The source for `target` whose `count_fragment_invocation()` counts into group 0's
-    /// [`super::frame_group::FRAGMENT_COUNTER`] (a [`super::FragmentInvocationCounter`]).
+    /// [`super::frame_group::FRAGMENT_COUNTER`] (a [`crate::gpu::FragmentInvocationCounter`]).
     pub fn counting_source(&self, target: &ShaderTarget) -> String {
         self.source_for(&ShaderTarget {
             fragment_counter: Some(super::frame_group::FRAGMENT_COUNTER),

@@ -2,9 +2,9 @@
 //! layer each; smaller maps use a corner of theirs), the views receivers read, and the
 //! comparison sampler that filters them.
 
-use super::GpuContext;
 use super::gpu_types::ShadowViewGpu;
 use super::shadow_views::{MAX_SHADOW_VIEWS, ShadowViewPlan};
+use crate::gpu::GpuContext;
 
 /// Says that a feature draws the shadow maps the frame plans (the shadows plugin inserts it). A
 /// resource: without it the frame plans no map, and lights cast no scene shadow, since maps

@@ -3,7 +3,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use super::GpuContext;
+use crate::gpu::GpuContext;
 
 /// What the colour target stores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -37,21 +37,6 @@ impl TargetFormat {
             TargetFormat::Srgb8 => wgpu::TextureFormat::Rgba16Float,
             TargetFormat::Float32 => wgpu::TextureFormat::Rgba32Float,
         }
-    }
-}
-/// A colour attachment that clears `view` to `clear` and stores what the pass draws.
-pub fn clearing_attachment(
-    view: &wgpu::TextureView,
-    clear: wgpu::Color,
-) -> wgpu::RenderPassColorAttachment<'_> {
-    wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: wgpu::LoadOp::Clear(clear),
-            store: wgpu::StoreOp::Store,
-        },
     }
 }
 

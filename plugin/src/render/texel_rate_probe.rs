@@ -5,12 +5,13 @@
 
 use wgpu::util::DeviceExt;
 
-use super::gpu_timing::{PassTimestamps, time_pass};
+use super::RenderTarget;
 use super::shaders::{ComposedShader, WgslFile};
-use super::{GpuContext, RenderTarget, clearing_attachment};
+use crate::gpu::{GpuContext, clearing_attachment};
+use crate::gpu::{PassTimestamps, time_pass};
 use crate::{AppError, Resources};
 
-/// The pass name the probe is timed under in [`super::GpuTimings`].
+/// The pass name the probe is timed under in [`crate::gpu::GpuTimings`].
 pub const PROBE_PASS: &str = "texel-rate probe";
 /// Side of the probe's texture: large enough that it does not all stay in the nearest cache.
 const PROBE_TEXTURE_SIDE: u32 = 1024;
@@ -74,7 +75,7 @@ impl TexelRateProbe {
             contents: bytemuck::cast_slice(&[taps as f32, step, step * 0.5, 0.0]),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let pipeline = super::layout::fullscreen_pipeline(
+        let pipeline = crate::gpu::layout::fullscreen_pipeline(
             device,
             "texel-rate probe",
             None,
@@ -114,7 +115,7 @@ impl TexelRateProbe {
     }
 
     /// Draws the probe over the app's [`RenderTarget`], timed as [`PROBE_PASS`] when GPU timing
-    /// is on, and submits. Call [`super::resolve_gpu_timings`] afterwards to read the time.
+    /// is on, and submits. Call [`crate::gpu::resolve_gpu_timings`] afterwards to read the time.
     pub fn render(&self, resources: &mut Resources) -> Result<(), AppError> {
         let timestamps = time_pass(resources, PROBE_PASS);
         let gpu = resources.require::<GpuContext>()?;

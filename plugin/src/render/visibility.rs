@@ -1,8 +1,9 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
 //! hands out, and the buffer of one target.
 
+use super::RenderTarget;
 use super::shaders::{ComposedShader, WgslFile};
-use super::{GpuContext, PassTimestamps, RenderTarget};
+use crate::gpu::{GpuContext, PassTimestamps};
 
 /// The compute pass that clears the visibility keys (visibility_clear.wgsl).
 pub const VISIBILITY_CLEAR_SHADER: ComposedShader = ComposedShader {

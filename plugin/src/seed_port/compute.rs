@@ -7,11 +7,10 @@ use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use super::{SeedPortError, SeedPortMaterial, SeedPortUniform};
+use crate::gpu::{GpuContext, PassTimestamps, time_pass};
 use crate::material::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::render::shaders::{self, ComposedShader, ShaderTarget, WgslFile};
-use crate::render::{
-    ExtractedFrame, GpuContext, MeshTransform, PassTimestamps, RenderTarget, Renderer, time_pass,
-};
+use crate::render::{ExtractedFrame, MeshTransform, RenderTarget, Renderer};
 use crate::{AppError, Assets, GlobalTransform, Handle, Mesh, Resources};
 
 /// The pass name the compute pass is timed under in [`crate::GpuTimings`].
@@ -266,7 +265,7 @@ impl SeedPortCompute {
 
     /// Runs the pass over the app's [`RenderTarget`] scene texture, timed as
     /// [`SEED_PORT_COMPUTE_PASS`] when GPU timing is on, and submits. Call
-    /// [`crate::render::resolve_gpu_timings`] afterwards to read the time.
+    /// [`crate::gpu::resolve_gpu_timings`] afterwards to read the time.
     ///
     /// # Errors
     /// [`AppError`] without the render plugin's GPU context.

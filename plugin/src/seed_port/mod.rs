@@ -9,10 +9,10 @@ mod packed;
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::gpu::DefaultTexture;
 use crate::material::{
     MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures, ShaderEntry, TextureFacts,
 };
-use crate::render::DefaultTexture;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{Assets, Handle, Image, ParallaxOcclusionMaterial, ShadowMode};
 

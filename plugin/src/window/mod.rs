@@ -79,7 +79,7 @@ pub enum WindowError {
     CannotPresent,
     /// The GPU could not be set up for the window.
     #[error(transparent)]
-    Gpu(#[from] crate::render::GpuError),
+    Gpu(#[from] crate::gpu::GpuError),
     /// An automation variable is wrong.
     #[error(transparent)]
     Automation(#[from] AutomationError),
@@ -171,11 +171,8 @@ impl Plugin for WindowPlugin {
     fn build(&self, app: &mut App) {
         app.insert_resource(self.clone());
         // A window's frames never wait for a pipeline compile.
-        if !app
-            .resources
-            .contains::<crate::render::PipelineCompilation>()
-        {
-            app.insert_resource(crate::render::PipelineCompilation::background());
+        if !app.resources.contains::<crate::gpu::PipelineCompilation>() {
+            app.insert_resource(crate::gpu::PipelineCompilation::background());
         }
         // A window's cameras without an `AntiAliasing` of their own run TAA: a moving view
         // is where stair-stepped edges and shimmering relief show.

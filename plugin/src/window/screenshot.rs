@@ -50,7 +50,7 @@ impl ScreenshotTexture {
     /// `path` as an opaque PNG, making its folder.
     pub fn save(&self, gpu: &GpuContext, path: &Path) -> Result<(), String> {
         let mut bytes =
-            crate::render::read_texture(gpu, &self.texture).map_err(|error| error.to_string())?;
+            crate::gpu::read_texture(gpu, &self.texture).map_err(|error| error.to_string())?;
         match self.texture.format() {
             wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb => {}
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb => {

@@ -4,7 +4,7 @@
 //! path: it is timed once per path, at the run's first size.
 
 use anyhow::Result;
-use pom::render::DERIVED_TEXTURES_PASS;
+use pom::gpu::DERIVED_TEXTURES_PASS;
 use pom::{
     Channel, HeightConvention, HeightField, Image, ParallaxMethod, ParallaxOcclusionMaterial,
 };

@@ -6,10 +6,9 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
 use image::{Rgba32FImage, RgbaImage};
+use pom::gpu::{DERIVED_TEXTURES_PASS, resolve_gpu_timings};
 use pom::preview::{PreviewView, spawn_preview, spawn_preview_mesh};
-use pom::render::{
-    DERIVED_TEXTURES_PASS, PROBE_PASS, RenderTarget, Renderer, TexelRateProbe, resolve_gpu_timings,
-};
+use pom::render::{PROBE_PASS, RenderTarget, Renderer, TexelRateProbe};
 use pom::{
     App, Assets, Camera, GpuContext, GpuTimings, Handle, HeightSource, Image, Mesh,
     ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPhase, RenderPlugin, TargetFormat,
@@ -100,7 +99,7 @@ impl BenchScene {
         let seed_port = options.seed_port;
         let mut app = App::new();
         if options.background_pipelines {
-            app.insert_resource(pom::render::PipelineCompilation::background());
+            app.insert_resource(pom::gpu::PipelineCompilation::background());
         }
         let timing = options.timestamps.then_some(TimingMode::Blocking);
         app.add_plugin(
@@ -406,8 +405,8 @@ impl BenchScene {
     pub fn compiles_in_flight(&self) -> usize {
         self.app
             .resources
-            .get::<pom::render::PipelineCompilation>()
-            .map_or(0, pom::render::PipelineCompilation::in_flight)
+            .get::<pom::gpu::PipelineCompilation>()
+            .map_or(0, pom::gpu::PipelineCompilation::in_flight)
     }
 
     /// Whether the last frame ran the deferred path (the renderer decides per frame: a material

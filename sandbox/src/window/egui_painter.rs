@@ -71,7 +71,7 @@ impl EguiPainter {
         (scene, split): (&RenderTarget, &RenderTarget),
         frame: EguiFrame<'_>,
         (encoder, view): (&mut wgpu::CommandEncoder, &wgpu::TextureView),
-        overlay_time: Option<&pom::render::PassTimestamps>,
+        overlay_time: Option<&pom::gpu::PassTimestamps>,
     ) {
         self.show_targets(gpu, scene, split);
         for (id, deltas) in frame.textures.set.drain() {
@@ -104,7 +104,7 @@ impl EguiPainter {
                     },
                 })],
                 depth_stencil_attachment: None,
-                timestamp_writes: overlay_time.map(pom::render::PassTimestamps::render),
+                timestamp_writes: overlay_time.map(pom::gpu::PassTimestamps::render),
                 occlusion_query_set: None,
                 multiview_mask: None,
             })

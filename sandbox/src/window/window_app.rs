@@ -324,7 +324,7 @@ impl WindowOverlay for SandboxOverlay {
         };
         // The overlay phase, timed like the others; its figure arrives with the next frame's.
         let overlay_time =
-            pom::render::time_pass(&mut app.resources, pom::RenderPhase::Overlay.name());
+            pom::gpu::time_pass(&mut app.resources, pom::RenderPhase::Overlay.name());
         let Some(target) = app.resources.get::<RenderTarget>() else {
             return;
         };

@@ -8,13 +8,12 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::gpu::{BindGroupCache, FullScreenPipeline};
+use crate::gpu::{GpuContext, PassTimestamps, layout};
 use crate::parameters::ParamSpec;
-use crate::render::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::render::tonemapping::{rgba8_output, rgba32f_output};
-use crate::render::{
-    FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat, layout,
-};
+use crate::render::{FullScreenStage, PostImage, RenderTarget, TargetFormat};
 
 crate::settings_parameters! {
     /// The parameters of FXAA, a component of the camera entity (the defaults, Lottes's

@@ -29,12 +29,12 @@ pub use temporal::{
 use fxaa::FxaaPass;
 use taa::{TaaInputs, TaaPass};
 
+use crate::gpu::{GpuContext, PassTimestamps, clearing_attachment};
 use crate::parameters::ClampWarnings;
 use crate::render::tonemapping::CameraTonemapping;
 use crate::render::{
-    DrawPhase, ExtractedFrame, FrameNode, FrameNodes, FrameView, GpuContext, HdrInput, NodePlace,
-    PassTimestamps, PostEffect, PostImage, PostIo, PostStage, RenderError, RenderPhase,
-    RenderPhases, RenderTarget, Renderer, clearing_attachment,
+    DrawPhase, ExtractedFrame, FrameNode, FrameNodes, FrameView, HdrInput, NodePlace, PostEffect,
+    PostImage, PostIo, PostStage, RenderError, RenderPhase, RenderPhases, RenderTarget, Renderer,
 };
 use crate::{App, AppError, Plugin, Resources, Stage};
 

@@ -7,8 +7,9 @@ use bytemuck::{Pod, Zeroable};
 
 use super::object_motion::ObjectMotions;
 use super::temporal::TemporalFrame;
+use crate::gpu::{GpuContext, PassTimestamps, layout};
 use crate::render::shaders::{ComposedShader, WgslFile};
-use crate::render::{GpuContext, PassTimestamps, PostImage, RenderTarget, layout};
+use crate::render::{PostImage, RenderTarget};
 use crate::shader::Choice;
 
 /// The pass's WGSL file.

@@ -5,9 +5,10 @@
 //! belong to the frame's bindings (shadow_maps.rs, shadow_views.rs, shadows.wgsl), so that
 //! every material can sample them whether or not this pass runs.
 
+use crate::gpu::PassTimestamps;
 use crate::render::{
-    ExtractedFrame, FrameNode, FrameNodes, FrameView, NodePlace, PassTimestamps, RenderError,
-    RenderPhase, RenderPhases, Renderer, ShadowMapsDrawn,
+    ExtractedFrame, FrameNode, FrameNodes, FrameView, NodePlace, RenderError, RenderPhase,
+    RenderPhases, Renderer, ShadowMapsDrawn,
 };
 use crate::{App, Plugin};
 

@@ -18,10 +18,11 @@ pub(crate) use post_process::{rgba8_output, rgba32f_output};
 
 use post_process::PostProcess;
 
-use crate::render::GpuContext;
+use crate::gpu::GpuContext;
+use crate::gpu::PassTimestamps;
 use crate::render::{
-    FrameNodes, FrameView, HdrInput, PassTimestamps, PostEffect, PostImage, PostIo, PostStage,
-    RenderError, RenderPhase, RenderTarget, Renderer,
+    FrameNodes, FrameView, HdrInput, PostEffect, PostImage, PostIo, PostStage, RenderError,
+    RenderPhase, RenderTarget, Renderer,
 };
 use crate::{App, Plugin, Resources, Stage};
 

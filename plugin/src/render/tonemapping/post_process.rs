@@ -9,11 +9,10 @@
 use bytemuck::{Pod, Zeroable};
 
 use super::Tonemapping;
-use crate::render::full_screen_pipeline::{BindGroupCache, FullScreenPipeline};
+use crate::gpu::{BindGroupCache, FullScreenPipeline};
+use crate::gpu::{GpuContext, PassTimestamps, layout};
 use crate::render::shaders::{self, ComposedShader, WgslFile};
-use crate::render::{
-    FullScreenStage, GpuContext, PassTimestamps, PostImage, RenderTarget, TargetFormat, layout,
-};
+use crate::render::{FullScreenStage, PostImage, RenderTarget, TargetFormat};
 use crate::shader::Choice;
 
 /// Shared post-processing functions (settings, tonemapping, sRGB encoding).

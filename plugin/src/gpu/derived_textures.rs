@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use std::fmt;
 use std::hash::{Hash, Hasher};
 
-use super::gpu_assets::{GpuImage, solid_texture};
+use super::assets::{GpuImage, solid_texture};
 use super::{GpuContext, PassTimestamps};
 use crate::{AssetId, Image};
 
@@ -87,7 +87,7 @@ impl Ord for TextureDerivation {
 }
 
 /// A way to derive a texture from an image on the GPU, named by the materials that bind its
-/// output ([`crate::render::DerivedTextures`]): a `static` of the material's own.
+/// output ([`crate::gpu::DerivedTextures`]): a `static` of the material's own.
 pub trait TextureDeriver: Sync {
     /// A name unique among derivers, for labels and the cache.
     fn name(&self) -> &'static str;

@@ -5,10 +5,10 @@ use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
 use super::GpuContext;
+use super::Vertex;
 use super::derived_textures::{
     DerivedTexture, DerivedTextureBuilds, DerivedTextureCache, GpuDerivedTexture,
 };
-use super::gpu_types::Vertex;
 use crate::{AssetId, Assets, Image, Mesh, Pixels, TextureKind};
 
 /// A texture as it is bound on the GPU (after any downscaling at upload).
@@ -122,7 +122,7 @@ impl DefaultTextures {
 }
 
 /// A 1×1 texture of `format` holding the 4 bytes of `texel` (RGBA8, or one 32-bit float).
-pub(super) fn solid_texture(
+pub(crate) fn solid_texture(
     gpu: &GpuContext,
     label: &str,
     texel: [u8; 4],

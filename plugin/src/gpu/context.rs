@@ -115,7 +115,7 @@ impl GpuContext {
             | wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::SHADER_EARLY_DEPTH_TEST
             | wgpu::Features::FLOAT32_BLENDABLE
-            | super::render_path::DEFERRED_FEATURES;
+            | DEFERRED_FEATURES;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("pom device"),
@@ -173,3 +173,9 @@ impl GpuContext {
             .unwrap_or_default()
     }
 }
+
+/// The adapter features the deferred path needs: each pixel's triangle, and 64-bit atomic max
+/// on the visibility keys.
+pub const DEFERRED_FEATURES: wgpu::Features = wgpu::Features::PRIMITIVE_INDEX
+    .union(wgpu::Features::SHADER_INT64)
+    .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);

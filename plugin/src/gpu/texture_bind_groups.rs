@@ -2,8 +2,8 @@
 
 use std::collections::HashMap;
 
+use super::assets::{DefaultTexture, GpuAssets};
 use super::derived_textures::DerivedTextures;
-use super::gpu_assets::{DefaultTexture, GpuAssets};
 use super::{GpuContext, layout};
 use crate::ImageSampler;
 use crate::{AssetId, Image};

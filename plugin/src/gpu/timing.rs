@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU8, Ordering};
 use std::time::Duration;
 
-use crate::render::GpuContext;
+use crate::gpu::GpuContext;
 use crate::{AppError, Resources};
 
 /// Timestamp pairs one frame can hold (passes timed per frame, at most).
