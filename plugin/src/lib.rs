@@ -172,7 +172,8 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::FXAA_SHADERS[1],
     render::FXAA_SHADERS[2],
     render::FXAA_SHADERS[3],
-    render::PRESENT_SHADER,
+    #[cfg(feature = "window")]
+    window::PRESENT_SHADER,
     #[cfg(feature = "dev-tools")]
     render::TEXEL_RATE_PROBE,
     #[cfg(feature = "dev-tools")]

@@ -102,7 +102,7 @@ macro_rules! lit_shader {
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,
                 shaders::TANGENT_SPACE,
-                shaders::LIGHTING,
+                crate::lighting::LIGHTING,
                 SURFACE_INPUT,
                 LIT_ENTRY,
                 SHADED_FORWARD,
@@ -126,7 +126,7 @@ pub const LIT_DEFERRED_SHADER: ComposedShader = lit_shader!(
         SHADED_CUT_OUT_VISIBILITY,
         shaders::VISIBILITY,
         shaders::VISIBILITY_READ,
-        shaders::DEFERRED_RESOLVE,
+        crate::material::DEFERRED_RESOLVE,
         SHADED_RESOLVE
     ]
 );

@@ -3,6 +3,7 @@
 //! dispatches. The pipelines are [`super::pipelines::MaterialPipelines`]'.
 
 use std::collections::{HashMap, HashSet};
+use std::sync::{Mutex, PoisonError};
 
 use bytemuck::{Pod, Zeroable};
 use glam::Mat4;
@@ -11,7 +12,41 @@ use super::batches::Batch;
 use super::resolve_tiles::ResolveTiles;
 use crate::gpu::layout::compute_storage_buffer;
 use crate::gpu::{GpuAssets, GpuContext};
+use crate::render::shaders::{self, ComposedShader, GeneratedWgsl, WgslFile};
 use crate::{AssetId, Mesh};
+
+/// The deferred resolve's inputs and `resolve_pixel()`, which rebuilds a pixel's vertex output
+/// and footprint from its visibility id: a material's compute resolve composes it.
+pub const DEFERRED_RESOLVE: WgslFile = crate::wgsl_file!("material/deferred_resolve.wgsl");
+
+/// `shader`'s twin for the deferred path, for a material whose surface lies on its polygon
+/// ([`crate::Material::SURFACE_ON_POLYGON`]): [`crate::render::shaders::deferred_header`] first among its constants and
+/// [`crate::render::shaders::VISIBILITY`] after its files, so its prepass draws write each pixel's visibility key with
+/// the core's `fs_visibility` and it shades in the opaque phase as on the forward path. Made
+/// once per shader for the whole process (the lists are `'static`, like a shader's own).
+pub fn deferred_twin(shader: &ComposedShader) -> ComposedShader {
+    static TWINS: Mutex<Vec<(ComposedShader, ComposedShader)>> = Mutex::new(Vec::new());
+    let mut twins = TWINS.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some((_, twin)) = twins.iter().find(|(forward, _)| forward == shader) {
+        return *twin;
+    }
+    let constants: Vec<GeneratedWgsl> = std::iter::once(shaders::deferred_header as GeneratedWgsl)
+        .chain(shader.constants.iter().copied())
+        .collect();
+    let files: Vec<WgslFile> = shader
+        .files
+        .iter()
+        .copied()
+        .chain([shaders::VISIBILITY])
+        .collect();
+    let twin = ComposedShader {
+        name: Box::leak(format!("{} (deferred)", shader.name).into_boxed_str()),
+        constants: Box::leak(constants.into_boxed_slice()),
+        files: Box::leak(files.into_boxed_slice()),
+    };
+    twins.push((*shader, twin));
+    twin
+}
 
 /// What one dispatch resolves. Mirrors `ResolveBatch` in deferred_resolve.wgsl.
 #[repr(C)]

@@ -31,6 +31,7 @@ pub use crate::parameters::{
     ParamValue, every_parameter_changed,
 };
 pub use declare::DeclaredMaterial;
+pub use deferred::{DEFERRED_RESOLVE, deferred_twin};
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
 pub use plugin::{
@@ -139,16 +140,16 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     }
     /// The material's shader for the deferred path ([`crate::RenderPath`]). By default, for a
     /// material whose surface lies on its polygon ([`Material::SURFACE_ON_POLYGON`]), the core
-    /// composes it ([`crate::render::shaders::deferred_twin`]): the material then writes the
+    /// composes it ([`deferred_twin`]): the material then writes the
     /// visibility pass with the core's `fs_visibility` and shades in the opaque phase on both
     /// paths. A material of its own kind returns the constants of [`Material::shader`] after
     /// [`crate::render::shaders::deferred_header`], its files, then the core's
     /// [`crate::render::shaders::VISIBILITY`] (and [`crate::render::shaders::VISIBILITY_READ`]
-    /// with [`crate::render::shaders::DEFERRED_RESOLVE`] for a compute resolve) and its own
+    /// with [`DEFERRED_RESOLVE`] for a compute resolve) and its own
     /// deferred entry points. `None` opts out: an app that draws the material renders forward
     /// (the deferred path needs every opaque draw in the visibility buffer), and says so once.
     fn deferred_shader() -> Option<ComposedShader> {
-        Self::SURFACE_ON_POLYGON.then(|| crate::render::shaders::deferred_twin(&Self::shader()))
+        Self::SURFACE_ON_POLYGON.then(|| deferred::deferred_twin(&Self::shader()))
     }
     /// The variant drawn in `key`'s place while `key`'s pipelines compile on a worker thread
     /// ([`crate::gpu::PipelineCompilation::background`]): a cheap one that looks alike. The

@@ -6,14 +6,17 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::gpu::GpuContext;
 use crate::gpu::layout::{compute_storage_buffer, compute_uniform_buffer};
-use crate::render::shaders::{self, ComposedShader};
+use crate::render::shaders::{self, ComposedShader, WgslFile};
 
 /// The classification's shader.
 pub const DEFERRED_CLASSIFY_SHADER: ComposedShader = ComposedShader {
     name: "deferred_classify.wgsl",
     constants: &[shaders::deferred_header],
-    files: &[shaders::VISIBILITY_READ, shaders::DEFERRED_CLASSIFY],
+    files: &[shaders::VISIBILITY_READ, DEFERRED_CLASSIFY],
 };
+
+/// The classification's own WGSL.
+const DEFERRED_CLASSIFY: WgslFile = crate::wgsl_file!("material/deferred_classify.wgsl");
 
 /// Mirrors `ClassifyParams` in deferred_classify.wgsl.
 #[repr(C)]

@@ -88,7 +88,7 @@ macro_rules! shaded_deferred_shader {
                 $($cut,)*
                 shaders::VISIBILITY,
                 shaders::VISIBILITY_READ,
-                shaders::DEFERRED_RESOLVE,
+                crate::material::DEFERRED_RESOLVE,
                 SHADED_RESOLVE
             ]
         )

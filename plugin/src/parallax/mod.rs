@@ -62,7 +62,7 @@ macro_rules! parallax_shader {
                 shaders::SHADOWS,
                 shaders::PREPASS_DEPTH,
                 shaders::TANGENT_SPACE,
-                shaders::LIGHTING,
+                crate::lighting::LIGHTING,
                 HEIGHT_CHANNEL,
                 PARALLAX_MARCH,
                 PARALLAX_MAX_MIP,
@@ -87,7 +87,7 @@ pub const PARALLAX_DEFERRED_SHADER: ComposedShader = parallax_shader!(
     [
         shaders::VISIBILITY,
         shaders::VISIBILITY_READ,
-        shaders::DEFERRED_RESOLVE,
+        crate::material::DEFERRED_RESOLVE,
         PARALLAX_DEFERRED_ENTRY
     ]
 );

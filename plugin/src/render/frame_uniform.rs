@@ -5,7 +5,7 @@
 use bytemuck::Zeroable;
 
 use super::gpu_types::FrameUniform;
-use super::shadow_views::MAX_SHADOW_VIEWS;
+use super::shadow_maps::MAX_SHADOW_VIEWS;
 use crate::gpu::GpuContext;
 
 /// The frame uniform on the GPU, each slot rewritten only when it changes.

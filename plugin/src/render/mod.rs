@@ -24,12 +24,10 @@ pub(crate) mod object_buffer;
 pub(crate) mod phases;
 mod plugin;
 mod post_chain;
-mod present;
 mod render_path;
 mod renderer;
 pub mod shaders;
 mod shadow_maps;
-mod shadow_views;
 pub mod shadows;
 mod sorted_draws;
 mod standard_features;
@@ -55,8 +53,8 @@ pub use frame::{prepare_frame, render_frame};
 pub use frame_nodes::{FrameNode, FrameNodes, FrameView, NodeOrderError, NodePlace};
 pub(crate) use frame_uniform::FrameUniformBuffer;
 pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
-pub(crate) use gpu_types::FrameUniform;
 pub use gpu_types::MeshTransform;
+pub(crate) use gpu_types::{FrameUniform, ShadowViewGpu};
 pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
 pub use phases::{
     DrawPhase, HasDraws, MOTION_ID_FORMAT, PhaseDraw, PhaseWork, RenderPhase, RenderPhases,
@@ -66,14 +64,12 @@ pub use plugin::{PostProcessPath, RenderPlugin};
 pub use post_chain::{
     FullScreenStage, HdrInput, PostChainError, PostEffect, PostImage, PostIo, PostStage,
 };
-pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub use render_path::{DeferredUnavailable, RenderPath, UnknownRenderPath};
 pub use renderer::Renderer;
 pub(crate) use renderer::{BoundResources, PhaseBindings, phase_bindings};
 pub use shadow_maps::SHADOW_MAP_FORMAT;
 pub(crate) use shadow_maps::ShadowMaps;
-pub use shadow_maps::ShadowMapsDrawn;
-pub use shadow_views::MAX_SHADOW_VIEWS;
+pub use shadow_maps::{MAX_SHADOW_VIEWS, ShadowViewPlan};
 pub use shadows::ShadowsPlugin;
 pub(crate) use sorted_draws::SortedDraws;
 pub use standard_features::{RenderFeature, RenderFeatures};

@@ -4,16 +4,12 @@
 //! and its own file. The naga test validates every composed shader and checks that every `.wgsl`
 //! file under `plugin/src` is part of one.
 
-use std::sync::{Mutex, PoisonError};
-
 pub use crate::shader::{ComposedShader, GeneratedWgsl, ShaderTarget, WgslFile};
 
 /// Camera and light uniforms, and the light iteration helpers.
 pub const FRAME: WgslFile = crate::wgsl_file!("render/frame.wgsl");
 /// Tangent frames and normal-map decoding.
 pub const TANGENT_SPACE: WgslFile = crate::wgsl_file!("render/tangent_space.wgsl");
-/// Phong, Blinn-Phong and Cook-Torrance + Oren-Nayar.
-pub const LIGHTING: WgslFile = crate::wgsl_file!("render/lighting.wgsl");
 /// Helpers for generated parameter structs (colours as `array<f32, 4>`).
 pub const PARAMS: WgslFile = crate::wgsl_file!("render/params.wgsl");
 /// Vertex input/output, the per-draw transforms and the shared vertex stage `vs_main`.
@@ -28,39 +24,10 @@ pub const SRGB: WgslFile = crate::wgsl_file!("render/srgb.wgsl");
 pub const FULLSCREEN_TRIANGLE: WgslFile = crate::wgsl_file!("render/fullscreen_triangle.wgsl");
 /// The visibility pass of the deferred path: `visibility_id()` and the default `fs_visibility`.
 pub const VISIBILITY: WgslFile = crate::wgsl_file!("render/visibility.wgsl");
-/// The deferred resolve's inputs and `resolve_pixel()`, which rebuilds a pixel's vertex output
-/// and footprint from its visibility id.
-pub const DEFERRED_RESOLVE: WgslFile = crate::wgsl_file!("render/deferred_resolve.wgsl");
 /// Reading the visibility keys from compute (`visible_id`).
 pub const VISIBILITY_READ: WgslFile = crate::wgsl_file!("render/visibility_read.wgsl");
-/// The deferred resolve's tile classification (one pass per material with resolve batches).
-pub const DEFERRED_CLASSIFY: WgslFile = crate::wgsl_file!("render/deferred_classify.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = crate::wgsl_file!("dynamic_height/sobel.wgsl");
-
-/// `shader`'s twin for the deferred path, for a material whose surface lies on its polygon
-/// ([`crate::Material::SURFACE_ON_POLYGON`]): [`deferred_header`] first among its constants and
-/// [`VISIBILITY`] after its files, so its prepass draws write each pixel's visibility key with
-/// the core's `fs_visibility` and it shades in the opaque phase as on the forward path. Made
-/// once per shader for the whole process (the lists are `'static`, like a shader's own).
-pub fn deferred_twin(shader: &ComposedShader) -> ComposedShader {
-    static TWINS: Mutex<Vec<(ComposedShader, ComposedShader)>> = Mutex::new(Vec::new());
-    let mut twins = TWINS.lock().unwrap_or_else(PoisonError::into_inner);
-    if let Some((_, twin)) = twins.iter().find(|(forward, _)| forward == shader) {
-        return *twin;
-    }
-    let constants: Vec<GeneratedWgsl> = std::iter::once(deferred_header as GeneratedWgsl)
-        .chain(shader.constants.iter().copied())
-        .collect();
-    let files: Vec<WgslFile> = shader.files.iter().copied().chain([VISIBILITY]).collect();
-    let twin = ComposedShader {
-        name: Box::leak(format!("{} (deferred)", shader.name).into_boxed_str()),
-        constants: Box::leak(constants.into_boxed_slice()),
-        files: Box::leak(files.into_boxed_slice()),
-    };
-    twins.push((*shader, twin));
-    twin
-}
 
 /// The first constants of a material's deferred shader ([`crate::Material::deferred_shader`]):
 /// the `primitive_index` extension the visibility pass needs, `TILES_PER_ROW` of the resolve's

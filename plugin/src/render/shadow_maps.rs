@@ -2,15 +2,29 @@
 //! layer each; smaller maps use a corner of theirs), the views receivers read, and the
 //! comparison sampler that filters them.
 
+use glam::Vec3;
+
 use super::gpu_types::ShadowViewGpu;
-use super::shadow_views::{MAX_SHADOW_VIEWS, ShadowViewPlan};
 use crate::gpu::GpuContext;
 
-/// Says that a feature draws the shadow maps the frame plans (the shadows plugin inserts it). A
-/// resource: without it the frame plans no map, and lights cast no scene shadow, since maps
-/// nobody draws would shadow every receiver.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ShadowMapsDrawn;
+/// Most shadow maps one frame renders (a directional light takes 3, a spot 1, a point light
+/// 6); lights past it cast no scene shadow, with a warning.
+pub const MAX_SHADOW_VIEWS: usize = 32;
+
+/// One shadow map to render: where it looks from and what receivers read of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowViewPlan {
+    /// What receivers read (its `layer` is assigned with the others).
+    pub gpu: ShadowViewGpu,
+    /// The light's eye: its position, or for a directional light a point behind the cascade.
+    pub eye: Vec3,
+    /// The direction the light looks (shines).
+    pub forward: Vec3,
+    /// Whether the view's rays are parallel (a directional light).
+    pub orthographic: bool,
+    /// Texels along each side of the map.
+    pub map_size: u32,
+}
 
 /// The maps' depth format.
 pub const SHADOW_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

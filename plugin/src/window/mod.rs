@@ -22,6 +22,7 @@ mod input;
 mod orbit_camera;
 mod overlay;
 mod panic_report;
+mod present;
 mod runner;
 mod screenshot;
 mod surface;
@@ -39,6 +40,7 @@ pub use input::{
 pub use orbit_camera::{CameraInput, OrbitCamera, OrbitCameraPlugin, orbit_cameras};
 pub use overlay::WindowOverlay;
 pub use panic_report::panic_message;
+pub use present::{PRESENT_SHADER, PresentError, Presenter, ScreenRect};
 pub use screenshot::{ScreenshotRequest, ScreenshotSaved};
 pub use surface::WindowSurface;
 
@@ -88,7 +90,7 @@ pub enum WindowError {
     App(#[from] crate::AppError),
     /// The frame could not be drawn into the window.
     #[error(transparent)]
-    Present(#[from] crate::render::PresentError),
+    Present(#[from] PresentError),
     /// The GPU device was lost (a driver reset, the GPU removed) and no new one could be made.
     #[error("the GPU device was lost ({reason}) and could not be replaced: {replacing}")]
     DeviceLost {

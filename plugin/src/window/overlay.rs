@@ -7,7 +7,7 @@ use std::sync::Arc;
 use winit::event::WindowEvent;
 use winit::window::Window;
 
-use crate::render::ScreenRect;
+use super::ScreenRect;
 use crate::{App, BoxedError, GpuContext};
 
 /// A layer drawn over the scene, with the window's raw events (a UI toolkit's integration).

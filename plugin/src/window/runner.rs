@@ -21,12 +21,14 @@ use winit::window::{Window, WindowId};
 use super::frame_times::FrameTimes;
 use super::input::{InputEvent, PendingInput};
 use super::panic_report::{OncePanicHook, panic_message};
+use super::present::{PresentError, Presenter, ScreenRect};
 use super::screenshot::ScreenshotTexture;
 use super::{
     AppExit, Automation, DeviceWatch, ScreenshotRequest, ScreenshotSaved, WindowError,
     WindowOverlay, WindowPlugin, WindowSurface,
 };
-use crate::render::{Presenter, RenderTarget, ScreenRect, fit_render_target};
+
+use crate::render::{RenderTarget, fit_render_target};
 use crate::{App, GpuContext};
 
 impl App {
@@ -305,7 +307,7 @@ impl Runner {
         encoder: &mut wgpu::CommandEncoder,
         view: &wgpu::TextureView,
         (format, size): (wgpu::TextureFormat, (u32, u32)),
-    ) -> Result<(), crate::render::PresentError> {
+    ) -> Result<(), PresentError> {
         let Some(open) = &mut self.open else {
             return Ok(());
         };

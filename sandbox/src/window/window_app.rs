@@ -11,7 +11,8 @@ use anyhow::{Result, anyhow};
 use egui::{CentralPanel, Sense};
 use egui_wgpu::ScreenDescriptor;
 use pom::glam::Vec2;
-use pom::render::{RenderTarget, ScreenRect};
+use pom::render::RenderTarget;
+use pom::window::ScreenRect;
 use pom::window::{
     Automation, CameraInput, OrbitCamera, ScreenshotRequest, ScreenshotSaved, WindowError,
     WindowOverlay, WindowPlugin,

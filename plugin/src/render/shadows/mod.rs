@@ -1,22 +1,27 @@
 //! Scene shadows' pass: [`ShadowsPlugin`] joins the shadows phase with one depth pass per
 //! shadow map (a cascade, a spot light's map, a cube face), into which every material draws
 //! its casters from the light's view, timed as "shadows". Which lights cast and how is the
-//! [`crate::LightShadows`] component; the maps themselves, and what receivers read of them,
-//! belong to the frame's bindings (shadow_maps.rs, shadow_views.rs, shadows.wgsl), so that
-//! every material can sample them whether or not this pass runs.
+//! [`crate::LightShadows`] component: in the Extract stage the plugin plans each casting
+//! light's maps (plan.rs; where each looks from: views.rs) and points the light's GPU record at
+//! them. The maps themselves, and what receivers read of them, belong to the frame's bindings
+//! (`render/shadow_maps.rs`, `render/shadows.wgsl`), so that every material can sample them
+//! whether or not this feature is in the app.
+
+mod plan;
+mod views;
 
 use crate::gpu::PassTimestamps;
 use crate::render::{
     ExtractedFrame, FrameNode, FrameNodes, FrameView, NodePlace, RenderError, RenderPhase,
-    RenderPhases, Renderer, ShadowMapsDrawn,
+    RenderPhases, Renderer,
 };
-use crate::{App, Plugin};
+use crate::{App, Plugin, Stage};
 
 /// The node name the shadow maps are timed under.
 pub const SHADOW_MAPS_NODE: &str = RenderPhase::Shadows.name();
 
-/// Draws the shadow maps the lights ask for (the render plugin adds it with its standard
-/// features). Without it the frame plans no shadow map: lights cast no scene shadow.
+/// Plans and draws the shadow maps the lights ask for (the render plugin adds it with its
+/// standard features). Without it the frame has no shadow map: lights cast no scene shadow.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ShadowsPlugin;
 
@@ -26,7 +31,7 @@ impl Plugin for ShadowsPlugin {
             NodePlace::new(SHADOW_MAPS_NODE, RenderPhase::Shadows),
             || ShadowMapsNode,
         );
-        app.insert_resource(ShadowMapsDrawn);
+        app.add_system(Stage::Extract, plan::plan_shadow_maps);
     }
 }
 

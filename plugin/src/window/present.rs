@@ -4,13 +4,13 @@
 
 use std::collections::HashMap;
 
-use super::shaders::{self, ComposedShader, FULLSCREEN_TRIANGLE, WgslFile};
-use super::{RenderTarget, TargetFormat};
 use crate::gpu::GpuContext;
 use crate::gpu::layout::{fullscreen_pipeline, unfilterable_texture_2d};
+use crate::render::shaders::{self, ComposedShader, FULLSCREEN_TRIANGLE, WgslFile};
+use crate::render::{RenderTarget, TargetFormat};
 
 /// present.wgsl: the two fragment entries of the present pass.
-const PRESENT: WgslFile = crate::wgsl_file!("render/present.wgsl");
+const PRESENT: WgslFile = crate::wgsl_file!("window/present.wgsl");
 
 /// The present pass's shader.
 pub const PRESENT_SHADER: ComposedShader = ComposedShader {

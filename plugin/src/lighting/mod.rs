@@ -1,7 +1,10 @@
-//! What the shipped materials share about lighting a surface: the reflection model
-//! (`lighting.wgsl` implements them) and the parameters that drive it, declared once in
+//! What the shipped materials share about lighting a surface: the reflection models
+//! ([`LIGHTING`], `lighting.wgsl`, implements them) and the parameters that drive it, declared once in
 //! [`crate::with_lighting_parameters!`]. The lit material and the parallax material both use
 //! them, so they live below both.
+
+/// The reflection models in WGSL: Phong, Blinn-Phong, Cook-Torrance + Oren-Nayar and glTF's GGX.
+pub(crate) const LIGHTING: crate::shader::WgslFile = crate::wgsl_file!("lighting/lighting.wgsl");
 
 crate::choice_enum! {
     /// The lighting model.

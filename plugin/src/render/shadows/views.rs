@@ -8,30 +8,11 @@ use glam::Vec3;
 use glam::camera::rh::proj::directx::{orthographic, perspective, perspective_infinite};
 use glam::camera::rh::view::look_to_mat4;
 
-use super::gpu_types::ShadowViewGpu;
+use crate::render::{ShadowViewGpu, ShadowViewPlan};
 use crate::{DIRECTIONAL_CASCADES, LightShadows, Projection};
-
-/// Most shadow maps one frame renders (a directional light takes 3, a spot 1, a point light
-/// 6); lights past it cast no scene shadow, with a warning.
-pub const MAX_SHADOW_VIEWS: usize = 32;
 
 /// How far the near plane of a spot's or cube face's map lies from the light.
 const PERSPECTIVE_NEAR: f32 = 0.05;
-
-/// One shadow map to render: where it looks from and what receivers read of it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ShadowViewPlan {
-    /// What receivers read (its `layer` is assigned with the others).
-    pub gpu: ShadowViewGpu,
-    /// The light's eye: its position, or for a directional light a point behind the cascade.
-    pub eye: Vec3,
-    /// The direction the light looks (shines).
-    pub forward: Vec3,
-    /// Whether the view's rays are parallel (a directional light).
-    pub orthographic: bool,
-    /// Texels along each side of the map.
-    pub map_size: u32,
-}
 
 /// The camera whose view the cascades cover.
 #[derive(Clone, Copy, Debug)]
