@@ -83,6 +83,8 @@ mod shadows;
 #[cfg(feature = "dev-tools")]
 mod split_view;
 mod stderr_log;
+#[cfg(feature = "dev-tools")]
+pub mod texel_rate_probe;
 mod time;
 mod transform;
 #[cfg(feature = "window")]
@@ -175,7 +177,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     #[cfg(feature = "window")]
     window::PRESENT_SHADER,
     #[cfg(feature = "dev-tools")]
-    render::TEXEL_RATE_PROBE,
+    texel_rate_probe::TEXEL_RATE_PROBE,
     #[cfg(feature = "dev-tools")]
     seed_port::SEED_PORT_SHADER,
     #[cfg(feature = "dev-tools")]

@@ -166,7 +166,7 @@ fn timing_can_be_turned_off_and_says_so() {
 #[test]
 fn the_texel_rate_probe_samples_its_texture_and_is_timed() {
     use pom::gpu::resolve_gpu_timings;
-    use pom::render::{PROBE_PASS, TexelRateProbe};
+    use pom::texel_rate_probe::{PROBE_PASS, TexelRateProbe};
     let mut app = App::new();
     app.add_plugin(RenderPlugin::new(32, 16).with_gpu_timing(Some(TimingMode::Blocking)));
     app.finish().unwrap();

@@ -54,6 +54,7 @@ const LAYERS: &[&str] = &[
     "reference",
     "split_view",
     "seed_port",
+    "texel_rate_probe",
     "shader_reload",
     "script",
     "window",
@@ -65,6 +66,8 @@ const LAYERS: &[&str] = &[
 /// A part may use only parts before it: the core names no feature.
 const RENDER_PARTS: &[&str] = &[
     "core",
+    // The toolkit for writing a post effect in one file, on the core's post chain.
+    "full_screen_pass",
     "tonemapping",
     "shadows",
     "anti_aliasing",
@@ -412,6 +415,46 @@ fn the_renderers_core_names_no_feature_and_features_only_those_before_them() {
             "{part}"
         );
     }
+}
+
+/// Most lines the files of `render/`'s core (Rust and WGSL, outside every part's folder) may
+/// hold: what a newcomer reads to follow a frame.
+const CORE_LINE_BUDGET: usize = 5_000;
+
+#[test]
+fn the_renderers_core_stays_small_enough_to_read() {
+    let render = plugin_src().join("render");
+    let mut lines_per_part: HashMap<String, usize> = HashMap::new();
+    let mut stack = vec![render.clone()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).expect("reading render/") {
+            let path = entry.expect("a directory entry").path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let relative = path.strip_prefix(&render).expect("under render/");
+            let part = match relative.components().count() {
+                1 => match relative.file_stem().and_then(|stem| stem.to_str()) {
+                    Some(stem) if RENDER_ASSEMBLY.contains(&stem) => "assembly",
+                    _ => "core",
+                },
+                _ => relative
+                    .iter()
+                    .next()
+                    .and_then(|p| p.to_str())
+                    .unwrap_or("core"),
+            };
+            let text = std::fs::read_to_string(&path).expect("reading a render/ file");
+            *lines_per_part.entry(part.to_owned()).or_default() += text.lines().count();
+        }
+    }
+    let core = lines_per_part["core"] + lines_per_part.get("assembly").copied().unwrap_or(0);
+    assert!(
+        core < CORE_LINE_BUDGET,
+        "render/'s core (with its assembly files) holds {core} lines, over {CORE_LINE_BUDGET}: \
+         move a feature into a folder of its own ({lines_per_part:?})"
+    );
 }
 
 #[test]

@@ -14,6 +14,7 @@ use super::draw_order::{SortEntry, SortMemory, view_depth};
 use super::followed_models::FollowedModels;
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{MaterialPipelines, PipelineSetup};
+use super::{DrawView, MeshLodBounds, MeshLodCache, PixelFootprint};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::gpu::MAX_DERIVED_TEXTURES;
 use crate::gpu::{BoundTextures, TextureBindGroups};
@@ -22,10 +23,7 @@ use crate::render::PhaseBindings;
 use crate::render::anti_aliasing::ObjectMotions;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::shaders::ComposedShader;
-use crate::render::{
-    DrawView, FrameUniformBuffer, MeshLodBounds, MeshLodCache, MeshTransform, PixelFootprint,
-    VisibilityIds,
-};
+use crate::render::{FrameUniformBuffer, MeshTransform, VisibilityIds};
 use crate::{AssetId, Assets, Image, Mesh};
 
 /// One entity's draw as the Extract stage copied it.

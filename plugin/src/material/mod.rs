@@ -9,10 +9,12 @@ mod declare;
 mod deferred;
 mod draw;
 mod draw_order;
+mod draw_view;
 mod extract;
 mod followed_models;
 mod frame_bindings;
 mod layout_check;
+mod lowest_mip;
 mod mesh_pipeline;
 mod pipelines;
 mod plugin;
@@ -32,8 +34,10 @@ pub use crate::parameters::{
 };
 pub use declare::DeclaredMaterial;
 pub use deferred::{DEFERRED_RESOLVE, deferred_twin};
+pub use draw_view::DrawView;
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
+pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
 pub use plugin::{
     MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,
     draw_meshes_without_material, drawn_in_opaque_and_resolve, drawn_keys, pipelines_ready,
@@ -52,7 +56,6 @@ use std::fmt::Debug;
 use std::hash::Hash;
 
 use crate::gpu::{DefaultTexture, DerivedTextures, MAX_DERIVED_TEXTURES};
-use crate::render::DrawView;
 use crate::render::shaders::ComposedShader;
 
 /// A surface type the renderer can draw: put it on an entity with a `Handle<Mesh>` and a

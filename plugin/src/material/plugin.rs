@@ -13,12 +13,13 @@ use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
+use super::{MeshLodCache, PixelFootprint};
 use crate::gpu::{FragmentInvocationCounter, PipelineCompilation, UploadStats};
 use crate::render::PhaseBindings;
 use crate::render::anti_aliasing::{AntiAliasingFrame, ObjectMotions};
 use crate::render::{
-    DrawPhase, ExtractedFrame, MeshLodCache, RenderPhases, RenderTarget, Renderer,
-    VisibilityBuffer, phase_bindings,
+    DrawPhase, ExtractedFrame, RenderPhases, RenderTarget, Renderer, VisibilityBuffer,
+    phase_bindings,
 };
 use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
 
@@ -111,6 +112,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             .push(MaterialEntry::new::<M>(self.draws_meshes_without_material));
         app.add_system(Stage::Extract, extract_materials::<M>)
             .add_system(Stage::Prepare, prepare_materials::<M>);
+        app.resources.get_or_default::<MeshLodCache>();
         let phases = app.resources.get_or_default::<RenderPhases>();
         add_phase_draws::<M>(phases);
         phases.declare_owner::<M>(M::NAME, false);
@@ -299,13 +301,16 @@ fn prepare_frame<M: Material>(
         target,
     );
     let visibility = renderer.visibility.as_ref().filter(|_| renderer.deferred);
+    let footprint = frame
+        .camera
+        .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target.size()));
     let inputs = PrepareInputs {
         gpu: resources.require::<GpuContext>()?,
         frame: &renderer.frame,
         depth: &depth,
         meshes: resources.require::<Assets<Mesh>>()?,
         images: resources.require::<Assets<Image>>()?,
-        footprint: frame.footprint.as_ref(),
+        footprint: footprint.as_ref(),
         eye: (
             glam::Vec4::from(frame.frame.camera_position).truncate(),
             glam::Vec4::from(frame.frame.view_direction).truncate(),

@@ -24,11 +24,11 @@ pub use pipelines::PomPipelineKey;
 pub use preset::PresetError;
 
 use crate::gpu::{DefaultTexture, DerivedTexture, DerivedTextures, MAX_DERIVED_TEXTURES};
+use crate::material::DrawView;
 use crate::material::{
     Choice, MAX_MATERIAL_TEXTURES, Material, MaterialPlugin, MaterialTextures, ShaderEntry,
     TextureFacts,
 };
-use crate::render::DrawView;
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{App, AssetId, Handle, Image, Plugin};
 

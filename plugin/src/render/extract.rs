@@ -7,7 +7,6 @@ use super::ShadowViewPlan;
 use super::gpu_types::{
     DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
 };
-use super::lowest_mip::PixelFootprint;
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform, PointLight,
@@ -23,8 +22,6 @@ pub struct ExtractedFrame {
     pub clear_color: Color,
     /// Whether an active camera was found (without one, the frame is only cleared).
     pub has_camera: bool,
-    /// How large the active camera's pixels are in the world (for per-object LOD).
-    pub footprint: Option<PixelFootprint>,
     /// The active camera's exposure (the default without a camera or component), already
     /// applied to the lights.
     pub exposure: Exposure,
@@ -123,8 +120,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         lights: lights.entities,
         shadow_views: Vec::new(),
         has_camera: camera.is_some(),
-        footprint: camera
-            .map(|(camera, transform)| PixelFootprint::new(&camera, &transform, target_size)),
     });
     Ok(())
 }

@@ -9,7 +9,6 @@
 pub mod anti_aliasing;
 mod capture;
 mod deferred_background;
-mod draw_view;
 mod error;
 mod extract;
 mod frame;
@@ -19,7 +18,6 @@ mod frame_passes;
 mod frame_uniform;
 mod full_screen_pass;
 pub(crate) mod gpu_types;
-mod lowest_mip;
 pub(crate) mod object_buffer;
 pub(crate) mod phases;
 mod plugin;
@@ -32,8 +30,6 @@ pub mod shadows;
 mod sorted_draws;
 mod standard_features;
 mod target;
-#[cfg(feature = "dev-tools")]
-mod texel_rate_probe;
 pub mod tonemapping;
 mod visibility;
 
@@ -46,7 +42,6 @@ pub use anti_aliasing::{
 pub use capture::{capture, capture_f32, capture_scene};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
-pub use draw_view::DrawView;
 pub use error::RenderError;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use frame::{prepare_frame, render_frame};
@@ -55,7 +50,6 @@ pub(crate) use frame_uniform::FrameUniformBuffer;
 pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
 pub use gpu_types::MeshTransform;
 pub(crate) use gpu_types::{FrameUniform, ShadowViewGpu};
-pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
 pub use phases::{
     DrawPhase, HasDraws, MOTION_ID_FORMAT, PhaseDraw, PhaseWork, RenderPhase, RenderPhases,
     ResolveDispatch, ShadowDraw, SortedDraw,
@@ -75,8 +69,6 @@ pub(crate) use sorted_draws::SortedDraws;
 pub use standard_features::{RenderFeature, RenderFeatures};
 pub(crate) use target::plain_texture;
 pub use target::{DEPTH_FORMAT, RenderTarget, TargetFormat, fit_render_target};
-#[cfg(feature = "dev-tools")]
-pub use texel_rate_probe::{PROBE_PASS, TEXEL_RATE_PROBE, TexelRateProbe};
 pub(crate) use tonemapping::POST_SHADERS;
 pub use tonemapping::{
     CameraTonemapping, PostSettings, Tonemapping, TonemappingPlugin, set_camera_display_mapping,

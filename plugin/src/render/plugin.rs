@@ -3,9 +3,9 @@
 
 use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
-    DrawPhase, FrameNodes, FrameUniformBuffer, FullScreenStage, MeshLodCache, RenderPath,
-    RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat,
-    VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame, target,
+    DrawPhase, FrameNodes, FrameUniformBuffer, FullScreenStage, RenderPath, RenderPhases,
+    RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat, VISIBILITY_BYTES_PER_PIXEL,
+    VisibilityIds, extract_frame, prepare_frame, render_frame, target,
 };
 use crate::gpu::{
     GpuAssets, GpuContext, TimingMode, UploadStats, resolve_gpu_timings, set_gpu_timing,
@@ -126,7 +126,6 @@ impl Plugin for RenderPlugin {
         app.resources.get_or_default::<AmbientLight>();
         app.resources.get_or_default::<RenderPhases>();
         app.resources.get_or_default::<FrameNodes>();
-        app.resources.get_or_default::<MeshLodCache>();
         app.add_system(Stage::PostUpdate, free_unused_assets::<Mesh>)
             .add_system(Stage::PostUpdate, free_unused_assets::<Image>)
             .add_system(Stage::Extract, extract_frame)

@@ -8,7 +8,8 @@ use anyhow::{Context, Result, bail};
 use image::{Rgba32FImage, RgbaImage};
 use pom::gpu::{DERIVED_TEXTURES_PASS, resolve_gpu_timings};
 use pom::preview::{PreviewView, spawn_preview, spawn_preview_mesh};
-use pom::render::{PROBE_PASS, RenderTarget, Renderer, TexelRateProbe};
+use pom::render::{RenderTarget, Renderer};
+use pom::texel_rate_probe::{PROBE_PASS, TexelRateProbe};
 use pom::{
     App, Assets, Camera, GpuContext, GpuTimings, Handle, HeightSource, Image, Mesh,
     ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPhase, RenderPlugin, TargetFormat,

@@ -5,10 +5,10 @@
 
 use wgpu::util::DeviceExt;
 
-use super::RenderTarget;
-use super::shaders::{ComposedShader, WgslFile};
 use crate::gpu::{GpuContext, clearing_attachment};
 use crate::gpu::{PassTimestamps, time_pass};
+use crate::render::RenderTarget;
+use crate::render::shaders::{ComposedShader, FULLSCREEN_TRIANGLE, WgslFile};
 use crate::{AppError, Resources};
 
 /// The pass name the probe is timed under in [`crate::gpu::GpuTimings`].
@@ -19,13 +19,14 @@ const PROBE_TEXTURE_SIDE: u32 = 1024;
 const STEP_TEXELS: f32 = 0.5;
 
 /// The probe's full-screen pass.
-pub const TEXEL_RATE_PROBE_ENTRY: WgslFile = crate::wgsl_file!("render/texel_rate_probe.wgsl");
+pub const TEXEL_RATE_PROBE_ENTRY: WgslFile =
+    crate::wgsl_file!("texel_rate_probe/texel_rate_probe.wgsl");
 
 /// The bench's fragment-stage texel-rate probe.
 pub const TEXEL_RATE_PROBE: ComposedShader = ComposedShader {
     name: "texel_rate_probe.wgsl",
     constants: &[],
-    files: &[super::shaders::FULLSCREEN_TRIANGLE, TEXEL_RATE_PROBE_ENTRY],
+    files: &[FULLSCREEN_TRIANGLE, TEXEL_RATE_PROBE_ENTRY],
 };
 
 /// A full-screen pass in which every pixel takes a fixed number of bilinear samples.

@@ -1,13 +1,15 @@
 //! [`FullScreenPass`]: a post effect's pass from one WGSL function, `effect(pixel)`, run as a
 //! compute pass or a full-screen triangle wherever the renderer runs full-screen work, with
-//! its input image, its parameters and its output bound for it.
+//! its input image, its parameters and its output bound for it. A toolkit on the core's post
+//! chain (post_chain.rs) for writing an effect in one file: the core does not use it; a game's
+//! effect (`plugin/examples/post_effect.rs`) does.
 
-use super::shaders::{self, WgslFile};
-use super::{
-    FrameView, FullScreenStage, PostChainError, PostImage, PostIo, PostStage, RenderError,
-};
 use crate::gpu::{BindGroupCache, FullScreenPipeline};
 use crate::gpu::{PassTimestamps, layout};
+use crate::render::shaders::{self, WgslFile};
+use crate::render::{
+    FrameView, FullScreenStage, PostChainError, PostImage, PostIo, PostStage, RenderError,
+};
 
 /// A full-screen pass from an effect's WGSL, which defines
 /// `fn effect(pixel: vec2<u32>) -> vec4<f32>`: the value of output pixel `pixel`. It may read
@@ -299,9 +301,9 @@ fn image_format(frame: FrameView<'_>, stage: PostStage) -> wgpu::TextureFormat {
 /// The WGSL storage format a pass writing `format` on `frame` declares, where it runs in
 /// compute (where the renderer runs full-screen work in compute and can store the format).
 fn compute_storage(frame: FrameView<'_>, format: wgpu::TextureFormat) -> Option<&'static str> {
-    let run_in = frame.resources.get::<super::Renderer>().map_or(
+    let run_in = frame.resources.get::<crate::render::Renderer>().map_or(
         FullScreenStage::Fragment,
-        super::Renderer::full_screen_stage,
+        crate::render::Renderer::full_screen_stage,
     );
     match (run_in, storage_format_name(format)) {
         (FullScreenStage::Compute, Some(name)) if frame.gpu.can_store(format) => Some(name),
@@ -325,11 +327,14 @@ fn storage_format_name(format: wgpu::TextureFormat) -> Option<&'static str> {
 pub const EFFECT_FILES: [WgslFile; 3] = [EFFECT_HELPERS, EFFECT_COMPUTE, EFFECT_FRAGMENT];
 
 /// `to_linear` and `from_linear`.
-const EFFECT_HELPERS: WgslFile = crate::wgsl_file!("render/effect_helpers.wgsl");
+const EFFECT_HELPERS: WgslFile =
+    crate::wgsl_file!(nested "render/full_screen_pass/effect_helpers.wgsl");
 /// The compute entry point.
-const EFFECT_COMPUTE: WgslFile = crate::wgsl_file!("render/effect_compute.wgsl");
+const EFFECT_COMPUTE: WgslFile =
+    crate::wgsl_file!(nested "render/full_screen_pass/effect_compute.wgsl");
 /// The full-screen triangle's entry point.
-const EFFECT_FRAGMENT: WgslFile = crate::wgsl_file!("render/effect_fragment.wgsl");
+const EFFECT_FRAGMENT: WgslFile =
+    crate::wgsl_file!(nested "render/full_screen_pass/effect_fragment.wgsl");
 
 /// The whole shader of an effect writing `format`, in compute where `compute` names its
 /// storage format: generated declarations, the helpers, the entry point, the effect.
