@@ -447,8 +447,8 @@ mod tests {
         );
         assert_eq!(
             app.schedule.len(Stage::Extract),
-            6,
-            "core + tonemapping + anti-aliasing + two materials + the curved silhouette's mesh check"
+            7,
+            "core + tonemapping + shadows + anti-aliasing + two materials + the curved silhouette's mesh check"
         );
     }
 
