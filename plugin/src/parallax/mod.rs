@@ -53,6 +53,7 @@ macro_rules! parallax_shader {
                 HeightUnits::wgsl_constants,
                 LightingModel::wgsl_constants,
                 DebugView::wgsl_constants,
+                crate::render::display_referred_wgsl,
                 PomParams::wgsl,
             ],
             files: &[

@@ -312,7 +312,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
             * direct_lighting(surface, normal, light.to_light, point.to_eye);
     }
 
-    // Data views carry DEBUG_VIEW_ALPHA: post-processing writes them as they are.
+    // Data views carry DEBUG_VIEW_ALPHA (generated): post-processing writes them as they are.
     switch DEBUG_VIEW {
         case DEBUG_LOD: {
             // T's tint: blue grows through the band; deepest blue where only normal mapping runs.

@@ -53,11 +53,6 @@ struct Frame {
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 
-// The alpha of a debug view's pixels (UV, mip, sample count, ...). A negative alpha `a` marks a
-// display-referred pixel: post-processing writes its colour as it is, without exposure or
-// tonemapping, with alpha −1 − a (the clear colour is one too). −2: opaque, data kept exact.
-const DEBUG_VIEW_ALPHA: f32 = -2.0;
-
 // Unit vector from a surface point towards the eye: along the view ray through that point,
 // which for an orthographic camera is the same everywhere.
 // A select, not a branch: a shadow map binds the frame at its own slot, and a branch on a

@@ -200,9 +200,13 @@ impl<'a> FramePasses<'a> {
     }
 }
 
-/// What the scene is cleared to: the clear colour as set, its negative alpha marking it
-/// display-referred (post_process.wgsl), so neither exposure nor tonemapping changes the
-/// background.
+/// What the scene is cleared to: the clear colour as set, marked display-referred
+/// (display_referred.rs), so neither exposure nor tonemapping changes the background.
 pub(super) fn clear_value(clear: crate::Color) -> [f32; 4] {
-    [clear.r, clear.g, clear.b, -1.0 - clear.a.clamp(0.0, 1.0)]
+    [
+        clear.r,
+        clear.g,
+        clear.b,
+        super::display_referred_alpha(clear.a),
+    ]
 }

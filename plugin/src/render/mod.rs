@@ -9,6 +9,7 @@
 pub mod anti_aliasing;
 mod capture;
 mod deferred_background;
+mod display_referred;
 mod error;
 mod extract;
 mod frame;
@@ -42,6 +43,8 @@ pub use anti_aliasing::{
 pub use capture::{capture, capture_f32, capture_scene};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
+pub(crate) use display_referred::display_referred_alpha;
+pub use display_referred::display_referred_wgsl;
 pub use error::RenderError;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use frame::{prepare_frame, render_frame};

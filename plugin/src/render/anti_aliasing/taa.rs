@@ -21,7 +21,10 @@ const GROUP: u32 = 16;
 /// The pass's shader.
 pub const TAA_SHADER: ComposedShader = ComposedShader {
     name: "taa.wgsl",
-    constants: &[crate::render::Tonemapping::wgsl_constants],
+    constants: &[
+        crate::render::Tonemapping::wgsl_constants,
+        crate::render::display_referred_wgsl,
+    ],
     files: &[crate::render::tonemapping::TONEMAPPING, TAA_ENTRY],
 };
 

@@ -88,7 +88,7 @@ fn from_ycocg(c: vec3<f32>) -> vec3<f32> {
 // A scene sample as the display shows it (before the sRGB curve).
 fn display_colour(sample: vec4<f32>) -> vec3<f32> {
     let colour = finite_colour(sample.rgb);
-    return select(tonemap(colour, taa_branches.tonemapping), colour, sample.a < 0.0);
+    return select(tonemap(colour, taa_branches.tonemapping), colour, is_display_referred(sample.a));
 }
 
 // Every history texel was written through `finite_colour`, so a filtered tap of it is finite.

@@ -12,7 +12,9 @@ use super::Tonemapping;
 use crate::gpu::{BindGroupCache, FullScreenPipeline};
 use crate::gpu::{GpuContext, PassTimestamps, layout};
 use crate::render::shaders::{self, ComposedShader, WgslFile};
-use crate::render::{FullScreenStage, PostImage, RenderTarget, TargetFormat};
+use crate::render::{
+    FullScreenStage, PostImage, RenderTarget, TargetFormat, display_referred_wgsl,
+};
 use crate::shader::Choice;
 
 /// Shared post-processing functions (settings, tonemapping, sRGB encoding).
@@ -37,21 +39,29 @@ pub(crate) fn rgba32f_output() -> String {
 /// Post-processing in compute, writing an 8-bit display target.
 pub const POST_COMPUTE_RGBA8: ComposedShader = ComposedShader {
     name: "post_compute.wgsl (rgba8unorm)",
-    constants: &[Tonemapping::wgsl_constants, rgba8_output],
+    constants: &[
+        Tonemapping::wgsl_constants,
+        display_referred_wgsl,
+        rgba8_output,
+    ],
     files: &[shaders::SRGB, TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
 };
 
 /// Post-processing in compute, writing a float display target.
 pub const POST_COMPUTE_RGBA32F: ComposedShader = ComposedShader {
     name: "post_compute.wgsl (rgba32float)",
-    constants: &[Tonemapping::wgsl_constants, rgba32f_output],
+    constants: &[
+        Tonemapping::wgsl_constants,
+        display_referred_wgsl,
+        rgba32f_output,
+    ],
     files: &[shaders::SRGB, TONEMAPPING, POST_PROCESS, POST_COMPUTE_ENTRY],
 };
 
 /// Post-processing as a full-screen triangle.
 pub const POST_FRAGMENT: ComposedShader = ComposedShader {
     name: "post_fragment.wgsl",
-    constants: &[Tonemapping::wgsl_constants],
+    constants: &[Tonemapping::wgsl_constants, display_referred_wgsl],
     files: &[
         shaders::SRGB,
         TONEMAPPING,

@@ -17,14 +17,13 @@ struct PostSettings {
 // The colour to tonemap: the scene's own, or TAA's history of it (the alpha stays the scene's).
 @group(0) @binding(3) var colour_source: texture_2d<f32>;
 
-// The display value of one pixel. A negative alpha `a` marks a display-referred pixel (the
-// clear colour, a debug view's data: `DEBUG_VIEW_ALPHA` in frame.wgsl): its colour is written
-// as it is, with alpha −1 − a.
+// The display value of one pixel. A display-referred pixel (the clear colour, a debug view's
+// data: render/display_referred.rs) is written as it is.
 fn post_process(pixel: vec2<u32>) -> vec4<f32> {
     let hdr = vec4<f32>(textureLoad(colour_source, pixel, 0).rgb, textureLoad(scene, pixel, 0).a);
     var display: vec4<f32>;
-    if hdr.a < 0.0 {
-        display = vec4<f32>(hdr.rgb, clamp(-1.0 - hdr.a, 0.0, 1.0));
+    if is_display_referred(hdr.a) {
+        display = vec4<f32>(hdr.rgb, displayed_alpha(hdr.a));
     } else {
         display = vec4<f32>(tonemap(hdr.rgb, settings.tonemapping), clamp(hdr.a, 0.0, 1.0));
     }
