@@ -131,12 +131,12 @@ struct GainParams {
     gain: f32,
 }
 
-/// A negative alpha marks a display-referred pixel (the clear colour), which it leaves alone.
+/// It leaves a display-referred pixel (the clear colour) alone.
 const GAIN: &str = "
 struct EffectParams { gain: f32 }
 fn effect(pixel: vec2<u32>) -> vec4<f32> {
     let colour = textureLoad(input, pixel, 0);
-    if colour.a < 0.0 {
+    if is_display_referred(colour.a) {
         return colour;
     }
     return vec4<f32>(from_linear(to_linear(colour.rgb) * params.gain), colour.a);
@@ -152,6 +152,20 @@ impl PostEffect for Gain {
         true
     }
 
+    /// Makes the pass on the first frame and uploads the gain when it changed; the bytes count
+    /// in the frame's uploads.
+    fn prepare(
+        &mut self,
+        resources: &mut pom::Resources,
+        _: pom::render::HdrInput,
+    ) -> Result<u64, RenderError> {
+        let frame = FrameView::of(resources)?;
+        let pass = self.pass.get_or_insert_with(|| {
+            FullScreenPass::with_params::<GainParams>(frame, PostStage::Hdr, "gain", GAIN)
+        });
+        Ok(pass.write_params(frame, &GainParams { gain: self.gain }))
+    }
+
     fn record(
         &mut self,
         frame: FrameView<'_>,
@@ -159,13 +173,17 @@ impl PostEffect for Gain {
         encoder: &mut pom::wgpu::CommandEncoder,
         time: Option<&PassTimestamps>,
     ) -> Result<Option<PostImage>, RenderError> {
-        let pass = self.pass.get_or_insert_with(|| {
-            FullScreenPass::with_params::<GainParams>(frame, PostStage::Hdr, "gain", GAIN)
-        });
-        pass.write_params(frame, &GainParams { gain: self.gain });
-        pass.record(frame, io, encoder, time)?;
+        if let Some(pass) = &mut self.pass {
+            pass.record(frame, io, encoder, time)?;
+        }
         Ok(None)
     }
+}
+
+/// The uniform bytes the app's last frame uploaded.
+fn uploaded(app: &App) -> u64 {
+    let renderer = app.resources.get::<pom::render::Renderer>().unwrap();
+    renderer.last_upload.uniform_bytes
 }
 
 #[test]
@@ -176,6 +194,8 @@ fn an_hdr_effect_with_parameters_darkens_the_scene_but_not_the_clear_colour() {
         pom::PostProcessPath::Fragment,
     ] {
         let mut plain = turned_square_with(render(path));
+        plain.update().unwrap();
+        let plain_upload = uploaded(&plain);
         let before = render_and_capture(&mut plain).unwrap();
         let mut app = turned_square_with(render(path));
         app.resources
@@ -184,7 +204,14 @@ fn an_hdr_effect_with_parameters_darkens_the_scene_but_not_the_clear_colour() {
                 gain: 0.0,
                 pass: None,
             });
-        run_frames(&mut app, 2).unwrap();
+        app.update().unwrap();
+        // The gain's bytes count in the frame's uploads.
+        assert_eq!(
+            uploaded(&app),
+            plain_upload + std::mem::size_of::<GainParams>() as u64,
+            "{path:?}"
+        );
+        run_frames(&mut app, 1).unwrap();
         let after = render_and_capture(&mut app).unwrap();
         assert!(timed_passes(&app).iter().any(|pass| pass == "gain"));
         // The square turns black; the clear colour, display-referred, stays.

@@ -128,12 +128,7 @@ fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(),
 
 /// Which of `nodes` have work this frame, in their order.
 fn running_nodes(resources: &Resources, nodes: &FrameNodes) -> Result<Vec<bool>, RenderError> {
-    let view = FrameView {
-        resources,
-        gpu: resources.require::<GpuContext>()?,
-        target: resources.require::<RenderTarget>()?,
-        has_camera: resources.require::<ExtractedFrame>()?.has_camera,
-    };
+    let view = FrameView::of(resources)?;
     Ok(nodes.iter().map(|node| node.work.runs(view)).collect())
 }
 
@@ -193,12 +188,7 @@ fn post_chain(
     renderer.assets.derived_builds_submitted();
     let mut images = std::mem::take(&mut renderer.post_images);
     let result = (|| {
-        let view = FrameView {
-            resources,
-            gpu: resources.require::<GpuContext>()?,
-            target: resources.require::<RenderTarget>()?,
-            has_camera: resources.require::<ExtractedFrame>()?.has_camera,
-        };
+        let view = FrameView::of(resources)?;
         // The chain's effects, and the frame nodes of the post and overlay phases, which
         // record after it.
         let mut links: Vec<ChainLink<'_>> = Vec::new();

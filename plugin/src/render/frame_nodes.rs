@@ -23,6 +23,21 @@ pub struct FrameView<'a> {
     pub has_camera: bool,
 }
 
+impl<'a> FrameView<'a> {
+    /// The frame as `resources` hold it: what an effect's `prepare` makes its GPU objects and
+    /// uploads with (an error names a missing resource).
+    pub fn of(resources: &'a Resources) -> Result<Self, RenderError> {
+        Ok(Self {
+            resources,
+            gpu: resources.require::<GpuContext>()?,
+            target: resources.require::<RenderTarget>()?,
+            has_camera: resources
+                .require::<crate::render::ExtractedFrame>()?
+                .has_camera,
+        })
+    }
+}
+
 /// A feature's work in a phase of the frame, recorded into the frame's encoder after the
 /// phase's own pass.
 pub trait FrameNode: 'static {

@@ -345,7 +345,8 @@ fn effect_source(
 ) -> String {
     let encoded = format == wgpu::TextureFormat::Rgba8Unorm;
     let mut source = format!(
-        "@group(0) @binding(0) var input: texture_2d<f32>;\nconst ENCODED_SRGB: bool = {encoded};\n"
+        "@group(0) @binding(0) var input: texture_2d<f32>;\nconst ENCODED_SRGB: bool = {encoded};\n{}",
+        crate::render::display_referred_wgsl()
     );
     if params {
         source.push_str("@group(0) @binding(1) var<storage, read> params: EffectParams;\n");
