@@ -179,27 +179,52 @@ pub enum PostChainError {
     },
 }
 
-/// The images between effects, for the current target: two of the scene's format and two of
-/// the display's, each made when first needed.
+/// Targets whose chain images are kept: a split view renders two each frame.
+const KEPT_TARGETS: usize = 2;
+
+/// The chain's images of the targets rendered last, at most [`KEPT_TARGETS`] (the least
+/// recently rendered is dropped first), so a frame that renders two targets makes none again.
 #[derive(Debug, Default)]
-pub(crate) struct PostImages {
+pub(crate) struct PostImages(Vec<TargetImages>);
+
+impl PostImages {
+    /// The images of `target`, made when it is new.
+    fn of_target(&mut self, target: &RenderTarget) -> Option<&mut TargetImages> {
+        let images = match self
+            .0
+            .iter()
+            .position(|images| images.target == target.id())
+        {
+            Some(at) => self.0.remove(at),
+            None => TargetImages::new(target),
+        };
+        if self.0.len() >= KEPT_TARGETS {
+            self.0.remove(0);
+        }
+        self.0.push(images);
+        self.0.last_mut()
+    }
+}
+
+/// The images between effects for one target: two of the scene's format and two of the
+/// display's, each made when first needed.
+#[derive(Debug)]
+struct TargetImages {
     target: u64,
-    scene: Option<PostImage>,
-    display: Option<PostImage>,
+    scene: PostImage,
+    display: PostImage,
     hdr: [Option<PostImage>; 2],
     between: [Option<PostImage>; 2],
 }
 
-impl PostImages {
-    /// Drops the images of another target.
-    fn follow(&mut self, target: &RenderTarget) {
-        if self.target != target.id() {
-            *self = Self {
-                target: target.id(),
-                scene: Some(PostImage::new(target.scene_view.clone())),
-                display: Some(PostImage::new(target.color_view.clone())),
-                ..Self::default()
-            };
+impl TargetImages {
+    fn new(target: &RenderTarget) -> Self {
+        Self {
+            target: target.id(),
+            scene: PostImage::new(target.scene_view.clone()),
+            display: PostImage::new(target.color_view.clone()),
+            hdr: Default::default(),
+            between: Default::default(),
         }
     }
 
@@ -280,10 +305,10 @@ pub(crate) fn record_chain(
     if conversions != 1 {
         return Err(PostChainError::DisplayConversions(conversions).into());
     }
-    images.follow(frame.target);
-    let (Some(scene), Some(display)) = (images.scene.clone(), images.display.clone()) else {
+    let Some(images) = images.of_target(frame.target) else {
         return Ok(());
     };
+    let (scene, display) = (images.scene.clone(), images.display.clone());
     let first_hdr = links
         .first()
         .filter(|link| link.effect.stage() == PostStage::Hdr);
