@@ -130,35 +130,49 @@ impl ResourceHolder for Resources {
 
 /// Takes `T` out of `holder`'s resources for `f` and puts it back when `f` returns, fails or
 /// panics (the guard's drop runs while unwinding): [`Resources::scope`] and
-/// [`crate::App::resource_scope`].
+/// [`crate::App::resource_scope`]. The value stays in its box: a scope moves and allocates
+/// nothing, however large `T` is.
 pub(crate) fn scoped<H: ResourceHolder, T: 'static, R>(
     holder: &mut H,
     f: impl FnOnce(&mut H, &mut T) -> R,
 ) -> Option<R> {
-    struct PutBack<'a, H: ResourceHolder, T: 'static> {
+    struct PutBack<'a, H: ResourceHolder> {
         holder: &'a mut H,
-        value: Option<T>,
+        value: Option<Box<dyn Any>>,
     }
-    impl<H: ResourceHolder, T: 'static> Drop for PutBack<'_, H, T> {
+    impl<H: ResourceHolder> Drop for PutBack<'_, H> {
         fn drop(&mut self) {
             if let Some(value) = self.value.take() {
-                self.holder.resources_mut().insert(value);
+                // Keyed by the value's own type, which is the scope's `T`.
+                let key = (*value).type_id();
+                self.holder.resources_mut().values.insert(key, value);
             }
         }
     }
-    let value = holder.resources_mut().remove::<T>()?;
+    let value = holder.resources_mut().values.remove(&TypeId::of::<T>())?;
     let mut guard = PutBack {
         holder,
         value: Some(value),
     };
     let PutBack { holder, value } = &mut guard;
-    let value = value.as_mut()?;
+    let value = value.as_mut()?.downcast_mut::<T>()?;
     Some(f(holder, value))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scope_leaves_the_value_where_it_is() {
+        let mut resources = Resources::default();
+        resources.insert([7_u8; 64]);
+        let at = |value: &[u8; 64]| value.as_ptr() as usize;
+        let before = at(resources.get::<[u8; 64]>().unwrap());
+        let during = resources.scope(|_, value: &mut [u8; 64]| at(value));
+        assert_eq!(during, Some(before));
+        assert_eq!(at(resources.get::<[u8; 64]>().unwrap()), before);
+    }
 
     #[test]
     fn insert_replaces_and_returns_previous_value() {

@@ -267,19 +267,22 @@ fn prepare_materials<M: Material>(
     _: &mut World,
     resources: &mut Resources,
 ) -> Result<(), AppError> {
-    // TAA's list of moving draws, where the anti-aliasing plugin keeps one.
-    let mut motions = resources.remove::<ObjectMotions>();
-    let prepared = resources.require_scope(|resources, batches: &mut MaterialBatches<M>| {
-        resources.require_scope(|resources, renderer: &mut Renderer| {
-            resources.require_scope(|resources, lod_cache: &mut MeshLodCache| {
-                prepare_frame(resources, batches, (renderer, lod_cache), motions.as_mut())
+    let prepare = |resources: &mut Resources, motions: Option<&mut ObjectMotions>| {
+        resources.require_scope(|resources, batches: &mut MaterialBatches<M>| {
+            resources.require_scope(|resources, renderer: &mut Renderer| {
+                resources.require_scope(|resources, lod_cache: &mut MeshLodCache| {
+                    prepare_frame(resources, batches, (renderer, lod_cache), motions)
+                })
             })
         })
-    });
-    if let Some(motions) = motions {
-        resources.insert(motions);
+    };
+    // With TAA's list of moving draws, where the anti-aliasing plugin keeps one.
+    match resources
+        .scope(|resources, motions: &mut ObjectMotions| prepare(resources, Some(motions)))
+    {
+        Some(prepared) => prepared,
+        None => prepare(resources, None),
     }
-    prepared
 }
 
 /// Prepares `batches` for this frame's extracted draws of `M`, hands the prepass its batches
