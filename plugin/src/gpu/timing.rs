@@ -32,7 +32,7 @@ pub enum TimingMode {
     Blocking,
 }
 
-/// The latest per-pass GPU durations. A resource, always present after [`super::RenderPlugin`].
+/// The latest per-pass GPU durations. A resource, always present after [`crate::render::RenderPlugin`].
 ///
 /// # Example
 /// ```no_run
@@ -391,7 +391,7 @@ pub fn resolve_gpu_timings(_: &mut hecs::World, resources: &mut Resources) -> Re
     Ok(())
 }
 
-/// Turns GPU timing on in `mode` (or off with `None`) for an app whose [`super::RenderPlugin`]
+/// Turns GPU timing on in `mode` (or off with `None`) for an app whose [`crate::render::RenderPlugin`]
 /// has finished; returns whether timing is now on. Without adapter support it stays off and
 /// [`GpuTimings::Unsupported`] says so.
 pub fn set_gpu_timing(resources: &mut Resources, mode: Option<TimingMode>) -> bool {
