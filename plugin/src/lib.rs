@@ -130,10 +130,12 @@ pub use parallax::{
     ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
+pub use render::environment::{EnvironmentError, EquirectImage, Sky};
 pub use render::{
     AntiAliasing, FastApproximateAntiAliasing, TemporalAntiAliasing, TemporalHistory,
     set_camera_anti_aliasing, set_camera_fxaa,
 };
+pub use render::{EnvironmentLight, EnvironmentSource};
 pub use render::{
     PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin, TargetFormat, capture,
     capture_f32, capture_scene,

@@ -21,10 +21,11 @@ pub use hecs::{Entity, World};
 
 pub use crate::{
     AmbientLight, AntiAliasing, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight,
-    Exposure, GlobalTransform, Handle, HeightSource, Image, LightShadows, LitMaterial, LitPlugin,
-    Material, MaterialPlugin, Mesh, ParallaxMethod, ParallaxOcclusionMaterial, Parent, Plugin,
-    PointLight, PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial, SpotLight, Stage,
-    TemporalAntiAliasing, Time, Tonemapping, Transform, capture, load_gltf, patterns,
+    EnvironmentLight, Exposure, GlobalTransform, Handle, HeightSource, Image, LightShadows,
+    LitMaterial, LitPlugin, Material, MaterialPlugin, Mesh, ParallaxMethod,
+    ParallaxOcclusionMaterial, Parent, Plugin, PointLight, PomPlugin, Projection, RenderPlugin,
+    Resources, ShadedMaterial, SpotLight, Stage, TemporalAntiAliasing, Time, Tonemapping,
+    Transform, capture, load_gltf, patterns,
 };
 // Writing a material: its parameters' limits and its shading file; a choice parameter's values
 // and names (`ParallaxMethod::VALUES`, `method.name()`).

@@ -87,6 +87,35 @@ fn ggx_lambert(surface: Surface, n_dot_l: f32, normal: vec3<f32>, to_light: vec3
     return (diffuse + specular.reflected) * n_dot_l;
 }
 
+// The light arriving from all around, reflected: with an environment, its irradiance on the
+// diffuse part and its radiance prefiltered at the surface's roughness on the specular part
+// (split sum, with multiple-scattering compensation where the frame asks), each darkened by its
+// own occlusion (x: diffuse, y: specular); without one, the ambient term on the albedo, darkened
+// by the diffuse occlusion. Composed after environment.wgsl.
+fn ambient_lighting(surface: Surface, normal: vec3<f32>, to_eye: vec3<f32>, occlusion: vec2<f32>) -> vec3<f32> {
+    if !has_environment() {
+        return frame.ambient.rgb * surface.albedo * occlusion.x;
+    }
+    let n_dot_v = clamp(dot(normal, to_eye), 1e-4, 1.0);
+    let reflected = reflect(-to_eye, normal);
+    let irradiance = environment_diffuse(normal) * occlusion.x;
+    if surface.model == LIGHTING_PHONG || surface.model == LIGHTING_BLINN_PHONG {
+        // The highlight's lobe s·(R·L)^n integrates to s·2/(n + 1) over the hemisphere; its
+        // width as a GGX roughness through Blinn-Phong's α² = 2 / (n + 2).
+        let roughness = sqrt(sqrt(2.0 / (surface.shininess + 2.0)));
+        let specular = surface.specular_strength * 2.0 / (surface.shininess + 1.0);
+        return surface.albedo * irradiance
+            + specular * environment_specular(reflected, roughness) * occlusion.y;
+    }
+    let roughness = clamp(surface.roughness, 0.03, 1.0);
+    let f0 = mix(vec3<f32>(0.04), surface.albedo, surface.metallic);
+    let split = environment_split_sum(n_dot_v, roughness);
+    let single = f0 * split.x + split.y;
+    let compensation = 1.0 + frame.environment_options.x * f0 * (1.0 / max(split.x + split.y, 1e-4) - 1.0);
+    let diffuse = surface.albedo * (1.0 - surface.metallic) * (vec3<f32>(1.0) - single);
+    return diffuse * irradiance + single * compensation * environment_specular(reflected, roughness) * occlusion.y;
+}
+
 // Reflected light for one light of unit radiance arriving from `to_light`.
 fn direct_lighting(surface: Surface, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
     let n_dot_l = max(dot(normal, to_light), 0.0);

@@ -41,9 +41,9 @@ fn shade(surface: SurfaceInput, material: LitParams) -> vec4<f32> {
     let reflecting = Surface(base.rgb, material.specular_strength, max(material.shininess, 1.0),
         material.roughness * metallic_roughness.g, material.metallic * metallic_roughness.b, material.lighting);
 
-    // glTF's occlusion darkens the indirect (ambient) light only.
+    // glTF's occlusion darkens the indirect light (ambient or environment) only.
     let occlusion = 1.0 + material.occlusion_strength * (texture_at(occlusion_texture, surface).r - 1.0);
-    var color = frame.ambient.rgb * base.rgb * occlusion + emissive;
+    var color = ambient_lighting(reflecting, normal, to_eye, vec2<f32>(occlusion)) + emissive;
     for (var i = 0u; i < light_count(); i += 1u) {
         let light = light_at(i, surface.position);
         // A light behind the perturbed normal reflects nothing: no shadow lookup for it.

@@ -101,6 +101,8 @@ macro_rules! lit_shader {
                 shaders::PARAMS,
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,
+                shaders::SPHERICAL_HARMONICS,
+                shaders::ENVIRONMENT,
                 shaders::TANGENT_SPACE,
                 crate::lighting::LIGHTING,
                 SURFACE_INPUT,

@@ -5,7 +5,7 @@
 use crate::gpu::GpuContext;
 use crate::render::object_buffer::ObjectBuffer;
 use crate::render::{
-    BoundResources, FrameUniformBuffer, MeshTransform, PhaseBindings, frame_group,
+    BoundResources, EnvironmentMaps, FrameUniformBuffer, MeshTransform, PhaseBindings, frame_group,
 };
 
 /// The buffers and textures group 0 binds.
@@ -67,6 +67,7 @@ fn frame_bind_group(
             wgpu::BindingResource::Sampler(depth.shadow_sampler),
         ),
     ];
+    entries.extend(depth.environment.entries());
     if bindings.visibility_keys {
         for binding in [frame_group::VISIBILITY_KEYS, frame_group::VISIBILITY_WORDS] {
             entries.push(entry(binding, visibility.as_entire_binding()));
@@ -218,6 +219,7 @@ impl FrameBindGroups {
             prepass_depth_entry(),
         ];
         entries.extend(shadow_entries());
+        entries.extend(EnvironmentMaps::layout_entries());
         if deferred {
             entries.extend(visibility_entries());
         }

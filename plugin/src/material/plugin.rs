@@ -147,7 +147,7 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             &phase_bindings(
                 renderer.depth_prepass,
                 &renderer.dummy_depth,
-                &renderer.shadow_maps,
+                (&renderer.shadow_maps, &renderer.environment),
                 (renderer.visibility.as_ref(), &renderer.dummy_visibility),
                 target,
             ),
@@ -299,7 +299,7 @@ fn prepare_frame<M: Material>(
     let depth: PhaseBindings<'_> = phase_bindings(
         renderer.depth_prepass,
         &renderer.dummy_depth,
-        &renderer.shadow_maps,
+        (&renderer.shadow_maps, &renderer.environment),
         (renderer.visibility.as_ref(), &renderer.dummy_visibility),
         target,
     );
@@ -450,8 +450,8 @@ mod tests {
         );
         assert_eq!(
             app.schedule.len(Stage::Extract),
-            7,
-            "core + tonemapping + shadows + anti-aliasing + two materials + the curved silhouette's mesh check"
+            8,
+            "core + tonemapping + shadows + anti-aliasing + environment + two materials + the curved silhouette's mesh check"
         );
     }
 

@@ -67,6 +67,8 @@ macro_rules! shaded_shader {
                 shaders::PARAMS,
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,
+                shaders::SPHERICAL_HARMONICS,
+                shaders::ENVIRONMENT,
                 shaders::TANGENT_SPACE,
                 SURFACE_INPUT,
                 <$T as ShadedMaterial>::SHADING,

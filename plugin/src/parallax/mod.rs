@@ -61,6 +61,8 @@ macro_rules! parallax_shader {
                 shaders::PARAMS,
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,
+                shaders::SPHERICAL_HARMONICS,
+                shaders::ENVIRONMENT,
                 shaders::PREPASS_DEPTH,
                 shaders::TANGENT_SPACE,
                 crate::lighting::LIGHTING,

@@ -270,7 +270,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,
         params.metallic, LIGHTING_MODEL);
 
-    var color = frame.ambient.rgb * base.rgb;
+    var color = ambient_lighting(surface, normal, point.to_eye, vec2<f32>(1.0));
     var first_visibility = 1.0;
     var first_scene_visibility = 1.0;
     // Scene shadows are looked up where the march found the surface, not on the polygon.

@@ -103,6 +103,9 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             // texture footprints' scale: still without anti-aliasing, which sets them.
             target_size: [target_size.0, target_size.1, 0, 0],
             texture_lod: [1.0, 0.0, 0.0, 0.0],
+            // No environment unless its feature sets one, after this extract.
+            environment: [0.0, 0.0, 1.0, 0.0],
+            environment_options: [0.0; 4],
             directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
             point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
         },

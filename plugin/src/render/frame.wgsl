@@ -47,6 +47,13 @@ struct Frame {
     // filter (1 without anti-aliasing): textures are sampled finer, and the jitter averages them
     // over the pixel (TAA) or FXAA softens their edges.
     texture_lod: vec4<f32>,
+    // x: what the environment's values are multiplied with (its intensity × the exposure), y:
+    // the radiance cube's mips (0: no environment, the ambient term lights instead; the last is
+    // roughness 1), zw: cosine and sine of its turn about +Y (environment.wgsl).
+    environment: vec4<f32>,
+    // x: 1 where the environment's specular gets back the energy a single scattering loses on
+    // rough surfaces (multiple-scattering compensation), else 0.
+    environment_options: vec4<f32>,
     directional_lights: array<DirectionalLight, MAX_DIRECTIONAL_LIGHTS>,
     point_lights: array<PointLight, MAX_POINT_LIGHTS>,
 }

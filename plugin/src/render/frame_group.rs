@@ -1,7 +1,7 @@
 //! Group 0 of every material pipeline, the frame's group: what the core binds at each binding.
 //! A material's shader declares its own per-draw array at [`MATERIAL_UNIFORMS`]; the rest are
 //! declared by the core's WGSL files (frame.wgsl, mesh_vertex.wgsl, prepass_depth.wgsl,
-//! shadows.wgsl, visibility.wgsl) and the composer (the test counter), under the names in
+//! shadows.wgsl, environment.wgsl, visibility.wgsl) and the composer (the test counter), under the names in
 //! [`DECLARED`].
 
 /// `frame`: the camera and lights (frame.wgsl).
@@ -25,6 +25,14 @@ pub const VISIBILITY_KEYS: u32 = 8;
 /// `visibility_words`: the same buffer as 32-bit words, for the depth a pixel has kept so far
 /// (WGSL's 64-bit atomics offer only min and max).
 pub const VISIBILITY_WORDS: u32 = 9;
+/// `environment_radiance_map`: the environment prefiltered by roughness, a cube (environment.wgsl).
+pub const ENVIRONMENT_RADIANCE: u32 = 10;
+/// `environment_split_sum_table`: the split-sum table (environment.wgsl).
+pub const ENVIRONMENT_SPLIT_SUM: u32 = 11;
+/// `environment_irradiance`: the environment's irradiance as spherical harmonics (environment.wgsl).
+pub const ENVIRONMENT_IRRADIANCE: u32 = 12;
+/// `environment_sampler`: the environment maps' trilinear sampler (environment.wgsl).
+pub const ENVIRONMENT_SAMPLER: u32 = 13;
 
 /// The WGSL name the core's files declare at each binding it owns.
 pub const DECLARED: &[(&str, u32)] = &[
@@ -37,6 +45,10 @@ pub const DECLARED: &[(&str, u32)] = &[
     ("shadow_sampler", SHADOW_SAMPLER),
     ("visibility_keys", VISIBILITY_KEYS),
     ("visibility_words", VISIBILITY_WORDS),
+    ("environment_radiance_map", ENVIRONMENT_RADIANCE),
+    ("environment_split_sum_table", ENVIRONMENT_SPLIT_SUM),
+    ("environment_irradiance", ENVIRONMENT_IRRADIANCE),
+    ("environment_sampler", ENVIRONMENT_SAMPLER),
 ];
 
 #[cfg(test)]
@@ -54,6 +66,8 @@ mod tests {
                 shaders::MESH_VERTEX,
                 shaders::PREPASS_DEPTH,
                 shaders::SHADOWS,
+                shaders::SPHERICAL_HARMONICS,
+                shaders::ENVIRONMENT,
                 shaders::VISIBILITY,
             ],
         };

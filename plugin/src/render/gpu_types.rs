@@ -121,6 +121,13 @@ pub struct FrameUniform {
     /// x: the scale of every texture read's gradients, 2 to the mip bias of TAA or the post filter
     /// (1 without anti-aliasing); yzw: 0.
     pub texture_lod: [f32; 4],
+    /// x: what the environment's values are multiplied with (its intensity × the exposure), y:
+    /// the radiance cube's mips (0: no environment, the ambient term lights instead; the last
+    /// is roughness 1), zw: cosine and sine of its rotation about +Y.
+    pub environment: [f32; 4],
+    /// x: 1 where the environment's specular gets back the energy a single scattering loses
+    /// on rough surfaces (multiple-scattering compensation), else 0.
+    pub environment_options: [f32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
     pub directional_lights: [DirectionalLightGpu; MAX_DIRECTIONAL_LIGHTS],
     /// The point and spot lights; only the first `light_counts.y` are used.
@@ -184,6 +191,8 @@ crate::wgsl_layout!(FrameUniform {
     light_counts,
     target_size,
     texture_lod,
+    environment,
+    environment_options,
     directional_lights,
     point_lights
 });

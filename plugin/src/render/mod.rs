@@ -10,6 +10,8 @@ pub mod anti_aliasing;
 mod capture;
 mod deferred_background;
 mod display_referred;
+pub mod environment;
+mod environment_maps;
 mod error;
 mod extract;
 mod frame;
@@ -45,6 +47,10 @@ pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
 pub(crate) use display_referred::display_referred_alpha;
 pub use display_referred::display_referred_wgsl;
+pub use environment::{EnvironmentLight, EnvironmentPlugin, EnvironmentSource};
+pub use environment_maps::{
+    ENVIRONMENT_FORMAT, EnvironmentMaps, EnvironmentTextures, IRRADIANCE_BYTES,
+};
 pub use error::RenderError;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use frame::{prepare_frame, render_frame};

@@ -3,9 +3,9 @@
 
 use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
-    DrawPhase, FrameNodes, FrameUniformBuffer, FullScreenStage, RenderPath, RenderPhases,
-    RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat, VISIBILITY_BYTES_PER_PIXEL,
-    VisibilityIds, extract_frame, prepare_frame, render_frame, target,
+    DrawPhase, EnvironmentMaps, FrameNodes, FrameUniformBuffer, FullScreenStage, RenderPath,
+    RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat,
+    VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame, target,
 };
 use crate::gpu::{
     GpuAssets, GpuContext, TimingMode, UploadStats, resolve_gpu_timings, set_gpu_timing,
@@ -167,6 +167,7 @@ impl Plugin for RenderPlugin {
                 mapped_at_creation: false,
             }),
             shadow_maps: ShadowMaps::new(gpu),
+            environment: EnvironmentMaps::new(gpu),
             path: self.path,
             deferred: false,
             ran_opaque_pass: false,

@@ -4,8 +4,9 @@
 
 use super::post_chain::PostImages;
 use super::{
-    DeferredBackground, DeferredUnavailable, FrameUniformBuffer, FullScreenStage, RenderPath,
-    RenderTarget, ShadowMaps, SortedDraws, VisibilityBuffer, VisibilityIds, render_path,
+    DeferredBackground, DeferredUnavailable, EnvironmentMaps, FrameUniformBuffer, FullScreenStage,
+    RenderPath, RenderTarget, ShadowMaps, SortedDraws, VisibilityBuffer, VisibilityIds,
+    render_path,
 };
 use crate::gpu::{GpuAssets, GpuContext, UploadStats};
 use crate::{Image, Mesh};
@@ -26,6 +27,8 @@ pub struct Renderer {
     pub(crate) dummy_visibility: wgpu::Buffer,
     /// Every light's shadow maps.
     pub(crate) shadow_maps: ShadowMaps,
+    /// The environment light's maps.
+    pub(crate) environment: EnvironmentMaps,
     /// The path asked for.
     pub(super) path: RenderPath,
     /// Whether this frame runs deferred (decided in the Prepare stage).
@@ -155,7 +158,7 @@ impl Renderer {
 pub(crate) fn phase_bindings<'a>(
     depth_prepass: bool,
     dummy: &'a wgpu::TextureView,
-    shadow_maps: &'a ShadowMaps,
+    (shadow_maps, environment): (&'a ShadowMaps, &'a EnvironmentMaps),
     (visibility, dummy_visibility): (Option<&'a VisibilityBuffer>, &'a wgpu::Buffer),
     target: &'a RenderTarget,
 ) -> PhaseBindings<'a> {
@@ -173,9 +176,11 @@ pub(crate) fn phase_bindings<'a>(
         dummy_shadow_maps: shadow_maps.dummy_view(),
         shadow_views: shadow_maps.views_buffer(),
         shadow_sampler: shadow_maps.sampler(),
+        environment,
         bound: BoundResources {
             target: target.id(),
             shadow_maps: shadow_maps.generation(),
+            environment: environment.generation(),
             has_visibility_buffer: visibility.is_some(),
         },
     }
@@ -218,6 +223,8 @@ pub(crate) struct PhaseBindings<'a> {
     pub(crate) shadow_views: &'a wgpu::Buffer,
     /// The shadow maps' comparison sampler.
     pub(crate) shadow_sampler: &'a wgpu::Sampler,
+    /// The environment light's maps.
+    pub(crate) environment: &'a EnvironmentMaps,
     /// The visibility keys the deferred path's prepass merges into (or the stand-in).
     pub(crate) visibility: &'a wgpu::Buffer,
     /// The one-key stand-in, bound where the keys are not written.
@@ -233,6 +240,8 @@ pub(crate) struct BoundResources {
     pub(crate) target: u64,
     /// The shadow-map texture's generation.
     pub(crate) shadow_maps: u64,
+    /// The environment maps' generation.
+    pub(crate) environment: u64,
     /// Whether the target's visibility buffer exists.
     pub(crate) has_visibility_buffer: bool,
 }

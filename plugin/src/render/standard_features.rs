@@ -2,6 +2,7 @@
 //! may leave out ([`super::RenderPlugin::without`]).
 
 use super::anti_aliasing::AntiAliasingPlugin;
+use super::environment::EnvironmentPlugin;
 use super::shadows::ShadowsPlugin;
 use super::tonemapping::TonemappingPlugin;
 use crate::App;
@@ -17,14 +18,17 @@ pub enum RenderFeature {
     AntiAliasing,
     /// The shadow maps' pass ([`ShadowsPlugin`]).
     SceneShadows,
+    /// Environment light and sky ([`EnvironmentPlugin`]).
+    Environment,
 }
 
 impl RenderFeature {
     /// Every standard feature, in the order they are added.
-    pub const ALL: [RenderFeature; 3] = [
+    pub const ALL: [RenderFeature; 4] = [
         RenderFeature::Tonemapping,
         RenderFeature::AntiAliasing,
         RenderFeature::SceneShadows,
+        RenderFeature::Environment,
     ];
 
     fn bit(self) -> u8 {
@@ -65,6 +69,9 @@ impl RenderFeatures {
                 }
                 RenderFeature::SceneShadows if !app.has_plugin::<ShadowsPlugin>() => {
                     app.add_plugin(ShadowsPlugin);
+                }
+                RenderFeature::Environment if !app.has_plugin::<EnvironmentPlugin>() => {
+                    app.add_plugin(EnvironmentPlugin);
                 }
                 _ => {}
             }
