@@ -135,7 +135,7 @@ pub use render::{
     AntiAliasing, FastApproximateAntiAliasing, TemporalAntiAliasing, TemporalHistory,
     set_camera_anti_aliasing, set_camera_fxaa,
 };
-pub use render::{EnvironmentLight, EnvironmentSource};
+pub use render::{EnvironmentLight, EnvironmentSettings, EnvironmentSource};
 pub use render::{
     PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin, TargetFormat, capture,
     capture_f32, capture_scene,

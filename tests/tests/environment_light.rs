@@ -5,8 +5,8 @@
 
 use glam::Vec3;
 use pom::{
-    AmbientLight, App, Assets, Camera, Color, EnvironmentLight, LightingModel, LitMaterial, Mesh,
-    RenderPath, RenderPlugin, TargetFormat, Tonemapping, Transform,
+    AmbientLight, App, Assets, Camera, Color, EnvironmentLight, EnvironmentSettings, LightingModel,
+    LitMaterial, Mesh, RenderPath, RenderPlugin, TargetFormat, Tonemapping, Transform,
 };
 use pom_tests::{HarnessError, in_error_scopes, set_path};
 
@@ -25,11 +25,13 @@ fn furnace(sphere: LitMaterial, energy_compensation: bool) -> Result<App, Harnes
         color: Color::WHITE,
         intensity: 0.0,
     });
-    app.insert_resource(EnvironmentLight {
-        resolution: 64,
-        energy_compensation,
-        ..EnvironmentLight::uniform([FURNACE; 3])
-    });
+    app.insert_resource(EnvironmentLight::uniform([FURNACE; 3]).with_settings(
+        EnvironmentSettings {
+            resolution: 64,
+            energy_compensation,
+            ..EnvironmentSettings::default()
+        },
+    ));
     let mesh = app
         .resources
         .get_mut::<Assets<Mesh>>()
@@ -180,10 +182,10 @@ fn a_mirror_ball_reflects_the_sky_where_the_model_puts_it_and_the_background_sho
         .unwrap();
     *app.world.get::<&mut Transform>(camera).unwrap() =
         Transform::from_translation(to_eye * 5.0).looking_at(Vec3::ZERO, Vec3::Y);
-    app.insert_resource(EnvironmentLight {
+    app.insert_resource(EnvironmentLight::sky().with_settings(EnvironmentSettings {
         resolution: 128,
-        ..EnvironmentLight::sky()
-    });
+        ..EnvironmentSettings::default()
+    }));
     app.world.spawn((
         pom::DirectionalLight {
             color: Color::WHITE,
@@ -229,6 +231,79 @@ fn a_mirror_ball_reflects_the_sky_where_the_model_puts_it_and_the_background_sho
     }
 }
 
+/// The cobblestones, head-on, lit by the furnace alone; returns the pre-exposed scene with the
+/// material's relief occlusion at `strength`.
+fn cobblestones_in_a_furnace(strength: f32, path: RenderPath) -> image::Rgba32FImage {
+    use pom::preview::PreviewView;
+    use pom_tests::pom_scene::{HeightMaterial, preview_app};
+    let textures = HeightMaterial {
+        // Deep grout: the border between two domes is a V whose sides rise by a quarter of the
+        // texture within a twentieth of it.
+        field: pom::patterns::cobblestones(128, 2),
+        height_scale: 0.25,
+    };
+    let mut app = preview_app(
+        SIZE,
+        TargetFormat::Float32,
+        &textures,
+        &PreviewView::default(),
+        |material| pom::ParallaxOcclusionMaterial {
+            relief_occlusion: strength,
+            shadows: pom::ShadowMode::Off,
+            ..material
+        },
+    )
+    .unwrap();
+    app.insert_resource(AmbientLight {
+        color: Color::WHITE,
+        intensity: 0.0,
+    });
+    for light in app.world.query_mut::<&mut pom::DirectionalLight>() {
+        light.intensity = 0.0;
+    }
+    app.insert_resource(EnvironmentLight::uniform([FURNACE; 3]).with_settings(
+        EnvironmentSettings {
+            resolution: 32,
+            ..EnvironmentSettings::default()
+        },
+    ));
+    set_path(&mut app, path);
+    in_error_scopes(&mut app, "relief occlusion", |app| {
+        app.update()?;
+        Ok(pom::capture_scene(app)?)
+    })
+    .unwrap()
+}
+
+#[test]
+fn the_relief_darkens_the_sky_light_in_its_grout_and_leaves_the_tops_open() {
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let open = cobblestones_in_a_furnace(0.0, path);
+        let occluded = cobblestones_in_a_furnace(1.0, path);
+        let mut ratios: Vec<f32> = open
+            .pixels()
+            .zip(occluded.pixels())
+            .map(|(open, occluded)| occluded.0[1] / open.0[1].max(1e-6))
+            .collect();
+        ratios.sort_by(f32::total_cmp);
+        let (darkest, median, brightest) = (
+            ratios[ratios.len() / 50],
+            ratios[ratios.len() / 2],
+            ratios[ratios.len() - 1],
+        );
+        println!(
+            "{path:?}: occluded / open, 2nd percentile {darkest:.3}, median {median:.3}, brightest {brightest:.3}"
+        );
+        // Nothing is brightened; the grout loses much of the sky, the stones' tops little.
+        assert!(brightest <= 1.0 + 1e-4, "{path:?}: {brightest}");
+        assert!(
+            darkest < 0.6,
+            "{path:?}: the darkest grout keeps {darkest} of the sky"
+        );
+        assert!(ratios[ratios.len() * 9 / 10] > 0.9, "{path:?}: {ratios:?}");
+    }
+}
+
 #[test]
 fn a_bad_environment_file_is_an_error_naming_it() {
     let dir = pom_tests::gltf_fixture::scratch_dir("bad-environment");
@@ -255,10 +330,12 @@ fn an_hdr_file_lights_like_the_same_uniform_radiance() {
     image::DynamicImage::ImageRgb32F(image).save(&path).unwrap();
     let material = white(LightingModel::GgxLambert, 0.5, 1.0);
     let mut app = furnace(material, true).unwrap();
-    app.insert_resource(EnvironmentLight {
-        resolution: 64,
-        ..EnvironmentLight::from_file(&path).unwrap()
-    });
+    app.insert_resource(EnvironmentLight::from_file(&path).unwrap().with_settings(
+        EnvironmentSettings {
+            resolution: 64,
+            ..EnvironmentSettings::default()
+        },
+    ));
     let fraction = reflected_fraction(&mut app, RenderPath::Forward);
     assert!((0.95..=1.05).contains(&fraction), "{fraction}");
 }

@@ -116,6 +116,12 @@ fn ambient_lighting(surface: Surface, normal: vec3<f32>, to_eye: vec3<f32>, occl
     return diffuse * irradiance + single * compensation * environment_specular(reflected, roughness) * occlusion.y;
 }
 
+// The specular occlusion that goes with an ambient occlusion `ao` (Lagarde & de Rousiers 2014,
+// "Moving Frostbite to PBR", §4.10.2): smooth surfaces seen head-on are occluded less.
+fn specular_occlusion(n_dot_v: f32, ao: f32, roughness: f32) -> f32 {
+    return clamp(pow(max(n_dot_v, 0.0) + ao, exp2(-16.0 * roughness - 1.0)) - 1.0 + ao, 0.0, 1.0);
+}
+
 // Reflected light for one light of unit radiance arriving from `to_light`.
 fn direct_lighting(surface: Surface, normal: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
     let n_dot_l = max(dot(normal, to_light), 0.0);

@@ -362,3 +362,43 @@ fn soft_shadow(
     let sharpness = SEED_SHADOW_SOFTENING * SEED_SHADOW_SOFTENING / max(softening, 1e-4);
     return clamp(1.0 - strongest * sharpness, 0.0, 1.0);
 }
+
+// Directions and steps of the relief's horizon search.
+const OCCLUSION_DIRECTIONS: u32 = 4u;
+const OCCLUSION_STEPS: u32 = 4u;
+
+// How much of the sky the relief leaves open above the point at `uv` of height `height`: in
+// each of four directions (turned by `turn`, a fraction of their spacing) the steepest rise of
+// the field within `radius` (texture units) is the horizon's slope s, under which a cosine-
+// weighted half of the hemisphere sees 1 / (1 + s²) (cos² of the horizon's elevation, GTAO's
+// slice integral for a normal along the polygon's). `height_scale` turns heights into texture
+// units; each step reads the mip whose texels are about as wide as the step, so a wide search
+// costs as little as a narrow one. 1: open sky, 0: buried.
+fn relief_occlusion(
+    height_texture: texture_2d<f32>,
+    height_sampler: sampler,
+    field: HeightField,
+    uv: vec2<f32>,
+    height: f32,
+    height_scale: f32,
+    radius: f32,
+    texels: f32,
+    turn: f32,
+) -> f32 {
+    var open = 0.0;
+    for (var d = 0u; d < OCCLUSION_DIRECTIONS; d += 1u) {
+        let angle = (f32(d) + turn) * (2.0 * 3.14159265 / f32(OCCLUSION_DIRECTIONS));
+        let direction = vec2<f32>(cos(angle), sin(angle));
+        var steepest = 0.0;
+        for (var s = 1u; s <= OCCLUSION_STEPS; s += 1u) {
+            let fraction = f32(s) / f32(OCCLUSION_STEPS);
+            let distance = radius * fraction * fraction;
+            let level = max(field.level, log2(max(distance * texels, 1.0)) - 1.0);
+            let texel = textureSampleLevel(height_texture, height_sampler, uv + direction * distance, level);
+            let rise = (height_in_channel(texel, field.channel, field.depth_convention) - height) * height_scale;
+            steepest = max(steepest, rise / distance);
+        }
+        open += 1.0 / (1.0 + steepest * steepest);
+    }
+    return open / f32(OCCLUSION_DIRECTIONS);
+}

@@ -204,6 +204,9 @@ crate::with_lighting_parameters! {
             shadow_softening: f32 = 0.58, ParamSpec::float(0.01, 100.0).editor(0.01, 4.0)
                 .logarithmic()
                 .applies_when(|material| material.shadows == ShadowMode::Soft);
+            /// How much the relief hides the environment's light where it hides the sky (the grout
+            /// between cobbles): 0 not at all, 1 as the height field's horizon says.
+            relief_occlusion: f32 = 1.0, ParamSpec::float(0.0, 1.0);
             /// Reflection model: Phong and Blinn-Phong use specular and shininess, Cook-Torrance
             /// and GGX-Lambert roughness and metallic.
             lighting: LightingModel = LightingModel::Phong, ParamSpec::choice::<LightingModel>()

@@ -254,6 +254,23 @@ fn displaced_depth(in: VertexOut, point: SurfacePoint) -> f32 {
     return max(clamp(clip.z / max(clip.w, 1e-30), 0.0, 1.0), in.clip_position.z);
 }
 
+// How much of the environment's diffuse (x) and specular (y) light reaches the visible point
+// past the relief (`relief_occlusion`, searched out to four times the height range), faded
+// with the march past the LOD threshold; 1 without an environment (the ambient term is left
+// as it was) or where the march did not run.
+fn environment_occlusion(in: VertexOut, point: SurfacePoint, surface: Surface, normal: vec3<f32>) -> vec2<f32> {
+    let strength = materials[in.object_index].params.relief_occlusion * (1.0 - point.fade);
+    if !has_environment() || !point.marched || strength <= 0.0 {
+        return vec2<f32>(1.0);
+    }
+    let material = materials[in.object_index];
+    let texels = max(material.height_texture_width, material.height_texture_height);
+    let open = relief_occlusion(height_texture, material_sampler, point.field, point.uv, point.height,
+        point.height_scale, 4.0 * point.height_scale, texels, shadow_tap_shift(in.clip_position.xy) + 0.5);
+    let diffuse = mix(1.0, open, strength);
+    return vec2<f32>(diffuse, specular_occlusion(dot(normal, point.to_eye), diffuse, surface.roughness));
+}
+
 fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
     let material = materials[in.object_index];
     let params = material.params;
@@ -270,7 +287,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,
         params.metallic, LIGHTING_MODEL);
 
-    var color = ambient_lighting(surface, normal, point.to_eye, vec2<f32>(1.0));
+    var color = ambient_lighting(surface, normal, point.to_eye, environment_occlusion(in, point, surface, normal));
     var first_visibility = 1.0;
     var first_scene_visibility = 1.0;
     // Scene shadows are looked up where the march found the surface, not on the polygon.

@@ -47,7 +47,9 @@ pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
 pub(crate) use display_referred::display_referred_alpha;
 pub use display_referred::display_referred_wgsl;
-pub use environment::{EnvironmentLight, EnvironmentPlugin, EnvironmentSource};
+pub use environment::{
+    EnvironmentLight, EnvironmentPlugin, EnvironmentSettings, EnvironmentSource,
+};
 pub use environment_maps::{
     ENVIRONMENT_FORMAT, EnvironmentMaps, EnvironmentTextures, IRRADIANCE_BYTES,
 };

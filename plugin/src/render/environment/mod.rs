@@ -11,18 +11,18 @@
 //! runs and materials light with the ambient term as before.
 
 mod background;
+mod light;
 mod prefilter;
 mod sky;
 mod source;
 mod split_sum;
 
 pub use background::{BACKGROUND, BACKGROUND_ENTRY};
+pub use light::{EnvironmentLight, EnvironmentSettings, MAX_ENVIRONMENT_RESOLUTION};
 pub use prefilter::{ENVIRONMENT_SOURCE, PREFILTER, PREFILTER_ENTRY, SKY, radiance_levels};
 pub use sky::{DEFAULT_SUN, Sky, SkyParams, SkyState};
 pub use source::{EnvironmentError, EnvironmentSource, EquirectImage};
 pub use split_sum::{SPLIT_SUM_SIZE, analytic_fit, split_sum, split_sum_table};
-
-use std::path::Path;
 
 use background::{Background, BackgroundView};
 use prefilter::{Capture, EnvironmentGpu};
@@ -39,74 +39,6 @@ use crate::{App, AppError, DirectionalLight, Plugin, Resources, Stage};
 pub const ENVIRONMENT_PREFILTER_NODE: &str = "environment prefilter";
 /// The node the background is timed under.
 pub const ENVIRONMENT_BACKGROUND_NODE: &str = "environment background";
-
-/// Largest side of the radiance cube an [`EnvironmentLight::resolution`] may ask for.
-pub const MAX_ENVIRONMENT_RESOLUTION: u32 = 2048;
-
-/// The light arriving from all around the scene, and whether it is drawn behind it. A resource:
-/// one environment lights the whole world (every material's group 0 binds the same maps), as
-/// the world has one sky; a camera does not carry its own.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EnvironmentLight {
-    /// Where its radiance comes from.
-    pub source: EnvironmentSource,
-    /// Multiplies the source's radiance (not finite or < 0: 0, no light).
-    pub intensity: f32,
-    /// Its turn about +Y, in radians.
-    pub rotation: f32,
-    /// Texels along a side of the radiance cube's largest mip (a power of two, 16 to
-    /// [`MAX_ENVIRONMENT_RESOLUTION`]; other values are rounded up and clamped).
-    pub resolution: u32,
-    /// Draw it behind the scene (else the camera's clear colour stays there).
-    pub background: bool,
-    /// Give rough surfaces' specular back the energy a single scattering loses (Fdez-Agüera's
-    /// multiple-scattering compensation): a rough metal is then as bright as a smooth one
-    /// under the same light, as measured metals are.
-    pub energy_compensation: bool,
-}
-
-impl Default for EnvironmentLight {
-    /// Off, at intensity 1, unturned, a 256-texel cube, drawn behind the scene when on, with
-    /// energy compensation.
-    fn default() -> Self {
-        Self {
-            source: EnvironmentSource::Off,
-            intensity: 1.0,
-            rotation: 0.0,
-            resolution: 256,
-            background: true,
-            energy_compensation: true,
-        }
-    }
-}
-
-impl EnvironmentLight {
-    /// The default sky (Preetham, its sun at the first directional light).
-    pub fn sky() -> Self {
-        Self {
-            source: EnvironmentSource::Sky(Sky::default()),
-            ..Self::default()
-        }
-    }
-
-    /// The same `radiance` (linear RGB, cd/m²) from every direction.
-    pub fn uniform(radiance: [f32; 3]) -> Self {
-        Self {
-            source: EnvironmentSource::Uniform(radiance),
-            ..Self::default()
-        }
-    }
-
-    /// An equirectangular `.hdr` or `.exr` image read from `path` ([`EquirectImage::read`]).
-    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, EnvironmentError> {
-        Ok(Self {
-            source: EnvironmentSource::Equirect(std::sync::Arc::new(EquirectImage::read(
-                path.as_ref(),
-            )?)),
-            ..Self::default()
-        })
-    }
-}
 
 /// Lights the scene with the [`EnvironmentLight`] resource and draws it behind the scene (the
 /// render plugin adds it with its standard features; without the resource nothing runs).
@@ -153,11 +85,12 @@ fn extract_environment(world: &mut hecs::World, resources: &mut Resources) -> Re
         .get::<EnvironmentLight>()
         .cloned()
         .unwrap_or_default();
+    let settings = light.settings.sanitized();
     let extracted = resources.require_mut::<ExtractedFrame>()?;
-    let size = light
+    let size = settings
         .resolution
-        .clamp(16, MAX_ENVIRONMENT_RESOLUTION)
-        .next_power_of_two();
+        .next_power_of_two()
+        .min(MAX_ENVIRONMENT_RESOLUTION);
     let mut capture = Capture {
         kind: SourceKind::Uniform,
         uniform: [0.0; 3],
@@ -200,12 +133,8 @@ fn extract_environment(world: &mut hecs::World, resources: &mut Resources) -> Re
             capture.image = Some(image.clone());
         }
     }
-    let scale = usable(light.intensity) * extracted.exposure.multiplier();
-    let rotation = if light.rotation.is_finite() {
-        light.rotation
-    } else {
-        0.0
-    };
+    let scale = settings.intensity * extracted.exposure.multiplier();
+    let rotation = settings.rotation.to_radians();
     extracted.frame.environment = [
         scale / capture.radiance_scale,
         radiance_levels(size) as f32,
@@ -213,14 +142,14 @@ fn extract_environment(world: &mut hecs::World, resources: &mut Resources) -> Re
         rotation.sin(),
     ];
     extracted.frame.environment_options = [
-        f32::from(u8::from(light.energy_compensation)),
+        f32::from(u8::from(settings.energy_compensation)),
         0.0,
         0.0,
         0.0,
     ];
     resources.insert(EnvironmentFrame {
         capture: Some(capture),
-        background: light.background.then_some((rotation, scale)),
+        background: settings.background.then_some((rotation, scale)),
     });
     Ok(())
 }
