@@ -130,7 +130,7 @@ pub use parallax::{
     ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
-pub use render::environment::{EnvironmentError, EquirectImage, Sky};
+pub use render::environment::{EnvironmentChoice, EnvironmentError, EquirectImage, Sky};
 pub use render::{
     AntiAliasing, FastApproximateAntiAliasing, TemporalAntiAliasing, TemporalHistory,
     set_camera_anti_aliasing, set_camera_fxaa,

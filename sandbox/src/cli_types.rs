@@ -464,3 +464,55 @@ mod tests {
         }
     }
 }
+
+/// The light from all around the scene: `--environment` and its parameters.
+#[derive(Clone, Debug, clap::Args)]
+#[command(next_help_heading = "Environment")]
+pub struct EnvironmentArgs {
+    /// The light from all around the scene, drawn behind it: off, sky (a daylight sky whose
+    /// sun is the scene's first directional light), uniform:R,G,B (a constant radiance in
+    /// cd/m²) or the path of an equirectangular .hdr or .exr image [default: off].
+    #[arg(long, value_name = "PATH|sky|off|uniform:R,G,B", value_parser = parse_environment)]
+    pub environment: Option<pom::EnvironmentChoice>,
+    /// The environment's parameters: `--environment-intensity`, `--environment-rotation` (in
+    /// degrees) and the rest of its table.
+    #[command(flatten)]
+    pub environment_settings: SettingsArgs<pom::EnvironmentSettings>,
+}
+
+/// `--environment`'s value, as [`pom::EnvironmentChoice`] reads it.
+fn parse_environment(text: &str) -> Result<pom::EnvironmentChoice, String> {
+    text.parse()
+        .map_err(|error: pom::EnvironmentError| error.to_string())
+}
+
+impl EnvironmentArgs {
+    /// The environment the flags name, its file read (before the GPU starts, so a bad file
+    /// is reported alone); `None` without `--environment`.
+    pub fn light(&self) -> anyhow::Result<Option<pom::EnvironmentLight>> {
+        let Some(choice) = &self.environment else {
+            return Ok(None);
+        };
+        Ok(Some(pom::EnvironmentLight {
+            source: choice.load()?,
+            settings: self.environment_settings.settings(),
+        }))
+    }
+}
+
+/// An illuminance in lux: finite and ≥ 0.
+pub fn parse_lux(text: &str) -> Result<f32, String> {
+    let value = parse_finite(text)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(format!("{value} lux is negative"))
+    }
+}
+
+/// Sets every directional light of `world` to `lux` (0: no direct sunlight).
+pub fn set_sun_illuminance(world: &mut World, lux: f32) {
+    for light in world.query_mut::<&mut DirectionalLight>() {
+        light.intensity = lux;
+    }
+}

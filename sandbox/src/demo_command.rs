@@ -9,7 +9,7 @@ use clap::Args;
 use pom::hecs::World;
 use pom::{ParallaxOcclusionMaterial, PomPreset};
 
-use crate::cli_types::{DisplayArgs, PathArgs, ShadowArgs, parse_size};
+use crate::cli_types::{DisplayArgs, EnvironmentArgs, PathArgs, ShadowArgs, parse_size};
 use crate::material_args::parse_preset;
 use crate::{demo_scene, frame_output};
 
@@ -36,6 +36,8 @@ pub struct DemoArgs {
     #[command(flatten)]
     pub display: DisplayArgs,
     #[command(flatten)]
+    pub environment: EnvironmentArgs,
+    #[command(flatten)]
     pub shadows: ShadowArgs,
     #[command(flatten)]
     pub path: PathArgs,
@@ -44,12 +46,16 @@ pub struct DemoArgs {
 /// Renders the demo scene and writes it to `args.out`.
 pub fn run(args: &DemoArgs) -> Result<()> {
     let (width, height) = args.size;
+    let environment = args.environment.light()?;
     let mut app = pom::App::new();
     app.add_plugin(args.path.apply(pom::RenderPlugin::new(width, height)))
         .add_plugin(pom::PomPlugin);
     demo_scene::spawn(&mut app)?;
     if let Some(preset) = &args.preset {
         apply_to_every_material(&mut app.world, preset);
+    }
+    if let Some(environment) = environment {
+        app.insert_resource(environment);
     }
     args.display.apply(&mut app);
     args.shadows.apply(&mut app.world);

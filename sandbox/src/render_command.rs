@@ -14,9 +14,11 @@ use pom::{
     RenderPlugin, TargetFormat,
 };
 
+use crate::cli_types::set_sun_illuminance;
 use crate::cli_types::{
-    CameraArg, DisplayArgs, PathArgs, ProjectionArg, ShadowArgs, ShapeArg, parse_camera,
-    parse_finite, parse_png_path, parse_positive, parse_size, parse_view_angle,
+    CameraArg, DisplayArgs, EnvironmentArgs, PathArgs, ProjectionArg, ShadowArgs, ShapeArg,
+    parse_camera, parse_finite, parse_lux, parse_png_path, parse_positive, parse_size,
+    parse_view_angle,
 };
 use crate::frame_output;
 use crate::material_args::{self, MaterialArgs, choice_parser};
@@ -85,9 +87,27 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub display: DisplayArgs,
     #[command(flatten)]
+    pub environment: EnvironmentArgs,
+    /// Illuminance of the sun (every directional light, the preview's or the scene's) in lux;
+    /// 0: no direct sunlight [default: as the scene says; the preview's sun 100,000].
+    #[arg(long, value_name = "LUX", value_parser = parse_lux, help_heading = "Environment")]
+    pub light_intensity: Option<f32>,
+    #[command(flatten)]
     pub shadows: ShadowArgs,
     #[command(flatten)]
     pub path: PathArgs,
+}
+
+impl RenderArgs {
+    /// Puts the environment and the sun's illuminance the flags give on `app`.
+    fn apply_lights(&self, app: &mut App, environment: Option<pom::EnvironmentLight>) {
+        if let Some(environment) = environment {
+            app.insert_resource(environment);
+        }
+        if let Some(lux) = self.light_intensity {
+            set_sun_illuminance(&mut app.world, lux);
+        }
+    }
 }
 
 /// Where the picture goes.
@@ -316,6 +336,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
     let settings = args.material_settings();
     settings.validate().context("invalid material")?;
     let textures = PreviewTextures::load(&args.texture_files(), settings.height_scale)?;
+    let environment = args.environment.light()?;
 
     let mut app = headless_app(&args.output, args.path);
     let images = app
@@ -324,6 +345,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
         .context("the render plugin provides no image store")?;
     let material = textures.attach(images, settings);
     spawn_preview(&mut app, material, &args.view()).context("setting up the preview")?;
+    args.apply_lights(&mut app, environment);
     args.display.apply(&mut app);
     args.shadows.apply(&mut app.world);
     render_and_write(
@@ -337,6 +359,7 @@ fn render_material(args: &RenderArgs) -> Result<()> {
 /// Loads the `--scene` file, picks its camera and lights, renders it. The GPU starts only once
 /// the file has loaded, for the same reason as above.
 fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
+    let environment = args.environment.light()?;
     let mut app = headless_app(&args.output, args.path);
     let (width, height) = args.output.size;
     let preview = ScenePreview {
@@ -347,6 +370,7 @@ fn render_scene(args: &RenderArgs, path: &Path) -> Result<()> {
         debug_view: args.output.debug_view,
     };
     scene_preview::spawn(&mut app, &preview)?;
+    args.apply_lights(&mut app, environment);
     args.display.apply(&mut app);
     args.shadows.apply(&mut app.world);
     render_and_write(

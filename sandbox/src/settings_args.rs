@@ -27,6 +27,11 @@ impl FlagSettings for pom::TemporalAntiAliasing {
     const TITLE: &'static str = "TAA";
 }
 
+impl FlagSettings for pom::EnvironmentSettings {
+    const PREFIX: &'static str = "environment";
+    const TITLE: &'static str = "the environment";
+}
+
 impl FlagSettings for pom::FastApproximateAntiAliasing {
     const PREFIX: &'static str = "fxaa";
     const TITLE: &'static str = "FXAA";

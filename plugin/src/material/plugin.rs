@@ -450,8 +450,8 @@ mod tests {
         );
         assert_eq!(
             app.schedule.len(Stage::Extract),
-            8,
-            "core + tonemapping + shadows + anti-aliasing + environment + two materials + the curved silhouette's mesh check"
+            9,
+            "core + lights + tonemapping + shadows + anti-aliasing + environment + two materials + the curved silhouette's mesh check"
         );
     }
 

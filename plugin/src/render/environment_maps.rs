@@ -1,31 +1,24 @@
-//! The environment light's maps as every material's group 0 binds them (bindings
-//! [`frame_group::ENVIRONMENT_RADIANCE`](super::frame_group::ENVIRONMENT_RADIANCE) to
-//! [`frame_group::ENVIRONMENT_SAMPLER`](super::frame_group::ENVIRONMENT_SAMPLER), read through
-//! `environment.wgsl`): the prefiltered radiance cube, the split-sum table and the irradiance's
-//! spherical harmonics. The environment feature (`render/environment/`) makes them; until it
-//! installs some, 1-texel stand-ins are bound and the frame uniform's `environment.y` is 0, so
-//! materials light with the ambient term alone. Like the shadow maps, the slots belong to the
-//! frame's bindings so that every material reads them whether or not the feature is in the app.
+//! The environment light's maps in every material's group 0 (bindings 10 to 13, read through
+//! `environment/environment.wgsl`), which the environment feature fills; until it does,
+//! 1-texel stand-ins are bound and `frame.environment.y` is 0 (the ambient term lights). Like
+//! the shadow maps, the slots belong to the frame so that every material can read them.
 
 use crate::gpu::GpuContext;
 
 /// The format of the radiance cube and the split-sum table.
 pub const ENVIRONMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// Bytes of the irradiance's nine spherical-harmonic coefficients, a `vec4` each
-/// (`EnvironmentIrradiance` in environment.wgsl).
+/// Bytes of the irradiance's nine spherical-harmonic coefficients, a `vec4` each.
 pub const IRRADIANCE_BYTES: u64 = 9 * 16;
 
 /// What the environment feature hands the frame's bindings.
 #[derive(Debug, Clone)]
 pub struct EnvironmentTextures {
-    /// The radiance cube: mip 0 the environment itself, mip `m` blurred by a GGX lobe of
-    /// perceptual roughness `m / (mips − 1)`.
+    /// The radiance cube, mip `m` blurred by GGX of perceptual roughness `m / (mips − 1)`.
     pub radiance: wgpu::TextureView,
     /// The split-sum table: at (N·V, roughness), the scale (x) and bias (y) of F0.
     pub split_sum: wgpu::TextureView,
-    /// A uniform buffer of [`IRRADIANCE_BYTES`]: irradiance / π as nine spherical-harmonic
-    /// coefficients (rgb in each `vec4`), the cosine lobe's convolution folded in.
+    /// Irradiance / π as nine spherical harmonics (a uniform of [`IRRADIANCE_BYTES`]).
     pub irradiance: wgpu::Buffer,
 }
 
@@ -39,36 +32,40 @@ pub struct EnvironmentMaps {
     generation: u64,
 }
 
-fn stand_in_texture(gpu: &GpuContext, layers: u32, label: &str) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: 1,
-            height: 1,
-            depth_or_array_layers: layers,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: ENVIRONMENT_FORMAT,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[],
-    })
-}
-
 impl EnvironmentMaps {
     /// No environment yet: the stand-ins are bound.
     pub fn new(gpu: &GpuContext) -> Self {
-        let cube = stand_in_texture(gpu, 6, "environment radiance stand-in");
-        let table = stand_in_texture(gpu, 1, "environment split-sum stand-in");
+        // One black texel on six layers: a cube to one binding, a 2D texture to the other.
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("environment stand-in"),
+            size: wgpu::Extent3d {
+                width: 1,
+                height: 1,
+                depth_or_array_layers: 6,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: ENVIRONMENT_FORMAT,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let view = |dimension| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(dimension),
+                array_layer_count: Some(if dimension == wgpu::TextureViewDimension::Cube {
+                    6
+                } else {
+                    1
+                }),
+                ..Default::default()
+            })
+        };
         Self {
             installed: None,
             stand_in: EnvironmentTextures {
-                radiance: cube.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::Cube),
-                    ..Default::default()
-                }),
-                split_sum: table.create_view(&Default::default()),
+                radiance: view(wgpu::TextureViewDimension::Cube),
+                split_sum: view(wgpu::TextureViewDimension::D2),
                 irradiance: gpu.device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("environment irradiance stand-in"),
                     size: IRRADIANCE_BYTES,
@@ -115,65 +112,54 @@ impl EnvironmentMaps {
 
     /// The layout entries of bindings 10 to 13 of group 0.
     pub fn layout_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
-        use super::frame_group::{
-            ENVIRONMENT_IRRADIANCE, ENVIRONMENT_RADIANCE, ENVIRONMENT_SAMPLER,
-            ENVIRONMENT_SPLIT_SUM,
+        let texture = |view_dimension| wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension,
+            multisampled: false,
         };
-        let visibility = wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE);
-        let texture = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension,
-                multisampled: false,
-            },
+        let irradiance = wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(IRRADIANCE_BYTES),
+        };
+        let types = [
+            texture(wgpu::TextureViewDimension::Cube),
+            texture(wgpu::TextureViewDimension::D2),
+            irradiance,
+            wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        ];
+        std::array::from_fn(|i| wgpu::BindGroupLayoutEntry {
+            binding: BINDINGS[i],
+            visibility: wgpu::ShaderStages::FRAGMENT.union(wgpu::ShaderStages::COMPUTE),
+            ty: types[i],
             count: None,
-        };
-        [
-            texture(ENVIRONMENT_RADIANCE, wgpu::TextureViewDimension::Cube),
-            texture(ENVIRONMENT_SPLIT_SUM, wgpu::TextureViewDimension::D2),
-            wgpu::BindGroupLayoutEntry {
-                binding: ENVIRONMENT_IRRADIANCE,
-                visibility,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(IRRADIANCE_BYTES),
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: ENVIRONMENT_SAMPLER,
-                visibility,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
-        ]
+        })
     }
 
     /// The bind group entries of bindings 10 to 13.
     pub fn entries(&self) -> [wgpu::BindGroupEntry<'_>; 4] {
-        use super::frame_group::{
-            ENVIRONMENT_IRRADIANCE, ENVIRONMENT_RADIANCE, ENVIRONMENT_SAMPLER,
-            ENVIRONMENT_SPLIT_SUM,
-        };
         let bound = self.bound();
+        let [radiance, split_sum, irradiance, sampler] = BINDINGS;
         let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
         [
             entry(
-                ENVIRONMENT_RADIANCE,
+                radiance,
                 wgpu::BindingResource::TextureView(&bound.radiance),
             ),
             entry(
-                ENVIRONMENT_SPLIT_SUM,
+                split_sum,
                 wgpu::BindingResource::TextureView(&bound.split_sum),
             ),
-            entry(ENVIRONMENT_IRRADIANCE, bound.irradiance.as_entire_binding()),
-            entry(
-                ENVIRONMENT_SAMPLER,
-                wgpu::BindingResource::Sampler(&self.sampler),
-            ),
+            entry(irradiance, bound.irradiance.as_entire_binding()),
+            entry(sampler, wgpu::BindingResource::Sampler(&self.sampler)),
         ]
     }
 }
+
+/// The bindings of the radiance cube, the split-sum table, the irradiance and the sampler.
+const BINDINGS: [u32; 4] = [
+    super::frame_group::ENVIRONMENT_RADIANCE,
+    super::frame_group::ENVIRONMENT_SPLIT_SUM,
+    super::frame_group::ENVIRONMENT_IRRADIANCE,
+    super::frame_group::ENVIRONMENT_SAMPLER,
+];

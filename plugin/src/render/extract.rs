@@ -9,8 +9,7 @@ use super::gpu_types::{
 };
 use super::target::RenderTarget;
 use crate::{
-    AmbientLight, AppError, Camera, Color, DirectionalLight, Exposure, GlobalTransform, PointLight,
-    Projection, Resources, SpotLight,
+    AmbientLight, AppError, Camera, Color, Exposure, GlobalTransform, Projection, Resources,
 };
 
 /// Everything the Prepare and Render stages read about the current frame.
@@ -70,8 +69,8 @@ fn columns(matrix: Mat4) -> [[f32; 4]; 4] {
     matrix.to_cols_array_2d()
 }
 
-/// The Extract stage's system: reads the camera and the lights into [`ExtractedFrame`] (each
-/// material's plugin extracts its own draws).
+/// The Extract stage's system: reads the camera and the ambient light into [`ExtractedFrame`]
+/// (the lights feature adds the lights; each material's plugin extracts its own draws).
 pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(), AppError> {
     let target = resources.require::<RenderTarget>()?;
     let (aspect, target_size) = (target.aspect(), target.size());
@@ -87,40 +86,34 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
     // its 16-bit floats, and unlit and emissive colours then show as authored at any exposure.
     let light_scale = std::f32::consts::FRAC_1_PI * exposure.multiplier();
     let ambient_radiance = radiance(ambient.color, ambient.intensity, light_scale);
-    let mut lights = LightExtraction {
-        frame: FrameUniform {
-            view_projection: columns(view.view_projection),
-            camera_position: view.position.extend(1.0).into(),
-            view_direction: view.direction.into(),
-            ambient: [
-                ambient_radiance[0],
-                ambient_radiance[1],
-                ambient_radiance[2],
-                0.0,
-            ],
-            light_counts: [0; 4],
-            // z: the seed of per-frame noise, w: whether it moves from frame to frame, and the
-            // texture footprints' scale: still without anti-aliasing, which sets them.
-            target_size: [target_size.0, target_size.1, 0, 0],
-            texture_lod: [1.0, 0.0, 0.0, 0.0],
-            // No environment unless its feature sets one, after this extract.
-            environment: [0.0, 0.0, 1.0, 0.0],
-            environment_options: [0.0; 4],
-            directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
-            point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
-        },
-        entities: LightEntities::default(),
-        light_scale,
+    let frame = FrameUniform {
+        view_projection: columns(view.view_projection),
+        camera_position: view.position.extend(1.0).into(),
+        view_direction: view.direction.into(),
+        ambient: [
+            ambient_radiance[0],
+            ambient_radiance[1],
+            ambient_radiance[2],
+            0.0,
+        ],
+        light_counts: [0; 4],
+        // z: the seed of per-frame noise, w: whether it moves from frame to frame, and the
+        // texture footprints' scale: still without anti-aliasing, which sets them.
+        target_size: [target_size.0, target_size.1, 0, 0],
+        texture_lod: [1.0, 0.0, 0.0, 0.0],
+        // No environment unless its feature sets one, after this extract.
+        environment: [0.0, 0.0, 1.0, 0.0],
+        environment_options: [0.0; 4],
+        // The lights are the lights feature's (render/lights/), extracted after this.
+        directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
+        point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
     };
-    let directional_count = lights.directional_lights(world);
-    let point_count = lights.point_and_spot_lights(world);
-    lights.frame.light_counts = [directional_count as u32, point_count as u32, 0, 0];
     resources.insert(ExtractedFrame {
-        frame: lights.frame,
+        frame,
         clear_color: view.clear_color,
         exposure,
         camera,
-        lights: lights.entities,
+        lights: LightEntities::default(),
         shadow_views: Vec::new(),
         has_camera: camera.is_some(),
     });
@@ -163,7 +156,7 @@ impl CameraView {
 
 /// What the shaders multiply with the albedo for a light of `color` and `intensity` (lux or
 /// candela; not finite or negative: none), pre-exposed by `light_scale`.
-fn radiance(color: Color, intensity: f32, light_scale: f32) -> [f32; 4] {
+pub(crate) fn radiance(color: Color, intensity: f32, light_scale: f32) -> [f32; 4] {
     let intensity = if intensity.is_finite() {
         intensity.max(0.0) * light_scale
     } else {
@@ -175,91 +168,4 @@ fn radiance(color: Color, intensity: f32, light_scale: f32) -> [f32; 4] {
         color.b * intensity,
         0.0,
     ]
-}
-
-/// The frame's lights being filled in, with their entities.
-struct LightExtraction {
-    frame: FrameUniform,
-    entities: LightEntities,
-    light_scale: f32,
-}
-
-impl LightExtraction {
-    /// Fills in the directional lights (with their cascades); returns how many.
-    fn directional_lights(&mut self, world: &World) -> usize {
-        let mut count = 0;
-        for (entity, light, transform) in world
-            .query::<(hecs::Entity, &DirectionalLight, &GlobalTransform)>()
-            .iter()
-        {
-            if count == MAX_DIRECTIONAL_LIGHTS {
-                log::warn!(
-                    "more than {MAX_DIRECTIONAL_LIGHTS} directional lights: the rest are ignored"
-                );
-                break;
-            }
-            self.frame.directional_lights[count] = DirectionalLightGpu {
-                direction_to_light: (-transform.forward()).extend(0.0).into(),
-                radiance: radiance(light.color, light.intensity, self.light_scale),
-                ..DirectionalLightGpu::default()
-            };
-            self.entities.directional.push(entity);
-            count += 1;
-        }
-        count
-    }
-
-    /// Fills in the point lights, then the spot lights, which share their array; returns how
-    /// many.
-    fn point_and_spot_lights(&mut self, world: &World) -> usize {
-        let mut count = 0;
-        for (entity, light, transform) in world
-            .query::<(hecs::Entity, &PointLight, &GlobalTransform)>()
-            .iter()
-        {
-            if count == MAX_POINT_LIGHTS {
-                log::warn!("more than {MAX_POINT_LIGHTS} point lights: the rest are ignored");
-                break;
-            }
-            self.frame.point_lights[count] = PointLightGpu {
-                position_range: transform.translation().extend(light.range.max(0.0)).into(),
-                radiance: radiance(light.color, light.intensity, self.light_scale),
-                spot_direction: [0.0, 0.0, -1.0, 0.0],
-                // Scale 0, offset 1: full strength in every direction.
-                spot_cone: [0.0, 1.0, 0.0, 0.0],
-                ..PointLightGpu::default()
-            };
-            self.entities.point.push(entity);
-            count += 1;
-        }
-        for (entity, light, transform) in world
-            .query::<(hecs::Entity, &SpotLight, &GlobalTransform)>()
-            .iter()
-        {
-            if count == MAX_POINT_LIGHTS {
-                log::warn!(
-                    "more than {MAX_POINT_LIGHTS} point and spot lights: the rest are ignored"
-                );
-                break;
-            }
-            self.frame.point_lights[count] = self.spot_light(light, transform);
-            self.entities.point.push(entity);
-            count += 1;
-        }
-        count
-    }
-
-    /// A spot light as the shaders read it.
-    fn spot_light(&self, light: &SpotLight, transform: &GlobalTransform) -> PointLightGpu {
-        // glTF's cone: t = cos(angle to the axis) × scale + offset, clamped, squared.
-        let (inner, outer) = light.sanitized_cone();
-        let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
-        PointLightGpu {
-            position_range: transform.translation().extend(light.range.max(0.0)).into(),
-            radiance: radiance(light.color, light.intensity, self.light_scale),
-            spot_direction: transform.forward().extend(0.0).into(),
-            spot_cone: [scale, -outer.cos() * scale, 0.0, 0.0],
-            ..PointLightGpu::default()
-        }
-    }
 }

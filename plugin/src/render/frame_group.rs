@@ -66,8 +66,8 @@ mod tests {
                 shaders::MESH_VERTEX,
                 shaders::PREPASS_DEPTH,
                 shaders::SHADOWS,
-                shaders::SPHERICAL_HARMONICS,
-                shaders::ENVIRONMENT,
+                crate::render::environment::SPHERICAL_HARMONICS,
+                crate::render::environment::ENVIRONMENT,
                 shaders::VISIBILITY,
             ],
         };

@@ -21,6 +21,7 @@ mod frame_passes;
 mod frame_uniform;
 mod full_screen_pass;
 pub(crate) mod gpu_types;
+pub mod lights;
 pub(crate) mod object_buffer;
 pub(crate) mod phases;
 mod plugin;
@@ -61,6 +62,7 @@ pub(crate) use frame_uniform::FrameUniformBuffer;
 pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
 pub use gpu_types::MeshTransform;
 pub(crate) use gpu_types::{FrameUniform, ShadowViewGpu};
+pub use lights::LightsPlugin;
 pub use phases::{
     DrawPhase, HasDraws, MOTION_ID_FORMAT, PhaseDraw, PhaseWork, RenderPhase, RenderPhases,
     ResolveDispatch, ShadowDraw, SortedDraw,

@@ -16,11 +16,6 @@ pub const PARAMS: WgslFile = crate::wgsl_file!("render/params.wgsl");
 pub const MESH_VERTEX: WgslFile = crate::wgsl_file!("render/mesh_vertex.wgsl");
 /// Scene shadows: the shadow maps and `scene_shadow()`, for materials that receive them.
 pub const SHADOWS: WgslFile = crate::wgsl_file!("render/shadows.wgsl");
-/// The nine spherical harmonics the environment's irradiance is stored in.
-pub const SPHERICAL_HARMONICS: WgslFile = crate::wgsl_file!("render/spherical_harmonics.wgsl");
-/// The environment light's maps (`environment_diffuse`, `environment_specular`,
-/// `environment_split_sum`), for materials lit by it; after [`SPHERICAL_HARMONICS`].
-pub const ENVIRONMENT: WgslFile = crate::wgsl_file!("render/environment.wgsl");
 /// The depth prepass's result, bound for materials that test a depth of their own against it.
 pub const PREPASS_DEPTH: WgslFile = crate::wgsl_file!("render/prepass_depth.wgsl");
 /// The sRGB transfer function both ways (display images hold encoded values).

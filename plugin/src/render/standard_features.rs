@@ -3,6 +3,7 @@
 
 use super::anti_aliasing::AntiAliasingPlugin;
 use super::environment::EnvironmentPlugin;
+use super::lights::LightsPlugin;
 use super::shadows::ShadowsPlugin;
 use super::tonemapping::TonemappingPlugin;
 use crate::App;
@@ -11,6 +12,9 @@ use crate::App;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum RenderFeature {
+    /// The world's directional, point and spot lights ([`LightsPlugin`]): the other features
+    /// read them, so it comes first.
+    Lights,
     /// The post chain's display conversion ([`TonemappingPlugin`]); without it (or another
     /// display conversion) frames fail with an error naming it.
     Tonemapping,
@@ -24,7 +28,8 @@ pub enum RenderFeature {
 
 impl RenderFeature {
     /// Every standard feature, in the order they are added.
-    pub const ALL: [RenderFeature; 4] = [
+    pub const ALL: [RenderFeature; 5] = [
+        RenderFeature::Lights,
         RenderFeature::Tonemapping,
         RenderFeature::AntiAliasing,
         RenderFeature::SceneShadows,
@@ -61,6 +66,9 @@ impl RenderFeatures {
     pub(crate) fn add_to(self, app: &mut App) {
         for feature in RenderFeature::ALL.into_iter().filter(|f| self.contains(*f)) {
             match feature {
+                RenderFeature::Lights if !app.has_plugin::<LightsPlugin>() => {
+                    app.add_plugin(LightsPlugin);
+                }
                 RenderFeature::Tonemapping if !app.has_plugin::<TonemappingPlugin>() => {
                     app.add_plugin(TonemappingPlugin);
                 }

@@ -181,6 +181,11 @@ impl Plugin for WindowPlugin {
         if !app.resources.contains::<crate::AntiAliasing>() {
             app.insert_resource(crate::AntiAliasing::Taa);
         }
+        // A game in a window gets a sky and the light it gives until it sets its own
+        // environment (headless renders keep theirs off, so references stay as they are).
+        if !app.resources.contains::<crate::EnvironmentLight>() {
+            app.insert_resource(crate::EnvironmentLight::sky());
+        }
         input::insert_input_resources(&mut app.resources);
         app.add_system(Stage::PreUpdate, update_input);
     }

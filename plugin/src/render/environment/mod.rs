@@ -21,7 +21,9 @@ pub use background::{BACKGROUND, BACKGROUND_ENTRY};
 pub use light::{EnvironmentLight, EnvironmentSettings, MAX_ENVIRONMENT_RESOLUTION};
 pub use prefilter::{ENVIRONMENT_SOURCE, PREFILTER, PREFILTER_ENTRY, SKY, radiance_levels};
 pub use sky::{DEFAULT_SUN, Sky, SkyParams, SkyState};
-pub use source::{EnvironmentError, EnvironmentSource, EquirectImage};
+pub use source::{
+    EnvironmentChoice, EnvironmentError, EnvironmentSource, EquirectImage, MAX_UNIFORM_RADIANCE,
+};
 pub use split_sum::{SPLIT_SUM_SIZE, analytic_fit, split_sum, split_sum_table};
 
 use background::{Background, BackgroundView};
@@ -29,11 +31,19 @@ use prefilter::{Capture, EnvironmentGpu};
 use source::SourceKind;
 
 use crate::gpu::{GpuContext, PassTimestamps};
+use crate::render::shaders::WgslFile;
 use crate::render::{
     ExtractedFrame, FrameNode, FrameNodes, FrameView, NodePlace, RenderError, RenderPhase,
     RenderTarget, Renderer,
 };
 use crate::{App, AppError, DirectionalLight, Plugin, Resources, Stage};
+
+/// The nine spherical harmonics the environment's irradiance is stored in.
+pub const SPHERICAL_HARMONICS: WgslFile =
+    crate::wgsl_file!(nested "render/environment/spherical_harmonics.wgsl");
+/// The environment light as materials read it from their group 0 (`environment_diffuse`,
+/// `environment_specular`, `environment_split_sum`); after [`SPHERICAL_HARMONICS`].
+pub const ENVIRONMENT: WgslFile = crate::wgsl_file!(nested "render/environment/environment.wgsl");
 
 /// The node the prefiltering is timed under.
 pub const ENVIRONMENT_PREFILTER_NODE: &str = "environment prefilter";

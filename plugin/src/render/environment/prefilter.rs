@@ -7,11 +7,12 @@ use std::sync::Arc;
 
 use wgpu::util::DeviceExt;
 
+use super::SPHERICAL_HARMONICS;
 use super::sky::SkyParams;
 use super::source::{EquirectImage, SourceKind, SourceParams};
 use super::split_sum::{SPLIT_SUM_SIZE, split_sum_table};
 use crate::gpu::{GpuContext, PassTimestamps};
-use crate::render::shaders::{ComposedShader, SPHERICAL_HARMONICS, WgslFile};
+use crate::render::shaders::{ComposedShader, WgslFile};
 use crate::render::{ENVIRONMENT_FORMAT, EnvironmentTextures, IRRADIANCE_BYTES};
 
 /// Preetham's sky in WGSL.

@@ -23,6 +23,85 @@ pub enum EnvironmentSource {
     Equirect(Arc<EquirectImage>),
 }
 
+/// An environment as a command line or a script names it: `off`, `sky`, `uniform:R,G,B` (a
+/// constant radiance in cd/m², linear; one value for grey) or the path of an equirectangular
+/// `.hdr` / `.exr` file. Parsed with [`str::parse`]; [`EnvironmentChoice::load`] reads a file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EnvironmentChoice {
+    /// No environment.
+    Off,
+    /// The default sky.
+    Sky,
+    /// A constant radiance.
+    Uniform([f32; 3]),
+    /// An image file.
+    File(PathBuf),
+}
+
+/// Most a uniform environment's radiance may be, cd/m² (the sun's disc is about 1.6e9).
+pub const MAX_UNIFORM_RADIANCE: f32 = 1e10;
+
+impl std::str::FromStr for EnvironmentChoice {
+    type Err = EnvironmentError;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        match text.trim() {
+            "off" => return Ok(Self::Off),
+            "sky" => return Ok(Self::Sky),
+            "" => {
+                return Err(EnvironmentError::BadChoice {
+                    text: text.to_owned(),
+                    reason: "it is empty".into(),
+                });
+            }
+            _ => {}
+        }
+        let Some(values) = text.trim().strip_prefix("uniform:") else {
+            return Ok(Self::File(PathBuf::from(text)));
+        };
+        let bad = |reason: String| EnvironmentError::BadChoice {
+            text: text.to_owned(),
+            reason,
+        };
+        let parsed: Vec<f32> = values
+            .split(',')
+            .map(|value| {
+                let value: f32 = value
+                    .trim()
+                    .parse()
+                    .map_err(|_| bad(format!("{value:?} is not a number")))?;
+                if value.is_finite() && (0.0..=MAX_UNIFORM_RADIANCE).contains(&value) {
+                    Ok(value)
+                } else {
+                    Err(bad(format!(
+                        "{value} is not a radiance in 0..={MAX_UNIFORM_RADIANCE} cd/m²"
+                    )))
+                }
+            })
+            .collect::<Result<_, _>>()?;
+        match parsed[..] {
+            [grey] => Ok(Self::Uniform([grey; 3])),
+            [r, g, b] => Ok(Self::Uniform([r, g, b])),
+            _ => Err(bad(format!(
+                "uniform takes one value or three (R,G,B), not {}",
+                parsed.len()
+            ))),
+        }
+    }
+}
+
+impl EnvironmentChoice {
+    /// The source this names, a file read ([`EquirectImage::read`]) where it names one.
+    pub fn load(&self) -> Result<EnvironmentSource, EnvironmentError> {
+        Ok(match self {
+            Self::Off => EnvironmentSource::Off,
+            Self::Sky => EnvironmentSource::Sky(Sky::default()),
+            Self::Uniform(radiance) => EnvironmentSource::Uniform(*radiance),
+            Self::File(path) => EnvironmentSource::Equirect(Arc::new(EquirectImage::read(path)?)),
+        })
+    }
+}
+
 /// Why an environment file was not loaded.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -34,6 +113,16 @@ pub enum EnvironmentError {
         path: PathBuf,
         /// What went wrong.
         source: crate::ImageError,
+    },
+    /// An environment's name is none of `off`, `sky`, `uniform:R,G,B` or a file.
+    #[error(
+        "environment {text:?}: {reason} (expected off, sky, uniform:R,G,B or a .hdr/.exr file)"
+    )]
+    BadChoice {
+        /// What was given.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
     },
     /// The texels do not fill the size given (or the size is empty).
     #[error("environment {name}: {texels} texels for {width} × {height}")]
@@ -254,6 +343,39 @@ mod tests {
         let (_, _, last) = &chain[2];
         assert_eq!(last[0].to_f32(), 15.5);
         assert_eq!(last[2], half::f16::MAX);
+    }
+
+    #[test]
+    fn an_environment_is_named_as_off_sky_uniform_or_a_file() {
+        let parse = |text: &str| text.parse::<EnvironmentChoice>();
+        assert_eq!(parse("off").unwrap(), EnvironmentChoice::Off);
+        assert_eq!(parse(" sky ").unwrap(), EnvironmentChoice::Sky);
+        assert_eq!(
+            parse("uniform:1,2.5,3").unwrap(),
+            EnvironmentChoice::Uniform([1.0, 2.5, 3.0])
+        );
+        assert_eq!(
+            parse("uniform:7").unwrap(),
+            EnvironmentChoice::Uniform([7.0; 3])
+        );
+        assert_eq!(
+            parse("skies/noon.hdr").unwrap(),
+            EnvironmentChoice::File("skies/noon.hdr".into())
+        );
+        for (bad, says) in [
+            ("uniform:1,2", "one value or three"),
+            ("uniform:-1", "not a radiance"),
+            ("uniform:nan,1,1", "not a radiance"),
+            ("uniform:1e11", "not a radiance"),
+            ("uniform:red", "not a number"),
+            ("", "empty"),
+        ] {
+            let message = parse(bad).unwrap_err().to_string();
+            assert!(
+                message.contains(says) && message.contains("expected off, sky"),
+                "{bad}: {message}"
+            );
+        }
     }
 
     #[test]
