@@ -166,6 +166,8 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::shaders::SOBEL,
     parallax::MAX_PYRAMID_SHADER,
     render::DEFERRED_BACKGROUND,
+    render::environment::PREFILTER,
+    render::environment::BACKGROUND,
     render::VISIBILITY_CLEAR_SHADER,
     material::DEFERRED_CLASSIFY_SHADER,
     render::POST_SHADERS[0],

@@ -339,3 +339,96 @@ fn an_hdr_file_lights_like_the_same_uniform_radiance() {
     let fraction = reflected_fraction(&mut app, RenderPath::Forward);
     assert!((0.95..=1.05).contains(&fraction), "{fraction}");
 }
+
+#[test]
+fn a_script_lights_its_scene_with_an_environment_file_from_its_folder() {
+    let dir = pom_tests::gltf_fixture::scratch_dir("script-environment");
+    let image = image::Rgb32FImage::from_pixel(16, 8, image::Rgb([FURNACE; 3]));
+    image::DynamicImage::ImageRgb32F(image)
+        .save(dir.join("grey.hdr"))
+        .unwrap();
+    let script = dir.join("environment.ron");
+    std::fs::write(
+        &script,
+        r#"(
+    size: (32, 32),
+    camera: (position: (0.0, 0.0, 3.0), target: (0.0, 0.0, 0.0), orthographic_height: 3.0),
+    environment: (source: "grey.hdr", settings: (resolution: 16, intensity: 0.5)),
+    steps: [Capture(name: "sky")],
+)"#,
+    )
+    .unwrap();
+    let report = pom::run_script_with(&script, &pom::RunOptions::default()).unwrap();
+    assert_eq!(report.failures(), 0, "{report:?}");
+    // Named outside the folder, the same file is refused before anything runs.
+    let outside = dir.join("nested");
+    std::fs::create_dir_all(&outside).unwrap();
+    let text = std::fs::read_to_string(&script)
+        .unwrap()
+        .replace("grey.hdr", "../grey.hdr");
+    std::fs::write(outside.join("environment.ron"), text).unwrap();
+    let error = pom::run_script_with(outside.join("environment.ron"), &pom::RunOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("grey.hdr") && error.contains("refused"),
+        "{error}"
+    );
+}
+
+#[test]
+fn taa_settles_the_sky_behind_the_scene_like_any_other_pixel() {
+    use pom::AntiAliasing;
+    use pom_tests::anti_aliasing::{save_for_looking, settled};
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::new(96, 64))
+        .add_plugin(pom::LitPlugin);
+    app.finish().unwrap();
+    app.insert_resource(EnvironmentLight::sky().with_settings(EnvironmentSettings {
+        resolution: 32,
+        ..EnvironmentSettings::default()
+    }));
+    let mesh = app
+        .resources
+        .get_mut::<Assets<Mesh>>()
+        .unwrap()
+        .add(Mesh::uv_sphere(1.0, 32, 16));
+    app.world.spawn((
+        Camera::perspective(50.0),
+        Transform::from_xyz(0.0, 0.5, 4.0).looking_at(Vec3::new(0.0, 0.8, 0.0), Vec3::Y),
+    ));
+    app.world.spawn((
+        pom::DirectionalLight::default(),
+        Transform::IDENTITY.looking_at(Vec3::new(-0.3, -0.6, -0.5), Vec3::Y),
+    ));
+    app.world.spawn((
+        mesh,
+        white(LightingModel::GgxLambert, 0.3, 1.0),
+        Transform::IDENTITY,
+    ));
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        set_path(&mut app, path);
+        let still = settled(&mut app, AntiAliasing::Off);
+        let accumulated = settled(&mut app, AntiAliasing::Taa);
+        save_for_looking(&format!("sky-taa-{path:?}"), &accumulated);
+        // The top rows are sky only: TAA's settled mean of a smooth sky is the sky.
+        let mut largest = 0_i32;
+        for x in 0..96 {
+            for y in 0..6 {
+                let (a, b) = (still.get_pixel(x, y).0, accumulated.get_pixel(x, y).0);
+                for c in 0..3 {
+                    largest = largest.max((i32::from(a[c]) - i32::from(b[c])).abs());
+                }
+            }
+        }
+        assert!(
+            largest <= 3,
+            "{path:?}: the settled sky differs by {largest}/255"
+        );
+        let sky = still.get_pixel(48, 2).0;
+        assert!(
+            sky[2] > sky[0] && sky[2] > 60,
+            "{path:?}: the sky is {sky:?}"
+        );
+    }
+}

@@ -262,8 +262,11 @@ fn a_key_press_changes_the_parallax_depth_on_screen_and_a_close_request_exits_0(
     );
     let deeper = image::open(&screenshot).unwrap().to_rgba8();
     let difference = floor_difference(&untouched, &deeper);
+    // Under the window's default sky the bricks are lit from all around besides the sun, so
+    // the deeper relief changes the floor by about 1.7 levels a channel (it was over 2 under
+    // the flat ambient light).
     assert!(
-        difference > 2.0,
+        difference > 1.0,
         "the floor looks the same after the depth rose from {before}: mean difference {difference}"
     );
 }

@@ -140,8 +140,13 @@ impl TextureCache {
         if !self.decoded.contains_key(&origin) {
             let (bytes, file_name, format) =
                 encoded(source, &image, &origin).map_err(image_error)?;
-            let decoded = decode_bytes(&bytes, &file_name, format, budget)
-                .map_err(|error| image_error(error.to_string()))?;
+            let decoded = decode_bytes(
+                &bytes,
+                &file_name,
+                (format, crate::image::TEXTURE_FORMATS),
+                budget,
+            )
+            .map_err(|error| image_error(error.to_string()))?;
             self.decoded.insert(
                 origin.clone(),
                 Decoded {

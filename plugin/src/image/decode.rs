@@ -43,7 +43,7 @@ pub(super) fn decode_file(
     let decoded = decode_bytes(
         &bytes,
         &name,
-        image::ImageFormat::from_path(path).ok(),
+        (image::ImageFormat::from_path(path).ok(), TEXTURE_FORMATS),
         budget,
     )?;
     Ok((decoded, bytes.len() as u64))
@@ -53,13 +53,22 @@ pub(super) fn decode_file(
 /// compressed metadata such as an ICC profile), and all it may allocate to read a header.
 const DECODER_SLACK_BYTES: u64 = 16 << 20;
 
-/// Reads the header first and refuses sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`] and
+/// The formats textures are decoded from: 8- and 16-bit images. Float images (Radiance `.hdr`,
+/// OpenEXR) are environments' ([`crate::EnvironmentLight::from_file`]), not textures.
+pub(crate) const TEXTURE_FORMATS: &[image::ImageFormat] =
+    &[image::ImageFormat::Png, image::ImageFormat::Jpeg];
+
+/// The formats an environment is decoded from.
+pub(crate) const ENVIRONMENT_FORMATS: &[image::ImageFormat] =
+    &[image::ImageFormat::Hdr, image::ImageFormat::OpenExr];
+
+/// Reads the header first and refuses a format outside `formats`, sizes over [`MAX_IMAGE_SIDE`] / [`MAX_IMAGE_PIXELS`] and
 /// what would pass `budget`, then decodes with allocations capped at the decoded size (so a
 /// header that lies, or metadata that inflates, is caught by the decoder too).
 pub(crate) fn decode_bytes(
     bytes: &[u8],
     name: &str,
-    format_hint: Option<image::ImageFormat>,
+    (format_hint, formats): (Option<image::ImageFormat>, &[image::ImageFormat]),
     budget: &mut ImageBudget,
 ) -> Result<DynamicImage, ImageError> {
     check_png_palette(bytes).map_err(|reason| load_error(name, reason))?;
@@ -71,6 +80,12 @@ pub(crate) fn decode_bytes(
         let mut reader = reader
             .with_guessed_format()
             .map_err(|error| load_error(name, error))?;
+        if let Some(format) = reader.format().filter(|format| !formats.contains(format)) {
+            return Err(load_error(
+                name,
+                format!("the format {format:?} is not supported here (only {formats:?})"),
+            ));
+        }
         reader.limits(limits);
         Ok(reader)
     };

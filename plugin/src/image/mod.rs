@@ -13,8 +13,8 @@ mod sampler;
 
 pub use budget::IMAGE_MEMORY_BUDGET;
 pub(crate) use budget::ImageBudget;
-pub(crate) use decode::decode_bytes;
 use decode::decode_file;
+pub(crate) use decode::{ENVIRONMENT_FORMATS, TEXTURE_FORMATS, decode_bytes};
 pub use decode::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 pub use error::ImageError;
 use mips::Reduce;
@@ -154,7 +154,7 @@ impl Image {
         channel: Channel,
     ) -> Result<Self, ImageError> {
         let mut budget = ImageBudget::new(IMAGE_MEMORY_BUDGET);
-        let decoded = decode_bytes(bytes, name, None, &mut budget)?;
+        let decoded = decode_bytes(bytes, name, (None, decode::TEXTURE_FORMATS), &mut budget)?;
         Self::from_decoded_within(
             decoded,
             kind,

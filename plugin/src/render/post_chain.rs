@@ -182,27 +182,34 @@ pub enum PostChainError {
 /// Targets whose chain images are kept: a split view renders two each frame.
 const KEPT_TARGETS: usize = 2;
 
-/// The chain's images of the targets rendered last, at most [`KEPT_TARGETS`] (the least
-/// recently rendered is dropped first), so a frame that renders two targets makes none again.
+/// The chain's images of the targets among the last [`KEPT_TARGETS`] rendered, so a frame that
+/// renders two targets makes none again, while a target no longer rendered (a window's, before
+/// a resize) is let go with its textures, which the images hold views of.
 #[derive(Debug, Default)]
-pub(crate) struct PostImages(Vec<TargetImages>);
+pub(crate) struct PostImages {
+    targets: Vec<TargetImages>,
+    /// Counts the chains recorded.
+    renders: u64,
+}
 
 impl PostImages {
     /// The images of `target`, made when it is new.
     fn of_target(&mut self, target: &RenderTarget) -> Option<&mut TargetImages> {
-        let images = match self
-            .0
+        self.renders += 1;
+        let renders = self.renders;
+        let mut images = match self
+            .targets
             .iter()
             .position(|images| images.target == target.id())
         {
-            Some(at) => self.0.remove(at),
+            Some(at) => self.targets.remove(at),
             None => TargetImages::new(target),
         };
-        if self.0.len() >= KEPT_TARGETS {
-            self.0.remove(0);
-        }
-        self.0.push(images);
-        self.0.last_mut()
+        images.rendered = renders;
+        self.targets
+            .retain(|kept| renders - kept.rendered < KEPT_TARGETS as u64);
+        self.targets.push(images);
+        self.targets.last_mut()
     }
 }
 
@@ -211,6 +218,8 @@ impl PostImages {
 #[derive(Debug)]
 struct TargetImages {
     target: u64,
+    /// The chain that last used them ([`PostImages`] counts).
+    rendered: u64,
     scene: PostImage,
     display: PostImage,
     hdr: [Option<PostImage>; 2],
@@ -221,6 +230,7 @@ impl TargetImages {
     fn new(target: &RenderTarget) -> Self {
         Self {
             target: target.id(),
+            rendered: 0,
             scene: PostImage::new(target.scene_view.clone()),
             display: PostImage::new(target.color_view.clone()),
             hdr: Default::default(),

@@ -112,6 +112,7 @@ pub(super) fn check(
     let source = ScriptText { text, path, access };
     check_exposure(script, &source)?;
     check_anti_aliasing(script, &source)?;
+    check_environment(script, &source, dir)?;
     check_light_shadows(script, &source)?;
     check_advances(script, &source)?;
     values::check_values(script, &source)?;
@@ -136,6 +137,35 @@ fn check_exposure(script: &Script, source: &ScriptText<'_>) -> Result<(), Script
         ));
     }
     Ok(())
+}
+
+/// The environment, if given, names a source that parses (a file: one inside the folder
+/// `access` allows) and parameters within their limits.
+fn check_environment(
+    script: &Script,
+    source: &ScriptText<'_>,
+    dir: &Path,
+) -> Result<(), ScriptError> {
+    let Some(environment) = &script.environment else {
+        return Ok(());
+    };
+    let at = || locate(source.text, "source", "environment");
+    let choice: crate::EnvironmentChoice = environment
+        .source
+        .parse()
+        .map_err(|error: crate::EnvironmentError| source.invalid(at(), error.to_string()))?;
+    if let crate::EnvironmentChoice::File(file) = &choice
+        && let Some(problem) = file_problem(dir, file, source.access)
+    {
+        return Err(source.invalid(at(), format!("environment file {file:?} {problem}")));
+    }
+    match environment.settings.problems().into_iter().next() {
+        Some(problem) => Err(source.invalid(
+            locate(source.text, "settings", "environment"),
+            format!("environment settings.{problem}"),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The parameters of TAA and FXAA, if given, are within their limits.

@@ -20,6 +20,9 @@ pub struct Script {
     /// Ambient light (colour, illuminance in lux).
     #[serde(default)]
     pub ambient: Option<([f32; 3], f32)>,
+    /// The light from all around, drawn behind the scene (none unless given).
+    #[serde(default)]
+    pub environment: Option<EnvironmentDesc>,
     /// Things in the scene.
     #[serde(default)]
     pub entities: Vec<EntityDesc>,
@@ -29,6 +32,19 @@ pub struct Script {
 
 fn default_size() -> (u32, u32) {
     (256, 256)
+}
+
+/// A script's environment light: its source, spelled as `--environment` spells it, and its
+/// parameters.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentDesc {
+    /// `"off"`, `"sky"`, `"uniform:R,G,B"` (a constant radiance in cd/m²) or an equirectangular
+    /// `.hdr` / `.exr` file, relative to the script's folder and inside it.
+    pub source: String,
+    /// Its parameters, absent fields at their defaults (`EnvironmentSettings::PARAMETERS`).
+    #[serde(default)]
+    pub settings: crate::EnvironmentSettings,
 }
 
 /// Where the camera is and how it projects.

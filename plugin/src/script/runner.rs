@@ -140,6 +140,25 @@ fn look(position: Vec3, target: Vec3) -> Transform {
     Transform::from_translation(position).looking_at(target, up)
 }
 
+/// The script's environment, its file (checked before the run) resolved in the script's folder.
+fn environment_light(
+    environment: &super::format::EnvironmentDesc,
+    dir: &Path,
+    access: FileAccess,
+) -> Result<crate::EnvironmentLight, String> {
+    let choice = match environment.source.parse() {
+        Ok(crate::EnvironmentChoice::File(file)) => crate::EnvironmentChoice::File(
+            crate::files::resolve_inside(dir, &file, access).map_err(|error| error.to_string())?,
+        ),
+        Ok(choice) => choice,
+        Err(error) => return Err(error.to_string()),
+    };
+    Ok(crate::EnvironmentLight {
+        source: choice.load().map_err(|error| error.to_string())?,
+        settings: environment.settings,
+    })
+}
+
 impl<'a> Runner<'a> {
     /// Builds the script's app and scene: camera, lights, ambient light, then its entities.
     fn new(
@@ -183,6 +202,10 @@ impl<'a> Runner<'a> {
                 color: Color::linear_rgb(color[0], color[1], color[2]),
                 intensity,
             });
+        }
+        if let Some(environment) = &script.environment {
+            let light = environment_light(environment, dir, options.file_access).map_err(setup)?;
+            app.insert_resource(light);
         }
         let mut runner = Self {
             app,

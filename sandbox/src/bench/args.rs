@@ -31,6 +31,9 @@ pub enum Measurement {
     Overdraw,
     /// The street corner with and without scene shadows, per light type.
     SceneShadows,
+    /// The street corner under the sky against without it, the relief's occlusion of the
+    /// environment on the cobblestones against without it, and a 2K `.hdr`'s prefiltering.
+    Environment,
     /// Each silhouette mode against `off` on the preview cube and sphere.
     Silhouette,
     /// TAA and the post filter: each pass's time, and the jittered march at 16 samples

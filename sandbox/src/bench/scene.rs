@@ -290,6 +290,32 @@ impl BenchScene {
         Ok(())
     }
 
+    /// Inserts (or replaces) a resource of the scene's app.
+    pub fn insert_resource<T: 'static>(&mut self, value: T) {
+        self.app.insert_resource(value);
+    }
+
+    /// Times the frame nodes named `nodes` (their names in the GPU timings), with `before`
+    /// changing the app before each frame, warm-up frames included.
+    pub fn time_nodes(
+        &mut self,
+        warmup: Warmup,
+        frames: usize,
+        nodes: &[&'static str],
+        mut before: impl FnMut(&mut App),
+    ) -> Result<PhaseTimes> {
+        let nodes = nodes.to_vec();
+        self.time_frames(
+            warmup,
+            frames,
+            |_| nodes,
+            |app| {
+                before(app);
+                Ok(app.update()?)
+            },
+        )
+    }
+
     /// Changes the material's parameters, keeping its textures.
     pub fn configure(&mut self, change: impl Fn(&mut ParallaxOcclusionMaterial)) {
         for material in self.app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {

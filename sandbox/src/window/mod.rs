@@ -7,6 +7,7 @@ mod autosave;
 mod camera_control;
 mod display_control;
 mod egui_painter;
+mod environment_control;
 mod file_browser;
 mod frame_timing;
 mod guarded_update;

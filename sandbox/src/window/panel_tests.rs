@@ -536,3 +536,72 @@ fn point_and_spot_lights_have_shadow_controls_without_a_cascade_distance() {
         .unwrap();
     assert_eq!(shadows_of(&harness, spot).unwrap().softness, 0.0);
 }
+
+#[test]
+fn the_environment_panel_switches_to_the_sky_and_sets_its_parameters() {
+    let mut app = App::new();
+    let sun = app
+        .world
+        .spawn((pom::DirectionalLight::default(), pom::Transform::IDENTITY));
+    let mut harness = harness_with(app);
+    harness.get_by_label("Light").click();
+    harness.run();
+    harness.get_by_label("Environment").click();
+    harness.run();
+    harness.get_by_label("environment").click();
+    harness.run();
+    harness.get_by_label("sky").click();
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "intensity")
+        .set_value_accesskit(2.0);
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "time of day")
+        .set_value_accesskit(12.0);
+    harness.run();
+    let fixture = harness.state();
+    let light = fixture
+        .app
+        .resources
+        .get::<pom::EnvironmentLight>()
+        .unwrap();
+    assert!(
+        matches!(light.source, pom::EnvironmentSource::Sky(_)),
+        "{light:?}"
+    );
+    assert!((light.settings.intensity - 2.0).abs() < 1e-6, "{light:?}");
+    // At noon the sun stands 60° up in the south: the light shines down and north.
+    let transform = *fixture.app.world.get::<&pom::Transform>(sun).unwrap();
+    let towards_sun = -(transform.rotation * glam::Vec3::NEG_Z);
+    assert!(
+        (towards_sun.y - 60f32.to_radians().sin()).abs() < 1e-3,
+        "{towards_sun}"
+    );
+    assert!(towards_sun.z < -0.4, "{towards_sun}");
+}
+
+#[test]
+fn an_environment_file_that_does_not_open_says_why_in_the_panel() {
+    let mut harness = harness();
+    harness.get_by_label("Light").click();
+    harness.run();
+    harness.get_by_label("Environment").click();
+    harness.run();
+    let missing = scratch_file("no-such-sky.hdr");
+    harness.state_mut().panel.environment.path = missing.display().to_string();
+    harness.run();
+    harness.get_by_label("open environment").click();
+    harness.run();
+    let message = harness.state().panel.environment.message.clone().unwrap();
+    assert!(message.contains("no-such-sky.hdr"), "{message}");
+    harness.get_by_label_contains("no-such-sky.hdr");
+    assert!(
+        harness
+            .state()
+            .app
+            .resources
+            .get::<pom::EnvironmentLight>()
+            .is_none()
+    );
+}

@@ -10,6 +10,7 @@ use pom::{App, ParallaxOcclusionMaterial};
 
 use super::app_state::{LoadedScene, material_entities};
 use super::display_control::display_controls;
+use super::environment_control::EnvironmentControls;
 use super::file_browser::FileBrowser;
 use super::frame_timing::{FrameTimes, GpuTimingSource, gpu_pass_rows};
 use super::light_control::{LightControls, point_controls, spot_controls};
@@ -32,6 +33,8 @@ pub struct PanelState {
     pub presets: PresetControls,
     /// Which light the light controls move.
     pub lights: LightControls,
+    /// The environment's source, time of day and parameters.
+    pub environment: EnvironmentControls,
     /// Turn the selected entity a little every frame.
     pub spin_selected: bool,
     /// Where the screenshot button writes.
@@ -56,6 +59,7 @@ impl Default for PanelState {
             selected: None,
             presets: PresetControls::default(),
             lights: LightControls::default(),
+            environment: EnvironmentControls::default(),
             spin_selected: false,
             screenshot_path: DEFAULT_SCREENSHOT_PATH.into(),
             screenshot_requested: false,
@@ -115,7 +119,12 @@ pub fn side_panel_contents(ui: &mut Ui, app: &mut App, state: &mut PanelState) {
         ui.separator();
         state.split.show(ui, app, state.selected);
         ui.separator();
-        ui.collapsing("Light", |ui| state.lights.show(ui, &mut app.world));
+        ui.collapsing("Light", |ui| {
+            state.lights.show(ui, &mut app.world);
+            ui.collapsing("Environment", |ui| state.environment.show(ui, app))
+                .header_response
+                .on_hover_text("The light from all around: the sky, a constant radiance or an .hdr/.exr image.");
+        });
         ui.collapsing("Spot lights", |ui| spot_controls(ui, &mut app.world))
             .header_response
             .on_hover_text("Spot lights: intensity in candela, cone angles and shadows.");

@@ -93,6 +93,29 @@ fn script_camera_taa_mip_bias_out_of_range() {
 }
 
 #[test]
+fn script_environment_bad_uniform() {
+    assert_script_parse(
+        "scripts/environment_bad_uniform.ron",
+        5,
+        "uniform takes one value or three",
+    );
+}
+
+#[test]
+fn script_environment_outside_folder() {
+    assert_script_parse("scripts/environment_outside_folder.ron", 5, "is refused");
+}
+
+#[test]
+fn script_environment_intensity_negative() {
+    assert_script_parse(
+        "scripts/environment_intensity_negative.ron",
+        6,
+        "environment settings.intensity is -1 but must be at least 0",
+    );
+}
+
+#[test]
 fn script_camera_fxaa_out_of_range() {
     assert_script_parse(
         "scripts/fxaa_out_of_range.ron",

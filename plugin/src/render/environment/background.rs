@@ -74,7 +74,7 @@ impl Background {
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("environment background parameters"),
             size: std::mem::size_of::<BackgroundParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         Self {

@@ -13,7 +13,10 @@ struct BackgroundParams {
     size: vec4<u32>,
 }
 
-@group(0) @binding(0) var<uniform> params: BackgroundParams;
+// A storage buffer, not a uniform: the matrix changes every frame under TAA's jitter, and
+// lavapipe keeps a new copy of a shader specialized on a small uniform buffer's values each time
+// they change (memory grows frame after frame).
+@group(0) @binding(0) var<storage, read> params: BackgroundParams;
 @group(0) @binding(1) var scene_depth: texture_depth_2d;
 @group(0) @binding(2) var scene_output: SceneOutput;
 

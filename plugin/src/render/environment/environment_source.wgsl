@@ -14,8 +14,10 @@ struct SourceParams {
     kind: vec4<u32>,
 }
 
-@group(1) @binding(0) var<uniform> source: SourceParams;
-@group(1) @binding(1) var<uniform> sky: SkyParams;
+// Storage buffers, not uniforms: a branch decided by a uniform alone makes lavapipe keep a
+// new copy of the shader at each bind (memory grows every frame the background draws).
+@group(1) @binding(0) var<storage, read> source: SourceParams;
+@group(1) @binding(1) var<storage, read> sky: SkyParams;
 @group(1) @binding(2) var source_image: texture_2d<f32>;
 @group(1) @binding(3) var source_sampler: sampler;
 

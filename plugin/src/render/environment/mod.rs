@@ -11,6 +11,7 @@
 //! runs and materials light with the ambient term as before.
 
 mod background;
+mod gpu_textures;
 mod light;
 mod prefilter;
 mod sky;

@@ -7,13 +7,15 @@ use std::sync::Arc;
 
 use wgpu::util::DeviceExt;
 
+use super::gpu_textures::{Cubes, cube_view, image_texture, level_view};
+
 use super::SPHERICAL_HARMONICS;
 use super::sky::SkyParams;
 use super::source::{EquirectImage, SourceKind, SourceParams};
 use super::split_sum::{SPLIT_SUM_SIZE, split_sum_table};
 use crate::gpu::{GpuContext, PassTimestamps};
+use crate::render::EnvironmentTextures;
 use crate::render::shaders::{ComposedShader, WgslFile};
-use crate::render::{ENVIRONMENT_FORMAT, EnvironmentTextures, IRRADIANCE_BYTES};
 
 /// Preetham's sky in WGSL.
 pub const SKY: WgslFile = crate::wgsl_file!(nested "render/environment/sky.wgsl");
@@ -100,15 +102,6 @@ impl Capture {
     }
 }
 
-/// The cube textures of one size and what materials read of them.
-struct Cubes {
-    size: u32,
-    /// The captured source with its full mip chain.
-    source: wgpu::Texture,
-    radiance: wgpu::Texture,
-    textures: EnvironmentTextures,
-}
-
 /// The environment's GPU state. A resource of the environment plugin.
 pub(crate) struct EnvironmentGpu {
     device: wgpu::Device,
@@ -141,81 +134,13 @@ fn pipeline(gpu: &GpuContext, module: &wgpu::ShaderModule, entry: &str) -> wgpu:
         })
 }
 
-fn uniform(gpu: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
+/// A buffer of parameters the shaders read as storage (see environment_source.wgsl).
+fn parameters(gpu: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
     gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
-    })
-}
-
-/// An RGBA half-float image texture with `levels` (width, height, texels), mip 0 first.
-fn image_texture(
-    gpu: &GpuContext,
-    label: &str,
-    levels: &[(u32, u32, Vec<half::f16>)],
-) -> wgpu::Texture {
-    let (width, height, _) = levels[0];
-    let data: Vec<u16> = levels
-        .iter()
-        .flat_map(|(_, _, texels)| texels.iter().map(|value| value.to_bits()))
-        .collect();
-    gpu.device.create_texture_with_data(
-        &gpu.queue,
-        &wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: levels.len() as u32,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: ENVIRONMENT_FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::MipMajor,
-        bytemuck::cast_slice(&data),
-    )
-}
-
-fn cube_texture(gpu: &GpuContext, label: &str, size: u32, levels: u32) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: size,
-            height: size,
-            depth_or_array_layers: 6,
-        },
-        mip_level_count: levels,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: ENVIRONMENT_FORMAT,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    })
-}
-
-/// One mip of a cube as a 2D array (to write, or to load from).
-fn level_view(texture: &wgpu::Texture, level: u32) -> wgpu::TextureView {
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2Array),
-        base_mip_level: level,
-        mip_level_count: Some(1),
-        ..Default::default()
-    })
-}
-
-fn cube_view(texture: &wgpu::Texture) -> wgpu::TextureView {
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::Cube),
-        ..Default::default()
     })
 }
 
@@ -259,12 +184,12 @@ impl EnvironmentGpu {
             split_sum,
             image_sampler: sampler("environment image sampler", true),
             cube_sampler: sampler("environment cube sampler", false),
-            sky: uniform(
+            sky: parameters(
                 gpu,
                 "environment sky",
                 std::mem::size_of::<SkyParams>() as u64,
             ),
-            source: uniform(
+            source: parameters(
                 gpu,
                 "environment source",
                 std::mem::size_of::<SourceParams>() as u64,
@@ -336,40 +261,13 @@ impl EnvironmentGpu {
         uploaded += (std::mem::size_of::<SourceParams>() + std::mem::size_of::<SkyParams>()) as u64;
         let mut installed = None;
         if self.cubes.as_ref().map(|cubes| cubes.size) != Some(capture.size) {
-            let cubes = self.make_cubes(gpu, capture.size);
+            let cubes = Cubes::new(gpu, capture.size, &self.split_sum);
             installed = Some(cubes.textures.clone());
             self.cubes = Some(cubes);
         }
         self.pending = Some(capture.clone());
         self.built = Some(capture);
         (installed, uploaded)
-    }
-
-    fn make_cubes(&self, gpu: &GpuContext, size: u32) -> Cubes {
-        let source = cube_texture(gpu, "environment source cube", size, size.ilog2() + 1);
-        let radiance = cube_texture(
-            gpu,
-            "environment radiance cube",
-            size,
-            radiance_levels(size),
-        );
-        let irradiance = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("environment irradiance"),
-            size: IRRADIANCE_BYTES,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        let textures = EnvironmentTextures {
-            radiance: cube_view(&radiance),
-            split_sum: self.split_sum.clone(),
-            irradiance,
-        };
-        Cubes {
-            size,
-            source,
-            radiance,
-            textures,
-        }
     }
 
     /// Records nothing this frame (the environment is off).
@@ -432,13 +330,11 @@ impl EnvironmentGpu {
         let (Some(capture), Some(cubes)) = (&self.pending, &self.cubes) else {
             return;
         };
-        let [capture_pipeline, downsample, specular, irradiance] = &self.pipelines;
         let size = cubes.size;
-        let source_levels = cubes.source.mip_level_count();
         let params = |level_size: u32, roughness: f32| PrefilterParams {
             size: level_size,
             source_size: size,
-            source_levels,
+            source_levels: cubes.source.mip_level_count(),
             samples: SPECULAR_SAMPLES,
             roughness,
             image_level: self.image_level(size),
@@ -449,53 +345,10 @@ impl EnvironmentGpu {
             label: Some("environment prefilter"),
             timestamp_writes: time.map(PassTimestamps::compute),
         });
-        let source_group = self.source_group(&capture_pipeline.get_bind_group_layout(1));
-        pass.set_bind_group(1, &source_group, &[]);
-        self.dispatch(
-            &mut pass,
-            capture_pipeline,
-            params(size, 0.0),
-            &[(1, Binding::Output(&cubes.source, 0))],
-        );
-        for level in 1..source_levels {
-            let level_size = (size >> level).max(1);
-            self.dispatch(
-                &mut pass,
-                downsample,
-                params(level_size, 0.0),
-                &[
-                    (1, Binding::Output(&cubes.source, level)),
-                    (2, Binding::Level(&cubes.source, level - 1)),
-                ],
-            );
-        }
-        let cube = cube_view(&cubes.source);
-        let levels = cubes.radiance.mip_level_count();
-        for level in 1..levels {
-            let roughness = level as f32 / (levels - 1) as f32;
-            self.dispatch(
-                &mut pass,
-                specular,
-                params((size >> level).max(1), roughness),
-                &[
-                    (1, Binding::Output(&cubes.radiance, level)),
-                    (3, Binding::Cube(&cube)),
-                    (4, Binding::Sampler(&self.cube_sampler)),
-                ],
-            );
-        }
-        let irradiance_level = size.ilog2().saturating_sub(IRRADIANCE_SIDE.ilog2());
-        let irradiance_params = params((size >> irradiance_level).max(1), 0.0);
-        self.dispatch(
-            &mut pass,
-            irradiance,
-            irradiance_params,
-            &[
-                (2, Binding::Level(&cubes.source, irradiance_level)),
-                (5, Binding::Buffer(&cubes.textures.irradiance)),
-            ],
-        );
+        self.capture(&mut pass, cubes, &params);
+        self.blur_and_project(&mut pass, cubes, &params);
         drop(pass);
+        // The radiance cube's sharpest mip is the source itself.
         let face = |texture| wgpu::TexelCopyTextureInfo {
             texture,
             mip_level: 0,
@@ -513,6 +366,73 @@ impl EnvironmentGpu {
         );
     }
 
+    /// The source captured into the source cube's largest mip, and each mip averaged into the
+    /// next.
+    fn capture(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        cubes: &Cubes,
+        params: &impl Fn(u32, f32) -> PrefilterParams,
+    ) {
+        let [capture, downsample, ..] = &self.pipelines;
+        let source_group = self.source_group(&capture.get_bind_group_layout(1));
+        pass.set_bind_group(1, &source_group, &[]);
+        let size = cubes.size;
+        let first = [(1, Binding::Output(&cubes.source, 0))];
+        self.dispatch(pass, capture, params(size, 0.0), &first);
+        for level in 1..cubes.source.mip_level_count() {
+            let bindings = [
+                (1, Binding::Output(&cubes.source, level)),
+                (2, Binding::Level(&cubes.source, level - 1)),
+            ];
+            self.dispatch(
+                pass,
+                downsample,
+                params((size >> level).max(1), 0.0),
+                &bindings,
+            );
+        }
+    }
+
+    /// The radiance cube's mips past the first, each blurred by a GGX lobe of its roughness,
+    /// and the irradiance's harmonics from a small mip of the source.
+    fn blur_and_project(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        cubes: &Cubes,
+        params: &impl Fn(u32, f32) -> PrefilterParams,
+    ) {
+        let [_, _, specular, irradiance] = &self.pipelines;
+        let size = cubes.size;
+        let cube = cube_view(&cubes.source);
+        let levels = cubes.radiance.mip_level_count();
+        for level in 1..levels {
+            let roughness = level as f32 / (levels - 1) as f32;
+            let bindings = [
+                (1, Binding::Output(&cubes.radiance, level)),
+                (3, Binding::Cube(&cube)),
+                (4, Binding::Sampler(&self.cube_sampler)),
+            ];
+            self.dispatch(
+                pass,
+                specular,
+                params((size >> level).max(1), roughness),
+                &bindings,
+            );
+        }
+        let level = size.ilog2().saturating_sub(IRRADIANCE_SIDE.ilog2());
+        let bindings = [
+            (2, Binding::Level(&cubes.source, level)),
+            (5, Binding::Buffer(&cubes.textures.irradiance)),
+        ];
+        self.dispatch(
+            pass,
+            irradiance,
+            params((size >> level).max(1), 0.0),
+            &bindings,
+        );
+    }
+
     /// One dispatch of `pipeline` over a mip of `params.size` texels a side and six faces (one
     /// workgroup for the irradiance), with `params` at binding 0 and `bindings`.
     fn dispatch(
@@ -527,7 +447,7 @@ impl EnvironmentGpu {
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("environment prefilter parameters"),
                 contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::STORAGE,
             });
         let views: Vec<Option<wgpu::TextureView>> = bindings
             .iter()

@@ -24,7 +24,9 @@ struct PrefilterParams {
     _padding: u32,
 }
 
-@group(0) @binding(0) var<uniform> params: PrefilterParams;
+// Storage, not uniform, as the source's parameters (environment_source.wgsl): a sun that moves
+// prefilters every frame.
+@group(0) @binding(0) var<storage, read> params: PrefilterParams;
 @group(0) @binding(1) var output: texture_storage_2d_array<rgba16float, write>;
 @group(0) @binding(2) var input_level: texture_2d_array<f32>;
 @group(0) @binding(3) var input_cube: texture_cube<f32>;

@@ -161,8 +161,8 @@ pub struct EquirectImage {
 }
 
 impl EquirectImage {
-    /// Reads `path` (a regular file within [`crate::files::MAX_IMAGE_FILE_BYTES`]; `.hdr` or
-    /// `.exr`, or any format the loader decodes, taken as linear) and decodes it within
+    /// Reads `path` (a regular file within [`crate::files::MAX_IMAGE_FILE_BYTES`]; a Radiance
+    /// `.hdr` or an OpenEXR image, whatever its name says) and decodes it within
     /// [`crate::IMAGE_MEMORY_BUDGET`]. A negative, NaN or infinite value is an error naming
     /// its pixel.
     pub fn read(path: &Path) -> Result<Self, EnvironmentError> {
@@ -183,7 +183,10 @@ impl EquirectImage {
         let decoded = crate::image::decode_bytes(
             &bytes,
             &name,
-            image::ImageFormat::from_path(path).ok(),
+            (
+                image::ImageFormat::from_path(path).ok(),
+                crate::image::ENVIRONMENT_FORMATS,
+            ),
             &mut budget,
         )
         .map_err(image_error)?
