@@ -13,7 +13,7 @@ use super::deferred::{DeferredResolve, ResolveTargets};
 use super::draw_order::{SortEntry, SortMemory, view_depth};
 use super::followed_models::FollowedModels;
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
-use super::pipelines::{MaterialPipelines, PipelineSetup};
+use super::pipelines::{FrameVariant, MaterialPipelines, PipelineSetup};
 use super::{DrawView, MeshLodBounds, MeshLodCache, PixelFootprint};
 use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
 use crate::gpu::MAX_DERIVED_TEXTURES;
@@ -71,8 +71,9 @@ pub(crate) struct PrepareInputs<'a> {
     pub(crate) footprint: Option<&'a PixelFootprint>,
     /// The eye and the direction it looks, for drawing nearest first.
     pub(crate) eye: (glam::Vec3, glam::Vec3),
-    /// Whether the frame renders shadow maps (casters then need their shadow pipelines).
-    pub(crate) shadow_maps: bool,
+    /// What the frame's shading pipelines compile in: shadow maps (casters then need their
+    /// shadow pipelines too), the environment.
+    pub(crate) variant: FrameVariant,
     /// The targets of the deferred resolve, on frames that run the deferred path.
     pub(crate) deferred: Option<ResolveTargets<'a>>,
 }
@@ -183,7 +184,12 @@ impl<M: Material> MaterialBatches<M> {
         Self {
             pipelines: MaterialPipelines::new(PipelineSetup {
                 shader: module,
-                receives_scene_shadows: shader.files.contains(&crate::render::shaders::SHADOWS),
+                declares: FrameVariant {
+                    scene_shadows: shader.files.contains(&crate::render::shaders::SHADOWS),
+                    environment: shader
+                        .files
+                        .contains(&crate::render::environment::ENVIRONMENT),
+                },
                 layout,
                 resolve_layout,
                 color_format,
@@ -431,10 +437,10 @@ impl<M: Material> MaterialBatches<M> {
     fn ensure_pipelines(&mut self, inputs: &PrepareInputs<'_>) {
         self.pipelines.take_compiled();
         self.pipelines
-            .set_frame(inputs.shadow_maps, inputs.deferred.is_some());
+            .set_frame(inputs.variant, inputs.deferred.is_some());
         for batch in &self.batches {
             self.pipelines.ensure(&inputs.gpu.device, batch.key);
-            if inputs.shadow_maps && batch.casts_shadows && !M::blends(batch.key) {
+            if inputs.variant.scene_shadows && batch.casts_shadows && !M::blends(batch.key) {
                 self.pipelines.ensure_shadow(&inputs.gpu.device, batch.key);
             }
             if batch.moving {

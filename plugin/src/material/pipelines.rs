@@ -22,29 +22,29 @@ pub(crate) struct MaterialPipelines<M: Material> {
     color_format: wgpu::TextureFormat,
     /// Whether the frame has a depth prepass (the opaque pipelines' depth state follows).
     prepass: bool,
-    /// Whether the shader declares the core's `SCENE_SHADOWS` override (shadows.wgsl).
-    declares_scene_shadows: bool,
-    /// Whether this frame renders shadow maps: the shading pipelines then read them.
-    scene_shadows: bool,
+    /// Which of the core's overrides the shader declares.
+    declares: FrameVariant,
+    /// What this frame's shading pipelines compile in.
+    variant: FrameVariant,
     /// Whether this frame runs the deferred path.
     deferred: bool,
-    pipelines: HashMap<(MeshPass, bool, M::Key), wgpu::RenderPipeline>,
-    resolve_pipelines: HashMap<(bool, M::Key), wgpu::ComputePipeline>,
+    pipelines: HashMap<(MeshPass, FrameVariant, M::Key), wgpu::RenderPipeline>,
+    resolve_pipelines: HashMap<(FrameVariant, M::Key), wgpu::ComputePipeline>,
     /// Compiles on worker threads, where the app asked for them.
     background: Option<Background<M>>,
 }
 
 /// A pipeline compiled on a worker thread.
 enum Compiled<M: Material> {
-    Mesh((MeshPass, bool, M::Key), wgpu::RenderPipeline),
-    Resolve((bool, M::Key), wgpu::ComputePipeline),
+    Mesh((MeshPass, FrameVariant, M::Key), wgpu::RenderPipeline),
+    Resolve((FrameVariant, M::Key), wgpu::ComputePipeline),
 }
 
 /// What a worker thread is compiling.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 enum Pending<K> {
-    Mesh(MeshPass, bool, K),
-    Resolve(bool, K),
+    Mesh(MeshPass, FrameVariant, K),
+    Resolve(FrameVariant, K),
 }
 
 /// One compile handed to a worker thread: where its pipeline goes, and the count it is in.
@@ -90,18 +90,71 @@ struct Background<M: Material> {
     loaded: bool,
 }
 
-/// The pipeline-overridable constant of shadows.wgsl that compiles the shadow-map lookups in:
-/// a frame without shadow maps uses pipelines without them (code that is there costs registers
-/// even where it does not run; sandbox/BENCHMARKS.md, "Street corner: scene shadows").
+/// The pipeline-overridable constant of shadows.wgsl that compiles the shadow-map lookups in.
 const SCENE_SHADOWS: &str = "SCENE_SHADOWS";
+/// The pipeline-overridable constant of environment.wgsl that compiles the environment in.
+const ENVIRONMENT: &str = "ENVIRONMENT";
+
+/// The core's pipeline-overridable constants a shading pipeline compiles in: a frame without
+/// shadow maps, or without an environment, uses pipelines without their code (code that is
+/// there costs registers even where it does not run; sandbox/BENCHMARKS.md, "Street corner:
+/// scene shadows").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub(crate) struct FrameVariant {
+    /// `SCENE_SHADOWS`: the frame renders shadow maps.
+    pub(crate) scene_shadows: bool,
+    /// `ENVIRONMENT`: an environment lights the frame.
+    pub(crate) environment: bool,
+}
+
+impl FrameVariant {
+    /// Every variant, for compiling the stand-in ahead.
+    const ALL: [FrameVariant; 4] = [
+        FrameVariant {
+            scene_shadows: false,
+            environment: false,
+        },
+        FrameVariant {
+            scene_shadows: true,
+            environment: false,
+        },
+        FrameVariant {
+            scene_shadows: false,
+            environment: true,
+        },
+        FrameVariant {
+            scene_shadows: true,
+            environment: true,
+        },
+    ];
+
+    /// The overrides this variant sets.
+    fn constants(self) -> impl Iterator<Item = (&'static str, f64)> {
+        [
+            (SCENE_SHADOWS, self.scene_shadows),
+            (ENVIRONMENT, self.environment),
+        ]
+        .into_iter()
+        .filter(|(_, on)| *on)
+        .map(|(name, _)| (name, 1.0))
+    }
+
+    /// What of `self` a shader declaring `declared` can compile in.
+    fn within(self, declared: FrameVariant) -> Self {
+        Self {
+            scene_shadows: self.scene_shadows && declared.scene_shadows,
+            environment: self.environment && declared.environment,
+        }
+    }
+}
 
 /// How a material's pipelines are made: its module and layouts, the scene format and whether
 /// frames have a depth prepass.
 pub(crate) struct PipelineSetup {
     pub(crate) shader: wgpu::ShaderModule,
-    /// Whether the shader is composed with the core's scene shadows (shaders::SHADOWS, which
-    /// declares the `SCENE_SHADOWS` override).
-    pub(crate) receives_scene_shadows: bool,
+    /// Which of the core's overrides the shader declares (composed with shadows.wgsl, with
+    /// environment.wgsl).
+    pub(crate) declares: FrameVariant,
     pub(crate) layout: wgpu::PipelineLayout,
     /// Present where the module is `M`'s deferred shader.
     pub(crate) resolve_layout: Option<wgpu::PipelineLayout>,
@@ -115,13 +168,13 @@ impl<M: Material> MaterialPipelines<M> {
     /// No pipelines yet; they will come from `setup`.
     pub(crate) fn new(setup: PipelineSetup) -> Self {
         Self {
-            declares_scene_shadows: setup.receives_scene_shadows,
+            declares: setup.declares,
             shader: setup.shader,
             layout: setup.layout,
             resolve_layout: setup.resolve_layout,
             color_format: setup.color_format,
             prepass: setup.prepass,
-            scene_shadows: false,
+            variant: FrameVariant::default(),
             deferred: false,
             pipelines: HashMap::new(),
             resolve_pipelines: HashMap::new(),
@@ -146,10 +199,10 @@ impl<M: Material> MaterialPipelines<M> {
         let Some(stand_in) = self.background.as_ref().map(|b| b.stand_in) else {
             return;
         };
-        let (scene_shadows, deferred) = (self.scene_shadows, self.deferred);
-        for shadows in [false, true] {
+        let (variant, deferred) = (self.variant, self.deferred);
+        for frame_variant in FrameVariant::ALL {
             for deferred_frame in [false, true] {
-                self.set_frame(shadows, deferred_frame);
+                self.set_frame(frame_variant, deferred_frame);
                 for &pass in self.passes(stand_in) {
                     self.compile_pass(device, pass, stand_in, false);
                 }
@@ -159,7 +212,7 @@ impl<M: Material> MaterialPipelines<M> {
                 }
             }
         }
-        self.scene_shadows = scene_shadows;
+        self.variant = variant;
         self.deferred = deferred;
     }
 
@@ -194,11 +247,9 @@ impl<M: Material> MaterialPipelines<M> {
     pub(crate) fn ready(&self, key: M::Key) -> bool {
         self.passes(key).iter().all(|&pass| {
             self.pipelines
-                .contains_key(&(pass, self.reads_shadow_maps(pass), key))
+                .contains_key(&(pass, self.variant_of(pass), key))
         }) && (!self.resolves_in_compute(key)
-            || self
-                .resolve_pipelines
-                .contains_key(&(self.scene_shadows, key)))
+            || self.resolve_pipelines.contains_key(&(self.variant, key)))
     }
 
     /// The pipeline `lookup` finds for `key`, else (while `key` compiles in the background)
@@ -217,11 +268,11 @@ impl<M: Material> MaterialPipelines<M> {
         })
     }
 
-    /// Sets whether this frame renders shadow maps (which shading pipelines are used) and
+    /// Sets what this frame's shading pipelines compile in (shadow maps, environment) and
     /// whether it runs the deferred path (which the renderer only chooses where every material
     /// has its deferred shader).
-    pub(crate) fn set_frame(&mut self, scene_shadows: bool, deferred: bool) {
-        self.scene_shadows = scene_shadows && self.declares_scene_shadows;
+    pub(crate) fn set_frame(&mut self, variant: FrameVariant, deferred: bool) {
+        self.variant = variant.within(self.declares);
         self.deferred = deferred && self.resolve_layout.is_some();
     }
 
@@ -230,13 +281,14 @@ impl<M: Material> MaterialPipelines<M> {
         self.deferred && !M::blends(key) && M::deferred_resolve(key).is_some()
     }
 
-    /// Whether `pass` of this frame reads the shadow maps.
-    fn reads_shadow_maps(&self, pass: MeshPass) -> bool {
-        self.scene_shadows
-            && !matches!(
-                pass,
-                MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow | MeshPass::Motion
-            )
+    /// What `pass` of this frame compiles in: nothing for the passes that do not shade.
+    fn variant_of(&self, pass: MeshPass) -> FrameVariant {
+        match pass {
+            MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow | MeshPass::Motion => {
+                FrameVariant::default()
+            }
+            _ => self.variant,
+        }
     }
 
     /// The passes a draw of `key` takes part in: the transparent one for a blending key,
@@ -293,20 +345,18 @@ impl<M: Material> MaterialPipelines<M> {
     /// Compiles `key`'s deferred resolve unless it exists or is compiling, on a worker thread
     /// where `background`.
     fn compile_resolve(&mut self, device: &wgpu::Device, key: M::Key, background: bool) {
-        let shadowed = self.scene_shadows;
+        let variant = self.variant;
         let (Some(layout), Some(mut entry)) = (&self.resolve_layout, M::deferred_resolve(key))
         else {
             return;
         };
-        if self.resolve_pipelines.contains_key(&(shadowed, key))
-            || self.is_pending(Pending::Resolve(shadowed, key))
+        if self.resolve_pipelines.contains_key(&(variant, key))
+            || self.is_pending(Pending::Resolve(variant, key))
         {
             return;
         }
-        if shadowed {
-            entry.constants.push((SCENE_SHADOWS, 1.0));
-        }
-        let label = format!("{} deferred resolve {key:?} shadowed {shadowed}", M::NAME);
+        entry.constants.extend(variant.constants());
+        let label = format!("{} deferred resolve {key:?} {variant:?}", M::NAME);
         let (layout, shader) = (layout.clone(), self.shader.clone());
         let compile = move |device: &wgpu::Device| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -321,13 +371,13 @@ impl<M: Material> MaterialPipelines<M> {
                 cache: None,
             })
         };
-        match self.background_job(background, Pending::Resolve(shadowed, key)) {
+        match self.background_job(background, Pending::Resolve(variant, key)) {
             Some(job) => job.run(device.clone(), move |device| {
-                Compiled::Resolve((shadowed, key), compile(device))
+                Compiled::Resolve((variant, key), compile(device))
             }),
             None => {
                 let pipeline = compile(device);
-                self.resolve_pipelines.insert((shadowed, key), pipeline);
+                self.resolve_pipelines.insert((variant, key), pipeline);
             }
         }
     }
@@ -354,8 +404,8 @@ impl<M: Material> MaterialPipelines<M> {
     /// The deferred resolve's pipeline of `key` (or of what stands in for it), once
     /// [`MaterialPipelines::ensure`]d.
     pub(crate) fn resolve(&self, key: &M::Key) -> Option<&wgpu::ComputePipeline> {
-        let shadowed = self.scene_shadows;
-        self.drawn_as(*key, |key| self.resolve_pipelines.get(&(shadowed, key)))
+        let variant = self.variant;
+        self.drawn_as(*key, |key| self.resolve_pipelines.get(&(variant, key)))
     }
 
     /// Compiles `key`'s shadow-map pipeline unless it exists (only frames with shadow maps
@@ -374,9 +424,9 @@ impl<M: Material> MaterialPipelines<M> {
         key: M::Key,
         background: bool,
     ) {
-        let shadowed = self.reads_shadow_maps(pass);
-        if self.pipelines.contains_key(&(pass, shadowed, key))
-            || self.is_pending(Pending::Mesh(pass, shadowed, key))
+        let variant = self.variant_of(pass);
+        if self.pipelines.contains_key(&(pass, variant, key))
+            || self.is_pending(Pending::Mesh(pass, variant, key))
         {
             return;
         }
@@ -388,10 +438,10 @@ impl<M: Material> MaterialPipelines<M> {
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),
             MeshPass::Motion => Some(ShaderEntry::entry("fs_motion")),
         };
-        if shadowed && let Some(fragment) = &mut fragment {
-            fragment.constants.push((SCENE_SHADOWS, 1.0));
+        if let Some(fragment) = &mut fragment {
+            fragment.constants.extend(variant.constants());
         }
-        let label = format!("{} {pass:?} pipeline {key:?} shadowed {shadowed}", M::NAME);
+        let label = format!("{} {pass:?} pipeline {key:?} {variant:?}", M::NAME);
         let (layout, shader, color_format) =
             (self.layout.clone(), self.shader.clone(), self.color_format);
         let compile = move |device: &wgpu::Device| {
@@ -408,13 +458,13 @@ impl<M: Material> MaterialPipelines<M> {
                 },
             )
         };
-        match self.background_job(background, Pending::Mesh(pass, shadowed, key)) {
+        match self.background_job(background, Pending::Mesh(pass, variant, key)) {
             Some(job) => job.run(device.clone(), move |device| {
-                Compiled::Mesh((pass, shadowed, key), compile(device))
+                Compiled::Mesh((pass, variant, key), compile(device))
             }),
             None => {
                 let pipeline = compile(device);
-                self.pipelines.insert((pass, shadowed, key), pipeline);
+                self.pipelines.insert((pass, variant, key), pipeline);
             }
         }
     }
@@ -422,8 +472,8 @@ impl<M: Material> MaterialPipelines<M> {
     /// The pipeline of `key` in `pass` (or of what stands in for it while it compiles), once
     /// [`MaterialPipelines::ensure`]d.
     pub(crate) fn get(&self, pass: MeshPass, key: &M::Key) -> Option<&wgpu::RenderPipeline> {
-        let shadowed = self.reads_shadow_maps(pass);
-        self.drawn_as(*key, |key| self.pipelines.get(&(pass, shadowed, key)))
+        let variant = self.variant_of(pass);
+        self.drawn_as(*key, |key| self.pipelines.get(&(pass, variant, key)))
     }
 
     /// Every pipeline in use rebuilt from `shader` (a recompiled shader), for hot reload:
@@ -437,8 +487,8 @@ impl<M: Material> MaterialPipelines<M> {
             resolve_layout: self.resolve_layout.clone(),
             color_format: self.color_format,
             prepass: self.prepass,
-            declares_scene_shadows: self.declares_scene_shadows,
-            scene_shadows: self.scene_shadows,
+            declares: self.declares,
+            variant: self.variant,
             deferred: self.deferred,
             pipelines: HashMap::new(),
             resolve_pipelines: HashMap::new(),

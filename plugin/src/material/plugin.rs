@@ -11,6 +11,7 @@ use super::batches::CompileOptions;
 use super::batches::{FrameNumbers, MaterialBatches, MaterialShader, PrepareInputs};
 use super::deferred::ResolveTargets;
 use super::extract::{ExtractedMaterials, extract_materials};
+use super::pipelines::FrameVariant;
 use super::registry::{MaterialEntry, MaterialRegistry};
 use super::shader_check::check_material_shader;
 use super::{MeshLodCache, PixelFootprint};
@@ -318,7 +319,10 @@ fn prepare_frame<M: Material>(
             glam::Vec4::from(frame.frame.camera_position).truncate(),
             glam::Vec4::from(frame.frame.view_direction).truncate(),
         ),
-        shadow_maps: !frame.shadow_views.is_empty(),
+        variant: FrameVariant {
+            scene_shadows: !frame.shadow_views.is_empty(),
+            environment: frame.frame.environment[1] > 0.0,
+        },
         deferred: visibility.map(|visibility| resolve_targets(visibility, target, frame)),
     };
     let mut stats = UploadStats::default();

@@ -13,9 +13,13 @@ struct EnvironmentIrradiance {
 @group(0) @binding(12) var<uniform> environment_irradiance: EnvironmentIrradiance;
 @group(0) @binding(13) var environment_sampler: sampler;
 
+// Set by the material seam in pipelines of frames an environment lights: the others are
+// compiled without the environment's code (code that is there costs registers unrun).
+override ENVIRONMENT: bool = false;
+
 // Whether an environment lights the frame (else materials use the ambient term).
 fn has_environment() -> bool {
-    return frame.environment.y > 0.0;
+    return ENVIRONMENT && frame.environment.y > 0.0;
 }
 
 // A world direction in the environment's own frame: turned about +Y by its rotation.
