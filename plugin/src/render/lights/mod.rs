@@ -1,7 +1,7 @@
 //! Point, spot and directional lights: [`LightsPlugin`]'s Extract system copies every
 //! [`DirectionalLight`], [`PointLight`] and [`SpotLight`] of the world, in physical units times
 //! the camera's exposure, into the frame uniform's light arrays (frame.wgsl's `light_at` reads
-//! them), with each slot's entity in [`ExtractedFrame::lights`] for the features that follow
+//! them), with each slot's entity in the frame's `lights` for the features that follow
 //! (the shadows plan each casting light's maps; the environment's sky takes its sun from the
 //! first directional light). It runs right after the core's extract, before every other
 //! feature's.
