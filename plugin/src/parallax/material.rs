@@ -206,7 +206,7 @@ crate::with_lighting_parameters! {
                 .applies_when(|material| material.shadows == ShadowMode::Soft);
             /// How much the relief hides the environment's light where it hides the sky (the grout
             /// between cobbles): 0 not at all, 1 as the height field's horizon says.
-            relief_occlusion: f32 = 1.0, ParamSpec::float(0.0, 1.0);
+            relief_occlusion: f32 = 1.0, ParamSpec::float(0.0, 1.0).group(ParamGroup::Lighting);
             /// Reflection model: Phong and Blinn-Phong use specular and shininess, Cook-Torrance
             /// and GGX-Lambert roughness and metallic.
             lighting: LightingModel = LightingModel::Phong, ParamSpec::choice::<LightingModel>()
