@@ -10,8 +10,10 @@ use anyhow::{Context, Result};
 use pom::render::environment::{ENVIRONMENT_BACKGROUND_NODE, ENVIRONMENT_PREFILTER_NODE};
 use pom::{EnvironmentLight, EnvironmentSource, EquirectImage, RenderPath};
 
+use super::Runner;
 use super::scene::{PhaseTimes, Warmup};
 use super::scene_shadows::{ShadowCase, ShadowLight, street_corner};
+use pom::ParallaxOcclusionMaterial;
 
 /// The street corner's frame phases (the resolve is added on the deferred path).
 const FRAME_PHASES: [&str; 3] = ["prepass", "opaque", "post"];
@@ -91,4 +93,75 @@ pub fn time_prefilter(
         });
     })?;
     Ok((scene.path_ran(), times, read_ms))
+}
+
+impl Runner<'_> {
+    /// The environment light's cost: the street corner's frame under the sky against without
+    /// it, the relief's occlusion on the cobblestones against none, a 2K `.hdr`'s prefiltering.
+    pub(super) fn environment(&mut self, size: (u32, u32)) -> Result<()> {
+        let place = (size, 1.0);
+        let material = self.base.clone();
+        let frames = (self.warmup, self.frames);
+        let mut frame_ms = [None, None];
+        for (index, sky) in [false, true].into_iter().enumerate() {
+            let variant = if sky {
+                "street corner, sky"
+            } else {
+                "street corner, no environment"
+            };
+            let (path, times) = time_street_corner(size, sky, self.path, frames)?;
+            for (phase, times) in &times {
+                self.record(
+                    "environment",
+                    place,
+                    &material,
+                    (path, *phase, variant.into()),
+                    times,
+                )?;
+            }
+            let frame: Vec<f64> = (0..self.frames)
+                .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
+                .collect();
+            let row = (path, "frame", variant.to_owned());
+            frame_ms[index] = Some(self.record("environment", place, &material, row, &frame)?);
+        }
+        if let [Some(without), Some(with)] = frame_ms {
+            self.ratio(
+                "street corner frame: sky / no environment".into(),
+                size,
+                with,
+                without,
+            );
+        }
+        let mut scene = self.scene(size, &self.view.clone())?;
+        scene.insert_resource(pom::EnvironmentLight::uniform([5_000.0; 3]));
+        let mut occlusion_ms = [None, None];
+        for (index, strength) in [0.0, 1.0].into_iter().enumerate() {
+            let with = ParallaxOcclusionMaterial {
+                relief_occlusion: strength,
+                ..material.clone()
+            };
+            let variant = format!("uniform environment, relief occlusion {strength}");
+            occlusion_ms[index] =
+                Some(self.case_variant(&mut scene, "environment", place, with, variant)?);
+        }
+        if let [Some(off), Some(on)] = occlusion_ms {
+            self.ratio("relief occlusion: on / off".into(), size, on, off);
+        }
+        drop(scene);
+        let (path, times, read_ms) = time_prefilter(size, self.path, frames)?;
+        let variant = "2048x1024 .hdr into a 256-texel cube".to_owned();
+        for (node, times) in &times {
+            self.record(
+                "environment",
+                place,
+                &material,
+                (path, *node, variant.clone()),
+                times,
+            )?;
+        }
+        // One reading, not a case of timed frames: printed beside the table.
+        eprintln!("environment: reading and decoding the 2048x1024 .hdr took {read_ms:.1} ms");
+        Ok(())
+    }
 }
