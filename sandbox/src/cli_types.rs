@@ -147,8 +147,8 @@ pub fn parse_exposure(text: &str) -> Result<f32, String> {
 #[derive(Clone, Debug, clap::Args)]
 #[command(next_help_heading = "Display")]
 pub struct DisplayArgs {
-    /// Camera exposure in EV100, -16..=24; +1 halves the light [default: 14.7, daylight: white
-    /// in a 100,000 lux sun shows as 1].
+    /// Camera exposure in EV100, -16..=24; +1 halves the light [default: the scene camera's
+    /// own, else 14.7, daylight: white in a 100,000 lux sun shows as 1].
     #[arg(long, value_name = "EV", allow_negative_numbers = true, value_parser = parse_exposure)]
     pub exposure: Option<f32>,
     /// Tonemapping operator: none (clamp), aces, agx or neutral (Khronos PBR Neutral).
@@ -169,9 +169,13 @@ pub struct DisplayArgs {
 impl DisplayArgs {
     /// Puts the exposure and operator on the app's active cameras.
     pub fn apply(&self, app: &mut pom::App) {
+        // Without the flag a camera keeps the exposure its scene gave it (a night scene's).
+        let own = pom::active_cameras(&app.world)
+            .first()
+            .and_then(|&camera| app.world.get::<&pom::Exposure>(camera).ok().map(|e| *e));
         let exposure = self
             .exposure
-            .map_or_else(pom::Exposure::default, |ev100| pom::Exposure { ev100 });
+            .map_or_else(|| own.unwrap_or_default(), |ev100| pom::Exposure { ev100 });
         pom::set_camera_display_mapping(&mut app.world, exposure, self.tonemap);
         pom::set_camera_anti_aliasing(&mut app.world, self.aa, self.temporal());
         pom::set_camera_fxaa(&mut app.world, self.fxaa.settings());

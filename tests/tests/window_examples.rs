@@ -386,3 +386,22 @@ fn the_renderer_guide_shows_the_post_effect_example() {
         "the renderer guide's post effect and plugin/examples/post_effect.rs differ"
     );
 }
+
+#[test]
+fn the_night_street_example_shows_the_street_lit_by_its_lamps_and_lanterns() {
+    let image = screenshot_of("night_street", 20);
+    assert_eq!(image.dimensions(), (1280, 720));
+    // A night: most of the frame is dark, and the lamps light the stones and bricks in many
+    // warm shades (red over blue where they shine).
+    let colours = distinct_colours(&image, 0..1280, 0..720);
+    assert!(colours > 100, "only {colours} distinct colours: no scene");
+    let (lit, warm) = image.pixels().fold((0, 0), |(lit, warm), pixel| {
+        let [r, _, b, _] = pixel.0;
+        (
+            lit + usize::from(r > 40),
+            warm + usize::from(r > 40 && r > b + 20),
+        )
+    });
+    assert!(lit > 20_000, "only {lit} lit pixels");
+    assert!(warm * 10 > lit * 8, "{warm} of {lit} lit pixels are warm");
+}

@@ -5,7 +5,10 @@ use hecs::Entity;
 
 use super::materials::{MaterialCache, MaterialComponent};
 use super::primitives::read_primitive;
-use super::values::{camera_of, light_output, light_range, node_transform, world_problem};
+use super::values::{
+    camera_exposure, camera_of, light_output, light_range, node_transform, scene_ambient,
+    world_problem,
+};
 use super::{GltfError, GltfScene, Source, describe};
 use crate::{
     App, Assets, Camera, Color, DirectionalLight, Handle, Image, Mesh, Name, Parent, PointLight,
@@ -37,6 +40,15 @@ pub(super) fn spawn_scene(
         .ok_or_else(|| GltfError::NoScene {
             path: source.path.clone(),
         })?;
+    match scene_ambient(&root) {
+        Ok(Some(ambient)) => {
+            app.insert_resource(ambient);
+        }
+        Ok(None) => {}
+        Err(reason) => scene
+            .warnings
+            .push(format!("the scene's {reason}: ignored")),
+    }
     app.resources.get_or_default::<Assets<Mesh>>();
     app.resources.get_or_default::<Assets<Image>>();
     app.resource_scope(|app, meshes: &mut Assets<Mesh>| {
@@ -150,11 +162,15 @@ impl Spawner<'_> {
             self.mesh(&mesh, entity, &name, world)?;
         }
         if let Some(camera) = node.camera() {
-            let loaded = camera_of(&camera).map_err(|reason| GltfError::Camera {
+            let unusable = |reason| GltfError::Camera {
                 path: self.source.path.clone(),
                 camera: describe(camera.name(), camera.index()),
                 reason,
-            })?;
+            };
+            let loaded = camera_of(&camera).map_err(unusable)?;
+            if let Some(exposure) = camera_exposure(&camera).map_err(unusable)? {
+                let _ = self.app.world.insert_one(entity, exposure);
+            }
             // One rule everywhere: the first camera node is the one looked through.
             let camera = Camera {
                 active: self.scene.cameras.is_empty(),

@@ -130,6 +130,63 @@ pub(super) fn camera_of(camera: &gltf::Camera<'_>) -> Result<Camera, String> {
     })
 }
 
+/// The exposure a glTF camera asks for in `extras.pom.exposure` (EV100, as `--exposure`):
+/// `None` without one, or why it is unusable. A scene lit at night carries its own.
+pub(super) fn camera_exposure(
+    camera: &gltf::Camera<'_>,
+) -> Result<Option<crate::Exposure>, String> {
+    let Some(raw) = camera.extras() else {
+        return Ok(None);
+    };
+    let value: serde_json::Value = serde_json::from_str(raw.get()).map_err(|e| e.to_string())?;
+    let Some(exposure) = value.get("pom").and_then(|pom| pom.get("exposure")) else {
+        return Ok(None);
+    };
+    let range = crate::Exposure::RANGE;
+    match exposure.as_f64().map(|ev100| ev100 as f32) {
+        Some(ev100) if range.contains(&ev100) => Ok(Some(crate::Exposure { ev100 })),
+        _ => Err(format!(
+            "extras.pom.exposure {exposure} is not an EV100 in {}..={}",
+            range.start(),
+            range.end()
+        )),
+    }
+}
+
+/// The ambient light a glTF scene asks for in `extras.pom.ambient` (`{"color": [r, g, b],
+/// "intensity": lux}`, linear colour, as [`crate::AmbientLight`]): `None` without one, or why
+/// it is unusable. A scene lit at night carries its own (the default is a day's).
+pub(super) fn scene_ambient(
+    scene: &gltf::Scene<'_>,
+) -> Result<Option<crate::AmbientLight>, String> {
+    let Some(raw) = scene.extras() else {
+        return Ok(None);
+    };
+    let value: serde_json::Value = serde_json::from_str(raw.get()).map_err(|e| e.to_string())?;
+    let Some(ambient) = value.get("pom").and_then(|pom| pom.get("ambient")) else {
+        return Ok(None);
+    };
+    let intensity = ambient["intensity"].as_f64().map(|lux| lux as f32);
+    let color: Option<Vec<f32>> = ambient["color"]
+        .as_array()
+        .and_then(|rgb| rgb.iter().map(|c| c.as_f64().map(|c| c as f32)).collect());
+    match (intensity, color.as_deref()) {
+        (Some(lux), Some(&[r, g, b]))
+            if lux.is_finite()
+                && lux >= 0.0
+                && [r, g, b].iter().all(|c| (0.0..=1.0).contains(c)) =>
+        {
+            Ok(Some(crate::AmbientLight {
+                color: crate::Color::linear_rgb(r, g, b),
+                intensity: lux,
+            }))
+        }
+        _ => Err(format!(
+            "extras.pom.ambient {ambient} is not {{\"color\": [r, g, b] in 0..=1, \"intensity\": lux ≥ 0}}"
+        )),
+    }
+}
+
 /// A light's colour and intensity within [`crate::MAX_LIGHT_OUTPUT`], with a warning in
 /// `warnings` when they had to be changed.
 pub(super) fn light_output(

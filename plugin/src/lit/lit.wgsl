@@ -44,7 +44,9 @@ fn shade(surface: SurfaceInput, material: LitParams) -> vec4<f32> {
     // glTF's occlusion darkens the indirect light (ambient or environment) only.
     let occlusion = 1.0 + material.occlusion_strength * (texture_at(occlusion_texture, surface).r - 1.0);
     var color = ambient_lighting(reflecting, normal, to_eye, vec2<f32>(occlusion)) + emissive;
-    for (var i = 0u; i < light_count(); i += 1u) {
+    let lights = lights_near(surface.position);
+    for (var k = 0u; k < lights.count; k += 1u) {
+        let i = light_in(lights, k);
         let light = light_at(i, surface.position);
         // A light behind the perturbed normal reflects nothing: no shadow lookup for it.
         var visibility = 1.0;

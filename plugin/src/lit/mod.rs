@@ -98,6 +98,7 @@ macro_rules! lit_shader {
             ],
             files: &[
                 shaders::FRAME,
+                crate::render::lights::LIGHTS_WGSL,
                 shaders::PARAMS,
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,

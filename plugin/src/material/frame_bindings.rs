@@ -3,9 +3,10 @@
 //! for the passes that write depth (prepass, shadow maps) and one for those that shade.
 
 use crate::gpu::GpuContext;
-use crate::render::object_buffer::ObjectBuffer;
+use crate::gpu::ObjectBuffer;
 use crate::render::{
-    BoundResources, EnvironmentMaps, FrameUniformBuffer, MeshTransform, PhaseBindings, frame_group,
+    BoundResources, EnvironmentMaps, FrameUniformBuffer, LightBuffers, MeshTransform,
+    PhaseBindings, frame_group,
 };
 
 /// The buffers and textures group 0 binds.
@@ -68,6 +69,7 @@ fn frame_bind_group(
         ),
     ];
     entries.extend(depth.environment.entries());
+    entries.extend(depth.lights.entries());
     if bindings.visibility_keys {
         for binding in [frame_group::VISIBILITY_KEYS, frame_group::VISIBILITY_WORDS] {
             entries.push(entry(binding, visibility.as_entire_binding()));
@@ -220,6 +222,7 @@ impl FrameBindGroups {
         ];
         entries.extend(shadow_entries());
         entries.extend(EnvironmentMaps::layout_entries());
+        entries.extend(LightBuffers::layout_entries());
         if deferred {
             entries.extend(visibility_entries());
         }

@@ -148,7 +148,11 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
             &phase_bindings(
                 renderer.depth_prepass,
                 &renderer.dummy_depth,
-                (&renderer.shadow_maps, &renderer.environment),
+                (
+                    &renderer.shadow_maps,
+                    &renderer.environment,
+                    &renderer.lights,
+                ),
                 (renderer.visibility.as_ref(), &renderer.dummy_visibility),
                 target,
             ),
@@ -300,7 +304,11 @@ fn prepare_frame<M: Material>(
     let depth: PhaseBindings<'_> = phase_bindings(
         renderer.depth_prepass,
         &renderer.dummy_depth,
-        (&renderer.shadow_maps, &renderer.environment),
+        (
+            &renderer.shadow_maps,
+            &renderer.environment,
+            &renderer.lights,
+        ),
         (renderer.visibility.as_ref(), &renderer.dummy_visibility),
         target,
     );

@@ -64,6 +64,7 @@ macro_rules! shaded_shader {
             constants: &[$($first as GeneratedWgsl,)* declarations::<$T> as GeneratedWgsl],
             files: &[
                 shaders::FRAME,
+                crate::render::lights::LIGHTS_WGSL,
                 shaders::PARAMS,
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,

@@ -117,6 +117,8 @@ fn clips_at_bounds(material: &ParallaxOcclusionMaterial) -> bool {
 
 /// Most height samples one march may take; larger `max_samples` are clamped to it.
 pub const MAX_SAMPLES_LIMIT: u32 = 256;
+/// The most lights a pixel gives the relief's self-shadows (as many as lights.wgsl ranks).
+pub const MAX_SHADOWED_LIGHTS: u32 = crate::render::lights::MAX_RANKED_LIGHTS;
 
 crate::with_lighting_parameters! {
     /// A surface that looks displaced: Tatarchuk's parallax occlusion mapping with soft
@@ -204,6 +206,10 @@ crate::with_lighting_parameters! {
             shadow_softening: f32 = 0.58, ParamSpec::float(0.01, 100.0).editor(0.01, 4.0)
                 .logarithmic()
                 .applies_when(|material| material.shadows == ShadowMode::Soft);
+            /// How many of the lights at a pixel get the relief's self-shadows: the brightest
+            /// there; the rest light it unshadowed by its relief (cheaper under many lights).
+            shadowed_lights: u32 = 4, ParamSpec::integer(0, MAX_SHADOWED_LIGHTS)
+                .applies_when(|material| material.shadows != ShadowMode::Off);
             /// How much the relief hides the environment's light where it hides the sky (the grout
             /// between cobbles): 0 not at all, 1 as the height field's horizon says.
             relief_occlusion: f32 = 1.0, ParamSpec::float(0.0, 1.0).group(ParamGroup::Lighting);

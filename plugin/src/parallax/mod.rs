@@ -58,6 +58,7 @@ macro_rules! parallax_shader {
             ],
             files: &[
                 shaders::FRAME,
+                crate::render::lights::LIGHTS_WGSL,
                 shaders::PARAMS,
                 shaders::MESH_VERTEX,
                 shaders::SHADOWS,

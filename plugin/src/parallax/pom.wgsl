@@ -293,11 +293,18 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
     // Scene shadows are looked up where the march found the surface, not on the polygon.
     let receives_shadows = receives_scene_shadows(in.object_index);
     let surface_position = displaced_position(in, point);
-    for (var i = 0u; i < light_count(); i += 1u) {
+    let lights = lights_near(in.world_position);
+    // The relief's own shadows for the brightest few lights here; the rest light the
+    // displaced point unshadowed by it (scene shadows still apply).
+    let shadowed_from = brightest_lights_floor(lights, in.world_position, params.shadowed_lights);
+    for (var k = 0u; k < lights.count; k += 1u) {
+        let i = light_in(lights, k);
         let light = light_at(i, in.world_position);
         var visibility = 1.0;
+        let brightness = light_brightness(light.radiance);
+        let self_shadowed = brightness >= shadowed_from && brightness > 0.0;
         // Shadow rays only where the light faces the polygon (T §5.4.2) and the march ran.
-        if point.marched && SHADOW_MODE != SHADOWS_OFF && dot(surface_frame.normal, light.to_light) > 0.0 {
+        if point.marched && SHADOW_MODE != SHADOWS_OFF && self_shadowed && dot(surface_frame.normal, light.to_light) > 0.0 {
             let to_light_ts = to_tangent_space(surface_frame, light.to_light);
             let light_offset = ray_offset(to_light_ts, point.height_scale);
             let light_bend = ray_bend(normal_curvature(in, surface_frame, point.footprint,

@@ -4,9 +4,7 @@ use glam::{Mat4, Vec3};
 use hecs::World;
 
 use super::ShadowViewPlan;
-use super::gpu_types::{
-    DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, MAX_POINT_LIGHTS, PointLightGpu,
-};
+use super::gpu_types::{DirectionalLightGpu, FrameUniform, MAX_DIRECTIONAL_LIGHTS, PointLightGpu};
 use super::target::RenderTarget;
 use crate::{
     AmbientLight, AppError, Camera, Color, Exposure, GlobalTransform, Projection, Resources,
@@ -28,10 +26,19 @@ pub struct ExtractedFrame {
     pub camera: Option<(Camera, GlobalTransform)>,
     /// The entity of each light in the frame uniform, in its order.
     pub lights: LightEntities,
+    /// The point and spot lights (`point_lights` in frame.wgsl): the point lights, then the
+    /// spot lights, as `lights.point` lists their entities.
+    pub point_lights: Vec<PointLightGpu>,
+    /// Each light cluster's first entry and count, then their lists (`light_clusters` in
+    /// frame.wgsl; see [`crate::render::lights`]).
+    pub light_clusters: Vec<u32>,
     /// The shadow maps to render this frame, in the order the lights reference them: empty
     /// unless a feature plans them (the shadows plugin does, after this extract).
     pub shadow_views: Vec<ShadowViewPlan>,
 }
+
+/// The one cluster of a frame without point lights: its list starts after it and is empty.
+pub const NO_LIGHT_CLUSTERS: [u32; 2] = [2, 0];
 
 /// The entity of each light the frame uniform holds, slot by slot.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -97,6 +104,9 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             0.0,
         ],
         light_counts: [0; 4],
+        // One cluster without point lights; the lights feature culls them, after this extract.
+        light_grid: [1, 1, 1, 0],
+        light_slicing: [0.0; 4],
         // z: the seed of per-frame noise, w: whether it moves from frame to frame, and the
         // texture footprints' scale: still without anti-aliasing, which sets them.
         target_size: [target_size.0, target_size.1, 0, 0],
@@ -106,7 +116,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         environment_options: [0.0; 4],
         // The lights are the lights feature's (render/lights/), extracted after this.
         directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
-        point_lights: [PointLightGpu::default(); MAX_POINT_LIGHTS],
     };
     resources.insert(ExtractedFrame {
         frame,
@@ -114,6 +123,8 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         exposure,
         camera,
         lights: LightEntities::default(),
+        point_lights: Vec::new(),
+        light_clusters: NO_LIGHT_CLUSTERS.to_vec(),
         shadow_views: Vec::new(),
         has_camera: camera.is_some(),
     });

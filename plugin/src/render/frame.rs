@@ -37,7 +37,10 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             uniform_bytes: renderer
                 .frame
                 .upload(gpu, &extracted.frame, &light_views(extracted))
-                + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views),
+                + renderer.shadow_maps.prepare(gpu, &extracted.shadow_views)
+                + renderer
+                    .lights
+                    .prepare(gpu, &extracted.point_lights, &extracted.light_clusters),
             ..UploadStats::default()
         };
         Ok(())

@@ -2,7 +2,6 @@
 // Mirrors `FrameUniform` in gpu_types.rs; change both together.
 
 const MAX_DIRECTIONAL_LIGHTS: u32 = 4u;
-const MAX_POINT_LIGHTS: u32 = 16u;
 
 struct DirectionalLight {
     // xyz: unit vector from the surface towards the light.
@@ -37,8 +36,14 @@ struct Frame {
     view_direction: vec4<f32>,
     // rgb: ambient colour × intensity.
     ambient: vec4<f32>,
-    // x: directional light count, y: point and spot light count.
+    // x: directional light count, y: point and spot light count (`point_lights`).
     light_counts: vec4<u32>,
+    // The light clusters: x and y tiles across the image, z depth slices (0: no clusters,
+    // every point lights everywhere).
+    light_grid: vec4<u32>,
+    // A view depth d's slice: floor(f(d) × x + y), f = log2 where z is 1, else the identity;
+    // w: the nearest depth f is taken at.
+    light_slicing: vec4<f32>,
     // xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed of
     // per-frame noise (counts TAA frames; 0 without TAA); w: 1 under TAA, whose history averages
     // per-frame noise away (the soft shadow's samples move only then).
@@ -55,10 +60,11 @@ struct Frame {
     // rough surfaces (multiple-scattering compensation), else 0.
     environment_options: vec4<f32>,
     directional_lights: array<DirectionalLight, MAX_DIRECTIONAL_LIGHTS>,
-    point_lights: array<PointLight, MAX_POINT_LIGHTS>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+// The point lights, then the spot lights (light_counts.y of them).
+@group(0) @binding(14) var<storage, read> point_lights: array<PointLight>;
 
 // Unit vector from a surface point towards the eye: along the view ray through that point,
 // which for an orthographic camera is the same everywhere.
@@ -78,9 +84,9 @@ struct LightSample {
     radiance: vec3<f32>,
 }
 
-// Directional lights first, then point lights.
+// Every light: directional lights first, then point lights (`light_at` numbers them so).
 fn light_count() -> u32 {
-    return min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS) + min(frame.light_counts.y, MAX_POINT_LIGHTS);
+    return min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS) + frame.light_counts.y;
 }
 
 // Inverse-square falloff with a smooth window that reaches zero at the light's range.
@@ -97,7 +103,7 @@ fn light_at(index: u32, world_position: vec3<f32>) -> LightSample {
         let light = frame.directional_lights[index];
         return LightSample(light.direction_to_light.xyz, light.radiance.rgb);
     }
-    let light = frame.point_lights[index - directional_count];
+    let light = point_lights[index - directional_count];
     let offset = light.position_range.xyz - world_position;
     let distance = length(offset);
     // At the light's own position any direction will do; the window makes it dark anyway.
@@ -107,3 +113,4 @@ fn light_at(index: u32, world_position: vec3<f32>) -> LightSample {
     let radiance = light.radiance.rgb * point_light_attenuation(distance, light.position_range.w) * cone * cone;
     return LightSample(to_light, radiance);
 }
+

@@ -1,7 +1,7 @@
 //! Group 0 of every material pipeline, the frame's group: what the core binds at each binding.
 //! A material's shader declares its own per-draw array at [`MATERIAL_UNIFORMS`]; the rest are
 //! declared by the core's WGSL files (frame.wgsl, mesh_vertex.wgsl, prepass_depth.wgsl,
-//! shadows.wgsl, environment.wgsl, visibility.wgsl) and the composer (the test counter), under the names in
+//! shadows.wgsl, environment.wgsl, lights.wgsl, visibility.wgsl) and the composer (the test counter), under the names in
 //! [`DECLARED`].
 
 /// `frame`: the camera and lights (frame.wgsl).
@@ -34,6 +34,11 @@ pub const ENVIRONMENT_IRRADIANCE: u32 = 12;
 /// `environment_sampler`: the environment maps' trilinear sampler (environment.wgsl).
 pub const ENVIRONMENT_SAMPLER: u32 = 13;
 
+/// `point_lights`: every point and spot light (frame.wgsl).
+pub const POINT_LIGHTS: u32 = 14;
+/// `light_clusters`: each light cluster's point lights (lights/lights.wgsl).
+pub const LIGHT_CLUSTERS: u32 = 15;
+
 /// The WGSL name the core's files declare at each binding it owns.
 pub const DECLARED: &[(&str, u32)] = &[
     ("frame", FRAME),
@@ -49,6 +54,8 @@ pub const DECLARED: &[(&str, u32)] = &[
     ("environment_split_sum_table", ENVIRONMENT_SPLIT_SUM),
     ("environment_irradiance", ENVIRONMENT_IRRADIANCE),
     ("environment_sampler", ENVIRONMENT_SAMPLER),
+    ("point_lights", POINT_LIGHTS),
+    ("light_clusters", LIGHT_CLUSTERS),
 ];
 
 #[cfg(test)]
@@ -63,6 +70,7 @@ mod tests {
             constants: &[],
             files: &[
                 shaders::FRAME,
+                crate::render::lights::LIGHTS_WGSL,
                 shaders::MESH_VERTEX,
                 shaders::PREPASS_DEPTH,
                 shaders::SHADOWS,

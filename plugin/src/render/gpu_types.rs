@@ -5,8 +5,6 @@ use bytemuck::{Pod, Zeroable};
 
 /// Most directional lights one frame shades with (`MAX_DIRECTIONAL_LIGHTS` in WGSL).
 pub const MAX_DIRECTIONAL_LIGHTS: usize = 4;
-/// Most point and spot lights one frame shades with (`MAX_POINT_LIGHTS` in WGSL).
-pub const MAX_POINT_LIGHTS: usize = 16;
 
 /// One directional light as the shader reads it.
 #[repr(C)]
@@ -112,8 +110,16 @@ pub struct FrameUniform {
     pub view_direction: [f32; 4],
     /// rgb: ambient colour × intensity.
     pub ambient: [f32; 4],
-    /// x: directional light count, y: point and spot light count.
+    /// x: directional light count, y: point and spot light count (the lights' storage
+    /// buffer, `point_lights` in frame.wgsl).
     pub light_counts: [u32; 4],
+    /// The light clusters' grid: x and y tiles across the image, z depth slices (0: no
+    /// clusters, every pixel loops over every light); w unused.
+    pub light_grid: [u32; 4],
+    /// The depth slice of a view depth d: floor(f(d) × x + y), f = log2 where z is 1 (a
+    /// perspective camera's slices grow with the distance), else the identity; w: the nearest
+    /// depth f is taken at.
+    pub light_slicing: [f32; 4],
     /// xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed
     /// of per-frame noise (counts TAA frames; 0 without TAA); w: 1 under TAA, whose history
     /// averages per-frame noise away.
@@ -130,8 +136,6 @@ pub struct FrameUniform {
     pub environment_options: [f32; 4],
     /// The directional lights; only the first `light_counts.x` are used.
     pub directional_lights: [DirectionalLightGpu; MAX_DIRECTIONAL_LIGHTS],
-    /// The point and spot lights; only the first `light_counts.y` are used.
-    pub point_lights: [PointLightGpu; MAX_POINT_LIGHTS],
 }
 
 /// Per-draw transform, shared by every material (`MeshTransform` in `mesh_vertex.wgsl`).
@@ -189,10 +193,11 @@ crate::wgsl_layout!(FrameUniform {
     view_direction,
     ambient,
     light_counts,
+    light_grid,
+    light_slicing,
     target_size,
     texture_lod,
     environment,
     environment_options,
-    directional_lights,
-    point_lights
+    directional_lights
 });

@@ -21,8 +21,8 @@ mod frame_passes;
 mod frame_uniform;
 mod full_screen_pass;
 pub(crate) mod gpu_types;
+mod light_buffers;
 pub mod lights;
-pub(crate) mod object_buffer;
 pub(crate) mod phases;
 mod plugin;
 mod post_chain;
@@ -62,6 +62,7 @@ pub(crate) use frame_uniform::FrameUniformBuffer;
 pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
 pub use gpu_types::MeshTransform;
 pub(crate) use gpu_types::{FrameUniform, ShadowViewGpu};
+pub use light_buffers::LightBuffers;
 pub use lights::LightsPlugin;
 pub use phases::{
     DrawPhase, HasDraws, MOTION_ID_FORMAT, PhaseDraw, PhaseWork, RenderPhase, RenderPhases,

@@ -3,8 +3,8 @@
 
 use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
-    DrawPhase, EnvironmentMaps, FrameNodes, FrameUniformBuffer, FullScreenStage, RenderPath,
-    RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat,
+    DrawPhase, EnvironmentMaps, FrameNodes, FrameUniformBuffer, FullScreenStage, LightBuffers,
+    RenderPath, RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat,
     VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame, target,
 };
 use crate::gpu::{
@@ -168,6 +168,7 @@ impl Plugin for RenderPlugin {
             }),
             shadow_maps: ShadowMaps::new(gpu),
             environment: EnvironmentMaps::new(gpu),
+            lights: LightBuffers::new(gpu),
             path: self.path,
             deferred: false,
             ran_opaque_pass: false,

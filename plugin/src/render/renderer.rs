@@ -5,8 +5,8 @@
 use super::post_chain::PostImages;
 use super::{
     DeferredBackground, DeferredUnavailable, EnvironmentMaps, FrameUniformBuffer, FullScreenStage,
-    RenderPath, RenderTarget, ShadowMaps, SortedDraws, VisibilityBuffer, VisibilityIds,
-    render_path,
+    LightBuffers, RenderPath, RenderTarget, ShadowMaps, SortedDraws, VisibilityBuffer,
+    VisibilityIds, render_path,
 };
 use crate::gpu::{GpuAssets, GpuContext, UploadStats};
 use crate::{Image, Mesh};
@@ -29,6 +29,8 @@ pub struct Renderer {
     pub(crate) shadow_maps: ShadowMaps,
     /// The environment light's maps.
     pub(crate) environment: EnvironmentMaps,
+    /// The point lights and their clusters.
+    pub(crate) lights: LightBuffers,
     /// The path asked for.
     pub(super) path: RenderPath,
     /// Whether this frame runs deferred (decided in the Prepare stage).
@@ -158,7 +160,7 @@ impl Renderer {
 pub(crate) fn phase_bindings<'a>(
     depth_prepass: bool,
     dummy: &'a wgpu::TextureView,
-    (shadow_maps, environment): (&'a ShadowMaps, &'a EnvironmentMaps),
+    (shadow_maps, environment, lights): (&'a ShadowMaps, &'a EnvironmentMaps, &'a LightBuffers),
     (visibility, dummy_visibility): (Option<&'a VisibilityBuffer>, &'a wgpu::Buffer),
     target: &'a RenderTarget,
 ) -> PhaseBindings<'a> {
@@ -177,10 +179,12 @@ pub(crate) fn phase_bindings<'a>(
         shadow_views: shadow_maps.views_buffer(),
         shadow_sampler: shadow_maps.sampler(),
         environment,
+        lights,
         bound: BoundResources {
             target: target.id(),
             shadow_maps: shadow_maps.generation(),
             environment: environment.generation(),
+            lights: lights.generation(),
             has_visibility_buffer: visibility.is_some(),
         },
     }
@@ -225,6 +229,8 @@ pub(crate) struct PhaseBindings<'a> {
     pub(crate) shadow_sampler: &'a wgpu::Sampler,
     /// The environment light's maps.
     pub(crate) environment: &'a EnvironmentMaps,
+    /// The point lights and their clusters.
+    pub(crate) lights: &'a LightBuffers,
     /// The visibility keys the deferred path's prepass merges into (or the stand-in).
     pub(crate) visibility: &'a wgpu::Buffer,
     /// The one-key stand-in, bound where the keys are not written.
@@ -242,6 +248,8 @@ pub(crate) struct BoundResources {
     pub(crate) shadow_maps: u64,
     /// The environment maps' generation.
     pub(crate) environment: u64,
+    /// The light buffers' generation.
+    pub(crate) lights: u64,
     /// Whether the target's visibility buffer exists.
     pub(crate) has_visibility_buffer: bool,
 }

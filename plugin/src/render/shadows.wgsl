@@ -93,7 +93,7 @@ fn scene_shadow(light_index: u32, world_position: vec3<f32>, normal: vec3<f32>) 
             }
         }
     } else {
-        let light = frame.point_lights[light_index - directional_count];
+        let light = point_lights[light_index - directional_count];
         first = light.first_shadow_view;
         count = light.shadow_view_count;
         let offset = world_position - light.position_range.xyz;

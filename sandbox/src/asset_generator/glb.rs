@@ -1,5 +1,5 @@
 //! A minimal glTF 2.0 binary writer: meshes, PNG textures, materials with POM extras, nodes,
-//! one camera and one sun.
+//! cameras and lights.
 
 use serde_json::{Value, json};
 
@@ -9,6 +9,7 @@ pub struct GlbBuilder {
     bin: Vec<u8>,
     buffer_views: Vec<Value>,
     accessors: Vec<Value>,
+    scene_extras: Option<Value>,
     images: Vec<Value>,
     textures: Vec<Value>,
     materials: Vec<Value>,
@@ -95,16 +96,25 @@ impl GlbBuilder {
         self.nodes.len() - 1
     }
 
-    /// Adds a perspective camera; returns its index.
-    pub fn camera(&mut self, yfov: f32) -> usize {
-        self.cameras.push(json!({"type": "perspective", "perspective": {"yfov": yfov, "znear": 0.05, "zfar": 100.0}}));
+    /// Adds a perspective camera, with `exposure` (EV100) in its `extras.pom` where given;
+    /// returns its index.
+    pub fn camera(&mut self, yfov: f32, exposure: Option<f32>) -> usize {
+        let mut camera = json!({"type": "perspective", "perspective": {"yfov": yfov, "znear": 0.05, "zfar": 100.0}});
+        if let Some(exposure) = exposure {
+            camera["extras"] = json!({"pom": {"exposure": exposure}});
+        }
+        self.cameras.push(camera);
         self.cameras.len() - 1
     }
 
-    /// Adds a directional light; returns its index.
-    pub fn sun(&mut self, color: [f32; 3], intensity: f32) -> usize {
-        self.lights
-            .push(json!({"type": "directional", "color": color, "intensity": intensity}));
+    /// Sets the scene's `extras`.
+    pub fn scene_extras(&mut self, extras: Value) {
+        self.scene_extras = Some(extras);
+    }
+
+    /// Adds a `KHR_lights_punctual` light; returns its index.
+    pub fn light(&mut self, light: Value) -> usize {
+        self.lights.push(light);
         self.lights.len() - 1
     }
 
@@ -113,12 +123,17 @@ impl GlbBuilder {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
+        let mut scene =
+            json!({"name": "street corner", "nodes": (0..self.nodes.len()).collect::<Vec<_>>()});
+        if let Some(extras) = self.scene_extras.take() {
+            scene["extras"] = extras;
+        }
         let document = json!({
             "asset": {"version": "2.0", "generator": "pom sandbox generate-assets"},
             "extensionsUsed": ["KHR_lights_punctual"],
             "extensions": {"KHR_lights_punctual": {"lights": self.lights}},
             "scene": 0,
-            "scenes": [{"name": "street corner", "nodes": (0..self.nodes.len()).collect::<Vec<_>>()}],
+            "scenes": [scene],
             "nodes": self.nodes,
             "meshes": self.meshes,
             "materials": self.materials,

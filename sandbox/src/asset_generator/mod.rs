@@ -1,4 +1,5 @@
-//! `sandbox generate-assets`: writes the shipped material set and the street-corner scene.
+//! `sandbox generate-assets`: writes the shipped material set and the street-corner scene, by
+//! day and at night.
 //!
 //! Everything is computed from fixed seeds, so running it again reproduces the committed files
 //! byte for byte (a test checks this).
@@ -11,7 +12,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
-pub use street_corner::STREET_CORNER_FILE;
+use street_corner::TimeOfDay;
+pub use street_corner::{STREET_CORNER_FILE, STREET_CORNER_NIGHT_FILE};
 
 /// Where the generator writes by default: the assets/ folder of the repository the working
 /// directory lies in (found by its assets/README.md, in the working directory or above it).
@@ -86,8 +88,13 @@ pub fn generate(out: &Path) -> Result<Vec<PathBuf>> {
             written.push(path);
         }
     }
-    let scene = out.join(STREET_CORNER_FILE);
-    pom::files::write_file(&scene, &street_corner::build(&materials))?;
-    written.push(scene);
+    for (file, time) in [
+        (STREET_CORNER_FILE, TimeOfDay::Day),
+        (STREET_CORNER_NIGHT_FILE, TimeOfDay::Night),
+    ] {
+        let scene = out.join(file);
+        pom::files::write_file(&scene, &street_corner::build(&materials, time))?;
+        written.push(scene);
+    }
     Ok(written)
 }

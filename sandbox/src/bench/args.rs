@@ -34,6 +34,9 @@ pub enum Measurement {
     /// The street corner under the sky against without it, the relief's occlusion of the
     /// environment on the cobblestones against without it, and a 2K `.hdr`'s prefiltering.
     Environment,
+    /// The street corner at night lit by 1, 256 and 1,024 point lights: the frame phase by
+    /// phase, and the CPU's culling and upload of the lights.
+    Lights,
     /// Each silhouette mode against `off` on the preview cube and sphere.
     Silhouette,
     /// TAA and the post filter: each pass's time, and the jittered march at 16 samples

@@ -11,6 +11,7 @@ mod chart;
 mod cpu_side;
 mod environment;
 mod first_use;
+mod lights;
 mod method_table;
 mod pyramid_build;
 mod report;
@@ -144,6 +145,9 @@ impl Runner<'_> {
             }
             if wanted(Measurement::Environment) {
                 self.environment(size)?;
+            }
+            if wanted(Measurement::Lights) {
+                self.lights(size)?;
             }
             if wanted(Measurement::Silhouette) {
                 self.silhouette(size)?;

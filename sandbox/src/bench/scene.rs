@@ -141,6 +141,11 @@ impl BenchScene {
         }
     }
 
+    /// A resource of the scene's app.
+    pub fn resource<T: 'static>(&self) -> Option<&T> {
+        self.app.resources.get::<T>()
+    }
+
     /// Puts `anti_aliasing` (TAA with its default parameters) on the camera.
     pub fn set_anti_aliasing(
         &mut self,

@@ -17,9 +17,11 @@ use pom::{
 use pom_tests::pom_scene::pom_app;
 use pom_tests::render_and_capture_finite;
 
+mod environment;
 mod files;
 mod gltf;
 mod images;
+mod lights;
 mod parameters;
 mod presets;
 mod scripts;

@@ -12,7 +12,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::gpu::GpuContext;
-use crate::render::object_buffer::ObjectBuffer;
+use crate::gpu::ObjectBuffer;
 use crate::render::{MOTION_ID_FORMAT, RenderTarget};
 
 /// One moving draw's motion as TAA reads it; mirrors `ObjectMotion` in taa.wgsl.

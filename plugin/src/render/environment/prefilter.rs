@@ -235,6 +235,16 @@ impl EnvironmentGpu {
         if let (true, Some(image)) = (image_is_new, &capture.image) {
             let limit = gpu.device.limits().max_texture_dimension_2d;
             let levels = image.mip_chain(limit);
+            if let Some(&(width, height, _)) = levels.first()
+                && (width, height) != image.size()
+            {
+                let (full_width, full_height) = image.size();
+                log::warn!(
+                    "environment {}: {full_width} × {full_height} is larger than the GPU's \
+                     {limit}-texel textures: averaged down to {width} × {height}",
+                    image.name()
+                );
+            }
             uploaded += levels
                 .iter()
                 .map(|(_, _, texels)| texels.len() as u64 * 2)

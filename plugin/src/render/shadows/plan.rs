@@ -72,7 +72,7 @@ pub(super) fn plan_shadow_maps(
         } else {
             continue;
         };
-        let light = &mut extracted.frame.point_lights[slot];
+        let light = &mut extracted.point_lights[slot];
         (light.first_shadow_view, light.shadow_view_count) = list.claim(&views);
     }
     extracted.shadow_views = list.views;

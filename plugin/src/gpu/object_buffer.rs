@@ -4,7 +4,7 @@ use std::ops::Range;
 
 use bytemuck::Pod;
 
-use crate::gpu::GpuContext;
+use super::GpuContext;
 
 /// The longest run of unchanged bytes an upload writes again rather than start another write.
 const MERGE_GAP_BYTES: u64 = 4096;

@@ -1,0 +1,78 @@
+// The lights that reach a point (render/lights/): its light cluster's, found from the frame's
+// grid (`light_grid`, `light_slicing` in frame.wgsl) the way the lights feature culled them
+// (clusters.rs), and the brightest few of them. Composed after frame.wgsl.
+
+// The most lights `brightest_lights_floor` ranks.
+const MAX_RANKED_LIGHTS: u32 = 8u;
+
+// Per cluster (light_grid's x × y × z, x fastest) its first entry and count in the list that
+// follows them; the list holds indices into point_lights, in ascending order.
+@group(0) @binding(15) var<storage, read> light_clusters: array<u32>;
+
+// The lights that may reach a point: every directional light, then the point lights of its
+// cluster; `light_in(list, k)` for k < count is each one's number as `light_at` takes it.
+struct LightList {
+    // Where the cluster's point lights start in light_clusters.
+    first: u32,
+    count: u32,
+    directional_count: u32,
+}
+
+// The cluster of `world_position`: the image tile it projects to and its view depth's slice
+// (the grid's last slice holds everything farther).
+fn light_cluster(world_position: vec3<f32>) -> u32 {
+    let grid = max(frame.light_grid.xyz, vec3<u32>(1u));
+    let clip = frame.view_projection * vec4<f32>(world_position, 1.0);
+    let ndc = clip.xy / select(clip.w, 1e-6, abs(clip.w) < 1e-6);
+    let tile = vec2<u32>(clamp(floor((ndc * 0.5 + 0.5) * vec2<f32>(grid.xy)), vec2<f32>(0.0),
+        vec2<f32>(grid.xy - 1u)));
+    let depth = max(dot(world_position - frame.camera_position.xyz, frame.view_direction.xyz),
+        frame.light_slicing.w);
+    // A select, not a branch: see direction_to_eye.
+    let along = select(depth, log2(depth), frame.light_slicing.z > 0.5);
+    let slice = u32(clamp(floor(along * frame.light_slicing.x + frame.light_slicing.y), 0.0,
+        f32(grid.z - 1u)));
+    return (slice * grid.y + tile.y) * grid.x + tile.x;
+}
+
+fn lights_near(world_position: vec3<f32>) -> LightList {
+    let directional_count = min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS);
+    let cluster = light_cluster(world_position);
+    return LightList(light_clusters[2u * cluster], directional_count + light_clusters[2u * cluster + 1u],
+        directional_count);
+}
+
+fn light_in(list: LightList, k: u32) -> u32 {
+    let point = light_clusters[select(0u, list.first + k - list.directional_count, k >= list.directional_count)];
+    return select(k, list.directional_count + point, k >= list.directional_count);
+}
+
+// How bright a light's arriving radiance is, for ranking lights (Rec. 709 luminance).
+fn light_brightness(radiance: vec3<f32>) -> f32 {
+    return dot(radiance, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+// The brightness (`light_brightness`) of the `n`-th brightest of `lights` at `world_position`
+// (n ≤ MAX_RANKED_LIGHTS): the lights at least this bright are the `n` that matter most
+// there. 0 when the list has no more than `n` lights (every one is among them); above every
+// light when n is 0.
+fn brightest_lights_floor(lights: LightList, world_position: vec3<f32>, n: u32) -> f32 {
+    let ranked = min(n, MAX_RANKED_LIGHTS);
+    if lights.count <= ranked {
+        return 0.0;
+    }
+    if ranked == 0u {
+        return 3.0e38;
+    }
+    // The brightest so far, in descending order.
+    var brightest: array<f32, MAX_RANKED_LIGHTS>;
+    for (var k = 0u; k < lights.count; k += 1u) {
+        var value = light_brightness(light_at(light_in(lights, k), world_position).radiance);
+        for (var slot = 0u; slot < ranked; slot += 1u) {
+            let kept = brightest[slot];
+            brightest[slot] = max(kept, value);
+            value = min(kept, value);
+        }
+    }
+    return brightest[ranked - 1u];
+}
