@@ -45,8 +45,8 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // without TAA's mip bias, and at 50 under the post filter and off), 12 environment figures
     // (the street corner without an environment, 3 phases and the frame, and under the sky,
     // with the background's pass too; relief occlusion off and on; a 2K `.hdr`'s prefiltering),
-    // 18 lights figures (the street corner at night with 1, 256 and 1,024 point lights: 3
-    // phases, the frame, and the CPU's Extract and Prepare stages).
+    // 24 lights figures (the street corner at night with 1, 256 and 1,024 point lights, and 256
+    // with one shadowed light: 3 phases, the frame, and the CPU's Extract and Prepare stages).
     let resolve_rows = cases
         .iter()
         .filter(|c| c["group"] == "seed_port" && c["pass"] == "resolve")
@@ -58,7 +58,7 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(resolve_rows, 2 * ours_deferred);
     assert_eq!(
         cases.len(),
-        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6 + 6 + 11 + 12 + 18) + 2 + resolve_rows
+        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6 + 6 + 11 + 12 + 24) + 2 + resolve_rows
     );
     let first_frames = cases
         .iter()

@@ -1,7 +1,8 @@
 //! Hundreds of lights: 256 lights over a 16 × 16 grid of floor cells, each reaching only its own
 //! cell, light every cell with their own pool on both paths, seen straight down (orthographic)
 //! and in perspective; a spot's cone and a light's range cut off as `KHR_lights_punctual`
-//! says; a cell lit by its light among 255 others shows what it shows lit alone.
+//! says; a cell lit by its light among 255 others shows what it shows lit alone; the parallax
+//! material's relief shadows go to the brightest lights at each pixel.
 
 use glam::{Mat4, Vec3};
 use pom::{
@@ -222,4 +223,93 @@ fn a_cell_among_two_hundred_fifty_five_other_lights_shows_what_it_shows_alone() 
             );
         }
     }
+}
+
+/// The parallax material's relief shadows march for the brightest `shadowed_lights` lights at a
+/// pixel: with one, a bright sun keeps its relief's shadows and a dim one lights the relief
+/// unshadowed by it, exactly the sum of the two lit alone that way; with two, the dim one's
+/// relief shadows show too.
+#[test]
+fn relief_shadows_go_to_the_brightest_lights_at_each_pixel() {
+    use pom::preview::PreviewView;
+    use pom::{DirectionalLight, ShadowMode, patterns};
+    use pom_tests::pom_scene::{HeightMaterial, preview_app, set_material};
+
+    let textures = HeightMaterial {
+        field: patterns::raised_block(128, 0.4),
+        height_scale: 0.08,
+    };
+    let view = PreviewView {
+        view_angle: 20.0,
+        light_angle: 60.0,
+        ..PreviewView::default()
+    };
+    let mut app = preview_app(64, TargetFormat::Float32, &textures, &view, |material| {
+        material
+    })
+    .unwrap();
+    app.insert_resource(AmbientLight {
+        color: Color::WHITE,
+        intensity: 0.0,
+    });
+    let dim_view = PreviewView {
+        light_azimuth: 180.0,
+        ..view
+    };
+    let dim = app.world.spawn((
+        DirectionalLight {
+            intensity: 20_000.0,
+            ..DirectionalLight::default()
+        },
+        dim_view.light_transform(),
+    ));
+    let lights: Vec<_> = app
+        .world
+        .query::<&DirectionalLight>()
+        .iter()
+        .map(|(entity, _)| entity)
+        .collect();
+    let bright = *lights.iter().find(|&&entity| entity != dim).unwrap();
+    let mut render = |bright_lux: f32, dim_lux: f32, shadows: ShadowMode, shadowed: u32| {
+        for (entity, lux) in [(bright, bright_lux), (dim, dim_lux)] {
+            app.world
+                .get::<&mut DirectionalLight>(entity)
+                .unwrap()
+                .intensity = lux;
+        }
+        set_material(&mut app, |material| {
+            material.shadows = shadows;
+            material.shadowed_lights = shadowed;
+        });
+        in_error_scopes(&mut app, "shadowed lights", |app| {
+            app.update()?;
+            Ok(pom::capture_scene(app)?)
+        })
+        .unwrap()
+    };
+    let both_one = render(100_000.0, 20_000.0, ShadowMode::Soft, 1);
+    let both_two = render(100_000.0, 20_000.0, ShadowMode::Soft, 2);
+    let bright_alone = render(100_000.0, 0.0, ShadowMode::Soft, 1);
+    let dim_unshadowed = render(0.0, 20_000.0, ShadowMode::Off, 1);
+    let (mut worst, mut dim_shadows) = (0.0_f32, 0.0_f32);
+    for (((one, two), alone), unshadowed) in both_one
+        .pixels()
+        .zip(both_two.pixels())
+        .zip(bright_alone.pixels())
+        .zip(dim_unshadowed.pixels())
+    {
+        for c in 0..3 {
+            let sum = alone.0[c] + unshadowed.0[c];
+            worst = worst.max((one.0[c] - sum).abs() / sum.max(1e-3));
+            dim_shadows = dim_shadows.max(one.0[c] - two.0[c]);
+        }
+    }
+    eprintln!(
+        "one shadowed light: within {worst:.5} of the sum; the dim light's shadows take up to {dim_shadows:.4}"
+    );
+    assert!(worst < 1e-3, "{worst}");
+    assert!(
+        dim_shadows > 0.01,
+        "the dim light casts no relief shadow with two: {dim_shadows}"
+    );
 }

@@ -8,15 +8,18 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use glam::Vec3;
 use pom::{
-    App, PointLight, PomPlugin, RenderPath, RenderPlugin, Resources, Stage, TimingMode, Transform,
+    App, ParallaxOcclusionMaterial, PointLight, PomPlugin, RenderPath, RenderPlugin, Resources,
+    Stage, TimingMode, Transform,
 };
 
 use super::Runner;
 use super::scene::{BenchScene, PhaseTimes, Warmup};
 use crate::demo_scene;
 
-/// The light counts timed: one (the baseline), then the 256 and 1,024.
-pub const LIGHT_COUNTS: [usize; 3] = [1, 256, 1024];
+/// The cases timed, as (point lights, lights whose relief shadows each pixel marches): one
+/// light (the baseline), 256 and 1,024 with the parallax material's default 4 shadowed lights,
+/// and 256 with one, which shows what the relief shadows of the other three cost.
+pub const LIGHT_CASES: [(usize, u32); 4] = [(1, 4), (256, 4), (256, 1), (1024, 4)];
 
 /// The frame phases (the resolve is added on the deferred path).
 const FRAME_PHASES: [&str; 3] = ["prepass", "opaque", "post"];
@@ -71,7 +74,11 @@ fn end_of_prepare(_: &mut pom::hecs::World, resources: &mut Resources) {
 
 /// The street corner without its sun, lit by `count` point lights in a square grid over its
 /// floor (one light: in the middle, reaching the whole floor), at `size`, on `path`.
-fn street_corner_at_night(size: (u32, u32), count: usize, path: RenderPath) -> Result<App> {
+fn street_corner_at_night(
+    size: (u32, u32),
+    (count, shadowed_lights): (usize, u32),
+    path: RenderPath,
+) -> Result<App> {
     let mut app = App::new();
     app.add_plugin(
         RenderPlugin::new(size.0, size.1)
@@ -87,6 +94,9 @@ fn street_corner_at_night(size: (u32, u32), count: usize, path: RenderPath) -> R
     let scene = demo_scene::spawn(&mut app)?;
     for light in scene.lights {
         app.world.despawn(light)?;
+    }
+    for material in app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+        material.shadowed_lights = shadowed_lights;
     }
     let side = (count as f32).sqrt().ceil().max(1.0) as usize;
     let spacing = FLOOR_SIDE / side as f32;
@@ -118,11 +128,11 @@ fn street_corner_at_night(size: (u32, u32), count: usize, path: RenderPath) -> R
 /// of the Extract and Prepare stages in the same frames; and the path run.
 pub fn time(
     size: (u32, u32),
-    count: usize,
+    case: (usize, u32),
     path: RenderPath,
     (warmup, frames): (Warmup, usize),
 ) -> Result<(&'static str, PhaseTimes, [Vec<f64>; 2])> {
-    let mut scene = BenchScene::from_app(street_corner_at_night(size, count, path)?);
+    let mut scene = BenchScene::from_app(street_corner_at_night(size, case, path)?);
     let times = scene.time_phases(warmup, frames, &FRAME_PHASES)?;
     let stages = scene
         .resource::<StageTimes>()
@@ -133,16 +143,22 @@ pub fn time(
 }
 
 impl Runner<'_> {
-    /// The street corner's frame with 1, 256 and 1,024 lights, and the CPU stages that cull
+    /// The street corner's frame with 1, 256 and 1,024 lights (and 256 with one shadowed), and the CPU stages that cull
     /// and upload them.
     pub(super) fn lights(&mut self, size: (u32, u32)) -> Result<()> {
         let place = (size, 1.0);
         let material = self.base.clone();
         let mut frame_ms = Vec::new();
-        for count in LIGHT_COUNTS {
-            let variant = format!("street corner at night, {count} point lights");
-            let (path, times, [extract, prepare]) =
-                time(size, count, self.path, (self.warmup, self.frames))?;
+        for (count, shadowed) in LIGHT_CASES {
+            let variant = format!(
+                "street corner at night, {count} point lights, relief shadows from {shadowed}"
+            );
+            let (path, times, [extract, prepare]) = time(
+                size,
+                (count, shadowed),
+                self.path,
+                (self.warmup, self.frames),
+            )?;
             for (phase, times) in &times {
                 self.record(
                     "lights",
@@ -168,9 +184,9 @@ impl Runner<'_> {
             }
         }
         if let [one, many @ ..] = frame_ms.as_slice() {
-            for (count, frame) in LIGHT_COUNTS[1..].iter().zip(many) {
+            for ((count, shadowed), frame) in LIGHT_CASES[1..].iter().zip(many) {
                 self.ratio(
-                    format!("street corner frame: {count} lights / 1"),
+                    format!("street corner frame: {count} lights ({shadowed} shadowed) / 1"),
                     size,
                     *frame,
                     *one,

@@ -14,9 +14,9 @@ use crate::render::gpu_types::PointLightGpu;
 use crate::{Camera, GlobalTransform, Projection};
 
 /// Pixels along each side of a cluster's tile.
-const TILE_PIXELS: u32 = 64;
+const TILE_PIXELS: u32 = 128;
 /// The most tiles along each side of the image (wider images get wider tiles).
-const MAX_TILES: u32 = 64;
+const MAX_TILES: u32 = 32;
 /// Slices of the view depth.
 const DEPTH_SLICES: u32 = 24;
 /// The most light entries the clusters' lists may hold (16 MB): past it the grid is made

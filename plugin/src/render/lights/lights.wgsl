@@ -64,15 +64,25 @@ fn brightest_lights_floor(lights: LightList, world_position: vec3<f32>, n: u32) 
     if ranked == 0u {
         return 3.0e38;
     }
-    // The brightest so far, in descending order.
-    var brightest: array<f32, MAX_RANKED_LIGHTS>;
+    // The eight brightest so far, in descending order (first.x the brightest), in registers:
+    // each light passes down the eight slots, leaving the larger value in each.
+    var first = vec4<f32>(0.0);
+    var second = vec4<f32>(0.0);
     for (var k = 0u; k < lights.count; k += 1u) {
-        var value = light_brightness(light_at(light_in(lights, k), world_position).radiance);
-        for (var slot = 0u; slot < ranked; slot += 1u) {
-            let kept = brightest[slot];
-            brightest[slot] = max(kept, value);
-            value = min(kept, value);
-        }
+        let value = light_brightness(light_at(light_in(lights, k), world_position).radiance);
+        let carried = min(first.w, value);
+        first = keep_brightest(first, value);
+        second = keep_brightest(second, carried);
     }
-    return brightest[ranked - 1u];
+    let floors = select(second, first, ranked <= 4u);
+    return floors[(ranked - 1u) % 4u];
+}
+
+// `slots` (descending) with `value` passed down them: each keeps the larger of itself and what
+// reaches it, and hands the smaller on.
+fn keep_brightest(slots: vec4<f32>, value: f32) -> vec4<f32> {
+    let after_x = min(slots.x, value);
+    let after_y = min(slots.y, after_x);
+    let after_z = min(slots.z, after_y);
+    return vec4<f32>(max(slots.x, value), max(slots.y, after_x), max(slots.z, after_y), max(slots.w, after_z));
 }
