@@ -265,7 +265,7 @@ fn relief_shadows_go_to_the_brightest_lights_at_each_pixel() {
     ));
     let lights: Vec<_> = app
         .world
-        .query::<&DirectionalLight>()
+        .query::<(pom::hecs::Entity, &DirectionalLight)>()
         .iter()
         .map(|(entity, _)| entity)
         .collect();
