@@ -38,7 +38,7 @@ pub const PREFILTER: ComposedShader = ComposedShader {
 };
 
 /// GGX samples per texel of the radiance cube's blurred mips.
-const SPECULAR_SAMPLES: u32 = 64;
+const SPECULAR_SAMPLES: u32 = 256;
 
 /// Largest side of the cube mip the irradiance is projected from.
 const IRRADIANCE_SIDE: u32 = 32;
