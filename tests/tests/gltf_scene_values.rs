@@ -327,3 +327,73 @@ fn a_glb_whose_header_length_is_short_of_the_file_gives_a_warning_naming_both() 
         ],
     );
 }
+
+#[test]
+fn a_camera_exposure_out_of_range_is_an_error_naming_it_and_one_in_range_is_used() {
+    let camera = |exposure: serde_json::Value| {
+        with_camera(json!({"name": "night", "type": "perspective",
+            "perspective": {"yfov": 0.8, "znear": 0.1}, "extras": {"pom": {"exposure": exposure}}}))
+    };
+    for (name, exposure, needle) in [
+        (
+            "exposure-too-bright",
+            json!(40.0),
+            "extras.pom.exposure 40.0",
+        ),
+        (
+            "exposure-not-a-number",
+            json!("dark"),
+            "extras.pom.exposure \"dark\"",
+        ),
+    ] {
+        let error = load_error(
+            &camera(exposure),
+            name,
+            &["camera \"night\" (#0)", needle, "-16..=24"],
+        );
+        assert!(matches!(error, GltfError::Camera { .. }), "{error:?}");
+    }
+    let (app, warnings) = load_with_warnings(&camera(json!(6.5)), "exposure-at-night");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let exposures: Vec<f32> = app
+        .world
+        .query::<&pom::Exposure>()
+        .iter()
+        .map(|exposure| exposure.ev100)
+        .collect();
+    assert_eq!(exposures, [6.5]);
+}
+
+#[test]
+fn a_scene_ambient_light_is_used_and_a_bad_one_ignored_with_a_warning() {
+    let with_ambient = |ambient: serde_json::Value| {
+        let mut fixture = GltfFixture::quad(1.0);
+        fixture.json["scenes"][0]["extras"] = json!({"pom": {"ambient": ambient}});
+        fixture
+    };
+    let night = json!({"color": [0.35, 0.45, 0.8], "intensity": 3.0});
+    let (app, warnings) = load_with_warnings(&with_ambient(night), "ambient-at-night");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let ambient = app.resources.get::<pom::AmbientLight>().copied().unwrap();
+    assert_eq!(ambient.intensity, 3.0);
+    assert_eq!(ambient.color, pom::Color::linear_rgb(0.35, 0.45, 0.8));
+    for (name, bad) in [
+        (
+            "ambient-negative",
+            json!({"color": [1.0, 1.0, 1.0], "intensity": -2.0}),
+        ),
+        (
+            "ambient-two-channels",
+            json!({"color": [1.0, 1.0], "intensity": 2.0}),
+        ),
+    ] {
+        let (app, warnings) = load_with_warnings(&with_ambient(bad), name);
+        assert_one_warning(&warnings, &["extras.pom.ambient", "ignored"]);
+        assert_ne!(
+            app.resources
+                .get::<pom::AmbientLight>()
+                .map(|a| a.intensity),
+            Some(-2.0)
+        );
+    }
+}

@@ -40,15 +40,7 @@ pub(super) fn spawn_scene(
         .ok_or_else(|| GltfError::NoScene {
             path: source.path.clone(),
         })?;
-    match scene_ambient(&root) {
-        Ok(Some(ambient)) => {
-            app.insert_resource(ambient);
-        }
-        Ok(None) => {}
-        Err(reason) => scene
-            .warnings
-            .push(format!("the scene's {reason}: ignored")),
-    }
+    let ambient = scene_ambient(&root);
     app.resources.get_or_default::<Assets<Mesh>>();
     app.resources.get_or_default::<Assets<Image>>();
     app.resource_scope(|app, meshes: &mut Assets<Mesh>| {
@@ -57,7 +49,18 @@ pub(super) fn spawn_scene(
         })
     })
     .flatten()
-    .unwrap_or(Ok(()))
+    .unwrap_or(Ok(()))?;
+    // Only a scene that loaded whole changes the app's ambient light.
+    match ambient {
+        Ok(Some(ambient)) => {
+            app.insert_resource(ambient);
+        }
+        Ok(None) => {}
+        Err(reason) => scene
+            .warnings
+            .push(format!("the scene's {reason}: ignored")),
+    }
+    Ok(())
 }
 
 /// The walk's state: where it spawns, and the materials and mesh boxes it has gathered.
