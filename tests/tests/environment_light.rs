@@ -588,10 +588,11 @@ fn spheres_under_an_hdr_sky_reflect_what_a_monte_carlo_integration_of_their_brdf
                     let error = ((seen - expected).abs() / expected).max_element();
                     // Where a rough metal's mirror direction dips well below the horizon, beside
                     // a sky twenty times brighter than the ground, the split sum (its lobe
-                    // around the mirror direction, normal = view) misses by up to 20 %.
+                    // around the mirror direction, normal = view) misses by up to 10 % even
+                    // integrated exactly; the prefiltered cube adds a few more.
                     let reflected = 2.0 * normal.z * normal - Vec3::Z;
                     let bound = if metallic > 0.5 && reflected.y < -0.3 {
-                        0.2
+                        0.15
                     } else {
                         0.05
                     };

@@ -108,10 +108,10 @@ fn cs_specular(@builtin(global_invocation_id) id: vec3<u32>) {
             let distribution = alpha * alpha / (PI * d_denominator * d_denominator);
             // pdf = D (N·H) / (4 V·H) = D / 4 with V = N.
             let sample_solid_angle = 4.0 / (f32(params.samples) * max(distribution, 1e-8));
-            // No coarser than the 8 × 8 mip: a tail sample reading a whole face's average would
-            // carry the sky's light into the ground below the horizon.
+            // No coarser than the mip of 1/32 of the source's side: a tail sample reading a
+            // face-wide average would carry the sky's light into the ground below the horizon.
             let level = clamp(0.5 * log2(sample_solid_angle / texel_solid_angle) + 1.0, 0.0,
-                max(f32(params.source_levels) - 4.0, 0.0));
+                max(f32(params.source_levels) - 6.0, 0.0));
             sum += textureSampleLevel(input_cube, input_sampler, light, level).rgb * n_dot_l;
             weight += n_dot_l;
         }
