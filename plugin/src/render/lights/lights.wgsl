@@ -28,8 +28,9 @@ fn light_cluster(world_position: vec3<f32>) -> u32 {
         vec2<f32>(grid.xy - 1u)));
     let depth = max(dot(world_position - frame.camera_position.xyz, frame.view_direction.xyz),
         frame.light_slicing.w);
-    // A select, not a branch: see direction_to_eye.
-    let along = select(depth, log2(depth), frame.light_slicing.z > 0.5);
+    // Blended, not selected: a condition on uniform values alone makes some drivers (Mesa 22's
+    // lavapipe) compile the shader again at every bind (light_slicing.z is 0 or 1).
+    let along = mix(depth, log2(max(depth, 1e-30)), frame.light_slicing.z);
     let slice = u32(clamp(floor(along * frame.light_slicing.x + frame.light_slicing.y), 0.0,
         f32(grid.z - 1u)));
     return (slice * grid.y + tile.y) * grid.x + tile.x;
