@@ -37,8 +37,17 @@ pub struct ExtractedFrame {
     pub shadow_views: Vec<ShadowViewPlan>,
 }
 
-/// The one cluster of a frame without point lights: its list starts after it and is empty.
-pub const NO_LIGHT_CLUSTERS: [u32; 2] = [2, 0];
+/// Words of the light clusters' header: the grid, the depth slicing and the camera they were
+/// culled for (lights.wgsl's `light_cluster` reads them; clusters.rs writes them).
+pub const LIGHT_CLUSTER_HEADER: usize = 32;
+
+/// The clusters of a frame without point lights: one cluster, whose list is empty.
+pub const NO_LIGHT_CLUSTERS: [u32; LIGHT_CLUSTER_HEADER + 2] = {
+    let mut words = [0; LIGHT_CLUSTER_HEADER + 2];
+    (words[0], words[1], words[2]) = (1, 1, 1);
+    words[LIGHT_CLUSTER_HEADER] = LIGHT_CLUSTER_HEADER as u32 + 2;
+    words
+};
 
 /// The entity of each light the frame uniform holds, slot by slot.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -104,9 +113,6 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
             0.0,
         ],
         light_counts: [0; 4],
-        // One cluster without point lights; the lights feature culls them, after this extract.
-        light_grid: [1, 1, 1, 0],
-        light_slicing: [0.0; 4],
         // z: the seed of per-frame noise, w: whether it moves from frame to frame, and the
         // texture footprints' scale: still without anti-aliasing, which sets them.
         target_size: [target_size.0, target_size.1, 0, 0],

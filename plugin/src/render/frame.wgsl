@@ -38,12 +38,6 @@ struct Frame {
     ambient: vec4<f32>,
     // x: directional light count, y: point and spot light count (`point_lights`).
     light_counts: vec4<u32>,
-    // The light clusters: x and y tiles across the image, z depth slices (0: no clusters,
-    // every point lights everywhere).
-    light_grid: vec4<u32>,
-    // A view depth d's slice: floor(f(d) × x + y), f = log2 where z is 1, else the identity;
-    // w: the nearest depth f is taken at.
-    light_slicing: vec4<f32>,
     // xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed of
     // per-frame noise (counts TAA frames; 0 without TAA); w: 1 under TAA, whose history averages
     // per-frame noise away (the soft shadow's samples move only then).

@@ -113,13 +113,6 @@ pub struct FrameUniform {
     /// x: directional light count, y: point and spot light count (the lights' storage
     /// buffer, `point_lights` in frame.wgsl).
     pub light_counts: [u32; 4],
-    /// The light clusters' grid: x and y tiles across the image, z depth slices (0: no
-    /// clusters, every pixel loops over every light); w unused.
-    pub light_grid: [u32; 4],
-    /// The depth slice of a view depth d: floor(f(d) × x + y), f = log2 where z is 1 (a
-    /// perspective camera's slices grow with the distance), else the identity; w: the nearest
-    /// depth f is taken at.
-    pub light_slicing: [f32; 4],
     /// xy: the target's width and height in pixels (the visibility buffer's rows); z: the seed
     /// of per-frame noise (counts TAA frames; 0 without TAA); w: 1 under TAA, whose history
     /// averages per-frame noise away.
@@ -193,8 +186,6 @@ crate::wgsl_layout!(FrameUniform {
     view_direction,
     ambient,
     light_counts,
-    light_grid,
-    light_slicing,
     target_size,
     texture_lod,
     environment,

@@ -5,11 +5,12 @@
 //! sphere of influence (its range) overlaps the cluster's tile rectangle and depth range: a
 //! conservative list, since `light_at` cuts each light off at its range and cone exactly.
 //! Done on the CPU in two passes over the lights (count, then fill), so each cluster's list
-//! comes out in the lights' order; frame.wgsl's `light_cluster` finds a point's cluster the
+//! comes out in the lights' order; lights.wgsl's `light_cluster` finds a point's cluster the
 //! same way.
 
 use glam::{Mat4, Vec3, Vec4Swizzles};
 
+use crate::render::extract::LIGHT_CLUSTER_HEADER;
 use crate::render::gpu_types::PointLightGpu;
 use crate::{Camera, GlobalTransform, Projection};
 
@@ -22,17 +23,6 @@ const DEPTH_SLICES: u32 = 24;
 /// The most light entries the clusters' lists may hold (16 MB): past it the grid is made
 /// coarser until they fit, so that no light is ever dropped for the lists' size.
 const MAX_ENTRIES: usize = 1 << 22;
-
-/// The frame's light clusters, as frame.wgsl reads them.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct CulledLights {
-    /// Tiles across, tiles down, depth slices.
-    pub(super) grid: [u32; 4],
-    /// Scale, bias, logarithmic (1) or linear (0), nearest depth: see `light_slicing`.
-    pub(super) slicing: [f32; 4],
-    /// Per cluster its first entry and count, then the lists.
-    pub(super) clusters: Vec<u32>,
-}
 
 /// The inclusive range of clusters a light reaches along each axis of the grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,13 +57,17 @@ impl ClusterView {
     }
 }
 
-/// Culls `lights` into clusters for the camera looking at an image of `size` pixels.
+/// Culls `lights` into clusters for the camera looking at an image of `size` pixels: the
+/// words of `light_clusters` (lights.wgsl), a header of [`LIGHT_CLUSTER_HEADER`] words (the
+/// grid, the depth slicing, the camera; in a storage buffer, because a condition on uniform
+/// values alone makes Mesa 22's lavapipe keep a new copy of the shader at every bind), then
+/// per cluster its first entry and count, then the lists.
 pub(super) fn cull(
     (camera, transform): &(Camera, GlobalTransform),
     aspect: f32,
     size: (u32, u32),
     lights: &[PointLightGpu],
-) -> CulledLights {
+) -> Vec<u32> {
     let view = ClusterView::new(camera, transform, aspect);
     // The depths each light reaches, in view space; None for a light out of view.
     let reaches: Vec<Option<(Vec3, f32)>> = lights
@@ -107,18 +101,16 @@ pub(super) fn cull(
         let coarsest = tiles == [1, 1] && slices == 1;
         if entries <= MAX_ENTRIES || coarsest {
             let grid = [tiles[0], tiles[1], slices, 0];
-            return CulledLights {
-                grid,
-                slicing,
-                clusters: fill(&boxes, grid, entries),
-            };
+            let mut words = header(&view, transform, grid, slicing);
+            fill(&mut words, &boxes, grid, entries);
+            return words;
         }
         tiles = tiles.map(|count| count.div_ceil(2));
         slices = slices.div_ceil(2);
     }
 }
 
-/// `light_slicing`: slice = floor(f(depth) × scale + bias), f = log2 for a perspective
+/// The depth slicing: slice = floor(f(depth) × scale + bias), f = log2 for a perspective
 /// camera, from its near plane to `farthest`.
 fn depth_slicing(view: &ClusterView, farthest: f32, slices: u32) -> [f32; 4] {
     let slices = slices as f32;
@@ -203,9 +195,34 @@ fn cluster_box(
     })
 }
 
-/// The clusters' buffer: per cluster (x fastest, then y, then z) its first entry and count,
-/// then every cluster's list of light indices.
-fn fill(boxes: &[Option<ClusterBox>], grid: [u32; 4], entries: usize) -> Vec<u32> {
+/// The header lights.wgsl's `light_cluster` reads: the grid, the slicing, the camera's
+/// view-projection (unjittered, as the lights were culled), position and forward direction.
+fn header(
+    view: &ClusterView,
+    transform: &GlobalTransform,
+    grid: [u32; 4],
+    slicing: [f32; 4],
+) -> Vec<u32> {
+    let floats = (view.projection * view.view).to_cols_array();
+    let position = transform.translation().extend(0.0).to_array();
+    let forward = transform.forward().extend(0.0).to_array();
+    let mut words = Vec::with_capacity(LIGHT_CLUSTER_HEADER);
+    words.extend(grid);
+    words.extend(
+        slicing
+            .iter()
+            .chain(&floats)
+            .chain(&position)
+            .chain(&forward)
+            .map(|v| v.to_bits()),
+    );
+    debug_assert_eq!(words.len(), LIGHT_CLUSTER_HEADER);
+    words
+}
+
+/// Appends the clusters to `words` (after the header): per cluster (x fastest, then y, then z)
+/// its first entry and count, then every cluster's list of light indices.
+fn fill(words: &mut Vec<u32>, boxes: &[Option<ClusterBox>], grid: [u32; 4], entries: usize) {
     let [tiles_x, tiles_y, slices, _] = grid.map(|count| count as usize);
     let cluster_count = tiles_x * tiles_y * slices;
     let each = |light_box: &ClusterBox, visit: &mut dyn FnMut(usize)| {
@@ -218,11 +235,14 @@ fn fill(boxes: &[Option<ClusterBox>], grid: [u32; 4], entries: usize) -> Vec<u32
             }
         }
     };
-    let mut buffer = vec![0u32; 2 * cluster_count + entries];
+    let start = words.len();
+    words.resize(start + 2 * cluster_count + entries, 0);
+    let buffer = &mut words[start..];
     for light_box in boxes.iter().flatten() {
         each(light_box, &mut |cluster| buffer[2 * cluster + 1] += 1);
     }
-    let mut next = 2 * cluster_count as u32;
+    // Entries count from the start of the whole buffer, header included.
+    let mut next = (start + 2 * cluster_count) as u32;
     for cluster in 0..cluster_count {
         buffer[2 * cluster] = next;
         next += buffer[2 * cluster + 1];
@@ -233,9 +253,8 @@ fn fill(boxes: &[Option<ClusterBox>], grid: [u32; 4], entries: usize) -> Vec<u32
         let Some(light_box) = light_box else { continue };
         each(light_box, &mut |cluster| {
             let at = buffer[2 * cluster] + filled[cluster];
-            buffer[at as usize] = light as u32;
+            buffer[at as usize - start] = light as u32;
             filled[cluster] += 1;
         });
     }
-    buffer
 }

@@ -1,13 +1,27 @@
-// The lights that reach a point (render/lights/): its light cluster's, found from the frame's
-// grid (`light_grid`, `light_slicing` in frame.wgsl) the way the lights feature culled them
-// (clusters.rs), and the brightest few of them. Composed after frame.wgsl.
+// The lights that reach a point (render/lights/): its light cluster's, found the way the lights
+// feature culled them (clusters.rs), and the brightest few of them. Composed after frame.wgsl.
 
 // The most lights `brightest_lights_floor` ranks.
 const MAX_RANKED_LIGHTS: u32 = 8u;
+// Words before the clusters (LIGHT_CLUSTER_HEADER in extract.rs): the grid (0..3), the depth
+// slicing (4..7: scale, bias, 1 for a logarithmic slicing, the nearest depth), the camera's
+// view-projection (8..23, by columns), position (24..26) and forward direction (28..30), as
+// bits. Read from storage, not the frame uniform: a condition on uniform values alone makes
+// some drivers (Mesa 22's lavapipe) keep a new copy of the shader at every bind.
+const LIGHT_CLUSTER_HEADER: u32 = 32u;
 
-// Per cluster (light_grid's x × y × z, x fastest) its first entry and count in the list that
-// follows them; the list holds indices into point_lights, in ascending order.
+// The header, then per cluster (x fastest, then y, then z) its first entry and count, then the
+// lists, which hold indices into point_lights in ascending order.
 @group(0) @binding(15) var<storage, read> light_clusters: array<u32>;
+
+fn cluster_word(index: u32) -> f32 {
+    return bitcast<f32>(light_clusters[index]);
+}
+
+fn cluster_vector(first: u32) -> vec4<f32> {
+    return vec4<f32>(cluster_word(first), cluster_word(first + 1u), cluster_word(first + 2u),
+        cluster_word(first + 3u));
+}
 
 // The lights that may reach a point: every directional light, then the point lights of its
 // cluster; `light_in(list, k)` for k < count is each one's number as `light_at` takes it.
@@ -21,26 +35,24 @@ struct LightList {
 // The cluster of `world_position`: the image tile it projects to and its view depth's slice
 // (the grid's last slice holds everything farther).
 fn light_cluster(world_position: vec3<f32>) -> u32 {
-    let grid = max(frame.light_grid.xyz, vec3<u32>(1u));
-    let clip = frame.view_projection * vec4<f32>(world_position, 1.0);
+    let grid = max(vec3<u32>(light_clusters[0], light_clusters[1], light_clusters[2]), vec3<u32>(1u));
+    let slicing = cluster_vector(4u);
+    let view_projection = mat4x4<f32>(cluster_vector(8u), cluster_vector(12u), cluster_vector(16u),
+        cluster_vector(20u));
+    let clip = view_projection * vec4<f32>(world_position, 1.0);
     let ndc = clip.xy / select(clip.w, 1e-6, abs(clip.w) < 1e-6);
     let tile = vec2<u32>(clamp(floor((ndc * 0.5 + 0.5) * vec2<f32>(grid.xy)), vec2<f32>(0.0),
         vec2<f32>(grid.xy - 1u)));
-    let depth = max(dot(world_position - frame.camera_position.xyz, frame.view_direction.xyz),
-        frame.light_slicing.w);
-    // Blended, not selected: a condition on uniform values alone makes some drivers (Mesa 22's
-    // lavapipe) compile the shader again at every bind (light_slicing.z is 0 or 1).
-    let along = mix(depth, log2(max(depth, 1e-30)), frame.light_slicing.z);
-    let slice = u32(clamp(floor(along * frame.light_slicing.x + frame.light_slicing.y), 0.0,
-        f32(grid.z - 1u)));
+    let depth = max(dot(world_position - cluster_vector(24u).xyz, cluster_vector(28u).xyz), slicing.w);
+    let along = mix(depth, log2(max(depth, 1e-30)), slicing.z);
+    let slice = u32(clamp(floor(along * slicing.x + slicing.y), 0.0, f32(grid.z - 1u)));
     return (slice * grid.y + tile.y) * grid.x + tile.x;
 }
 
 fn lights_near(world_position: vec3<f32>) -> LightList {
     let directional_count = min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS);
-    let cluster = light_cluster(world_position);
-    return LightList(light_clusters[2u * cluster], directional_count + light_clusters[2u * cluster + 1u],
-        directional_count);
+    let at = LIGHT_CLUSTER_HEADER + 2u * light_cluster(world_position);
+    return LightList(light_clusters[at], directional_count + light_clusters[at + 1u], directional_count);
 }
 
 fn light_in(list: LightList, k: u32) -> u32 {

@@ -68,9 +68,7 @@ fn extract_lights(world: &mut World, resources: &mut Resources) -> Result<(), Ap
     let extracted = resources.require_mut::<ExtractedFrame>()?;
     if let Some(camera) = extracted.camera {
         let culled = clusters::cull(&camera, aspect, size, &extracted.point_lights);
-        extracted.frame.light_grid = culled.grid;
-        extracted.frame.light_slicing = culled.slicing;
-        extracted.light_clusters = culled.clusters;
+        extracted.light_clusters = culled;
     }
     Ok(())
 }
@@ -173,6 +171,15 @@ impl LightExtraction<'_> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_shader_reads_the_cluster_header_the_renderer_writes() {
+        let declaration = format!(
+            "const LIGHT_CLUSTER_HEADER: u32 = {}u;",
+            crate::render::extract::LIGHT_CLUSTER_HEADER
+        );
+        assert!(super::LIGHTS_WGSL.source.contains(&declaration));
+    }
+
     #[test]
     fn the_shader_ranks_as_many_lights_as_the_renderer_says() {
         let declaration = format!(
