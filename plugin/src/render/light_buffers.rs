@@ -42,6 +42,11 @@ impl LightBuffers {
         light_bytes + cluster_bytes
     }
 
+    /// The point lights' buffer (binding 14), for a pass that binds it alone.
+    pub fn point_lights(&self) -> &wgpu::Buffer {
+        self.point_lights.buffer()
+    }
+
     /// Changes whenever a buffer is replaced.
     pub fn generation(&self) -> u64 {
         self.generation

@@ -238,6 +238,11 @@ impl SeedPortCompute {
                 entry(0, buffers[0].as_entire_binding()),
                 entry(1, buffers[1].as_entire_binding()),
                 entry(2, buffers[2].as_entire_binding()),
+                // `light_at` reads the point lights (the seed's one light is the first of all).
+                entry(
+                    crate::render::frame_group::POINT_LIGHTS,
+                    renderer.lights.point_lights().as_entire_binding(),
+                ),
             ],
         );
         let texture_group = texture_group(
