@@ -209,6 +209,7 @@ crate::with_lighting_parameters! {
             /// How many of the lights at a pixel get the relief's self-shadows: the brightest
             /// there; the rest light it unshadowed by its relief (cheaper under many lights).
             shadowed_lights: u32 = 4, ParamSpec::integer(0, MAX_SHADOWED_LIGHTS)
+                .group(ParamGroup::Lighting)
                 .applies_when(|material| material.shadows != ShadowMode::Off);
             /// How much the relief hides the environment's light where it hides the sky (the grout
             /// between cobbles): 0 not at all, 1 as the height field's horizon says.
