@@ -130,16 +130,29 @@ pub(super) fn camera_of(camera: &gltf::Camera<'_>) -> Result<Camera, String> {
     })
 }
 
+/// The value at `pom.KEY` of an element's raw `extras` JSON: `None` without one, or why the
+/// JSON is unreadable.
+fn pom_extra(
+    raw: Option<&serde_json::value::RawValue>,
+    key: &str,
+) -> Result<Option<serde_json::Value>, String> {
+    let Some(raw) = raw else {
+        return Ok(None);
+    };
+    let mut value: serde_json::Value =
+        serde_json::from_str(raw.get()).map_err(|e| e.to_string())?;
+    Ok(value
+        .get_mut("pom")
+        .and_then(|pom| pom.get_mut(key))
+        .map(serde_json::Value::take))
+}
+
 /// The exposure a glTF camera asks for in `extras.pom.exposure` (EV100, as `--exposure`):
 /// `None` without one, or why it is unusable. A scene lit at night carries its own.
 pub(super) fn camera_exposure(
     camera: &gltf::Camera<'_>,
 ) -> Result<Option<crate::Exposure>, String> {
-    let Some(raw) = camera.extras() else {
-        return Ok(None);
-    };
-    let value: serde_json::Value = serde_json::from_str(raw.get()).map_err(|e| e.to_string())?;
-    let Some(exposure) = value.get("pom").and_then(|pom| pom.get("exposure")) else {
+    let Some(exposure) = pom_extra(camera.extras().as_deref(), "exposure")? else {
         return Ok(None);
     };
     let range = crate::Exposure::RANGE;
@@ -159,11 +172,7 @@ pub(super) fn camera_exposure(
 pub(super) fn scene_ambient(
     scene: &gltf::Scene<'_>,
 ) -> Result<Option<crate::AmbientLight>, String> {
-    let Some(raw) = scene.extras() else {
-        return Ok(None);
-    };
-    let value: serde_json::Value = serde_json::from_str(raw.get()).map_err(|e| e.to_string())?;
-    let Some(ambient) = value.get("pom").and_then(|pom| pom.get("ambient")) else {
+    let Some(ambient) = pom_extra(scene.extras().as_deref(), "ambient")? else {
         return Ok(None);
     };
     let intensity = ambient["intensity"].as_f64().map(|lux| lux as f32);
