@@ -173,6 +173,42 @@ fn texture_group(
     })
 }
 
+/// The pass's four buffers, in binding order: frame, transform, material, view.
+fn upload_buffers<F: bytemuck::Pod, T: bytemuck::Pod, M: bytemuck::Pod, V: bytemuck::Pod>(
+    device: &wgpu::Device,
+    frame: &F,
+    transform: &T,
+    material: &M,
+    view: &V,
+) -> [wgpu::Buffer; 4] {
+    let buffer = |label: &str, contents: &[u8], usage: wgpu::BufferUsages| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    };
+    let (uniform, storage) = (wgpu::BufferUsages::UNIFORM, wgpu::BufferUsages::STORAGE);
+    [
+        buffer(
+            "seed port compute frame",
+            bytemuck::bytes_of(frame),
+            uniform,
+        ),
+        buffer(
+            "seed port compute transform",
+            bytemuck::bytes_of(transform),
+            storage,
+        ),
+        buffer(
+            "seed port compute material",
+            bytemuck::bytes_of(material),
+            storage,
+        ),
+        buffer("seed port compute view", bytemuck::bytes_of(view), uniform),
+    ]
+}
+
 impl SeedPortCompute {
     /// The pass for the seed-port plane of `world` (the first, if several) as the app's last
     /// frame extracted and uploaded it: its camera and lights, its textures on the GPU, the
@@ -199,32 +235,7 @@ impl SeedPortCompute {
 
         let device = &gpu.device;
         let pipeline = compute_pipeline(device, target.scene_format());
-        let buffer = |label: &str, contents: &[u8], usage: wgpu::BufferUsages| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let (uniform, storage) = (wgpu::BufferUsages::UNIFORM, wgpu::BufferUsages::STORAGE);
-        let buffers = [
-            buffer(
-                "seed port compute frame",
-                bytemuck::bytes_of(&frame.frame),
-                uniform,
-            ),
-            buffer(
-                "seed port compute transform",
-                bytemuck::bytes_of(&transform),
-                storage,
-            ),
-            buffer(
-                "seed port compute material",
-                bytemuck::bytes_of(&per_draw),
-                storage,
-            ),
-            buffer("seed port compute view", bytemuck::bytes_of(&view), uniform),
-        ];
+        let buffers = upload_buffers(device, &frame.frame, &transform, &per_draw, &view);
         let group = |index: u32, entries: &[wgpu::BindGroupEntry]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(SEED_PORT_COMPUTE_PASS),
