@@ -23,7 +23,11 @@ fn the_committed_assets_are_reproduced_byte_for_byte() {
         .filter_map(|line| line.strip_prefix("wrote "))
         .map(str::to_owned)
         .collect();
-    assert_eq!(written.len(), 16, "5 materials × 3 maps + the scene");
+    assert_eq!(
+        written.len(),
+        17,
+        "5 materials × 3 maps + the street corner by day and at night"
+    );
     for file in &written {
         let relative = Path::new(file)
             .strip_prefix(&out)
