@@ -8,7 +8,7 @@
 //! comes out in the lights' order; lights.wgsl's `light_cluster` finds a point's cluster the
 //! same way.
 
-use glam::{Mat4, Vec3, Vec4Swizzles};
+use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
 
 use crate::render::extract::LIGHT_CLUSTER_HEADER;
 use crate::render::gpu_types::PointLightGpu;
@@ -130,6 +130,18 @@ impl ClusterBox {
         let span = |(first, last): (u32, u32)| (last - first + 1) as usize;
         span(self.x) * span(self.y) * span(self.z)
     }
+
+    /// Visits the index of each cluster in the box (x fastest, then y, then z).
+    fn for_each_cluster(&self, tiles_x: usize, tiles_y: usize, mut visit: impl FnMut(usize)) {
+        for z in self.z.0..=self.z.1 {
+            for y in self.y.0..=self.y.1 {
+                let row = (z as usize * tiles_y + y as usize) * tiles_x;
+                for x in self.x.0..=self.x.1 {
+                    visit(row + x as usize);
+                }
+            }
+        }
+    }
 }
 
 /// The clusters a light at `center` (view space) of `range` reaches, `None` where it reaches
@@ -155,31 +167,24 @@ fn cluster_box(
     };
     let depth = -center.z;
     let z = (slice(depth - range), slice(depth + range));
-    // Where the sphere reaches behind the near plane its image has no bound: every tile.
     let whole = (0, tiles[0] - 1, 0, tiles[1] - 1);
-    let (x0, x1, y0, y1) = if view.perspective && depth - range <= view.near {
-        whole
+    // Where the sphere reaches behind the near plane its image has no bound: every tile.
+    let bounds = if view.perspective && depth - range <= view.near {
+        None
     } else {
-        let mut low = glam::Vec2::splat(f32::INFINITY);
-        let mut high = glam::Vec2::splat(f32::NEG_INFINITY);
-        for corner in 0..8 {
-            let sign = |bit: u32| if corner & bit == 0 { -1.0 } else { 1.0 };
-            let point = center + Vec3::new(sign(1), sign(2), sign(4)) * range;
-            let clip = view.projection * point.extend(1.0);
-            let ndc = clip.xy() / clip.w;
-            low = low.min(ndc);
-            high = high.max(ndc);
-        }
-        let tile = |ndc: f32, count: u32| {
-            ((ndc * 0.5 + 0.5) * count as f32)
-                .floor()
-                .clamp(0.0, (count - 1) as f32) as u32
-        };
-        if !(low.is_finite() && high.is_finite()) {
-            whole
-        } else if low.x > 1.0 || low.y > 1.0 || high.x < -1.0 || high.y < -1.0 {
+        image_bounds(view, center, range)
+    };
+    let (x0, x1, y0, y1) = match bounds {
+        None => whole,
+        Some((low, high)) if low.x > 1.0 || low.y > 1.0 || high.x < -1.0 || high.y < -1.0 => {
             return None;
-        } else {
+        }
+        Some((low, high)) => {
+            let tile = |ndc: f32, count: u32| {
+                ((ndc * 0.5 + 0.5) * count as f32)
+                    .floor()
+                    .clamp(0.0, (count - 1) as f32) as u32
+            };
             (
                 tile(low.x, tiles[0]),
                 tile(high.x, tiles[0]),
@@ -193,6 +198,37 @@ fn cluster_box(
         y: (y0, y1),
         z,
     })
+}
+
+/// The rectangle (normalized device coordinates) a sphere in front of the camera covers on
+/// the image, `None` where it has no finite bound. In perspective, the lines from the eye
+/// tangent to the sphere bound it along each axis (a cube's corners around the sphere would
+/// take about half as much area again, and every light in it a cluster more to loop);
+/// orthographically, the centre's image plus and minus the range.
+fn image_bounds(view: &ClusterView, center: Vec3, range: f32) -> Option<(Vec2, Vec2)> {
+    let project = |point: Vec3| {
+        let clip = view.projection * point.extend(1.0);
+        clip.xy() / clip.w
+    };
+    let (low, high) = if view.perspective {
+        let depth = -center.z;
+        // The slopes (offset over depth) of the two tangents in the plane of one axis.
+        let tangents = |offset: f32| {
+            let tangent = (offset * offset + depth * depth - range * range).sqrt();
+            let first = (offset * tangent - depth * range) / (offset * range + depth * tangent);
+            let second = (offset * tangent + depth * range) / (depth * tangent - offset * range);
+            (first.min(second), first.max(second))
+        };
+        let (x, y) = (tangents(center.x), tangents(center.y));
+        (
+            project(Vec3::new(x.0, y.0, -1.0)),
+            project(Vec3::new(x.1, y.1, -1.0)),
+        )
+    } else {
+        let (a, b) = (project(center - range), project(center + range));
+        (a.min(b), a.max(b))
+    };
+    (low.is_finite() && high.is_finite()).then_some((low, high))
 }
 
 /// The header lights.wgsl's `light_cluster` reads: the grid, the slicing, the camera's
@@ -225,36 +261,140 @@ fn header(
 fn fill(words: &mut Vec<u32>, boxes: &[Option<ClusterBox>], grid: [u32; 4], entries: usize) {
     let [tiles_x, tiles_y, slices, _] = grid.map(|count| count as usize);
     let cluster_count = tiles_x * tiles_y * slices;
-    let each = |light_box: &ClusterBox, visit: &mut dyn FnMut(usize)| {
-        for z in light_box.z.0..=light_box.z.1 {
-            for y in light_box.y.0..=light_box.y.1 {
-                let row = (z as usize * tiles_y + y as usize) * tiles_x;
-                for x in light_box.x.0..=light_box.x.1 {
-                    visit(row + x as usize);
-                }
-            }
-        }
-    };
     let start = words.len();
     words.resize(start + 2 * cluster_count + entries, 0);
-    let buffer = &mut words[start..];
+    let (clusters, lists) = words[start..].split_at_mut(2 * cluster_count);
     for light_box in boxes.iter().flatten() {
-        each(light_box, &mut |cluster| buffer[2 * cluster + 1] += 1);
+        light_box.for_each_cluster(tiles_x, tiles_y, |cluster| clusters[2 * cluster + 1] += 1);
+    }
+    // Each cluster's first word starts at the end of its list; the lights go in from the last,
+    // each stepping it back by one, so it ends at the list's start with the lights in order.
+    let mut end = 0;
+    for cluster in 0..cluster_count {
+        end += clusters[2 * cluster + 1];
+        clusters[2 * cluster] = end;
+    }
+    for (light, light_box) in boxes.iter().enumerate().rev() {
+        let Some(light_box) = light_box else { continue };
+        light_box.for_each_cluster(tiles_x, tiles_y, |cluster| {
+            clusters[2 * cluster] -= 1;
+            lists[clusters[2 * cluster] as usize] = light as u32;
+        });
     }
     // Entries count from the start of the whole buffer, header included.
-    let mut next = (start + 2 * cluster_count) as u32;
+    let first_entry = (start + 2 * cluster_count) as u32;
     for cluster in 0..cluster_count {
-        buffer[2 * cluster] = next;
-        next += buffer[2 * cluster + 1];
+        clusters[2 * cluster] += first_entry;
     }
-    // The second pass counts each list up again as it fills it.
-    let mut filled = vec![0u32; cluster_count];
-    for (light, light_box) in boxes.iter().enumerate() {
-        let Some(light_box) = light_box else { continue };
-        each(light_box, &mut |cluster| {
-            let at = buffer[2 * cluster] + filled[cluster];
-            buffer[at as usize - start] = light as u32;
-            filled[cluster] += 1;
-        });
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Vec3, Vec4};
+
+    use super::cull;
+    use crate::render::extract::LIGHT_CLUSTER_HEADER;
+    use crate::render::gpu_types::PointLightGpu;
+    use crate::{Camera, GlobalTransform, Transform};
+
+    /// The cluster `light_cluster` (lights.wgsl) finds for a point, from the header alone.
+    fn cluster_of(words: &[u32], point: Vec3) -> usize {
+        let float = |at: usize| f32::from_bits(words[at]);
+        let vector = |at: usize| Vec4::new(float(at), float(at + 1), float(at + 2), float(at + 3));
+        let grid = [words[0].max(1), words[1].max(1), words[2].max(1)];
+        let slicing = vector(4);
+        let view_projection = glam::Mat4::from_cols(vector(8), vector(12), vector(16), vector(20));
+        let clip = view_projection * point.extend(1.0);
+        let ndc = clip.truncate().truncate() / clip.w;
+        let tile = |ndc: f32, count: u32| {
+            ((ndc * 0.5 + 0.5) * count as f32)
+                .floor()
+                .clamp(0.0, (count - 1) as f32) as usize
+        };
+        let depth = (point - vector(24).truncate())
+            .dot(vector(28).truncate())
+            .max(slicing.w);
+        let along = if slicing.z > 0.5 { depth.log2() } else { depth };
+        let slice = (along * slicing.x + slicing.y)
+            .floor()
+            .clamp(0.0, (grid[2] - 1) as f32) as usize;
+        (slice * grid[1] as usize + tile(ndc.y, grid[1])) * grid[0] as usize + tile(ndc.x, grid[0])
+    }
+
+    /// Numbers in [0, 1) from a fixed seed (a linear congruential generator).
+    fn numbers(mut state: u64) -> impl FnMut() -> f32 {
+        move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    /// Every point inside a light's range, seen by the camera, finds that light in its
+    /// cluster's list, and every list is in the lights' order.
+    fn lists_hold_every_light_where_it_reaches(camera: Camera, seed: u64) {
+        let eye = Transform::from_xyz(1.0, 3.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y);
+        let view = (camera, GlobalTransform(eye.to_affine()));
+        let mut random = numbers(seed);
+        let lights: Vec<PointLightGpu> = (0..200)
+            .map(|_| {
+                let centre = Vec3::new(random() - 0.5, random() * 0.3, random() - 0.5) * 12.0;
+                PointLightGpu {
+                    position_range: centre.extend(0.2 + random() * 2.5).into(),
+                    ..PointLightGpu::default()
+                }
+            })
+            .collect();
+        let words = cull(&view, 16.0 / 9.0, (1280, 720), &lights);
+        let clusters = (words[0] * words[1] * words[2]) as usize;
+        for cluster in 0..clusters {
+            let (first, count) = (
+                words[LIGHT_CLUSTER_HEADER + 2 * cluster],
+                words[LIGHT_CLUSTER_HEADER + 2 * cluster + 1],
+            );
+            let list = &words[first as usize..(first + count) as usize];
+            assert!(
+                list.windows(2).all(|pair| pair[0] < pair[1]),
+                "cluster {cluster}: {list:?}"
+            );
+        }
+        let view_projection = view.0.projection.matrix(16.0 / 9.0) * view.1.to_mat4().inverse();
+        let mut checked = 0;
+        for (index, light) in lights.iter().enumerate() {
+            let [x, y, z, range] = light.position_range;
+            for _ in 0..200 {
+                let offset = Vec3::new(random(), random(), random()) * 2.0 - 1.0;
+                let point =
+                    Vec3::new(x, y, z) + offset.normalize_or_zero() * range * random().sqrt();
+                let clip = view_projection * point.extend(1.0);
+                let seen = clip.w > 0.0
+                    && clip.x.abs() <= clip.w
+                    && clip.y.abs() <= clip.w
+                    && clip.z >= 0.0
+                    && clip.z <= clip.w;
+                if !seen {
+                    continue;
+                }
+                let at = LIGHT_CLUSTER_HEADER + 2 * cluster_of(&words, point);
+                let (first, count) = (words[at] as usize, words[at + 1] as usize);
+                assert!(
+                    words[first..first + count].contains(&(index as u32)),
+                    "light {index} at {x},{y},{z} (range {range}) is missing where it reaches {point}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 10_000, "only {checked} points in view");
+    }
+
+    #[test]
+    fn a_perspective_cameras_clusters_hold_every_light_where_it_reaches() {
+        lists_hold_every_light_where_it_reaches(Camera::perspective(50.0), 7);
+    }
+
+    #[test]
+    fn an_orthographic_cameras_clusters_hold_every_light_where_it_reaches() {
+        lists_hold_every_light_where_it_reaches(Camera::orthographic(12.0), 11);
     }
 }
