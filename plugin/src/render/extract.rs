@@ -123,15 +123,34 @@ pub fn extract_frame(world: &mut World, resources: &mut Resources) -> Result<(),
         // The lights are the lights feature's (render/lights/), extracted after this.
         directional_lights: [DirectionalLightGpu::default(); MAX_DIRECTIONAL_LIGHTS],
     };
+    // The last frame's lists, emptied, keep their memory for this frame's: a thousand lights'
+    // clusters would otherwise take a fresh allocation (and its pages) every frame.
+    let (mut lights, mut point_lights, mut light_clusters, mut shadow_views) = resources
+        .remove::<ExtractedFrame>()
+        .map(|last| {
+            (
+                last.lights,
+                last.point_lights,
+                last.light_clusters,
+                last.shadow_views,
+            )
+        })
+        .unwrap_or_default();
+    lights.directional.clear();
+    lights.point.clear();
+    point_lights.clear();
+    light_clusters.clear();
+    light_clusters.extend_from_slice(&NO_LIGHT_CLUSTERS);
+    shadow_views.clear();
     resources.insert(ExtractedFrame {
         frame,
         clear_color: view.clear_color,
         exposure,
         camera,
-        lights: LightEntities::default(),
-        point_lights: Vec::new(),
-        light_clusters: NO_LIGHT_CLUSTERS.to_vec(),
-        shadow_views: Vec::new(),
+        lights,
+        point_lights,
+        light_clusters,
+        shadow_views,
         has_camera: camera.is_some(),
     });
     Ok(())

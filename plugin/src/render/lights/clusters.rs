@@ -61,13 +61,15 @@ impl ClusterView {
 /// words of `light_clusters` (lights.wgsl), a header of [`LIGHT_CLUSTER_HEADER`] words (the
 /// grid, the depth slicing, the camera; in a storage buffer, because a condition on uniform
 /// values alone makes Mesa 22's lavapipe keep a new copy of the shader at every bind), then
-/// per cluster its first entry and count, then the lists.
+/// per cluster its first entry and count, then the lists. They replace what `words` held
+/// (whose memory they reuse).
 pub(super) fn cull(
     (camera, transform): &(Camera, GlobalTransform),
     aspect: f32,
     size: (u32, u32),
     lights: &[PointLightGpu],
-) -> Vec<u32> {
+    words: &mut Vec<u32>,
+) {
     let view = ClusterView::new(camera, transform, aspect);
     // The depths each light reaches, in view space; None for a light out of view.
     let reaches: Vec<Option<(Vec3, f32)>> = lights
@@ -101,9 +103,10 @@ pub(super) fn cull(
         let coarsest = tiles == [1, 1] && slices == 1;
         if entries <= MAX_ENTRIES || coarsest {
             let grid = [tiles[0], tiles[1], slices, 0];
-            let mut words = header(&view, transform, grid, slicing);
-            fill(&mut words, &boxes, grid, entries);
-            return words;
+            words.clear();
+            header(words, &view, transform, grid, slicing);
+            fill(words, &boxes, grid, entries);
+            return;
         }
         tiles = tiles.map(|count| count.div_ceil(2));
         slices = slices.div_ceil(2);
@@ -234,15 +237,16 @@ fn image_bounds(view: &ClusterView, center: Vec3, range: f32) -> Option<(Vec2, V
 /// The header lights.wgsl's `light_cluster` reads: the grid, the slicing, the camera's
 /// view-projection (unjittered, as the lights were culled), position and forward direction.
 fn header(
+    words: &mut Vec<u32>,
     view: &ClusterView,
     transform: &GlobalTransform,
     grid: [u32; 4],
     slicing: [f32; 4],
-) -> Vec<u32> {
+) {
     let floats = (view.projection * view.view).to_cols_array();
     let position = transform.translation().extend(0.0).to_array();
     let forward = transform.forward().extend(0.0).to_array();
-    let mut words = Vec::with_capacity(LIGHT_CLUSTER_HEADER);
+    let start = words.len();
     words.extend(grid);
     words.extend(
         slicing
@@ -252,8 +256,7 @@ fn header(
             .chain(&forward)
             .map(|v| v.to_bits()),
     );
-    debug_assert_eq!(words.len(), LIGHT_CLUSTER_HEADER);
-    words
+    debug_assert_eq!(words.len() - start, LIGHT_CLUSTER_HEADER);
 }
 
 /// Appends the clusters to `words` (after the header): per cluster (x fastest, then y, then z)
@@ -346,7 +349,8 @@ mod tests {
                 }
             })
             .collect();
-        let words = cull(&view, 16.0 / 9.0, (1280, 720), &lights);
+        let mut words = vec![7; 3];
+        cull(&view, 16.0 / 9.0, (1280, 720), &lights, &mut words);
         let clusters = (words[0] * words[1] * words[2]) as usize;
         for cluster in 0..clusters {
             let (first, count) = (

@@ -67,8 +67,8 @@ fn extract_lights(world: &mut World, resources: &mut Resources) -> Result<(), Ap
     let (aspect, size) = (target.aspect(), target.size());
     let extracted = resources.require_mut::<ExtractedFrame>()?;
     if let Some(camera) = extracted.camera {
-        let culled = clusters::cull(&camera, aspect, size, &extracted.point_lights);
-        extracted.light_clusters = culled;
+        let lights = &extracted.point_lights;
+        clusters::cull(&camera, aspect, size, lights, &mut extracted.light_clusters);
     }
     Ok(())
 }
