@@ -110,20 +110,9 @@ impl Runner<'_> {
                 "street corner, no environment"
             };
             let (path, times) = time_street_corner(size, sky, self.path, frames)?;
-            for (phase, times) in &times {
-                self.record(
-                    "environment",
-                    place,
-                    &material,
-                    (path, *phase, variant.into()),
-                    times,
-                )?;
-            }
-            let frame: Vec<f64> = (0..self.frames)
-                .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
-                .collect();
-            let row = (path, "frame", variant.to_owned());
-            frame_ms[index] = Some(self.record("environment", place, &material, row, &frame)?);
+            let frame =
+                self.record_phases_and_frame("environment", size, (path, variant), &times)?;
+            frame_ms[index] = Some(frame);
         }
         if let [Some(without), Some(with)] = frame_ms {
             self.ratio(

@@ -7,14 +7,11 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use glam::Vec3;
-use pom::{
-    App, ParallaxOcclusionMaterial, PointLight, PomPlugin, RenderPath, RenderPlugin, Resources,
-    Stage, TimingMode, Transform,
-};
+use pom::{App, ParallaxOcclusionMaterial, PointLight, RenderPath, Resources, Stage, Transform};
 
 use super::Runner;
 use super::scene::{BenchScene, PhaseTimes, Warmup};
-use crate::demo_scene;
+use super::scene_shadows::street_corner_app;
 
 /// The cases timed, as (point lights, lights whose relief shadows each pixel marches): one
 /// light (the baseline), 256 and 1,024 with the parallax material's default 4 shadowed lights,
@@ -79,19 +76,12 @@ fn street_corner_at_night(
     (count, shadowed_lights): (usize, u32),
     path: RenderPath,
 ) -> Result<App> {
-    let mut app = App::new();
-    app.add_plugin(
-        RenderPlugin::new(size.0, size.1)
-            .with_gpu_timing(Some(TimingMode::Blocking))
-            .with_path(path),
-    )
-    .add_plugin(PomPlugin);
-    app.add_system(Stage::Update, bob)
-        .add_system(Stage::PostUpdate, end_of_post_update)
-        .add_system(Stage::Extract, end_of_extract)
-        .add_system(Stage::Prepare, end_of_prepare);
-    app.finish().context("starting the GPU")?;
-    let scene = demo_scene::spawn(&mut app)?;
+    let (mut app, scene) = street_corner_app(size, path, |app| {
+        app.add_system(Stage::Update, bob)
+            .add_system(Stage::PostUpdate, end_of_post_update)
+            .add_system(Stage::Extract, end_of_extract)
+            .add_system(Stage::Prepare, end_of_prepare);
+    })?;
     for light in scene.lights {
         app.world.despawn(light)?;
     }
@@ -143,8 +133,8 @@ pub fn time(
 }
 
 impl Runner<'_> {
-    /// The street corner's frame with 1, 256 and 1,024 lights (and 256 with one shadowed), and the CPU stages that cull
-    /// and upload them.
+    /// The street corner's frame with 1, 256 and 1,024 lights (and 256 with one shadowed), and
+    /// the CPU stages that cull and upload them.
     pub(super) fn lights(&mut self, size: (u32, u32)) -> Result<()> {
         let place = (size, 1.0);
         let material = self.base.clone();
@@ -159,20 +149,8 @@ impl Runner<'_> {
                 self.path,
                 (self.warmup, self.frames),
             )?;
-            for (phase, times) in &times {
-                self.record(
-                    "lights",
-                    place,
-                    &material,
-                    (path, *phase, variant.clone()),
-                    times,
-                )?;
-            }
-            let frame: Vec<f64> = (0..self.frames)
-                .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
-                .collect();
-            let row = (path, "frame", variant.clone());
-            frame_ms.push(self.record("lights", place, &material, row, &frame)?);
+            let frame = self.record_phases_and_frame("lights", size, (path, &variant), &times)?;
+            frame_ms.push(frame);
             for (stage, times) in [("cpu extract", extract), ("cpu prepare", prepare)] {
                 self.record(
                     "lights",

@@ -250,6 +250,27 @@ impl Runner<'_> {
 
     /// Records `times` of `pass` (frames that ran on `path`, as [`BenchScene::path_ran`] says)
     /// as one case; returns their median.
+    /// Records each phase of `times` and their sum, the frame, as rows of `group` for the
+    /// runner's material; returns the frame's median.
+    fn record_phases_and_frame(
+        &mut self,
+        group: &'static str,
+        size: (u32, u32),
+        (path, variant): (&'static str, &str),
+        times: &scene::PhaseTimes,
+    ) -> Result<Median> {
+        let (place, material) = ((size, 1.0), self.base.clone());
+        for (phase, times) in times {
+            let row = (path, *phase, variant.to_owned());
+            self.record(group, place, &material, row, times)?;
+        }
+        let frame: Vec<f64> = (0..self.frames)
+            .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
+            .collect();
+        let row = (path, "frame", variant.to_owned());
+        self.record(group, place, &material, row, &frame)
+    }
+
     fn record(
         &mut self,
         group: &'static str,

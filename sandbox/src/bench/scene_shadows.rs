@@ -74,16 +74,7 @@ impl ShadowCase {
 
 /// The street corner at `size`, lit as `case` says, timed, rendered on `path`.
 pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Result<BenchScene> {
-    let mut app = App::new();
-    app.add_plugin(
-        RenderPlugin::new(size.0, size.1)
-            .with_gpu_timing(Some(TimingMode::Blocking))
-            .with_path(path),
-    )
-    .add_plugin(PomPlugin);
-    app.finish().context("starting the GPU")?;
-    // The scene embedded in the binary: the bench runs from any folder.
-    let scene = demo_scene::spawn(&mut app)?;
+    let (mut app, scene) = street_corner_app(size, path, |_| {})?;
     let sun = *scene
         .lights
         .first()
@@ -136,6 +127,27 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Re
         }
     }
     Ok(BenchScene::from_app(app))
+}
+
+/// The street corner embedded in the binary (the bench runs from any folder) in an app that
+/// times its GPU passes, `size` pixels on `path`; `before_start` adds what a case needs before
+/// the GPU starts.
+pub fn street_corner_app(
+    size: (u32, u32),
+    path: RenderPath,
+    before_start: impl FnOnce(&mut App),
+) -> Result<(App, pom::GltfScene)> {
+    let mut app = App::new();
+    app.add_plugin(
+        RenderPlugin::new(size.0, size.1)
+            .with_gpu_timing(Some(TimingMode::Blocking))
+            .with_path(path),
+    )
+    .add_plugin(PomPlugin);
+    before_start(&mut app);
+    app.finish().context("starting the GPU")?;
+    let scene = demo_scene::spawn(&mut app)?;
+    Ok((app, scene))
 }
 
 /// Per phase of `case` asked to run on `path`, its milliseconds in each timed frame; and the
