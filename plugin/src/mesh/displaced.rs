@@ -23,6 +23,7 @@ impl Mesh {
     ) -> Result<Self, MeshError> {
         if !(1..=MAX_GRID_CELLS).contains(&cells) {
             return Err(MeshError::GridCells {
+                what: "displaced grid",
                 cells,
                 limit: MAX_GRID_CELLS,
             });

@@ -3,6 +3,7 @@
 mod displaced;
 mod primitives;
 mod tangents;
+mod terrain;
 
 pub use displaced::MAX_GRID_CELLS;
 pub use tangents::generate_tangents;
@@ -48,14 +49,20 @@ pub enum MeshError {
     /// The mesh has no triangles.
     #[error("mesh has no triangles")]
     Empty,
-    /// A displaced grid was asked for with too few or too many cells.
-    #[error("displaced grid of {cells} cells per side is outside 1..={limit}")]
+    /// A displaced grid or a terrain was asked for with too few or too many cells.
+    #[error("{what} of {cells} cells per side is outside 1..={limit}")]
     GridCells {
+        /// What was asked for (`displaced grid` or `terrain`).
+        what: &'static str,
         /// Cells asked for along one side.
         cells: u32,
         /// [`MAX_GRID_CELLS`].
         limit: u32,
     },
+    /// A terrain's size (x, y, z) is not finite, or not positive across (x, z) or negative in
+    /// height (y).
+    #[error("terrain size {0:?} must be finite, positive in x and z and not negative in y")]
+    TerrainSize([f32; 3]),
 }
 
 /// An indexed triangle list with the attributes the lit materials need.
