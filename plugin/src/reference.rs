@@ -6,9 +6,11 @@
 //! which is what the GPU does when a texel covers at least a pixel.
 
 mod exact;
+mod layers;
 mod max_mip;
 
 pub use exact::{exact_intersection, exact_intersection_along};
+pub use layers::{MAX_BLEND_CONTRAST, blended_height, layer_shares};
 pub use max_mip::{MaxPyramid, march_max_mip, max_mip_hard_shadow};
 
 use glam::{Vec2, Vec3};
