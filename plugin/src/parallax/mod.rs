@@ -2,6 +2,7 @@
 
 mod curvature;
 mod gpu;
+mod layer_heights;
 mod material;
 mod max_pyramid;
 mod pipelines;
@@ -12,6 +13,7 @@ pub use curvature::{
     CurvedSilhouetteWarnings, curvature_problem, warn_about_meshes_without_curvature,
 };
 pub use gpu::PomUniform;
+pub use layer_heights::{LayerError, MAX_LAYERS, pack_layer_heights};
 pub use material::{
     BOUNDS_LIMIT, DebugView, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT, ParallaxMethod,
     ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset, ShadowMode,
