@@ -389,38 +389,6 @@ impl Runner<'_> {
         Ok(())
     }
 
-    /// The street corner per light type with scene shadows and without: each phase, and the
-    /// frame (their sum).
-    fn scene_shadows(&mut self, size: (u32, u32)) -> Result<()> {
-        let place = (size, 1.0);
-        let material = self.base.clone();
-        // Each light type's frame without shadows, its baseline (ALL lists it first).
-        let mut frame_without = None;
-        for case in scene_shadows::ShadowCase::ALL {
-            let (path, times) =
-                scene_shadows::time(size, case, self.path, self.warmup, self.frames)?;
-            let frames: Vec<f64> = (0..self.frames)
-                .map(|frame| times.iter().map(|(_, phase)| phase[frame]).sum())
-                .collect();
-            for (phase, times) in &times {
-                let row = (path, *phase, case.name().to_owned());
-                self.record("scene_shadows", place, &material, row, times)?;
-            }
-            let row = (path, "frame", case.name().to_owned());
-            let frame_ms = self.record("scene_shadows", place, &material, row, &frames)?;
-            match (case.shadows, frame_without) {
-                (false, _) => frame_without = Some((case, frame_ms)),
-                (true, Some((baseline, without))) if baseline.light == case.light => {
-                    let what =
-                        format!("street corner frame: {} / {}", case.name(), baseline.name());
-                    self.ratio(what, size, frame_ms, without);
-                }
-                (true, _) => anyhow::bail!("{} was timed before its baseline", case.name()),
-            }
-        }
-        Ok(())
-    }
-
     fn scene(&self, size: (u32, u32), view: &PreviewView) -> Result<BenchScene> {
         BenchScene::new(
             SceneOptions::timed_plane(size, self.path),

@@ -9,6 +9,7 @@ use pom::{
     RenderPlugin, SpotLight, TimingMode, Transform,
 };
 
+use super::Runner;
 use super::scene::{BenchScene, PhaseTimes, Warmup};
 use crate::demo_scene;
 
@@ -162,4 +163,28 @@ pub fn time(
     let mut scene = street_corner(size, case, path)?;
     let phases = scene.time_phases(warmup, frames, case.phases())?;
     Ok((scene.path_ran(), phases))
+}
+
+impl Runner<'_> {
+    /// The street corner per light type with scene shadows and without: each phase, and the
+    /// frame (their sum).
+    pub(super) fn scene_shadows(&mut self, size: (u32, u32)) -> Result<()> {
+        // Each light type's frame without shadows, its baseline (ALL lists it first).
+        let mut frame_without = None;
+        for case in ShadowCase::ALL {
+            let (path, times) = time(size, case, self.path, self.warmup, self.frames)?;
+            let frame_ms =
+                self.record_phases_and_frame("scene_shadows", size, (path, case.name()), &times)?;
+            match (case.shadows, frame_without) {
+                (false, _) => frame_without = Some((case, frame_ms)),
+                (true, Some((baseline, without))) if baseline.light == case.light => {
+                    let what =
+                        format!("street corner frame: {} / {}", case.name(), baseline.name());
+                    self.ratio(what, size, frame_ms, without);
+                }
+                (true, _) => anyhow::bail!("{} was timed before its baseline", case.name()),
+            }
+        }
+        Ok(())
+    }
 }
