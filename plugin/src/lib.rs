@@ -43,6 +43,20 @@ mod doc_tests {
     struct Window;
 }
 
+// Fixed pseudo-random inputs for unit tests that sample many cases.
+#[cfg(test)]
+mod test_numbers {
+    /// Numbers in [0, 1) from a fixed seed (a linear congruential generator).
+    pub(crate) fn seeded(mut state: u64) -> impl FnMut() -> f32 {
+        move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+}
+
 mod app;
 mod assets;
 mod camera;

@@ -1,7 +1,7 @@
 //! Triangle meshes: vertex attributes, validation, primitives and tangent generation.
 
 mod displaced;
-mod primitives;
+pub(crate) mod primitives;
 mod tangents;
 mod terrain;
 

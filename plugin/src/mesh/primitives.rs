@@ -6,6 +6,17 @@ use glam::Vec3;
 
 use super::{Mesh, generate_tangents};
 
+/// The faces of [`Mesh::cube`]: (outward normal, u axis, v axis), u running to the right and
+/// v up the image as seen from outside, with u × v = normal so the winding faces outwards.
+pub(crate) const CUBE_FACES: [(Vec3, Vec3, Vec3); 6] = [
+    (Vec3::X, Vec3::NEG_Z, Vec3::Y),
+    (Vec3::NEG_X, Vec3::Z, Vec3::Y),
+    (Vec3::Y, Vec3::X, Vec3::NEG_Z),
+    (Vec3::NEG_Y, Vec3::X, Vec3::Z),
+    (Vec3::Z, Vec3::X, Vec3::Y),
+    (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
+];
+
 impl Mesh {
     /// A square of side `size` in the XZ plane facing +Y, UV 0..1 across it (u along +X,
     /// v along +Z).
@@ -34,17 +45,8 @@ impl Mesh {
     /// An axis-aligned cube of side `size` centred on the origin; each face has UV 0..1.
     pub fn cube(size: f32) -> Self {
         let half = size * 0.5;
-        // (normal, u axis, v axis) with u × v = normal so the winding faces outwards.
-        let faces = [
-            (Vec3::X, Vec3::NEG_Z, Vec3::Y),
-            (Vec3::NEG_X, Vec3::Z, Vec3::Y),
-            (Vec3::Y, Vec3::X, Vec3::NEG_Z),
-            (Vec3::NEG_Y, Vec3::X, Vec3::Z),
-            (Vec3::Z, Vec3::X, Vec3::Y),
-            (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
-        ];
         let mut mesh = Mesh::default();
-        for (normal, u_axis, v_axis) in faces {
+        for (normal, u_axis, v_axis) in CUBE_FACES {
             let first = mesh.positions.len() as u32;
             for (s, t) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
                 mesh.positions

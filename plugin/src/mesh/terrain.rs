@@ -31,7 +31,11 @@ impl Mesh {
         }
         let side = cells as usize + 1;
         let step = 1.0 / cells as f32;
-        let height = |uv: Vec2| clamped_sample(field, uv) * size.y;
+        let uv_at = |row: usize, column: usize| Vec2::new(column as f32, row as f32) * step;
+        // Each vertex's height, sampled once: the slopes below read the neighbours' from here.
+        let heights: Vec<f32> = (0..side * side)
+            .map(|at| clamped_sample(field, uv_at(at / side, at % side)) * size.y)
+            .collect();
         let vertex_count = side * side;
         let mut mesh = Mesh {
             positions: Vec::with_capacity(vertex_count),
@@ -43,21 +47,24 @@ impl Mesh {
         };
         for row in 0..side {
             for column in 0..side {
-                let uv = Vec2::new(column as f32, row as f32) * step;
+                let uv = uv_at(row, column);
+                let height = heights[row * side + column];
                 mesh.positions
-                    .push([(uv.x - 0.5) * size.x, height(uv), (uv.y - 0.5) * size.z]);
+                    .push([(uv.x - 0.5) * size.x, height, (uv.y - 0.5) * size.z]);
                 mesh.uvs.push(uv.to_array());
-                // The slope across the neighbouring vertices (one-sided at the edges).
-                let across = |axis: Vec2| {
-                    let (low, high) = (
-                        (uv - axis * step).max(Vec2::ZERO),
-                        (uv + axis * step).min(Vec2::ONE),
-                    );
-                    (height(high) - height(low)) / (high - low).dot(axis)
+                // The slope across the neighbouring vertices (one-sided at the edges), per
+                // unit of U or V, from the heights at (row, column) index pairs.
+                let across = |low: (usize, usize), high: (usize, usize), span: usize| {
+                    (heights[high.0 * side + high.1] - heights[low.0 * side + low.1])
+                        / (span as f32 * step)
                 };
+                let (left, right) = (column.saturating_sub(1), (column + 1).min(cells as usize));
+                let (near, far) = (row.saturating_sub(1), (row + 1).min(cells as usize));
+                let slope_u = across((row, left), (row, right), right - left);
+                let slope_v = across((near, column), (far, column), far - near);
                 // World-space derivatives of the surface along U (+X) and V (+Z).
-                let along_u = Vec3::new(size.x, across(Vec2::X), 0.0);
-                let along_v = Vec3::new(0.0, across(Vec2::Y), size.z);
+                let along_u = Vec3::new(size.x, slope_u, 0.0);
+                let along_v = Vec3::new(0.0, slope_v, size.z);
                 let normal = along_v.cross(along_u).normalize();
                 let tangent = (along_u - normal * normal.dot(along_u)).normalize();
                 // The sign that makes normal × tangent × sign run along V, as MikkTSpace's.

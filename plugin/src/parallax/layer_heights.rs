@@ -62,7 +62,8 @@ pub fn pack_layer_heights(layers: &[Option<&HeightField>]) -> Result<Image, Laye
         }
         Rgba(texel)
     });
-    // Plain averages down the mips: the channels are data, not colour.
+    // Plain averages down the mips: the channels are data, not colour. `Image::new` fails only
+    // for an empty image, and the size is a field's (at least 1×1) or 1×1.
     Ok(Image::new(pixels, TextureKind::Data).expect("the packed image is at least 1×1"))
 }
 

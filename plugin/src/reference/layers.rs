@@ -44,23 +44,13 @@ pub fn blended_height(heights: Vec4, weights: Vec4, contrast: f32) -> f32 {
 mod tests {
     use super::*;
 
-    /// Numbers in [0, 1) from a fixed seed (a linear congruential generator).
-    fn numbers(mut state: u64) -> impl FnMut() -> f32 {
-        move || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
-
     fn random_vec4(random: &mut impl FnMut() -> f32) -> Vec4 {
         Vec4::new(random(), random(), random(), random())
     }
 
     #[test]
     fn contrast_zero_is_the_weighted_average() {
-        let mut random = numbers(3);
+        let mut random = crate::test_numbers::seeded(3);
         for _ in 0..1000 {
             let (heights, weights) = (random_vec4(&mut random), random_vec4(&mut random));
             let average = weights.dot(heights) / weights.element_sum();
@@ -84,7 +74,7 @@ mod tests {
 
     #[test]
     fn the_blend_stays_between_the_lowest_and_highest_layer_that_shows() {
-        let mut random = numbers(5);
+        let mut random = crate::test_numbers::seeded(5);
         for _ in 0..5000 {
             let heights = random_vec4(&mut random);
             // Some layers weigh nothing.

@@ -55,20 +55,11 @@ pub fn triplanar_height(
 mod tests {
     use super::*;
 
-    /// Each face of a cube with its outward normal, and the directions to the right and up
-    /// the image of a viewer outside it (up: +Y on the sides, −Z above, +Z below).
-    const FACES: [(Vec3, Vec3, Vec3); 6] = [
-        (Vec3::X, Vec3::NEG_Z, Vec3::Y),
-        (Vec3::NEG_X, Vec3::Z, Vec3::Y),
-        (Vec3::Y, Vec3::X, Vec3::NEG_Z),
-        (Vec3::NEG_Y, Vec3::X, Vec3::Z),
-        (Vec3::Z, Vec3::X, Vec3::Y),
-        (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
-    ];
-
     #[test]
     fn every_face_of_a_cube_shows_the_texture_unmirrored() {
-        for (normal, right, up) in FACES {
+        // Each face of a cube: its outward normal, and the directions to the right and up the
+        // image of a viewer outside it (up: +Y on the sides, −Z above, +Z below).
+        for (normal, right, up) in crate::mesh::primitives::CUBE_FACES {
             // Right and up must make a right-handed frame with the normal towards the viewer.
             assert_eq!(right.cross(up), normal);
             let axis = normal.abs().max_position();

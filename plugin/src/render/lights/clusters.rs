@@ -324,22 +324,12 @@ mod tests {
         (slice * grid[1] as usize + tile(ndc.y, grid[1])) * grid[0] as usize + tile(ndc.x, grid[0])
     }
 
-    /// Numbers in [0, 1) from a fixed seed (a linear congruential generator).
-    fn numbers(mut state: u64) -> impl FnMut() -> f32 {
-        move || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
-
     /// Every point inside a light's range, seen by the camera, finds that light in its
     /// cluster's list, and every list is in the lights' order.
     fn lists_hold_every_light_where_it_reaches(camera: Camera, seed: u64) {
         let eye = Transform::from_xyz(1.0, 3.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y);
         let view = (camera, GlobalTransform(eye.to_affine()));
-        let mut random = numbers(seed);
+        let mut random = crate::test_numbers::seeded(seed);
         let lights: Vec<PointLightGpu> = (0..200)
             .map(|_| {
                 let centre = Vec3::new(random() - 0.5, random() * 0.3, random() - 0.5) * 12.0;
