@@ -121,7 +121,8 @@ pub use dynamic_height::{
 };
 pub use exposure::Exposure;
 pub use gltf_loader::{
-    GltfError, GltfOptions, GltfScene, PomExtras, load_gltf, load_gltf_bytes, load_gltf_with,
+    GltfError, GltfOptions, GltfScene, LayerExtras, PomExtras, load_gltf, load_gltf_bytes,
+    load_gltf_with,
 };
 pub use gpu::{GpuContext, GpuTimings, TimingMode};
 pub use height_field::{HeightConvention, HeightField, patterns};
@@ -139,9 +140,9 @@ pub use mesh::{MAX_GRID_CELLS, Mesh, MeshError};
 pub use name::Name;
 pub use normal_map::normal_map_from_heights;
 pub use parallax::{
-    CurvedSilhouetteWarnings, DebugView, HeightSource, HeightUnits, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, PomPatch, PomPlugin, PomPreset, PresetError,
-    ShadowMode, Silhouette,
+    CurvedSilhouetteWarnings, DebugView, HeightSource, HeightUnits, LayerWeights, ParallaxLayer,
+    ParallaxLayers, ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomPatch,
+    PomPlugin, PomPreset, PresetError, ShadowMode, Silhouette,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::environment::{EnvironmentChoice, EnvironmentError, EquirectImage, Sky};

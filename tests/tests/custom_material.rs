@@ -343,6 +343,14 @@ fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32> {
                 f: WhiteSrgb,
                 /// 7.
                 g: WhiteSrgb,
+                /// 8.
+                h: WhiteSrgb,
+                /// 9.
+                i: WhiteSrgb,
+                /// 10.
+                j: WhiteSrgb,
+                /// 11.
+                k: WhiteSrgb,
             }
             parameters {
                 /// A colour.
@@ -354,7 +362,7 @@ fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32> {
         const SHADING: WgslFile = WgslFile::new(
             "crowded.wgsl",
             "fn shade(surface: SurfaceInput, material: MaterialParams) -> vec4<f32> {
-    return texture_at(g, surface);
+    return texture_at(k, surface);
 }",
         );
     }
@@ -402,7 +410,7 @@ fn a_shading_function_that_does_not_compile_is_an_error_naming_the_material_file
 fn a_material_declaring_more_textures_than_a_group_holds_is_an_error() {
     let error = start_error::<bad::Crowded>();
     assert!(
-        error.contains("material Crowded declares 7 texture slots; at most 6 are bound"),
+        error.contains("material Crowded declares 11 texture slots; at most 10 are bound"),
         "{error}"
     );
 }

@@ -3,12 +3,24 @@
 //! ```json
 //! "extras": { "pom": { "height_texture": 3, "height_scale": 0.05, "min_samples": 8 } }
 //! ```
-//! Three keys are glTF's own (`height_texture`, `height_in_normal_alpha`, `height_channel`);
-//! every other key is a parameter of [`ParallaxOcclusionMaterial`], by its declared name, with
-//! its one spelling of enum values. Every key is optional except `height_texture` (or
-//! `height_in_normal_alpha`); unknown keys are errors.
+//! Five keys are glTF's own (`height_texture`, `height_in_normal_alpha`, `height_channel`, and
+//! a layered material's `layers` and `layer_weights_texture`, see `layer_extras.rs`); every
+//! other key is a parameter of [`ParallaxOcclusionMaterial`], by its declared name, with its one
+//! spelling of enum values. Every key is optional except `height_texture` (or
+//! `height_in_normal_alpha`, or `layers`); unknown keys are errors.
 
 use serde_json::Value;
+
+use super::layer_extras::{LayerExtras, parse_layers};
+
+/// The keys of `extras.pom` that are glTF's own rather than material parameters.
+const GLTF_KEYS: [&str; 5] = [
+    "height_texture",
+    "height_in_normal_alpha",
+    "height_channel",
+    "layers",
+    "layer_weights_texture",
+];
 
 use crate::ParallaxOcclusionMaterial;
 use crate::material::{ParamKind, ParamValue};
@@ -24,6 +36,10 @@ pub struct PomExtras {
     pub height_in_normal_alpha: bool,
     /// Channel of the height texture: "r", "g", "b" or "a". Default "r".
     pub height_channel: Option<String>,
+    /// A layered material's layers (`layers`), replacing the material's own maps.
+    pub layers: Option<Vec<LayerExtras>>,
+    /// Index into the file's `textures` of the layers' weight map (else the vertex colours).
+    pub layer_weights_texture: Option<usize>,
     /// The material parameters given, in the file's order, checked against their declarations'
     /// types (not yet their limits: the material's `validate` does that).
     pub parameters: Vec<(&'static str, ParamValue)>,
@@ -69,6 +85,15 @@ impl PomExtras {
                             .to_owned(),
                     );
                 }
+                "layers" => extras.layers = Some(parse_layers(value)?),
+                "layer_weights_texture" => {
+                    extras.layer_weights_texture = Some(
+                        value
+                            .as_u64()
+                            .and_then(|index| usize::try_from(index).ok())
+                            .ok_or_else(|| invalid_type(value, "a texture index"))?,
+                    );
+                }
                 name => extras.parameters.push(parameter(name, value)?),
             }
         }
@@ -92,7 +117,7 @@ impl PomExtras {
 fn parameter(name: &str, value: &Value) -> Result<(&'static str, ParamValue), String> {
     let parameters = ParallaxOcclusionMaterial::PARAMETERS;
     let Some(param) = parameters.iter().find(|param| param.name == name) else {
-        let names: Vec<&str> = ["height_texture", "height_in_normal_alpha", "height_channel"]
+        let names: Vec<&str> = GLTF_KEYS
             .into_iter()
             .chain(parameters.iter().map(|param| param.name))
             .collect();
@@ -165,7 +190,7 @@ fn invalid_type(value: &Value, expected: &str) -> String {
 }
 
 /// A JSON value as serde describes it in type errors: `string "many"`, `integer 3`.
-fn describe(value: &Value) -> String {
+pub(super) fn describe(value: &Value) -> String {
     match value {
         Value::Null => "null".into(),
         Value::Bool(value) => format!("boolean `{value}`"),

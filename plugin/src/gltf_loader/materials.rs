@@ -5,10 +5,13 @@ use std::collections::HashMap;
 use glam::{Affine2, Vec2};
 
 use super::extras::{PomExtras, choose};
+use super::layer_extras::LayerExtras;
 use super::textures::TextureCache;
 use super::{GltfError, Source, describe};
+use crate::parallax::MAX_LAYERS;
 use crate::{
-    AlphaMode, Assets, Channel, Color, Handle, HeightSource, Image, LightingModel, LitMaterial,
+    AlphaMode, Assets, Channel, Color, Handle, HeightConvention, HeightField, HeightSource, Image,
+    LayerWeights, LightingModel, LitMaterial, ParallaxLayer, ParallaxLayers,
     ParallaxOcclusionMaterial, TextureKind,
 };
 
@@ -275,12 +278,19 @@ impl Conversion<'_> {
         lit: &LitOnly,
         warnings: &mut Vec<String>,
     ) -> Result<ParallaxOcclusionMaterial, GltfError> {
-        let height_map = self.height_map(pom, surface.normal_map.is_some())?;
+        let (height_map, layers) = match &pom.layers {
+            Some(list) => (None, Some(self.layers(list, pom.layer_weights_texture)?)),
+            None => (
+                Some(self.height_map(pom, surface.normal_map.is_some())?),
+                None,
+            ),
+        };
         let mut parallax = ParallaxOcclusionMaterial {
             base_color: surface.base_color,
             base_color_texture: surface.base_color_texture,
             normal_map: surface.normal_map,
-            height_map: Some(height_map),
+            height_map,
+            layers,
             // glTF's own BRDF, driven by the roughness and metallic factors, unless the extras
             // say otherwise.
             lighting: LightingModel::GgxLambert,
@@ -343,6 +353,86 @@ impl Conversion<'_> {
             (false, None) => Err(self
                 .error("extras.pom needs height_texture (or height_in_normal_alpha: true)".into())),
         }
+    }
+
+    /// The file's texture `index`, decoded for `kind`; `key` names it in errors.
+    fn indexed_texture(
+        &mut self,
+        key: &str,
+        index: usize,
+        kind: TextureKind,
+    ) -> Result<Handle<Image>, GltfError> {
+        let source = self.source;
+        let texture = source.document.textures().nth(index).ok_or_else(|| {
+            self.error(format!(
+                "extras.pom.{key} is {index} but the file has {} textures",
+                source.document.textures().len()
+            ))
+        })?;
+        self.textures
+            .texture(source, self.images, texture, kind, Channel::Red)
+    }
+
+    /// A layered material's layers: each one's maps, their heights packed, and the weight map
+    /// (the vertex colours without one).
+    fn layers(
+        &mut self,
+        list: &[LayerExtras],
+        weights: Option<usize>,
+    ) -> Result<ParallaxLayers, GltfError> {
+        if list.is_empty() || list.len() > MAX_LAYERS {
+            return Err(self.error(format!(
+                "extras.pom.layers has {} layers; a layered material has 1 to {MAX_LAYERS}",
+                list.len()
+            )));
+        }
+        let mut layers = Vec::with_capacity(list.len());
+        let mut fields = Vec::with_capacity(list.len());
+        for (index, layer) in list.iter().enumerate() {
+            let mut map = |key: &str, texture: Option<usize>, kind| {
+                texture
+                    .map(|texture| {
+                        self.indexed_texture(&format!("layers[{index}].{key}"), texture, kind)
+                    })
+                    .transpose()
+            };
+            let base_color_texture = map(
+                "base_color_texture",
+                layer.base_color_texture,
+                TextureKind::Color,
+            )?;
+            let normal_map = map("normal_texture", layer.normal_texture, TextureKind::Normal)?;
+            let height = map("height_texture", layer.height_texture, TextureKind::Height)?;
+            fields.push(height.and_then(|height| {
+                let image = self.images.get(&height)?;
+                Some(HeightField::from_image(
+                    image,
+                    Channel::Red,
+                    HeightConvention::Height,
+                ))
+            }));
+            let defaults = ParallaxLayer::default();
+            layers.push(ParallaxLayer {
+                base_color_texture,
+                normal_map,
+                tiling: layer.tiling.unwrap_or(defaults.tiling),
+                height_scale: layer.height_scale.unwrap_or(defaults.height_scale),
+            });
+        }
+        let weights = match weights {
+            Some(index) => LayerWeights::Texture(self.indexed_texture(
+                "layer_weights_texture",
+                index,
+                TextureKind::Data,
+            )?),
+            None => LayerWeights::VertexColors,
+        };
+        let layers = layers
+            .into_iter()
+            .zip(fields.iter().map(Option::as_ref))
+            .collect();
+        ParallaxLayers::new(self.images, layers, weights)
+            .map_err(|error| self.error(format!("extras.pom.layers: {error}")))
     }
 
     /// What the parallax material does not have yet is said, not dropped silently.

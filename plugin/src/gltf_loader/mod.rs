@@ -10,6 +10,7 @@
 mod extras;
 mod framing;
 mod guards;
+mod layer_extras;
 mod materials;
 mod nodes;
 mod primitives;
@@ -17,6 +18,7 @@ mod textures;
 mod values;
 
 pub use extras::PomExtras;
+pub use layer_extras::LayerExtras;
 
 use std::path::{Path, PathBuf};
 

@@ -8,8 +8,9 @@ use super::{GpuContext, layout};
 use crate::ImageSampler;
 use crate::{AssetId, Image};
 
-/// Most texture slots one material binds.
-pub const MAX_MATERIAL_TEXTURES: usize = 6;
+/// Most texture slots one material binds: a layered parallax material's four layers' colour
+/// and normal maps, their packed heights and their weights.
+pub const MAX_MATERIAL_TEXTURES: usize = 10;
 
 /// The image in each texture slot of a draw; `None` binds the slot's default texture.
 pub type MaterialTextures = [Option<AssetId<Image>>; MAX_MATERIAL_TEXTURES];

@@ -24,6 +24,9 @@ const HARD_SHADOW_BIAS: f32 = 0.01;
 // material's shadow_softening divides instead, scaled so that 0.58 gives his result.
 const SEED_SHADOW_SOFTENING: f32 = 0.58;
 
+// Set on a layered material's pipelines: every height is the blend of its layers' (`LayerBlend`).
+override LAYERED: bool = false;
+
 struct HeightField {
     // Texture channel holding the height: 0 = red, 3 = alpha.
     channel: u32,
@@ -60,10 +63,83 @@ fn sampler_level(ddx_texels: vec2<f32>, ddy_texels: vec2<f32>) -> f32 {
     return max(0.5 * log2(longest_squared), 0.0);
 }
 
-fn sample_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField, uv: vec2<f32>) -> f32 {
-    let texel = textureSampleLevel(height_texture, height_sampler, uv, field.level);
-    let height = height_in_channel(texel, field.channel, field.depth_convention);
+fn sample_height(height_texture: texture_2d<f32>, weight_texture: texture_2d<f32>, height_sampler: sampler,
+    field: HeightField, blend: LayerBlend, uv: vec2<f32>) -> f32 {
+    let height = field_height(height_texture, weight_texture, height_sampler, field, blend, uv, field.level);
     return select(height, 0.0, field.bounded != 0u && !inside_bounds(field, uv));
+}
+
+// The height at `uv` read at mip `level` of the first (or only) layer's heights: one layer's,
+// or the blend of a layered material's.
+fn field_height(height_texture: texture_2d<f32>, weight_texture: texture_2d<f32>, height_sampler: sampler,
+    field: HeightField, blend: LayerBlend, uv: vec2<f32>, level: f32) -> f32 {
+    if LAYERED {
+        let heights = layer_heights(height_texture, height_sampler, blend, uv, level);
+        return dot(layer_shares(heights, layer_weights(weight_texture, height_sampler, blend, uv), blend.sharpness), heights);
+    }
+    let texel = textureSampleLevel(height_texture, height_sampler, uv, level);
+    return height_in_channel(texel, field.channel, field.depth_convention);
+}
+
+// A layered material's layers (parallax/layers.rs): their heights packed one a channel, each
+// tiled its own way and reaching its own share of the relief's depth, mixed by weights with
+// height-based blending. `reference::layer_shares` is the CPU reference of `layer_shares`.
+struct LayerBlend {
+    // Each layer's repeats across the texture coordinates 0..1.
+    tiling: vec4<f32>,
+    // Each layer's mip level over the first layer's (log2 of its tiling over the first's).
+    level_offset: vec4<f32>,
+    // Each layer's depth as a share of the height scale.
+    depth: vec4<f32>,
+    // 1 for each layer the material has, 0 past the last.
+    present: vec4<f32>,
+    // The weights where the view ray entered (the vertex colours), read when there is no
+    // weight map.
+    entry_weights: vec4<f32>,
+    // contrast / (1 − contrast): how fast a layer standing lower loses its share.
+    sharpness: f32,
+    weights_from_texture: u32,
+    // The weight map's mip level for the pixel's footprint.
+    weight_level: f32,
+    // Half a texel of the weight map: its coordinates stay this far inside 0..1, so the edges
+    // of a terrain do not mix in the weights of the opposite edge.
+    weight_inset: vec2<f32>,
+    // 1 when every layer tiles as the first: one fetch reads every height.
+    shared_tiling: u32,
+}
+
+// Each layer's height at `uv` (1 the top), the heights fetched once where the layers tile alike.
+fn layer_heights(heights: texture_2d<f32>, height_sampler: sampler, blend: LayerBlend, uv: vec2<f32>, level: f32) -> vec4<f32> {
+    var packed = textureSampleLevel(heights, height_sampler, uv * blend.tiling.x, level);
+    if blend.shared_tiling == 0u {
+        packed.y = textureSampleLevel(heights, height_sampler, uv * blend.tiling.y, level + blend.level_offset.y).y;
+        packed.z = textureSampleLevel(heights, height_sampler, uv * blend.tiling.z, level + blend.level_offset.z).z;
+        packed.w = textureSampleLevel(heights, height_sampler, uv * blend.tiling.w, level + blend.level_offset.w).w;
+    }
+    return 1.0 - (1.0 - packed) * blend.depth;
+}
+
+// Each layer's weight at `uv` (0 past the last layer).
+fn layer_weights(weight_texture: texture_2d<f32>, weight_sampler: sampler, blend: LayerBlend, uv: vec2<f32>) -> vec4<f32> {
+    var weights = blend.entry_weights;
+    if blend.weights_from_texture != 0u {
+        let inside = clamp(uv, blend.weight_inset, vec2<f32>(1.0) - blend.weight_inset);
+        weights = textureSampleLevel(weight_texture, weight_sampler, inside, blend.weight_level);
+    }
+    return max(weights, vec4<f32>(0.0)) * blend.present;
+}
+
+// Each layer's share of the mix: it scores its height plus its weight, and one d below the best
+// score keeps weight × max(1 − sharpness · d, 0). No weight at all: the first layer.
+fn layer_shares(heights: vec4<f32>, weights: vec4<f32>, sharpness: f32) -> vec4<f32> {
+    if dot(weights, vec4<f32>(1.0)) <= 0.0 {
+        return vec4<f32>(1.0, 0.0, 0.0, 0.0);
+    }
+    let scores = heights + weights;
+    let shown = select(vec4<f32>(-3.0e38), scores, weights > vec4<f32>(0.0));
+    let best = max(max(shown.x, shown.y), max(shown.z, shown.w));
+    let shares = weights * max(vec4<f32>(1.0) - sharpness * (vec4<f32>(best) - scores), vec4<f32>(0.0));
+    return shares / dot(shares, vec4<f32>(1.0));
 }
 
 // How far, in texture coordinates, a ray along `direction_ts` (tangent space, pointing away from
@@ -119,8 +195,10 @@ struct Crossing {
 // bend · t² (0: straight, as the CPU reference marches every ray).
 fn linear_search(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
+    blend: LayerBlend,
     start_uv: vec2<f32>,
     start_ray: f32,
     start_surface: f32,
@@ -136,7 +214,7 @@ fn linear_search(
         let t = select((f32(i) - field.march_jitter) * step, 1.0, i == steps);
         let uv = start_uv + uv_span * t;
         let ray = start_ray + ray_span * t + bend * t * t;
-        let surface = sample_height(height_texture, height_sampler, field, uv);
+        let surface = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv);
         crossing.samples += 1u;
         if surface >= ray {
             crossing.below_uv = uv;
@@ -201,15 +279,17 @@ fn narrowed(bracket: Crossing, uv: vec2<f32>, ray: f32, surface: f32) -> Crossin
 // by the curvature across the bracket, and each step shrinks that error.
 fn secant_steps_refinement(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
+    blend: LayerBlend,
     crossing: Crossing,
     steps: u32,
 ) -> RayHit {
     var bracket = crossing;
     for (var i = 1u; i < steps; i += 1u) {
         let hit = secant_refinement(bracket);
-        bracket = narrowed(bracket, hit.uv, hit.height, sample_height(height_texture, height_sampler, field, hit.uv));
+        bracket = narrowed(bracket, hit.uv, hit.height, sample_height(height_texture, weight_texture, height_sampler, field, blend, hit.uv));
     }
     return secant_refinement(bracket);
 }
@@ -217,8 +297,10 @@ fn secant_steps_refinement(
 // Relief mapping (Policarpo et al.): halve the bracket `steps` times, keeping the crossing inside.
 fn binary_refinement(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
+    blend: LayerBlend,
     crossing: Crossing,
     steps: u32,
 ) -> RayHit {
@@ -226,7 +308,7 @@ fn binary_refinement(
     for (var i = 0u; i < steps; i += 1u) {
         let middle_uv = (bracket.above_uv + bracket.below_uv) * 0.5;
         let middle_ray = (bracket.above_ray + bracket.below_ray) * 0.5;
-        bracket = narrowed(bracket, middle_uv, middle_ray, sample_height(height_texture, height_sampler, field, middle_uv));
+        bracket = narrowed(bracket, middle_uv, middle_ray, sample_height(height_texture, weight_texture, height_sampler, field, blend, middle_uv));
     }
     return RayHit((bracket.above_uv + bracket.below_uv) * 0.5, (bracket.above_ray + bracket.below_ray) * 0.5,
         bracket.samples, true);
@@ -253,9 +335,11 @@ fn bent_span(bend: f32) -> f32 {
 // MaxMip, which walks straight rays: a bent one takes the linear search instead.
 fn march_view(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     pyramid: texture_2d<f32>,
     field: HeightField,
+    blend: LayerBlend,
     method: u32,
     uv: vec2<f32>,
     offset: vec2<f32>,
@@ -271,7 +355,7 @@ fn march_view(
     if method == METHOD_MAX_MIP && bend == 0.0 {
         return march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
     }
-    let surface = sample_height(height_texture, height_sampler, field, uv);
+    let surface = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv);
     if method == METHOD_PARALLAX_OFFSET {
         // Welsh's offset limiting: shift by the depth along V.xy without dividing by V.z.
         return RayHit(uv - (1.0 - surface) * height_scale * to_eye_ts.xy, surface, 1u, true);
@@ -280,7 +364,7 @@ fn march_view(
         return RayHit(uv, 1.0, 1u, true);
     }
     let span = bent_span(bend);
-    var crossing = linear_search(height_texture, height_sampler, field, uv, 1.0, surface, offset * span, -span,
+    var crossing = linear_search(height_texture, weight_texture, height_sampler, field, blend, uv, 1.0, surface, offset * span, -span,
         bend * span * span, steps);
     crossing.samples += 1u;
     if !crossing.found {
@@ -292,9 +376,9 @@ fn march_view(
         return RayHit(crossing.below_uv, crossing.below_ray, crossing.samples, true);
     }
     if method == METHOD_RELIEF {
-        return binary_refinement(height_texture, height_sampler, field, crossing, refinement_steps);
+        return binary_refinement(height_texture, weight_texture, height_sampler, field, blend, crossing, refinement_steps);
     }
-    return secant_steps_refinement(height_texture, height_sampler, field, crossing, refinement_steps);
+    return secant_steps_refinement(height_texture, weight_texture, height_sampler, field, blend, crossing, refinement_steps);
 }
 
 // Hard self-shadow (McGuire): march from the visible point towards the light; 0 if any sample
@@ -306,9 +390,11 @@ fn march_view(
 // walks its `pyramid` instead, exactly and straight (max_mip.wgsl).
 fn hard_shadow(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     pyramid: texture_2d<f32>,
     field: HeightField,
+    blend: LayerBlend,
     method: u32,
     uv: vec2<f32>,
     light_offset: vec2<f32>,
@@ -321,13 +407,13 @@ fn hard_shadow(
     if method == METHOD_MAX_MIP {
         return max_mip_hard_shadow(height_texture, height_sampler, pyramid, field, uv, light_offset);
     }
-    let start = sample_height(height_texture, height_sampler, field, uv) + HARD_SHADOW_BIAS;
+    let start = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {
         return 1.0;
     }
     let steps = march_steps(min_samples, max_samples, n_dot_l, texels_per_rise * rise);
-    let crossing = linear_search(height_texture, height_sampler, field, uv, start, start, light_offset * rise, rise,
+    let crossing = linear_search(height_texture, weight_texture, height_sampler, field, blend, uv, start, start, light_offset * rise, rise,
         bend * rise * rise, steps);
     return select(1.0, 0.0, crossing.found);
 }
@@ -341,22 +427,24 @@ fn hard_shadow(
 // penumbra of many samples rather than seven steps; 0 samples where Tatarchuk does.
 fn soft_shadow(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
+    blend: LayerBlend,
     uv: vec2<f32>,
     light_offset: vec2<f32>,
     softening: f32,
     bend: f32,
     tap_shift: f32,
 ) -> f32 {
-    let start = sample_height(height_texture, height_sampler, field, uv);
+    let start = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv);
     var strongest = 0.0;
     for (var k = 0u; k < 7u; k += 1u) {
         // Fractions 0.88, 0.77, …, 0.22 with weights 1, 2, 4, 6, 8, 10, 12, as in the listing.
         let place = f32(k) + tap_shift;
         let fraction = 0.88 - 0.11 * place;
         let weight = max(1.0, 2.0 * place);
-        let blocker = sample_height(height_texture, height_sampler, field, uv + light_offset * fraction);
+        let blocker = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv + light_offset * fraction);
         strongest = max(strongest, (blocker - start - fraction - bend * fraction * fraction) * weight);
     }
     let sharpness = SEED_SHADOW_SOFTENING * SEED_SHADOW_SOFTENING / max(softening, 1e-4);
@@ -376,8 +464,10 @@ const OCCLUSION_STEPS: u32 = 4u;
 // costs as little as a narrow one. 1: open sky, 0: buried.
 fn relief_occlusion(
     height_texture: texture_2d<f32>,
+    weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
+    blend: LayerBlend,
     uv: vec2<f32>,
     height: f32,
     height_scale: f32,
@@ -394,8 +484,8 @@ fn relief_occlusion(
             let fraction = f32(s) / f32(OCCLUSION_STEPS);
             let distance = radius * fraction * fraction;
             let level = max(field.level, log2(max(distance * texels, 1.0)) - 1.0);
-            let texel = textureSampleLevel(height_texture, height_sampler, uv + direction * distance, level);
-            let rise = (height_in_channel(texel, field.channel, field.depth_convention) - height) * height_scale;
+            let sample = field_height(height_texture, weight_texture, height_sampler, field, blend, uv + direction * distance, level);
+            let rise = (sample - height) * height_scale;
             steepest = max(steepest, rise / distance);
         }
         open += 1.0 / (1.0 + steepest * steepest);

@@ -2,8 +2,15 @@
 //! default, limits, unit and help (`material_parameters!`; the lighting ones shared with the
 //! lit material, `with_lighting_parameters!`), and the checks between them.
 
+use super::layers::{
+    LayersError, ParallaxLayers, layer_problems, layers_are_valid, sanitized_layers,
+};
 use crate::material::{LimitError, ParamGroup, ParamSpec};
 use crate::{Handle, HeightConvention, Image, LightingModel};
+
+/// Highest `layer_blend_contrast`: at 1 the mix would jump from one layer to the next, and the
+/// march's refinement between two steps would find no crossing to converge on.
+pub const MAX_BLEND_CONTRAST: f32 = 0.99;
 
 crate::choice_enum! {
     /// How the ray/height-field intersection is found. One march serves every method; they
@@ -138,6 +145,9 @@ crate::with_lighting_parameters! {
             normal_map: Option<Handle<Image>> = None,
             /// Where the height field comes from; `None` means flat (no parallax).
             height_map: Option<HeightSource> = None,
+            /// Up to four layers mixed by height (terrain): when set, they replace the three
+            /// maps above, and the relief is the blend of their heights.
+            layers: Option<ParallaxLayers> = None,
         }
         parameters {
             /// How the view ray meets the height field.
@@ -200,6 +210,10 @@ crate::with_lighting_parameters! {
             bounds_v_max: f32 = 1.0, ParamSpec::float(-BOUNDS_LIMIT, BOUNDS_LIMIT)
                 .editor(0.0, 8.0).unit("texture units").group(ParamGroup::Silhouette)
                 .applies_when(clips_at_bounds);
+            /// How much the layer standing higher wins where layers' weights overlap: 0 mixes by
+            /// weight alone, towards 0.99 the higher layer covers the lower one.
+            layer_blend_contrast: f32 = 0.5, ParamSpec::float(0.0, MAX_BLEND_CONTRAST)
+                .applies_when(|material| material.layers.is_some());
             /// Whether bumps cast shadows on the surface: off, hard-edged, or soft.
             shadows: ShadowMode = ShadowMode::Soft, ParamSpec::choice::<ShadowMode>();
             /// Penumbra width of soft shadows: larger is softer (0.58 is Tatarchuk's look).
@@ -255,6 +269,9 @@ pub enum PomMaterialError {
         /// Its maximum.
         max: f32,
     },
+    /// A problem of the layers.
+    #[error(transparent)]
+    Layers(#[from] LayersError),
 }
 
 impl ParallaxOcclusionMaterial {
@@ -278,6 +295,13 @@ impl ParallaxOcclusionMaterial {
                 problems.push(PomMaterialError::BoundsEmpty { axis, min, max });
             }
         }
+        if let Some(layers) = &self.layers {
+            problems.extend(
+                layer_problems(layers)
+                    .into_iter()
+                    .map(PomMaterialError::from),
+            );
+        }
         problems
     }
 
@@ -294,6 +318,7 @@ impl ParallaxOcclusionMaterial {
         self.first_limit_problem().is_none()
             && self.min_samples <= self.max_samples
             && (!clips_at_bounds(self) || self.bounds_axes().iter().all(|(_, min, max)| min < max))
+            && self.layers.as_ref().is_none_or(layers_are_valid)
     }
 
     /// Checks every parameter; the first problem is the error.
@@ -334,6 +359,9 @@ impl ParallaxOcclusionMaterial {
             } else if *min == *max {
                 (*min, *max) = (0.0, 1.0);
             }
+        }
+        if let Some(layers) = &self.layers {
+            clean.layers = Some(sanitized_layers(layers));
         }
         clean
     }

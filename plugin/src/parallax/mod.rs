@@ -3,6 +3,7 @@
 mod curvature;
 mod gpu;
 mod layer_heights;
+mod layers;
 mod material;
 mod max_pyramid;
 mod pipelines;
@@ -14,10 +15,11 @@ pub use curvature::{
 };
 pub use gpu::PomUniform;
 pub use layer_heights::{LayerError, MAX_LAYERS, pack_layer_heights};
+pub use layers::{LAYER_TILING_LIMITS, LayerWeights, LayersError, ParallaxLayer, ParallaxLayers};
 pub use material::{
-    BOUNDS_LIMIT, DebugView, HeightSource, HeightUnits, MAX_SAMPLES_LIMIT, ParallaxMethod,
-    ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset, ShadowMode,
-    Silhouette,
+    BOUNDS_LIMIT, DebugView, HeightSource, HeightUnits, MAX_BLEND_CONTRAST, MAX_SAMPLES_LIMIT,
+    ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset,
+    ShadowMode, Silhouette,
 };
 #[cfg(feature = "scene-tests")]
 pub use max_pyramid::read_max_pyramid;
@@ -101,8 +103,12 @@ pub const PARALLAX_DEFERRED_SHADER: ComposedShader = parallax_shader!(
 /// Entities whose parallax material was clamped (each warned about once per change).
 pub type MaterialWarnings = crate::material::MaterialWarnings<ParallaxOcclusionMaterial>;
 
-/// Texture slot of the height map.
+/// Texture slot of the height map (a layered material's packed heights).
 const HEIGHT_SLOT: usize = 2;
+/// Texture slot of a layered material's weight map.
+const LAYER_WEIGHTS_SLOT: usize = 3;
+/// Texture slot of the second layer's colour map; its normal map follows, then the next layer's.
+const MORE_LAYERS_SLOT: usize = 4;
 
 impl Material for ParallaxOcclusionMaterial {
     type PerDraw = PomUniform;
@@ -111,10 +117,19 @@ impl Material for ParallaxOcclusionMaterial {
     const PER_DRAW_WGSL_NAME: &'static str = "PomUniform";
     // The relief lies below the polygon (and the depth offset moves the depth there).
     const SURFACE_ON_POLYGON: bool = false;
+    // Colour, normal and height (a layered material's first layer and packed heights), the
+    // layers' weights, then colour and normal of the second to fourth layers.
     const TEXTURE_SLOTS: &'static [DefaultTexture] = &[
         DefaultTexture::WhiteSrgb,
         DefaultTexture::FlatNormal,
         DefaultTexture::WhiteLinear,
+        DefaultTexture::WhiteLinear,
+        DefaultTexture::WhiteSrgb,
+        DefaultTexture::FlatNormal,
+        DefaultTexture::WhiteSrgb,
+        DefaultTexture::FlatNormal,
+        DefaultTexture::WhiteSrgb,
+        DefaultTexture::FlatNormal,
     ];
 
     fn shader() -> ComposedShader {
@@ -123,9 +138,25 @@ impl Material for ParallaxOcclusionMaterial {
 
     fn textures(&self) -> MaterialTextures {
         let mut textures = [None; MAX_MATERIAL_TEXTURES];
-        textures[0] = self.base_color_texture.as_ref().map(Handle::id);
-        textures[1] = self.normal_map.as_ref().map(Handle::id);
-        textures[HEIGHT_SLOT] = self.height_image();
+        let Some(layers) = &self.layers else {
+            textures[0] = self.base_color_texture.as_ref().map(Handle::id);
+            textures[1] = self.normal_map.as_ref().map(Handle::id);
+            textures[HEIGHT_SLOT] = self.height_image();
+            return textures;
+        };
+        textures[HEIGHT_SLOT] = Some(layers.heights.id());
+        if let LayerWeights::Texture(weights) = &layers.weights {
+            textures[LAYER_WEIGHTS_SLOT] = Some(weights.id());
+        }
+        for (index, layer) in layers.drawn().iter().enumerate() {
+            let colour_slot = if index == 0 {
+                0
+            } else {
+                MORE_LAYERS_SLOT + 2 * (index - 1)
+            };
+            textures[colour_slot] = layer.base_color_texture.as_ref().map(Handle::id);
+            textures[colour_slot + 1] = layer.normal_map.as_ref().map(Handle::id);
+        }
         textures
     }
 
@@ -136,6 +167,7 @@ impl Material for ParallaxOcclusionMaterial {
     fn derived_textures(&self) -> DerivedTextures {
         let mut derived = [None; MAX_DERIVED_TEXTURES];
         if self.method == ParallaxMethod::MaxMip
+            && self.layers.is_none()
             && let (Some(source), Some(image)) = (&self.height_map, self.height_image())
         {
             derived[0] = Some(DerivedTexture {
@@ -194,11 +226,11 @@ impl Material for ParallaxOcclusionMaterial {
     }
 
     fn per_draw(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {
-        let height = textures[HEIGHT_SLOT];
+        let (height, weights) = (textures[HEIGHT_SLOT], textures[LAYER_WEIGHTS_SLOT]);
         if self.is_valid() {
-            PomUniform::new(self, height)
+            PomUniform::new(self, height, weights)
         } else {
-            PomUniform::new(&self.sanitized(), height)
+            PomUniform::new(&self.sanitized(), height, weights)
         }
     }
 

@@ -34,24 +34,36 @@ pub struct PomPipelineKey {
     pub height_channel: u8,
     /// `HEIGHT_IS_DEPTH`: white is deepest.
     pub height_is_depth: bool,
+    /// `LAYERED`: the height is the blend of a layered material's layers.
+    pub layered: bool,
 }
 
 impl PomPipelineKey {
     /// The pipeline a material draws with.
     pub fn of(material: &ParallaxOcclusionMaterial) -> Self {
+        let layered = material.layers.is_some();
         Self {
-            method: material.method,
+            // MaxMip is exact for one bilinear height field; a blend of layers by height is not
+            // bilinear between texels, so layered materials march with occlusion mapping.
+            method: if layered && material.method == ParallaxMethod::MaxMip {
+                ParallaxMethod::Occlusion
+            } else {
+                material.method
+            },
             shadows: material.shadows,
             lighting: material.lighting,
             debug_view: material.debug_view,
             depth_offset: material.depth_offset,
             silhouette: material.silhouette,
             double_sided: material.double_sided,
+            // Packed layer heights are in every channel, with white the top.
             height_channel: material
                 .height_map
                 .as_ref()
+                .filter(|_| !layered)
                 .map_or(0, |source| source.channel().index() as u8),
-            height_is_depth: material.height_convention == HeightConvention::Depth,
+            height_is_depth: !layered && material.height_convention == HeightConvention::Depth,
+            layered,
         }
     }
 
@@ -144,6 +156,7 @@ impl PomPipelineKey {
                 ("HEIGHT_IS_DEPTH", f64::from(u8::from(self.height_is_depth))),
                 ("DEPTH_OFFSET", f64::from(u8::from(self.depth_offset))),
                 ("SILHOUETTE", f64::from(self.silhouette.code())),
+                ("LAYERED", f64::from(u8::from(self.layered))),
             ],
         }
     }

@@ -31,15 +31,32 @@ struct PomUniform {
     height_mip_levels: f32,
     // 1 when the material has a height map.
     has_height_map: u32,
+    // 0: not a layered material.
+    layer_count: u32,
+    weights_from_texture: u32,
+    layer_tiling: vec4<f32>,
+    layer_depth: vec4<f32>,
+    weight_texture_width: f32,
+    weight_texture_height: f32,
+    padding: vec2<u32>,
 }
 
 @group(0) @binding(2) var<storage, read> materials: array<PomUniform>;
+// A layered material's first layer's colour and normal maps, and its layers' packed heights.
 @group(1) @binding(0) var base_color_texture: texture_2d<f32>;
 @group(1) @binding(1) var normal_map: texture_2d<f32>;
 @group(1) @binding(2) var height_texture: texture_2d<f32>;
-@group(1) @binding(3) var material_sampler: sampler;
+// A layered material's weight map and the other layers' colour and normal maps.
+@group(1) @binding(3) var layer_weights_texture: texture_2d<f32>;
+@group(1) @binding(4) var second_layer_color: texture_2d<f32>;
+@group(1) @binding(5) var second_layer_normal: texture_2d<f32>;
+@group(1) @binding(6) var third_layer_color: texture_2d<f32>;
+@group(1) @binding(7) var third_layer_normal: texture_2d<f32>;
+@group(1) @binding(8) var fourth_layer_color: texture_2d<f32>;
+@group(1) @binding(9) var fourth_layer_normal: texture_2d<f32>;
+@group(1) @binding(10) var material_sampler: sampler;
 // The height's maximum pyramid (derived by the core, bound for MaxMip; one texel of 1 otherwise).
-@group(1) @binding(4) var height_pyramid: texture_2d<f32>;
+@group(1) @binding(11) var height_pyramid: texture_2d<f32>;
 
 // Where the view ray meets the height field, with what shading and depth need of the surface.
 struct SurfacePoint {
@@ -59,6 +76,7 @@ struct SurfacePoint {
     footprint: PixelFootprint,
     height_scale: f32,
     field: HeightField,
+    blend: LayerBlend,
     // 1 past the LOD threshold, 0 before its band.
     fade: f32,
     marched: bool,
@@ -172,6 +190,7 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
         u32(SILHOUETTE == SILHOUETTE_UV_BOUNDS),
         vec4<f32>(params.bounds_u_min, params.bounds_v_min, params.bounds_u_max, params.bounds_v_max),
         select(0.0, march_noise(in.clip_position.xy), params.jitter_march != 0u));
+    point.blend = layer_blend(material, in.color, point.ddx_uv, point.ddy_uv);
     point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
     point.marched = point.fade < 1.0 && METHOD != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;
@@ -186,6 +205,73 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
     let marches_a_ray = METHOD != METHOD_PARALLAX_OFFSET && METHOD != METHOD_NORMAL_MAPPING;
     point.bend = select(0.0, ray_bend(curvature, point.offset, point), marches_a_ray);
     return point;
+}
+
+// A layered material's layers as the march reads them, for a pixel whose texture coordinate
+// moves by `ddx_uv` and `ddy_uv` and whose vertex colour is `vertex_color` (the weights where
+// there is no weight map). Unused by other materials.
+fn layer_blend(material: PomUniform, vertex_color: vec4<f32>, ddx_uv: vec2<f32>, ddy_uv: vec2<f32>) -> LayerBlend {
+    var blend: LayerBlend;
+    if LAYERED {
+        let tiling = material.layer_tiling;
+        let present = select(vec4<f32>(0.0), vec4<f32>(1.0), vec4<u32>(0u, 1u, 2u, 3u) < vec4<u32>(material.layer_count));
+        let weight_size = vec2<f32>(material.weight_texture_width, material.weight_texture_height);
+        let contrast = clamp(material.params.layer_blend_contrast, 0.0, 0.99);
+        blend.tiling = tiling;
+        blend.level_offset = log2(tiling / tiling.x);
+        blend.depth = material.layer_depth;
+        blend.present = present;
+        blend.entry_weights = vertex_color;
+        blend.sharpness = contrast / (1.0 - contrast);
+        blend.weights_from_texture = material.weights_from_texture;
+        blend.weight_level = sampler_level(ddx_uv * weight_size, ddy_uv * weight_size);
+        blend.weight_inset = 0.5 / weight_size;
+        blend.shared_tiling = u32(all(select(tiling, vec4<f32>(tiling.x), present == vec4<f32>(0.0)) == vec4<f32>(tiling.x)));
+    }
+    return blend;
+}
+
+// The visible point's colour (texture × factor × vertex colour, as glTF multiplies them) and
+// its encoded tangent-space normal: a layered material's layers' mixed by their shares there.
+struct SurfaceMaps {
+    base: vec4<f32>,
+    encoded_normal: vec3<f32>,
+}
+
+fn surface_maps(in: VertexOut, point: SurfacePoint) -> SurfaceMaps {
+    let factor = rgba(materials[in.object_index].params.base_color);
+    if !LAYERED {
+        return SurfaceMaps(
+            textureSampleGrad(base_color_texture, material_sampler, point.uv, point.ddx_uv, point.ddy_uv) * factor * in.color,
+            textureSampleGrad(normal_map, material_sampler, point.uv, point.ddx_uv, point.ddy_uv).xyz);
+    }
+    let blend = point.blend;
+    let heights = layer_heights(height_texture, material_sampler, blend, point.uv, point.field.level);
+    let weights = layer_weights(layer_weights_texture, material_sampler, blend, point.uv);
+    let shares = layer_shares(heights, weights, blend.sharpness);
+    var maps = SurfaceMaps(vec4<f32>(0.0), vec3<f32>(0.0));
+    maps = with_layer(maps, base_color_texture, normal_map, shares.x, blend.tiling.x, point);
+    maps = with_layer(maps, second_layer_color, second_layer_normal, shares.y, blend.tiling.y, point);
+    maps = with_layer(maps, third_layer_color, third_layer_normal, shares.z, blend.tiling.z, point);
+    maps = with_layer(maps, fourth_layer_color, fourth_layer_normal, shares.w, blend.tiling.w, point);
+    // Vertex colours that are not the weights tint the mix, as they tint one layer.
+    let tint = select(vec4<f32>(1.0), in.color, blend.weights_from_texture != 0u);
+    maps.base *= factor * tint;
+    return maps;
+}
+
+// `maps` plus `share` of one layer's colour and encoded normal at the visible point (its maps
+// tiled `tiling` times); nothing is read for a layer without a share there.
+fn with_layer(maps: SurfaceMaps, color: texture_2d<f32>, normal: texture_2d<f32>, share: f32, tiling: f32,
+    point: SurfacePoint) -> SurfaceMaps {
+    if share <= 0.0 {
+        return maps;
+    }
+    let uv = point.uv * tiling;
+    let ddx_uv = point.ddx_uv * tiling;
+    let ddy_uv = point.ddy_uv * tiling;
+    return SurfaceMaps(maps.base + share * textureSampleGrad(color, material_sampler, uv, ddx_uv, ddy_uv),
+        maps.encoded_normal + share * textureSampleGrad(normal, material_sampler, uv, ddx_uv, ddy_uv).xyz);
 }
 
 // Whether the view ray of `point` could leave the surface before it meets the relief: only
@@ -218,7 +304,7 @@ fn march_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
         let texels = length(offset * texture_size) / exp2(point.mip) * bent_span(bend);
         let steps = march_steps(params.min_samples, params.max_samples, dot(point.surface_frame.normal, point.to_eye), texels);
         let refinement_steps = select(params.secant_steps, params.relief_binary_steps, METHOD == METHOD_RELIEF);
-        let hit = march_view(height_texture, material_sampler, height_pyramid, point.field, METHOD, in.uv, offset,
+        let hit = march_view(height_texture, layer_weights_texture, material_sampler, height_pyramid, point.field, point.blend, METHOD, in.uv, offset,
             point.to_eye_ts, point.height_scale, steps, refinement_steps, bend);
         // The bent ray's height is over the curved surface; the point lies on the straight view
         // ray, t of its way down below the tangent plane (bend is 0 but for a ray march).
@@ -265,7 +351,7 @@ fn environment_occlusion(in: VertexOut, point: SurfacePoint, surface: Surface, n
     }
     let material = materials[in.object_index];
     let texels = max(material.height_texture_width, material.height_texture_height);
-    let open = relief_occlusion(height_texture, material_sampler, point.field, point.uv, point.height,
+    let open = relief_occlusion(height_texture, layer_weights_texture, material_sampler, point.field, point.blend, point.uv, point.height,
         point.height_scale, 4.0 * point.height_scale, texels, shadow_tap_shift(in.clip_position.xy) + 0.5);
     let diffuse = mix(1.0, open, strength);
     return vec2<f32>(diffuse, specular_occlusion(dot(normal, point.to_eye), diffuse, surface.roughness));
@@ -279,11 +365,9 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
     let fade = point.fade;
     let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
 
-    // Texture × factor × vertex colour, as glTF multiplies them.
-    let base = textureSampleGrad(base_color_texture, material_sampler, uv, point.ddx_uv, point.ddy_uv)
-        * rgba(params.base_color) * in.color;
-    let encoded_normal = textureSampleGrad(normal_map, material_sampler, uv, point.ddx_uv, point.ddy_uv).xyz;
-    let normal = perturbed_normal(surface_frame, encoded_normal, params.normal_strength);
+    let maps = surface_maps(in, point);
+    let base = maps.base;
+    let normal = perturbed_normal(surface_frame, maps.encoded_normal, params.normal_strength);
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,
         params.metallic, LIGHTING_MODEL);
 
@@ -310,11 +394,11 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
             let light_bend = ray_bend(normal_curvature(in, surface_frame, point.footprint,
                 along_plane(surface_frame, light.to_light)), light_offset, point);
             if SHADOW_MODE == SHADOWS_SOFT {
-                visibility = soft_shadow(height_texture, material_sampler, point.field, uv, light_offset, params.shadow_softening,
+                visibility = soft_shadow(height_texture, layer_weights_texture, material_sampler, point.field, point.blend, uv, light_offset, params.shadow_softening,
                     light_bend, shadow_tap_shift(in.clip_position.xy));
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(point.mip);
-                visibility = hard_shadow(height_texture, material_sampler, height_pyramid, point.field, METHOD, uv,
+                visibility = hard_shadow(height_texture, layer_weights_texture, material_sampler, height_pyramid, point.field, point.blend, METHOD, uv,
                     light_offset, params.min_samples, params.max_samples, dot(surface_frame.normal, light.to_light),
                     texels_per_rise, light_bend);
             }

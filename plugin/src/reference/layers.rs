@@ -12,9 +12,7 @@
 
 use glam::Vec4;
 
-/// Highest blend contrast: at 1 the mix would jump from one layer to the next, and the march's
-/// refinement between two steps would find no crossing to converge on.
-pub const MAX_BLEND_CONTRAST: f32 = 0.99;
+pub use crate::parallax::MAX_BLEND_CONTRAST;
 
 /// Each layer's share of the mix at one point (the shares sum to 1), from the layers'
 /// `heights` (0..1), their `weights` (≥ 0; layers beyond the material's count weigh 0) and the

@@ -34,6 +34,7 @@ fn problem_field(problem: &PomMaterialError) -> &'static str {
         ) => field,
         PomMaterialError::SamplesInverted { .. } => "min_samples",
         PomMaterialError::BoundsEmpty { .. } => "bounds_",
+        PomMaterialError::Layers(_) => "layers",
     }
 }
 
