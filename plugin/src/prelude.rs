@@ -1,5 +1,5 @@
 //! The names a game uses, for `use pom::prelude::*;`: the app and its plugins, transforms,
-//! cameras and lights, meshes and images, reading a frame back (`capture`), the two shipped materials and what writing one takes
+//! cameras and lights, meshes, images and height fields, a layered material's layers, reading a frame back (`capture`), the two shipped materials and what writing one takes
 //! (`ShadedMaterial`, `ParamSpec`, `WgslFile`) or a post effect (`PostEffect`,
 //! `FullScreenPass`), time, glam's vectors,
 //! hecs's world, and (with the `window` feature) the window, its input and the cameras that
@@ -21,11 +21,12 @@ pub use hecs::{Entity, World};
 
 pub use crate::{
     AmbientLight, AntiAliasing, App, Assets, Camera, Color, DefaultPlugins, DirectionalLight,
-    EnvironmentLight, Exposure, GlobalTransform, Handle, HeightSource, Image, LightShadows,
-    LitMaterial, LitPlugin, Material, MaterialPlugin, Mesh, ParallaxMethod,
-    ParallaxOcclusionMaterial, Parent, Plugin, PointLight, PomPlugin, Projection, RenderPlugin,
-    Resources, ShadedMaterial, SpotLight, Stage, TemporalAntiAliasing, Time, Tonemapping,
-    Transform, capture, load_gltf, patterns,
+    EnvironmentLight, Exposure, GlobalTransform, Handle, HeightField, HeightSource, HeightUnits,
+    Image, LayerWeights, LightShadows, LightingModel, LitMaterial, LitPlugin, Material,
+    MaterialPlugin, Mesh, ParallaxLayer, ParallaxLayers, ParallaxMethod, ParallaxOcclusionMaterial,
+    Parent, Plugin, PointLight, PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial,
+    SpotLight, Stage, TemporalAntiAliasing, TextureKind, Time, Tonemapping, Transform, capture,
+    load_gltf, patterns,
 };
 // Writing a material: its parameters' limits and its shading file; a choice parameter's values
 // and names (`ParallaxMethod::VALUES`, `method.name()`).

@@ -405,3 +405,22 @@ fn the_night_street_example_shows_the_street_lit_by_its_lamps_and_lanterns() {
     assert!(lit > 20_000, "only {lit} lit pixels");
     assert!(warm * 10 > lit * 8, "{warm} of {lit} lit pixels are warm");
 }
+
+#[test]
+fn the_terrain_example_shows_its_layers_under_the_sky() {
+    let image = screenshot_of("terrain", 10);
+    assert_eq!(image.dimensions(), (1280, 720));
+    let colours = distinct_colours(&image, 0..1280, 0..720);
+    assert!(colours > 100, "only {colours} distinct colours: no scene");
+    // Grass (green over red and blue), rock and cobbles (grey), earth (red over blue), sky.
+    let share = |test: &dyn Fn([u8; 4]) -> bool| {
+        image.pixels().filter(|pixel| test(pixel.0)).count() as f32 / (1280.0 * 720.0)
+    };
+    let grass = share(&|[r, g, b, _]| g > r + 30 && g > b + 30);
+    let grey = share(&|[r, g, b, _]| r > 120 && r.abs_diff(g) < 20 && r.abs_diff(b) < 30);
+    let earth = share(&|[r, g, b, _]| r > g + 15 && g > b + 10 && r > 60);
+    eprintln!("grass {grass:.3}, grey {grey:.3}, earth {earth:.3}");
+    assert!(grass > 0.2, "grass covers {grass}");
+    assert!(grey > 0.03, "rock and cobbles cover {grey}");
+    assert!(earth > 0.005, "earth covers {earth}");
+}
