@@ -213,6 +213,7 @@ crate::with_lighting_parameters! {
             /// How much the layer standing higher wins where layers' weights overlap: 0 mixes by
             /// weight alone, towards 0.99 the higher layer covers the lower one.
             layer_blend_contrast: f32 = 0.5, ParamSpec::float(0.0, MAX_BLEND_CONTRAST)
+                .group(ParamGroup::Method)
                 .applies_when(|material| material.layers.is_some());
             /// Whether bumps cast shadows on the surface: off, hard-edged, or soft.
             shadows: ShadowMode = ShadowMode::Soft, ParamSpec::choice::<ShadowMode>();
