@@ -66,9 +66,7 @@ impl PomExtras {
             match key.as_str() {
                 "height_texture" => {
                     extras.height_texture = Some(
-                        value
-                            .as_u64()
-                            .and_then(|index| usize::try_from(index).ok())
+                        texture_index(value)
                             .ok_or_else(|| invalid_type(value, "a texture index"))?,
                     );
                 }
@@ -88,9 +86,7 @@ impl PomExtras {
                 "layers" => extras.layers = Some(parse_layers(value)?),
                 "layer_weights_texture" => {
                     extras.layer_weights_texture = Some(
-                        value
-                            .as_u64()
-                            .and_then(|index| usize::try_from(index).ok())
+                        texture_index(value)
                             .ok_or_else(|| invalid_type(value, "a texture index"))?,
                     );
                 }
@@ -172,6 +168,11 @@ fn parameter(name: &str, value: &Value) -> Result<(&'static str, ParamValue), St
         }
     };
     Ok((param.name, parsed))
+}
+
+/// A glTF texture index: a whole number that fits the platform's `usize`.
+pub(super) fn texture_index(value: &Value) -> Option<usize> {
+    value.as_u64().and_then(|index| usize::try_from(index).ok())
 }
 
 /// A type error of the parameter `name`.

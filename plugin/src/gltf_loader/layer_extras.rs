@@ -62,16 +62,13 @@ fn parse_layer(index: usize, value: &Value) -> Result<LayerExtras, String> {
     let mut layer = LayerExtras::default();
     for (key, value) in keys {
         let texture = || {
-            value
-                .as_u64()
-                .and_then(|index| usize::try_from(index).ok())
-                .ok_or_else(|| {
-                    format!(
-                        "{}: invalid type: {}, expected a texture index",
-                        field(key),
-                        super::extras::describe(value)
-                    )
-                })
+            super::extras::texture_index(value).ok_or_else(|| {
+                format!(
+                    "{}: invalid type: {}, expected a texture index",
+                    field(key),
+                    super::extras::describe(value)
+                )
+            })
         };
         let number = || {
             value.as_f64().map(|number| number as f32).ok_or_else(|| {

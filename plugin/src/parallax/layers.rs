@@ -12,6 +12,8 @@ use crate::{Handle, HeightField, Image};
 
 /// Fewest and most repeats of a layer's maps across the mesh's texture coordinates 0..1.
 pub const LAYER_TILING_LIMITS: (f32, f32) = (1.0 / 1024.0, 1024.0);
+/// Shallowest and deepest a layer's relief may be, as a share of the material's `height_scale`.
+const LAYER_DEPTH_LIMITS: (f32, f32) = (0.0, 1.0);
 
 /// One layer of a layered parallax material.
 #[derive(Clone, Debug, PartialEq)]
@@ -123,7 +125,12 @@ fn layer_values(layer: &ParallaxLayer) -> [(&'static str, f32, f32, f32); 2] {
     let (fewest, most) = LAYER_TILING_LIMITS;
     [
         ("tiling", layer.tiling, fewest, most),
-        ("height_scale", layer.height_scale, 0.0, 1.0),
+        (
+            "height_scale",
+            layer.height_scale,
+            LAYER_DEPTH_LIMITS.0,
+            LAYER_DEPTH_LIMITS.1,
+        ),
     ]
 }
 
@@ -174,14 +181,19 @@ pub(super) fn sanitized_layers(layers: &ParallaxLayers) -> ParallaxLayers {
             value.clamp(min, max)
         }
     };
-    let (fewest, most) = LAYER_TILING_LIMITS;
+    let ((fewest, most), (shallowest, deepest)) = (LAYER_TILING_LIMITS, LAYER_DEPTH_LIMITS);
     ParallaxLayers {
         layers: layers
             .drawn()
             .iter()
             .map(|layer| ParallaxLayer {
                 tiling: clamp(layer.tiling, defaults.tiling, fewest, most),
-                height_scale: clamp(layer.height_scale, defaults.height_scale, 0.0, 1.0),
+                height_scale: clamp(
+                    layer.height_scale,
+                    defaults.height_scale,
+                    shallowest,
+                    deepest,
+                ),
                 ..layer.clone()
             })
             .collect(),
