@@ -142,7 +142,8 @@ pub use normal_map::normal_map_from_heights;
 pub use parallax::{
     CurvedSilhouetteWarnings, DebugView, HeightSource, HeightUnits, LayerWeights, ParallaxLayer,
     ParallaxLayers, ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomPatch,
-    PomPlugin, PomPreset, PresetError, ShadowMode, Silhouette,
+    PomPlugin, PomPreset, PresetError, ShadowMode, Silhouette, TRIPLANAR_SCALE_LIMITS,
+    TextureMapping, TriplanarMeshWarnings,
 };
 pub use picking::{PickHit, Ray, pick_at, pick_entity};
 pub use render::environment::{EnvironmentChoice, EnvironmentError, EquirectImage, Sky};

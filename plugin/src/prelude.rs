@@ -25,8 +25,8 @@ pub use crate::{
     Image, LayerWeights, LightShadows, LightingModel, LitMaterial, LitPlugin, Material,
     MaterialPlugin, Mesh, ParallaxLayer, ParallaxLayers, ParallaxMethod, ParallaxOcclusionMaterial,
     Parent, Plugin, PointLight, PomPlugin, Projection, RenderPlugin, Resources, ShadedMaterial,
-    SpotLight, Stage, TemporalAntiAliasing, TextureKind, Time, Tonemapping, Transform, capture,
-    load_gltf, patterns,
+    SpotLight, Stage, TemporalAntiAliasing, TextureKind, TextureMapping, Time, Tonemapping,
+    Transform, capture, load_gltf, patterns,
 };
 // Writing a material: its parameters' limits and its shading file; a choice parameter's values
 // and names (`ParallaxMethod::VALUES`, `method.name()`).

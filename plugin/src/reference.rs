@@ -13,7 +13,7 @@ mod triplanar;
 pub use exact::{exact_intersection, exact_intersection_along};
 pub use layers::{MAX_BLEND_CONTRAST, blended_height, layer_shares};
 pub use max_mip::{MaxPyramid, march_max_mip, max_mip_hard_shadow};
-pub use triplanar::{triplanar_height, triplanar_uvs, triplanar_weights};
+pub use triplanar::{TRIPLANAR_MIN_SHARE, triplanar_height, triplanar_uvs, triplanar_weights};
 
 use glam::{Vec2, Vec3};
 

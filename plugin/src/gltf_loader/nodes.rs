@@ -253,6 +253,17 @@ impl Spawner<'_> {
                 primitive.material(),
                 &mut self.scene.warnings,
             )?;
+            if let MaterialComponent::Parallax(parallax) = &material.kind
+                && parallax.mapping == crate::TextureMapping::Triplanar
+                && primitive.get(&gltf::Semantic::Normals).is_none()
+            {
+                self.scene.warnings.push(format!(
+                    "mesh {}, primitive {}: no NORMAL under triplanar mapping; the flat normals \
+                     generated for it change the projections' mix at every edge",
+                    describe(mesh.name(), mesh.index()),
+                    primitive.index()
+                ));
+            }
             let data = read_primitive(self.source, mesh, &primitive, material.uv_transform)?;
             if let Some(bounds) = mesh_bounds(world, &data) {
                 self.mesh_boxes.push(bounds);

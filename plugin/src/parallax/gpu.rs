@@ -13,6 +13,12 @@ use crate::material::TextureFacts;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct PomUniform {
+    /// Each layer's repeats across the texture coordinates 0..1 (layered materials; 1 else).
+    /// The vectors come first, where their 16-byte alignment needs no padding whatever the
+    /// parameters' size.
+    pub layer_tiling: [f32; 4],
+    /// Each layer's relief depth as a share of the height scale (0 past the last layer).
+    pub layer_depth: [f32; 4],
     /// The sanitized parameters.
     pub params: PomParams,
     /// Width of the height texture as bound, in texels (1 without one).
@@ -27,19 +33,17 @@ pub struct PomUniform {
     pub layer_count: u32,
     /// 1 when the weights come from the weight map, 0 from the vertex colours.
     pub weights_from_texture: u32,
-    /// Each layer's repeats across the texture coordinates 0..1 (layered materials; 1 else).
-    pub layer_tiling: [f32; 4],
-    /// Each layer's relief depth as a share of the height scale (0 past the last layer).
-    pub layer_depth: [f32; 4],
     /// Width of the weight map as bound, in texels.
     pub weight_texture_width: f32,
     /// Height of the weight map as bound, in texels.
     pub weight_texture_height: f32,
     /// Up to the vectors' 16-byte alignment, as WGSL pads the struct in an array.
-    pub padding: [u32; 2],
+    pub padding: [u32; 3],
 }
 
 crate::wgsl_layout!(PomUniform {
+    layer_tiling,
+    layer_depth,
     params,
     height_texture_width,
     height_texture_height,
@@ -47,8 +51,6 @@ crate::wgsl_layout!(PomUniform {
     has_height_map,
     layer_count,
     weights_from_texture,
-    layer_tiling,
-    layer_depth,
     weight_texture_width,
     weight_texture_height,
     padding
@@ -81,7 +83,7 @@ impl PomUniform {
             weights_from_texture: 0,
             weight_texture_width: weights.width as f32,
             weight_texture_height: weights.height as f32,
-            padding: [0; 2],
+            padding: [0; 3],
         };
         if let Some(layers) = &material.layers {
             for (index, layer) in layers.drawn().iter().enumerate() {

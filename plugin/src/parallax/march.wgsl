@@ -64,18 +64,23 @@ fn sampler_level(ddx_texels: vec2<f32>, ddy_texels: vec2<f32>) -> f32 {
 }
 
 fn sample_height(height_texture: texture_2d<f32>, weight_texture: texture_2d<f32>, height_sampler: sampler,
-    field: HeightField, blend: LayerBlend, uv: vec2<f32>) -> f32 {
-    let height = field_height(height_texture, weight_texture, height_sampler, field, blend, uv, field.level);
+    field: HeightField, mapping: FieldMapping, uv: vec2<f32>) -> f32 {
+    let height = field_height(height_texture, weight_texture, height_sampler, field, mapping, uv, field.level);
     return select(height, 0.0, field.bounded != 0u && !inside_bounds(field, uv));
 }
 
-// The height at `uv` read at mip `level` of the first (or only) layer's heights: one layer's,
-// or the blend of a layered material's.
+// The height at `uv` (the march's coordinate) read at mip `level` of the first (or only)
+// layer's heights: one layer's, the blend of a layered material's, or the mix of the
+// triplanar projections'.
 fn field_height(height_texture: texture_2d<f32>, weight_texture: texture_2d<f32>, height_sampler: sampler,
-    field: HeightField, blend: LayerBlend, uv: vec2<f32>, level: f32) -> f32 {
+    field: HeightField, mapping: FieldMapping, uv: vec2<f32>, level: f32) -> f32 {
     if LAYERED {
+        let blend = mapping.layers;
         let heights = layer_heights(height_texture, height_sampler, blend, uv, level);
         return dot(layer_shares(heights, layer_weights(weight_texture, height_sampler, blend, uv), blend.sharpness), heights);
+    }
+    if TRIPLANAR {
+        return triplanar_height(height_texture, height_sampler, field, mapping.triplanar, uv, level);
     }
     let texel = textureSampleLevel(height_texture, height_sampler, uv, level);
     return height_in_channel(texel, field.channel, field.depth_convention);
@@ -106,6 +111,13 @@ struct LayerBlend {
     weight_inset: vec2<f32>,
     // 1 when every layer tiles as the first: one fetch reads every height.
     shared_tiling: u32,
+}
+
+// How the march's coordinate reads the height field beyond one texture: a layered material's
+// blend, or the triplanar projections (each unused by other materials).
+struct FieldMapping {
+    layers: LayerBlend,
+    triplanar: TriplanarProjection,
 }
 
 // Each layer's height at `uv` (1 the top), the heights fetched once where the layers tile alike.
@@ -198,7 +210,7 @@ fn linear_search(
     weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     start_uv: vec2<f32>,
     start_ray: f32,
     start_surface: f32,
@@ -214,7 +226,7 @@ fn linear_search(
         let t = select((f32(i) - field.march_jitter) * step, 1.0, i == steps);
         let uv = start_uv + uv_span * t;
         let ray = start_ray + ray_span * t + bend * t * t;
-        let surface = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv);
+        let surface = sample_height(height_texture, weight_texture, height_sampler, field, mapping, uv);
         crossing.samples += 1u;
         if surface >= ray {
             crossing.below_uv = uv;
@@ -282,14 +294,14 @@ fn secant_steps_refinement(
     weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     crossing: Crossing,
     steps: u32,
 ) -> RayHit {
     var bracket = crossing;
     for (var i = 1u; i < steps; i += 1u) {
         let hit = secant_refinement(bracket);
-        bracket = narrowed(bracket, hit.uv, hit.height, sample_height(height_texture, weight_texture, height_sampler, field, blend, hit.uv));
+        bracket = narrowed(bracket, hit.uv, hit.height, sample_height(height_texture, weight_texture, height_sampler, field, mapping, hit.uv));
     }
     return secant_refinement(bracket);
 }
@@ -300,7 +312,7 @@ fn binary_refinement(
     weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     crossing: Crossing,
     steps: u32,
 ) -> RayHit {
@@ -308,7 +320,7 @@ fn binary_refinement(
     for (var i = 0u; i < steps; i += 1u) {
         let middle_uv = (bracket.above_uv + bracket.below_uv) * 0.5;
         let middle_ray = (bracket.above_ray + bracket.below_ray) * 0.5;
-        bracket = narrowed(bracket, middle_uv, middle_ray, sample_height(height_texture, weight_texture, height_sampler, field, blend, middle_uv));
+        bracket = narrowed(bracket, middle_uv, middle_ray, sample_height(height_texture, weight_texture, height_sampler, field, mapping, middle_uv));
     }
     return RayHit((bracket.above_uv + bracket.below_uv) * 0.5, (bracket.above_ray + bracket.below_ray) * 0.5,
         bracket.samples, true);
@@ -339,7 +351,7 @@ fn march_view(
     height_sampler: sampler,
     pyramid: texture_2d<f32>,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     method: u32,
     uv: vec2<f32>,
     offset: vec2<f32>,
@@ -355,7 +367,7 @@ fn march_view(
     if method == METHOD_MAX_MIP && bend == 0.0 {
         return march_max_mip(height_texture, height_sampler, pyramid, field, uv, offset);
     }
-    let surface = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv);
+    let surface = sample_height(height_texture, weight_texture, height_sampler, field, mapping, uv);
     if method == METHOD_PARALLAX_OFFSET {
         // Welsh's offset limiting: shift by the depth along V.xy without dividing by V.z.
         return RayHit(uv - (1.0 - surface) * height_scale * to_eye_ts.xy, surface, 1u, true);
@@ -364,7 +376,7 @@ fn march_view(
         return RayHit(uv, 1.0, 1u, true);
     }
     let span = bent_span(bend);
-    var crossing = linear_search(height_texture, weight_texture, height_sampler, field, blend, uv, 1.0, surface, offset * span, -span,
+    var crossing = linear_search(height_texture, weight_texture, height_sampler, field, mapping, uv, 1.0, surface, offset * span, -span,
         bend * span * span, steps);
     crossing.samples += 1u;
     if !crossing.found {
@@ -376,9 +388,9 @@ fn march_view(
         return RayHit(crossing.below_uv, crossing.below_ray, crossing.samples, true);
     }
     if method == METHOD_RELIEF {
-        return binary_refinement(height_texture, weight_texture, height_sampler, field, blend, crossing, refinement_steps);
+        return binary_refinement(height_texture, weight_texture, height_sampler, field, mapping, crossing, refinement_steps);
     }
-    return secant_steps_refinement(height_texture, weight_texture, height_sampler, field, blend, crossing, refinement_steps);
+    return secant_steps_refinement(height_texture, weight_texture, height_sampler, field, mapping, crossing, refinement_steps);
 }
 
 // Hard self-shadow (McGuire): march from the visible point towards the light; 0 if any sample
@@ -394,7 +406,7 @@ fn hard_shadow(
     height_sampler: sampler,
     pyramid: texture_2d<f32>,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     method: u32,
     uv: vec2<f32>,
     light_offset: vec2<f32>,
@@ -407,13 +419,13 @@ fn hard_shadow(
     if method == METHOD_MAX_MIP {
         return max_mip_hard_shadow(height_texture, height_sampler, pyramid, field, uv, light_offset);
     }
-    let start = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv) + HARD_SHADOW_BIAS;
+    let start = sample_height(height_texture, weight_texture, height_sampler, field, mapping, uv) + HARD_SHADOW_BIAS;
     let rise = 1.0 - start;
     if rise <= 0.0 {
         return 1.0;
     }
     let steps = march_steps(min_samples, max_samples, n_dot_l, texels_per_rise * rise);
-    let crossing = linear_search(height_texture, weight_texture, height_sampler, field, blend, uv, start, start, light_offset * rise, rise,
+    let crossing = linear_search(height_texture, weight_texture, height_sampler, field, mapping, uv, start, start, light_offset * rise, rise,
         bend * rise * rise, steps);
     return select(1.0, 0.0, crossing.found);
 }
@@ -430,21 +442,21 @@ fn soft_shadow(
     weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     uv: vec2<f32>,
     light_offset: vec2<f32>,
     softening: f32,
     bend: f32,
     tap_shift: f32,
 ) -> f32 {
-    let start = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv);
+    let start = sample_height(height_texture, weight_texture, height_sampler, field, mapping, uv);
     var strongest = 0.0;
     for (var k = 0u; k < 7u; k += 1u) {
         // Fractions 0.88, 0.77, …, 0.22 with weights 1, 2, 4, 6, 8, 10, 12, as in the listing.
         let place = f32(k) + tap_shift;
         let fraction = 0.88 - 0.11 * place;
         let weight = max(1.0, 2.0 * place);
-        let blocker = sample_height(height_texture, weight_texture, height_sampler, field, blend, uv + light_offset * fraction);
+        let blocker = sample_height(height_texture, weight_texture, height_sampler, field, mapping, uv + light_offset * fraction);
         strongest = max(strongest, (blocker - start - fraction - bend * fraction * fraction) * weight);
     }
     let sharpness = SEED_SHADOW_SOFTENING * SEED_SHADOW_SOFTENING / max(softening, 1e-4);
@@ -467,7 +479,7 @@ fn relief_occlusion(
     weight_texture: texture_2d<f32>,
     height_sampler: sampler,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     uv: vec2<f32>,
     height: f32,
     height_scale: f32,
@@ -484,7 +496,7 @@ fn relief_occlusion(
             let fraction = f32(s) / f32(OCCLUSION_STEPS);
             let distance = radius * fraction * fraction;
             let level = max(field.level, log2(max(distance * texels, 1.0)) - 1.0);
-            let sample = field_height(height_texture, weight_texture, height_sampler, field, blend, uv + direction * distance, level);
+            let sample = field_height(height_texture, weight_texture, height_sampler, field, mapping, uv + direction * distance, level);
             let rise = (sample - height) * height_scale;
             steepest = max(steepest, rise / distance);
         }

@@ -73,6 +73,24 @@ crate::choice_enum! {
 }
 
 crate::choice_enum! {
+    /// How the material's maps are laid on the mesh.
+    pub enum TextureMapping: "MAPPING" {
+        /// By the mesh's texture coordinates (TEXCOORD_0) and tangents.
+        Uv = "uv",
+        /// Projected along the world axes, mixed by the normal: meshes without usable UVs (rocks).
+        Triplanar = "triplanar",
+    }
+}
+
+/// Fewest world units one repeat of a triplanar projection spans (and the most):
+/// `triplanar_scale`'s limits.
+pub const TRIPLANAR_SCALE_LIMITS: (f32, f32) = (1e-3, 1e4);
+
+fn is_triplanar(material: &ParallaxOcclusionMaterial) -> bool {
+    material.mapping == TextureMapping::Triplanar
+}
+
+crate::choice_enum! {
     /// What the fragment shader outputs instead of the lit colour, for inspection.
     pub enum DebugView: "DEBUG" {
         /// The lit surface.
@@ -153,6 +171,20 @@ crate::with_lighting_parameters! {
             /// How the view ray meets the height field.
             method: ParallaxMethod = ParallaxMethod::Occlusion, ParamSpec::choice::<ParallaxMethod>()
                 .group(ParamGroup::Method);
+            /// How the maps are laid on the mesh: its texture coordinates (uv), or projected
+            /// along the world axes (triplanar: meshes without usable UVs).
+            mapping: TextureMapping = TextureMapping::Uv, ParamSpec::choice::<TextureMapping>()
+                .group(ParamGroup::Method);
+            /// World units one repeat of a triplanar projection spans.
+            triplanar_scale: f32 = 1.0,
+                ParamSpec::float(TRIPLANAR_SCALE_LIMITS.0, TRIPLANAR_SCALE_LIMITS.1)
+                .editor(0.05, 10.0).logarithmic().unit("world units").group(ParamGroup::Method)
+                .applies_when(is_triplanar);
+            /// How narrow the bands where triplanar projections meet are: 1 blends widely,
+            /// higher keeps each face on its own projection.
+            triplanar_sharpness: f32 = 4.0, ParamSpec::float(1.0, 64.0).editor(1.0, 32.0)
+                .group(ParamGroup::Method)
+                .applies_when(is_triplanar);
             /// Bisection steps relief mapping takes after its linear search: more is sharper.
             relief_binary_steps: u32 = 6, ParamSpec::integer(1, 16)
                 .group(ParamGroup::Method)
@@ -273,6 +305,12 @@ pub enum PomMaterialError {
     /// A problem of the layers.
     #[error(transparent)]
     Layers(#[from] LayersError),
+    /// Layers with triplanar mapping: their weight map and tiling are laid out in texture
+    /// coordinates.
+    #[error(
+        "mapping is triplanar but the material has layers, which are laid out in texture coordinates: they are drawn with uv mapping"
+    )]
+    TriplanarLayers,
 }
 
 impl ParallaxOcclusionMaterial {
@@ -295,6 +333,9 @@ impl ParallaxOcclusionMaterial {
             if clips_at_bounds(self) && min >= max {
                 problems.push(PomMaterialError::BoundsEmpty { axis, min, max });
             }
+        }
+        if self.layers.is_some() && is_triplanar(self) {
+            problems.push(PomMaterialError::TriplanarLayers);
         }
         if let Some(layers) = &self.layers {
             problems.extend(
@@ -319,7 +360,10 @@ impl ParallaxOcclusionMaterial {
         self.first_limit_problem().is_none()
             && self.min_samples <= self.max_samples
             && (!clips_at_bounds(self) || self.bounds_axes().iter().all(|(_, min, max)| min < max))
-            && self.layers.as_ref().is_none_or(layers_are_valid)
+            && self
+                .layers
+                .as_ref()
+                .is_none_or(|layers| layers_are_valid(layers) && !is_triplanar(self))
     }
 
     /// Checks every parameter; the first problem is the error.
@@ -343,7 +387,7 @@ impl ParallaxOcclusionMaterial {
 
     /// A copy with every parameter brought into range: NaN and ∞ become the default, numbers are
     /// clamped to their limits, inverted sample and texture bounds are swapped, and texture
-    /// bounds of no area become the default [0, 1]. This is what the renderer draws; it logs
+    /// bounds of no area become the default [0, 1], and layers are mapped by uv. This is what the renderer draws; it logs
     /// [`Self::problems`] once per change.
     pub fn sanitized(&self) -> Self {
         let mut clean = self.clone();
@@ -363,6 +407,7 @@ impl ParallaxOcclusionMaterial {
         }
         if let Some(layers) = &self.layers {
             clean.layers = Some(sanitized_layers(layers));
+            clean.mapping = TextureMapping::Uv;
         }
         clean
     }
@@ -485,5 +530,81 @@ mod tests {
             }))
         ));
         assert_eq!(material.sanitized().height_scale, 0.0);
+    }
+
+    #[test]
+    fn a_negative_or_nan_triplanar_scale_is_named_and_sanitized() {
+        for (scale, message, clean) in [
+            (
+                -2.0,
+                "triplanar_scale is -2 but must be at least 0.001",
+                TRIPLANAR_SCALE_LIMITS.0,
+            ),
+            (
+                f32::NAN,
+                "triplanar_scale is NaN, which is not a finite number",
+                1.0,
+            ),
+            (
+                0.0,
+                "triplanar_scale is 0 but must be at least 0.001",
+                TRIPLANAR_SCALE_LIMITS.0,
+            ),
+        ] {
+            let material = ParallaxOcclusionMaterial {
+                mapping: TextureMapping::Triplanar,
+                triplanar_scale: scale,
+                ..ParallaxOcclusionMaterial::default()
+            };
+            assert_eq!(material.validate().unwrap_err().to_string(), message);
+            assert!(!material.is_valid());
+            assert_eq!(material.sanitized().triplanar_scale, clean);
+        }
+    }
+
+    #[test]
+    fn a_triplanar_sharpness_out_of_range_is_named_and_clamped() {
+        for (sharpness, message, clean) in [
+            (
+                0.5,
+                "triplanar_sharpness is 0.5 but must be at least 1",
+                1.0,
+            ),
+            (
+                100.0,
+                "triplanar_sharpness is 100 but must be at most 64",
+                64.0,
+            ),
+        ] {
+            let material = ParallaxOcclusionMaterial {
+                mapping: TextureMapping::Triplanar,
+                triplanar_sharpness: sharpness,
+                ..ParallaxOcclusionMaterial::default()
+            };
+            assert_eq!(material.validate().unwrap_err().to_string(), message);
+            assert_eq!(material.sanitized().triplanar_sharpness, clean);
+        }
+    }
+
+    #[test]
+    fn layers_under_triplanar_mapping_are_an_error_and_draw_by_uv() {
+        let mut images = crate::Assets::<Image>::default();
+        let field = crate::HeightField::from_fn(2, 2, |u, _| u);
+        let layers = ParallaxLayers::new(
+            &mut images,
+            vec![(super::super::ParallaxLayer::default(), Some(&field))],
+            super::super::LayerWeights::VertexColors,
+        )
+        .unwrap();
+        let material = ParallaxOcclusionMaterial {
+            layers: Some(layers),
+            mapping: TextureMapping::Triplanar,
+            ..ParallaxOcclusionMaterial::default()
+        };
+        assert_eq!(material.problems(), [PomMaterialError::TriplanarLayers]);
+        assert!(!material.is_valid());
+        let clean = material.sanitized();
+        assert_eq!(clean.mapping, TextureMapping::Uv);
+        assert!(clean.is_valid());
     }
 }

@@ -1,29 +1,30 @@
 //! The parallax occlusion mapping material: its parameters, GPU form and plugin.
 
-mod curvature;
 mod gpu;
 mod layer_heights;
 mod layers;
 mod material;
 mod max_pyramid;
+mod mesh_needs;
 mod pipelines;
 mod preset;
 
 pub use crate::lighting::LightingModel;
-pub use curvature::{
-    CurvedSilhouetteWarnings, curvature_problem, warn_about_meshes_without_curvature,
-};
 pub use gpu::PomUniform;
 pub use layer_heights::{LayerError, MAX_LAYERS, pack_layer_heights};
 pub use layers::{LAYER_TILING_LIMITS, LayerWeights, LayersError, ParallaxLayer, ParallaxLayers};
 pub use material::{
     BOUNDS_LIMIT, DebugView, HeightSource, HeightUnits, MAX_BLEND_CONTRAST, MAX_SAMPLES_LIMIT,
     ParallaxMethod, ParallaxOcclusionMaterial, PomMaterialError, PomParams, PomPatch, PomPreset,
-    ShadowMode, Silhouette,
+    ShadowMode, Silhouette, TRIPLANAR_SCALE_LIMITS, TextureMapping,
 };
 #[cfg(feature = "scene-tests")]
 pub use max_pyramid::read_max_pyramid;
 pub use max_pyramid::{HEIGHT_CHANNEL, MAX_PYRAMID_SHADER, MaxHeightPyramid};
+pub use mesh_needs::{
+    CurvedSilhouette, CurvedSilhouetteWarnings, MeshWarnings, TriplanarMapping,
+    TriplanarMeshWarnings, curvature_problem, triplanar_problem, warn_about_unsuitable_meshes,
+};
 pub use pipelines::PomPipelineKey;
 pub use preset::PresetError;
 
@@ -36,6 +37,8 @@ use crate::material::{
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{App, AssetId, Handle, Image, Plugin};
 
+/// Triplanar mapping's projections, as the march and the shading read them.
+pub const PARALLAX_TRIPLANAR: WgslFile = crate::wgsl_file!("parallax/triplanar.wgsl");
 /// The ray march, LOD and self-shadow functions of the parallax material.
 pub const PARALLAX_MARCH: WgslFile = crate::wgsl_file!("parallax/march.wgsl");
 /// The MaxMip method's traversal of the maximum pyramid.
@@ -55,6 +58,7 @@ macro_rules! parallax_shader {
                 ShadowMode::wgsl_constants,
                 Silhouette::wgsl_constants,
                 HeightUnits::wgsl_constants,
+                TextureMapping::wgsl_constants,
                 LightingModel::wgsl_constants,
                 DebugView::wgsl_constants,
                 crate::render::display_referred_wgsl,
@@ -72,6 +76,7 @@ macro_rules! parallax_shader {
                 shaders::TANGENT_SPACE,
                 crate::lighting::LIGHTING,
                 HEIGHT_CHANNEL,
+                PARALLAX_TRIPLANAR,
                 PARALLAX_MARCH,
                 PARALLAX_MAX_MIP,
                 PARALLAX_ENTRY,
@@ -166,8 +171,7 @@ impl Material for ParallaxOcclusionMaterial {
 
     fn derived_textures(&self) -> DerivedTextures {
         let mut derived = [None; MAX_DERIVED_TEXTURES];
-        if self.method == ParallaxMethod::MaxMip
-            && self.layers.is_none()
+        if PomPipelineKey::of(self).method == ParallaxMethod::MaxMip
             && let (Some(source), Some(image)) = (&self.height_map, self.height_image())
         {
             derived[0] = Some(DerivedTexture {
@@ -257,7 +261,9 @@ impl Material for ParallaxOcclusionMaterial {
         view: &mut DrawView<'_>,
     ) -> PomPipelineKey {
         let normal_mapping = key.normal_mapping();
-        if key == normal_mapping {
+        // A triplanar draw's texture density is its scale's, not its mesh's texture
+        // coordinates' (which the mip bound reads).
+        if key == normal_mapping || key.triplanar {
             return key;
         }
         // The uniform holds the sanitized threshold and the height texture as bound.
@@ -300,7 +306,7 @@ impl Plugin for PomPlugin {
         app.add_plugin(crate::LitPlugin)
             .add_plugin(MaterialPlugin::<ParallaxOcclusionMaterial>::default());
         app.add_system(crate::Stage::Prepare, crate::derive_dynamic_normals);
-        app.add_system(crate::Stage::Extract, warn_about_meshes_without_curvature);
+        app.add_system(crate::Stage::Extract, warn_about_unsuitable_meshes);
     }
 
     fn finish(&self, app: &mut App) -> Result<(), crate::BoxedError> {

@@ -8,7 +8,7 @@
 //! faster again (sandbox/BENCHMARKS.md, "What the numbers mean": specialized pipelines).
 
 use super::material::{
-    DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, Silhouette,
+    DebugView, ParallaxMethod, ParallaxOcclusionMaterial, ShadowMode, Silhouette, TextureMapping,
 };
 use crate::material::{Choice, ShaderEntry};
 use crate::{HeightConvention, LightingModel};
@@ -36,16 +36,21 @@ pub struct PomPipelineKey {
     pub height_is_depth: bool,
     /// `LAYERED`: the height is the blend of a layered material's layers.
     pub layered: bool,
+    /// `TRIPLANAR`: the maps are projected along the world axes and the march runs in world
+    /// space.
+    pub triplanar: bool,
 }
 
 impl PomPipelineKey {
     /// The pipeline a material draws with.
     pub fn of(material: &ParallaxOcclusionMaterial) -> Self {
         let layered = material.layers.is_some();
+        // Layers are laid out in texture coordinates: they draw with uv mapping.
+        let triplanar = material.mapping == TextureMapping::Triplanar && !layered;
         Self {
-            // MaxMip is exact for one bilinear height field; a blend of layers by height is not
-            // bilinear between texels, so layered materials march with occlusion mapping.
-            method: if layered && material.method == ParallaxMethod::MaxMip {
+            // MaxMip is exact for one bilinear height field; a blend of layers or projections
+            // is not bilinear between texels, so they march with occlusion mapping.
+            method: if (layered || triplanar) && material.method == ParallaxMethod::MaxMip {
                 ParallaxMethod::Occlusion
             } else {
                 material.method
@@ -64,6 +69,7 @@ impl PomPipelineKey {
                 .map_or(0, |source| source.channel().index() as u8),
             height_is_depth: !layered && material.height_convention == HeightConvention::Depth,
             layered,
+            triplanar,
         }
     }
 
@@ -157,6 +163,7 @@ impl PomPipelineKey {
                 ("DEPTH_OFFSET", f64::from(u8::from(self.depth_offset))),
                 ("SILHOUETTE", f64::from(self.silhouette.code())),
                 ("LAYERED", f64::from(u8::from(self.layered))),
+                ("TRIPLANAR", f64::from(u8::from(self.triplanar))),
             ],
         }
     }
@@ -207,12 +214,16 @@ mod tests {
                 height_convention: HeightConvention::Depth,
                 ..base.clone()
             },
+            ParallaxOcclusionMaterial {
+                mapping: TextureMapping::Triplanar,
+                ..base.clone()
+            },
         ];
         let mut keys: Vec<PomPipelineKey> = variants.iter().map(PomPipelineKey::of).collect();
         keys.push(key);
         keys.sort();
         keys.dedup();
-        assert_eq!(keys.len(), 10, "{keys:?}");
+        assert_eq!(keys.len(), 11, "{keys:?}");
         // Parameters that are not modes share a pipeline.
         let tuned = ParallaxOcclusionMaterial {
             height_scale: 0.2,

@@ -24,6 +24,9 @@ override HEIGHT_IS_DEPTH: bool = false;
 // `PomParams` (every declared parameter, in declaration order) is generated from the Rust
 // declarations and prepended, like the enum codes.
 struct PomUniform {
+    // The vectors first: their alignment needs no padding whatever the parameters' size.
+    layer_tiling: vec4<f32>,
+    layer_depth: vec4<f32>,
     params: PomParams,
     // The height texture as bound, in texels (1 × 1 without one), and its mip levels.
     height_texture_width: f32,
@@ -34,11 +37,9 @@ struct PomUniform {
     // 0: not a layered material.
     layer_count: u32,
     weights_from_texture: u32,
-    layer_tiling: vec4<f32>,
-    layer_depth: vec4<f32>,
     weight_texture_width: f32,
     weight_texture_height: f32,
-    padding: vec2<u32>,
+    padding: array<u32, 3>,
 }
 
 @group(0) @binding(2) var<storage, read> materials: array<PomUniform>;
@@ -76,10 +77,13 @@ struct SurfacePoint {
     footprint: PixelFootprint,
     height_scale: f32,
     field: HeightField,
-    blend: LayerBlend,
+    mapping: FieldMapping,
     // 1 past the LOD threshold, 0 before its band.
     fade: f32,
     marched: bool,
+    // The march's coordinate where the view ray enters: the mesh's texture coordinate, or under
+    // triplanar mapping the origin of the tangent plane's (`TriplanarProjection`).
+    entry_uv: vec2<f32>,
     // Where the view ray left the surface before it met the relief (the silhouette): the pixel
     // shows what lies behind.
     clipped: bool,
@@ -169,38 +173,52 @@ fn view_ray(in: VertexOut, front_facing: bool, footprint: PixelFootprint) -> Sur
     let params = material.params;
     var point: SurfacePoint;
     point.surface_frame = facing_tangent_frame(in.world_normal, in.world_tangent, front_facing);
-    point.to_eye = direction_to_eye(in.world_position, point.surface_frame.normal);
-    point.to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
-
     point.footprint = footprint;
-    // The gradients every texture read and level of the march take: finer under anti-aliasing.
-    point.ddx_uv = footprint.ddx_uv * texture_gradient_scale();
-    point.ddy_uv = footprint.ddy_uv * texture_gradient_scale();
-    let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
-    point.mip = mip_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size);
+    point.entry_uv = in.uv;
     // Texture units per world unit (Luna §3), from the areas a pixel really covers in both spaces.
     let world_area = length(cross(footprint.ddx_world, footprint.ddy_world));
     let uv_area = abs(footprint.ddx_uv.x * footprint.ddy_uv.y - footprint.ddx_uv.y * footprint.ddy_uv.x);
     point.uv_per_world = sqrt(uv_area / max(world_area, 1e-30));
+    if TRIPLANAR {
+        // No texture coordinates or tangents of the mesh: the march moves in the tangent plane
+        // of the normal, in texture units, from 0 where the ray enters.
+        point.surface_frame = march_frame(point.surface_frame.normal, params.triplanar_sharpness);
+        let scale = params.triplanar_scale;
+        point.mapping.triplanar = triplanar_projection(in.world_position, point.surface_frame, scale,
+            params.triplanar_sharpness);
+        point.footprint.ddx_uv = to_tangent_space(point.surface_frame, footprint.ddx_world).xy / scale;
+        point.footprint.ddy_uv = to_tangent_space(point.surface_frame, footprint.ddy_world).xy / scale;
+        point.entry_uv = vec2<f32>(0.0);
+        point.uv_per_world = 1.0 / scale;
+    }
+    point.to_eye = direction_to_eye(in.world_position, point.surface_frame.normal);
+    point.to_eye_ts = to_tangent_space(point.surface_frame, point.to_eye);
+
+    // The gradients every texture read and level of the march take: finer under anti-aliasing.
+    point.ddx_uv = point.footprint.ddx_uv * texture_gradient_scale();
+    point.ddy_uv = point.footprint.ddy_uv * texture_gradient_scale();
+    let texture_size = vec2<f32>(material.height_texture_width, material.height_texture_height);
+    point.mip = mip_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size);
     let scale = select(0.0, params.height_scale, material.has_height_map != 0u);
     point.height_scale = select(scale, scale * point.uv_per_world, params.height_units == UNITS_WORLD);
 
     point.field = HeightField(HEIGHT_CHANNEL, u32(HEIGHT_IS_DEPTH),
         sampler_level(point.ddx_uv * texture_size, point.ddy_uv * texture_size),
-        u32(SILHOUETTE == SILHOUETTE_UV_BOUNDS),
+        // Triplanar projections have no bounds to leave: uv_bounds draws as off.
+        u32(SILHOUETTE == SILHOUETTE_UV_BOUNDS && !TRIPLANAR),
         vec4<f32>(params.bounds_u_min, params.bounds_v_min, params.bounds_u_max, params.bounds_v_max),
         select(0.0, march_noise(in.clip_position.xy), params.jitter_march != 0u));
-    point.blend = layer_blend(material, in.color, point.ddx_uv, point.ddy_uv);
+    point.mapping.layers = layer_blend(material, in.color, point.ddx_uv, point.ddy_uv);
     point.fade = select(lod_fade(point.mip, params.lod_threshold, params.lod_band), 0.0, SHADOW_CASTER);
     // Past the LOD threshold (fade 1) nothing below runs but normal mapping.
     point.marched = point.fade < 1.0 && METHOD != METHOD_NORMAL_MAPPING && point.height_scale > 0.0;
 
-    point.uv = in.uv;
+    point.uv = point.entry_uv;
     point.height = 1.0;
     point.samples = 0u;
     point.clipped = false;
     point.offset = -ray_offset(point.to_eye_ts, point.height_scale);
-    let curvature = normal_curvature(in, point.surface_frame, footprint, along_plane(point.surface_frame, -point.to_eye));
+    let curvature = normal_curvature(in, point.surface_frame, point.footprint, along_plane(point.surface_frame, -point.to_eye));
     // Only a ray march bends (parallax offset takes one sample, normal mapping none).
     let marches_a_ray = METHOD != METHOD_PARALLAX_OFFSET && METHOD != METHOD_NORMAL_MAPPING;
     point.bend = select(0.0, ray_bend(curvature, point.offset, point), marches_a_ray);
@@ -232,46 +250,70 @@ fn layer_blend(material: PomUniform, vertex_color: vec4<f32>, ddx_uv: vec2<f32>,
 }
 
 // The visible point's colour (texture × factor × vertex colour, as glTF multiplies them) and
-// its encoded tangent-space normal: a layered material's layers' mixed by their shares there.
+// shading normal (world): a layered material's layers' mixed by their shares there, or the
+// triplanar projections'.
 struct SurfaceMaps {
+    base: vec4<f32>,
+    normal: vec3<f32>,
+}
+
+fn surface_maps(in: VertexOut, point: SurfacePoint) -> SurfaceMaps {
+    let params = materials[in.object_index].params;
+    let factor = rgba(params.base_color);
+    let frame = point.surface_frame;
+    if TRIPLANAR {
+        let maps = triplanar_maps(base_color_texture, normal_map, material_sampler, point.mapping.triplanar,
+            frame.normal, point.uv, point.ddx_uv, point.ddy_uv, params.normal_strength);
+        return SurfaceMaps(maps.color * factor * in.color, maps.normal);
+    }
+    if !LAYERED {
+        return SurfaceMaps(
+            textureSampleGrad(base_color_texture, material_sampler, point.uv, point.ddx_uv, point.ddy_uv) * factor * in.color,
+            perturbed_normal(frame, textureSampleGrad(normal_map, material_sampler, point.uv, point.ddx_uv, point.ddy_uv).xyz,
+                params.normal_strength));
+    }
+    let blend = point.mapping.layers;
+    let heights = layer_heights(height_texture, material_sampler, blend, point.uv, point.field.level);
+    let weights = layer_weights(layer_weights_texture, material_sampler, blend, point.uv);
+    let shares = layer_shares(heights, weights, blend.sharpness);
+    var mix = LayerMix(vec4<f32>(0.0), vec3<f32>(0.0));
+    mix = with_layer(mix, base_color_texture, normal_map, shares.x, blend.tiling.x, point);
+    mix = with_layer(mix, second_layer_color, second_layer_normal, shares.y, blend.tiling.y, point);
+    mix = with_layer(mix, third_layer_color, third_layer_normal, shares.z, blend.tiling.z, point);
+    mix = with_layer(mix, fourth_layer_color, fourth_layer_normal, shares.w, blend.tiling.w, point);
+    // Vertex colours that are not the weights tint the mix, as they tint one layer.
+    let tint = select(vec4<f32>(1.0), in.color, blend.weights_from_texture != 0u);
+    return SurfaceMaps(mix.base * factor * tint, perturbed_normal(frame, mix.encoded_normal, params.normal_strength));
+}
+
+// Layers' colours and encoded normals, each times its share.
+struct LayerMix {
     base: vec4<f32>,
     encoded_normal: vec3<f32>,
 }
 
-fn surface_maps(in: VertexOut, point: SurfacePoint) -> SurfaceMaps {
-    let factor = rgba(materials[in.object_index].params.base_color);
-    if !LAYERED {
-        return SurfaceMaps(
-            textureSampleGrad(base_color_texture, material_sampler, point.uv, point.ddx_uv, point.ddy_uv) * factor * in.color,
-            textureSampleGrad(normal_map, material_sampler, point.uv, point.ddx_uv, point.ddy_uv).xyz);
-    }
-    let blend = point.blend;
-    let heights = layer_heights(height_texture, material_sampler, blend, point.uv, point.field.level);
-    let weights = layer_weights(layer_weights_texture, material_sampler, blend, point.uv);
-    let shares = layer_shares(heights, weights, blend.sharpness);
-    var maps = SurfaceMaps(vec4<f32>(0.0), vec3<f32>(0.0));
-    maps = with_layer(maps, base_color_texture, normal_map, shares.x, blend.tiling.x, point);
-    maps = with_layer(maps, second_layer_color, second_layer_normal, shares.y, blend.tiling.y, point);
-    maps = with_layer(maps, third_layer_color, third_layer_normal, shares.z, blend.tiling.z, point);
-    maps = with_layer(maps, fourth_layer_color, fourth_layer_normal, shares.w, blend.tiling.w, point);
-    // Vertex colours that are not the weights tint the mix, as they tint one layer.
-    let tint = select(vec4<f32>(1.0), in.color, blend.weights_from_texture != 0u);
-    maps.base *= factor * tint;
-    return maps;
-}
-
-// `maps` plus `share` of one layer's colour and encoded normal at the visible point (its maps
+// `mix` plus `share` of one layer's colour and encoded normal at the visible point (its maps
 // tiled `tiling` times); nothing is read for a layer without a share there.
-fn with_layer(maps: SurfaceMaps, color: texture_2d<f32>, normal: texture_2d<f32>, share: f32, tiling: f32,
-    point: SurfacePoint) -> SurfaceMaps {
+fn with_layer(mix: LayerMix, color: texture_2d<f32>, normal: texture_2d<f32>, share: f32, tiling: f32,
+    point: SurfacePoint) -> LayerMix {
     if share <= 0.0 {
-        return maps;
+        return mix;
     }
     let uv = point.uv * tiling;
     let ddx_uv = point.ddx_uv * tiling;
     let ddy_uv = point.ddy_uv * tiling;
-    return SurfaceMaps(maps.base + share * textureSampleGrad(color, material_sampler, uv, ddx_uv, ddy_uv),
-        maps.encoded_normal + share * textureSampleGrad(normal, material_sampler, uv, ddx_uv, ddy_uv).xyz);
+    return LayerMix(mix.base + share * textureSampleGrad(color, material_sampler, uv, ddx_uv, ddy_uv),
+        mix.encoded_normal + share * textureSampleGrad(normal, material_sampler, uv, ddx_uv, ddy_uv).xyz);
+}
+
+// The texture coordinate the uv debug view shows: the mesh's, or under triplanar mapping the
+// one of the projection with the largest share.
+fn shown_uv(point: SurfacePoint) -> vec2<f32> {
+    if !TRIPLANAR {
+        return point.uv;
+    }
+    let projection = point.mapping.triplanar;
+    return projection_uv(projected_point(projection, point.uv), projection.sides, dominant_axis(projection.weights));
 }
 
 // Whether the view ray of `point` could leave the surface before it meets the relief: only
@@ -282,12 +324,12 @@ fn may_leave_surface(in: VertexOut, point: SurfacePoint) -> bool {
     if !point.marched {
         return false;
     }
-    if SILHOUETTE == SILHOUETTE_UV_BOUNDS {
+    if point.field.bounded != 0u {
         // A hair inside the bounds, so a refinement that rounds past the segment's end still
         // finds the march run here too.
         var inner = point.field;
         inner.bounds += vec4<f32>(1e-5, 1e-5, -1e-5, -1e-5);
-        return !inside_bounds(inner, in.uv) || !inside_bounds(inner, in.uv + point.offset);
+        return !inside_bounds(inner, point.entry_uv) || !inside_bounds(inner, point.entry_uv + point.offset);
     }
     return SILHOUETTE == SILHOUETTE_CURVED && point.bend > 0.25;
 }
@@ -304,13 +346,13 @@ fn march_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
         let texels = length(offset * texture_size) / exp2(point.mip) * bent_span(bend);
         let steps = march_steps(params.min_samples, params.max_samples, dot(point.surface_frame.normal, point.to_eye), texels);
         let refinement_steps = select(params.secant_steps, params.relief_binary_steps, METHOD == METHOD_RELIEF);
-        let hit = march_view(height_texture, layer_weights_texture, material_sampler, height_pyramid, point.field, point.blend, METHOD, in.uv, offset,
+        let hit = march_view(height_texture, layer_weights_texture, material_sampler, height_pyramid, point.field, point.mapping, METHOD, point.entry_uv, offset,
             point.to_eye_ts, point.height_scale, steps, refinement_steps, bend);
         // The bent ray's height is over the curved surface; the point lies on the straight view
         // ray, t of its way down below the tangent plane (bend is 0 but for a ray march).
-        let t = length(hit.uv - in.uv) / max(length(offset), 1e-30);
+        let t = length(hit.uv - point.entry_uv) / max(length(offset), 1e-30);
         // In the LOD band, fade from the parallax coordinate to the plain one (T §5.4.3).
-        point.uv = mix(hit.uv, in.uv, point.fade);
+        point.uv = mix(hit.uv, point.entry_uv, point.fade);
         point.height = mix(hit.height - bend * t * t, 1.0, point.fade);
         point.samples = hit.samples;
         // Through the LOD band too (the plain coordinate is on the polygon): the outline stays.
@@ -323,7 +365,7 @@ fn march_surface(in: VertexOut, ray: SurfacePoint) -> SurfacePoint {
 // sideways by the change of texture coordinate.
 fn displaced_position(in: VertexOut, point: SurfacePoint) -> vec3<f32> {
     let frame_ts = point.surface_frame;
-    let du = (point.uv - in.uv) / max(point.uv_per_world, 1e-30);
+    let du = (point.uv - point.entry_uv) / max(point.uv_per_world, 1e-30);
     let depth_below = (1.0 - point.height) * point.height_scale / max(point.uv_per_world, 1e-30);
     let displaced = in.world_position + frame_ts.tangent * du.x + frame_ts.bitangent_v * du.y
         - frame_ts.normal * depth_below;
@@ -351,7 +393,7 @@ fn environment_occlusion(in: VertexOut, point: SurfacePoint, surface: Surface, n
     }
     let material = materials[in.object_index];
     let texels = max(material.height_texture_width, material.height_texture_height);
-    let open = relief_occlusion(height_texture, layer_weights_texture, material_sampler, point.field, point.blend, point.uv, point.height,
+    let open = relief_occlusion(height_texture, layer_weights_texture, material_sampler, point.field, point.mapping, point.uv, point.height,
         point.height_scale, 4.0 * point.height_scale, texels, shadow_tap_shift(in.clip_position.xy) + 0.5);
     let diffuse = mix(1.0, open, strength);
     return vec2<f32>(diffuse, specular_occlusion(dot(normal, point.to_eye), diffuse, surface.roughness));
@@ -367,7 +409,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
 
     let maps = surface_maps(in, point);
     let base = maps.base;
-    let normal = perturbed_normal(surface_frame, maps.encoded_normal, params.normal_strength);
+    let normal = maps.normal;
     let surface = Surface(base.rgb, params.specular_strength, max(params.shininess, 1.0), params.roughness,
         params.metallic, LIGHTING_MODEL);
 
@@ -394,11 +436,11 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
             let light_bend = ray_bend(normal_curvature(in, surface_frame, point.footprint,
                 along_plane(surface_frame, light.to_light)), light_offset, point);
             if SHADOW_MODE == SHADOWS_SOFT {
-                visibility = soft_shadow(height_texture, layer_weights_texture, material_sampler, point.field, point.blend, uv, light_offset, params.shadow_softening,
+                visibility = soft_shadow(height_texture, layer_weights_texture, material_sampler, point.field, point.mapping, uv, light_offset, params.shadow_softening,
                     light_bend, shadow_tap_shift(in.clip_position.xy));
             } else {
                 let texels_per_rise = length(light_offset * texture_size) / exp2(point.mip);
-                visibility = hard_shadow(height_texture, layer_weights_texture, material_sampler, height_pyramid, point.field, point.blend, METHOD, uv,
+                visibility = hard_shadow(height_texture, layer_weights_texture, material_sampler, height_pyramid, point.field, point.mapping, METHOD, uv,
                     light_offset, params.min_samples, params.max_samples, dot(surface_frame.normal, light.to_light),
                     texels_per_rise, light_bend);
             }
@@ -435,7 +477,7 @@ fn shade(in: VertexOut, point: SurfacePoint) -> vec4<f32> {
         }
         case DEBUG_UV: {
             let region = select(select(0.5, 1.0, fade <= 0.0), 0.0, !point.marched);
-            return vec4<f32>(fract(uv), region, DEBUG_VIEW_ALPHA);
+            return vec4<f32>(fract(shown_uv(point)), region, DEBUG_VIEW_ALPHA);
         }
         case DEBUG_SHADOW: {
             return vec4<f32>(vec3<f32>(first_visibility), DEBUG_VIEW_ALPHA);

@@ -24,17 +24,22 @@ pub fn triplanar_uvs(position: Vec3, normal: Vec3, scale: f32) -> [Vec2; 3] {
     ]
 }
 
+/// The share of the mix below which a projection is left out (`TRIPLANAR_MIN_SHARE` of
+/// triplanar.wgsl): the shares are lowered by it and normalized again, so they stay continuous
+/// and a surface facing mostly one axis reads one texture.
+pub const TRIPLANAR_MIN_SHARE: f32 = 0.05;
+
 /// The shares of the projections along X, Y and Z (summing to 1) for a surface of unit
 /// `normal`: each axis's component raised to `sharpness` (1 and up; higher narrows the seams
-/// where projections meet).
+/// where projections meet), normalized, lowered by [`TRIPLANAR_MIN_SHARE`] and normalized again.
 pub fn triplanar_weights(normal: Vec3, sharpness: f32) -> Vec3 {
-    let weights = normal.abs().powf(sharpness.max(1.0));
-    let total = weights.element_sum();
-    if total > 0.0 {
-        weights / total
-    } else {
-        Vec3::Y
+    let raised = normal.abs().powf(sharpness.max(1.0));
+    let total = raised.element_sum();
+    if total <= 0.0 || !total.is_finite() {
+        return Vec3::Y;
     }
+    let kept = (raised / total - Vec3::splat(TRIPLANAR_MIN_SHARE)).max(Vec3::ZERO);
+    kept / kept.element_sum()
 }
 
 /// The height `field` gives a surface at `position` of unit `normal`: the three projections'
@@ -98,6 +103,11 @@ mod tests {
         // Sharper: the axis the surface faces most takes more of the mix.
         assert!(sharp.y > soft.y && sharp.y > 0.99, "{soft} {sharp}");
         assert_eq!(triplanar_weights(Vec3::ZERO, 4.0), Vec3::Y);
+        // A projection with a small share is left out, and the shares stay continuous there.
+        let barely = |x: f32| triplanar_weights(Vec3::new(x, 1.0, 0.0).normalize(), 1.0).x;
+        let edge = TRIPLANAR_MIN_SHARE / (1.0 - TRIPLANAR_MIN_SHARE);
+        assert_eq!(barely(edge * 0.99), 0.0);
+        assert!(barely(edge * 1.01) < 1e-3);
     }
 
     #[test]

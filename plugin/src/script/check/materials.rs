@@ -35,6 +35,7 @@ fn problem_field(problem: &PomMaterialError) -> &'static str {
         PomMaterialError::SamplesInverted { .. } => "min_samples",
         PomMaterialError::BoundsEmpty { .. } => "bounds_",
         PomMaterialError::Layers(_) => "layers",
+        PomMaterialError::TriplanarLayers => "mapping",
     }
 }
 
