@@ -272,6 +272,45 @@ fn a_nan_height_scale_is_rejected() {
 }
 
 #[test]
+fn bad_triplanar_flags_are_rejected_naming_the_parameter() {
+    for (name, args, expected) in [
+        (
+            "triplanar-negative-scale",
+            ["--triplanar-scale", "-1"],
+            ["triplanar_scale", "-1", "0.001"],
+        ),
+        (
+            "triplanar-nan-scale",
+            ["--triplanar-scale", "NaN"],
+            ["triplanar_scale", "NaN", "finite"],
+        ),
+        (
+            "triplanar-sharpness",
+            ["--triplanar-sharpness", "0.5"],
+            ["triplanar_sharpness", "0.5", "at least 1"],
+        ),
+        (
+            "unknown-mapping",
+            ["--triplanar-scale", "2"],
+            ["cubic", "--mapping", "triplanar"],
+        ),
+    ] {
+        let dir = TempDir::new(name);
+        let out = dir.join("out.png");
+        let mapping = if name == "unknown-mapping" {
+            "cubic"
+        } else {
+            "triplanar"
+        };
+        let mut command = vec!["render", "--out", path_arg(&out), "--mapping", mapping];
+        command.extend(args);
+        let output = sandbox(&command);
+        assert_one_line_error(&output, &expected);
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn a_bad_exposure_is_rejected() {
     let dir = TempDir::new("bad-exposure");
     let out = dir.join("out.png");

@@ -424,3 +424,28 @@ fn the_terrain_example_shows_its_layers_under_the_sky() {
     assert!(grey > 0.03, "rock and cobbles cover {grey}");
     assert!(earth > 0.005, "earth covers {earth}");
 }
+
+#[test]
+fn the_rocks_example_shows_boulders_with_relief_on_the_cobbles() {
+    let image = screenshot_of("rocks", 10);
+    assert_eq!(image.dimensions(), (1280, 720));
+    // The boulders stand in the middle of the frame: grey rock there (not the brown cobbles or
+    // the blue sky), lit unevenly by its relief.
+    let rock: Vec<f32> = image
+        .enumerate_pixels()
+        .filter(|(x, y, _)| (300..800).contains(x) && (150..500).contains(y))
+        .map(|(_, _, pixel)| pixel.0)
+        .filter(|[r, g, b, _]| r.abs_diff(*g) < 12 && r.abs_diff(*b) < 20 && *r > 40)
+        .map(encoded_luminance)
+        .collect();
+    let share = rock.len() as f32 / (500.0 * 350.0);
+    let mean = rock.iter().sum::<f32>() / rock.len().max(1) as f32;
+    let spread =
+        (rock.iter().map(|l| (l - mean).powi(2)).sum::<f32>() / rock.len().max(1) as f32).sqrt();
+    eprintln!("rock covers {share:.3} of the middle, luminance {mean:.1} ± {spread:.1} of 255");
+    assert!(share > 0.3, "rock covers {share} of the middle");
+    assert!(
+        spread > 10.0,
+        "the rock is flat: luminance spread {spread} of 255"
+    );
+}
