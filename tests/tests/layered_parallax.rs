@@ -280,3 +280,59 @@ fn the_layered_ramp_looks_the_same_on_both_paths() {
         "the floor shows"
     );
 }
+
+#[test]
+fn golden_cobbles_giving_way_to_bumps_by_height_on_both_paths() {
+    // Cobblestones on the left, rounder and shallower bumps on the right, a weight ramp between:
+    // across it the stones' tops stand out of the bumps before the bumps cover their grout.
+    let view = PreviewView {
+        view_angle: 45.0,
+        light_angle: 55.0,
+        ..PreviewView::default()
+    };
+    let mut app = pom_app(192, TargetFormat::Srgb8).expect("app");
+    let images = app.resources.get_mut::<Assets<Image>>().expect("images");
+    let cobbles = pom::patterns::cobblestones(128, 4);
+    let bumps = pom::patterns::cones(128, 6.0);
+    let (stone, moss) = (
+        images.add(Image::solid([170, 160, 150, 255], TextureKind::Color)),
+        images.add(Image::solid([90, 140, 70, 255], TextureKind::Color)),
+    );
+    let layers = vec![
+        (
+            ParallaxLayer {
+                base_color_texture: Some(stone),
+                normal_map: Some(images.add(cobbles.normal_map(0.05))),
+                tiling: 2.0,
+                height_scale: 1.0,
+            },
+            Some(&cobbles),
+        ),
+        (
+            ParallaxLayer {
+                base_color_texture: Some(moss),
+                normal_map: Some(images.add(bumps.normal_map(0.03))),
+                tiling: 3.0,
+                height_scale: 0.6,
+            },
+            Some(&bumps),
+        ),
+    ];
+    let weights = images.add(Image::new(weight_map(ramp), TextureKind::Data).expect("weights"));
+    let layers =
+        ParallaxLayers::new(images, layers, LayerWeights::Texture(weights)).expect("layers");
+    let material = ParallaxOcclusionMaterial {
+        layers: Some(layers),
+        height_scale: 0.05,
+        layer_blend_contrast: 0.6,
+        ..ParallaxOcclusionMaterial::default()
+    };
+    spawn_preview(&mut app, material, &view).expect("preview");
+    let image = render_both_paths(&mut app, "layered_cobbles_bumps").expect("paths agree");
+    pom_tests::check_golden(
+        "layered_cobbles_bumps",
+        &image,
+        pom_tests::FlipTolerance::default(),
+    )
+    .expect("matches the reference");
+}

@@ -396,3 +396,38 @@ fn a_mesh_without_normals_under_triplanar_mapping_is_warned_about_once() {
     };
     assert_eq!(warned(without_normals), 1);
 }
+
+#[test]
+fn golden_boulder_of_cobblestones_without_uvs_on_both_paths() {
+    // A sphere without texture coordinates, cobblestones projected on it along the three axes,
+    // lit from above and the side with soft self-shadows: both paths agree and match the
+    // reference.
+    let eye = Vec3::new(2.4, 1.6, 3.0);
+    let mut app = scene(
+        bare_sphere(),
+        Vec3::ZERO,
+        TargetFormat::Srgb8,
+        eye,
+        Vec3::ZERO,
+        |app| {
+            let cobbles = HeightMaterial {
+                field: pom::patterns::cobblestones(128, 4),
+                height_scale: 0.05,
+            };
+            ParallaxOcclusionMaterial {
+                mapping: TextureMapping::Triplanar,
+                triplanar_scale: 0.6,
+                triplanar_sharpness: 6.0,
+                shadows: ShadowMode::Soft,
+                ..cobbles.material(app)
+            }
+        },
+    );
+    let image = pom_tests::render_both_paths(&mut app, "triplanar_boulder").expect("paths agree");
+    pom_tests::check_golden(
+        "triplanar_boulder",
+        &image,
+        pom_tests::FlipTolerance::default(),
+    )
+    .expect("matches the reference");
+}
