@@ -46,7 +46,9 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // (the street corner without an environment, 3 phases and the frame, and under the sky,
     // with the background's pass too; relief occlusion off and on; a 2K `.hdr`'s prefiltering),
     // 24 lights figures (the street corner at night with 1, 256 and 1,024 point lights, and 256
-    // with one shadowed light: 3 phases, the frame, and the CPU's Extract and Prepare stages).
+    // with one shadowed light: 3 phases, the frame, and the CPU's Extract and Prepare stages),
+    // 4 layers figures (the material, and its heights as one, four alike and four differently
+    // tiled layers) and 2 triplanar figures (the sphere by uv and triplanar).
     let resolve_rows = cases
         .iter()
         .filter(|c| c["group"] == "seed_port" && c["pass"] == "resolve")
@@ -58,7 +60,9 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(resolve_rows, 2 * ours_deferred);
     assert_eq!(
         cases.len(),
-        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6 + 6 + 11 + 12 + 24) + 2 + resolve_rows
+        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 27 + 6 + 13 + 6 + 6 + 11 + 12 + 24 + 4 + 2)
+            + 2
+            + resolve_rows
     );
     let first_frames = cases
         .iter()

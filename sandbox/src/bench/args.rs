@@ -42,6 +42,11 @@ pub enum Measurement {
     /// TAA and the post filter: each pass's time, and the jittered march at 16 samples
     /// under TAA against 50 samples.
     Antialiasing,
+    /// The bench material against its height map as one, four alike and four differently
+    /// tiled layers of a layered material.
+    Layers,
+    /// Triplanar mapping against texture coordinates on the preview sphere.
+    Triplanar,
     /// Tatarchuk's listing 2 transliterated to WGSL on the same plane, beside our POM.
     SeedPort,
     /// Steep, POM and relief at 8–64 samples and MaxMip: error, fetches per pixel and time.

@@ -11,6 +11,7 @@ mod chart;
 mod cpu_side;
 mod environment;
 mod first_use;
+mod layers_and_triplanar;
 mod lights;
 mod method_table;
 mod pyramid_build;
@@ -157,6 +158,12 @@ impl Runner<'_> {
             }
             if wanted(Measurement::SeedPort) {
                 self.seed_port(size)?;
+            }
+            if wanted(Measurement::Layers) {
+                self.layers(size)?;
+            }
+            if wanted(Measurement::Triplanar) {
+                self.triplanar(size)?;
             }
         }
         if wanted(Measurement::VersusMesh) {

@@ -321,6 +321,11 @@ impl BenchScene {
         )
     }
 
+    /// The scene's images, to add the textures a material needs.
+    pub fn images(&mut self) -> Result<&mut Assets<Image>> {
+        Ok(self.app.resources.require_mut::<Assets<Image>>()?)
+    }
+
     /// Changes the material's parameters, keeping its textures.
     pub fn configure(&mut self, change: impl Fn(&mut ParallaxOcclusionMaterial)) {
         for material in self.app.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
