@@ -30,11 +30,65 @@ pub fn edit_material(ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) -> b
                 }
             });
     }
+    if material.layers.is_some() {
+        CollapsingHeader::new("Layers")
+            .default_open(true)
+            .show(ui, |ui| edit_layers(ui, material));
+    }
     // Keep the pair ordered while dragging either one, rather than showing an invalid state.
     if material.min_samples > material.max_samples {
         material.max_samples = material.min_samples;
     }
     *material != before
+}
+
+/// The weight channel of each layer, in order.
+const WEIGHT_CHANNELS: [&str; 4] = ["red", "green", "blue", "alpha"];
+
+/// A row of sliders for each drawn layer of a layered material: its tiling and its depth share
+/// (the blend contrast is a declared parameter, among the method's rows).
+fn edit_layers(ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) {
+    let Some(layers) = material.layers.as_mut() else {
+        return;
+    };
+    let weights = match layers.weights {
+        pom::LayerWeights::Texture(_) => "the weight map",
+        _ => "the vertex colours",
+    };
+    ui.label(format!(
+        "{} layers, weighed by {weights}",
+        layers.layers.len()
+    ));
+    let (fewest, most) = pom::parallax::LAYER_TILING_LIMITS;
+    for (index, layer) in layers
+        .layers
+        .iter_mut()
+        .take(pom::parallax::MAX_LAYERS)
+        .enumerate()
+    {
+        let channel = WEIGHT_CHANNELS[index];
+        ui.label(format!("layer {} ({channel} weight)", index + 1));
+        ui.add(
+            Slider::new(&mut layer.tiling, 0.25..=64.0)
+                .text(format!("layer {} tiling", index + 1))
+                .logarithmic(true)
+                .clamping(SliderClamping::Never),
+        )
+        .on_hover_text("Repeats of the layer's maps across the mesh's texture coordinates 0..1.");
+        ui.add(
+            Slider::new(&mut layer.height_scale, 0.0..=1.0)
+                .text(format!("layer {} depth", index + 1)),
+        )
+        .on_hover_text(
+            "The layer's relief depth as a share of height scale: a shallower layer stands higher in the blend.",
+        );
+        // Typed values may leave the slider's range, never the layer's limits.
+        layer.tiling = if layer.tiling.is_finite() {
+            layer.tiling.clamp(fewest, most)
+        } else {
+            1.0
+        };
+    }
 }
 
 /// The tooltip: the declared help, and the unit when there is one.

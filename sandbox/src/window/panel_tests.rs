@@ -605,3 +605,49 @@ fn an_environment_file_that_does_not_open_says_why_in_the_panel() {
             .is_none()
     );
 }
+
+#[test]
+fn a_layered_materials_layers_are_edited_live_from_the_panel() {
+    let mut app = App::new();
+    let mut images = pom::Assets::<pom::Image>::default();
+    let field = pom::HeightField::from_fn(4, 4, |u, _| u);
+    let layers = pom::ParallaxLayers::new(
+        &mut images,
+        vec![
+            (pom::ParallaxLayer::default(), Some(&field)),
+            (pom::ParallaxLayer::default(), None),
+        ],
+        pom::LayerWeights::VertexColors,
+    )
+    .unwrap();
+    let material = app.world.spawn((ParallaxOcclusionMaterial {
+        layers: Some(layers),
+        ..ParallaxOcclusionMaterial::default()
+    },));
+    let mut harness = harness_with(app);
+    // The fixture's own material comes second; edit the layered one.
+    harness.state_mut().panel.selected = Some(material);
+    harness.run();
+    harness.get_by_label("2 layers, weighed by the vertex colours");
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "layer 2 tiling")
+        .set_value_accesskit(8.0);
+    harness
+        .get_by_role_and_label(egui::Role::Slider, "layer 1 depth")
+        .set_value_accesskit(0.4);
+    harness.run();
+    let fixture = harness.state();
+    let edited = fixture
+        .app
+        .world
+        .get::<&ParallaxOcclusionMaterial>(material)
+        .unwrap();
+    let layers = &edited.layers.as_ref().unwrap().layers;
+    assert!(
+        (layers[1].tiling - 8.0).abs() < 1e-4,
+        "{}",
+        layers[1].tiling
+    );
+    assert!((layers[0].height_scale - 0.4).abs() < 1e-6);
+    assert_eq!((layers[0].tiling, layers[1].height_scale), (1.0, 1.0));
+}
