@@ -31,6 +31,22 @@ pub fn parse_preset(path: &str) -> Result<PomPreset, String> {
     PomPreset::load(path).map_err(|error| error.to_string())
 }
 
+/// `--preset`'s file and its values: the files its layers name are relative to its folder.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PresetFile {
+    /// The file as named.
+    pub path: std::path::PathBuf,
+    /// Its values.
+    pub preset: PomPreset,
+}
+
+fn parse_preset_file(path: &str) -> Result<PresetFile, String> {
+    Ok(PresetFile {
+        path: path.into(),
+        preset: parse_preset(path)?,
+    })
+}
+
 /// `--preset FILE.ron`, the values the material flags start from.
 fn preset_flag() -> Arg {
     Arg::new(PRESET)
@@ -42,7 +58,7 @@ fn preset_flag() -> Arg {
              override its values; the others take the preset's, not their defaults. Its \
              debug_view is not used (an inspection view is an output option, --debug-view).",
         )
-        .value_parser(ValueParser::new(parse_preset))
+        .value_parser(ValueParser::new(parse_preset_file))
 }
 
 /// The declared parameters that are material flags.
@@ -144,8 +160,8 @@ pub fn flag<M>(
 /// The material's flags as given on the command line, and the preset they override.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MaterialArgs {
-    /// `--preset`'s values, when given.
-    preset: Option<PomPreset>,
+    /// `--preset`'s file and values, when given.
+    preset: Option<PresetFile>,
     /// The flags given explicitly (a flag left out keeps the preset's value or the default).
     values: Vec<(&'static str, ParamValue)>,
 }
@@ -155,7 +171,7 @@ impl MaterialArgs {
     /// on the command line over it (no textures, default debug view).
     pub fn settings(&self) -> ParallaxOcclusionMaterial {
         let mut material = ParallaxOcclusionMaterial::default();
-        if let Some(preset) = &self.preset {
+        if let Some(PresetFile { preset, .. }) = &self.preset {
             material.apply_preset(preset);
             // The debug view is an output option, like in NOT_FLAGS.
             material.debug_view = ParallaxOcclusionMaterial::default().debug_view;
@@ -173,6 +189,24 @@ impl MaterialArgs {
     }
 }
 
+impl MaterialArgs {
+    /// The layers `--preset` describes with the maps of the files it names (relative to its
+    /// folder, each a regular file inside it), decoded; `None` without a preset or when it names
+    /// no file.
+    pub fn preset_layer_files(
+        &self,
+    ) -> Result<Option<pom::parallax::LayerFiles>, pom::PresetError> {
+        let Some(PresetFile { path, preset }) = &self.preset else {
+            return Ok(None);
+        };
+        let folder = path
+            .parent()
+            .filter(|parent| !parent.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        preset.read_layer_files(folder, pom::files::FileAccess::InsideFolder)
+    }
+}
+
 impl FromArgMatches for MaterialArgs {
     fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
         let values = flag_parameters()
@@ -183,7 +217,7 @@ impl FromArgMatches for MaterialArgs {
                     .map(|value| (param.name, *value))
             })
             .collect();
-        let preset = matches.get_one::<PomPreset>(PRESET).cloned();
+        let preset = matches.get_one::<PresetFile>(PRESET).cloned();
         Ok(Self { preset, values })
     }
 

@@ -333,9 +333,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 fn render_material(args: &RenderArgs) -> Result<()> {
     // Bad values and bad files are reported before the GPU starts: quicker, and nothing a GPU
     // driver prints on stderr can get mixed into the one-line error.
-    let settings = args.material_settings();
+    let mut settings = args.material_settings();
     settings.validate().context("invalid material")?;
     let textures = PreviewTextures::load(&args.texture_files(), settings.height_scale)?;
+    let layer_files = args.material.preset_layer_files().context("--preset")?;
     let environment = args.environment.light()?;
 
     let mut app = headless_app(&args.output, args.path);
@@ -343,6 +344,9 @@ fn render_material(args: &RenderArgs) -> Result<()> {
         .resources
         .get_mut::<Assets<Image>>()
         .context("the render plugin provides no image store")?;
+    if let Some(files) = layer_files {
+        settings.layers = Some(files.into_layers(images).context("--preset")?);
+    }
     let material = textures.attach(images, settings);
     spawn_preview(&mut app, material, &args.view()).context("setting up the preview")?;
     args.apply_lights(&mut app, environment);

@@ -622,3 +622,65 @@ fn the_post_filter_and_taa_soften_the_previews_edges() {
     assert!(fxaa < off, "fxaa {fxaa}, off {off}");
     assert!(taa < off, "taa {taa}, off {off}");
 }
+
+#[test]
+fn a_preset_with_layers_renders_them_from_its_files_and_names_a_bad_one() {
+    let dir = TempDir::new("layered-preset");
+    // Two solid colours, a flat height each, and a weight map: red (the first layer) on the
+    // left half of the plane, green (the second) on the right.
+    let solid = |name: &str, rgb: [u8; 3]| {
+        image::RgbaImage::from_pixel(4, 4, image::Rgba([rgb[0], rgb[1], rgb[2], 255]))
+            .save(dir.join(name))
+            .unwrap();
+    };
+    solid("warm.png", [220, 80, 40]);
+    solid("cool.png", [40, 90, 220]);
+    image::GrayImage::from_pixel(4, 4, image::Luma([200]))
+        .save(dir.join("height.png"))
+        .unwrap();
+    image::RgbaImage::from_fn(16, 4, |x, _| {
+        if x < 8 {
+            image::Rgba([255, 0, 0, 0])
+        } else {
+            image::Rgba([0, 255, 0, 0])
+        }
+    })
+    .save(dir.join("weights.png"))
+    .unwrap();
+    let preset = dir.join("layers.ron");
+    std::fs::write(
+        &preset,
+        "(layers: [(base_color_texture: \"warm.png\", height_texture: \"height.png\"), \
+          (base_color_texture: \"cool.png\", height_texture: \"height.png\", tiling: 2)], \
+          layer_weights_texture: \"weights.png\", shadows: off)",
+    )
+    .unwrap();
+    let image = rendered(
+        &dir,
+        "layers.png",
+        "render",
+        &["--size", "64x64", "--preset", path_arg(&preset)],
+    );
+    let warm = image.pixels().filter(|p| p.0[0] > p.0[2] + 60).count();
+    let cool = image.pixels().filter(|p| p.0[2] > p.0[0] + 60).count();
+    assert!(
+        warm > 800 && cool > 800,
+        "warm {warm}, cool {cool} of 4096 pixels"
+    );
+
+    let outside = dir.join("outside.ron");
+    std::fs::write(&outside, "(layers: [(height_texture: \"../height.png\")])").unwrap();
+    let out = dir.join("never.png");
+    let output = sandbox(&[
+        "render",
+        "--out",
+        path_arg(&out),
+        "--preset",
+        path_arg(&outside),
+    ]);
+    assert_one_line_error(
+        &output,
+        &["--preset", "../height.png", "`..` leads out of it"],
+    );
+    assert!(!out.exists());
+}

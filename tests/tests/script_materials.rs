@@ -122,3 +122,73 @@ fn a_preset_out_of_range_is_an_error_naming_the_file_and_limit() {
         "{message}"
     );
 }
+
+#[test]
+fn a_preset_with_layers_builds_them_from_its_files_and_names_a_bad_one() {
+    let dir = std::env::temp_dir().join(format!("pom-script-layers-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("maps")).unwrap();
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/bricks");
+    for map in ["albedo.png", "normal.png", "height.png"] {
+        std::fs::copy(assets.join(map), dir.join("maps").join(map)).unwrap();
+    }
+    // A bright and a dark layer, the bright one weighing on the plane's first half in u.
+    for (name, grey) in [("bright.png", 240), ("dark.png", 20)] {
+        image::RgbaImage::from_pixel(4, 4, image::Rgba([grey, grey, grey, 255]))
+            .save(dir.join(name))
+            .unwrap();
+    }
+    image::RgbaImage::from_fn(16, 4, |x, _| {
+        image::Rgba(if x < 8 {
+            [255, 0, 0, 0]
+        } else {
+            [0, 255, 0, 0]
+        })
+    })
+    .save(dir.join("weights.png"))
+    .unwrap();
+    std::fs::write(
+        dir.join("layers.ron"),
+        "(layers: [(base_color_texture: \"bright.png\"), (base_color_texture: \"dark.png\")], \
+          layer_weights_texture: \"weights.png\")",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("outside.ron"),
+        "(layers: [(base_color_texture: \"../x.png\")])",
+    )
+    .unwrap();
+    // Looking straight down at the plane, whose u runs from the image's right to its left: the
+    // dark layer on the left, the bright one on the right.
+    let script = |preset: &str, left: (f32, f32), right: (f32, f32)| {
+        format!(
+            r#"(
+            size: (64, 64),
+            camera: (position: (0.0, 3.0, 0.001), target: (0.0, 0.0, 0.0), fov_degrees: 30.0),
+            lights: [Directional(direction: (0.0, -1.0, 0.0), intensity: 100000.0)],
+            entities: [(name: "floor", shape: Some(Plane(size: 2.0)),
+                        material: Some(Pom(maps: "maps", preset: "{preset}")))],
+            steps: [
+                Capture(name: "lit"),
+                ExpectStat(capture: "lit", stat: MeanLuminance, rect: Some((4, 4, 24, 56)), min: Some({}), max: Some({})),
+                ExpectStat(capture: "lit", stat: MeanLuminance, rect: Some((36, 4, 24, 56)), min: Some({}), max: Some({})),
+            ],
+        )"#,
+            left.0, left.1, right.0, right.1
+        )
+    };
+    let path = dir.join("layers-scene.ron");
+    std::fs::write(&path, script("layers.ron", (0.0, 0.25), (0.6, 1.0))).unwrap();
+    let report = pom::run_script_with(&path, &pom::RunOptions::default());
+    std::fs::write(&path, script("outside.ron", (0.0, 1.0), (0.0, 1.0))).unwrap();
+    let error = pom::run_script_with(&path, &pom::RunOptions::default());
+    std::fs::remove_dir_all(&dir).unwrap();
+    let report = report.expect("runs");
+    assert_eq!(report.failures(), 0, "{report:?}");
+    let message = error
+        .expect_err("a layer file outside the preset's folder")
+        .to_string();
+    assert!(
+        message.contains("../x.png") && message.contains("leads out"),
+        "{message}"
+    );
+}

@@ -32,6 +32,16 @@ pub trait DeclaredMaterial: Clone {
     fn texture_images(&self) -> MaterialTextures;
 }
 
+/// What a material's preset holds beyond its declared parameters (the fields of `preset P
+/// PresetExtras { … }` in [`crate::material_parameters!`]): the material writes them when its
+/// preset is taken and reads them when a preset is applied.
+pub trait PresetExtras<Preset> {
+    /// Fills `preset`'s extra fields from the material.
+    fn write_extras(&self, preset: &mut Preset);
+    /// Takes `preset`'s extra fields into the material, keeping its inputs.
+    fn read_extras(&mut self, preset: &Preset);
+}
+
 /// Declares a material struct from one list of parameters, each written once: doc line (its
 /// help), name, type, default and [`ParamSpec`](crate::parameters::ParamSpec). Optional sections come first:
 /// `inputs { name: Type = default, }` (fields that are not parameters, a height source say) and
@@ -44,7 +54,9 @@ pub trait DeclaredMaterial: Clone {
 /// with its generated WGSL declaration, and [`DeclaredMaterial`]. With the trailing
 /// `preset P; patch Q; gpu G;` those three structs get those names; without it they are
 /// reached through `preset()`, `PARAMETERS` and [`DeclaredMaterial::Params`], and the WGSL
-/// struct is `MaterialParams`.
+/// struct is `MaterialParams`. `preset P PresetExtras { field: Type, }` gives the preset fields
+/// beyond the parameters (each with its `Default` and serde attributes), which the material
+/// fills and reads through its [`PresetExtras`] implementation.
 #[macro_export]
 macro_rules! material_parameters {
     // The struct and its `Default`: outside any block, so that it is nameable.
@@ -125,8 +137,14 @@ macro_rules! material_parameters {
              `name: Type = default, ParamSpec;`"
         );
     };
-    // Everything else, with the names of the preset, patch and GPU structs.
-    (@items [$preset:ident $patch:ident $gpu:ident] $material:ident {
+    // Everything else, with the names of the preset, patch and GPU structs, and the preset's
+    // fields beyond the parameters.
+    (@items [$preset:ident $patch:ident $gpu:ident] [$($extras:ident {
+        $(
+            $(#[$extra_attr:meta])*
+            $extra:ident : $extra_ty:ty,
+        )*
+    })?] $material:ident {
         // Inputs are the struct's alone.
         $(inputs { $($inputs:tt)* })?
         $(textures {
@@ -188,14 +206,23 @@ macro_rules! material_parameters {
                 $($field: $ty, concat!($help $(, $more)*), $spec;)*
             });
 
-            /// The material's parameters without its inputs (textures).
+            /// The material's parameters without its inputs (textures), and what the preset
+            /// holds beyond them.
             pub fn preset(&self) -> $preset {
-                $preset { $($field: self.$field,)* }
+                #[allow(unused_mut)]
+                let mut preset = $preset {
+                    $($field: self.$field,)*
+                    $($($extra: Default::default(),)*)?
+                };
+                $(<Self as $crate::material::$extras<$preset>>::write_extras(self, &mut preset);)?
+                preset
             }
 
-            /// Takes every parameter of `preset`, keeping this material's inputs.
+            /// Takes every parameter of `preset` (and what it holds beyond them), keeping this
+            /// material's inputs.
             pub fn apply_preset(&mut self, preset: &$preset) {
                 $(self.$field = preset.$field;)*
+                $(<Self as $crate::material::$extras<$preset>>::read_extras(self, preset);)?
             }
         }
 
@@ -249,6 +276,10 @@ macro_rules! material_parameters {
                 #[doc = $help]
                 pub $field: $ty,
             )*
+            $($(
+                $(#[$extra_attr])*
+                pub $extra: $extra_ty,
+            )*)?
         }
 
         impl Default for $preset {
@@ -298,12 +329,14 @@ macro_rules! material_parameters {
     (
         $(#[$attr:meta])*
         pub struct $material:ident { $($body:tt)* }
-        preset $preset:ident;
+        preset $preset:ident $($extras:ident { $($extra_fields:tt)* })?;
         patch $patch:ident;
         gpu $gpu:ident;
     ) => {
         $crate::material_parameters!(@struct [$(#[$attr])*] $material { $($body)* });
-        $crate::material_parameters!(@items [$preset $patch $gpu] $material { $($body)* });
+        $crate::material_parameters!(
+            @items [$preset $patch $gpu] [$($extras { $($extra_fields)* })?] $material { $($body)* }
+        );
     };
     // The short form: those structs are reached through the material's methods and
     // `DeclaredMaterial::Params`, and the GPU struct is `MaterialParams` in WGSL.
@@ -314,7 +347,7 @@ macro_rules! material_parameters {
         $crate::material_parameters!(@struct [$(#[$attr])*] $material { $($body)* });
         const _: () = {
             $crate::material_parameters!(
-                @items [MaterialPreset MaterialPatch MaterialParams] $material { $($body)* }
+                @items [MaterialPreset MaterialPatch MaterialParams] [] $material { $($body)* }
             );
         };
     };

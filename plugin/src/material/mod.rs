@@ -32,7 +32,7 @@ pub use crate::parameters::{
     GpuParam, LimitError, Param, ParamError, ParamGroup, ParamKind, ParamSpec, ParamType,
     ParamValue, every_parameter_changed,
 };
-pub use declare::DeclaredMaterial;
+pub use declare::{DeclaredMaterial, PresetExtras};
 pub use deferred::{DEFERRED_RESOLVE, deferred_twin};
 pub use draw_view::DrawView;
 pub use extract::MaterialWarnings;

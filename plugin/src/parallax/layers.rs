@@ -120,14 +120,15 @@ pub enum LayersError {
     },
 }
 
-/// Each layer field's name, value and limits.
-fn layer_values(layer: &ParallaxLayer) -> [(&'static str, f32, f32, f32); 2] {
+/// Each layer field's name, value and limits, for a layer of `tiling` and depth share
+/// `height_scale`.
+fn layer_values(tiling: f32, height_scale: f32) -> [(&'static str, f32, f32, f32); 2] {
     let (fewest, most) = LAYER_TILING_LIMITS;
     [
-        ("tiling", layer.tiling, fewest, most),
+        ("tiling", tiling, fewest, most),
         (
             "height_scale",
-            layer.height_scale,
+            height_scale,
             LAYER_DEPTH_LIMITS.0,
             LAYER_DEPTH_LIMITS.1,
         ),
@@ -136,17 +137,28 @@ fn layer_values(layer: &ParallaxLayer) -> [(&'static str, f32, f32, f32); 2] {
 
 /// Every problem of `layers`, in order.
 pub(super) fn layer_problems(layers: &ParallaxLayers) -> Vec<LayersError> {
+    let values: Vec<(f32, f32)> = layers
+        .layers
+        .iter()
+        .map(|layer| (layer.tiling, layer.height_scale))
+        .collect();
+    layer_value_problems(&values)
+}
+
+/// Every problem of a list of layers given as their (tiling, depth share), in order: its
+/// length, then the values of the first [`MAX_LAYERS`].
+pub(super) fn layer_value_problems(layers: &[(f32, f32)]) -> Vec<LayersError> {
     let mut problems = Vec::new();
-    if layers.layers.is_empty() {
+    if layers.is_empty() {
         problems.push(LayersError::Empty);
     }
-    if layers.layers.len() > MAX_LAYERS {
+    if layers.len() > MAX_LAYERS {
         problems.push(LayersError::TooMany {
-            count: layers.layers.len(),
+            count: layers.len(),
         });
     }
-    for (index, layer) in layers.drawn().iter().enumerate() {
-        for (field, value, min, max) in layer_values(layer) {
+    for (index, &(tiling, height_scale)) in layers.iter().take(MAX_LAYERS).enumerate() {
+        for (field, value, min, max) in layer_values(tiling, height_scale) {
             if !(min..=max).contains(&value) {
                 problems.push(LayersError::OutOfRange {
                     layer: index,
@@ -165,7 +177,7 @@ pub(super) fn layer_problems(layers: &ParallaxLayers) -> Vec<LayersError> {
 pub(super) fn layers_are_valid(layers: &ParallaxLayers) -> bool {
     (1..=MAX_LAYERS).contains(&layers.layers.len())
         && layers.layers.iter().all(|layer| {
-            layer_values(layer)
+            layer_values(layer.tiling, layer.height_scale)
                 .iter()
                 .all(|(_, value, min, max)| (*min..=*max).contains(value))
         })

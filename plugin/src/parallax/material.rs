@@ -270,7 +270,15 @@ crate::with_lighting_parameters! {
                 .group(ParamGroup::Debug);
         }
     }
-    preset PomPreset;
+    preset PomPreset PresetExtras {
+        /// A layered material's layers: each one's tiling and depth share, and the files of
+        /// its maps relative to the preset (`LayerPreset`).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        layers: Option<Vec<super::LayerPreset>>,
+        /// The file of a layered material's weight map, relative to the preset.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        layer_weights_texture: Option<String>,
+    };
     patch PomPatch;
     gpu PomParams;
 }

@@ -2,6 +2,7 @@
 
 mod gpu;
 mod layer_heights;
+mod layer_preset;
 mod layers;
 mod material;
 mod max_pyramid;
@@ -12,6 +13,7 @@ mod preset;
 pub use crate::lighting::LightingModel;
 pub use gpu::PomUniform;
 pub use layer_heights::{LayerError, MAX_LAYERS, pack_layer_heights};
+pub use layer_preset::{LayerFiles, LayerPreset};
 pub use layers::{LAYER_TILING_LIMITS, LayerWeights, LayersError, ParallaxLayer, ParallaxLayers};
 pub use material::{
     BOUNDS_LIMIT, DebugView, HeightSource, HeightUnits, MAX_BLEND_CONTRAST, MAX_SAMPLES_LIMIT,

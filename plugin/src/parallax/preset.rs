@@ -43,6 +43,12 @@ pub enum PresetError {
         /// The first problem.
         source: PomMaterialError,
     },
+    /// The layers a preset describes could not be built from its files.
+    #[error("layers: {reason}")]
+    Layers {
+        /// The file and what is wrong with it, or the layers' problem.
+        reason: String,
+    },
 }
 
 impl From<crate::files::WriteError> for PresetError {
@@ -71,10 +77,17 @@ impl PomPreset {
         })?;
         let mut material = ParallaxOcclusionMaterial::default();
         material.apply_preset(&preset);
-        material.validate().map_err(|source| PresetError::Invalid {
-            name: name.to_owned(),
-            source,
-        })?;
+        // The default material has no layers to take the preset's: they are checked apart.
+        let problem = material
+            .validate()
+            .err()
+            .or_else(|| preset.layers_problem());
+        if let Some(source) = problem {
+            return Err(PresetError::Invalid {
+                name: name.to_owned(),
+                source,
+            });
+        }
         Ok(preset)
     }
 
@@ -92,7 +105,7 @@ impl PomPreset {
 
     /// Pretty RON text of every field.
     pub fn to_ron(&self) -> String {
-        // Serialising plain numbers, booleans and unit enums cannot fail.
+        // Serialising plain numbers, booleans, strings and unit enums cannot fail.
         ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
             .expect("presets always serialise")
     }

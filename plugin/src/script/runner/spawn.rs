@@ -139,9 +139,25 @@ impl Runner<'_> {
             ..ParallaxOcclusionMaterial::default()
         };
         if let Some(preset) = preset {
-            let preset =
-                PomPreset::load(self.resolve(preset)?).map_err(|error| error.to_string())?;
+            let path = self.resolve(preset)?;
+            let preset = PomPreset::load(&path).map_err(|error| error.to_string())?;
             material.apply_preset(&preset);
+            // The layers' files are the preset's neighbours.
+            let folder = path.parent().unwrap_or(self.dir);
+            let files = preset
+                .read_layer_files(folder, self.options.file_access)
+                .map_err(|error| format!("preset {}: {error}", path.display()))?;
+            if let Some(files) = files {
+                let images = self
+                    .app
+                    .resources
+                    .get_mut::<Assets<Image>>()
+                    .ok_or("no image store")?;
+                let layers = files
+                    .into_layers(images)
+                    .map_err(|error| error.to_string())?;
+                material.layers = Some(layers);
+            }
         }
         set.apply(&mut material);
         Ok(material)
