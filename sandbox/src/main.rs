@@ -36,9 +36,9 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Renders the street-corner scene (what the window opens on) headless to a PNG.
-    Snapshot(demo_command::DemoArgs),
+    Snapshot(Box<demo_command::DemoArgs>),
     /// Renders one parallax material on a square plane (or, with --scene, a glTF scene) to a PNG.
-    Render(render_command::RenderArgs),
+    Render(Box<render_command::RenderArgs>),
     /// Writes the shipped material set (albedo, normal and height maps) and the street-corner
     /// scene, from fixed seeds: the result is the same every time.
     GenerateAssets {
