@@ -431,3 +431,73 @@ fn golden_boulder_of_cobblestones_without_uvs_on_both_paths() {
     )
     .expect("matches the reference");
 }
+
+#[test]
+fn a_triplanar_relief_shadows_itself_through_the_shadow_map_as_uv_parallax_does() {
+    // The unit cube under a low sun with scene shadows, its faces raised in deep bumps that
+    // shadow each other through the shadow map (the casters' depth is the relief's): the
+    // shadow-map visibility on the cube is the same whether the relief comes by its texture
+    // coordinates or by the projections, and differs from a flat cube's.
+    let centre = Vec3::splat(0.5);
+    let eye = Vec3::new(3.0, 2.5, 2.0);
+    let shadow_of = |configure: &dyn Fn(&mut ParallaxOcclusionMaterial), path: RenderPath| {
+        let mut app = scene(
+            Mesh::cube(1.0),
+            centre,
+            TargetFormat::Float32,
+            eye,
+            centre,
+            |app| {
+                let mut material = ParallaxOcclusionMaterial {
+                    shadows: ShadowMode::Off,
+                    lod_threshold: 16.0,
+                    debug_view: DebugView::SceneShadow,
+                    ..bumps(0.15).material(app)
+                };
+                configure(&mut material);
+                material
+            },
+        );
+        let lights: Vec<pom::hecs::Entity> = app
+            .world
+            .query::<(pom::hecs::Entity, &DirectionalLight)>()
+            .iter()
+            .map(|(entity, _)| entity)
+            .collect();
+        for light in lights {
+            let shadows = pom::LightShadows {
+                map_size: 2048,
+                softness: 0.0,
+                ..pom::LightShadows::default()
+            };
+            app.world.insert_one(light, shadows).expect("the light");
+        }
+        render_on_path_f32(&mut app, path).expect("render")
+    };
+    let difference = |a: &Rgba32FImage, b: &Rgba32FImage| {
+        a.pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| (p.0[0] - q.0[0]).abs() > 0.25)
+            .count()
+    };
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let uv = shadow_of(&|_| {}, path);
+        let triplanar = shadow_of(
+            &|material| material.mapping = TextureMapping::Triplanar,
+            path,
+        );
+        let flat = shadow_of(
+            &|material| material.method = ParallaxMethod::NormalMapping,
+            path,
+        );
+        let (apart, relief) = (difference(&uv, &triplanar), difference(&uv, &flat));
+        eprintln!(
+            "{path:?}: triplanar's shadow-map visibility differs from uv's at {apart} pixels, the flat cube's at {relief}"
+        );
+        assert!(
+            relief > 300,
+            "the relief shows in the shadow map: {relief} pixels"
+        );
+        assert!(apart * 20 < relief, "{apart} of {relief}");
+    }
+}
