@@ -34,34 +34,22 @@ fn lattice(x: i32, y: i32, z: i32, seed: u32) -> f32 {
     (h & 0xffff) as f32 / 65535.0
 }
 
-/// Smooth value noise, 0..1, repeating every `period` lattice cells along x and y (z does not
-/// repeat).
-fn value_noise(p: Vec3, period: i32, seed: u32) -> f32 {
+/// Smooth value noise in space, 0..1.
+fn value_noise(p: Vec3, seed: u32) -> f32 {
     let cell = p.floor();
     let t = p - cell;
     let smooth = t * t * (Vec3::splat(3.0) - 2.0 * t);
     let corner = |dx: i32, dy: i32, dz: i32| {
-        let wrap = |c: f32, d: i32| (c as i32 + d).rem_euclid(period);
-        lattice(wrap(cell.x, dx), wrap(cell.y, dy), cell.z as i32 + dz, seed)
+        lattice(
+            cell.x as i32 + dx,
+            cell.y as i32 + dy,
+            cell.z as i32 + dz,
+            seed,
+        )
     };
     let along_x = |dy, dz| corner(0, dy, dz) + (corner(1, dy, dz) - corner(0, dy, dz)) * smooth.x;
     let along_y = |dz| along_x(0, dz) + (along_x(1, dz) - along_x(0, dz)) * smooth.y;
     along_y(0) + (along_y(1) - along_y(0)) * smooth.z
-}
-
-/// Weathered rock, 0..1, repeating across the texture's 0..1: ridged noise (sharp creases
-/// where the noise crosses its middle) over softer lumps, octave by octave.
-fn rock(u: f32, v: f32) -> f32 {
-    let mut height = 0.0;
-    let mut amplitude = 0.5;
-    for octave in 0..5 {
-        let cells = 4 << octave;
-        let p = Vec3::new(u * cells as f32, v * cells as f32, 0.5);
-        let ridge = 1.0 - (2.0 * value_noise(p, cells, octave) - 1.0).abs();
-        height += amplitude * ridge * ridge;
-        amplitude *= 0.5;
-    }
-    (height / 0.97).clamp(0.0, 1.0)
 }
 
 /// A boulder of about unit radius: a sphere pushed in and out by noise, stretched by
@@ -70,8 +58,8 @@ fn boulder(seed: u32, stretch: Vec3) -> Mesh {
     let mut mesh = Mesh::uv_sphere(1.0, 64, 32);
     for position in &mut mesh.positions {
         let p = Vec3::from(*position);
-        let lumps = value_noise(p * 1.3 + 7.0, i32::MAX, seed) * 0.35
-            + value_noise(p * 3.1 + 3.0, i32::MAX, seed + 1) * 0.12;
+        let lumps =
+            value_noise(p * 1.3 + 7.0, seed) * 0.35 + value_noise(p * 3.1 + 3.0, seed + 1) * 0.12;
         *position = (p * (0.8 + lumps) * stretch).into();
     }
     mesh.uvs.clear();
@@ -114,7 +102,7 @@ fn setup(world: &mut World, resources: &mut Resources) {
     let Some(images) = resources.get_mut::<Assets<Image>>() else {
         return;
     };
-    let field = HeightField::from_fn(256, 256, rock);
+    let field = patterns::rock(256, 4);
     let rock_material = ParallaxOcclusionMaterial {
         base_color_texture: Some(images.add(colours(
             &field,

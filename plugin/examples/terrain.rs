@@ -33,26 +33,6 @@ fn hills(u: f32, v: f32) -> f32 {
         + 0.1 * (z * 4.7).cos()
 }
 
-/// Craggy rock, 0..1: creases (the troughs of |sin|) along four directions that repeat across
-/// the layer's 0..1.
-fn crags(u: f32, v: f32) -> f32 {
-    let waves = [
-        (3.0, 1.0, 0.4, 0.0),
-        (1.0, 4.0, 0.3, 1.3),
-        (5.0, -2.0, 0.2, 2.1),
-        (-2.0, 7.0, 0.1, 0.7),
-    ];
-    waves
-        .iter()
-        .map(|(n, m, amplitude, phase)| {
-            amplitude
-                * (std::f32::consts::TAU * (n * u + m * v) + phase)
-                    .sin()
-                    .abs()
-        })
-        .sum()
-}
-
 /// Where the cobbled path runs: how near (1 on its middle, 0 off it) `(u, v)` is to it.
 fn path(u: f32, v: f32) -> f32 {
     let middle = 0.5 + 0.2 * (u * std::f32::consts::TAU).sin();
@@ -117,7 +97,7 @@ fn setup(world: &mut World, resources: &mut Resources) {
     let Some(images) = resources.get_mut::<Assets<Image>>() else {
         return;
     };
-    let rock = HeightField::from_fn(256, 256, crags);
+    let rock = patterns::rock(256, 4);
     let grass = patterns::spikes(256, 6, 0.55);
     let earth = HeightField::from_fn(128, 128, |u, v| {
         0.6 + 0.2 * (u * 37.0).sin() * (v * 29.0).cos() + 0.2 * ((u + v) * 53.0).sin()

@@ -254,6 +254,50 @@ pub mod patterns {
         })
     }
 
+    /// Value noise, 0..1, at `(x, y)` in lattice cells, repeating every `period` cells: the
+    /// hashed corners of the cell, mixed with a smooth step.
+    fn value_noise(x: f32, y: f32, period: i32) -> f32 {
+        let (cx, cy) = (x.floor(), y.floor());
+        let smooth = |t: f32| t * t * (3.0 - 2.0 * t);
+        let (tx, ty) = (smooth(x - cx), smooth(y - cy));
+        let corner = |dx: i32, dy: i32| {
+            hash(
+                (cx as i32 + dx).rem_euclid(period),
+                (cy as i32 + dy).rem_euclid(period),
+            )
+            .0
+        };
+        let top = corner(0, 0) + (corner(1, 0) - corner(0, 0)) * tx;
+        let bottom = corner(0, 1) + (corner(1, 1) - corner(0, 1)) * tx;
+        top + (bottom - top) * ty
+    }
+
+    /// Weathered rock: ridged value noise (sharp creases where the noise crosses its middle)
+    /// over five octaves from `cells` × `cells` cells across the tile, repeating, stretched to
+    /// span 0..1 (the whole depth the material gives it).
+    pub fn rock(size: u32, cells: u32) -> HeightField {
+        let cells = cells.clamp(1, 1 << 20) as i32;
+        let field = HeightField::from_fn(size, size, move |u, v| {
+            let (mut height, mut amplitude) = (0.0, 0.5);
+            for octave in 0..5 {
+                let period = cells << octave;
+                let noise = value_noise(u * period as f32, v * period as f32, period);
+                let ridge = 1.0 - (2.0 * noise - 1.0).abs();
+                height += amplitude * ridge * ridge;
+                amplitude *= 0.5;
+            }
+            height
+        });
+        let (low, high) = field
+            .values()
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(low, high), &v| {
+                (low.min(v), high.max(v))
+            });
+        let range = (high - low).max(1e-6);
+        HeightField::from_fn(size, size, |u, v| (field.sample(u, v) - low) / range)
+    }
+
     /// One square block of side `side` (in tile units) centred in the tile, at height 1, on a
     /// floor at 0: for measuring parallax and shadows.
     pub fn raised_block(size: u32, side: f32) -> HeightField {
@@ -297,6 +341,7 @@ mod tests {
             patterns::bricks(64, 4.0, 8.0),
             patterns::cobblestones(64, 4),
             patterns::cones(64, 4.0),
+            patterns::rock(64, 4),
             patterns::raised_block(64, 0.5),
         ] {
             let (min, max) = field
@@ -306,5 +351,23 @@ mod tests {
             // Sharp tips fall between texel centres, so cones peak a little under 1.
             assert!(min < 0.1 && max > 0.85, "{min}..{max}");
         }
+    }
+
+    #[test]
+    fn rock_repeats_across_its_tile_and_differs_cell_to_cell() {
+        let rock = patterns::rock(64, 4);
+        // The step from the last column to the first is a step like any other: the noise
+        // wraps (unwrapped noise would jump there by about its whole range).
+        let step = |a: i64, b: i64| {
+            (0..64)
+                .map(|y| (rock.texel(a, y) - rock.texel(b, y)).abs())
+                .sum::<f32>()
+                / 64.0
+        };
+        let across_edge = step(63, 0);
+        let inside = (0..63).map(|x| step(x, x + 1)).sum::<f32>() / 63.0;
+        assert!(across_edge < 3.0 * inside, "{across_edge} against {inside}");
+        let cell = |x: i64| rock.texel(x, 8);
+        assert!((0..4).any(|c| (cell(c * 16 + 8) - cell(8)).abs() > 0.05));
     }
 }
