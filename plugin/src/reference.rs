@@ -379,7 +379,7 @@ pub fn mean_error_in_texels(
 mod tests {
     use super::*;
 
-    /// The constants this reference shares with march.wgsl and max_mip.wgsl have the same
+    /// The constants this reference shares with march.wgsl, max_mip.wgsl and triplanar.wgsl have the same
     /// values in both.
     #[test]
     fn constants_match_their_wgsl_twins() {
@@ -390,6 +390,7 @@ mod tests {
             format!("const SEED_SHADOW_SOFTENING: f32 = {SEED_SHADOW_SOFTENING:?};"),
             format!("const MAX_MIP_STEPS: u32 = {}u;", max_mip::MAX_MIP_STEPS),
             format!("const MAX_MIP_TOUCH: f32 = {:?};", max_mip::MAX_MIP_TOUCH),
+            format!("const TRIPLANAR_MIN_SHARE: f32 = {TRIPLANAR_MIN_SHARE:?};"),
         ] {
             assert!(source.contains(&declaration), "WGSL lacks `{declaration}`");
         }
