@@ -324,7 +324,7 @@ macro_rules! material_parameters {
         }
     };
     // A malformed list: the `@struct` arms have said what is wrong.
-    (@items [$($names:tt)*] $material:ident { $($body:tt)* }) => {};
+    (@items [$($names:tt)*] [$($extras:tt)*] $material:ident { $($body:tt)* }) => {};
     // The full form: the preset, patch and GPU structs under the given names.
     (
         $(#[$attr:meta])*
