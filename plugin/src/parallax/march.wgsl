@@ -26,6 +26,9 @@ const SEED_SHADOW_SOFTENING: f32 = 0.58;
 
 // Set on a layered material's pipelines: every height is the blend of its layers' (`LayerBlend`).
 override LAYERED: bool = false;
+// Set on a triplanar material's pipelines: every height is the mix of the three axis
+// projections' (`TriplanarProjection`; triplanar.wgsl builds it and shades with it).
+override TRIPLANAR: bool = false;
 
 struct HeightField {
     // Texture channel holding the height: 0 = red, 3 = alpha.
@@ -118,6 +121,58 @@ struct LayerBlend {
 struct FieldMapping {
     layers: LayerBlend,
     triplanar: TriplanarProjection,
+}
+
+// Triplanar mapping as the march reads it: the march moves in the tangent plane where the view
+// ray enters, its coordinate (a, b) the point origin + tangent · a + bitangent · b in texture
+// units (world units / triplanar_scale), whose height the three axis projections give, mixed by
+// the weights of the entry point's normal (fixed along the ray: one field for the ray, its
+// shadow rays and relief occlusion).
+struct TriplanarProjection {
+    // Where the view ray entered, in texture units, moved by whole repeats into 0..1 (the
+    // projections repeat, and small numbers keep the march's coordinates exact far from the
+    // world's origin).
+    origin: vec3<f32>,
+    // The tangent plane's axes, in world directions (unit): the march's coordinate axes.
+    tangent: vec3<f32>,
+    bitangent: vec3<f32>,
+    // The projections' shares along X, Y and Z (`triplanar_weights`).
+    weights: vec3<f32>,
+    // The sign of the normal along each axis: which way each projection faces.
+    sides: vec3<f32>,
+}
+
+// The texture coordinate of `q` (texture units; a point, or a change of one) in the projection
+// along `axis` (0 = X, 1 = Y, 2 = Z): seen from outside along its axis, u runs to the right and
+// v down the image (`reference::triplanar_uvs`).
+fn projection_uv(q: vec3<f32>, sides: vec3<f32>, axis: u32) -> vec2<f32> {
+    if axis == 0u {
+        return vec2<f32>(-q.z * sides.x, -q.y);
+    }
+    if axis == 1u {
+        return vec2<f32>(q.x, q.z * sides.y);
+    }
+    return vec2<f32>(q.x * sides.z, -q.y);
+}
+
+// The point (texture units) of the march's coordinate `planar`.
+fn projected_point(projection: TriplanarProjection, planar: vec2<f32>) -> vec3<f32> {
+    return projection.origin + projection.tangent * planar.x + projection.bitangent * planar.y;
+}
+
+// The height at the march's coordinate `planar`, read at mip `level`: the projections' heights
+// mixed (one fetch for each projection with a share).
+fn triplanar_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField,
+    projection: TriplanarProjection, planar: vec2<f32>, level: f32) -> f32 {
+    let q = projected_point(projection, planar);
+    var height = 0.0;
+    for (var axis = 0u; axis < 3u; axis += 1u) {
+        if projection.weights[axis] > 0.0 {
+            let texel = textureSampleLevel(height_texture, height_sampler, projection_uv(q, projection.sides, axis), level);
+            height += projection.weights[axis] * height_in_channel(texel, field.channel, field.depth_convention);
+        }
+    }
+    return height;
 }
 
 // Each layer's height at `uv` (1 the top), the heights fetched once where the layers tile alike.

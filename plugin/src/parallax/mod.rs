@@ -39,7 +39,7 @@ use crate::material::{
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{App, AssetId, Handle, Image, Plugin};
 
-/// Triplanar mapping's projections, as the march and the shading read them.
+/// Triplanar mapping's projection of a pixel, and its colour and normal at the visible point.
 pub const PARALLAX_TRIPLANAR: WgslFile = crate::wgsl_file!("parallax/triplanar.wgsl");
 /// The ray march, LOD and self-shadow functions of the parallax material.
 pub const PARALLAX_MARCH: WgslFile = crate::wgsl_file!("parallax/march.wgsl");
@@ -78,8 +78,8 @@ macro_rules! parallax_shader {
                 shaders::TANGENT_SPACE,
                 crate::lighting::LIGHTING,
                 HEIGHT_CHANNEL,
-                PARALLAX_TRIPLANAR,
                 PARALLAX_MARCH,
+                PARALLAX_TRIPLANAR,
                 PARALLAX_MAX_MIP,
                 PARALLAX_ENTRY,
                 $($more,)*

@@ -1,34 +1,13 @@
 // Triplanar mapping (`TextureMapping::Triplanar`): the material's maps projected along each
 // world axis and mixed by how squarely the surface faces each. `reference/triplanar.rs` is the
-// CPU reference of the projections and their weights.
-//
-// The march moves in the tangent plane where the view ray enters: its coordinate (a, b) is the
-// point origin + tangent · a + bitangent · b, in texture units (world units / triplanar_scale),
-// and the height there is the projections' heights mixed by the weights of the normal where the
-// ray entered. The weights stay fixed along the ray, so the ray and its shadow rays march one
-// field, and a point's height is what the three projections of the same world point say.
-
-// Set on a triplanar material's pipelines.
-override TRIPLANAR: bool = false;
+// CPU reference of the projections and their weights. How the march reads the mixed height
+// field (`TriplanarProjection`, `triplanar_height`) is in march.wgsl; here, what a pixel's
+// projection is, and its colour and shading normal at the visible point.
 
 // The share of the mix below which a projection is left out (the others renormalized): the
 // shares are lowered by it before they are normalized, so they stay continuous, and a surface
 // that mostly faces one axis reads one texture per height sample instead of three.
 const TRIPLANAR_MIN_SHARE: f32 = 0.05;
-
-struct TriplanarProjection {
-    // Where the view ray entered, in texture units, moved by whole repeats into 0..1 (the
-    // projections repeat, and small numbers keep the march's coordinates exact far from the
-    // world's origin).
-    origin: vec3<f32>,
-    // The tangent plane's axes, in world directions (unit): the march's coordinate axes.
-    tangent: vec3<f32>,
-    bitangent: vec3<f32>,
-    // The projections' shares along X, Y and Z (`triplanar_weights`).
-    weights: vec3<f32>,
-    // The sign of the normal along each axis: which way each projection faces.
-    sides: vec3<f32>,
-}
 
 // The shares of the projections along X, Y and Z for the unit `normal`: each axis's component
 // raised to `sharpness`, normalized, lowered by TRIPLANAR_MIN_SHARE and normalized again.
@@ -59,39 +38,6 @@ fn dominant_axis(weights: vec3<f32>) -> u32 {
 fn march_frame(normal: vec3<f32>, sharpness: f32) -> TangentFrame {
     let sides = select(vec3<f32>(-1.0), vec3<f32>(1.0), normal >= vec3<f32>(0.0));
     return projection_frame(normal, sides, dominant_axis(triplanar_weights(normal, sharpness)));
-}
-
-// The texture coordinate of `q` (texture units; a point, or a change of one) in the projection
-// along `axis` (0 = X, 1 = Y, 2 = Z): seen from outside along its axis, u runs to the right and
-// v down the image (`reference::triplanar_uvs`).
-fn projection_uv(q: vec3<f32>, sides: vec3<f32>, axis: u32) -> vec2<f32> {
-    if axis == 0u {
-        return vec2<f32>(-q.z * sides.x, -q.y);
-    }
-    if axis == 1u {
-        return vec2<f32>(q.x, q.z * sides.y);
-    }
-    return vec2<f32>(q.x * sides.z, -q.y);
-}
-
-// The point (texture units) of the march's coordinate `planar`.
-fn projected_point(projection: TriplanarProjection, planar: vec2<f32>) -> vec3<f32> {
-    return projection.origin + projection.tangent * planar.x + projection.bitangent * planar.y;
-}
-
-// The height at the march's coordinate `planar`, read at mip `level`: the projections' heights
-// mixed (one fetch for each projection with a share).
-fn triplanar_height(height_texture: texture_2d<f32>, height_sampler: sampler, field: HeightField,
-    projection: TriplanarProjection, planar: vec2<f32>, level: f32) -> f32 {
-    let q = projected_point(projection, planar);
-    var height = 0.0;
-    for (var axis = 0u; axis < 3u; axis += 1u) {
-        if projection.weights[axis] > 0.0 {
-            let texel = textureSampleLevel(height_texture, height_sampler, projection_uv(q, projection.sides, axis), level);
-            height += projection.weights[axis] * height_in_channel(texel, field.channel, field.depth_convention);
-        }
-    }
-    return height;
 }
 
 // The frame in which the projection along `axis` lays its normal map on the surface of unit
