@@ -225,7 +225,11 @@ fn selected_material(ui: &mut Ui, app: &mut App, state: &mut PanelState, entity:
     let mut edited = material.clone();
     let mut changed = edit_material(ui, &mut edited);
     ui.separator();
-    changed |= state.presets.show(ui, &mut edited);
+    changed |= state.presets.show(
+        ui,
+        &mut edited,
+        app.resources.get_mut::<pom::Assets<pom::Image>>(),
+    );
     if ui
         .button("Reset to defaults")
         .on_hover_text("Puts every parameter back to Tatarchuk's defaults (textures stay).")

@@ -2,7 +2,7 @@
 //! in the panel; the material is only changed by a load that fully succeeded.
 
 use egui::{Color32, Ui};
-use pom::{ParallaxOcclusionMaterial, PomPreset};
+use pom::{Assets, Image, ParallaxOcclusionMaterial, PomPreset};
 
 /// Default preset file name offered in the path field.
 pub const DEFAULT_PRESET_PATH: &str = "material.ron";
@@ -34,9 +34,41 @@ impl Default for PresetControls {
     }
 }
 
+/// The preset at `path` and the layers its files describe (relative to its folder), added to
+/// `images`; nothing is added unless all of it loads.
+fn load(
+    path: &str,
+    images: Option<&mut Assets<Image>>,
+) -> Result<(PomPreset, Option<pom::ParallaxLayers>), String> {
+    let preset = PomPreset::load(path).map_err(|error| error.to_string())?;
+    let folder = std::path::Path::new(path)
+        .parent()
+        .filter(|parent| !parent.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    let files = preset
+        .read_layer_files(folder, pom::files::FileAccess::InsideFolder)
+        .map_err(|error| error.to_string())?;
+    let layers = match (files, images) {
+        (None, _) => None,
+        (Some(files), Some(images)) => Some(
+            files
+                .into_layers(images)
+                .map_err(|error| error.to_string())?,
+        ),
+        (Some(_), None) => return Err("no image store for the preset's layers".into()),
+    };
+    Ok((preset, layers))
+}
+
 impl PresetControls {
-    /// Shows the path field and the buttons for `material`; returns whether it changed.
-    pub fn show(&mut self, ui: &mut Ui, material: &mut ParallaxOcclusionMaterial) -> bool {
+    /// Shows the path field and the buttons for `material` (a preset's layer files are added
+    /// to `images`); returns whether it changed.
+    pub fn show(
+        &mut self,
+        ui: &mut Ui,
+        material: &mut ParallaxOcclusionMaterial,
+        images: Option<&mut Assets<Image>>,
+    ) -> bool {
         let mut changed = false;
         ui.horizontal(|ui| {
             let label = ui.label("Preset file").on_hover_text(
@@ -63,8 +95,11 @@ impl PresetControls {
                 )
                 .clicked()
             {
-                self.status = Some(match PomPreset::load(&self.path) {
-                    Ok(preset) => {
+                self.status = Some(match load(&self.path, images) {
+                    Ok((preset, layers)) => {
+                        if let Some(layers) = layers {
+                            material.layers = Some(layers);
+                        }
                         material.apply_preset(&preset);
                         changed = true;
                         Status::Done(format!("loaded {}", self.path))
