@@ -243,6 +243,12 @@ impl<T> Assets<T> {
         self.entry(asset.asset_id()).is_some()
     }
 
+    /// A count that grows with every asset added or borrowed mutably: where two counts are
+    /// equal, no asset was added or changed in between.
+    pub fn changes(&self) -> u64 {
+        self.next_version
+    }
+
     /// Number of stored assets.
     pub fn len(&self) -> usize {
         self.slots

@@ -9,6 +9,7 @@ use super::Vertex;
 use super::derived_textures::{
     DerivedTexture, DerivedTextureBuilds, DerivedTextureCache, GpuDerivedTexture,
 };
+use super::scatter_upload::ScatterQueue;
 use crate::{AssetId, Assets, Image, Mesh, Pixels, TextureKind};
 
 /// A texture as it is bound on the GPU (after any downscaling at upload).
@@ -159,6 +160,7 @@ pub struct GpuAssets {
     images: HashMap<AssetId<Image>, Cached<GpuImage>>,
     derived: DerivedTextureCache,
     next_upload_serial: u64,
+    scatters: ScatterQueue,
 }
 
 impl GpuAssets {
@@ -181,6 +183,7 @@ impl GpuAssets {
             images: HashMap::new(),
             derived: DerivedTextureCache::new(gpu),
             next_upload_serial: 0,
+            scatters: ScatterQueue::default(),
         }
     }
 
@@ -294,6 +297,12 @@ impl GpuAssets {
     /// before its phases.
     pub(crate) fn pending_derived_builds(&self) -> &DerivedTextureBuilds {
         self.derived.pending_builds()
+    }
+
+    /// The per-draw buffers' scattered uploads queued in the Prepare stage, for the frame to
+    /// record before its phases.
+    pub(crate) fn scatters(&mut self) -> &mut ScatterQueue {
+        &mut self.scatters
     }
 
     /// Forgets the queued builds: the frame that recorded them was submitted.

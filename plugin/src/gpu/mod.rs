@@ -13,6 +13,7 @@ pub(crate) mod layout;
 mod object_buffer;
 mod pipeline_compilation;
 mod readback;
+mod scatter_upload;
 mod texture_bind_groups;
 mod timing;
 mod vertex;
@@ -33,6 +34,8 @@ pub use layout::{ShaderEntry, clearing_attachment};
 pub use object_buffer::ObjectBuffer;
 pub use pipeline_compilation::{PipelineCompilation, wait_for_pipelines};
 pub use readback::{CaptureError, read_rgba8, read_rgba32f, read_texture, read_texture_level};
+pub use scatter_upload::SCATTER_SHADER;
+pub(crate) use scatter_upload::ScatterQueue;
 pub(crate) use texture_bind_groups::{BoundTextures, TextureBindGroups};
 pub use texture_bind_groups::{MAX_MATERIAL_TEXTURES, MaterialTextures};
 pub use timing::{

@@ -9,22 +9,28 @@ use std::ops::Range;
 
 use glam::Mat4;
 
+mod draw_entries;
+mod in_place;
+#[cfg(test)]
+mod in_place_tests;
+
 use super::deferred::{DeferredResolve, ResolveTargets};
-use super::draw_order::{SortEntry, SortMemory, view_depth};
+use super::draw_order::{SortEntry, SortMemory};
+use super::extract::ExtractedMaterials;
 use super::followed_models::FollowedModels;
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{FrameVariant, MaterialPipelines, PipelineSetup};
-use super::{DrawView, MeshLodBounds, MeshLodCache, PixelFootprint};
-use super::{MAX_MATERIAL_TEXTURES, Material, TextureFacts};
-use crate::gpu::MAX_DERIVED_TEXTURES;
-use crate::gpu::ObjectBuffer;
+use super::{MAX_MATERIAL_TEXTURES, Material};
+use super::{MeshLodCache, PixelFootprint};
 use crate::gpu::{BoundTextures, TextureBindGroups};
 use crate::gpu::{GpuAssets, GpuContext, UploadStats};
+use crate::gpu::{ObjectBuffer, ScatterQueue};
 use crate::render::PhaseBindings;
 use crate::render::anti_aliasing::ObjectMotions;
 use crate::render::shaders::ComposedShader;
 use crate::render::{FrameUniformBuffer, MeshTransform, VisibilityIds};
 use crate::{AssetId, Assets, Image, Mesh};
+use draw_entries::{bound_textures, draw_entry, prepare_textures};
 
 /// One entity's draw as the Extract stage copied it.
 #[derive(Clone, Debug)]
@@ -126,6 +132,26 @@ pub(crate) struct MaterialBatches<M: Material> {
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
     uniform_data: Vec<M::PerDraw>,
     sorted_uniforms: Vec<M::PerDraw>,
+    /// Each draw's slot in the sorted order (the inverse of `order`'s draw indices).
+    slot_of_draw: Vec<u32>,
+    /// What the last prepared frame saw: where it equals this frame's, only the draws that
+    /// changed are prepared again (in_place.rs).
+    prepared_view: Option<PreparedView>,
+    /// On a frame prepared in place, the slots (increasing) whose data may have changed.
+    dirty_slots: Vec<usize>,
+    /// Whether the last frame was prepared in place.
+    pub(crate) prepared_in_place: bool,
+}
+
+/// What every draw's key, order and motion depend on besides the draw itself.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PreparedView {
+    eye: (glam::Vec3, glam::Vec3),
+    footprint: Option<PixelFootprint>,
+    variant: FrameVariant,
+    deferred: bool,
+    /// Whether motions were numbered (a TAA frame).
+    motions: bool,
 }
 
 impl<M: Material> MaterialBatches<M> {
@@ -184,12 +210,7 @@ impl<M: Material> MaterialBatches<M> {
         Self {
             pipelines: MaterialPipelines::new(PipelineSetup {
                 shader: module,
-                declares: FrameVariant {
-                    scene_shadows: shader.files.contains(&crate::render::shaders::SHADOWS),
-                    environment: shader
-                        .files
-                        .contains(&crate::render::environment::ENVIRONMENT),
-                },
+                declares: declared_variant(&shader),
                 layout,
                 resolve_layout,
                 color_format,
@@ -210,31 +231,59 @@ impl<M: Material> MaterialBatches<M> {
             followed: FollowedModels::default(),
             uniform_data: Vec::new(),
             sorted_uniforms: Vec::new(),
+            slot_of_draw: Vec::new(),
+            prepared_view: None,
+            dirty_slots: Vec::new(),
+            prepared_in_place: false,
         }
     }
 
     /// Uploads the meshes and textures the draws use, computes each draw's key and uniform from
     /// the textures as bound, sorts and batches the draws, writes the per-draw data that
     /// changed, and prepares bind groups and pipelines. Counts what it uploaded in `stats`.
+    /// Where the view and the draws' entities are last frame's and what changed keeps its place
+    /// in the order, only the changed draws are prepared again (in_place.rs).
     pub(crate) fn prepare(
         &mut self,
         inputs: &PrepareInputs<'_>,
-        draws: &[ExtractedDraw<M>],
+        extracted: &ExtractedMaterials<M>,
         assets: &mut GpuAssets,
         lod_cache: &mut MeshLodCache,
         stats: &mut UploadStats,
-        FrameNumbers { ids, motions }: FrameNumbers<'_>,
+        FrameNumbers { ids, mut motions }: FrameNumbers<'_>,
     ) {
-        self.gather(inputs, draws, assets, lod_cache, stats);
-        SortEntry::sort(&mut self.order, &mut self.sort_memory);
-        self.update_transforms(draws);
-        self.update_motions(draws, motions);
-        self.sorted_uniforms.clear();
-        self.sorted_uniforms
-            .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));
-        self.merge_batches();
-        self.assign_visibility_ids(inputs.deferred.is_some().then_some(ids), assets);
-        self.upload_draw_data(inputs, stats);
+        let draws = &extracted.draws;
+        let view = PreparedView {
+            eye: inputs.eye,
+            footprint: inputs.footprint.copied(),
+            variant: inputs.variant,
+            deferred: inputs.deferred.is_some(),
+            motions: motions.is_some(),
+        };
+        // Past a quarter of the draws changed, preparing all of them again costs less.
+        let in_place = self.prepared_view == Some(view)
+            && extracted.same_entities
+            && extracted.changed.len() * 4 <= draws.len()
+            && self.slot_of_draw.len() == draws.len()
+            && self.update_in_place(inputs, extracted, assets, lod_cache, stats, &mut motions);
+        if !in_place {
+            self.gather(inputs, draws, assets, lod_cache, stats);
+            SortEntry::sort(&mut self.order, &mut self.sort_memory);
+            self.slot_of_draw.resize(self.order.len(), 0);
+            for (slot, entry) in self.order.iter().enumerate() {
+                self.slot_of_draw[entry.draw] = slot as u32;
+            }
+            self.update_transforms(draws);
+            self.update_motions(draws, motions);
+            self.sorted_uniforms.clear();
+            self.sorted_uniforms
+                .extend(self.order.iter().map(|entry| self.uniform_data[entry.draw]));
+            self.merge_batches();
+        }
+        self.prepared_view = Some(view);
+        self.prepared_in_place = in_place;
+        self.assign_visibility_ids(inputs.deferred.is_some().then_some(ids), assets, in_place);
+        self.upload_draw_data(inputs, (stats, assets.scatters()), in_place);
         self.textures.prepare(
             inputs.gpu,
             assets,
@@ -273,30 +322,9 @@ impl<M: Material> MaterialBatches<M> {
                 facts = prepare_textures(inputs, textures, assets, stats);
                 last_textures = Some(textures);
             }
-            let mut view = DrawView {
-                model: draw.model,
-                bounds,
-                footprint: inputs.footprint,
-            };
-            let uniform = draw.material.per_draw(&facts);
-            let key = draw
-                .material
-                .draw_key(draw.material.key(), &uniform, &mut view);
+            let (uniform, entry) = draw_entry(inputs, (draw, index), bounds, &facts, textures);
             self.uniform_data.push(uniform);
-            // Blended draws are ordered by their centre, as a mesh placed away from its origin
-            // (a glTF primitive with its vertices where it stands) has it elsewhere; the
-            // prepass by the nearest point of the bounding sphere (a floor reaching the eye is
-            // near, wherever its centre is).
-            let (centre, radius) = bounding_sphere(draw.model, bounds.as_ref());
-            let centre_view_depth = view_depth(centre, inputs.eye);
-            self.order.push(SortEntry::new(
-                draw,
-                index,
-                (key, textures),
-                inputs.eye,
-                centre_view_depth - radius,
-                M::blends(key).then_some(centre_view_depth),
-            ));
+            self.order.push(entry);
         }
     }
 
@@ -384,11 +412,19 @@ impl<M: Material> MaterialBatches<M> {
     }
 
     /// Gives each batch its run of visibility `ids` (on deferred frames; else none) and each
-    /// instance the id of its first triangle.
-    fn assign_visibility_ids(&mut self, ids: Option<&mut VisibilityIds>, assets: &GpuAssets) {
+    /// instance the id of its first triangle. `in_place`: the batches are last frame's, whose
+    /// instances hold their ids already where a batch's run is the same.
+    fn assign_visibility_ids(
+        &mut self,
+        ids: Option<&mut VisibilityIds>,
+        assets: &GpuAssets,
+        in_place: bool,
+    ) {
         let Some(ids) = ids else {
-            for transform in &mut self.transform_data {
-                transform.first_visibility_id = 0;
+            if !in_place {
+                for transform in &mut self.transform_data {
+                    transform.first_visibility_id = 0;
+                }
             }
             return;
         };
@@ -399,9 +435,13 @@ impl<M: Material> MaterialBatches<M> {
             let count =
                 u64::from(batch.instances.end - batch.instances.start) * u64::from(batch.triangles);
             // `allocate` keeps the end within u32.
-            batch.visibility_ids = ids
+            let run = ids
                 .allocate(count)
                 .map_or(0..0, |first| first..first + count as u32);
+            if in_place && run == batch.visibility_ids {
+                continue;
+            }
+            batch.visibility_ids = run;
             let first_id = batch.visibility_ids.start;
             for (k, slot) in batch.instances.clone().enumerate() {
                 self.transform_data[slot as usize].first_visibility_id = if first_id == 0 {
@@ -409,17 +449,53 @@ impl<M: Material> MaterialBatches<M> {
                 } else {
                     first_id + k as u32 * batch.triangles
                 };
+                if in_place {
+                    self.dirty_slots.push(slot as usize);
+                }
             }
         }
     }
 
-    /// Writes the changed ranges of the per-draw transforms and uniforms, and remakes the frame
-    /// bind groups where a buffer grew (or the depth bindings changed).
-    fn upload_draw_data(&mut self, inputs: &PrepareInputs<'_>, stats: &mut UploadStats) {
+    /// Writes the changed ranges of the per-draw transforms and uniforms (`in_place`: among the
+    /// dirty slots only), and remakes the frame bind groups where a buffer grew (or the depth
+    /// bindings changed).
+    fn upload_draw_data(
+        &mut self,
+        inputs: &PrepareInputs<'_>,
+        (stats, scatters): (&mut UploadStats, &mut ScatterQueue),
+        in_place: bool,
+    ) {
         let gpu = inputs.gpu;
-        let (transform_bytes, transforms_grew) = self.transforms.upload(gpu, &self.transform_data);
-        let (uniform_bytes, uniforms_grew) = self.uniforms.upload(gpu, &self.sorted_uniforms);
-        stats.uniform_bytes += transform_bytes + uniform_bytes;
+        let candidates = in_place.then(|| {
+            self.dirty_slots.sort_unstable();
+            self.dirty_slots.dedup();
+            &self.dirty_slots
+        });
+        let in_place_bytes = candidates.and_then(|slots| {
+            Some(
+                self.transforms
+                    .upload_candidates(gpu, (&self.transform_data, slots), scatters)?
+                    + self.uniforms.upload_candidates(
+                        gpu,
+                        (&self.sorted_uniforms, slots),
+                        scatters,
+                    )?,
+            )
+        });
+        let (bytes, grew) = match in_place_bytes {
+            Some(bytes) => (bytes, false),
+            None => {
+                let (transform_bytes, transforms_grew) =
+                    self.transforms.upload(gpu, &self.transform_data);
+                let (uniform_bytes, uniforms_grew) =
+                    self.uniforms.upload(gpu, &self.sorted_uniforms);
+                (
+                    transform_bytes + uniform_bytes,
+                    transforms_grew || uniforms_grew,
+                )
+            }
+        };
+        stats.uniform_bytes += bytes;
         self.frame_groups.refresh(
             gpu,
             &DrawBuffers {
@@ -428,7 +504,7 @@ impl<M: Material> MaterialBatches<M> {
                 uniforms: self.uniforms.buffer(),
             },
             inputs.depth,
-            transforms_grew || uniforms_grew,
+            grew,
         );
     }
 
@@ -483,49 +559,12 @@ fn resolve_pipeline_layout<M: Material>(
     })
 }
 
-/// The world-space centre and radius of the bounding sphere of a mesh with `bounds` drawn with
-/// `model` (without bounds: its origin, radius 0).
-fn bounding_sphere(model: Mat4, bounds: Option<&MeshLodBounds>) -> (glam::Vec3, f32) {
-    bounds.map_or((model.w_axis.truncate(), 0.0), |bounds| {
-        let scale = model
-            .x_axis
-            .length()
-            .max(model.y_axis.length())
-            .max(model.z_axis.length());
-        (model.transform_point3(bounds.center), bounds.radius * scale)
-    })
-}
-
-/// The textures `material` binds; entries past the declared derived slots are not bound, so
-/// they must not split batches.
-fn bound_textures<M: Material>(material: &M) -> BoundTextures {
-    let derived_slots = M::DERIVED_TEXTURE_SLOTS.min(MAX_DERIVED_TEXTURES);
-    let mut derived = material.derived_textures();
-    derived[derived_slots..].fill(None);
-    BoundTextures {
-        images: material.textures(),
-        derived,
+/// What `shader` compiles in of the frame's optional bindings.
+fn declared_variant(shader: &ComposedShader) -> FrameVariant {
+    FrameVariant {
+        scene_shadows: shader.files.contains(&crate::render::shaders::SHADOWS),
+        environment: shader
+            .files
+            .contains(&crate::render::environment::ENVIRONMENT),
     }
-}
-
-/// Uploads `textures` where needed (images, then the textures derived from them) and returns
-/// each slot's image as the GPU holds it.
-fn prepare_textures(
-    inputs: &PrepareInputs<'_>,
-    textures: BoundTextures,
-    assets: &mut GpuAssets,
-    stats: &mut UploadStats,
-) -> [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] {
-    let mut facts = [None; MAX_MATERIAL_TEXTURES];
-    for (slot, image) in textures.images.iter().enumerate() {
-        facts[slot] = image.and_then(|image| {
-            stats.images += u32::from(assets.prepare_image(inputs.gpu, inputs.images, image));
-            assets.image(image).map(|image| image.facts())
-        });
-    }
-    // Their sources are among the images: uploaded (or re-uploaded) just above.
-    for derived in textures.derived.iter().flatten() {
-        stats.derived += u32::from(assets.prepare_derived(inputs.gpu, *derived));
-    }
-    facts
 }

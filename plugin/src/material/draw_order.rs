@@ -76,6 +76,44 @@ impl<K: Copy + Ord> SortEntry<K> {
         }
     }
 
+    /// What orders the entries: batch (blending, pipeline, shadow role, textures, mesh), then
+    /// depth, then the world's order.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn order_key(
+        &self,
+    ) -> (bool, u32, K, bool, BoundTextures, AssetId<Mesh>, u32, usize) {
+        (
+            self.blends,
+            self.far_first,
+            self.key,
+            self.casts_shadows,
+            self.textures,
+            self.mesh,
+            self.view_depth,
+            self.draw,
+        )
+    }
+
+    /// Whether `other` belongs to the same batch as this entry and stands in the same place
+    /// among the batches (all but depth and draw agree).
+    pub(super) fn same_batch(&self, other: &Self) -> bool {
+        (
+            self.blends,
+            self.far_first,
+            self.key,
+            self.casts_shadows,
+            self.textures,
+            self.mesh,
+        ) == (
+            other.blends,
+            other.far_first,
+            other.key,
+            other.casts_shadows,
+            other.textures,
+            other.mesh,
+        )
+    }
+
     /// Sorts `order` (entries in extraction order: entry `i` is draw `i`): opaque batches first
     /// (pipeline, textures, mesh), then nearest first within a batch: the prepass then rejects
     /// hidden copies early (sandbox/BENCHMARKS.md, "Stacked planes (overdraw) and depth offset").
@@ -103,18 +141,7 @@ impl<K: Copy + Ord> SortEntry<K> {
             unsorted.extend(last_sorted.iter().map(|&draw| order[draw]));
             std::mem::swap(order, unsorted);
         }
-        let sort_key = |entry: &Self| {
-            (
-                entry.blends,
-                entry.far_first,
-                entry.key,
-                entry.casts_shadows,
-                entry.textures,
-                entry.mesh,
-                entry.view_depth,
-                entry.draw,
-            )
-        };
+        let sort_key = |entry: &Self| entry.order_key();
         if !order.is_sorted_by_key(sort_key) {
             order.sort_unstable_by_key(sort_key);
         }

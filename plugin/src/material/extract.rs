@@ -12,9 +12,16 @@ use super::batches::ExtractedDraw;
 use super::registry::MaterialRegistry;
 use crate::{GlobalTransform, Handle, Mesh, NotShadowCaster, NotShadowReceiver, Resources};
 
-/// This frame's draws of `M`, as extracted. A resource.
+/// This frame's draws of `M`, as extracted, and which of them changed since the last frame.
+/// A resource.
 pub(crate) struct ExtractedMaterials<M> {
     pub(crate) draws: Vec<ExtractedDraw<M>>,
+    /// The draws whose mesh, transform, shadow roles or material changed this frame, in order;
+    /// meaningful where `same_entities`.
+    pub(crate) changed: Vec<usize>,
+    /// Whether every draw is the same entity's as last frame, and no draw came or went: the
+    /// Prepare stage may then update only the `changed` ones.
+    pub(crate) same_entities: bool,
 }
 
 /// The problems last logged for each entity whose material of type `M` is being clamped, so a
@@ -67,7 +74,11 @@ pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut 
         .get::<MaterialRegistry>()
         .is_some_and(MaterialRegistry::draws_meshes_without_material::<M>);
     if !resources.contains::<ExtractedMaterials<M>>() {
-        resources.insert(ExtractedMaterials::<M> { draws: Vec::new() });
+        resources.insert(ExtractedMaterials::<M> {
+            draws: Vec::new(),
+            changed: Vec::new(),
+            same_entities: false,
+        });
     }
     if !resources.contains::<MaterialWarnings<M>>() {
         resources.insert(MaterialWarnings::<M>(HashMap::new(), PhantomData));
@@ -88,6 +99,8 @@ fn extract_into<M: Material>(
     extracted: &mut ExtractedMaterials<M>,
     warnings: &mut MaterialWarnings<M>,
 ) {
+    extracted.changed.clear();
+    extracted.same_entities = true;
     let mut writer = DrawWriter {
         extracted,
         warnings,
@@ -100,10 +113,11 @@ fn extract_into<M: Material>(
     writer.finish(world);
 }
 
-/// Rewrites last frame's draws in place, slot after slot: a material equal to the one in the
-/// same slot last frame is not cloned again (a clone bumps every texture handle's reference
-/// count, and dropping the old one lowers it: tens of thousands of atomic operations a frame
-/// for nothing).
+/// Rewrites last frame's draws in place, slot after slot: a draw equal to the one in the same
+/// slot last frame is left alone (not even its material's problems are looked at again), and a
+/// material equal to last frame's is not cloned again (a clone bumps every texture handle's
+/// reference count, and dropping the old one lowers it: tens of thousands of atomic operations
+/// a frame for nothing).
 struct DrawWriter<'a, M> {
     extracted: &'a mut ExtractedMaterials<M>,
     warnings: &'a mut MaterialWarnings<M>,
@@ -177,6 +191,19 @@ impl<M: Material> DrawWriter<'_, M> {
         shadows: ShadowRoles,
     ) {
         let model = transform.to_mat4();
+        let slot = self.written;
+        // Last frame's draw in this slot, where it is this one unchanged: nothing to write (its
+        // transform was finite then).
+        if let Some(draw) = self.extracted.draws.get(slot)
+            && draw.entity == entity
+            && draw.model == model
+            && draw.mesh == mesh.id()
+            && (draw.casts_shadows, draw.receives_shadows) == (shadows.casts, shadows.receives)
+            && draw.material == *material
+        {
+            self.written += 1;
+            return;
+        }
         if !model.is_finite() {
             log::warn!(
                 "{} mesh {:?} has a non-finite transform: not drawn",
@@ -185,34 +212,40 @@ impl<M: Material> DrawWriter<'_, M> {
             );
             return;
         }
-        if log_problems {
-            self.warnings.log_changed(entity, material);
-        }
-        match self.extracted.draws.get_mut(self.written) {
-            Some(draw) => {
-                draw.entity = entity;
-                draw.mesh = mesh.id();
-                draw.model = model;
-                draw.casts_shadows = shadows.casts;
-                draw.receives_shadows = shadows.receives;
-                if draw.material != *material {
-                    draw.material = material.clone();
-                }
+        self.written += 1;
+        let Some(draw) = self.extracted.draws.get_mut(slot) else {
+            if log_problems {
+                self.warnings.log_changed(entity, material);
             }
-            None => self.extracted.draws.push(ExtractedDraw {
+            self.extracted.same_entities = false;
+            self.extracted.draws.push(ExtractedDraw {
                 entity,
                 mesh: mesh.id(),
                 model,
                 material: material.clone(),
                 casts_shadows: shadows.casts,
                 receives_shadows: shadows.receives,
-            }),
+            });
+            return;
+        };
+        if log_problems {
+            self.warnings.log_changed(entity, material);
         }
-        self.written += 1;
+        self.extracted.same_entities &= draw.entity == entity;
+        self.extracted.changed.push(slot);
+        draw.entity = entity;
+        draw.mesh = mesh.id();
+        draw.model = model;
+        draw.casts_shadows = shadows.casts;
+        draw.receives_shadows = shadows.receives;
+        if draw.material != *material {
+            draw.material = material.clone();
+        }
     }
 
     /// Drops last frame's draws past this frame's, and the warnings of despawned entities.
     fn finish(self, world: &World) {
+        self.extracted.same_entities &= self.written == self.extracted.draws.len();
         self.extracted.draws.truncate(self.written);
         self.warnings.0.retain(|entity, _| world.contains(*entity));
     }

@@ -24,6 +24,10 @@ pub(super) struct FollowedModels {
     /// Where each of last frame's entities stands in `last`, made on the first miss of a frame.
     positions: Option<HashMap<hecs::Entity, usize>>,
     numbers: Vec<u32>,
+    /// The draws whose motion number was not 0 on the last frame.
+    moved: Vec<usize>,
+    /// A frame followed in place: each changed draw's motion number.
+    changed_numbers: Vec<(usize, u32)>,
 }
 
 impl FollowedModels {
@@ -38,14 +42,54 @@ impl FollowedModels {
         self.begin_frame();
         let mut numbers = std::mem::take(&mut self.numbers);
         numbers.clear();
-        for (entity, model) in draws {
-            numbers.push(match self.follow(entity, model) {
+        self.moved.clear();
+        for (draw, (entity, model)) in draws.enumerate() {
+            let number = match self.follow(entity, model) {
                 Some(previous) if previous != model => motions.push(previous, model),
                 _ => 0,
-            });
+            };
+            if number != 0 {
+                self.moved.push(draw);
+            }
+            numbers.push(number);
         }
         self.numbers = numbers;
         &self.numbers
+    }
+
+    /// Whether the last frame followed `draws` draws (a TAA frame of as many): a frame whose
+    /// draws are the same entities may then be followed in place.
+    pub(super) fn follows(&self, draws: usize) -> bool {
+        self.current.len() == draws
+    }
+
+    /// Follows a TAA frame whose draws are last frame's entities in the same order, only the
+    /// `changed` ones (draw, model) with a new model: adds each motion to `motions` and returns
+    /// the motion number of every draw whose number may differ from last frame's (those that
+    /// moved then, now still, and the changed ones, in that order; a later one wins).
+    pub(super) fn number_changed_motions(
+        &mut self,
+        changed: impl Iterator<Item = (usize, Mat4)>,
+        motions: &mut ObjectMotions,
+    ) -> &[(usize, u32)] {
+        self.positions = None;
+        let mut numbers = std::mem::take(&mut self.changed_numbers);
+        numbers.clear();
+        numbers.extend(self.moved.drain(..).map(|draw| (draw, 0)));
+        for (draw, model) in changed {
+            let previous = std::mem::replace(&mut self.current[draw].1, model);
+            let number = if previous == model {
+                0
+            } else {
+                motions.push(previous, model)
+            };
+            if number != 0 {
+                self.moved.push(draw);
+            }
+            numbers.push((draw, number));
+        }
+        self.changed_numbers = numbers;
+        &self.changed_numbers
     }
 
     /// Starts a TAA frame: the models recorded so far become last frame's.
@@ -81,6 +125,7 @@ impl FollowedModels {
         let any = !self.last.is_empty() || !self.current.is_empty();
         self.last.clear();
         self.current.clear();
+        self.moved.clear();
         self.positions = None;
         any
     }

@@ -32,9 +32,11 @@ pub use crate::parameters::{
     GpuParam, LimitError, Param, ParamError, ParamGroup, ParamKind, ParamSpec, ParamType,
     ParamValue, every_parameter_changed,
 };
+pub(crate) use batches::ExtractedDraw;
 pub use declare::{DeclaredMaterial, PresetExtras};
 pub use deferred::{DEFERRED_RESOLVE, deferred_twin};
 pub use draw_view::DrawView;
+pub(crate) use extract::ExtractedMaterials;
 pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
 pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};

@@ -336,7 +336,7 @@ fn prepare_frame<M: Material>(
     let mut stats = UploadStats::default();
     batches.prepare(
         &inputs,
-        &extracted.draws,
+        extracted,
         &mut renderer.assets,
         lod_cache,
         &mut stats,

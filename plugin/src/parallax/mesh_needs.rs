@@ -20,7 +20,8 @@ use glam::Vec3;
 use hecs::{Entity, World};
 
 use super::{ParallaxOcclusionMaterial, Silhouette, TextureMapping};
-use crate::{AssetId, Assets, Handle, Mesh, Name, Resources};
+use crate::material::{ExtractedDraw, ExtractedMaterials};
+use crate::{AssetId, Assets, Mesh, Name, Resources};
 
 /// Why `mesh` gives the curved silhouette no curvature (everywhere, or on some triangles).
 pub fn curvature_problem(mesh: &Mesh) -> Option<String> {
@@ -109,69 +110,100 @@ pub type CurvedSilhouetteWarnings = MeshWarnings<CurvedSilhouette>;
 /// The entities triplanar mapping was warned about. A resource.
 pub type TriplanarMeshWarnings = MeshWarnings<TriplanarMapping>;
 
+/// The meshes' change count when the draws were last looked at: while the entities and the
+/// meshes stay as they were, only the draws that changed are looked at again. A resource.
+#[derive(Debug, Default)]
+struct MeshesLookedAt(Option<u64>);
+
 /// The Extract stage's system that warns, once per entity and mesh, where a curved silhouette
 /// meets a mesh that gives it no curvature ([`curvature_problem`]), or triplanar mapping one
-/// without normals ([`triplanar_problem`]).
+/// without normals ([`triplanar_problem`]). It looks at the parallax draws the Extract stage
+/// copied this frame: all of them where entities came, went or a mesh changed, else the changed
+/// ones only.
 pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources) {
-    warn_about_meshes::<CurvedSilhouette>(
-        world,
-        resources,
-        |material| material.silhouette == Silhouette::Curved,
-        curvature_problem,
-        "the curved silhouette of {named} draws as off on its mesh",
-    );
-    warn_about_meshes::<TriplanarMapping>(
-        world,
-        resources,
-        |material| material.mapping == TextureMapping::Triplanar,
-        triplanar_problem,
-        "the triplanar mapping of {named} breaks at the edges of its mesh",
-    );
+    let (curved, triplanar) = {
+        let (Some(extracted), Some(meshes)) = (
+            resources.get::<ExtractedMaterials<ParallaxOcclusionMaterial>>(),
+            resources.get::<Assets<Mesh>>(),
+        ) else {
+            return;
+        };
+        let looked_at = resources.get::<MeshesLookedAt>().and_then(|seen| seen.0);
+        let draws: Vec<&ExtractedDraw<ParallaxOcclusionMaterial>> =
+            if extracted.same_entities && looked_at == Some(meshes.changes()) {
+                extracted
+                    .changed
+                    .iter()
+                    .map(|&index| &extracted.draws[index])
+                    .collect()
+            } else {
+                extracted.draws.iter().collect()
+            };
+        let curved = unsuitable_meshes::<CurvedSilhouette>(
+            (world, resources, meshes),
+            &draws,
+            |material| material.silhouette == Silhouette::Curved,
+            curvature_problem,
+            "the curved silhouette of {named} draws as off on its mesh",
+        );
+        let triplanar = unsuitable_meshes::<TriplanarMapping>(
+            (world, resources, meshes),
+            &draws,
+            |material| material.mapping == TextureMapping::Triplanar,
+            triplanar_problem,
+            "the triplanar mapping of {named} breaks at the edges of its mesh",
+        );
+        (curved, triplanar)
+    };
+    let changes = resources.get::<Assets<Mesh>>().map(Assets::changes);
+    resources.insert(MeshesLookedAt(changes));
+    if !curved.is_empty() {
+        resources
+            .get_or_default::<CurvedSilhouetteWarnings>()
+            .warned
+            .extend(curved);
+    }
+    if !triplanar.is_empty() {
+        resources
+            .get_or_default::<TriplanarMeshWarnings>()
+            .warned
+            .extend(triplanar);
+    }
 }
 
-/// Warns once per entity and mesh where `applies` to the material and `problem` finds one in
-/// the mesh; `what` says what happens, `{named}` standing for the entity.
-fn warn_about_meshes<Mode: Send + Sync + 'static>(
-    world: &mut World,
-    resources: &mut Resources,
+/// Logs, and returns, each of `draws` not yet warned about where `applies` to the material and
+/// `problem` finds one in the mesh; `what` says what happens, `{named}` standing for the entity.
+fn unsuitable_meshes<Mode: Send + Sync + 'static>(
+    (world, resources, meshes): (&World, &Resources, &Assets<Mesh>),
+    draws: &[&ExtractedDraw<ParallaxOcclusionMaterial>],
     applies: impl Fn(&ParallaxOcclusionMaterial) -> bool,
     problem: impl Fn(&Mesh) -> Option<String>,
     what: &str,
-) {
-    let Some(meshes) = resources.get::<Assets<Mesh>>() else {
-        return;
-    };
+) -> Vec<(Entity, AssetId<Mesh>)> {
     let warned = resources.get::<MeshWarnings<Mode>>();
     let mut newly = Vec::new();
-    for (entity, mesh, material, name) in world
-        .query::<(
-            Entity,
-            &Handle<Mesh>,
-            &ParallaxOcclusionMaterial,
-            Option<&Name>,
-        )>()
-        .iter()
-    {
-        let key = (entity, mesh.id());
-        if !applies(material) || warned.is_some_and(|warned| warned.warned.contains(&key)) {
+    for draw in draws {
+        let key = (draw.entity, draw.mesh);
+        if !applies(&draw.material)
+            || newly.contains(&key)
+            || warned.is_some_and(|warned| warned.warned.contains(&key))
+        {
             continue;
         }
-        if let Some(problem) = meshes.get(mesh).and_then(&problem) {
-            let named = name.map_or_else(|| format!("{entity:?}"), |name| format!("\"{name}\""));
+        if let Some(problem) = meshes.get(draw.mesh).and_then(&problem) {
+            let named = world.get::<&Name>(draw.entity).map_or_else(
+                |_| format!("{:?}", draw.entity),
+                |name| format!("\"{}\"", *name),
+            );
             log::warn!(
                 "{} {:?}: {problem}",
                 what.replace("{named}", &named),
-                mesh.id()
+                draw.mesh
             );
             newly.push(key);
         }
     }
-    if !newly.is_empty() {
-        resources
-            .get_or_default::<MeshWarnings<Mode>>()
-            .warned
-            .extend(newly);
-    }
+    newly
 }
 
 #[cfg(test)]

@@ -95,12 +95,22 @@ fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(),
     let plan = FramePlan::new(resources, reads_depth)?;
     resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
     let times = PhaseTimes::reserve(&plan, nodes, &runs, resources);
-    let passes = FramePasses::new(resources, &plan)?;
+    // Taken out while the frame borrows the renderer; recorded first, or submitted alone where
+    // the frame cannot start (what the Prepare stage uploaded must still land).
+    let mut scatters = std::mem::take(resources.require_mut::<Renderer>()?.assets.scatters());
+    let passes = match FramePasses::new(resources, &plan) {
+        Ok(passes) => passes,
+        Err(error) => {
+            scatters.submit_unrecorded(resources.require::<GpuContext>()?);
+            return Err(error.into());
+        }
+    };
     let view = passes.view();
     let record = |phase, nodes: &mut FrameNodes, encoder: &mut wgpu::CommandEncoder| {
         record_nodes(phase, (nodes, &runs, &times.nodes), view, encoder)
     };
     let mut encoder = passes.encoder("frame encoder");
+    scatters.record(&mut encoder);
     // Textures derived in the Prepare stage are built before every phase that may read them.
     passes.derived_textures(&mut encoder, times.derived.as_ref());
     if plan.prepass {

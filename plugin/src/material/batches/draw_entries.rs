@@ -1,0 +1,90 @@
+//! One draw's entry in the frame: its uniform, key and place in the order, and the textures and
+//! bounds they are computed from.
+
+use glam::Mat4;
+
+use super::{ExtractedDraw, PrepareInputs};
+use crate::gpu::{BoundTextures, GpuAssets, MAX_DERIVED_TEXTURES, UploadStats};
+use crate::material::draw_order::{SortEntry, view_depth};
+use crate::material::{DrawView, MAX_MATERIAL_TEXTURES, Material, MeshLodBounds, TextureFacts};
+
+/// Draw `index`'s uniform (from the textures as bound, `facts`) and its entry in the order,
+/// seen from the frame's eye.
+pub(super) fn draw_entry<M: Material>(
+    inputs: &PrepareInputs<'_>,
+    (draw, index): (&ExtractedDraw<M>, usize),
+    bounds: Option<MeshLodBounds>,
+    facts: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+    textures: BoundTextures,
+) -> (M::PerDraw, SortEntry<M::Key>) {
+    let mut view = DrawView {
+        model: draw.model,
+        bounds,
+        footprint: inputs.footprint,
+    };
+    let uniform = draw.material.per_draw(facts);
+    let key = draw
+        .material
+        .draw_key(draw.material.key(), &uniform, &mut view);
+    // Blended draws are ordered by their centre, as a mesh placed away from its origin (a glTF
+    // primitive with its vertices where it stands) has it elsewhere; the prepass by the nearest
+    // point of the bounding sphere (a floor reaching the eye is near, wherever its centre is).
+    let (centre, radius) = bounding_sphere(draw.model, bounds.as_ref());
+    let centre_view_depth = view_depth(centre, inputs.eye);
+    let entry = SortEntry::new(
+        draw,
+        index,
+        (key, textures),
+        inputs.eye,
+        centre_view_depth - radius,
+        M::blends(key).then_some(centre_view_depth),
+    );
+    (uniform, entry)
+}
+
+/// The world-space centre and radius of the bounding sphere of a mesh with `bounds` drawn with
+/// `model` (without bounds: its origin, radius 0).
+fn bounding_sphere(model: Mat4, bounds: Option<&MeshLodBounds>) -> (glam::Vec3, f32) {
+    bounds.map_or((model.w_axis.truncate(), 0.0), |bounds| {
+        let scale = model
+            .x_axis
+            .length()
+            .max(model.y_axis.length())
+            .max(model.z_axis.length());
+        (model.transform_point3(bounds.center), bounds.radius * scale)
+    })
+}
+
+/// The textures `material` binds; entries past the declared derived slots are not bound, so
+/// they must not split batches.
+pub(super) fn bound_textures<M: Material>(material: &M) -> BoundTextures {
+    let derived_slots = M::DERIVED_TEXTURE_SLOTS.min(MAX_DERIVED_TEXTURES);
+    let mut derived = material.derived_textures();
+    derived[derived_slots..].fill(None);
+    BoundTextures {
+        images: material.textures(),
+        derived,
+    }
+}
+
+/// Uploads `textures` where needed (images, then the textures derived from them) and returns
+/// each slot's image as the GPU holds it.
+pub(super) fn prepare_textures(
+    inputs: &PrepareInputs<'_>,
+    textures: BoundTextures,
+    assets: &mut GpuAssets,
+    stats: &mut UploadStats,
+) -> [Option<TextureFacts>; MAX_MATERIAL_TEXTURES] {
+    let mut facts = [None; MAX_MATERIAL_TEXTURES];
+    for (slot, image) in textures.images.iter().enumerate() {
+        facts[slot] = image.and_then(|image| {
+            stats.images += u32::from(assets.prepare_image(inputs.gpu, inputs.images, image));
+            assets.image(image).map(|image| image.facts())
+        });
+    }
+    // Their sources are among the images: uploaded (or re-uploaded) just above.
+    for derived in textures.derived.iter().flatten() {
+        stats.derived += u32::from(assets.prepare_derived(inputs.gpu, *derived));
+    }
+    facts
+}

@@ -1,0 +1,172 @@
+//! Preparing a frame in place: where the view, the frame's kind and the draws' entities are
+//! last frame's, only the draws the Extract stage saw change are prepared again. The order, the
+//! batches and the per-draw data stay; each changed draw's entry, uniform and transform are
+//! rewritten in its slot, and only those slots are compared for upload. A change that moves a
+//! draw to another batch or another place in the order, or a mesh or texture of the batches
+//! uploaded again, leaves the frame to the full preparation.
+
+use super::draw_entries::{bound_textures, draw_entry, prepare_textures};
+use super::{MaterialBatches, PrepareInputs};
+use crate::gpu::{GpuAssets, UploadStats};
+use crate::material::extract::ExtractedMaterials;
+use crate::material::{MAX_MATERIAL_TEXTURES, Material, MeshLodCache};
+use crate::render::MeshTransform;
+use crate::render::anti_aliasing::ObjectMotions;
+
+impl<M: Material> MaterialBatches<M> {
+    /// Prepares the `extracted` draws that changed, in their slots, and lists the slots whose
+    /// data may differ in `dirty_slots`. Returns false where it cannot (see the module), having
+    /// changed nothing the full preparation does not redo.
+    pub(in crate::material) fn update_in_place(
+        &mut self,
+        inputs: &PrepareInputs<'_>,
+        extracted: &ExtractedMaterials<M>,
+        assets: &mut GpuAssets,
+        lod_cache: &mut MeshLodCache,
+        stats: &mut UploadStats,
+        motions: &mut Option<&mut ObjectMotions>,
+    ) -> bool {
+        self.dirty_slots.clear();
+        if motions.is_some() && !self.followed.follows(extracted.draws.len()) {
+            return false;
+        }
+        if !self.batch_assets_unchanged(inputs, assets, stats)
+            || !self.rewrite_changed_entries(inputs, extracted, assets, lod_cache, stats)
+        {
+            return false;
+        }
+        self.rewrite_changed_transforms(extracted);
+        if let Some(motions) = motions {
+            self.renumber_motions(extracted, motions);
+        }
+        self.dirty_slots.sort_unstable();
+        self.dirty_slots.dedup();
+        self.refresh_dirty_batches();
+        true
+    }
+
+    /// Makes sure every batch's mesh and textures are on the GPU; false where one was uploaded
+    /// again (its facts, and so the uniforms, may have changed).
+    fn batch_assets_unchanged(
+        &self,
+        inputs: &PrepareInputs<'_>,
+        assets: &mut GpuAssets,
+        stats: &mut UploadStats,
+    ) -> bool {
+        let before = *stats;
+        for batch in &self.batches {
+            stats.meshes += u32::from(assets.prepare_mesh(inputs.gpu, inputs.meshes, batch.mesh));
+            prepare_textures(inputs, batch.textures, assets, stats);
+        }
+        *stats == before
+    }
+
+    /// Rewrites the entry and uniform of each changed draw in its slot; false where one leaves
+    /// its batch or its place in the order.
+    fn rewrite_changed_entries(
+        &mut self,
+        inputs: &PrepareInputs<'_>,
+        extracted: &ExtractedMaterials<M>,
+        assets: &mut GpuAssets,
+        lod_cache: &mut MeshLodCache,
+        stats: &mut UploadStats,
+    ) -> bool {
+        // Neighbouring changed draws mostly share mesh and textures: look each up once per run.
+        let mut last_mesh = None;
+        let mut bounds = None;
+        let mut last_textures = None;
+        let mut facts = [None; MAX_MATERIAL_TEXTURES];
+        for &index in &extracted.changed {
+            let draw = &extracted.draws[index];
+            let slot = self.slot_of_draw[index] as usize;
+            let textures = bound_textures(&draw.material);
+            if draw.mesh != self.order[slot].mesh || textures != self.order[slot].textures {
+                return false;
+            }
+            if last_textures != Some(textures) {
+                facts = prepare_textures(inputs, textures, assets, stats);
+                last_textures = Some(textures);
+            }
+            if last_mesh != Some(draw.mesh) {
+                bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
+                last_mesh = Some(draw.mesh);
+            }
+            let (uniform, entry) = draw_entry(inputs, (draw, index), bounds, &facts, textures);
+            if !self.order[slot].same_batch(&entry) {
+                return false;
+            }
+            self.order[slot] = entry;
+            self.sorted_uniforms[slot] = uniform;
+            self.dirty_slots.push(slot);
+        }
+        // Each rewritten entry still between its neighbours: the order is the sorted one.
+        self.dirty_slots.iter().all(|&slot| {
+            let key = self.order[slot].order_key();
+            (slot == 0 || self.order[slot - 1].order_key() < key)
+                && self
+                    .order
+                    .get(slot + 1)
+                    .is_none_or(|next| key < next.order_key())
+        })
+    }
+
+    /// Rewrites the transform of each rewritten slot whose model or shadow role changed,
+    /// keeping its visibility id and motion number.
+    fn rewrite_changed_transforms(&mut self, extracted: &ExtractedMaterials<M>) {
+        for &slot in &self.dirty_slots {
+            let draw = &extracted.draws[self.order[slot].draw];
+            let model = (draw.model, draw.receives_shadows);
+            if self.models[slot] == model {
+                continue;
+            }
+            let kept = self.transform_data[slot];
+            self.models[slot] = model;
+            self.transform_data[slot] = MeshTransform {
+                first_visibility_id: kept.first_visibility_id,
+                motion: kept.motion,
+                ..MeshTransform::new(model.0, model.1)
+            };
+        }
+    }
+
+    /// Numbers the motions of a TAA frame followed in place: the changed draws', and 0 for those
+    /// that moved last frame only.
+    fn renumber_motions(&mut self, extracted: &ExtractedMaterials<M>, motions: &mut ObjectMotions) {
+        let changed = extracted
+            .changed
+            .iter()
+            .map(|&index| (index, extracted.draws[index].model));
+        for &(draw, number) in self.followed.number_changed_motions(changed, motions) {
+            let slot = self.slot_of_draw[draw] as usize;
+            if self.transform_data[slot].motion != number {
+                self.transform_data[slot].motion = number;
+                self.dirty_slots.push(slot);
+            }
+        }
+    }
+
+    /// Recomputes the nearest depth and motion of each batch holding a dirty slot (sorted).
+    fn refresh_dirty_batches(&mut self) {
+        let mut last_batch = None;
+        for &slot in &self.dirty_slots {
+            let index = self
+                .batches
+                .partition_point(|batch| batch.instances.end as usize <= slot);
+            if last_batch == Some(index) {
+                continue;
+            }
+            last_batch = Some(index);
+            let Some(batch) = self.batches.get_mut(index) else {
+                continue;
+            };
+            let range = batch.instances.start as usize..batch.instances.end as usize;
+            batch.nearest_depth = self.order[range.clone()]
+                .iter()
+                .map(|entry| entry.nearest_depth)
+                .fold(f32::INFINITY, f32::min);
+            batch.moving = self.transform_data[range]
+                .iter()
+                .any(|transform| transform.motion != 0);
+        }
+    }
+}
