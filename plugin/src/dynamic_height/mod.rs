@@ -305,8 +305,7 @@ fn dispatch(
         Some(binding) if binding.serials == serials => binding,
         _ => pass.create_binding(gpu, serials, &params, &height.texture, &normal.view),
     };
-    gpu.queue
-        .write_buffer(&binding.params, 0, bytemuck::bytes_of(&params));
+    gpu.write_buffer(&binding.params, 0, bytemuck::bytes_of(&params));
     pass.record(target, &binding, width, rows);
     pass.bindings.insert(entity, binding);
     Ok(())

@@ -493,7 +493,7 @@ fn upload_image(
     for (level, pixels) in levels.iter().enumerate() {
         let (level_width, level_height) = pixels.dimensions();
         let (bytes, bytes_per_texel) = texel_bytes(pixels, encoding);
-        gpu.queue.write_texture(
+        gpu.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
                 mip_level: level as u32,

@@ -1,5 +1,6 @@
 //! The GPU context: instance, adapter, device and queue, with or without a window surface.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 
 /// What went wrong setting up the GPU.
@@ -62,6 +63,8 @@ pub struct GpuContext {
     /// The submission queue.
     pub queue: wgpu::Queue,
     uncaptured: Arc<Mutex<Vec<String>>>,
+    /// Bytes written through [`GpuContext::write_buffer`] and [`GpuContext::write_texture`].
+    uploaded: Arc<AtomicU64>,
 }
 
 impl GpuContext {
@@ -151,6 +154,7 @@ impl GpuContext {
             device,
             queue,
             uncaptured,
+            uploaded: Arc::default(),
         })
     }
 
@@ -163,6 +167,35 @@ impl GpuContext {
     pub(crate) fn storage_buffer_fits(&self, bytes: u64) -> bool {
         let limits = self.device.limits();
         bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
+    }
+
+    /// Writes `bytes` into `buffer` at `offset` through the queue (before the next submission's
+    /// commands), counted in [`GpuContext::uploaded_bytes`]: every buffer write of the library
+    /// goes through here, so a test can see what a frame uploads.
+    pub fn write_buffer(&self, buffer: &wgpu::Buffer, offset: u64, bytes: &[u8]) {
+        self.uploaded
+            .fetch_add(bytes.len() as u64, Ordering::Relaxed);
+        self.queue.write_buffer(buffer, offset, bytes);
+    }
+
+    /// Writes `bytes` into a texture through the queue, counted like
+    /// [`GpuContext::write_buffer`].
+    pub fn write_texture(
+        &self,
+        texture: wgpu::TexelCopyTextureInfo<'_>,
+        bytes: &[u8],
+        layout: wgpu::TexelCopyBufferLayout,
+        size: wgpu::Extent3d,
+    ) {
+        self.uploaded
+            .fetch_add(bytes.len() as u64, Ordering::Relaxed);
+        self.queue.write_texture(texture, bytes, layout, size);
+    }
+
+    /// Bytes the library has written to buffers and textures through the queue since this
+    /// context was made (shared by its clones).
+    pub fn uploaded_bytes(&self) -> u64 {
+        self.uploaded.load(Ordering::Relaxed)
     }
 
     /// Returns and clears the errors no error scope caught since the last call.

@@ -36,7 +36,7 @@ impl FragmentInvocationCounter {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        gpu.queue.write_buffer(&buffer, 0, &[0; 4]);
+        gpu.write_buffer(&buffer, 0, &[0; 4]);
         Self { buffer, readback }
     }
 
@@ -47,7 +47,7 @@ impl FragmentInvocationCounter {
 
     /// Sets the count back to zero (before the next frame's submission).
     pub fn reset(&self, gpu: &GpuContext) {
-        gpu.queue.write_buffer(&self.buffer, 0, &[0; 4]);
+        gpu.write_buffer(&self.buffer, 0, &[0; 4]);
     }
 
     /// The invocations counted since the last reset, once the GPU has finished.

@@ -138,8 +138,7 @@ impl<T: Pod + PartialEq> ObjectBuffer<T> {
         for run in runs {
             let changed = &entries[run.clone()];
             let bytes: &[u8] = bytemuck::cast_slice(changed);
-            gpu.queue
-                .write_buffer(&self.buffer, run.start as u64 * Self::ENTRY_SIZE, bytes);
+            gpu.write_buffer(&self.buffer, run.start as u64 * Self::ENTRY_SIZE, bytes);
             written += bytes.len() as u64;
             self.uploaded[run].copy_from_slice(changed);
         }

@@ -86,8 +86,7 @@ impl ScatterUpload {
         let (Some(staging), Some((bind_group, _))) = (&self.staging, &self.bind_group) else {
             return 0;
         };
-        gpu.queue
-            .write_buffer(staging, 0, bytemuck::cast_slice(&self.packed));
+        gpu.write_buffer(staging, 0, bytemuck::cast_slice(&self.packed));
         let groups = (slots.len() as u32 * words_per_entry).div_ceil(GROUP_SIZE);
         let row = groups
             .min(gpu.device.limits().max_compute_workgroups_per_dimension)

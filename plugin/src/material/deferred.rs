@@ -133,6 +133,8 @@ pub(crate) struct DeferredResolve {
     slot_size: u64,
     slots: wgpu::Buffer,
     slot_data: Vec<u8>,
+    /// What `slots` holds (written only when the frame's slots differ).
+    uploaded_slots: Vec<u8>,
     meshes: HashMap<AssetId<Mesh>, MeshBindGroup>,
     /// The target and tile buffers ([`ResolveTiles::generation`]) the mesh bind groups hold.
     bound: (u64, u64),
@@ -192,6 +194,7 @@ impl DeferredResolve {
             slot_size,
             slots: Self::slot_buffer(gpu, label, slot_size, 4),
             slot_data: Vec::new(),
+            uploaded_slots: Vec::new(),
             meshes: HashMap::new(),
             bound: (0, 0),
             tiles: ResolveTiles::new(gpu),
@@ -266,7 +269,10 @@ impl DeferredResolve {
             self.grow_slots(gpu);
             return self.prepare(gpu, targets, batches, resolves, assets);
         }
-        gpu.queue.write_buffer(&self.slots, 0, &self.slot_data);
+        if self.slot_data != self.uploaded_slots {
+            gpu.write_buffer(&self.slots, 0, &self.slot_data);
+            self.uploaded_slots.clone_from(&self.slot_data);
+        }
     }
 
     /// Prepares the tile classification for the `resolved` batches where it pays, and returns
@@ -348,6 +354,7 @@ impl DeferredResolve {
     fn grow_slots(&mut self, gpu: &GpuContext) {
         let slots = (self.slot_data.len() as u64 / self.slot_size).next_power_of_two();
         self.slots = Self::slot_buffer(gpu, self.label, self.slot_size, slots);
+        self.uploaded_slots.clear();
         // Every bind group holds the old buffer.
         self.meshes.clear();
     }

@@ -18,7 +18,7 @@ struct ClassifyParams {
 @group(0) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
 // Each batch's visibility ids, first..end, in increasing order.
 @group(0) @binding(2) var<storage, read> batch_ids: array<vec2<u32>>;
-// Per batch: how many tiles it shows in (zeroed before each frame).
+// Per batch: how many tiles it shows in (zeroed by cs_clear_counts first each frame).
 @group(0) @binding(3) var<storage, read_write> tile_counts: array<atomic<u32>>;
 // Per batch, `tile_count` slots: the tiles it shows in (y × tiles_across + x).
 @group(0) @binding(4) var<storage, read_write> batch_tiles: array<u32>;
@@ -44,6 +44,14 @@ fn batch_of(id: u32) -> u32 {
         }
     }
     return NO_BATCH;
+}
+
+// One invocation per batch: its tile count back to 0, before the frame's classification.
+@compute @workgroup_size(64)
+fn cs_clear_counts(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < params.batch_count {
+        atomicStore(&tile_counts[id.x], 0u);
+    }
 }
 
 // One workgroup per tile: the first lane that shows a batch lists the tile for it.

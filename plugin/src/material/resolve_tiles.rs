@@ -93,10 +93,12 @@ impl TileBuffers {
 pub(crate) struct ResolveTiles {
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    /// `cs_classify` and `cs_dispatch_args`, compiled on the first frame that classifies (most
-    /// materials never do: one resolve batch, or none).
-    pipelines: Option<(wgpu::ComputePipeline, wgpu::ComputePipeline)>,
+    /// `cs_clear_counts`, `cs_classify` and `cs_dispatch_args`, compiled on the first frame
+    /// that classifies (most materials never do: one resolve batch, or none).
+    pipelines: Option<[wgpu::ComputePipeline; 3]>,
     params: wgpu::Buffer,
+    /// What `params` and the batches' ids hold (written only when they change).
+    uploaded: Option<(ClassifyParams, Vec<[u32; 2]>)>,
     buffers: TileBuffers,
     /// Bumped whenever the buffers are made anew (the resolve's bind groups hold them).
     generation: u64,
@@ -129,6 +131,7 @@ impl ResolveTiles {
             layout,
             pipeline_layout,
             pipelines: None,
+            uploaded: None,
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("resolve classification params"),
                 size: std::mem::size_of::<ClassifyParams>() as u64,
@@ -144,8 +147,7 @@ impl ResolveTiles {
     }
 
     /// Plans this frame: the batches' id ranges (`first..end`, increasing), a target of `size`
-    /// whose visibility buffer is `visibility` (`target` its id). Counts are zeroed before the
-    /// frame's classification runs (queue writes come before the frame's commands).
+    /// whose visibility buffer is `visibility` (`target` its id), uploading what changed.
     pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
@@ -173,12 +175,17 @@ impl ResolveTiles {
                         cache: None,
                     })
             };
-            self.pipelines = Some((pipeline("cs_classify"), pipeline("cs_dispatch_args")));
+            self.pipelines = Some([
+                pipeline("cs_clear_counts"),
+                pipeline("cs_classify"),
+                pipeline("cs_dispatch_args"),
+            ]);
         }
         let batches = ranges.len() as u64;
         if batches > self.buffers.batches || tile_count != self.buffers.tiles {
             self.buffers = TileBuffers::new(gpu, batches.next_power_of_two(), tile_count);
             self.generation += 1;
+            self.uploaded = None;
         }
         let params = ClassifyParams {
             width: size.0,
@@ -189,15 +196,15 @@ impl ResolveTiles {
             _padding_a: 0,
             _padding_b: [0; 2],
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        gpu.queue
-            .write_buffer(&self.buffers.batch_ids, 0, bytemuck::cast_slice(ranges));
-        gpu.queue.write_buffer(
-            &self.buffers.tile_counts,
-            0,
-            bytemuck::cast_slice(&vec![0u32; ranges.len()]),
-        );
+        if self
+            .uploaded
+            .as_ref()
+            .is_none_or(|(uploaded, ids)| *uploaded != params || ids != ranges)
+        {
+            gpu.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+            gpu.write_buffer(&self.buffers.batch_ids, 0, bytemuck::cast_slice(ranges));
+            self.uploaded = Some((params, ranges.to_vec()));
+        }
         let bound = (target, self.generation);
         if self.bind_group.as_ref().map(|(key, _)| *key) != Some(bound) {
             let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
@@ -220,7 +227,7 @@ impl ResolveTiles {
     /// Records the classification and the indirect arguments into `pass` (before the batches'
     /// dispatches; each dispatch of a compute pass sees the writes of the ones before).
     pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        let (Some((_, bind_group)), Some((classify, dispatch_args))) =
+        let (Some((_, bind_group)), Some([clear_counts, classify, dispatch_args])) =
             (&self.bind_group, &self.pipelines)
         else {
             return;
@@ -229,6 +236,8 @@ impl ResolveTiles {
             return;
         }
         pass.set_bind_group(0, bind_group, &[]);
+        pass.set_pipeline(clear_counts);
+        pass.dispatch_workgroups(self.batch_count.div_ceil(64), 1, 1);
         pass.set_pipeline(classify);
         pass.dispatch_workgroups(self.tiles.0, self.tiles.1, 1);
         pass.set_pipeline(dispatch_args);

@@ -41,6 +41,8 @@ pub(crate) struct DeferredBackground {
     params: wgpu::Buffer,
     bind_group: Option<(u64, wgpu::BindGroup)>,
     workgroups: (u32, u32),
+    /// What `params` holds (written only when the frame's differ).
+    uploaded: Option<BackgroundParams>,
 }
 
 impl DeferredBackground {
@@ -69,6 +71,7 @@ impl DeferredBackground {
             pipeline,
             params,
             bind_group: None,
+            uploaded: None,
             workgroups: (0, 0),
         }
     }
@@ -89,8 +92,10 @@ impl DeferredBackground {
             height,
             _padding: [0; 2],
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        if self.uploaded != Some(params) {
+            gpu.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+            self.uploaded = Some(params);
+        }
         self.workgroups = shaders::deferred_tiles((width, height));
         if self.bind_group.as_ref().map(|(id, _)| *id) != Some(target.id()) {
             let layout = self.pipeline.get_bind_group_layout(0);

@@ -70,7 +70,7 @@ impl FrameUniformBuffer {
             if self.uploaded[slot] == *frame {
                 continue;
             }
-            gpu.queue.write_buffer(
+            gpu.write_buffer(
                 &self.buffer,
                 slot as u64 * self.stride,
                 bytemuck::bytes_of(frame),

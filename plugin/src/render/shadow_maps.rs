@@ -139,8 +139,7 @@ impl ShadowMaps {
         if views == self.uploaded {
             return 0;
         }
-        gpu.queue
-            .write_buffer(&self.views, 0, bytemuck::cast_slice(&views));
+        gpu.write_buffer(&self.views, 0, bytemuck::cast_slice(&views));
         self.uploaded = views;
         std::mem::size_of_val(self.uploaded.as_slice()) as u64
     }

@@ -286,8 +286,7 @@ impl FxaaPass {
         if self.uploaded == Some(settings) {
             return 0;
         }
-        gpu.queue
-            .write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
+        gpu.write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
         self.uploaded = Some(settings);
         std::mem::size_of::<FxaaSettings>() as u64
     }

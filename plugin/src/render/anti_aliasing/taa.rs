@@ -366,8 +366,7 @@ impl TaaPass {
         if self.follow(gpu, target) {
             uniform.accumulated = 0;
         }
-        gpu.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        gpu.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         let motion_group = self.motion_group(gpu, motions).clone();
         let history = self.history.as_mut()?;
         history.written = 1 - history.written;

@@ -53,6 +53,8 @@ pub(crate) struct Background {
     params: wgpu::Buffer,
     groups: Option<(u64, wgpu::BindGroup, wgpu::BindGroup)>,
     workgroups: (u32, u32),
+    /// What `params` holds (written only when the frame's differ).
+    uploaded: Option<BackgroundParams>,
 }
 
 impl Background {
@@ -82,6 +84,7 @@ impl Background {
             params,
             groups: None,
             workgroups: (0, 0),
+            uploaded: None,
         }
     }
 
@@ -101,8 +104,13 @@ impl Background {
             scale: [view.scale, 0.0, 0.0, 0.0],
             size: [width, height, 0, 0],
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        let written = if self.uploaded == Some(params) {
+            0
+        } else {
+            gpu.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+            self.uploaded = Some(params);
+            std::mem::size_of::<BackgroundParams>() as u64
+        };
         self.workgroups = (width.div_ceil(8), height.div_ceil(8));
         if new_source || self.groups.as_ref().map(|(id, ..)| *id) != Some(target.id()) {
             let layout = self.pipeline.get_bind_group_layout(0);
@@ -127,7 +135,7 @@ impl Background {
             let source = environment.source_group(&self.pipeline.get_bind_group_layout(1));
             self.groups = Some((target.id(), frame, source));
         }
-        std::mem::size_of::<BackgroundParams>() as u64
+        written
     }
 
     /// Records the pass, timed by `time`.

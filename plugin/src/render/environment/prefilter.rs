@@ -264,10 +264,8 @@ impl EnvironmentGpu {
             ],
             kind: [capture.kind as u32, 0, 0, 0],
         };
-        gpu.queue
-            .write_buffer(&self.source, 0, bytemuck::bytes_of(&source));
-        gpu.queue
-            .write_buffer(&self.sky, 0, bytemuck::bytes_of(&capture.sky));
+        gpu.write_buffer(&self.source, 0, bytemuck::bytes_of(&source));
+        gpu.write_buffer(&self.sky, 0, bytemuck::bytes_of(&capture.sky));
         uploaded += (std::mem::size_of::<SourceParams>() + std::mem::size_of::<SkyParams>()) as u64;
         let mut installed = None;
         if self.cubes.as_ref().map(|cubes| cubes.size) != Some(capture.size) {

@@ -185,7 +185,7 @@ impl FullScreenPass {
         let bytes = bytemuck::bytes_of(params);
         match &self.params {
             Some(buffer) if self.uploaded != bytes && bytes.len() as u64 == buffer.size() => {
-                frame.gpu.queue.write_buffer(buffer, 0, bytes);
+                frame.gpu.write_buffer(buffer, 0, bytes);
                 self.uploaded = bytes.to_vec();
                 bytes.len() as u64
             }

@@ -158,8 +158,7 @@ impl PostProcess {
         if self.uploaded == Some(settings) {
             return 0;
         }
-        gpu.queue
-            .write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
+        gpu.write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
         self.uploaded = Some(settings);
         std::mem::size_of::<PostSettings>() as u64
     }

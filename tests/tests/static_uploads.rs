@@ -1,0 +1,119 @@
+//! A scene where nothing moves uploads nothing, frame after frame, on both paths: every buffer
+//! and texture write of the library goes through `GpuContext::write_buffer` and
+//! `write_texture`, which count their bytes; one moving entity uploads its own transform only.
+
+use pom::glam::{Quat, Vec3};
+use pom::render::{MeshTransform, RenderPath};
+use pom::{
+    App, Assets, Camera, DirectionalLight, EnvironmentLight, GpuContext, HeightField, Image,
+    LightShadows, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
+    RenderPlugin, SpotLight, Transform,
+};
+use pom_tests::{run_frames, set_path};
+
+/// Parallax planes on a floor under a cube, a shadowed sun, a shadowed spot, a point light and
+/// the sky's environment; returns the app and one of the planes.
+fn street(path: RenderPath) -> (App, pom::hecs::Entity) {
+    let mut app = App::new();
+    app.add_plugin(RenderPlugin::new(64, 64))
+        .add_plugin(PomPlugin);
+    app.finish().unwrap();
+    set_path(&mut app, path);
+    app.insert_resource(EnvironmentLight::sky());
+    let (plane, cube) = {
+        let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
+        (meshes.add(Mesh::plane(0.9)), meshes.add(Mesh::cube(0.5)))
+    };
+    let heights = HeightField::from_fn(32, 32, |u, v| {
+        (u * 12.0).sin() * (v * 9.0).cos() * 0.5 + 0.5
+    });
+    let height_map = app
+        .resources
+        .get_mut::<Assets<Image>>()
+        .unwrap()
+        .add(heights.to_image());
+    let material = ParallaxOcclusionMaterial {
+        height_map: Some(pom::HeightSource::Texture(height_map)),
+        height_scale: 0.08,
+        ..ParallaxOcclusionMaterial::default()
+    };
+    let planes: Vec<_> = (0..16)
+        .map(|index| {
+            let (x, z) = ((index % 4) as f32 - 1.5, (index / 4) as f32 - 1.5);
+            app.world.spawn((
+                plane.clone(),
+                material.clone(),
+                Transform::from_xyz(x, 0.0, z),
+            ))
+        })
+        .collect();
+    app.world.spawn((
+        cube,
+        LitMaterial::default(),
+        Transform::from_xyz(0.0, 0.3, 0.0),
+    ));
+    app.world.spawn((
+        DirectionalLight::default(),
+        LightShadows::default(),
+        Transform::IDENTITY.looking_at(Vec3::new(-1.0, -2.0, -0.5), Vec3::Y),
+    ));
+    app.world.spawn((
+        SpotLight::default(),
+        LightShadows::default(),
+        Transform::from_xyz(1.0, 2.0, 1.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    app.world
+        .spawn((PointLight::default(), Transform::from_xyz(-1.0, 1.0, -1.0)));
+    app.world.spawn((
+        Camera::perspective(60.0),
+        Transform::from_xyz(0.0, 3.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    (app, planes[5])
+}
+
+/// Bytes the app's GPU context uploads over `frames` frames.
+fn uploaded_over(app: &mut App, frames: usize) -> u64 {
+    let gpu = app.resources.get::<GpuContext>().unwrap().clone();
+    let before = gpu.uploaded_bytes();
+    run_frames(app, frames).unwrap();
+    gpu.uploaded_bytes() - before
+}
+
+#[test]
+fn a_still_scene_uploads_nothing_and_a_moving_entity_its_own_transform() {
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let (mut app, plane) = street(path);
+        let first = uploaded_over(&mut app, 3);
+        assert!(first > 0, "{path:?}: the first frames upload the scene");
+        assert_eq!(uploaded_over(&mut app, 5), 0, "{path:?}: nothing moved");
+
+        app.world.get::<&mut Transform>(plane).unwrap().rotation = Quat::from_rotation_y(0.4);
+        assert_eq!(
+            uploaded_over(&mut app, 1),
+            std::mem::size_of::<MeshTransform>() as u64,
+            "{path:?}: the turned plane's transform, and nothing else"
+        );
+        assert_eq!(uploaded_over(&mut app, 3), 0, "{path:?}: still again");
+    }
+}
+
+#[test]
+fn every_write_of_the_library_goes_through_the_counted_ones() {
+    let src = pom_tests::sources::plugin_src();
+    let mut direct = Vec::new();
+    for file in pom_tests::sources::rust_files(&src) {
+        if file.ends_with("gpu/context.rs") {
+            continue;
+        }
+        let source = std::fs::read_to_string(&file).unwrap();
+        // rustfmt may break `queue` and `.write_buffer(` over two lines.
+        let joined: String = source.split_whitespace().collect();
+        if joined.contains("queue.write_buffer(") || joined.contains("queue.write_texture(") {
+            direct.push(file.display().to_string());
+        }
+    }
+    assert!(
+        direct.is_empty(),
+        "writes past GpuContext's count: {direct:?}"
+    );
+}
