@@ -141,6 +141,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     dirty_slots: Vec<usize>,
     /// Whether the last frame was prepared in place.
     pub(crate) prepared_in_place: bool,
+    /// Whether the last frame uploaded per-draw data of a shadow caster.
+    casters_data_changed: bool,
 }
 
 /// What every draw's key, order and motion depend on besides the draw itself.
@@ -235,6 +237,7 @@ impl<M: Material> MaterialBatches<M> {
             prepared_view: None,
             dirty_slots: Vec::new(),
             prepared_in_place: false,
+            casters_data_changed: false,
         }
     }
 
@@ -496,6 +499,8 @@ impl<M: Material> MaterialBatches<M> {
             }
         };
         stats.uniform_bytes += bytes;
+        self.casters_data_changed =
+            bytes > 0 && (!in_place || self.dirty_slots.iter().any(|&slot| self.slot_casts(slot)));
         self.frame_groups.refresh(
             gpu,
             &DrawBuffers {
@@ -506,6 +511,22 @@ impl<M: Material> MaterialBatches<M> {
             inputs.depth,
             grew,
         );
+    }
+
+    /// Whether the last frame uploaded per-draw data of a shadow caster (on a frame prepared in
+    /// full, whether it uploaded any).
+    pub(crate) fn casters_data_changed(&self) -> bool {
+        self.casters_data_changed
+    }
+
+    /// Whether sorted slot `slot` belongs to a batch drawn into shadow maps.
+    fn slot_casts(&self, slot: usize) -> bool {
+        let index = self
+            .batches
+            .partition_point(|batch| batch.instances.end as usize <= slot);
+        self.batches
+            .get(index)
+            .is_some_and(|batch| batch.casts_shadows && !M::blends(batch.key))
     }
 
     /// Builds the pipelines the batches use this frame where missing (shadow pipelines too for

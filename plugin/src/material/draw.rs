@@ -177,18 +177,45 @@ impl<M: Material> MaterialBatches<M> {
         frame_offset: u32,
         assets: &GpuAssets,
     ) {
-        if !self.batches.iter().any(|batch| batch.casts_shadows) {
+        if self.shadow_batches().next().is_none() {
             return;
         }
         pass.set_bind_group(0, self.frame_groups.writing(), &[frame_offset]);
         self.record_calls(
             pass,
             assets,
-            self.batches
-                .iter()
-                .filter(|batch| batch.casts_shadows && !M::blends(batch.key))
+            self.shadow_batches()
                 .map(|batch| DrawCall::of(batch, MeshPass::Shadow)),
         );
+    }
+
+    /// The batches drawn into shadow maps: the opaque casters.
+    fn shadow_batches(&self) -> impl Iterator<Item = &Batch<M::Key>> {
+        self.batches
+            .iter()
+            .filter(|batch| batch.casts_shadows && !M::blends(batch.key))
+    }
+
+    /// A hash of what the shadow maps draw of this material: each casting batch's key,
+    /// textures, mesh and instances, and the pipeline that draws it (a pipeline compiled in the
+    /// background or reloaded replaces another). Equal from frame to frame while the casters'
+    /// batches stay; their data is followed apart ([`MaterialBatches::casters_data_changed`]).
+    pub(crate) fn shadow_casters_signature(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut hasher = std::collections::hash_map::DefaultHasher::new();
+        for batch in self.shadow_batches() {
+            (
+                batch.key,
+                batch.textures,
+                batch.mesh,
+                batch.instances.clone(),
+            )
+                .hash(&mut hasher);
+            self.pipelines
+                .get(MeshPass::Shadow, &batch.key)
+                .hash(&mut hasher);
+        }
+        hasher.finish()
     }
 
     /// Records `calls` whose mesh is on the GPU, each with its pass's pipeline, switching

@@ -354,6 +354,11 @@ fn prepare_frame<M: Material>(
         .replace::<M>(batches.prepass_nearest_first());
     renderer.transparent.replace::<M>(batches.blended());
     lod_cache.retain_existing(inputs.meshes);
+    let assets_uploaded = stats.meshes + stats.images + stats.derived > 0;
+    renderer.shadow_casters.add(
+        batches.shadow_casters_signature(),
+        batches.casters_data_changed() || assets_uploaded,
+    );
     renderer.last_upload.meshes += stats.meshes;
     renderer.last_upload.images += stats.images;
     renderer.last_upload.derived += stats.derived;

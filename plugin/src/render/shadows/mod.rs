@@ -7,8 +7,13 @@
 //! (`render/shadow_maps.rs`, `render/shadows.wgsl`), so that every material can sample them
 //! whether or not this feature is in the app.
 
+mod kept;
 mod plan;
 mod views;
+
+use kept::KeptShadowViews;
+pub(crate) use kept::ShadowCasterChanges;
+pub use kept::ShadowMapStats;
 
 use crate::gpu::PassTimestamps;
 use crate::render::{
@@ -29,14 +34,19 @@ impl Plugin for ShadowsPlugin {
     fn build(&self, app: &mut App) {
         app.resources.get_or_default::<FrameNodes>().add(
             NodePlace::new(SHADOW_MAPS_NODE, RenderPhase::Shadows),
-            || ShadowMapsNode,
+            ShadowMapsNode::default,
         );
+        app.resources.get_or_default::<ShadowMapStats>();
         app.add_system(Stage::Extract, plan::plan_shadow_maps);
     }
 }
 
-/// One pass per shadow map, each drawing every shadow caster from its light.
-struct ShadowMapsNode;
+/// One pass per shadow map, each drawing every shadow caster from its light, for the maps
+/// whose view or casters changed since they were drawn (kept.rs).
+#[derive(Default)]
+struct ShadowMapsNode {
+    kept: KeptShadowViews,
+}
 
 impl FrameNode for ShadowMapsNode {
     fn runs(&self, frame: FrameView<'_>) -> bool {
@@ -58,21 +68,40 @@ impl FrameNode for ShadowMapsNode {
         let resources = frame.resources;
         let phases = resources.require::<RenderPhases>()?;
         let extracted = resources.require::<ExtractedFrame>()?;
-        let shadow_maps = &resources.require::<Renderer>()?.shadow_maps;
+        let renderer = resources.require::<Renderer>()?;
+        let shadow_maps = &renderer.shadow_maps;
+        let stats = resources.get::<ShadowMapStats>();
         let layer_size = shadow_maps.layer_size();
         let count = extracted.shadow_views.len();
+        let target_size = extracted.frame.target_size;
+        let noise = [target_size[2], target_size[3]];
+        self.kept
+            .begin_frame(renderer.shadow_casters, shadow_maps.generation());
         for (index, plan) in extracted.shadow_views.iter().enumerate() {
             let Some(layer) = shadow_maps.layer_view(plan.gpu.layer) else {
                 continue;
             };
             let (first, last) = (index == 0, index + 1 == count);
+            let draw = self.kept.needs_drawing(plan, noise, layer_size);
+            if let Some(stats) = stats {
+                stats.count(draw);
+            }
+            // Kept: not drawn again, except an empty pass where the node's timestamps start or
+            // end, so the span stays measured.
+            if !draw && !(time.is_some() && (first || last)) {
+                continue;
+            }
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: layer,
                     depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
+                        load: if draw {
+                            wgpu::LoadOp::Clear(1.0)
+                        } else {
+                            wgpu::LoadOp::Load
+                        },
                         store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
@@ -87,8 +116,10 @@ impl FrameNode for ShadowMapsNode {
             // A smaller map draws into a corner of its layer.
             let size = plan.map_size.min(layer_size) as f32;
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-            for draw in phases.shadow_draws() {
-                draw(resources, &mut pass, 1 + index as u32);
+            if draw {
+                for draw_casters in phases.shadow_draws() {
+                    draw_casters(resources, &mut pass, 1 + index as u32);
+                }
             }
         }
         Ok(())

@@ -1,19 +1,21 @@
-//! A scene where nothing moves uploads nothing, frame after frame, on both paths: every buffer
-//! and texture write of the library goes through `GpuContext::write_buffer` and
-//! `write_texture`, which count their bytes; one moving entity uploads its own transform only.
+//! A scene where nothing moves costs nothing again, on both paths: it uploads nothing, frame
+//! after frame (every buffer and texture write of the library goes through
+//! `GpuContext::write_buffer` and `write_texture`, which count their bytes; one moving entity
+//! uploads its own transform only), and its shadow maps are drawn once and kept.
 
 use pom::glam::{Quat, Vec3};
+use pom::render::shadows::ShadowMapStats;
 use pom::render::{MeshTransform, RenderPath};
 use pom::{
     App, Assets, Camera, DirectionalLight, EnvironmentLight, GpuContext, HeightField, Image,
     LightShadows, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
     RenderPlugin, SpotLight, Transform,
 };
-use pom_tests::{run_frames, set_path};
+use pom_tests::{render_and_capture, run_frames, set_path};
 
 /// Parallax planes on a floor under a cube, a shadowed sun, a shadowed spot, a point light and
-/// the sky's environment; returns the app and one of the planes.
-fn street(path: RenderPath) -> (App, pom::hecs::Entity) {
+/// the sky's environment; returns the app, one of the planes and the cube.
+fn street(path: RenderPath) -> (App, pom::hecs::Entity, pom::hecs::Entity) {
     let mut app = App::new();
     app.add_plugin(RenderPlugin::new(64, 64))
         .add_plugin(PomPlugin);
@@ -47,7 +49,7 @@ fn street(path: RenderPath) -> (App, pom::hecs::Entity) {
             ))
         })
         .collect();
-    app.world.spawn((
+    let cube = app.world.spawn((
         cube,
         LitMaterial::default(),
         Transform::from_xyz(0.0, 0.3, 0.0),
@@ -68,7 +70,7 @@ fn street(path: RenderPath) -> (App, pom::hecs::Entity) {
         Camera::perspective(60.0),
         Transform::from_xyz(0.0, 3.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    (app, planes[5])
+    (app, planes[5], cube)
 }
 
 /// Bytes the app's GPU context uploads over `frames` frames.
@@ -82,7 +84,7 @@ fn uploaded_over(app: &mut App, frames: usize) -> u64 {
 #[test]
 fn a_still_scene_uploads_nothing_and_a_moving_entity_its_own_transform() {
     for path in [RenderPath::Forward, RenderPath::Deferred] {
-        let (mut app, plane) = street(path);
+        let (mut app, plane, _) = street(path);
         let first = uploaded_over(&mut app, 3);
         assert!(first > 0, "{path:?}: the first frames upload the scene");
         assert_eq!(uploaded_over(&mut app, 5), 0, "{path:?}: nothing moved");
@@ -116,4 +118,63 @@ fn every_write_of_the_library_goes_through_the_counted_ones() {
         direct.is_empty(),
         "writes past GpuContext's count: {direct:?}"
     );
+}
+
+/// Shadow maps (drawn, kept) so far.
+fn shadow_maps(app: &App) -> (u64, u64) {
+    let stats = app.resources.get::<ShadowMapStats>().unwrap();
+    (stats.drawn(), stats.kept())
+}
+
+#[test]
+fn a_still_scenes_shadow_maps_are_drawn_once_and_again_where_a_caster_or_a_view_moves() {
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let (mut app, _, cube) = street(path);
+        run_frames(&mut app, 1).unwrap();
+        let views = shadow_maps(&app).0;
+        assert_eq!(views, 4, "three cascades and the spot's map");
+        run_frames(&mut app, 99).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (views, 99 * views),
+            "{path:?}: drawn once"
+        );
+        let kept_image = render_and_capture(&mut app).unwrap();
+        let (mut fresh, _, _) = street(path);
+        assert!(
+            render_and_capture(&mut fresh).unwrap() == kept_image,
+            "{path:?}: the kept maps shade as freshly drawn ones"
+        );
+
+        // A caster moves: every map is drawn again, once.
+        let before = shadow_maps(&app);
+        app.world.get::<&mut Transform>(cube).unwrap().translation.x += 0.2;
+        run_frames(&mut app, 3).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (before.0 + views, before.1 + 2 * views),
+            "{path:?}: a caster moved"
+        );
+
+        // The camera moves: the cascades follow it, the spot's map stays.
+        let before = shadow_maps(&app);
+        let camera = app
+            .world
+            .query_mut::<(pom::hecs::Entity, &Camera)>()
+            .into_iter()
+            .map(|(entity, _)| entity)
+            .next()
+            .unwrap();
+        app.world
+            .get::<&mut Transform>(camera)
+            .unwrap()
+            .translation
+            .x += 0.5;
+        run_frames(&mut app, 1).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (before.0 + 3, before.1 + 1),
+            "{path:?}: the camera moved"
+        );
+    }
 }

@@ -1,0 +1,106 @@
+//! Shadow maps kept while nothing they show changes. A map is drawn again only where its view
+//! (where the light looks from, its size and layer, the frame's noise) differs from the one it
+//! was last drawn with, the maps' texture was made anew, or a shadow caster changed since: its
+//! transform or uniform, the batches or pipelines that draw casters, or a mesh or texture
+//! uploaded again. A moving sun redraws its cascades; a spot or point light that stayed, and
+//! whose casters stayed, keeps its maps.
+
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::render::ShadowViewPlan;
+
+/// What the shadow maps show, as the materials prepared it: started by each Prepare stage,
+/// then added to by every material. Part of the renderer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ShadowCasterChanges {
+    /// This frame's casters' batches and the pipelines drawing them, hashed (every material's
+    /// folded in).
+    signature: u64,
+    /// Counts the frames on which a caster's per-draw data, or an asset, was uploaded: kept
+    /// from frame to frame, so a change on a frame that draws no map is still seen after.
+    data_generation: u64,
+}
+
+impl ShadowCasterChanges {
+    /// Starts a frame's signature.
+    pub(crate) fn begin_frame(&mut self) {
+        self.signature = 0;
+    }
+
+    /// Adds one material's casters: its `signature`, and whether its data changed.
+    pub(crate) fn add(&mut self, signature: u64, data_changed: bool) {
+        self.signature = self.signature.rotate_left(5) ^ signature;
+        if data_changed {
+            self.data_generation += 1;
+        }
+    }
+}
+
+/// How many shadow maps were drawn and how many kept from an earlier frame. A resource the
+/// shadows plugin adds.
+#[derive(Debug, Default)]
+pub struct ShadowMapStats {
+    drawn: AtomicU64,
+    kept: AtomicU64,
+}
+
+impl ShadowMapStats {
+    /// Shadow maps drawn since the app started.
+    pub fn drawn(&self) -> u64 {
+        self.drawn.load(Ordering::Relaxed)
+    }
+
+    /// Shadow maps kept (not drawn again) since the app started.
+    pub fn kept(&self) -> u64 {
+        self.kept.load(Ordering::Relaxed)
+    }
+
+    pub(crate) fn count(&self, drawn: bool) {
+        let counter = if drawn { &self.drawn } else { &self.kept };
+        counter.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// What one layer of the maps was last drawn with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct DrawnView {
+    plan: ShadowViewPlan,
+    /// The frame's per-frame noise seed and anti-aliasing flag (a jittered march reads them).
+    noise: [u32; 2],
+    layer_size: u32,
+}
+
+/// The layers drawn on earlier frames, and what they were drawn with. The shadow node's state.
+#[derive(Debug, Default)]
+pub(super) struct KeptShadowViews {
+    drawn: HashMap<u32, DrawnView>,
+    /// The casters and the maps' texture generation the layers were drawn with.
+    casters: Option<(ShadowCasterChanges, u64)>,
+}
+
+impl KeptShadowViews {
+    /// Starts a frame: forgets every layer where the casters changed or the maps were made anew.
+    pub(super) fn begin_frame(&mut self, casters: ShadowCasterChanges, maps_generation: u64) {
+        let now = (casters, maps_generation);
+        if self.casters != Some(now) {
+            self.drawn.clear();
+            self.casters = Some(now);
+        }
+    }
+
+    /// Whether layer `plan.gpu.layer` must be drawn for `plan`; records it as drawn if so.
+    pub(super) fn needs_drawing(
+        &mut self,
+        plan: &ShadowViewPlan,
+        noise: [u32; 2],
+        layer_size: u32,
+    ) -> bool {
+        let view = DrawnView {
+            plan: *plan,
+            noise,
+            layer_size,
+        };
+        self.drawn.insert(plan.gpu.layer, view) != Some(view)
+    }
+}
