@@ -18,6 +18,9 @@ use crate::demo_scene;
 pub enum ShadowLight {
     /// The scene's sun: 3 cascades.
     Sun,
+    /// The scene's sun turning a little every frame: its cascades are drawn every frame (the
+    /// still sun's are kept from frame to frame).
+    MovingSun,
     /// A spot light where the sun comes from, aimed at the scene: one map.
     Spot,
     /// A point light there: six cube faces.
@@ -37,7 +40,7 @@ pub struct ShadowCase {
 
 impl ShadowCase {
     /// Every case, in the order they are reported: each light without shadows, then with.
-    pub const ALL: [ShadowCase; 6] = {
+    pub const ALL: [ShadowCase; 7] = {
         const fn case(light: ShadowLight, shadows: bool) -> ShadowCase {
             ShadowCase { light, shadows }
         }
@@ -48,6 +51,7 @@ impl ShadowCase {
             case(ShadowLight::Spot, true),
             case(ShadowLight::Point, false),
             case(ShadowLight::Point, true),
+            case(ShadowLight::MovingSun, true),
         ]
     };
 
@@ -60,6 +64,8 @@ impl ShadowCase {
             (ShadowLight::Spot, true) => "spot, 1 map",
             (ShadowLight::Point, false) => "point, no shadows",
             (ShadowLight::Point, true) => "point, 6 faces",
+            (ShadowLight::MovingSun, false) => "moving sun, no shadows",
+            (ShadowLight::MovingSun, true) => "moving sun, 3 cascades",
         }
     }
 
@@ -99,9 +105,12 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Re
         Transform::from_xyz(position.x, position.y, position.z).looking_at(centre, Vec3::Y);
     let shadows = case.shadows.then(LightShadows::default);
     match case.light {
-        ShadowLight::Sun => {
+        ShadowLight::Sun | ShadowLight::MovingSun => {
             if let Some(shadows) = shadows {
                 app.world.insert_one(sun, shadows)?;
+            }
+            if case.light == ShadowLight::MovingSun {
+                app.add_system(pom::Stage::Update, turn_the_sun);
             }
         }
         ShadowLight::Spot | ShadowLight::Point => {
@@ -128,6 +137,14 @@ pub fn street_corner(size: (u32, u32), case: ShadowCase, path: RenderPath) -> Re
         }
     }
     Ok(BenchScene::from_app(app))
+}
+
+/// Turns every directional light a tenth of a degree about the vertical.
+fn turn_the_sun(world: &mut pom::hecs::World, _: &mut pom::Resources) {
+    let turn = glam::Quat::from_rotation_y(0.1_f32.to_radians());
+    for (transform, _) in world.query_mut::<(&mut Transform, &DirectionalLight)>() {
+        transform.rotation = turn * transform.rotation;
+    }
 }
 
 /// The street corner embedded in the binary (the bench runs from any folder) in an app that
@@ -169,21 +186,29 @@ impl Runner<'_> {
     /// The street corner per light type with scene shadows and without: each phase, and the
     /// frame (their sum).
     pub(super) fn scene_shadows(&mut self, size: (u32, u32)) -> Result<()> {
-        // Each light type's frame without shadows, its baseline (ALL lists it first).
-        let mut frame_without = None;
+        // Each light type's frame without shadows, its baseline (ALL lists it first; the
+        // moving sun's is the still sun's).
+        let mut frames_without = Vec::new();
         for case in ShadowCase::ALL {
             let (path, times) = time(size, case, self.path, self.warmup, self.frames)?;
             let frame_ms =
                 self.record_phases_and_frame("scene_shadows", size, (path, case.name()), &times)?;
-            match (case.shadows, frame_without) {
-                (false, _) => frame_without = Some((case, frame_ms)),
-                (true, Some((baseline, without))) if baseline.light == case.light => {
-                    let what =
-                        format!("street corner frame: {} / {}", case.name(), baseline.name());
-                    self.ratio(what, size, frame_ms, without);
-                }
-                (true, _) => anyhow::bail!("{} was timed before its baseline", case.name()),
+            let baseline_light = match case.light {
+                ShadowLight::MovingSun => ShadowLight::Sun,
+                light => light,
+            };
+            if !case.shadows {
+                frames_without.push((case, frame_ms));
+                continue;
             }
+            let Some(&(baseline, without)) = frames_without
+                .iter()
+                .find(|(baseline, _)| baseline.light == baseline_light)
+            else {
+                anyhow::bail!("{} was timed before its baseline", case.name());
+            };
+            let what = format!("street corner frame: {} / {}", case.name(), baseline.name());
+            self.ratio(what, size, frame_ms, without);
         }
         Ok(())
     }
