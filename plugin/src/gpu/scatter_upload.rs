@@ -6,7 +6,7 @@
 //! costs one write however the changes lie.
 
 use crate::gpu::GpuContext;
-use crate::render::shaders::{ComposedShader, WgslFile, create_module};
+use crate::shader::{ComposedShader, WgslFile};
 
 /// The scatter pass's WGSL file.
 const SCATTER_ENTRY: WgslFile = crate::wgsl_file!("gpu/scatter.wgsl");
@@ -34,8 +34,12 @@ pub(crate) struct ScatterUpload {
 impl ScatterUpload {
     /// The pipeline, compiled on `gpu`; the staging buffer follows on first use.
     pub(crate) fn new(gpu: &GpuContext) -> Self {
-        let source = SCATTER_SHADER.source_for(&Default::default());
-        let module = create_module(&gpu.device, SCATTER_SHADER.name, source);
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(SCATTER_SHADER.name),
+                source: wgpu::ShaderSource::Wgsl(SCATTER_SHADER.source().into()),
+            });
         let pipeline = gpu
             .device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -11,8 +11,6 @@ use glam::Mat4;
 
 mod draw_entries;
 mod in_place;
-#[cfg(test)]
-mod in_place_tests;
 
 use super::deferred::{DeferredResolve, ResolveTargets};
 use super::draw_order::{SortEntry, SortMemory};

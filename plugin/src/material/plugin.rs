@@ -355,7 +355,7 @@ fn prepare_frame<M: Material>(
     renderer.transparent.replace::<M>(batches.blended());
     lod_cache.retain_existing(inputs.meshes);
     let assets_uploaded = stats.meshes + stats.images + stats.derived > 0;
-    renderer.shadow_casters.add(
+    renderer.shadow_maps.casters.add(
         batches.shadow_casters_signature(),
         batches.casters_data_changed() || assets_uploaded,
     );

@@ -33,7 +33,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
         }
         renderer.assets.release_freed(meshes, images);
-        renderer.shadow_casters.begin_frame();
+        renderer.shadow_maps.casters.begin_frame();
         renderer.last_upload = UploadStats {
             uniform_bytes: renderer
                 .frame

@@ -182,7 +182,6 @@ impl Plugin for RenderPlugin {
             full_screen_stage: full_screen_stage(gpu, self.format, self.post_process),
             post_images: Default::default(),
             last_upload: UploadStats::default(),
-            shadow_casters: Default::default(),
         };
         app.insert_resource(target).insert_resource(renderer);
         set_gpu_timing(&mut app.resources, self.gpu_timing);

@@ -58,8 +58,6 @@ pub struct Renderer {
     pub(super) post_images: PostImages,
     /// What the last Prepare stage uploaded (the core's frame data and every material's).
     pub last_upload: UploadStats,
-    /// What changed this frame of what shadow maps show (every material adds its casters).
-    pub(crate) shadow_casters: crate::render::shadows::ShadowCasterChanges,
 }
 
 impl Renderer {

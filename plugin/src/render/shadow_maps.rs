@@ -6,6 +6,7 @@ use glam::Vec3;
 
 use super::gpu_types::ShadowViewGpu;
 use crate::gpu::GpuContext;
+use crate::shadows::ShadowCasterChanges;
 
 /// Most shadow maps one frame renders (a directional light takes 3, a spot 1, a point light
 /// 6); lights past it cast no scene shadow, with a warning.
@@ -44,6 +45,8 @@ pub struct ShadowMaps {
     sampler: wgpu::Sampler,
     /// Changes whenever the texture is replaced (bind groups holding it must follow).
     generation: u64,
+    /// What the maps show, as this frame's materials prepared it.
+    pub(crate) casters: ShadowCasterChanges,
 }
 
 fn depth_array(gpu: &GpuContext, size: u32, layers: u32, label: &str) -> wgpu::Texture {
@@ -94,6 +97,7 @@ impl ShadowMaps {
                 ..Default::default()
             }),
             generation: 0,
+            casters: ShadowCasterChanges::default(),
         }
     }
 

@@ -9,33 +9,7 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::render::ShadowViewPlan;
-
-/// What the shadow maps show, as the materials prepared it: started by each Prepare stage,
-/// then added to by every material. Part of the renderer.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct ShadowCasterChanges {
-    /// This frame's casters' batches and the pipelines drawing them, hashed (every material's
-    /// folded in).
-    signature: u64,
-    /// Counts the frames on which a caster's per-draw data, or an asset, was uploaded: kept
-    /// from frame to frame, so a change on a frame that draws no map is still seen after.
-    data_generation: u64,
-}
-
-impl ShadowCasterChanges {
-    /// Starts a frame's signature.
-    pub(crate) fn begin_frame(&mut self) {
-        self.signature = 0;
-    }
-
-    /// Adds one material's casters: its `signature`, and whether its data changed.
-    pub(crate) fn add(&mut self, signature: u64, data_changed: bool) {
-        self.signature = self.signature.rotate_left(5) ^ signature;
-        if data_changed {
-            self.data_generation += 1;
-        }
-    }
-}
+use crate::shadows::ShadowCasterChanges;
 
 /// How many shadow maps were drawn and how many kept from an earlier frame. A resource the
 /// shadows plugin adds.

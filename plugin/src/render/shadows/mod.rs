@@ -12,7 +12,6 @@ mod plan;
 mod views;
 
 use kept::KeptShadowViews;
-pub(crate) use kept::ShadowCasterChanges;
 pub use kept::ShadowMapStats;
 
 use crate::gpu::PassTimestamps;
@@ -76,7 +75,7 @@ impl FrameNode for ShadowMapsNode {
         let target_size = extracted.frame.target_size;
         let noise = [target_size[2], target_size[3]];
         self.kept
-            .begin_frame(renderer.shadow_casters, shadow_maps.generation());
+            .begin_frame(shadow_maps.casters, shadow_maps.generation());
         for (index, plan) in extracted.shadow_views.iter().enumerate() {
             let Some(layer) = shadow_maps.layer_view(plan.gpu.layer) else {
                 continue;
