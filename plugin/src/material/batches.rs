@@ -139,7 +139,7 @@ pub(crate) struct MaterialBatches<M: Material> {
     dirty_slots: Vec<usize>,
     /// Whether the last frame was prepared in place.
     pub(crate) prepared_in_place: bool,
-    /// Whether the last frame uploaded per-draw data of a shadow caster.
+    /// Whether a shadow caster's draw changed on the last frame.
     casters_data_changed: bool,
 }
 
@@ -283,6 +283,11 @@ impl<M: Material> MaterialBatches<M> {
         }
         self.prepared_view = Some(view);
         self.prepared_in_place = in_place;
+        self.casters_data_changed = !extracted.same_entities
+            || extracted
+                .changed
+                .iter()
+                .any(|&index| draws[index].casts_shadows);
         self.assign_visibility_ids(inputs.deferred.is_some().then_some(ids), assets, in_place);
         self.upload_draw_data(inputs, (stats, assets.scatters()), in_place);
         self.textures.prepare(
@@ -497,8 +502,6 @@ impl<M: Material> MaterialBatches<M> {
             }
         };
         stats.uniform_bytes += bytes;
-        self.casters_data_changed =
-            bytes > 0 && (!in_place || self.dirty_slots.iter().any(|&slot| self.slot_casts(slot)));
         self.frame_groups.refresh(
             gpu,
             &DrawBuffers {
@@ -511,20 +514,11 @@ impl<M: Material> MaterialBatches<M> {
         );
     }
 
-    /// Whether the last frame uploaded per-draw data of a shadow caster (on a frame prepared in
-    /// full, whether it uploaded any).
+    /// Whether a shadow caster's draw changed on the last frame (where entities came or went,
+    /// whether any did): the batches that draw casters are followed apart
+    /// ([`MaterialBatches::shadow_casters_signature`]).
     pub(crate) fn casters_data_changed(&self) -> bool {
         self.casters_data_changed
-    }
-
-    /// Whether sorted slot `slot` belongs to a batch drawn into shadow maps.
-    fn slot_casts(&self, slot: usize) -> bool {
-        let index = self
-            .batches
-            .partition_point(|batch| batch.instances.end as usize <= slot);
-        self.batches
-            .get(index)
-            .is_some_and(|batch| batch.casts_shadows && !M::blends(batch.key))
     }
 
     /// Builds the pipelines the batches use this frame where missing (shadow pipelines too for

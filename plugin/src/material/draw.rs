@@ -199,7 +199,7 @@ impl<M: Material> MaterialBatches<M> {
     /// A hash of what the shadow maps draw of this material: each casting batch's key,
     /// textures, mesh and instances, and the pipeline that draws it (a pipeline compiled in the
     /// background or reloaded replaces another). Equal from frame to frame while the casters'
-    /// batches stay; their data is followed apart ([`MaterialBatches::casters_data_changed`]).
+    /// batches stay; their draws are followed apart ([`MaterialBatches::casters_data_changed`]).
     pub(crate) fn shadow_casters_signature(&self) -> u64 {
         use std::hash::{Hash, Hasher};
         let mut hasher = std::collections::hash_map::DefaultHasher::new();

@@ -1,7 +1,7 @@
 //! Shadow maps kept while nothing they show changes. A map is drawn again only where its view
 //! (where the light looks from, its size and layer, the frame's noise) differs from the one it
 //! was last drawn with, the maps' texture was made anew, or a shadow caster changed since: its
-//! transform or uniform, the batches or pipelines that draw casters, or a mesh or texture
+//! transform or material, the batches or pipelines that draw casters, or a mesh or texture
 //! uploaded again. A moving sun redraws its cascades; a spot or point light that stayed, and
 //! whose casters stayed, keeps its maps.
 
