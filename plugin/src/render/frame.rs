@@ -33,6 +33,8 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
             background.prepare(gpu, target, visibility, clear_value(extracted.clear_color));
         }
         renderer.assets.release_freed(meshes, images);
+        // Scatters of a Prepare stage no frame recorded land before this frame's writes.
+        renderer.assets.scatters().submit_unrecorded(gpu);
         renderer.shadow_maps.casters.begin_frame();
         renderer.last_upload = UploadStats {
             uniform_bytes: renderer
