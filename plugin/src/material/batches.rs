@@ -328,7 +328,8 @@ impl<M: Material> MaterialBatches<M> {
                 facts = prepare_textures(inputs, textures, assets, stats);
                 last_textures = Some(textures);
             }
-            let (uniform, entry) = draw_entry(inputs, (draw, index), bounds, &facts, textures);
+            let uniform = draw.material.per_draw(&facts);
+            let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
             self.uniform_data.push(uniform);
             self.order.push(entry);
         }

@@ -79,9 +79,7 @@ impl<K: Copy + Ord> SortEntry<K> {
     /// What orders the entries: batch (blending, pipeline, shadow role, textures, mesh), then
     /// depth, then the world's order.
     #[allow(clippy::type_complexity)]
-    pub(super) fn order_key(
-        &self,
-    ) -> (bool, u32, K, bool, BoundTextures, AssetId<Mesh>, u32, usize) {
+    fn order_key(&self) -> (bool, u32, K, bool, BoundTextures, AssetId<Mesh>, u32, usize) {
         (
             self.blends,
             self.far_first,
@@ -92,6 +90,16 @@ impl<K: Copy + Ord> SortEntry<K> {
             self.view_depth,
             self.draw,
         )
+    }
+
+    /// Whether this entry comes before `other` in the order: within one batch by depth and
+    /// draw alone (what a batch's entries differ in), else by the whole key.
+    pub(super) fn precedes(&self, other: &Self) -> bool {
+        if self.same_batch(other) {
+            (self.view_depth, self.draw) < (other.view_depth, other.draw)
+        } else {
+            self.order_key() < other.order_key()
+        }
     }
 
     /// Whether `other` belongs to the same batch as this entry and stands in the same place

@@ -19,6 +19,9 @@ pub(crate) struct ExtractedMaterials<M> {
     /// The draws whose mesh, transform, shadow roles or material changed this frame, in order;
     /// meaningful where `same_entities`.
     pub(crate) changed: Vec<usize>,
+    /// The changed draws whose material changed (not only their transform, mesh or roles), in
+    /// order.
+    pub(crate) changed_materials: Vec<usize>,
     /// Whether every draw is the same entity's as last frame, and no draw came or went: the
     /// Prepare stage may then update only the `changed` ones.
     pub(crate) same_entities: bool,
@@ -77,6 +80,7 @@ pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut 
         resources.insert(ExtractedMaterials::<M> {
             draws: Vec::new(),
             changed: Vec::new(),
+            changed_materials: Vec::new(),
             same_entities: false,
         });
     }
@@ -100,6 +104,7 @@ fn extract_into<M: Material>(
     warnings: &mut MaterialWarnings<M>,
 ) {
     extracted.changed.clear();
+    extracted.changed_materials.clear();
     extracted.same_entities = true;
     let mut writer = DrawWriter {
         extracted,
@@ -240,6 +245,7 @@ impl<M: Material> DrawWriter<'_, M> {
         draw.receives_shadows = shadows.receives;
         if draw.material != *material {
             draw.material = material.clone();
+            self.extracted.changed_materials.push(slot);
         }
     }
 

@@ -8,38 +8,36 @@ use crate::gpu::{BoundTextures, GpuAssets, MAX_DERIVED_TEXTURES, UploadStats};
 use crate::material::draw_order::{SortEntry, view_depth};
 use crate::material::{DrawView, MAX_MATERIAL_TEXTURES, Material, MeshLodBounds, TextureFacts};
 
-/// Draw `index`'s uniform (from the textures as bound, `facts`) and its entry in the order,
-/// seen from the frame's eye.
+/// Draw `index`'s entry in the order, seen from the frame's eye, its uniform being `uniform`
+/// (what [`Material::per_draw`] made of the textures as bound).
 pub(super) fn draw_entry<M: Material>(
     inputs: &PrepareInputs<'_>,
     (draw, index): (&ExtractedDraw<M>, usize),
     bounds: Option<MeshLodBounds>,
-    facts: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES],
+    uniform: &M::PerDraw,
     textures: BoundTextures,
-) -> (M::PerDraw, SortEntry<M::Key>) {
+) -> SortEntry<M::Key> {
     let mut view = DrawView {
         model: draw.model,
         bounds,
         footprint: inputs.footprint,
     };
-    let uniform = draw.material.per_draw(facts);
     let key = draw
         .material
-        .draw_key(draw.material.key(), &uniform, &mut view);
+        .draw_key(draw.material.key(), uniform, &mut view);
     // Blended draws are ordered by their centre, as a mesh placed away from its origin (a glTF
     // primitive with its vertices where it stands) has it elsewhere; the prepass by the nearest
     // point of the bounding sphere (a floor reaching the eye is near, wherever its centre is).
     let (centre, radius) = bounding_sphere(draw.model, bounds.as_ref());
     let centre_view_depth = view_depth(centre, inputs.eye);
-    let entry = SortEntry::new(
+    SortEntry::new(
         draw,
         index,
         (key, textures),
         inputs.eye,
         centre_view_depth - radius,
         M::blends(key).then_some(centre_view_depth),
-    );
-    (uniform, entry)
+    )
 }
 
 /// The world-space centre and radius of the bounding sphere of a mesh with `bounds` drawn with

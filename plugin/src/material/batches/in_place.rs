@@ -76,7 +76,9 @@ impl<M: Material> MaterialBatches<M> {
         let mut bounds = None;
         let mut last_textures = None;
         let mut facts = [None; MAX_MATERIAL_TEXTURES];
+        let mut new_materials = extracted.changed_materials.iter().peekable();
         for &index in &extracted.changed {
+            let new_material = new_materials.next_if_eq(&&index).is_some();
             let draw = &extracted.draws[index];
             let slot = self.slot_of_draw[index] as usize;
             let textures = bound_textures(&draw.material);
@@ -91,7 +93,14 @@ impl<M: Material> MaterialBatches<M> {
                 bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
                 last_mesh = Some(draw.mesh);
             }
-            let (uniform, entry) = draw_entry(inputs, (draw, index), bounds, &facts, textures);
+            // The uniform depends on the material and its textures only: a draw that moved
+            // keeps its own.
+            let uniform = if new_material {
+                draw.material.per_draw(&facts)
+            } else {
+                self.sorted_uniforms[slot]
+            };
+            let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
             if !self.order[slot].same_batch(&entry) {
                 return false;
             }
@@ -101,12 +110,12 @@ impl<M: Material> MaterialBatches<M> {
         }
         // Each rewritten entry still between its neighbours: the order is the sorted one.
         self.dirty_slots.iter().all(|&slot| {
-            let key = self.order[slot].order_key();
-            (slot == 0 || self.order[slot - 1].order_key() < key)
+            let entry = &self.order[slot];
+            (slot == 0 || self.order[slot - 1].precedes(entry))
                 && self
                     .order
                     .get(slot + 1)
-                    .is_none_or(|next| key < next.order_key())
+                    .is_none_or(|next| entry.precedes(next))
         })
     }
 
