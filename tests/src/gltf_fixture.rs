@@ -164,3 +164,19 @@ pub fn scratch_dir(test: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).expect("test directory");
     dir
 }
+
+impl GltfFixture {
+    /// Writes the fixture as `test` in a scratch folder, loads it into `app` and returns the
+    /// error message, which must name `needle`.
+    pub fn load_error(&self, app: &mut pom::App, test: &str, needle: &str) -> String {
+        let dir = scratch_dir(test);
+        let error = pom::load_gltf(app, self.write(&dir, test))
+            .expect_err("the file must not load")
+            .to_string();
+        assert!(
+            error.contains(needle),
+            "{error:?} should mention {needle:?}"
+        );
+        error
+    }
+}

@@ -76,15 +76,7 @@ fn loaded_material(fixture: &GltfFixture, test: &str) -> (App, ParallaxOcclusion
 }
 
 fn load_error(fixture: &GltfFixture, test: &str, needle: &str) {
-    let dir = scratch_dir(test);
-    let mut app = app();
-    let error = load_gltf(&mut app, fixture.write(&dir, test))
-        .unwrap_err()
-        .to_string();
-    assert!(
-        error.contains(needle),
-        "{error:?} should mention {needle:?}"
-    );
+    let error = fixture.load_error(&mut app(), test, needle);
     assert!(error.contains("material \"surface\" (#0)"), "{error}");
 }
 

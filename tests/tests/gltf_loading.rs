@@ -280,15 +280,8 @@ fn meshes_without_normals_or_uvs_get_flat_normals_and_zero_uvs() {
 
 /// Loads `fixture` and returns the error message, which must name `needle`.
 fn load_error(fixture: &GltfFixture, test: &str, needle: &str) -> String {
-    let dir = scratch_dir(test);
     let mut app = app();
-    let error = load_gltf(&mut app, fixture.write(&dir, test))
-        .unwrap_err()
-        .to_string();
-    assert!(
-        error.contains(needle),
-        "{error:?} should mention {needle:?}"
-    );
+    let error = fixture.load_error(&mut app, test, needle);
     assert_eq!(app.world.len(), 0, "nothing half-loaded stays behind");
     error
 }

@@ -102,15 +102,7 @@ fn bad_triplanar_values_are_errors_naming_the_material_and_the_key() {
             "mapping",
         ),
     ] {
-        let dir = scratch_dir(test);
-        let mut app = app();
-        let error = load_gltf(&mut app, triplanar_quad(keys, true).write(&dir, test))
-            .unwrap_err()
-            .to_string();
-        assert!(
-            error.contains(needle),
-            "{error:?} should mention {needle:?}"
-        );
+        let error = triplanar_quad(keys, true).load_error(&mut app(), test, needle);
         assert!(error.contains("material \"surface\" (#0)"), "{error}");
     }
 }

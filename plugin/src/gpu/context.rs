@@ -192,6 +192,22 @@ impl GpuContext {
         self.queue.write_texture(texture, bytes, layout, size);
     }
 
+    /// Writes `value` into `buffer` unless it equals `uploaded`, what the buffer last got (kept
+    /// by its owner), which it then becomes; returns the bytes written.
+    pub(crate) fn write_changed<T: bytemuck::Pod + PartialEq>(
+        &self,
+        buffer: &wgpu::Buffer,
+        uploaded: &mut Option<T>,
+        value: T,
+    ) -> u64 {
+        if *uploaded == Some(value) {
+            return 0;
+        }
+        self.write_buffer(buffer, 0, bytemuck::bytes_of(&value));
+        *uploaded = Some(value);
+        std::mem::size_of::<T>() as u64
+    }
+
     /// Bytes the library has written to buffers and textures through the queue since this
     /// context was made (shared by its clones).
     pub fn uploaded_bytes(&self) -> u64 {

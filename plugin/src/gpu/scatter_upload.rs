@@ -60,7 +60,8 @@ impl ScatterUpload {
 
     /// Uploads `entries` (the bytes of each, `words_per_entry` words) for their `slots` of
     /// `destination` and queues the dispatch that writes them there on `queue`. Returns the
-    /// bytes uploaded.
+    /// bytes uploaded. At most once a frame: the staging buffer must not be written again before
+    /// the dispatch ran (the Prepare stage submits what no frame recorded before any upload).
     pub(crate) fn write<'a>(
         &mut self,
         gpu: &GpuContext,
@@ -68,8 +69,6 @@ impl ScatterUpload {
         (slots, words_per_entry): (&[u32], u32),
         entries: impl Iterator<Item = &'a [u8]>,
     ) -> u64 {
-        // The staging buffer is about to be written again: what was queued from it runs first.
-        queue.submit_unrecorded(gpu);
         self.packed.clear();
         self.packed.push(slots.len() as u32);
         self.packed.push(words_per_entry);

@@ -76,10 +76,9 @@ impl<K: Copy + Ord> SortEntry<K> {
         }
     }
 
-    /// What orders the entries: batch (blending, pipeline, shadow role, textures, mesh), then
-    /// depth, then the world's order.
-    #[allow(clippy::type_complexity)]
-    fn order_key(&self) -> (bool, u32, K, bool, BoundTextures, AssetId<Mesh>, u32, usize) {
+    /// What places the entry's batch among the others: blending (and a blended draw's depth),
+    /// pipeline, shadow role, textures, mesh.
+    fn batch_key(&self) -> (bool, u32, K, bool, BoundTextures, AssetId<Mesh>) {
         (
             self.blends,
             self.far_first,
@@ -87,9 +86,19 @@ impl<K: Copy + Ord> SortEntry<K> {
             self.casts_shadows,
             self.textures,
             self.mesh,
-            self.view_depth,
-            self.draw,
         )
+    }
+
+    /// What orders the entries: the batch, then depth, then the world's order.
+    #[allow(clippy::type_complexity)]
+    fn order_key(
+        &self,
+    ) -> (
+        (bool, u32, K, bool, BoundTextures, AssetId<Mesh>),
+        u32,
+        usize,
+    ) {
+        (self.batch_key(), self.view_depth, self.draw)
     }
 
     /// Whether this entry comes before `other` in the order: within one batch by depth and
@@ -105,21 +114,7 @@ impl<K: Copy + Ord> SortEntry<K> {
     /// Whether `other` belongs to the same batch as this entry and stands in the same place
     /// among the batches (all but depth and draw agree).
     pub(super) fn same_batch(&self, other: &Self) -> bool {
-        (
-            self.blends,
-            self.far_first,
-            self.key,
-            self.casts_shadows,
-            self.textures,
-            self.mesh,
-        ) == (
-            other.blends,
-            other.far_first,
-            other.key,
-            other.casts_shadows,
-            other.textures,
-            other.mesh,
-        )
+        self.batch_key() == other.batch_key()
     }
 
     /// Sorts `order` (entries in extraction order: entry `i` is draw `i`): opaque batches first

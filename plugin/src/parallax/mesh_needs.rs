@@ -184,10 +184,7 @@ fn unsuitable_meshes<Mode: Send + Sync + 'static>(
     let mut newly = Vec::new();
     for draw in draws {
         let key = (draw.entity, draw.mesh);
-        if !applies(&draw.material)
-            || newly.contains(&key)
-            || warned.is_some_and(|warned| warned.warned.contains(&key))
-        {
+        if !applies(&draw.material) || warned.is_some_and(|warned| warned.warned.contains(&key)) {
             continue;
         }
         if let Some(problem) = meshes.get(draw.mesh).and_then(&problem) {

@@ -92,10 +92,7 @@ impl DeferredBackground {
             height,
             _padding: [0; 2],
         };
-        if self.uploaded != Some(params) {
-            gpu.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-            self.uploaded = Some(params);
-        }
+        gpu.write_changed(&self.params, &mut self.uploaded, params);
         self.workgroups = shaders::deferred_tiles((width, height));
         if self.bind_group.as_ref().map(|(id, _)| *id) != Some(target.id()) {
             let layout = self.pipeline.get_bind_group_layout(0);

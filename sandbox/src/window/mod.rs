@@ -22,6 +22,8 @@ mod split_controls;
 mod window_app;
 
 #[cfg(test)]
+mod layer_panel_tests;
+#[cfg(test)]
 mod panel_layout_tests;
 #[cfg(test)]
 mod panel_tests;

@@ -283,12 +283,7 @@ impl FxaaPass {
 
     /// Writes `settings` if they changed; returns the bytes written.
     pub(crate) fn upload(&mut self, gpu: &GpuContext, settings: FxaaSettings) -> u64 {
-        if self.uploaded == Some(settings) {
-            return 0;
-        }
-        gpu.write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
-        self.uploaded = Some(settings);
-        std::mem::size_of::<FxaaSettings>() as u64
+        gpu.write_changed(&self.settings, &mut self.uploaded, settings)
     }
 
     /// Whether the pass was made for targets of `format`.

@@ -104,13 +104,7 @@ impl Background {
             scale: [view.scale, 0.0, 0.0, 0.0],
             size: [width, height, 0, 0],
         };
-        let written = if self.uploaded == Some(params) {
-            0
-        } else {
-            gpu.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-            self.uploaded = Some(params);
-            std::mem::size_of::<BackgroundParams>() as u64
-        };
+        let written = gpu.write_changed(&self.params, &mut self.uploaded, params);
         self.workgroups = (width.div_ceil(8), height.div_ceil(8));
         if new_source || self.groups.as_ref().map(|(id, ..)| *id) != Some(target.id()) {
             let layout = self.pipeline.get_bind_group_layout(0);

@@ -155,12 +155,7 @@ impl PostProcess {
 
     /// Writes `settings` if they changed; returns the bytes written.
     pub(crate) fn upload(&mut self, gpu: &GpuContext, settings: PostSettings) -> u64 {
-        if self.uploaded == Some(settings) {
-            return 0;
-        }
-        gpu.write_buffer(&self.settings, 0, bytemuck::bytes_of(&settings));
-        self.uploaded = Some(settings);
-        std::mem::size_of::<PostSettings>() as u64
+        gpu.write_changed(&self.settings, &mut self.uploaded, settings)
     }
 
     /// The bind group reading `colour` (alpha from `target`'s scene) and writing `output`,
