@@ -199,11 +199,7 @@ impl MaterialArgs {
         let Some(PresetFile { path, preset }) = &self.preset else {
             return Ok(None);
         };
-        let folder = path
-            .parent()
-            .filter(|parent| !parent.as_os_str().is_empty())
-            .unwrap_or(std::path::Path::new("."));
-        preset.read_layer_files(folder, pom::files::FileAccess::InsideFolder)
+        preset.read_layer_files_beside(path, pom::files::FileAccess::InsideFolder)
     }
 }
 

@@ -111,6 +111,23 @@ impl PomPreset {
             })
     }
 
+    /// [`PomPreset::read_layer_files`] relative to the folder of `path`, the preset's own file
+    /// (the current folder for a bare file name).
+    ///
+    /// # Errors
+    /// As [`PomPreset::read_layer_files`].
+    pub fn read_layer_files_beside(
+        &self,
+        path: &Path,
+        access: FileAccess,
+    ) -> Result<Option<LayerFiles>, PresetError> {
+        let folder = path
+            .parent()
+            .filter(|parent| !parent.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        self.read_layer_files(folder, access)
+    }
+
     /// The layers the preset describes, their maps decoded from the files it names (relative
     /// to `folder`, the preset's; with [`FileAccess::InsideFolder`] each a regular file inside
     /// it); weighed by the weight map it names, else the vertex colours. `None` when it names

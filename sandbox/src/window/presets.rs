@@ -41,12 +41,8 @@ fn load(
     images: Option<&mut Assets<Image>>,
 ) -> Result<(PomPreset, Option<pom::ParallaxLayers>), String> {
     let preset = PomPreset::load(path).map_err(|error| error.to_string())?;
-    let folder = std::path::Path::new(path)
-        .parent()
-        .filter(|parent| !parent.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
     let files = preset
-        .read_layer_files(folder, pom::files::FileAccess::InsideFolder)
+        .read_layer_files_beside(path.as_ref(), pom::files::FileAccess::InsideFolder)
         .map_err(|error| error.to_string())?;
     let layers = match (files, images) {
         (None, _) => None,

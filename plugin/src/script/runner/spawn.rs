@@ -143,9 +143,8 @@ impl Runner<'_> {
             let preset = PomPreset::load(&path).map_err(|error| error.to_string())?;
             material.apply_preset(&preset);
             // The layers' files are the preset's neighbours.
-            let folder = path.parent().unwrap_or(self.dir);
             let files = preset
-                .read_layer_files(folder, self.options.file_access)
+                .read_layer_files_beside(&path, self.options.file_access)
                 .map_err(|error| format!("preset {}: {error}", path.display()))?;
             if let Some(files) = files {
                 let images = self
