@@ -48,6 +48,23 @@ pub fn deferred_twin(shader: &ComposedShader) -> ComposedShader {
     twin
 }
 
+/// The two rounds of a frame's deferred resolve: the batches that settle candidates
+/// ([`crate::Material::settles_depth_in_resolve`]) of every material, then the others.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ResolveRound {
+    /// Classification and the settling batches.
+    Settling,
+    /// Every other batch.
+    Shading,
+}
+
+impl ResolveRound {
+    /// The round of a batch that settles candidates or not.
+    pub(crate) fn of(settles: bool) -> Self {
+        if settles { Self::Settling } else { Self::Shading }
+    }
+}
+
 /// What one dispatch resolves. Mirrors `ResolveBatch` in deferred_resolve.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -168,7 +185,8 @@ impl DeferredResolve {
                         },
                         count: None,
                     },
-                    storage(1),
+                    // Read-write: settling resolves write the candidate keys.
+                    compute_storage_buffer(1, false),
                     storage(2),
                     storage(3),
                     wgpu::BindGroupLayoutEntry {

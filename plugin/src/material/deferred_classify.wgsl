@@ -1,5 +1,6 @@
 // Tile classification for the deferred resolve: for each 8 × 8 tile of the visibility buffer,
-// which of a material's resolve batches show in it. Each batch gets the list of its tiles and
+// which of a material's resolve batches show in it, by each pixel's visibility key and its
+// candidate key (a candidate may win or lose when settled: both batches list the tile). Each batch gets the list of its tiles and
 // an indirect dispatch of one workgroup per tile, so a batch's resolve runs only where it is
 // seen. Mirrors `ClassifyParams` in material/resolve_tiles.rs (the layout test checks them).
 
@@ -14,7 +15,8 @@ struct ClassifyParams {
 }
 
 @group(0) @binding(0) var<uniform> params: ClassifyParams;
-// The visibility keys (visibility_read.wgsl).
+// The visibility keys then the candidate keys (visibility_read.wgsl), before any resolve
+// settles a candidate.
 @group(0) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
 // Each batch's visibility ids, first..end, in increasing order.
 @group(0) @binding(2) var<storage, read> batch_ids: array<vec2<u32>>;
@@ -27,7 +29,8 @@ struct ClassifyParams {
 
 const NO_BATCH: u32 = 0xffffffffu;
 
-var<workgroup> lane_batches: array<u32, TILE_SIDE * TILE_SIDE>;
+// Per lane, the batch of its visibility key then the batch of its candidate key.
+var<workgroup> lane_batches: array<u32, 2u * TILE_SIDE * TILE_SIDE>;
 
 // The batch whose ids hold `id` (binary search), or NO_BATCH.
 fn batch_of(id: u32) -> u32 {
@@ -60,15 +63,28 @@ fn cs_classify(@builtin(workgroup_id) tile: vec3<u32>, @builtin(local_invocation
     @builtin(local_invocation_index) lane: u32) {
     let pixel = tile.xy * TILE_SIDE + local.xy;
     var batch = NO_BATCH;
+    var candidate = NO_BATCH;
     if pixel.x < params.width && pixel.y < params.height {
         batch = batch_of(visible_id(pixel, params.width));
+        let candidate_id = visibility[candidate_index(pixel, vec2<u32>(params.width, params.height))].x;
+        if candidate_id != 0u {
+            candidate = batch_of(candidate_id);
+        }
     }
-    lane_batches[lane] = batch;
+    lane_batches[2u * lane] = batch;
+    lane_batches[2u * lane + 1u] = candidate;
     workgroupBarrier();
+    list_tile(tile.xy, 2u * lane, batch);
+    list_tile(tile.xy, 2u * lane + 1u, candidate);
+}
+
+// Lists `tile` for `batch`, seen at `place` in the lanes' batches, unless an earlier place
+// shows it too.
+fn list_tile(tile: vec2<u32>, place: u32, batch: u32) {
     if batch == NO_BATCH {
         return;
     }
-    for (var other = 0u; other < lane; other += 1u) {
+    for (var other = 0u; other < place; other += 1u) {
         if lane_batches[other] == batch {
             return;
         }

@@ -35,8 +35,10 @@ struct StoredVertex {
 }
 
 @group(2) @binding(0) var<uniform> resolve_batch: ResolveBatch;
-// The visibility keys (visibility_read.wgsl).
-@group(2) @binding(1) var<storage, read> visibility: array<vec2<u32>>;
+// The visibility keys then the candidate keys (visibility_read.wgsl): a settling resolve
+// leaves each of its candidates the winner or 0; a pixel whose candidate key is not 0 shows the
+// candidate, whatever its visibility key says.
+@group(2) @binding(1) var<storage, read_write> visibility: array<vec2<u32>>;
 @group(2) @binding(2) var<storage, read> mesh_vertices: array<StoredVertex>;
 @group(2) @binding(3) var<storage, read> mesh_indices: array<u32>;
 // `SceneOutput` is generated: the target's HDR scene format as a write-only storage texture.
@@ -84,13 +86,28 @@ fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     if f32(pixel.x) >= resolve_batch.target_width || f32(pixel.y) >= resolve_batch.target_height {
         return item;
     }
-    let visible = visible_id(pixel, frame.target_size.x);
+    let candidate = visibility[candidate_index(pixel, frame.target_size.xy)].x;
+    let visible = select(visible_id(pixel, frame.target_size.x), candidate, candidate != 0u);
     item.resolves = visible >= resolve_batch.first_id && visible < resolve_batch.end_id;
     let within = visible - resolve_batch.first_id;
     let triangles = max(resolve_batch.triangles, 1u);
     item.object_index = resolve_batch.first_object + within / triangles;
     item.triangle = within % triangles;
     return item;
+}
+
+// A settling resolve's verdict on its candidate at `pixel`: its surface at clip depth `depth`
+// shows where it is nearer than what the visibility pass kept (and `covers`: the view ray did
+// not leave the surface); else the pixel is the visibility pass's again. Whether it shows.
+fn settle_candidate(pixel: vec2<u32>, depth: f32, covers: bool) -> bool {
+    let index = candidate_index(pixel, frame.target_size.xy);
+    let shows = covers && depth < visible_depth(pixel, frame.target_size.x);
+    if shows {
+        visibility[index].y = ~bitcast<u32>(depth);
+    } else {
+        visibility[index] = vec2<u32>(0u);
+    }
+    return shows;
 }
 
 // The world point on the view ray through framebuffer position `pixel` at clip depth `depth`.

@@ -6,7 +6,7 @@ use std::ops::Range;
 
 use super::Material;
 use super::batches::{Batch, MaterialBatches};
-use super::deferred::DeferredResolve;
+use super::deferred::{DeferredResolve, ResolveRound};
 use super::mesh_pipeline::MeshPass;
 use crate::gpu::BoundTextures;
 use crate::gpu::GpuAssets;
@@ -41,17 +41,23 @@ impl<M: Material> MaterialBatches<M> {
         self.resolve.as_ref().is_some_and(DeferredResolve::has_work)
     }
 
-    /// Records the deferred resolve's dispatches of this frame into `pass`.
-    pub(crate) fn dispatch_resolves(&self, pass: &mut wgpu::ComputePass<'_>) {
+    /// Records the deferred resolve's dispatches of this frame in `round` into `pass`: the
+    /// tile classification and the batches that settle candidates first, the others after.
+    pub(crate) fn dispatch_resolves(&self, pass: &mut wgpu::ComputePass<'_>, round: ResolveRound) {
         let Some(resolve) = &self.resolve else {
             return;
         };
-        resolve.classify(pass);
+        if round == ResolveRound::Settling {
+            resolve.classify(pass);
+        }
         // Slot 0 of the frame uniform: the camera's view.
         pass.set_bind_group(0, self.frame_groups.shading(), &[0]);
         let mut bound_key = None;
         let mut bound_textures = None;
         resolve.dispatch(pass, &self.batches, |pass, batch| {
+            if ResolveRound::of(M::settles_depth_in_resolve(batch.key)) != round {
+                return false;
+            }
             let (Some(pipeline), Some(textures)) = (
                 self.pipelines.resolve(&batch.key),
                 self.textures.get(&batch.textures),
@@ -92,15 +98,16 @@ impl<M: Material> MaterialBatches<M> {
         self.blended.iter().copied()
     }
 
-    /// The batches of the last prepared frame that draw in the prepass, for the frame's
-    /// nearest-first list of it: (view depth of the batch's nearest point, batch index).
-    pub(crate) fn prepass_nearest_first(&self) -> impl Iterator<Item = (f32, u32)> + '_ {
+    /// The batches of the last prepared frame that draw in `phase` (the prepass, the
+    /// candidates), for the frame's nearest-first list of it: (view depth of the batch's
+    /// nearest point, batch index).
+    pub(crate) fn nearest_first(&self, phase: DrawPhase) -> impl Iterator<Item = (f32, u32)> + '_ {
         self.batches
             .iter()
             .enumerate()
-            .filter_map(|(index, batch)| {
+            .filter_map(move |(index, batch)| {
                 self.pipelines
-                    .pass_in(DrawPhase::Prepass, batch.key)
+                    .pass_in(phase, batch.key)
                     .map(|_| (batch.nearest_depth, index as u32))
             })
     }
@@ -138,10 +145,13 @@ impl<M: Material> MaterialBatches<M> {
         self.record_calls(pass, assets, calls);
     }
 
-    /// The frame bind group of `phase`: the prepass writes (depth, visibility keys), the
-    /// others shade.
+    /// The frame bind group of `phase`: the prepass and the candidates' passes write (depth,
+    /// visibility and candidate keys), the others shade.
     fn frame_bind_group(&self, phase: DrawPhase) -> &wgpu::BindGroup {
-        if phase == DrawPhase::Prepass {
+        if matches!(
+            phase,
+            DrawPhase::Prepass | DrawPhase::Candidates | DrawPhase::SettledDepth
+        ) {
             self.frame_groups.writing()
         } else {
             self.frame_groups.shading()

@@ -10,6 +10,13 @@ pub(crate) enum MeshPass {
     /// The deferred path's prepass: as the prepass, its fragments also merging each pixel's id
     /// into the visibility buffer (a storage buffer: no colour target).
     Visibility,
+    /// The deferred path's candidate pass, after the opaque phase: depth tested `Less` against
+    /// the visibility pass and written, the polygon's depth merged into the candidate keys
+    /// (`fs_visibility_candidate`) for the resolve to settle.
+    Candidate,
+    /// After the deferred resolve, the candidates' polygons again: depth compared `Always`
+    /// and written, each pixel's settled depth (`fs_settled_depth`).
+    SettledDepth,
     /// A shadow map: as the prepass, from a light's view, into the shadow-map format.
     Shadow,
     /// The opaque phase after a prepass: depth tested `LessEqual` against it, never written.
@@ -87,9 +94,12 @@ pub(crate) fn mesh_pipeline(
         cull_mode,
     } = *descriptor;
     let (depth_write, depth_compare) = match pass {
-        MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow | MeshPass::Opaque => {
-            (true, wgpu::CompareFunction::Less)
-        }
+        MeshPass::Prepass
+        | MeshPass::Visibility
+        | MeshPass::Candidate
+        | MeshPass::Shadow
+        | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
+        MeshPass::SettledDepth => (true, wgpu::CompareFunction::Always),
         MeshPass::OpaqueAfterPrepass | MeshPass::Transparent | MeshPass::Motion => {
             (false, wgpu::CompareFunction::LessEqual)
         }
@@ -106,7 +116,11 @@ pub(crate) fn mesh_pipeline(
     })];
 
     let targets: &[Option<wgpu::ColorTargetState>] = match pass {
-        MeshPass::Prepass | MeshPass::Visibility | MeshPass::Shadow => &[],
+        MeshPass::Prepass
+        | MeshPass::Visibility
+        | MeshPass::Candidate
+        | MeshPass::SettledDepth
+        | MeshPass::Shadow => &[],
         _ => &color_targets,
     };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -177,6 +177,15 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn deferred_resolve(_key: Self::Key) -> Option<ShaderEntry> {
         None
     }
+    /// Whether `key`'s visible depth lies behind its polygon (parallax depth offset) and its
+    /// [`Material::deferred_resolve`] settles it: on the deferred path its polygons then draw
+    /// in the candidate pass, not the visibility pass (the core's `fs_visibility_candidate`
+    /// keeps the nearest one per pixel by its polygon's depth), and its resolve, which runs
+    /// before every other, marches each candidate once and calls `settle_candidate` with the
+    /// depth it found. `false` by default.
+    fn settles_depth_in_resolve(_key: Self::Key) -> bool {
+        false
+    }
     /// This material's element of the per-draw array, given the textures as the GPU holds them
     /// (`None`: the slot's default).
     fn per_draw(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> Self::PerDraw;

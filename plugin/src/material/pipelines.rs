@@ -297,6 +297,8 @@ impl<M: Material> MaterialPipelines<M> {
     pub(crate) fn passes(&self, key: M::Key) -> &'static [MeshPass] {
         if M::blends(key) {
             &[MeshPass::Transparent]
+        } else if self.resolves_in_compute(key) && M::settles_depth_in_resolve(key) {
+            &[MeshPass::Candidate, MeshPass::SettledDepth]
         } else if self.resolves_in_compute(key) {
             &[MeshPass::Visibility]
         } else if self.deferred {
@@ -323,6 +325,8 @@ impl<M: Material> MaterialPipelines<M> {
             DrawPhase::Motion => return (!M::blends(key)).then_some(MeshPass::Motion),
             DrawPhase::Prepass if self.deferred => MeshPass::Visibility,
             DrawPhase::Prepass => MeshPass::Prepass,
+            DrawPhase::Candidates => MeshPass::Candidate,
+            DrawPhase::SettledDepth => MeshPass::SettledDepth,
             DrawPhase::Transparent => MeshPass::Transparent,
             _ if self.prepass => MeshPass::OpaqueAfterPrepass,
             _ => MeshPass::Opaque,
@@ -433,6 +437,8 @@ impl<M: Material> MaterialPipelines<M> {
         let mut fragment = match pass {
             MeshPass::Prepass => M::prepass_fragment(key),
             MeshPass::Visibility => Some(M::visibility_fragment(key)),
+            MeshPass::Candidate => Some(ShaderEntry::entry("fs_visibility_candidate")),
+            MeshPass::SettledDepth => Some(ShaderEntry::entry("fs_settled_depth")),
             MeshPass::Shadow => M::shadow_fragment(key),
             MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),

@@ -9,7 +9,7 @@ use hecs::World;
 use super::Material;
 use super::batches::CompileOptions;
 use super::batches::{FrameNumbers, MaterialBatches, MaterialShader, PrepareInputs};
-use super::deferred::ResolveTargets;
+use super::deferred::{ResolveRound, ResolveTargets};
 use super::extract::{ExtractedMaterials, extract_materials};
 use super::pipelines::FrameVariant;
 use super::registry::{MaterialEntry, MaterialRegistry};
@@ -209,10 +209,21 @@ fn add_phase_draws<M: Material>(phases: &mut RenderPhases) {
                 .is_some_and(|batches| batches.draws_in(DrawPhase::Motion))
         },
     );
+    phases.add_sorted::<M>(DrawPhase::Candidates, |resources, pass, batches| {
+        draw_listed::<M>(resources, pass, DrawPhase::Candidates, batches);
+    });
+    phases.add_draw::<M>(DrawPhase::SettledDepth, |resources, pass| {
+        draw_materials::<M>(resources, pass, DrawPhase::SettledDepth);
+    });
+    phases.add_settling_resolve::<M>(|resources, pass| {
+        if let Some(batches) = resources.get::<MaterialBatches<M>>() {
+            batches.dispatch_resolves(pass, ResolveRound::Settling);
+        }
+    });
     phases.add_resolve::<M>(
         |resources, pass| {
             if let Some(batches) = resources.get::<MaterialBatches<M>>() {
-                batches.dispatch_resolves(pass);
+                batches.dispatch_resolves(pass, ResolveRound::Shading);
             }
         },
         |resources| {
@@ -351,7 +362,10 @@ fn prepare_frame<M: Material>(
     );
     renderer
         .prepass_order
-        .replace::<M>(batches.prepass_nearest_first());
+        .replace::<M>(batches.nearest_first(DrawPhase::Prepass));
+    renderer
+        .candidate_order
+        .replace::<M>(batches.nearest_first(DrawPhase::Candidates));
     renderer.transparent.replace::<M>(batches.blended());
     lod_cache.retain_existing(inputs.meshes);
     let assets_uploaded = stats.meshes + stats.images + stats.derived > 0;

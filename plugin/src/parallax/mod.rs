@@ -231,6 +231,10 @@ impl Material for ParallaxOcclusionMaterial {
         Some(key.deferred_resolve())
     }
 
+    fn settles_depth_in_resolve(key: PomPipelineKey) -> bool {
+        key.settles_depth_in_resolve()
+    }
+
     fn per_draw(&self, textures: &[Option<TextureFacts>; MAX_MATERIAL_TEXTURES]) -> PomUniform {
         let (height, weights) = (textures[HEIGHT_SLOT], textures[LAYER_WEIGHTS_SLOT]);
         if self.is_valid() {

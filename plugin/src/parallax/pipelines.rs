@@ -133,21 +133,31 @@ impl PomPipelineKey {
         })
     }
 
-    /// The visibility pass's fragment stage (deferred path): the core's, or where the depth
-    /// passes march the one that writes their depth and coverage, or their coverage alone.
+    /// The visibility pass's fragment stage (deferred path): the core's, or where a
+    /// silhouette clips the one that marches for coverage. (With depth offset the pipeline
+    /// draws in the candidate pass instead, [`Self::settles_depth_in_resolve`].)
     pub fn visibility_fragment(self) -> ShaderEntry {
-        if self.depth_offset {
-            self.variant("fs_visibility_marched_depth")
-        } else if self.marches_for_depth() {
+        if self.marches_for_depth() && !self.depth_offset {
             self.variant("fs_visibility_clipped")
         } else {
             ShaderEntry::entry("fs_visibility")
         }
     }
 
-    /// The compute resolve that marches and shades this pipeline's pixels on the deferred path.
+    /// The compute resolve that marches and shades this pipeline's pixels on the deferred path
+    /// (with depth offset, settling its candidates first).
     pub fn deferred_resolve(self) -> ShaderEntry {
-        self.variant("cs_resolve")
+        self.variant(if self.depth_offset {
+            "cs_resolve_settling"
+        } else {
+            "cs_resolve"
+        })
+    }
+
+    /// Whether the deferred path settles this pipeline's depth in the resolve: with depth
+    /// offset, the displaced depth lies behind the polygon, by at most the relief's depth.
+    pub fn settles_depth_in_resolve(self) -> bool {
+        self.depth_offset
     }
 
     fn variant(self, entry_point: &'static str) -> ShaderEntry {

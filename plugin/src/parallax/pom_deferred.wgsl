@@ -1,30 +1,8 @@
-// The parallax material's entry points of the deferred path: its visibility pass where the
-// prepass marches for its depth or coverage, and the compute resolve that marches and shades
-// each pixel the visibility buffer gives it. Composed after pom.wgsl, visibility.wgsl and
+// The parallax material's entry points of the deferred path: its visibility pass where a
+// silhouette marches for coverage, and the compute resolves that march and shade each pixel
+// the visibility buffer gives them (with depth offset, the candidate keys: see
+// `cs_resolve_settling`). Composed after pom.wgsl, visibility.wgsl and
 // deferred_resolve.wgsl.
-
-// `depth_offset` (with or without a silhouette) in the visibility pass: the depth of `fs_prepass_marched_depth`,
-// which is also the depth the id is merged with, so the pixel keeps whichever surface is really
-// nearest, and no id where the view ray left the surface. A fragment already behind what its
-// pixel kept is dropped before it marches: with a depth write and the merge's side effect the
-// GPU tests depth late, whatever the attribute promises (without this, hidden planes cost far
-// more: sandbox/BENCHMARKS.md, "Stacked planes (overdraw) and depth offset"). The footprint's
-// derivatives come first, while the whole quad still runs.
-@fragment @early_depth_test(greater_equal)
-fn fs_visibility_marched_depth(in: VertexOut, @builtin(front_facing) front_facing: bool,
-    @builtin(primitive_index) triangle: u32) -> @builtin(frag_depth) f32 {
-    let footprint = fragment_footprint(in);
-    if behind_kept_depth(in.clip_position) {
-        discard;
-    }
-    let point = covering_surface(in, view_ray(in, front_facing, footprint));
-    if point.clipped {
-        discard;
-    }
-    let depth = marched_depth(in, point);
-    keep_visible(in.clip_position, depth, visibility_id(in.object_index, triangle));
-    return depth;
-}
 
 // A silhouette without depth offset in the visibility pass: the polygon's depth, written by the
 // rasterizer (as `fs_prepass_clipped`), and no id where the view ray left the surface.
@@ -50,4 +28,22 @@ fn cs_resolve(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
     // the rebuilt footprint, would clip it by a rounding.
     let point = find_surface(pixel.vertex, pixel.front_facing, pixel.footprint);
     textureStore(scene_output, item.pixel, shade(pixel.vertex, point));
+}
+
+// `depth_offset` (with or without a silhouette): the candidate pass kept the nearest polygon
+// by its own depth, a bound of every displaced depth on it; the march runs here, once, and the
+// relief shows where its displaced depth is nearer than what the visibility pass kept behind
+// it and the view ray stays on the surface. Not exact where two depth-offset surfaces overlap
+// within one's relief depth: only the nearer polygon is marched.
+@compute @workgroup_size(TILE_SIDE, TILE_SIDE)
+fn cs_resolve_settling(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
+    let item = resolve_item(group.xy, local.xy);
+    if !item.resolves {
+        return;
+    }
+    let pixel = resolve_pixel(item);
+    let point = covering_surface(pixel.vertex, view_ray(pixel.vertex, pixel.front_facing, pixel.footprint));
+    if settle_candidate(item.pixel, marched_depth(pixel.vertex, point), !point.clipped) {
+        textureStore(scene_output, item.pixel, shade(pixel.vertex, point));
+    }
 }

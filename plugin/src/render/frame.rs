@@ -78,6 +78,7 @@ pub fn render_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<()
     // Every material has prepared its draws: order the sorted phases across materials.
     let renderer = resources.require_mut::<Renderer>()?;
     renderer.prepass_order.sort();
+    renderer.candidate_order.sort();
     renderer.transparent.sort();
     resources
         .scope(|resources, nodes: &mut FrameNodes| render_nodes(resources, nodes))
@@ -270,6 +271,9 @@ pub(super) struct FramePlan {
     pub resolve: bool,
     /// The resolve also writes the background.
     pub background_in_compute: bool,
+    /// The resolve has candidates to settle: the candidate pass runs before it, the settled
+    /// depth after.
+    pub candidates: bool,
     /// The transparent phase runs.
     pub transparent: bool,
     /// Textures derived from images are built this frame.
@@ -305,6 +309,7 @@ impl FramePlan {
             keep_depth: transparent || nodes_read_depth,
             resolve,
             background_in_compute,
+            candidates: resolve && !renderer.candidate_order.is_empty(),
             transparent,
             derived_textures: !renderer.assets.pending_derived_builds().is_empty(),
         })

@@ -96,7 +96,7 @@ impl<'a> FramePasses<'a> {
             .as_ref()
             .filter(|_| self.plan.deferred);
         if let Some(visibility) = clear {
-            visibility.record_clear(encoder, time);
+            visibility.record_clear(encoder, time, self.plan.candidates);
         }
         let deferred = self.plan.deferred;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -153,14 +153,20 @@ impl<'a> FramePasses<'a> {
         self.draw_phase(DrawPhase::Opaque, &mut pass);
     }
 
-    /// The deferred path's compute resolve (and the background, where no opaque pass ran).
+    /// The deferred path's compute resolve (and the background, where no opaque pass ran);
+    /// with candidates, between the candidate pass and the settled depth, timed as one span.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
         let Some(phases) = self.phases else {
             return;
         };
+        let candidates = self.plan.candidates;
+        if candidates {
+            self.depth_pass(encoder, DrawPhase::Candidates, time.map(|time| time.render_part(true, false)));
+        }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("deferred resolve"),
-            timestamp_writes: time.map(PassTimestamps::compute),
+            // With candidates the render passes on either side begin and end the span.
+            timestamp_writes: time.filter(|_| !candidates).map(PassTimestamps::compute),
         });
         if self.plan.background_in_compute
             && let Some(background) = &self.renderer.background
@@ -170,6 +176,36 @@ impl<'a> FramePasses<'a> {
         for dispatch in phases.resolves() {
             dispatch(self.resources, &mut pass);
         }
+        drop(pass);
+        if candidates {
+            self.depth_pass(encoder, DrawPhase::SettledDepth, time.map(|time| time.render_part(false, true)));
+        }
+    }
+
+    /// A render pass of `phase`'s draws into the depth alone, kept.
+    fn depth_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        phase: DrawPhase,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(if phase == DrawPhase::Candidates { "candidates" } else { "settled depth" }),
+            color_attachments: &[],
+            depth_stencil_attachment: self.depth_attachment(Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            })),
+            timestamp_writes,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if let (DrawPhase::Candidates, Some(phases)) = (phase, self.phases) {
+            self.renderer
+                .candidate_order
+                .record(phases, self.resources, &mut pass);
+        }
+        self.draw_phase(phase, &mut pass);
     }
 
     /// The transparent phase: every material's blended draws farthest first, then the draws

@@ -1,11 +1,14 @@
 //! The phases of a frame, in the one order they run, and the work plugins add to them.
 //!
 //! ```text
-//! prepass      depth of opaque geometry (depth-offset materials write their displaced depth)
+//! prepass      depth of opaque geometry (forward: depth-offset materials write their
+//!              displaced depth)
 //! shadows      a depth pass per shadow map (cascade, spot map, cube face) into which every
 //!              material draws its casters from the light's view
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
-//! resolve      deferred path: materials shade their pixels of the visibility buffer in compute
+//! resolve      deferred path: the candidate pass (depth-offset polygons, by their polygons'
+//!              depth), then materials shade their pixels of the visibility buffer in compute
+//!              (the resolves that settle candidates first), then the settled depth
 //! transparent  blended draws of every material in one list, farthest first; depth read-only;
 //!              then TAA's object motion pass (moving draws write which motion each pixel
 //!              follows)
@@ -77,6 +80,13 @@ pub enum DrawPhase {
     Prepass,
     /// Colour into the HDR scene target; depth tested (and written only without a prepass).
     Opaque,
+    /// Deferred frames, after the opaque phase: the polygons of draws whose visible depth lies
+    /// behind them (parallax depth offset) merge into the candidate keys, depth tested against
+    /// the visibility pass and written; the resolve settles them.
+    Candidates,
+    /// Deferred frames, after the resolve: the candidates' polygons write each pixel's settled
+    /// depth.
+    SettledDepth,
     /// Colour blended over the opaque result; depth tested, never written.
     Transparent,
     /// TAA frames in which a draw moved, after the transparent phase: each moving draw writes
@@ -89,6 +99,7 @@ impl From<DrawPhase> for RenderPhase {
         match phase {
             DrawPhase::Prepass => RenderPhase::Prepass,
             DrawPhase::Opaque => RenderPhase::Opaque,
+            DrawPhase::Candidates | DrawPhase::SettledDepth => RenderPhase::Resolve,
             DrawPhase::Transparent => RenderPhase::Transparent,
             DrawPhase::Motion => RenderPhase::Transparent,
         }
@@ -131,6 +142,7 @@ pub struct RenderPhases {
     sorted_draws: Vec<(DrawPhase, TypeId, SortedDraw)>,
     shadow_draws: Vec<(TypeId, ShadowDraw)>,
     resolves: Vec<(TypeId, ResolveDispatch, HasDraws)>,
+    settling_resolves: Vec<(TypeId, ResolveDispatch)>,
     work: Vec<(RenderPhase, TypeId, PhaseWork)>,
     /// Each declared owner's name and whether its prepass draws write visibility keys (the
     /// deferred path needs every owner's to).
@@ -236,9 +248,22 @@ impl RenderPhases {
         }
     }
 
-    /// The deferred resolve's dispatches, in the order they were added.
+    /// Adds `dispatch` to the first round of the deferred resolve for `Owner` unless `Owner`
+    /// has one there: every owner's first round runs before any [`RenderPhases::add_resolve`]
+    /// dispatch, so the candidates it settles (`settle_candidate`) are settled before the
+    /// other resolves read which pixels they shade. An owner classifies its tiles here.
+    pub fn add_settling_resolve<Owner: 'static>(&mut self, dispatch: ResolveDispatch) {
+        let owner = TypeId::of::<Owner>();
+        if !self.settling_resolves.iter().any(|(id, _)| *id == owner) {
+            self.settling_resolves.push((owner, dispatch));
+        }
+    }
+
+    /// The deferred resolve's dispatches in the order they run: every first round (the
+    /// settling resolves), then the others, each in the order they were added.
     pub fn resolves(&self) -> impl Iterator<Item = ResolveDispatch> + '_ {
-        self.resolves.iter().map(|(_, dispatch, _)| *dispatch)
+        let settling = self.settling_resolves.iter().map(|(_, dispatch)| *dispatch);
+        settling.chain(self.resolves.iter().map(|(_, dispatch, _)| *dispatch))
     }
 
     /// Whether any deferred resolve has pixels to shade this frame.

@@ -177,6 +177,7 @@ impl Plugin for RenderPlugin {
             background: None,
             visibility_ids: VisibilityIds::default(),
             prepass_order: SortedDraws::new(DrawPhase::Prepass),
+            candidate_order: SortedDraws::new(DrawPhase::Candidates),
             transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,
             full_screen_stage: full_screen_stage(gpu, self.format, self.post_process),

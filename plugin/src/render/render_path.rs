@@ -110,7 +110,7 @@ pub(crate) fn deferred_support(
     }
     if !visibility::visibility_fits(gpu, target) {
         return Err(DeferredUnavailable::TargetTooLarge {
-            bytes: visibility::visibility_bytes(target),
+            bytes: 2 * visibility::visibility_bytes(target),
         });
     }
     Ok(())

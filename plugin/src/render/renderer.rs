@@ -48,6 +48,8 @@ pub struct Renderer {
     pub(crate) visibility_ids: VisibilityIds,
     /// This frame's prepass draws of every material, drawn nearest first.
     pub(crate) prepass_order: SortedDraws,
+    /// This frame's candidate draws of every material, drawn nearest first.
+    pub(crate) candidate_order: SortedDraws,
     /// This frame's blended draws of every material, drawn farthest first.
     pub(crate) transparent: SortedDraws,
     /// No frame has chosen its path yet (the first choice is always logged).

@@ -68,11 +68,14 @@ impl VisibilityIds {
 pub(crate) struct VisibilityBuffer {
     /// One [`VISIBILITY_BYTES_PER_PIXEL`] key per pixel, row by row (cleared before each
     /// visibility pass: 0 is "no draw").
+    /// After them as many candidate keys, alike: the nearest polygon per pixel of the draws
+    /// whose resolve settles their depth (`DrawPhase::Candidates`), cleared on frames that
+    /// have such draws.
     pub(crate) keys: wgpu::Buffer,
     /// The [`RenderTarget::id`] it was made for.
     pub(crate) target: u64,
-    /// The clear's pipeline and its bind group over `keys`.
-    clear: (wgpu::ComputePipeline, wgpu::BindGroup),
+    /// The clear's pipeline and its bind groups over the visibility keys and over all.
+    clear: (wgpu::ComputePipeline, [wgpu::BindGroup; 2]),
 }
 
 impl VisibilityBuffer {
@@ -100,33 +103,42 @@ impl VisibilityBuffer {
     ) -> Self {
         let keys = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("visibility buffer"),
-            size: visibility_bytes(target),
+            size: 2 * visibility_bytes(target),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("visibility clear"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: keys.as_entire_binding(),
-            }],
+        let bind_groups = [wgpu::BufferSize::new(visibility_bytes(target)), None].map(|size| {
+            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("visibility clear"),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &keys,
+                        offset: 0,
+                        size,
+                    }),
+                }],
+            })
         });
         Self {
             keys,
             target: target.id(),
-            clear: (pipeline, bind_group),
+            clear: (pipeline, bind_groups),
         }
     }
 
-    /// Records the clear of every key to 0 ("no draw") as a compute pass that begins `time`'s
-    /// span where given (the visibility pass ends it).
+    /// Records the clear of every key to 0 ("no draw"), and of the candidate keys where
+    /// `candidates`, as a compute pass that begins `time`'s span where given (the visibility
+    /// pass ends it).
     pub(crate) fn record_clear(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         time: Option<&PassTimestamps>,
+        candidates: bool,
     ) {
-        let keys = self.keys.size() / VISIBILITY_BYTES_PER_PIXEL;
+        let halves = if candidates { 2 } else { 1 };
+        let keys = self.keys.size() / 2 * halves / VISIBILITY_BYTES_PER_PIXEL;
         let groups = keys.div_ceil(CLEAR_GROUP_SIZE);
         let across = groups.clamp(1, MAX_GROUPS_ACROSS);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -134,7 +146,7 @@ impl VisibilityBuffer {
             timestamp_writes: time.map(|time| time.compute_part(true, false)),
         });
         pass.set_pipeline(&self.clear.0);
-        pass.set_bind_group(0, &self.clear.1, &[]);
+        pass.set_bind_group(0, &self.clear.1[halves as usize - 1], &[]);
         // Both fit in u32: `keys` is bound as one storage buffer.
         pass.dispatch_workgroups(across as u32, groups.div_ceil(across) as u32, 1);
     }
@@ -145,7 +157,7 @@ impl VisibilityBuffer {
         if self.target == target.id() {
             return;
         }
-        if self.keys.size() == visibility_bytes(target) {
+        if self.keys.size() == 2 * visibility_bytes(target) {
             self.target = target.id();
         } else {
             *self = Self::with_clear(gpu, target, self.clear.0.clone());
@@ -153,7 +165,7 @@ impl VisibilityBuffer {
     }
 }
 
-/// The bytes of `target`'s visibility buffer.
+/// The bytes of `target`'s visibility keys (the buffer holds as many candidate keys after them).
 pub(crate) fn visibility_bytes(target: &RenderTarget) -> u64 {
     let (width, height) = target.size();
     u64::from(width) * u64::from(height) * VISIBILITY_BYTES_PER_PIXEL
@@ -161,7 +173,7 @@ pub(crate) fn visibility_bytes(target: &RenderTarget) -> u64 {
 
 /// Whether the device can hold and bind `target`'s visibility buffer.
 pub(crate) fn visibility_fits(gpu: &GpuContext, target: &RenderTarget) -> bool {
-    gpu.storage_buffer_fits(visibility_bytes(target))
+    gpu.storage_buffer_fits(2 * visibility_bytes(target))
 }
 
 #[cfg(test)]
