@@ -127,6 +127,31 @@ fn a_cube_in_depth_offset_relief_meets_it_the_same_way_on_both_paths() {
 }
 
 #[test]
+fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
+    // The deferred path settles depth offset in the resolve and writes the settled depth only
+    // for the passes after it: the sky is drawn where the depth is still the far plane, so
+    // where the silhouette clips the relief (the plane's far edge) the sky shows only if the
+    // candidate's polygon depth was taken back there.
+    let view = PreviewView {
+        view_angle: 70.0,
+        projection: PreviewProjection::Perspective,
+        distance: 1.4,
+        ..PreviewView::default()
+    };
+    let mut app = preview_app(128, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
+        ParallaxOcclusionMaterial {
+            depth_offset: true,
+            silhouette: pom::Silhouette::UvBounds,
+            height_scale: 0.15,
+            ..m
+        }
+    })
+    .unwrap();
+    app.insert_resource(pom::EnvironmentLight::sky());
+    render_both_paths(&mut app, "depth_offset_silhouette_sky").unwrap();
+}
+
+#[test]
 fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
     let mut app = pom::App::new();
     app.add_plugin(

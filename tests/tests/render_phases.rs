@@ -163,11 +163,11 @@ fn hidden_pixels_do_not_march() {
 #[test]
 fn hidden_planes_merge_nothing_into_the_visibility_buffer() {
     // On the deferred path the parallax material shades in compute: what the counter sees is
-    // the visibility pass's merges. The planes are separate batches made deepest first; the
-    // prepass draws them nearest first across batches, so the hidden ones fail the early depth
-    // test before their fragments run. With depth offset the pass writes its depth (tested
-    // late), and a fragment behind the depth its pixel has already kept is dropped before it
-    // marches and merges.
+    // every fragment the visibility pass launches, and with depth offset every fragment of the
+    // candidate pass (counted first thing: no fragment is dropped uncounted). The planes are
+    // separate batches made deepest first; both passes draw them nearest first across batches
+    // with an early depth test and write, so the hidden ones fail it before their fragments
+    // run: four stacked planes launch no more than one plane and its polygon edges.
     let deferred = RenderPlugin::new(SIZE, SIZE).with_path(RenderPath::Deferred);
     for depth_offset in [false, true] {
         let one = parallax_invocations(1, depth_offset, deferred, Stack::BackToFront);

@@ -198,8 +198,11 @@ fn keep(image: &image::RgbaImage, name: &str) {
 }
 
 /// The seed port's plane at `view_angle`, shadows on: the HDR scene its fragment pass drew,
-/// then the one its compute pass wrote over it.
-fn fragment_and_compute(view_angle: f32) -> [image::Rgba32FImage; 2] {
+/// then the one its compute pass wrote over it, rebuilding each pixel from `surface`.
+fn fragment_and_compute(
+    view_angle: f32,
+    surface: pom::seed_port::SeedPortSurface,
+) -> [image::Rgba32FImage; 2] {
     let textures = HeightMaterial {
         field: patterns::cobblestones(256, 6),
         height_scale: 0.05,
@@ -216,7 +219,7 @@ fn fragment_and_compute(view_angle: f32) -> [image::Rgba32FImage; 2] {
     pom::seed_port::replace_parallax_materials(&mut app.world, images).unwrap();
     in_error_scopes(&mut app, "fragment pass", |app| Ok(app.update()?)).unwrap();
     let fragment = pom::capture_scene(&app).unwrap();
-    let compute = pom::seed_port::SeedPortCompute::new(&app.world, &app.resources).unwrap();
+    let compute = pom::seed_port::SeedPortCompute::on(&app.world, &app.resources, surface).unwrap();
     in_error_scopes(&mut app, "compute pass", |app| {
         Ok(compute.render(&mut app.resources)?)
     })
@@ -226,24 +229,30 @@ fn fragment_and_compute(view_angle: f32) -> [image::Rgba32FImage; 2] {
 
 #[test]
 fn the_compute_pass_draws_what_the_fragment_pass_draws() {
-    for view_angle in [0.0, 45.0, 75.0] {
-        let [fragment, compute] = fragment_and_compute(view_angle);
-        let (fragment, compute) = (display(&fragment), display(&compute));
-        keep(&fragment, &format!("fragment-{view_angle}"));
-        keep(&compute, &format!("compute-{view_angle}"));
-        let flip = pom::flip_compare(&fragment, &compute, 0.99).unwrap();
-        keep(&flip.error_map, &format!("compute-difference-{view_angle}"));
-        eprintln!(
-            "{view_angle}°: compute against fragment, FLIP mean {:.5}, p99 {:.5}",
-            flip.mean, flip.at_percentile
-        );
-        assert!(
-            flip.mean <= COMPUTE_MEAN && flip.at_percentile <= COMPUTE_P99,
-            "{view_angle}°: the compute pass differs from the fragment pass by FLIP mean {} \
-             (at most {COMPUTE_MEAN}), p99 {} (at most {COMPUTE_P99})",
-            flip.mean,
-            flip.at_percentile
-        );
+    use pom::seed_port::SeedPortSurface;
+    for (surface, name) in [
+        (SeedPortSurface::Triangle, "compute"),
+        (SeedPortSurface::AnalyticPlane, "analytic"),
+    ] {
+        for view_angle in [0.0, 45.0, 75.0] {
+            let [fragment, compute] = fragment_and_compute(view_angle, surface);
+            let (fragment, compute) = (display(&fragment), display(&compute));
+            keep(&fragment, &format!("fragment-{view_angle}"));
+            keep(&compute, &format!("{name}-{view_angle}"));
+            let flip = pom::flip_compare(&fragment, &compute, 0.99).unwrap();
+            keep(&flip.error_map, &format!("{name}-difference-{view_angle}"));
+            eprintln!(
+                "{view_angle}°: {surface:?} compute against fragment, FLIP mean {:.5}, p99 {:.5}",
+                flip.mean, flip.at_percentile
+            );
+            assert!(
+                flip.mean <= COMPUTE_MEAN && flip.at_percentile <= COMPUTE_P99,
+                "{view_angle}°: the {surface:?} compute pass differs from the fragment pass by \
+                 FLIP mean {} (at most {COMPUTE_MEAN}), p99 {} (at most {COMPUTE_P99})",
+                flip.mean,
+                flip.at_percentile
+            );
+        }
     }
 }
 

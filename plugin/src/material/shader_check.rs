@@ -109,7 +109,9 @@ fn check_surface(
                     entry_point: entry.name.clone(),
                 });
             }
-            naga::ShaderStage::Fragment if on_polygon => {
+            naga::ShaderStage::Fragment
+                if on_polygon && entry.name != crate::render::SETTLED_DEPTH_ENTRY =>
+            {
                 let what = if writes_depth(module, &entry.function) {
                     Some("writes its depth")
                 } else if discards() {

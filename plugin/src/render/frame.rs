@@ -265,14 +265,15 @@ pub(super) struct FramePlan {
     /// The opaque render pass runs: a deferred frame whose opaque phase draws nothing writes
     /// the background from compute instead of clearing the scene in an empty render pass.
     pub opaque_pass: bool,
-    /// The opaque pass keeps the depth it writes: a later pass reads it.
+    /// A pass after the opaque phase reads the depth: the opaque pass keeps what it writes,
+    /// and the resolve writes its candidates' settled depth.
     pub keep_depth: bool,
     /// The deferred compute resolve runs.
     pub resolve: bool,
     /// The resolve also writes the background.
     pub background_in_compute: bool,
-    /// The resolve has candidates to settle: the candidate pass runs before it, the settled
-    /// depth after.
+    /// The resolve has candidates to settle: the candidate pass runs before it, and the
+    /// settled depth after it where `keep_depth`.
     pub candidates: bool,
     /// The transparent phase runs.
     pub transparent: bool,

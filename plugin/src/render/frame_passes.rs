@@ -154,19 +154,23 @@ impl<'a> FramePasses<'a> {
     }
 
     /// The deferred path's compute resolve (and the background, where no opaque pass ran);
-    /// with candidates, between the candidate pass and the settled depth, timed as one span.
+    /// with candidates, after the candidate pass and, where a later pass reads the depth,
+    /// before the settled depth, timed as one span.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
         let Some(phases) = self.phases else {
             return;
         };
         let candidates = self.plan.candidates;
+        let settled_depth = candidates && self.plan.keep_depth;
         if candidates {
             self.depth_pass(encoder, DrawPhase::Candidates, time.map(|time| time.render_part(true, false)));
         }
+        let (first, last) = (!candidates, !settled_depth);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("deferred resolve"),
-            // With candidates the render passes on either side begin and end the span.
-            timestamp_writes: time.filter(|_| !candidates).map(PassTimestamps::compute),
+            timestamp_writes: time
+                .filter(|_| first || last)
+                .map(|time| time.compute_part(first, last)),
         });
         if self.plan.background_in_compute
             && let Some(background) = &self.renderer.background
@@ -177,7 +181,7 @@ impl<'a> FramePasses<'a> {
             dispatch(self.resources, &mut pass);
         }
         drop(pass);
-        if candidates {
+        if settled_depth {
             self.depth_pass(encoder, DrawPhase::SettledDepth, time.map(|time| time.render_part(false, true)));
         }
     }

@@ -89,4 +89,4 @@ pub use tonemapping::{
 };
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub use visibility::VISIBILITY_CLEAR_SHADER;
-pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};
+pub(crate) use visibility::{CANDIDATE_ENTRY, SETTLED_DEPTH_ENTRY, VisibilityBuffer, VisibilityIds};

@@ -200,9 +200,9 @@ impl RenderPhases {
 
     /// Adds `draw` as `Owner`'s drawer of its draws in `phase`'s sorted list unless `Owner` has
     /// one there: the frame sorts every owner's draws of the phase in one list (the transparent
-    /// phase farthest first, the prepass nearest first) and calls `draw` for each run of
-    /// `Owner`'s, before the phase's [`RenderPhases::add_draw`] draws. The opaque phase draws
-    /// after a prepass and keeps no sorted list.
+    /// phase farthest first, the prepass and the candidates nearest first) and calls `draw` for
+    /// each run of `Owner`'s, before the phase's [`RenderPhases::add_draw`] draws. The opaque
+    /// phase draws after a prepass and keeps no sorted list.
     pub fn add_sorted<Owner: 'static>(&mut self, phase: DrawPhase, draw: SortedDraw) {
         let owner = TypeId::of::<Owner>();
         if !self

@@ -3,9 +3,9 @@
 //! panes of different materials compose correctly only when the one behind is drawn first,
 //! whichever material each belongs to or in what order they were spawned (Bevy's
 //! `Transparent3d` phase sorts the same way, by the view depth of each object's centre). The
-//! prepass draws nearest first: the depth test then rejects what a nearer draw hides before its
-//! fragments run, whichever batch or material it belongs to (on the deferred path a hidden
-//! plane then costs its depth test, not a visibility merge or a march).
+//! prepass and the deferred path's candidates draw nearest first: the depth test then rejects
+//! what a nearer draw hides before its fragments run, whichever batch or material it belongs to
+//! (on the deferred path a hidden plane then costs its depth test, not a visibility merge).
 
 use std::any::TypeId;
 use std::ops::Range;

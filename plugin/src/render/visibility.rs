@@ -15,6 +15,12 @@ pub const VISIBILITY_CLEAR_SHADER: ComposedShader = ComposedShader {
 /// The clear's WGSL file.
 const VISIBILITY_CLEAR_ENTRY: WgslFile = crate::wgsl_file!("render/visibility_clear.wgsl");
 
+/// The core's fragment entry of the candidate pass (visibility.wgsl).
+pub(crate) const CANDIDATE_ENTRY: &str = "fs_visibility_candidate";
+/// The core's fragment entry that writes the candidates' settled depth (visibility.wgsl): a
+/// material's surface check leaves it out, as it is not the material's.
+pub(crate) const SETTLED_DEPTH_ENTRY: &str = "fs_settled_depth";
+
 /// Keys one workgroup of the clear writes (`CLEAR_GROUP_SIZE` in WGSL).
 const CLEAR_GROUP_SIZE: u64 = 256;
 

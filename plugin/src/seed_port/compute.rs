@@ -43,6 +43,16 @@ pub(crate) struct SeedPortView {
     corner_uvs: [[f32; 4]; 3],
     /// xy: the target's size in pixels.
     target_size: [u32; 4],
+    /// The plane solved on the CPU (world space, [`AnalyticPlane`]): a point of it (w unused).
+    plane_point: [f32; 4],
+    /// Its geometric normal (w unused).
+    plane_normal: [f32; 4],
+    /// Each uv as an affine function of the world point: dot with xyz, plus w.
+    uv_from_world: [[f32; 4]; 2],
+    /// The surface's world normal (w unused).
+    surface_normal: [f32; 4],
+    /// The surface's world tangent, w the bitangent's sign.
+    surface_tangent: [f32; 4],
 }
 
 crate::wgsl_layout!(SeedPortView {
@@ -51,8 +61,67 @@ crate::wgsl_layout!(SeedPortView {
     corner_normals,
     corner_tangents,
     corner_uvs,
-    target_size
+    target_size,
+    plane_point,
+    plane_normal,
+    uv_from_world,
+    surface_normal,
+    surface_tangent
 });
+
+/// What the compute pass rebuilds each pixel from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeedPortSurface {
+    /// The plane's first triangle through the vertex stage, as the raster pass has it
+    /// (`cs_seed_port`): what our resolve does for every pixel.
+    Triangle,
+    /// The plane solved once on the CPU (`cs_seed_port_analytic`): a ray–plane intersection a
+    /// pixel, no vertex to rebuild; the floor of a compute pass of listing 2.
+    AnalyticPlane,
+}
+
+impl SeedPortSurface {
+    /// The compute entry point.
+    fn entry_point(self) -> &'static str {
+        match self {
+            Self::Triangle => "cs_seed_port",
+            Self::AnalyticPlane => "cs_seed_port_analytic",
+        }
+    }
+}
+
+/// The plane of `view`'s triangle moved by `transform`, solved in world space: its point and
+/// normal, uv as an affine function of the world point, and the surface frame of its first
+/// corner (the plane's are the same at every corner).
+fn solve_plane(view: &mut SeedPortView, transform: &MeshTransform) {
+    let model = glam::Mat4::from_cols_array_2d(&transform.model);
+    let normal_matrix = glam::Mat4::from_cols_array_2d(&transform.normal_matrix);
+    let corner = |i: usize| model.transform_point3(glam::Vec4::from(view.corner_positions[i]).truncate());
+    let uv = |i: usize| glam::Vec2::new(view.corner_uvs[i][0], view.corner_uvs[i][1]);
+    let p0 = corner(0);
+    let (edge1, edge2) = (corner(1) - p0, corner(2) - p0);
+    let (d11, d12, d22) = (edge1.dot(edge1), edge1.dot(edge2), edge2.dot(edge2));
+    let determinant = d11 * d22 - d12 * d12;
+    // The barycentrics of an offset o from p0 are (o · g1, o · g2) (Cramer's rule on the Gram
+    // matrix, as the triangle's pass solves it per pixel).
+    let g1 = (edge1 * d22 - edge2 * d12) / determinant;
+    let g2 = (edge2 * d11 - edge1 * d12) / determinant;
+    let (duv1, duv2) = (uv(1) - uv(0), uv(2) - uv(0));
+    let row = |axis: usize| {
+        let gradient = g1 * duv1[axis] + g2 * duv2[axis];
+        gradient.extend(uv(0)[axis] - gradient.dot(p0)).to_array()
+    };
+    let normal = normal_matrix.transform_vector3(glam::Vec4::from(view.corner_normals[0]).truncate());
+    let tangent = glam::Vec4::from(view.corner_tangents[0]);
+    view.plane_point = p0.extend(0.0).to_array();
+    view.plane_normal = edge1.cross(edge2).extend(0.0).to_array();
+    view.uv_from_world = [row(0), row(1)];
+    view.surface_normal = normal.extend(0.0).to_array();
+    view.surface_tangent = model
+        .transform_vector3(tangent.truncate())
+        .extend(tangent.w * transform.determinant_sign)
+        .to_array();
+}
 
 /// Listing 2 as a compute pass over the target, for the one plane drawn with a
 /// [`SeedPortMaterial`]: the same textures, settings, camera and light as the raster pass.
@@ -89,6 +158,7 @@ fn plane_triangle(
         corner_tangents: corner(&|i| mesh.tangents.get(i).copied())?,
         corner_uvs: corner(&|i| mesh.uvs.get(i).map(|uv| [uv[0], uv[1], 0.0, 0.0]))?,
         target_size: [0; 4],
+        ..SeedPortView::zeroed()
     };
     Ok((
         material.clone(),
@@ -219,6 +289,18 @@ impl SeedPortCompute {
     /// its mesh is not loaded, [`SeedPortError::NotRendered`] before a frame uploaded its
     /// textures, [`SeedPortError::App`] without the render plugin's resources.
     pub fn new(world: &hecs::World, resources: &Resources) -> Result<Self, SeedPortError> {
+        Self::on(world, resources, SeedPortSurface::Triangle)
+    }
+
+    /// As [`SeedPortCompute::new`], rebuilding each pixel from `surface`.
+    ///
+    /// # Errors
+    /// As [`SeedPortCompute::new`].
+    pub fn on(
+        world: &hecs::World,
+        resources: &Resources,
+        surface: SeedPortSurface,
+    ) -> Result<Self, SeedPortError> {
         let gpu = resources.require::<GpuContext>()?;
         let target = resources.require::<RenderTarget>()?;
         let renderer = resources.require::<Renderer>()?;
@@ -230,11 +312,12 @@ impl SeedPortCompute {
         let (width, height) = target.size();
         view.inverse_view_projection = view_projection.inverse().to_cols_array_2d();
         view.target_size = [width, height, 0, 0];
+        solve_plane(&mut view, &transform);
 
         let (images, per_draw) = uploaded_textures(&material, renderer)?;
 
         let device = &gpu.device;
-        let pipeline = compute_pipeline(device, target.scene_format());
+        let pipeline = compute_pipeline(device, target.scene_format(), surface);
         let buffers = upload_buffers(device, &frame.frame, &transform, &per_draw, &view);
         let group = |index: u32, entries: &[wgpu::BindGroupEntry]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -309,10 +392,11 @@ impl SeedPortCompute {
     }
 }
 
-/// The pipeline of `cs_seed_port`, writing a scene texture of `scene_format`.
+/// The pipeline of `surface`'s entry point, writing a scene texture of `scene_format`.
 fn compute_pipeline(
     device: &wgpu::Device,
     scene_format: wgpu::TextureFormat,
+    surface: SeedPortSurface,
 ) -> wgpu::ComputePipeline {
     let shader_target = ShaderTarget::of_device(device, scene_format);
     let source = SEED_PORT_COMPUTE_SHADER.source_for(&shader_target);
@@ -321,7 +405,7 @@ fn compute_pipeline(
         label: Some(SEED_PORT_COMPUTE_PASS),
         layout: None,
         module: &module,
-        entry_point: Some("cs_seed_port"),
+        entry_point: Some(surface.entry_point()),
         compilation_options: Default::default(),
         cache: None,
     })

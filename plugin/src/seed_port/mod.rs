@@ -16,7 +16,9 @@ use crate::material::{
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 use crate::{Assets, Handle, Image, ParallaxOcclusionMaterial, ShadowMode};
 
-pub use compute::{SEED_PORT_COMPUTE_PASS, SEED_PORT_COMPUTE_SHADER, SeedPortCompute};
+pub use compute::{
+    SEED_PORT_COMPUTE_PASS, SEED_PORT_COMPUTE_SHADER, SeedPortCompute, SeedPortSurface,
+};
 pub use packed::packed_normal_height;
 
 /// What can stop the seed port from being set up.

@@ -27,6 +27,14 @@ struct SeedPortView {
     corner_uvs: array<vec4<f32>, 3>,
     // xy: the target's width and height in pixels.
     target_size: vec4<u32>,
+    // The same plane solved once on the CPU, in world space, for `cs_seed_port_analytic`: a
+    // point of it and its normal (what the view ray meets), each uv as an affine function of
+    // the world point (dot with xyz, plus w), and the surface's normal and tangent.
+    plane_point: vec4<f32>,
+    plane_normal: vec4<f32>,
+    uv_from_world: array<vec4<f32>, 2>,
+    surface_normal: vec4<f32>,
+    surface_tangent: vec4<f32>,
 }
 
 @group(2) @binding(0) var<uniform> view: SeedPortView;
@@ -59,20 +67,24 @@ fn unproject(ndc: vec2<f32>, depth: f32) -> vec3<f32> {
     return point.xyz / point.w;
 }
 
-// Barycentric weights of the corners at the point of their plane that `pixel` (a position in
-// pixels, y down, as the rasterizer counts them) sees.
-fn seed_port_weights(corners: SeedPortCorners, pixel: vec2<f32>) -> vec3<f32> {
+// The point of the plane through `point` with `normal` that `pixel` (a position in pixels, y
+// down, as the rasterizer counts them) sees.
+fn seed_port_plane_point(pixel: vec2<f32>, point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let size = vec2<f32>(view.target_size.xy);
     let ndc = vec2<f32>(pixel.x / size.x * 2.0 - 1.0, 1.0 - pixel.y / size.y * 2.0);
     let near = unproject(ndc, 0.0);
     let far = unproject(ndc, 1.0);
+    let along = dot(normal, far - near);
+    let t = select(0.0, dot(normal, point - near) / along, abs(along) > 1e-20);
+    return near + (far - near) * t;
+}
+
+// Barycentric weights of the corners at the point of their plane that `pixel` sees.
+fn seed_port_weights(corners: SeedPortCorners, pixel: vec2<f32>) -> vec3<f32> {
     let p0 = corners.a.world_position;
     let edge1 = corners.b.world_position - p0;
     let edge2 = corners.c.world_position - p0;
-    let normal = cross(edge1, edge2);
-    let along = dot(normal, far - near);
-    let t = select(0.0, dot(normal, p0 - near) / along, abs(along) > 1e-20);
-    let offset = near + (far - near) * t - p0;
+    let offset = seed_port_plane_point(pixel, p0, cross(edge1, edge2)) - p0;
     // Solve offset = b1 · edge1 + b2 · edge2 in the plane (Cramer's rule on the Gram matrix).
     let d11 = dot(edge1, edge1);
     let d12 = dot(edge1, edge2);
@@ -113,6 +125,37 @@ fn cs_seed_port(@builtin(global_invocation_id) id: vec3<u32>) {
     let in = seed_port_interpolate(corners, seed_port_weights(corners, centre));
     let dx = seed_port_uv(corners, centre + vec2<f32>(1.0, 0.0)) - in.uv;
     let dy = seed_port_uv(corners, centre + vec2<f32>(0.0, 1.0)) - in.uv;
+    let pixel = seed_port_listing_1(in, dx, dy);
+    textureStore(scene_output, vec2<i32>(id.xy), seed_port_listing_2(pixel, materials[0]));
+}
+
+// The analytic plane's uv at world point `point`.
+fn analytic_uv(point: vec3<f32>) -> vec2<f32> {
+    let p = vec4<f32>(point, 1.0);
+    return vec2<f32>(dot(view.uv_from_world[0], p), dot(view.uv_from_world[1], p));
+}
+
+// The analytic plane's point that `pixel` sees.
+fn analytic_point(pixel: vec2<f32>) -> vec3<f32> {
+    return seed_port_plane_point(pixel, view.plane_point.xyz, view.plane_normal.xyz);
+}
+
+// The floor of a compute pass of listing 2: the plane is known, so a pixel costs one ray–plane
+// intersection (three with the gradients' neighbours) and no vertex to rebuild.
+@compute @workgroup_size(8, 8, 1)
+fn cs_seed_port_analytic(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= view.target_size.xy) {
+        return;
+    }
+    let centre = vec2<f32>(id.xy) + 0.5;
+    var in: VertexOut;
+    in.world_position = analytic_point(centre);
+    in.world_normal = view.surface_normal.xyz;
+    in.world_tangent = view.surface_tangent;
+    in.uv = analytic_uv(in.world_position);
+    in.color = vec4<f32>(1.0);
+    let dx = analytic_uv(analytic_point(centre + vec2<f32>(1.0, 0.0))) - in.uv;
+    let dy = analytic_uv(analytic_point(centre + vec2<f32>(0.0, 1.0))) - in.uv;
     let pixel = seed_port_listing_1(in, dx, dy);
     textureStore(scene_output, vec2<i32>(id.xy), seed_port_listing_2(pixel, materials[0]));
 }

@@ -26,13 +26,15 @@ bench() {
   done
 }
 bench overdraw "old new" --path deferred --path forward --only overdraw
+bench depth-offset-45 "old new" $COB $K4 --depth-offset --only phases --path deferred --path forward
 bench phases-45 "old new" $COB $K4 --only phases --only seed-port --path deferred
 bench scene-shadows "old new" $K4 --only scene-shadows --path deferred
 bench cpu-side "old new" $COB --view-angle 45 --only cpu-side --path deferred --path forward
+bench cpu-side-2 "old new" $COB --view-angle 45 --only cpu-side --path deferred --path forward
 bench phases-0 "old new" $COB --size 3840x2160 --view-angle 0 --only phases --only seed-port --path deferred
 bench phases-75 "old new" $COB --size 3840x2160 --view-angle 75 --only phases --only seed-port --path deferred
 bench normal-45 "old new" $COB $K4 --method normal --only phases --path deferred
 bench lights-environment "old new" $COB $K4 --only environment --only lights --path deferred
-bench layers-triplanar "new" $COB $K4 --only layers --only triplanar --path deferred
+bench layers-triplanar "new" $COB $K4 --only layers --only triplanar --path deferred --path forward
 [ -n "$BEFORE_LAYERS" ] && bench phases-45 "before-layers" $COB $K4 --only phases --path deferred
 bench versus-mesh "new" --size 1920x1080 --view-angle 45 --only versus-mesh --path deferred --path forward

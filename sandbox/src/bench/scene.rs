@@ -487,11 +487,17 @@ impl BenchScene {
     /// ([`pom::seed_port::SeedPortCompute`]: the plane, textures, settings, camera and light the
     /// raster pass draws with), like [`BenchScene::time`]; the scene must be showing the seed
     /// port ([`BenchScene::use_seed_port`]). Renders one frame first, for the pass to read.
-    pub fn time_seed_port_compute(&mut self, warmup: Warmup, frames: usize) -> Result<Vec<f64>> {
+    pub fn time_seed_port_compute(
+        &mut self,
+        surface: pom::seed_port::SeedPortSurface,
+        warmup: Warmup,
+        frames: usize,
+    ) -> Result<Vec<f64>> {
         self.app
             .update()
             .context("rendering the frame the compute pass reads")?;
-        let pass = pom::seed_port::SeedPortCompute::new(&self.app.world, &self.app.resources)?;
+        let pass =
+            pom::seed_port::SeedPortCompute::on(&self.app.world, &self.app.resources, surface)?;
         let mut times = self.time_frames(
             warmup,
             frames,

@@ -1,11 +1,12 @@
 //! `--only seed-port`: Tatarchuk's listing 2 (ported to WGSL, pom::seed_port) beside our
 //! material on the same plane, textures and settings, in two forms: as written (a material in
 //! the forward raster pass) and as one compute dispatch over the target, the like-for-like
-//! figure for our deferred path's compute resolve.
+//! figure for our deferred path's compute resolve: rebuilding each pixel from the plane's
+//! triangle as the resolve does, and from the plane solved on the CPU (the floor).
 
 use anyhow::Result;
 use pom::preview::PreviewView;
-use pom::seed_port::SEED_PORT_COMPUTE_PASS;
+use pom::seed_port::{SEED_PORT_COMPUTE_PASS, SeedPortSurface};
 use pom::{ParallaxOcclusionMaterial, RenderPhase};
 
 use super::scene::{BenchScene, SceneOptions};
@@ -20,11 +21,15 @@ struct RowNames {
     ours_resolve: &'static str,
     fragment: &'static str,
     compute: &'static str,
+    /// The compute pass over the plane solved on the CPU: the floor.
+    analytic: &'static str,
     /// Our material's phases over the seed's fragment pass: our path as run against the seed
     /// as written.
     ours_over_fragment: &'static str,
     /// Our resolve over the seed's compute pass: compute against compute.
     resolve_over_compute: &'static str,
+    /// Our resolve over the analytic plane's pass: against the floor.
+    resolve_over_analytic: &'static str,
 }
 
 const NEAR: RowNames = RowNames {
@@ -32,8 +37,10 @@ const NEAR: RowNames = RowNames {
     ours_resolve: "ours, resolve",
     fragment: "seed port, fragment pass",
     compute: "seed port, compute pass",
+    analytic: "seed port, compute pass, analytic plane",
     ours_over_fragment: "ours / seed port as written (fragment pass)",
     resolve_over_compute: "ours, resolve / seed port compute",
+    resolve_over_analytic: "ours, resolve / seed port compute, analytic plane",
 };
 
 const FAR: RowNames = RowNames {
@@ -41,8 +48,11 @@ const FAR: RowNames = RowNames {
     ours_resolve: "ours, far field, resolve",
     fragment: "seed port, far field, fragment pass",
     compute: "seed port, far field, compute pass",
+    analytic: "seed port, far field, compute pass, analytic plane",
     ours_over_fragment: "ours, far field / seed port as written (fragment pass), far field",
     resolve_over_compute: "ours, far field, resolve / seed port compute, far field",
+    resolve_over_analytic:
+        "ours, far field, resolve / seed port compute, far field, analytic plane",
 };
 
 impl Runner<'_> {
@@ -78,11 +88,16 @@ impl Runner<'_> {
             let fragment = self.record("seed_port", place, &material, row, &times)?;
             self.ratio(names.ours_over_fragment.into(), size, ours, fragment);
 
-            let times = scene.time_seed_port_compute(self.warmup, self.frames)?;
-            let row = (COMPUTE_PATH, SEED_PORT_COMPUTE_PASS, names.compute.into());
-            let compute = self.record("seed_port", place, &material, row, &times)?;
-            if let Some(resolve) = resolve {
-                self.ratio(names.resolve_over_compute.into(), size, resolve, compute);
+            for (surface, name, ratio) in [
+                (SeedPortSurface::Triangle, names.compute, names.resolve_over_compute),
+                (SeedPortSurface::AnalyticPlane, names.analytic, names.resolve_over_analytic),
+            ] {
+                let times = scene.time_seed_port_compute(surface, self.warmup, self.frames)?;
+                let row = (COMPUTE_PATH, SEED_PORT_COMPUTE_PASS, name.into());
+                let compute = self.record("seed_port", place, &material, row, &times)?;
+                if let Some(resolve) = resolve {
+                    self.ratio(ratio.into(), size, resolve, compute);
+                }
             }
         }
         Ok(())
