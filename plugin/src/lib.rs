@@ -60,6 +60,7 @@ mod test_numbers {
 mod app;
 mod assets;
 mod camera;
+mod capture;
 mod color;
 mod default_plugins;
 mod dynamic_height;
@@ -114,6 +115,7 @@ pub mod system_kinds {
 }
 pub use assets::{AssetId, AssetRef, Assets, Handle, free_unused_assets};
 pub use camera::{Camera, Projection, active_camera, active_cameras};
+pub use capture::{capture, capture_f32, capture_scene};
 pub use color::{Color, linear_to_srgb, srgb_to_linear};
 pub use default_plugins::DefaultPlugins;
 pub use dynamic_height::{
@@ -153,8 +155,7 @@ pub use render::{
 };
 pub use render::{EnvironmentLight, EnvironmentSettings, EnvironmentSource};
 pub use render::{
-    PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin, TargetFormat, capture,
-    capture_f32, capture_scene,
+    PostProcessPath, RenderError, RenderPath, RenderPhase, RenderPlugin, TargetFormat,
 };
 pub use render::{Tonemapping, set_camera_display_mapping};
 #[cfg(feature = "scene-tests")]

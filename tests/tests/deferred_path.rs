@@ -152,6 +152,33 @@ fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
 }
 
 #[test]
+fn a_frame_after_depth_offset_is_turned_off_keeps_no_candidate_of_the_last() {
+    // Every resolve reads the candidate keys: a frame without candidates must not find the
+    // last frame's there (a pixel would show the last frame's candidate).
+    let view = PreviewView {
+        view_angle: 40.0,
+        ..PreviewView::default()
+    };
+    let mut app = preview_app(96, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
+        ParallaxOcclusionMaterial {
+            depth_offset: true,
+            ..m
+        }
+    })
+    .unwrap();
+    render_both_paths(&mut app, "depth_offset_on").unwrap();
+    // The plane moves half off the image too: stale candidates would shade it where it was.
+    let planes = app
+        .world
+        .query_mut::<(&mut ParallaxOcclusionMaterial, &mut Transform)>();
+    for (material, transform) in planes {
+        material.depth_offset = false;
+        transform.translation.x += 0.6;
+    }
+    render_both_paths(&mut app, "depth_offset_turned_off").unwrap();
+}
+
+#[test]
 fn without_a_depth_prepass_a_deferred_request_runs_forward_and_says_why() {
     let mut app = pom::App::new();
     app.add_plugin(

@@ -188,7 +188,7 @@ fn the_texel_rate_probe_samples_its_texture_and_is_timed() {
         assert_plausible(app.resources.get::<GpuTimings>().unwrap(), PROBE_PASS);
     }
     // The mean of 16 samples of hashed texels: about 0.5 (188 once sRGB-encoded), not black.
-    let image = pom::render::capture(&app).unwrap();
+    let image = pom::capture(&app).unwrap();
     let mean = image.pixels().map(|p| f64::from(p.0[0])).sum::<f64>() / (32.0 * 16.0);
     assert!((60.0..230.0).contains(&mean), "mean red {mean}");
 }

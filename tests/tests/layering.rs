@@ -37,8 +37,9 @@ const LAYERS: &[&str] = &[
     "parameters",
     // The GPU layer: the device, pipelines, timing, readback, meshes and images on the GPU.
     "gpu",
-    // The renderer core.
+    // The renderer core, and reading its frames back.
     "render",
+    "capture",
     // The material seam.
     "material",
     // The materials.

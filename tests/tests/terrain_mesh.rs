@@ -61,7 +61,7 @@ fn a_hill_is_lit_as_its_slopes_face_the_sun_on_both_paths() {
         // The light the material computed, before tonemapping bends it.
         let image = in_error_scopes(&mut app, "render", |app| {
             app.update()?;
-            Ok(pom::render::capture_scene(app)?)
+            Ok(pom::capture_scene(app)?)
         })
         .expect("render");
         let brightness = |x: u32, y: u32| image.get_pixel(x, y).0[1];

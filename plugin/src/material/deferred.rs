@@ -19,6 +19,10 @@ use crate::{AssetId, Mesh};
 /// and footprint from its visibility id: a material's compute resolve composes it.
 pub const DEFERRED_RESOLVE: WgslFile = crate::wgsl_file!("material/deferred_resolve.wgsl");
 
+/// The candidate pass's and the settled depth's fragment entries, for a deferred shader whose
+/// material settles its depth in the resolve (after [`crate::render::shaders::VISIBILITY`]).
+pub const CANDIDATES: WgslFile = crate::wgsl_file!("material/candidates.wgsl");
+
 /// `shader`'s twin for the deferred path, for a material whose surface lies on its polygon
 /// ([`crate::Material::SURFACE_ON_POLYGON`]): [`crate::render::shaders::deferred_header`] first among its constants and
 /// [`crate::render::shaders::VISIBILITY`] after its files, so its prepass draws write each pixel's visibility key with
@@ -61,7 +65,11 @@ pub(crate) enum ResolveRound {
 impl ResolveRound {
     /// The round of a batch that settles candidates or not.
     pub(crate) fn of(settles: bool) -> Self {
-        if settles { Self::Settling } else { Self::Shading }
+        if settles {
+            Self::Settling
+        } else {
+            Self::Shading
+        }
     }
 }
 

@@ -30,6 +30,29 @@ pub(crate) enum MeshPass {
     Motion,
 }
 
+impl MeshPass {
+    /// Whether the pass writes depth, and how it compares.
+    fn depth_test(self) -> (bool, wgpu::CompareFunction) {
+        match self {
+            MeshPass::Prepass
+            | MeshPass::Visibility
+            | MeshPass::Candidate
+            | MeshPass::Shadow
+            | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
+            MeshPass::SettledDepth => (true, wgpu::CompareFunction::Always),
+            MeshPass::OpaqueAfterPrepass | MeshPass::Transparent | MeshPass::Motion => {
+                (false, wgpu::CompareFunction::LessEqual)
+            }
+        }
+    }
+}
+
+/// The candidate pass's fragment entry (candidates.wgsl).
+pub(crate) const CANDIDATE_ENTRY: &str = "fs_visibility_candidate";
+/// The settled depth's fragment entry (candidates.wgsl): the core's, not the material's, so a
+/// material's surface check leaves it out.
+pub(crate) const SETTLED_DEPTH_ENTRY: &str = "fs_settled_depth";
+
 /// "Over" blending of a straight-alpha colour; the destination keeps its alpha (which marks
 /// display-referred pixels for post-processing). `None`, with a warning, where the target's
 /// format cannot blend (`Rgba32Float` without `FLOAT32_BLENDABLE`): the surface is then drawn
@@ -93,17 +116,7 @@ pub(crate) fn mesh_pipeline(
         color_format,
         cull_mode,
     } = *descriptor;
-    let (depth_write, depth_compare) = match pass {
-        MeshPass::Prepass
-        | MeshPass::Visibility
-        | MeshPass::Candidate
-        | MeshPass::Shadow
-        | MeshPass::Opaque => (true, wgpu::CompareFunction::Less),
-        MeshPass::SettledDepth => (true, wgpu::CompareFunction::Always),
-        MeshPass::OpaqueAfterPrepass | MeshPass::Transparent | MeshPass::Motion => {
-            (false, wgpu::CompareFunction::LessEqual)
-        }
-    };
+    let (depth_write, depth_compare) = pass.depth_test();
     let color_targets = [Some(wgpu::ColorTargetState {
         format: match pass {
             MeshPass::Motion => crate::render::MOTION_ID_FORMAT,

@@ -34,7 +34,7 @@ pub use crate::parameters::{
 };
 pub(crate) use batches::ExtractedDraw;
 pub use declare::{DeclaredMaterial, PresetExtras};
-pub use deferred::{DEFERRED_RESOLVE, deferred_twin};
+pub use deferred::{CANDIDATES, DEFERRED_RESOLVE, deferred_twin};
 pub use draw_view::DrawView;
 pub(crate) use extract::ExtractedMaterials;
 pub use extract::MaterialWarnings;
@@ -179,10 +179,10 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     }
     /// Whether `key`'s visible depth lies behind its polygon (parallax depth offset) and its
     /// [`Material::deferred_resolve`] settles it: on the deferred path its polygons then draw
-    /// in the candidate pass, not the visibility pass (the core's `fs_visibility_candidate`
-    /// keeps the nearest one per pixel by its polygon's depth), and its resolve, which runs
-    /// before every other, marches each candidate once and calls `settle_candidate` with the
-    /// depth it found. `false` by default.
+    /// in the candidate pass, not the visibility pass ([`CANDIDATES`], composed after the
+    /// visibility file, keeps the nearest one per pixel by its polygon's depth), and its
+    /// resolve, which runs before every other, marches each candidate once and calls
+    /// `settle_candidate` with the depth it found. `false` by default.
     fn settles_depth_in_resolve(_key: Self::Key) -> bool {
         false
     }

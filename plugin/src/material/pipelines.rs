@@ -437,8 +437,10 @@ impl<M: Material> MaterialPipelines<M> {
         let mut fragment = match pass {
             MeshPass::Prepass => M::prepass_fragment(key),
             MeshPass::Visibility => Some(M::visibility_fragment(key)),
-            MeshPass::Candidate => Some(ShaderEntry::entry(crate::render::CANDIDATE_ENTRY)),
-            MeshPass::SettledDepth => Some(ShaderEntry::entry(crate::render::SETTLED_DEPTH_ENTRY)),
+            MeshPass::Candidate => Some(ShaderEntry::entry(super::mesh_pipeline::CANDIDATE_ENTRY)),
+            MeshPass::SettledDepth => Some(ShaderEntry::entry(
+                super::mesh_pipeline::SETTLED_DEPTH_ENTRY,
+            )),
             MeshPass::Shadow => M::shadow_fragment(key),
             MeshPass::OpaqueAfterPrepass => Some(M::fragment_after_prepass(key)),
             MeshPass::Opaque | MeshPass::Transparent => Some(M::fragment(key)),

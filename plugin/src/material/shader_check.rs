@@ -110,7 +110,7 @@ fn check_surface(
                 });
             }
             naga::ShaderStage::Fragment
-                if on_polygon && entry.name != crate::render::SETTLED_DEPTH_ENTRY =>
+                if on_polygon && entry.name != super::mesh_pipeline::SETTLED_DEPTH_ENTRY =>
             {
                 let what = if writes_depth(module, &entry.function) {
                     Some("writes its depth")

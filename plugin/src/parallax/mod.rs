@@ -101,6 +101,7 @@ pub const PARALLAX_DEFERRED_SHADER: ComposedShader = parallax_shader!(
     [shaders::deferred_header],
     [
         shaders::VISIBILITY,
+        crate::material::CANDIDATES,
         shaders::VISIBILITY_READ,
         crate::material::DEFERRED_RESOLVE,
         PARALLAX_DEFERRED_ENTRY

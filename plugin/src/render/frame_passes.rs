@@ -98,24 +98,8 @@ impl<'a> FramePasses<'a> {
         if let Some(visibility) = clear {
             visibility.record_clear(encoder, time, self.plan.candidates);
         }
-        let deferred = self.plan.deferred;
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(if deferred { "visibility" } else { "prepass" }),
-            color_attachments: &[],
-            depth_stencil_attachment: self.depth_attachment(Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Store,
-            })),
-            timestamp_writes: time.map(|time| time.render_part(clear.is_none(), true)),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        if let (true, Some(phases)) = (self.plan.has_camera, self.phases) {
-            self.renderer
-                .prepass_order
-                .record(phases, self.resources, &mut pass);
-        }
-        self.draw_phase(DrawPhase::Prepass, &mut pass);
+        let time = time.map(|time| time.render_part(clear.is_none(), true));
+        self.depth_pass(encoder, DrawPhase::Prepass, wgpu::LoadOp::Clear(1.0), time);
     }
 
     /// The encoder work plugins added to `phase`, after its pass (with a camera).
@@ -163,7 +147,8 @@ impl<'a> FramePasses<'a> {
         let candidates = self.plan.candidates;
         let settled_depth = candidates && self.plan.keep_depth;
         if candidates {
-            self.depth_pass(encoder, DrawPhase::Candidates, time.map(|time| time.render_part(true, false)));
+            let time = time.map(|time| time.render_part(true, false));
+            self.depth_pass(encoder, DrawPhase::Candidates, wgpu::LoadOp::Load, time);
         }
         let (first, last) = (!candidates, !settled_depth);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -182,32 +167,40 @@ impl<'a> FramePasses<'a> {
         }
         drop(pass);
         if settled_depth {
-            self.depth_pass(encoder, DrawPhase::SettledDepth, time.map(|time| time.render_part(false, true)));
+            let time = time.map(|time| time.render_part(false, true));
+            self.depth_pass(encoder, DrawPhase::SettledDepth, wgpu::LoadOp::Load, time);
         }
     }
 
-    /// A render pass of `phase`'s draws into the depth alone, kept.
+    /// A render pass of `phase`'s draws (its sorted list first) into the depth alone, kept.
     fn depth_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         phase: DrawPhase,
+        load: wgpu::LoadOp<f32>,
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
+        let (label, sorted) = match phase {
+            DrawPhase::Prepass if self.plan.deferred => {
+                ("visibility", Some(&self.renderer.prepass_order))
+            }
+            DrawPhase::Prepass => ("prepass", Some(&self.renderer.prepass_order)),
+            DrawPhase::Candidates => ("candidates", Some(&self.renderer.candidate_order)),
+            _ => ("settled depth", None),
+        };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(if phase == DrawPhase::Candidates { "candidates" } else { "settled depth" }),
+            label: Some(label),
             color_attachments: &[],
             depth_stencil_attachment: self.depth_attachment(Some(wgpu::Operations {
-                load: wgpu::LoadOp::Load,
+                load,
                 store: wgpu::StoreOp::Store,
             })),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        if let (DrawPhase::Candidates, Some(phases)) = (phase, self.phases) {
-            self.renderer
-                .candidate_order
-                .record(phases, self.resources, &mut pass);
+        if let (true, Some(phases), Some(sorted)) = (self.plan.has_camera, self.phases, sorted) {
+            sorted.record(phases, self.resources, &mut pass);
         }
         self.draw_phase(phase, &mut pass);
     }

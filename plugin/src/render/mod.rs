@@ -1,13 +1,12 @@
-//! The renderer: GPU context, offscreen target, extract / prepare / render systems, capture.
+//! The renderer: GPU context, offscreen target, extract / prepare / render systems.
 //! A frame runs the [`RenderPhase`]s in their documented order (see `phases.rs`).
 //!
 //! Where things are: [`RenderPlugin`] (plugin.rs) adds the renderer and makes its GPU state,
 //! the [`Renderer`] (renderer.rs); each frame, `extract.rs` copies what the world says,
 //! [`prepare_frame`] and [`render_frame`] (frame.rs) upload it and run the phases, one function
-//! each (frame_passes.rs); `capture.rs` reads images back, `present.rs` shows them in a window.
+//! each (frame_passes.rs); `crate::capture` reads images back, `present.rs` shows them in a window.
 
 pub mod anti_aliasing;
-mod capture;
 mod deferred_background;
 mod display_referred;
 pub mod environment;
@@ -43,7 +42,6 @@ pub use anti_aliasing::{
     TAA_PASS, TAA_SHADER, TaaUniform, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
     TemporalView, jitter_offset, set_camera_anti_aliasing, set_camera_fxaa,
 };
-pub use capture::{capture, capture_f32, capture_scene};
 pub use deferred_background::DEFERRED_BACKGROUND;
 use deferred_background::DeferredBackground;
 pub(crate) use display_referred::display_referred_alpha;
@@ -89,4 +87,4 @@ pub use tonemapping::{
 };
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
 pub use visibility::VISIBILITY_CLEAR_SHADER;
-pub(crate) use visibility::{CANDIDATE_ENTRY, SETTLED_DEPTH_ENTRY, VisibilityBuffer, VisibilityIds};
+pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};

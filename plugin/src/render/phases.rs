@@ -188,14 +188,8 @@ impl RenderPhases {
         draw: PhaseDraw,
         has_draws: HasDraws,
     ) {
-        let owner = TypeId::of::<Owner>();
-        if !self
-            .draws
-            .iter()
-            .any(|(p, id, _, _)| *p == phase && *id == owner)
-        {
-            self.draws.push((phase, owner, draw, has_draws));
-        }
+        let entry = (phase, TypeId::of::<Owner>(), draw, has_draws);
+        push_once(&mut self.draws, entry, |(p, id, _, _)| (*p, *id));
     }
 
     /// Adds `draw` as `Owner`'s drawer of its draws in `phase`'s sorted list unless `Owner` has
@@ -204,14 +198,8 @@ impl RenderPhases {
     /// each run of `Owner`'s, before the phase's [`RenderPhases::add_draw`] draws. The opaque
     /// phase draws after a prepass and keeps no sorted list.
     pub fn add_sorted<Owner: 'static>(&mut self, phase: DrawPhase, draw: SortedDraw) {
-        let owner = TypeId::of::<Owner>();
-        if !self
-            .sorted_draws
-            .iter()
-            .any(|(p, id, _)| *p == phase && *id == owner)
-        {
-            self.sorted_draws.push((phase, owner, draw));
-        }
+        let entry = (phase, TypeId::of::<Owner>(), draw);
+        push_once(&mut self.sorted_draws, entry, |(p, id, _)| (*p, *id));
     }
 
     /// The drawer of `owner`'s sorted draws in `phase`, if it has one.
@@ -233,19 +221,18 @@ impl RenderPhases {
     /// Adds `draw` to every shadow map of the shadows phase for `Owner` unless `Owner` has one:
     /// the core opens one pass per map (a cascade, a spot's map, a cube face) and calls it.
     pub fn add_shadow_draw<Owner: 'static>(&mut self, draw: ShadowDraw) {
-        let owner = TypeId::of::<Owner>();
-        if !self.shadow_draws.iter().any(|(id, _)| *id == owner) {
-            self.shadow_draws.push((owner, draw));
-        }
+        push_once(
+            &mut self.shadow_draws,
+            (TypeId::of::<Owner>(), draw),
+            |(id, _)| *id,
+        );
     }
 
     /// Adds `dispatch` to the deferred resolve for `Owner` unless `Owner` has one: the core
     /// opens one compute pass (on deferred frames where some `has_work` says so) and calls it.
     pub fn add_resolve<Owner: 'static>(&mut self, dispatch: ResolveDispatch, has_work: HasDraws) {
-        let owner = TypeId::of::<Owner>();
-        if !self.resolves.iter().any(|(id, _, _)| *id == owner) {
-            self.resolves.push((owner, dispatch, has_work));
-        }
+        let entry = (TypeId::of::<Owner>(), dispatch, has_work);
+        push_once(&mut self.resolves, entry, |(id, _, _)| *id);
     }
 
     /// Adds `dispatch` to the first round of the deferred resolve for `Owner` unless `Owner`
@@ -253,10 +240,8 @@ impl RenderPhases {
     /// dispatch, so the candidates it settles (`settle_candidate`) are settled before the
     /// other resolves read which pixels they shade. An owner classifies its tiles here.
     pub fn add_settling_resolve<Owner: 'static>(&mut self, dispatch: ResolveDispatch) {
-        let owner = TypeId::of::<Owner>();
-        if !self.settling_resolves.iter().any(|(id, _)| *id == owner) {
-            self.settling_resolves.push((owner, dispatch));
-        }
+        let entry = (TypeId::of::<Owner>(), dispatch);
+        push_once(&mut self.settling_resolves, entry, |(id, _)| *id);
     }
 
     /// The deferred resolve's dispatches in the order they run: every first round (the
@@ -281,14 +266,8 @@ impl RenderPhases {
     /// Adds encoder `work` to `phase` for `Owner` unless `Owner` has some there; it runs after
     /// the phase's own pass (shadow maps: before the opaque phase).
     pub fn add_work<Owner: 'static>(&mut self, phase: RenderPhase, work: PhaseWork) {
-        let owner = TypeId::of::<Owner>();
-        if !self
-            .work
-            .iter()
-            .any(|(p, id, _)| *p == phase && *id == owner)
-        {
-            self.work.push((phase, owner, work));
-        }
+        let entry = (phase, TypeId::of::<Owner>(), work);
+        push_once(&mut self.work, entry, |(p, id, _)| (*p, *id));
     }
 
     /// The draws of `phase`, in the order they were added.
@@ -329,5 +308,13 @@ impl RenderPhases {
     /// How many draws `phase` has.
     pub fn draw_count(&self, phase: DrawPhase) -> usize {
         self.draws(phase).count()
+    }
+}
+
+/// Appends `entry` unless `list` holds one with the same `key` (an owner, or an owner and a
+/// phase): a plugin added twice adds its work once.
+fn push_once<T, K: PartialEq>(list: &mut Vec<T>, entry: T, key: impl Fn(&T) -> K) {
+    if !list.iter().any(|held| key(held) == key(&entry)) {
+        list.push(entry);
     }
 }

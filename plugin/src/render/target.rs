@@ -15,8 +15,8 @@ pub enum TargetFormat {
     Srgb8,
     /// 32-bit float per channel, no sRGB curve (scene in `Rgba32Float` too): linear display
     /// values and exact debug-view data for measurements. Read it back with
-    /// [`crate::render::capture_f32`], the (pre-exposed) scene before tonemapping with
-    /// [`crate::render::capture_scene`].
+    /// [`crate::capture_f32`], the (pre-exposed) scene before tonemapping with
+    /// [`crate::capture_scene`].
     Float32,
 }
 

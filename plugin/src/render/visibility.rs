@@ -15,12 +15,6 @@ pub const VISIBILITY_CLEAR_SHADER: ComposedShader = ComposedShader {
 /// The clear's WGSL file.
 const VISIBILITY_CLEAR_ENTRY: WgslFile = crate::wgsl_file!("render/visibility_clear.wgsl");
 
-/// The core's fragment entry of the candidate pass (visibility.wgsl).
-pub(crate) const CANDIDATE_ENTRY: &str = "fs_visibility_candidate";
-/// The core's fragment entry that writes the candidates' settled depth (visibility.wgsl): a
-/// material's surface check leaves it out, as it is not the material's.
-pub(crate) const SETTLED_DEPTH_ENTRY: &str = "fs_settled_depth";
-
 /// Keys one workgroup of the clear writes (`CLEAR_GROUP_SIZE` in WGSL).
 const CLEAR_GROUP_SIZE: u64 = 256;
 
@@ -73,15 +67,15 @@ impl VisibilityIds {
 #[derive(Debug)]
 pub(crate) struct VisibilityBuffer {
     /// One [`VISIBILITY_BYTES_PER_PIXEL`] key per pixel, row by row (cleared before each
-    /// visibility pass: 0 is "no draw").
-    /// After them as many candidate keys, alike: the nearest polygon per pixel of the draws
-    /// whose resolve settles their depth (`DrawPhase::Candidates`), cleared on frames that
-    /// have such draws.
+    /// visibility pass: 0 is "no draw"), then as many candidate keys (`DrawPhase::Candidates`),
+    /// cleared on frames that have candidates and on the next (every resolve reads them).
     pub(crate) keys: wgpu::Buffer,
+    /// Whether the candidate keys may hold a candidate.
+    candidates_written: std::cell::Cell<bool>,
     /// The [`RenderTarget::id`] it was made for.
     pub(crate) target: u64,
-    /// The clear's pipeline and its bind groups over the visibility keys and over all.
-    clear: (wgpu::ComputePipeline, [wgpu::BindGroup; 2]),
+    /// The clear's pipeline and its bind group over `keys`.
+    clear: (wgpu::ComputePipeline, wgpu::BindGroup),
 }
 
 impl VisibilityBuffer {
@@ -113,37 +107,32 @@ impl VisibilityBuffer {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let bind_groups = [wgpu::BufferSize::new(visibility_bytes(target)), None].map(|size| {
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("visibility clear"),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &keys,
-                        offset: 0,
-                        size,
-                    }),
-                }],
-            })
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("visibility clear"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: keys.as_entire_binding(),
+            }],
         });
         Self {
             keys,
+            candidates_written: std::cell::Cell::new(true),
             target: target.id(),
-            clear: (pipeline, bind_groups),
+            clear: (pipeline, bind_group),
         }
     }
 
-    /// Records the clear of every key to 0 ("no draw"), and of the candidate keys where
-    /// `candidates`, as a compute pass that begins `time`'s span where given (the visibility
-    /// pass ends it).
+    /// Records the clear of every key to 0 ("no draw"), the candidate keys too where this frame
+    /// (`candidates`) or the last had some, as a compute pass that begins `time`'s span.
     pub(crate) fn record_clear(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         time: Option<&PassTimestamps>,
         candidates: bool,
     ) {
-        let halves = if candidates { 2 } else { 1 };
+        let written = self.candidates_written.replace(candidates);
+        let halves = 1 + u64::from(candidates || written);
         let keys = self.keys.size() / 2 * halves / VISIBILITY_BYTES_PER_PIXEL;
         let groups = keys.div_ceil(CLEAR_GROUP_SIZE);
         let across = groups.clamp(1, MAX_GROUPS_ACROSS);
@@ -152,7 +141,7 @@ impl VisibilityBuffer {
             timestamp_writes: time.map(|time| time.compute_part(true, false)),
         });
         pass.set_pipeline(&self.clear.0);
-        pass.set_bind_group(0, &self.clear.1[halves as usize - 1], &[]);
+        pass.set_bind_group(0, &self.clear.1, &[]);
         // Both fit in u32: `keys` is bound as one storage buffer.
         pass.dispatch_workgroups(across as u32, groups.div_ceil(across) as u32, 1);
     }

@@ -96,7 +96,8 @@ impl SeedPortSurface {
 fn solve_plane(view: &mut SeedPortView, transform: &MeshTransform) {
     let model = glam::Mat4::from_cols_array_2d(&transform.model);
     let normal_matrix = glam::Mat4::from_cols_array_2d(&transform.normal_matrix);
-    let corner = |i: usize| model.transform_point3(glam::Vec4::from(view.corner_positions[i]).truncate());
+    let corner =
+        |i: usize| model.transform_point3(glam::Vec4::from(view.corner_positions[i]).truncate());
     let uv = |i: usize| glam::Vec2::new(view.corner_uvs[i][0], view.corner_uvs[i][1]);
     let p0 = corner(0);
     let (edge1, edge2) = (corner(1) - p0, corner(2) - p0);
@@ -111,7 +112,8 @@ fn solve_plane(view: &mut SeedPortView, transform: &MeshTransform) {
         let gradient = g1 * duv1[axis] + g2 * duv2[axis];
         gradient.extend(uv(0)[axis] - gradient.dot(p0)).to_array()
     };
-    let normal = normal_matrix.transform_vector3(glam::Vec4::from(view.corner_normals[0]).truncate());
+    let normal =
+        normal_matrix.transform_vector3(glam::Vec4::from(view.corner_normals[0]).truncate());
     let tangent = glam::Vec4::from(view.corner_tangents[0]);
     view.plane_point = p0.extend(0.0).to_array();
     view.plane_normal = edge1.cross(edge2).extend(0.0).to_array();
@@ -326,19 +328,21 @@ impl SeedPortCompute {
                 entries,
             })
         };
-        let frame_group = group(
-            0,
-            &[
-                entry(0, buffers[0].as_entire_binding()),
-                entry(1, buffers[1].as_entire_binding()),
-                entry(2, buffers[2].as_entire_binding()),
-                // `light_at` reads the point lights (the seed's one light is the first of all).
-                entry(
-                    crate::render::frame_group::POINT_LIGHTS,
-                    renderer.lights.point_lights().as_entire_binding(),
-                ),
-            ],
-        );
+        let mut frame_entries = vec![
+            entry(0, buffers[0].as_entire_binding()),
+            entry(1, buffers[1].as_entire_binding()),
+            entry(2, buffers[2].as_entire_binding()),
+            // `light_at` reads the point lights (the seed's one light is the first of all).
+            entry(
+                crate::render::frame_group::POINT_LIGHTS,
+                renderer.lights.point_lights().as_entire_binding(),
+            ),
+        ];
+        if surface == SeedPortSurface::AnalyticPlane {
+            // No vertex to transform: the pipeline's layout has no transforms.
+            frame_entries.remove(1);
+        }
+        let frame_group = group(0, &frame_entries);
         let texture_group = texture_group(
             device,
             &pipeline.get_bind_group_layout(1),

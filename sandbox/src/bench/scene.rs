@@ -166,14 +166,14 @@ impl BenchScene {
     pub fn capture(&mut self) -> Result<RgbaImage> {
         self.app.update().context("rendering a frame")?;
         self.check_errors()?;
-        Ok(pom::render::capture(&self.app)?)
+        Ok(pom::capture(&self.app)?)
     }
 
     /// Renders one frame into a [`TargetFormat::Float32`] scene and reads back the raw floats.
     pub fn capture_f32(&mut self) -> Result<Rgba32FImage> {
         self.app.update().context("rendering a frame")?;
         self.check_errors()?;
-        Ok(pom::render::capture_f32(&self.app)?)
+        Ok(pom::capture_f32(&self.app)?)
     }
 
     fn check_errors(&self) -> Result<()> {

@@ -51,8 +51,7 @@ const FAR: RowNames = RowNames {
     analytic: "seed port, far field, compute pass, analytic plane",
     ours_over_fragment: "ours, far field / seed port as written (fragment pass), far field",
     resolve_over_compute: "ours, far field, resolve / seed port compute, far field",
-    resolve_over_analytic:
-        "ours, far field, resolve / seed port compute, far field, analytic plane",
+    resolve_over_analytic: "ours, far field, resolve / seed port compute, far field, analytic plane",
 };
 
 impl Runner<'_> {
@@ -89,8 +88,16 @@ impl Runner<'_> {
             self.ratio(names.ours_over_fragment.into(), size, ours, fragment);
 
             for (surface, name, ratio) in [
-                (SeedPortSurface::Triangle, names.compute, names.resolve_over_compute),
-                (SeedPortSurface::AnalyticPlane, names.analytic, names.resolve_over_analytic),
+                (
+                    SeedPortSurface::Triangle,
+                    names.compute,
+                    names.resolve_over_compute,
+                ),
+                (
+                    SeedPortSurface::AnalyticPlane,
+                    names.analytic,
+                    names.resolve_over_analytic,
+                ),
             ] {
                 let times = scene.time_seed_port_compute(surface, self.warmup, self.frames)?;
                 let row = (COMPUTE_PATH, SEED_PORT_COMPUTE_PASS, name.into());

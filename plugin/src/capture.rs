@@ -2,9 +2,9 @@
 
 use image::{Rgba32FImage, RgbaImage};
 
-use super::{RenderError, RenderTarget};
 use crate::App;
 use crate::gpu::{GpuContext, read_rgba8, read_rgba32f};
+use crate::render::{RenderError, RenderTarget};
 
 /// Reads the last rendered frame back as sRGB-encoded RGBA8 pixels.
 ///
@@ -23,14 +23,14 @@ pub fn capture(app: &App) -> Result<RgbaImage, RenderError> {
     Ok(read_rgba8(gpu, &target.color)?)
 }
 
-/// Reads the last rendered frame of a [`super::TargetFormat::Float32`] target back as floats: linear
+/// Reads the last rendered frame of a [`crate::TargetFormat::Float32`] target back as floats: linear
 /// display values after exposure and tonemapping (debug views' data as the shader wrote it).
 pub fn capture_f32(app: &App) -> Result<Rgba32FImage, RenderError> {
     let (gpu, target) = rendered(app)?;
     Ok(read_rgba32f(gpu, &target.color)?)
 }
 
-/// Reads the HDR scene of the last frame of a [`super::TargetFormat::Float32`] target back: the light
+/// Reads the HDR scene of the last frame of a [`crate::TargetFormat::Float32`] target back: the light
 /// the materials computed, already exposed (the lights carry the camera's exposure), before
 /// tonemapping.
 pub fn capture_scene(app: &App) -> Result<Rgba32FImage, RenderError> {
