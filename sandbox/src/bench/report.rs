@@ -127,6 +127,16 @@ pub struct BenchReport {
     pub dropped_frames: usize,
 }
 
+/// `text` as one CSV field: quoted (inner quotes doubled) where it holds a comma, a quote or a
+/// line break (RFC 4180), as many variants do ("seed port, compute pass").
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_owned()
+    }
+}
+
 /// CSV columns, in order.
 pub const CSV_HEADER: &str = "group,method,shadows,width,height,min_samples,max_samples,\
 lod_threshold,tiling,path,pass,frames,median_ms,min_ms,p10_ms,p90_ms,max_ms,variant";
@@ -140,24 +150,24 @@ impl BenchReport {
             let _ = writeln!(
                 csv,
                 "{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{}",
-                c.group,
-                c.method,
-                c.shadows,
+                csv_field(&c.group.to_string()),
+                csv_field(&c.method.to_string()),
+                csv_field(&c.shadows.to_string()),
                 c.width,
                 c.height,
                 c.min_samples,
                 c.max_samples,
                 c.lod_threshold,
                 c.tiling,
-                c.path,
-                c.pass,
+                csv_field(&c.path.to_string()),
+                csv_field(&c.pass.to_string()),
                 s.count,
                 s.median_ms,
                 s.min_ms,
                 s.p10_ms,
                 s.p90_ms,
                 s.max_ms,
-                c.variant
+                csv_field(&c.variant.to_string())
             );
         }
         csv
@@ -448,6 +458,16 @@ mod tests {
         // One path alone: nothing to set side by side.
         cases.retain(|c| c.path == "forward");
         assert_eq!(report(cases).phases_side_by_side(), "");
+    }
+
+    #[test]
+    fn a_field_with_a_comma_or_a_quote_is_quoted() {
+        assert_eq!(csv_field("resolve"), "resolve");
+        assert_eq!(
+            csv_field("seed port, compute pass"),
+            "\"seed port, compute pass\""
+        );
+        assert_eq!(csv_field("a \"b\""), "\"a \"\"b\"\"\"");
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! One benchmark scene: the plugin's preview plane with a parallax material, rendered offscreen
 //! with blocking GPU timing. The plugin does all the rendering; this only drives it.
 
+use std::collections::HashSet;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
@@ -160,6 +161,40 @@ impl BenchScene {
         for camera in self.app.world.query_mut::<&mut Camera>() {
             camera.clear_color = color;
         }
+    }
+
+    /// The bytes the GPU holds for what the scene draws with the parallax material: each mesh's
+    /// vertex and index buffers (interleaved [`pom::gpu::Vertex`], `u32` indices, as uploaded)
+    /// and each texture the material binds, every mip level, as the renderer uploaded it.
+    pub fn drawn_gpu_bytes(&self) -> u64 {
+        let (Some(renderer), Some(meshes)) = (
+            self.app.resources.get::<Renderer>(),
+            self.app.resources.get::<Assets<Mesh>>(),
+        ) else {
+            return 0;
+        };
+        let (mut seen_meshes, mut seen_images) = (HashSet::new(), HashSet::new());
+        let mut bytes = 0;
+        let mut query = self
+            .app
+            .world
+            .query::<(&Handle<Mesh>, &ParallaxOcclusionMaterial)>();
+        for (mesh, material) in query.iter() {
+            if seen_meshes.insert(mesh.id())
+                && let Some(mesh) = meshes.get(mesh)
+            {
+                let vertex = std::mem::size_of::<pom::gpu::Vertex>();
+                bytes += (mesh.positions.len() * vertex + mesh.indices.len() * 4) as u64;
+            }
+            for image in pom::Material::textures(material).into_iter().flatten() {
+                if seen_images.insert(image)
+                    && let Some(texture) = renderer.gpu_texture(image)
+                {
+                    bytes += texture_bytes(texture);
+                }
+            }
+        }
+        bytes
     }
 
     /// Renders one frame and reads it back as sRGB pixels.
@@ -638,4 +673,19 @@ mod tests {
         );
         assert_eq!(TIMED_PASS, MATERIAL_PHASES.join("+"));
     }
+}
+
+/// The bytes of `texture`, every mip level (uncompressed formats).
+fn texture_bytes(texture: &wgpu::Texture) -> u64 {
+    let texel = u64::from(texture.format().block_copy_size(None).unwrap_or(4));
+    let size = texture.size();
+    (0..texture.mip_level_count())
+        .map(|level| {
+            let mip = size.mip_level_size(level, texture.dimension());
+            u64::from(mip.width)
+                * u64::from(mip.height)
+                * u64::from(mip.depth_or_array_layers)
+                * texel
+        })
+        .sum()
 }

@@ -44,6 +44,8 @@ pub struct Candidate {
     pub kind: &'static str,
     /// Triangles drawn.
     pub triangles: usize,
+    /// Bytes the GPU holds for it: the mesh's buffers and the material's textures.
+    pub gpu_bytes: u64,
     /// POM's `min_samples`–`max_samples`; 0–0 for a mesh.
     pub samples: (u32, u32),
     /// Mean FLIP error against the reference.
@@ -127,13 +129,14 @@ impl VersusMesh {
         let v = self;
         let mut out = format!(
             "\nPOM vs displaced grid at {}x{}, {}, FLIP against a {}-triangle grid, shadows off:\n\
-                 {:<5} {:>10} {:>8} {:>10} {:>10} {:>10}  path\n",
+                 {:<5} {:>10} {:>9} {:>8} {:>10} {:>10} {:>10}  path\n",
             v.width,
             v.height,
             v.path,
             v.reference_triangles,
             "kind",
             "triangles",
+            "GPU MiB",
             "samples",
             "FLIP mean",
             "FLIP p99",
@@ -142,9 +145,10 @@ impl VersusMesh {
         for c in &v.candidates {
             let _ = writeln!(
                 out,
-                "{:<5} {:>10} {:>8} {:>10.4} {:>10.4} {:>10.4}  {}",
+                "{:<5} {:>10} {:>9.2} {:>8} {:>10.4} {:>10.4} {:>10.4}  {}",
                 c.kind,
                 c.triangles,
+                c.gpu_bytes as f64 / (1024.0 * 1024.0),
                 format!("{}-{}", c.samples.0, c.samples.1),
                 c.flip_mean,
                 c.flip_p99,
@@ -391,6 +395,7 @@ fn score(
         image,
         kind,
         triangles,
+        gpu_bytes: scene.drawn_gpu_bytes(),
         samples,
         flip_mean: flip.mean,
         flip_p99: flip.at_percentile,
