@@ -34,9 +34,10 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     // texel rate, 3 phases, 2 far-field, 6 overdraw (1 plane, 4 back to front, 4 copies of one
     // mesh; with and without depth offset), 32 scene-shadow figures (the street corner lit by
     // a sun, a spot, a point light: without shadows 3 phases and the frame, with shadows 4
-    // phases and the frame; and a moving sun with shadows), 6 seed-port figures (ours, the seed's listing 2 as a fragment pass
-    // and as a compute pass on the same plane, near and far; and ours' resolve, near and far,
-    // where ours ran deferred), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip);
+    // phases and the frame; and a moving sun with shadows), 8 seed-port figures (ours, the
+    // seed's listing 2 as a fragment pass and as compute passes over the plane's triangle and
+    // over the plane solved on the CPU, near and far; and ours' resolve, near and far, where
+    // ours ran deferred), 13 rows of the method table (steep, POM, relief at 4 sample counts; max-mip);
     // once, at the first size, max-mip's pyramid rebuilt every frame for two map sizes; and
     // 6 first-use figures (settled before, the first frame, settled after; blocking and in the
     // background), 6 silhouette figures (the cube and the sphere with each mode), and
@@ -60,7 +61,7 @@ fn quick_bench_writes_json_csv_and_a_chart() {
     assert_eq!(resolve_rows, 2 * ours_deferred);
     assert_eq!(
         cases.len(),
-        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 32 + 6 + 13 + 6 + 6 + 11 + 12 + 24 + 4 + 2)
+        2 * (18 + 5 + 6 + 1 + 3 + 2 + 6 + 32 + 8 + 13 + 6 + 6 + 11 + 12 + 24 + 4 + 2)
             + 2
             + resolve_rows
     );

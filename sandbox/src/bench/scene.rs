@@ -651,6 +651,21 @@ fn on_path(phases: &[&'static str], deferred: bool) -> Vec<&'static str> {
     on_path
 }
 
+/// The bytes of `texture`, every mip level (uncompressed formats).
+fn texture_bytes(texture: &wgpu::Texture) -> u64 {
+    let texel = u64::from(texture.format().block_copy_size(None).unwrap_or(4));
+    let size = texture.size();
+    (0..texture.mip_level_count())
+        .map(|level| {
+            let mip = size.mip_level_size(level, texture.dimension());
+            u64::from(mip.width)
+                * u64::from(mip.height)
+                * u64::from(mip.depth_or_array_layers)
+                * texel
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -673,19 +688,4 @@ mod tests {
         );
         assert_eq!(TIMED_PASS, MATERIAL_PHASES.join("+"));
     }
-}
-
-/// The bytes of `texture`, every mip level (uncompressed formats).
-fn texture_bytes(texture: &wgpu::Texture) -> u64 {
-    let texel = u64::from(texture.format().block_copy_size(None).unwrap_or(4));
-    let size = texture.size();
-    (0..texture.mip_level_count())
-        .map(|level| {
-            let mip = size.mip_level_size(level, texture.dimension());
-            u64::from(mip.width)
-                * u64::from(mip.height)
-                * u64::from(mip.depth_or_array_layers)
-                * texel
-        })
-        .sum()
 }

@@ -473,6 +473,7 @@ mod tests {
             image: RgbaImage::new(1, 1),
             kind,
             triangles: 2,
+            gpu_bytes: 0,
             samples: (0, 0),
             flip_mean,
             flip_p99: flip_mean,
