@@ -49,8 +49,8 @@ impl MeshPass {
 
 /// The candidate pass's fragment entry (candidates.wgsl).
 pub(crate) const CANDIDATE_ENTRY: &str = "fs_visibility_candidate";
-/// The settled depth's fragment entry (candidates.wgsl): the core's, not the material's, so a
-/// material's surface check leaves it out.
+/// The settled depth's fragment entry (candidates.wgsl, composed only by materials whose
+/// surface leaves their polygon).
 pub(crate) const SETTLED_DEPTH_ENTRY: &str = "fs_settled_depth";
 
 /// "Over" blending of a straight-alpha colour; the destination keeps its alpha (which marks

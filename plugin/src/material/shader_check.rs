@@ -109,9 +109,7 @@ fn check_surface(
                     entry_point: entry.name.clone(),
                 });
             }
-            naga::ShaderStage::Fragment
-                if on_polygon && entry.name != super::mesh_pipeline::SETTLED_DEPTH_ENTRY =>
-            {
+            naga::ShaderStage::Fragment if on_polygon => {
                 let what = if writes_depth(module, &entry.function) {
                     Some("writes its depth")
                 } else if discards() {

@@ -328,20 +328,22 @@ impl SeedPortCompute {
                 entries,
             })
         };
-        let mut frame_entries = vec![
-            entry(0, buffers[0].as_entire_binding()),
-            entry(1, buffers[1].as_entire_binding()),
-            entry(2, buffers[2].as_entire_binding()),
+        // The analytic plane transforms no vertex: its pipeline's layout has no transforms.
+        let transforms = (surface == SeedPortSurface::Triangle)
+            .then(|| entry(1, buffers[1].as_entire_binding()));
+        let frame_entries: Vec<_> = [
+            Some(entry(0, buffers[0].as_entire_binding())),
+            transforms,
+            Some(entry(2, buffers[2].as_entire_binding())),
             // `light_at` reads the point lights (the seed's one light is the first of all).
-            entry(
+            Some(entry(
                 crate::render::frame_group::POINT_LIGHTS,
                 renderer.lights.point_lights().as_entire_binding(),
-            ),
-        ];
-        if surface == SeedPortSurface::AnalyticPlane {
-            // No vertex to transform: the pipeline's layout has no transforms.
-            frame_entries.remove(1);
-        }
+            )),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
         let frame_group = group(0, &frame_entries);
         let texture_group = texture_group(
             device,
