@@ -279,6 +279,12 @@ impl GpuAssets {
         }
     }
 
+    /// Counts uploads of images and derived textures: a texture's facts can have changed only
+    /// where this has.
+    pub(crate) fn upload_serial(&self) -> u64 {
+        self.next_upload_serial
+    }
+
     /// Queues the derivation of `derived` from its (uploaded) source if it is missing or older than the
     /// source's last upload; returns whether it did.
     pub(crate) fn prepare_derived(&mut self, gpu: &GpuContext, derived: DerivedTexture) -> bool {

@@ -137,6 +137,12 @@ pub(crate) struct MaterialBatches<M: Material> {
     prepared_view: Option<PreparedView>,
     /// On a frame prepared in place, the slots (increasing) whose data may have changed.
     dirty_slots: Vec<usize>,
+    /// On a frame prepared in place, the rewritten slots whose nearest depth grew (or is not
+    /// a number), with the depth they had: their batch's nearest depth may have to rise.
+    receded_slots: Vec<(usize, f32)>,
+    /// The assets' upload serial when the uniforms were last made: an upload since may have
+    /// changed the texture facts they hold.
+    uniforms_serial: Option<u64>,
     /// Whether the last frame was prepared in place.
     pub(crate) prepared_in_place: bool,
     /// Whether a shadow caster's draw changed on the last frame.
@@ -234,6 +240,8 @@ impl<M: Material> MaterialBatches<M> {
             slot_of_draw: Vec::new(),
             prepared_view: None,
             dirty_slots: Vec::new(),
+            receded_slots: Vec::new(),
+            uniforms_serial: None,
             prepared_in_place: false,
             casters_data_changed: false,
         }
@@ -268,7 +276,7 @@ impl<M: Material> MaterialBatches<M> {
             && self.slot_of_draw.len() == draws.len()
             && self.update_in_place(inputs, extracted, assets, lod_cache, stats, &mut motions);
         if !in_place {
-            self.gather(inputs, draws, assets, lod_cache, stats);
+            self.gather(inputs, extracted, assets, lod_cache, stats);
             SortEntry::sort(&mut self.order, &mut self.sort_memory);
             self.slot_of_draw.resize(self.order.len(), 0);
             for (slot, entry) in self.order.iter().enumerate() {
@@ -300,17 +308,24 @@ impl<M: Material> MaterialBatches<M> {
     }
 
     /// Uploads each draw's mesh and textures, and computes its uniform (from the textures as
-    /// bound), key and sort entry, in extraction order.
+    /// bound), key and sort entry, in extraction order. Where the draws are last frame's
+    /// entities, a draw whose material did not change keeps its uniform (it depends on the
+    /// material and its textures alone), unless a texture was uploaded since.
     fn gather(
         &mut self,
         inputs: &PrepareInputs<'_>,
-        draws: &[ExtractedDraw<M>],
+        extracted: &ExtractedMaterials<M>,
         assets: &mut GpuAssets,
         lod_cache: &mut MeshLodCache,
         stats: &mut UploadStats,
     ) {
+        let draws = &extracted.draws;
         self.order.clear();
-        self.uniform_data.clear();
+        let keeps_uniforms = extracted.same_entities && self.uniform_data.len() == draws.len();
+        if !keeps_uniforms {
+            self.uniform_data.clear();
+        }
+        let mut new_materials = extracted.changed_materials.iter().peekable();
         // Neighbouring draws mostly share mesh and textures: look each up once per run.
         let mut last_mesh = None;
         let mut bounds = None;
@@ -328,11 +343,22 @@ impl<M: Material> MaterialBatches<M> {
                 facts = prepare_textures(inputs, textures, assets, stats);
                 last_textures = Some(textures);
             }
-            let uniform = draw.material.per_draw(&facts);
+            let new_material = new_materials.next_if_eq(&&index).is_some();
+            let facts_kept = self.uniforms_serial == Some(assets.upload_serial());
+            let uniform = if keeps_uniforms && !new_material && facts_kept {
+                self.uniform_data[index]
+            } else {
+                draw.material.per_draw(&facts)
+            };
             let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
-            self.uniform_data.push(uniform);
+            if keeps_uniforms {
+                self.uniform_data[index] = uniform;
+            } else {
+                self.uniform_data.push(uniform);
+            }
             self.order.push(entry);
         }
+        self.uniforms_serial = Some(assets.upload_serial());
     }
 
     /// Writes the transform of each sorted slot, recomputing a transform (and its inverse) only

@@ -1,6 +1,8 @@
 //! The order a material's draws are drawn in: one [`SortEntry`] per draw, sorted opaque
 //! batches first (nearest first within a batch), then blended draws farthest first.
 
+use std::cmp::Ordering;
+
 use glam::Vec3;
 
 use super::batches::ExtractedDraw;
@@ -76,45 +78,41 @@ impl<K: Copy + Ord> SortEntry<K> {
         }
     }
 
-    /// What places the entry's batch among the others: blending (and a blended draw's depth),
-    /// pipeline, shadow role, textures, mesh.
-    fn batch_key(&self) -> (bool, u32, K, bool, BoundTextures, AssetId<Mesh>) {
-        (
-            self.blends,
-            self.far_first,
-            self.key,
-            self.casts_shadows,
-            self.textures,
-            self.mesh,
-        )
+    /// How this entry's batch stands against `other`'s: blending (and a blended draw's depth),
+    /// pipeline, shadow role, textures, mesh. Field by field, by reference: the textures are
+    /// most of an entry, and a tuple of copies made each comparison cost a copy of them.
+    fn batch_order(&self, other: &Self) -> Ordering {
+        self.blends
+            .cmp(&other.blends)
+            .then(self.far_first.cmp(&other.far_first))
+            .then_with(|| self.key.cmp(&other.key))
+            .then(self.casts_shadows.cmp(&other.casts_shadows))
+            .then_with(|| self.textures.cmp(&other.textures))
+            .then_with(|| self.mesh.cmp(&other.mesh))
     }
 
-    /// What orders the entries: the batch, then depth, then the world's order.
-    #[allow(clippy::type_complexity)]
-    fn order_key(
-        &self,
-    ) -> (
-        (bool, u32, K, bool, BoundTextures, AssetId<Mesh>),
-        u32,
-        usize,
-    ) {
-        (self.batch_key(), self.view_depth, self.draw)
+    /// How this entry stands against `other` in the order: the batch, then depth, then the
+    /// world's order.
+    fn order(&self, other: &Self) -> Ordering {
+        self.batch_order(other)
+            .then(self.view_depth.cmp(&other.view_depth))
+            .then(self.draw.cmp(&other.draw))
     }
 
-    /// Whether this entry comes before `other` in the order: within one batch by depth and
-    /// draw alone (what a batch's entries differ in), else by the whole key.
+    /// Whether this entry comes before `other` in the order.
     pub(super) fn precedes(&self, other: &Self) -> bool {
-        if self.same_batch(other) {
-            (self.view_depth, self.draw) < (other.view_depth, other.draw)
-        } else {
-            self.order_key() < other.order_key()
-        }
+        self.order(other) == Ordering::Less
     }
 
     /// Whether `other` belongs to the same batch as this entry and stands in the same place
     /// among the batches (all but depth and draw agree).
     pub(super) fn same_batch(&self, other: &Self) -> bool {
-        self.batch_key() == other.batch_key()
+        self.blends == other.blends
+            && self.far_first == other.far_first
+            && self.key == other.key
+            && self.casts_shadows == other.casts_shadows
+            && self.mesh == other.mesh
+            && self.textures == other.textures
     }
 
     /// Sorts `order` (entries in extraction order: entry `i` is draw `i`): opaque batches first
@@ -144,9 +142,8 @@ impl<K: Copy + Ord> SortEntry<K> {
             unsorted.extend(last_sorted.iter().map(|&draw| order[draw]));
             std::mem::swap(order, unsorted);
         }
-        let sort_key = |entry: &Self| entry.order_key();
-        if !order.is_sorted_by_key(sort_key) {
-            order.sort_unstable_by_key(sort_key);
+        if !order.is_sorted_by(|a, b| a.order(b) != Ordering::Greater) {
+            order.sort_unstable_by(Self::order);
         }
         last_sorted.clear();
         last_sorted.extend(order.iter().map(|entry| entry.draw));

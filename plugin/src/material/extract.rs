@@ -233,17 +233,20 @@ impl<M: Material> DrawWriter<'_, M> {
             });
             return;
         };
-        if log_problems {
+        let same_entity = draw.entity == entity;
+        let material_changed = draw.material != *material;
+        // An entity's unchanged material had its problems looked at when it last changed.
+        if log_problems && (material_changed || !same_entity) {
             self.warnings.log_changed(entity, material);
         }
-        self.extracted.same_entities &= draw.entity == entity;
+        self.extracted.same_entities &= same_entity;
         self.extracted.changed.push(slot);
         draw.entity = entity;
         draw.mesh = mesh.id();
         draw.model = model;
         draw.casts_shadows = shadows.casts;
         draw.receives_shadows = shadows.receives;
-        if draw.material != *material {
+        if material_changed {
             draw.material = material.clone();
             self.extracted.changed_materials.push(slot);
         }

@@ -27,10 +27,12 @@ impl<M: Material> MaterialBatches<M> {
         motions: &mut Option<&mut ObjectMotions>,
     ) -> bool {
         self.dirty_slots.clear();
+        self.receded_slots.clear();
         if motions.is_some() && !self.followed.follows(extracted.draws.len()) {
             return false;
         }
         if !self.batch_assets_unchanged(inputs, assets, stats)
+            || self.uniforms_serial != Some(assets.upload_serial())
             || !self.rewrite_changed_entries(inputs, extracted, assets, lod_cache, stats)
         {
             return false;
@@ -81,7 +83,12 @@ impl<M: Material> MaterialBatches<M> {
             let new_material = new_materials.next_if_eq(&&index).is_some();
             let draw = &extracted.draws[index];
             let slot = self.slot_of_draw[index] as usize;
-            let textures = bound_textures(&draw.material);
+            // A draw's textures come from its material alone: an unchanged one keeps its own.
+            let textures = if new_material {
+                bound_textures(&draw.material)
+            } else {
+                self.order[slot].textures
+            };
             if draw.mesh != self.order[slot].mesh || textures != self.order[slot].textures {
                 return false;
             }
@@ -96,13 +103,24 @@ impl<M: Material> MaterialBatches<M> {
             // The uniform depends on the material and its textures only: a draw that moved
             // keeps its own.
             let uniform = if new_material {
-                draw.material.per_draw(&facts)
+                let uniform = draw.material.per_draw(&facts);
+                // The full preparation keeps the uniforms of unchanged materials from here.
+                self.uniform_data[index] = uniform;
+                uniform
             } else {
                 self.sorted_uniforms[slot]
             };
             let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
             if !self.order[slot].same_batch(&entry) {
                 return false;
+            }
+            let old_depth = self.order[slot].nearest_depth;
+            // Farther, or not a number: either may lift its batch's nearest depth.
+            if matches!(
+                entry.nearest_depth.partial_cmp(&old_depth),
+                Some(std::cmp::Ordering::Greater) | None
+            ) {
+                self.receded_slots.push((slot, old_depth));
             }
             self.order[slot] = entry;
             self.sorted_uniforms[slot] = uniform;
@@ -154,28 +172,41 @@ impl<M: Material> MaterialBatches<M> {
         }
     }
 
-    /// Recomputes the nearest depth and motion of each batch holding a dirty slot (sorted).
+    /// Brings up to date the nearest depth and motion of each batch holding a dirty slot
+    /// (sorted): a nearer slot lowers its batch's depth at once, and a moving one marks it
+    /// moving. The batch is looked over whole only where a slot that may have been its nearest
+    /// receded, or where it moved last frame and none of its dirty slots moves now.
     fn refresh_dirty_batches(&mut self) {
-        let mut last_batch = None;
-        for &slot in &self.dirty_slots {
+        let mut start = 0;
+        while let Some(&first) = self.dirty_slots.get(start) {
             let index = self
                 .batches
-                .partition_point(|batch| batch.instances.end as usize <= slot);
-            if last_batch == Some(index) {
-                continue;
-            }
-            last_batch = Some(index);
+                .partition_point(|batch| batch.instances.end as usize <= first);
             let Some(batch) = self.batches.get_mut(index) else {
-                continue;
+                break;
             };
             let range = batch.instances.start as usize..batch.instances.end as usize;
-            batch.nearest_depth = self.order[range.clone()]
+            let count = self.dirty_slots[start..].partition_point(|&slot| slot < range.end);
+            let slots = &self.dirty_slots[start..start + count];
+            start += count;
+            let receded = self
+                .receded_slots
                 .iter()
-                .map(|entry| entry.nearest_depth)
-                .fold(f32::INFINITY, f32::min);
-            batch.moving = self.transform_data[range]
-                .iter()
-                .any(|transform| transform.motion != 0);
+                .any(|&(slot, old)| range.contains(&slot) && old <= batch.nearest_depth);
+            let (order, transforms) = (&self.order, &self.transform_data);
+            batch.nearest_depth = if receded {
+                order[range.clone()]
+                    .iter()
+                    .map(|entry| entry.nearest_depth)
+                    .fold(f32::INFINITY, f32::min)
+            } else {
+                slots
+                    .iter()
+                    .map(|&slot| order[slot].nearest_depth)
+                    .fold(batch.nearest_depth, f32::min)
+            };
+            batch.moving = slots.iter().any(|&slot| transforms[slot].motion != 0)
+                || (batch.moving && transforms[range].iter().any(|t| t.motion != 0));
         }
     }
 }
@@ -188,14 +219,22 @@ mod tests {
     use hecs::Entity;
 
     use super::super::MaterialBatches;
+    use crate::parallax::HeightSource;
     use crate::{
-        AntiAliasing, App, Assets, Camera, DirectionalLight, Mesh, ParallaxOcclusionMaterial,
-        PomPlugin, RenderPath, RenderPlugin, Transform,
+        AntiAliasing, App, Assets, Camera, DirectionalLight, Image, Mesh,
+        ParallaxOcclusionMaterial, PomPlugin, RenderPath, RenderPlugin, TextureKind, Transform,
     };
 
     type Batches = MaterialBatches<ParallaxOcclusionMaterial>;
 
-    /// Twenty planes in a grid under a camera with `anti_aliasing`, rendered on `path`.
+    /// A grey height texture `side` texels square.
+    fn height_image(side: u32) -> Image {
+        let bytes = vec![128; (side * side * 4) as usize];
+        Image::from_rgba8(side, side, bytes, TextureKind::Height).unwrap()
+    }
+
+    /// Twenty planes in a grid under a camera with `anti_aliasing`, rendered on `path`, sharing
+    /// one height texture.
     fn grid_app(path: RenderPath, anti_aliasing: AntiAliasing) -> (App, Vec<Entity>) {
         let mut app = App::new();
         app.add_plugin(RenderPlugin::new(48, 48).with_path(path))
@@ -206,12 +245,21 @@ mod tests {
             .get_mut::<Assets<Mesh>>()
             .unwrap()
             .add(Mesh::plane(0.9));
+        let height = app
+            .resources
+            .get_mut::<Assets<Image>>()
+            .unwrap()
+            .add(height_image(4));
+        let material = ParallaxOcclusionMaterial {
+            height_map: Some(HeightSource::Texture(height)),
+            ..Default::default()
+        };
         let entities = (0..20)
             .map(|index| {
                 let (x, z) = ((index % 5) as f32 - 2.0, (index / 5) as f32 - 2.0);
                 app.world.spawn((
                     plane.clone(),
-                    ParallaxOcclusionMaterial::default(),
+                    material.clone(),
                     Transform::from_xyz(x, 0.0, z),
                 ))
             })
@@ -228,16 +276,46 @@ mod tests {
         (app, entities)
     }
 
-    /// Frame `frame`'s edit: turns in place, a material edit, a nudge that keeps the order and a
-    /// move that changes it.
+    /// Frame `frame`'s edit: turns in place, a material edit, a nudge that keeps the order, a
+    /// move that changes it, a third of the draws nudged with one material edit (prepared in
+    /// full, the other uniforms kept), the height texture replaced by a larger one, and the
+    /// nearest row moved away alike (its batch's nearest depth rises, the order stays).
     fn edit(app: &mut App, entities: &[Entity], frame: usize) {
         let transform = |index: usize| app.world.get::<&mut Transform>(entities[index]).unwrap();
         match frame {
+            9 => {
+                for index in 12..19 {
+                    transform(index).translation.y += 0.001;
+                }
+                let mut material = app
+                    .world
+                    .get::<&mut ParallaxOcclusionMaterial>(entities[13])
+                    .unwrap();
+                material.height_scale = 0.06;
+            }
+            10 => {
+                let Some(HeightSource::Texture(height)) = app
+                    .world
+                    .get::<&ParallaxOcclusionMaterial>(entities[0])
+                    .unwrap()
+                    .height_map
+                    .clone()
+                else {
+                    unreachable!("every plane has a height texture")
+                };
+                let images = app.resources.get_mut::<Assets<Image>>().unwrap();
+                *images.get_mut(&height).unwrap() = height_image(8);
+            }
             2 | 7 => {
                 transform(3).rotation = Quat::from_rotation_y(frame as f32 * 0.3);
                 transform(7).rotation = Quat::from_rotation_y(frame as f32 * 0.2);
             }
             5 => transform(10).translation.y += 0.001,
+            11 => {
+                for index in 15..20 {
+                    transform(index).translation.z -= 0.01;
+                }
+            }
             6 => transform(0).translation.z -= 6.0,
             4 => {
                 app.world
@@ -286,11 +364,13 @@ mod tests {
                 let (mut in_place, entities) = grid_app(path, anti_aliasing);
                 let (mut full, full_entities) = grid_app(path, anti_aliasing);
                 let mut frames_in_place = Vec::new();
-                for frame in 0..9 {
+                for frame in 0..13 {
                     edit(&mut in_place, &entities, frame);
                     edit(&mut full, &full_entities, frame);
+                    // Prepared from nothing: no order, no uniform kept.
                     if let Some(batches) = full.resources.get_mut::<Batches>() {
                         batches.prepared_view = None;
+                        batches.uniform_data.clear();
                     }
                     in_place.update().unwrap();
                     full.update().unwrap();
@@ -305,11 +385,11 @@ mod tests {
                         frames_in_place.push(frame);
                     }
                 }
-                // The first frame, the frame after the material edit's (a new uniform value needs
-                // no new order: in place) and the move that changes the order are prepared in full.
+                // The first frame, the move that changes the order, the frame where a third of
+                // the draws changed and the texture's upload are prepared in full.
                 assert_eq!(
                     frames_in_place,
-                    [1, 2, 3, 4, 5, 7, 8],
+                    [1, 2, 3, 4, 5, 7, 8, 11, 12],
                     "{path:?}, {anti_aliasing:?}"
                 );
             }
