@@ -205,20 +205,29 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         let image = image::open(out.join(file)).unwrap();
         assert!(image.width() > 0 && image.height() > 0);
     }
-    // None, a tenth and all of the entities moving; then a tenth and all under TAA.
+    // None, a tenth and all of the entities turning; then a tenth and all under TAA; then a
+    // tenth walking.
     let cpu_side = json["cpu_side"].as_array().unwrap();
     let cpu_cases: Vec<_> = cpu_side
         .iter()
-        .map(|cpu| (cpu["moving_percent"].clone(), cpu["anti_aliasing"].clone()))
+        .map(|cpu| {
+            let case = (
+                &cpu["moving_percent"],
+                &cpu["anti_aliasing"],
+                &cpu["motion"],
+            );
+            serde_json::json!(case)
+        })
         .collect();
     let expected: Vec<_> = [
-        (0, "off"),
-        (10, "off"),
-        (100, "off"),
-        (10, "taa"),
-        (100, "taa"),
+        (0, "off", "turning"),
+        (10, "off", "turning"),
+        (100, "off", "turning"),
+        (10, "taa", "turning"),
+        (100, "taa", "turning"),
+        (10, "off", "walking"),
     ]
-    .map(|(moving, aa)| (serde_json::json!(moving), serde_json::json!(aa)))
+    .map(|case| serde_json::json!(case))
     .into();
     assert_eq!(cpu_cases, expected);
     for cpu in cpu_side {

@@ -16,6 +16,15 @@ pub(super) struct SortMemory<K> {
     unsorted: Vec<SortEntry<K>>,
 }
 
+impl<K> SortMemory<K> {
+    /// Notes that the draws of sorted slots `a` and `b` traded places.
+    pub(super) fn swap(&mut self, a: usize, b: usize) {
+        if a.max(b) < self.last_sorted.len() {
+            self.last_sorted.swap(a, b);
+        }
+    }
+}
+
 impl<K> Default for SortMemory<K> {
     fn default() -> Self {
         Self {
@@ -102,6 +111,12 @@ impl<K: Copy + Ord> SortEntry<K> {
     /// Whether this entry comes before `other` in the order.
     pub(super) fn precedes(&self, other: &Self) -> bool {
         self.order(other) == Ordering::Less
+    }
+
+    /// Whether this entry comes before `other` of the same batch: by depth and draw alone
+    /// (what a batch's entries differ in).
+    pub(super) fn precedes_in_batch(&self, other: &Self) -> bool {
+        (self.view_depth, self.draw) < (other.view_depth, other.draw)
     }
 
     /// Whether `other` belongs to the same batch as this entry and stands in the same place

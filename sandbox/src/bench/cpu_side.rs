@@ -26,8 +26,10 @@ use crate::preview_textures::PreviewTextures;
 pub struct CpuSide {
     /// Entities with a parallax material.
     pub entities: usize,
-    /// The percentage of them that turn every frame.
+    /// The percentage of them that move every frame.
     pub moving_percent: u32,
+    /// How they move.
+    pub motion: Motion,
     /// The camera's anti-aliasing, `off` or `taa` (which follows each moving entity).
     pub anti_aliasing: &'static str,
     /// The path the frames ran, `forward` or `deferred`.
@@ -51,30 +53,76 @@ fn mark<const INDEX: usize>(_: &mut pom::hecs::World, resources: &mut Resources)
     resources.get_or_default::<StageMarks>().0[INDEX] = Some(Instant::now());
 }
 
-/// Marks an entity that turns every frame.
-struct Moving;
+/// How the moving entities move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Motion {
+    /// Each turns about its vertical axis: its place in the draw order stays.
+    Turning,
+    /// Each walks back and forth along the view, passing a few neighbours in depth: its place
+    /// in the draw order changes (the grid is jittered in depth, so that no two draws tie).
+    Walking,
+}
 
-/// The cases measured, as (percentage of moving entities, anti-aliasing): none moving (the
-/// best case), a tenth (a game's usual share) and all, without anti-aliasing; then a tenth and
-/// all under TAA, which follows every moving entity's model.
-pub const CASES: [(u32, AntiAliasing); 5] = [
-    (0, AntiAliasing::Off),
-    (10, AntiAliasing::Off),
-    (100, AntiAliasing::Off),
-    (10, AntiAliasing::Taa),
-    (100, AntiAliasing::Taa),
+impl Motion {
+    /// How the report says it: "moving" for turning (the first cases'), "walking".
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Turning => "moving",
+            Self::Walking => "walking",
+        }
+    }
+}
+
+/// Marks an entity that moves every frame, with where it was spawned.
+struct Moving(Vec3);
+
+/// The cases measured, as (percentage of moving entities, anti-aliasing, motion): none moving
+/// (the best case), a tenth (a game's usual share) and all, without anti-aliasing; then a tenth
+/// and all under TAA, which follows every moving entity's model; then a tenth walking.
+pub const CASES: [(u32, AntiAliasing, Motion); 6] = [
+    (0, AntiAliasing::Off, Motion::Turning),
+    (10, AntiAliasing::Off, Motion::Turning),
+    (100, AntiAliasing::Off, Motion::Turning),
+    (10, AntiAliasing::Taa, Motion::Turning),
+    (100, AntiAliasing::Taa, Motion::Turning),
+    (10, AntiAliasing::Off, Motion::Walking),
 ];
 
-/// Turns every moving entity to a new angle about its vertical axis (every frame differs from
-/// the last, so each moving transform is uploaded again).
-fn turn_moving(world: &mut pom::hecs::World, resources: &mut Resources) {
+/// Turns every moving entity to a new angle about its vertical axis, or walks it along the
+/// view (every frame differs from the last, so each moving transform is uploaded again).
+fn move_entities(world: &mut pom::hecs::World, resources: &mut Resources) {
     let frame = resources
         .get::<pom::Time>()
-        .map_or(0, pom::Time::frame_count);
-    let rotation = Quat::from_rotation_y(frame as f32 * 0.01);
-    for transform in world.query_mut::<&mut Transform>().with::<&Moving>() {
-        transform.rotation = rotation;
+        .map_or(0, pom::Time::frame_count) as f32;
+    let motion = resources
+        .get::<Motion>()
+        .copied()
+        .unwrap_or(Motion::Turning);
+    let rotation = Quat::from_rotation_y(frame * 0.01);
+    for (transform, moving) in world.query_mut::<(&mut Transform, &Moving)>() {
+        match motion {
+            Motion::Turning => transform.rotation = rotation,
+            // A walker's pace (a fortieth of the grid's spacing a frame at most), out to half
+            // the spacing: past a neighbour or two a frame.
+            Motion::Walking => {
+                transform.translation.z = moving.0.z + 0.5 * (frame * 0.05 + moving.0.x).sin();
+            }
+        }
     }
+}
+
+/// Where entity `index` of a grid `side` entities wide stands: in rows, each entity of a row
+/// a little nearer or farther where `jitter`, so that no two share a depth.
+fn grid_place(index: usize, side: usize, jitter: bool) -> Vec3 {
+    let (x, z) = ((index % side) as f32, (index / side) as f32);
+    let offset = if jitter {
+        // The golden ratio's fraction spreads the offsets evenly over the row spacing.
+        (index as f32 * 0.618_034).fract() - 0.5
+    } else {
+        0.0
+    };
+    Vec3::new(x - side as f32 / 2.0, 0.0, z + offset - side as f32 / 2.0)
 }
 
 /// Spawns `entities` small planes in a grid under one camera with `anti_aliasing`,
@@ -82,7 +130,7 @@ fn turn_moving(world: &mut pom::hecs::World, resources: &mut Resources) {
 /// ones, rendered on `path`.
 pub fn measure(
     entities: usize,
-    (moving_percent, anti_aliasing): (u32, AntiAliasing),
+    (moving_percent, anti_aliasing, motion): (u32, AntiAliasing, Motion),
     textures: &PreviewTextures,
     path: pom::RenderPath,
     warmup: usize,
@@ -99,8 +147,9 @@ pub fn measure(
         .add_system(Stage::Extract, mark::<1>)
         .add_system(Stage::Prepare, mark::<2>)
         .add_system(Stage::Render, mark::<3>)
-        .add_system(Stage::Update, turn_moving)
+        .add_system(Stage::Update, move_entities)
         .add_system(Stage::Update, mark::<4>);
+    app.insert_resource(motion);
     app.finish().context("starting the GPU")?;
     let side = (entities as f32).sqrt().ceil().max(1.0) as usize;
     let plane = app
@@ -116,15 +165,15 @@ pub fn measure(
         .clone()
         .attach(images, ParallaxOcclusionMaterial::default());
     for index in 0..entities {
-        let (x, z) = ((index % side) as f32, (index / side) as f32);
+        let place = grid_place(index, side, motion == Motion::Walking);
         let entity = app.world.spawn((
             plane.clone(),
             material.clone(),
-            Transform::from_xyz(x - side as f32 / 2.0, 0.0, z - side as f32 / 2.0),
+            Transform::from_translation(place),
         ));
         // Spread over the grid: entity i moves when the share reaches past it in its hundred.
         if (index % 100) < moving_percent as usize {
-            app.world.insert_one(entity, Moving)?;
+            app.world.insert_one(entity, Moving(place))?;
         }
     }
     let extent = side as f32;
@@ -163,6 +212,7 @@ pub fn measure(
     Ok(CpuSide {
         entities,
         moving_percent,
+        motion,
         anti_aliasing: anti_aliasing.name(),
         path: path_name(deferred),
         transforms: spread(&stages[4])?,

@@ -202,9 +202,10 @@ impl Runner<'_> {
         if wanted(Measurement::CpuSide) {
             for case in cpu_side::CASES {
                 eprintln!(
-                    "timing the CPU side with {} entities, {} % moving, AA {}{on_path} ...",
+                    "timing the CPU side with {} entities, {} % {}, AA {}{on_path} ...",
                     args.entities,
                     case.0,
+                    case.2.word(),
                     case.1.name()
                 );
                 self.cpu_side.push(cpu_side::measure(

@@ -13,6 +13,10 @@ use crate::material::{MAX_MATERIAL_TEXTURES, Material, MeshLodCache};
 use crate::render::MeshTransform;
 use crate::render::anti_aliasing::ObjectMotions;
 
+/// The most swaps per rewritten draw that put the order right in place: past a few, sorting
+/// every draw again costs less.
+const MOST_SWAPS_PER_CHANGE: usize = 8;
+
 impl<M: Material> MaterialBatches<M> {
     /// Prepares the `extracted` draws that changed, in their slots, and lists the slots whose
     /// data may differ in `dirty_slots`. Returns false where it cannot (see the module), having
@@ -38,6 +42,9 @@ impl<M: Material> MaterialBatches<M> {
             return false;
         }
         self.rewrite_changed_transforms(extracted);
+        if !self.reorder_within_batches() {
+            return false;
+        }
         if let Some(motions) = motions {
             self.renumber_motions(extracted, motions);
         }
@@ -64,7 +71,7 @@ impl<M: Material> MaterialBatches<M> {
     }
 
     /// Rewrites the entry and uniform of each changed draw in its slot; false where one leaves
-    /// its batch or its place in the order.
+    /// its batch.
     fn rewrite_changed_entries(
         &mut self,
         inputs: &PrepareInputs<'_>,
@@ -126,15 +133,61 @@ impl<M: Material> MaterialBatches<M> {
             self.sorted_uniforms[slot] = uniform;
             self.dirty_slots.push(slot);
         }
-        // Each rewritten entry still between its neighbours: the order is the sorted one.
-        self.dirty_slots.iter().all(|&slot| {
-            let entry = &self.order[slot];
-            (slot == 0 || self.order[slot - 1].precedes(entry))
-                && self
-                    .order
-                    .get(slot + 1)
-                    .is_none_or(|next| entry.precedes(next))
-        })
+        true
+    }
+
+    /// Puts the rewritten entries back in order within their batches (a draw that moved
+    /// nearer or farther than its neighbours) by swapping neighbours, as many times as there
+    /// were pairs out of order: every pair out of order holds a slot rewritten or swapped, each
+    /// of which is looked at again after its last change. A slot's batch is its batch's still
+    /// (the rewrite checked it), so within one only depth and draw order. False past
+    /// [`MOST_SWAPS_PER_CHANGE`] swaps a rewritten draw (the full preparation sorts faster).
+    fn reorder_within_batches(&mut self) -> bool {
+        let mut swaps_left = MOST_SWAPS_PER_CHANGE * self.dirty_slots.len();
+        let mut unchecked = self.dirty_slots.clone();
+        while let Some(slot) = unchecked.pop() {
+            let index = self
+                .batches
+                .partition_point(|batch| batch.instances.end as usize <= slot);
+            let Some(batch) = self.batches.get(index) else {
+                continue;
+            };
+            let (start, end) = (batch.instances.start as usize, batch.instances.end as usize);
+            let order = &self.order;
+            let pair = if slot > start && order[slot].precedes_in_batch(&order[slot - 1]) {
+                (slot - 1, slot)
+            } else if slot + 1 < end && order[slot + 1].precedes_in_batch(&order[slot]) {
+                (slot, slot + 1)
+            } else {
+                continue;
+            };
+            if swaps_left == 0 {
+                return false;
+            }
+            swaps_left -= 1;
+            self.swap_slots(pair);
+            unchecked.extend([pair.0, pair.1]);
+        }
+        true
+    }
+
+    /// Swaps the draws of two slots of one batch, with their per-slot data; each slot keeps
+    /// its visibility id.
+    fn swap_slots(&mut self, (a, b): (usize, usize)) {
+        self.order.swap(a, b);
+        self.sorted_uniforms.swap(a, b);
+        self.models.swap(a, b);
+        let ids = (
+            self.transform_data[a].first_visibility_id,
+            self.transform_data[b].first_visibility_id,
+        );
+        self.transform_data.swap(a, b);
+        self.transform_data[a].first_visibility_id = ids.0;
+        self.transform_data[b].first_visibility_id = ids.1;
+        self.slot_of_draw[self.order[a].draw] = a as u32;
+        self.slot_of_draw[self.order[b].draw] = b as u32;
+        self.sort_memory.swap(a, b);
+        self.dirty_slots.extend([a, b]);
     }
 
     /// Rewrites the transform of each rewritten slot whose model or shadow role changed,
@@ -277,9 +330,10 @@ mod tests {
     }
 
     /// Frame `frame`'s edit: turns in place, a material edit, a nudge that keeps the order, a
-    /// move that changes it, a third of the draws nudged with one material edit (prepared in
-    /// full, the other uniforms kept), the height texture replaced by a larger one, and the
-    /// nearest row moved away alike (its batch's nearest depth rises, the order stays).
+    /// move past a few neighbours (reordered in place), a third of the draws nudged with one
+    /// material edit (prepared in full, the other uniforms kept), the height texture replaced
+    /// by a larger one, the nearest row moved away alike (its batch's nearest depth rises, the
+    /// order stays), and a move from nearest to farthest (past every other draw: in full).
     fn edit(app: &mut App, entities: &[Entity], frame: usize) {
         let transform = |index: usize| app.world.get::<&mut Transform>(entities[index]).unwrap();
         match frame {
@@ -316,6 +370,7 @@ mod tests {
                     transform(index).translation.z -= 0.01;
                 }
             }
+            12 => transform(15).translation.z -= 10.0,
             6 => transform(0).translation.z -= 6.0,
             4 => {
                 app.world
@@ -364,7 +419,7 @@ mod tests {
                 let (mut in_place, entities) = grid_app(path, anti_aliasing);
                 let (mut full, full_entities) = grid_app(path, anti_aliasing);
                 let mut frames_in_place = Vec::new();
-                for frame in 0..13 {
+                for frame in 0..14 {
                     edit(&mut in_place, &entities, frame);
                     edit(&mut full, &full_entities, frame);
                     // Prepared from nothing: no order, no uniform kept.
@@ -385,11 +440,11 @@ mod tests {
                         frames_in_place.push(frame);
                     }
                 }
-                // The first frame, the move that changes the order, the frame where a third of
-                // the draws changed and the texture's upload are prepared in full.
+                // The first frame, the frame where a third of the draws changed, the texture's
+                // upload and the move past every draw are prepared in full.
                 assert_eq!(
                     frames_in_place,
-                    [1, 2, 3, 4, 5, 7, 8, 11, 12],
+                    [1, 2, 3, 4, 5, 6, 7, 8, 11, 13],
                     "{path:?}, {anti_aliasing:?}"
                 );
             }
