@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Where the resolve's time goes: a release build of sandbox with profile-stops-env.diff applied
+# reads POM_PROFILE_STOP (1: after finding the pixel, 2: after rebuilding it, 3: after the view
+# ray, 4: the maps only, 5: no lights, 6: no light clusters), POM_PROFILE_NO_BACKGROUND and
+# POM_PROFILE_NO_CANDIDATES. From the repository root: OUT=prof-out bash prof.sh BIN [SIZE].
+set -u
+BIN=$1; SIZE=${2:-3840x2160}; OUT=${OUT:-prof-out}; mkdir -p "$OUT"
+COB="--height assets/bench_cobblestone/cobblestone_height.png
+  --normal assets/bench_cobblestone/cobblestone_normal.png
+  --albedo assets/bench_cobblestone/cobblestone_albedo.png
+  --height-scale 0.05 --tiling 4 --min-samples 8 --max-samples 50 --lod-threshold 4
+  --shadow-softening 0.58 --shadows soft --projection ortho --light-angle 45"
+run() { local name=$1; shift; local s=$(date +%s)
+  env "$@" timeout 120 $BIN bench $COB --size $SIZE --view-angle 45 --only phases --path deferred $EXTRA --out "$OUT/$name" > "$OUT/$name.log" 2>&1
+  echo "$name rc $? $(( $(date +%s) - s ))s $(grep -E 'deferred resolve' "$OUT/$name.log" | awk "{print \$8}" | tr '\n' ' ')" | tee -a "$OUT/summary.txt"; }
+for method in normal pom; do
+  EXTRA=""; [ $method = normal ] && EXTRA="--method normal"
+  for stop in 0 1 2 3 4 5 6; do
+    [ $method = pom ] && [ $stop -ge 4 ] && continue
+    run $method-stop$stop POM_PROFILE_STOP=$stop
+  done
+  run $method-nobg POM_PROFILE_NO_BACKGROUND=1
+  run $method-nocand POM_PROFILE_NO_CANDIDATES=1
+  run $method-stop1-nobg-nocand POM_PROFILE_STOP=1 POM_PROFILE_NO_BACKGROUND=1 POM_PROFILE_NO_CANDIDATES=1
+  run $method-again POM_PROFILE_STOP=0
+done
