@@ -108,11 +108,6 @@ impl<K: Copy + Ord> SortEntry<K> {
             .then(self.draw.cmp(&other.draw))
     }
 
-    /// Whether this entry comes before `other` in the order.
-    pub(super) fn precedes(&self, other: &Self) -> bool {
-        self.order(other) == Ordering::Less
-    }
-
     /// Whether this entry comes before `other` of the same batch: by depth and draw alone
     /// (what a batch's entries differ in).
     pub(super) fn precedes_in_batch(&self, other: &Self) -> bool {
