@@ -12,13 +12,13 @@ use glam::Mat4;
 mod draw_entries;
 mod in_place;
 
+use super::Material;
 use super::deferred::{DeferredResolve, ResolveTargets};
 use super::draw_order::{SortEntry, SortMemory};
 use super::extract::ExtractedMaterials;
 use super::followed_models::FollowedModels;
 use super::frame_bindings::{DrawBuffers, FrameBindGroups};
 use super::pipelines::{FrameVariant, MaterialPipelines, PipelineSetup};
-use super::{MAX_MATERIAL_TEXTURES, Material};
 use super::{MeshLodCache, PixelFootprint};
 use crate::gpu::{BoundTextures, TextureBindGroups};
 use crate::gpu::{GpuAssets, GpuContext, UploadStats};
@@ -28,7 +28,6 @@ use crate::render::anti_aliasing::ObjectMotions;
 use crate::render::shaders::ComposedShader;
 use crate::render::{FrameUniformBuffer, MeshTransform, VisibilityIds};
 use crate::{AssetId, Assets, Image, Mesh};
-use draw_entries::{bound_textures, draw_entry, prepare_textures};
 
 /// One entity's draw as the Extract stage copied it.
 #[derive(Clone, Debug)]
@@ -181,12 +180,7 @@ impl<M: Material> MaterialBatches<M> {
         }: CompileOptions,
     ) -> Self {
         let device = &gpu.device;
-        let target = crate::render::shaders::ShaderTarget::of_device(device, color_format);
-        let source = match counter {
-            Some(_) => shader.counting_source(&target),
-            None => shader.source_for(&target),
-        };
-        let module = crate::render::shaders::create_module(device, shader.name, source);
+        let module = shader_module(device, &shader, color_format, counter.is_some());
         let transforms = ObjectBuffer::new(gpu, "mesh transforms", 16);
         let uniforms = ObjectBuffer::new(gpu, M::NAME, 16);
         let frame_groups = FrameBindGroups::new(
@@ -305,60 +299,6 @@ impl<M: Material> MaterialBatches<M> {
         );
         self.ensure_pipelines(inputs);
         self.prepare_resolve(inputs, assets);
-    }
-
-    /// Uploads each draw's mesh and textures, and computes its uniform (from the textures as
-    /// bound), key and sort entry, in extraction order. Where the draws are last frame's
-    /// entities, a draw whose material did not change keeps its uniform (it depends on the
-    /// material and its textures alone), unless a texture was uploaded since.
-    fn gather(
-        &mut self,
-        inputs: &PrepareInputs<'_>,
-        extracted: &ExtractedMaterials<M>,
-        assets: &mut GpuAssets,
-        lod_cache: &mut MeshLodCache,
-        stats: &mut UploadStats,
-    ) {
-        let draws = &extracted.draws;
-        self.order.clear();
-        let keeps_uniforms = extracted.same_entities && self.uniform_data.len() == draws.len();
-        if !keeps_uniforms {
-            self.uniform_data.clear();
-        }
-        let mut new_materials = extracted.changed_materials.iter().peekable();
-        // Neighbouring draws mostly share mesh and textures: look each up once per run.
-        let mut last_mesh = None;
-        let mut bounds = None;
-        let mut last_textures = None;
-        let mut facts = [None; MAX_MATERIAL_TEXTURES];
-        for (index, draw) in draws.iter().enumerate() {
-            if last_mesh != Some(draw.mesh) {
-                stats.meshes +=
-                    u32::from(assets.prepare_mesh(inputs.gpu, inputs.meshes, draw.mesh));
-                bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
-                last_mesh = Some(draw.mesh);
-            }
-            let textures = bound_textures(&draw.material);
-            if last_textures != Some(textures) {
-                facts = prepare_textures(inputs, textures, assets, stats);
-                last_textures = Some(textures);
-            }
-            let new_material = new_materials.next_if_eq(&&index).is_some();
-            let facts_kept = self.uniforms_serial == Some(assets.upload_serial());
-            let uniform = if keeps_uniforms && !new_material && facts_kept {
-                self.uniform_data[index]
-            } else {
-                draw.material.per_draw(&facts)
-            };
-            let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
-            if keeps_uniforms {
-                self.uniform_data[index] = uniform;
-            } else {
-                self.uniform_data.push(uniform);
-            }
-            self.order.push(entry);
-        }
-        self.uniforms_serial = Some(assets.upload_serial());
     }
 
     /// Writes the transform of each sorted slot, recomputing a transform (and its inverse) only
@@ -588,6 +528,23 @@ impl<M: Material> MaterialBatches<M> {
 
 /// The pipeline layout of material `M`'s deferred resolve: the frame's, the textures' and the
 /// resolve's own bind groups.
+/// `shader`'s module for scene targets of `color_format`, counting its fragment invocations
+/// where `counts`.
+fn shader_module(
+    device: &wgpu::Device,
+    shader: &ComposedShader,
+    color_format: wgpu::TextureFormat,
+    counts: bool,
+) -> wgpu::ShaderModule {
+    let target = crate::render::shaders::ShaderTarget::of_device(device, color_format);
+    let source = if counts {
+        shader.counting_source(&target)
+    } else {
+        shader.source_for(&target)
+    };
+    crate::render::shaders::create_module(device, shader.name, source)
+}
+
 fn resolve_pipeline_layout<M: Material>(
     device: &wgpu::Device,
     [frame, textures, resolve]: [&wgpu::BindGroupLayout; 3],

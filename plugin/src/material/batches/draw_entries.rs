@@ -1,12 +1,71 @@
 //! One draw's entry in the frame: its uniform, key and place in the order, and the textures and
-//! bounds they are computed from.
+//! bounds they are computed from; every draw's, gathered for the full preparation.
 
 use glam::Mat4;
 
-use super::{ExtractedDraw, PrepareInputs};
+use super::{ExtractedDraw, MaterialBatches, PrepareInputs};
 use crate::gpu::{BoundTextures, GpuAssets, MAX_DERIVED_TEXTURES, UploadStats};
 use crate::material::draw_order::{SortEntry, view_depth};
-use crate::material::{DrawView, MAX_MATERIAL_TEXTURES, Material, MeshLodBounds, TextureFacts};
+use crate::material::extract::ExtractedMaterials;
+use crate::material::{
+    DrawView, MAX_MATERIAL_TEXTURES, Material, MeshLodBounds, MeshLodCache, TextureFacts,
+};
+
+impl<M: Material> MaterialBatches<M> {
+    /// Uploads each draw's mesh and textures, and computes its uniform (from the textures as
+    /// bound), key and sort entry, in extraction order. Where the draws are last frame's
+    /// entities, a draw whose material did not change keeps its uniform (it depends on the
+    /// material and its textures alone), unless a texture was uploaded since.
+    pub(super) fn gather(
+        &mut self,
+        inputs: &PrepareInputs<'_>,
+        extracted: &ExtractedMaterials<M>,
+        assets: &mut GpuAssets,
+        lod_cache: &mut MeshLodCache,
+        stats: &mut UploadStats,
+    ) {
+        let draws = &extracted.draws;
+        self.order.clear();
+        let keeps_uniforms = extracted.same_entities && self.uniform_data.len() == draws.len();
+        if !keeps_uniforms {
+            self.uniform_data.clear();
+        }
+        let mut new_materials = extracted.changed_materials.iter().peekable();
+        // Neighbouring draws mostly share mesh and textures: look each up once per run.
+        let mut last_mesh = None;
+        let mut bounds = None;
+        let mut last_textures = None;
+        let mut facts = [None; MAX_MATERIAL_TEXTURES];
+        for (index, draw) in draws.iter().enumerate() {
+            if last_mesh != Some(draw.mesh) {
+                stats.meshes +=
+                    u32::from(assets.prepare_mesh(inputs.gpu, inputs.meshes, draw.mesh));
+                bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
+                last_mesh = Some(draw.mesh);
+            }
+            let textures = bound_textures(&draw.material);
+            if last_textures != Some(textures) {
+                facts = prepare_textures(inputs, textures, assets, stats);
+                last_textures = Some(textures);
+            }
+            let new_material = new_materials.next_if_eq(&&index).is_some();
+            let facts_kept = self.uniforms_serial == Some(assets.upload_serial());
+            let uniform = if keeps_uniforms && !new_material && facts_kept {
+                self.uniform_data[index]
+            } else {
+                draw.material.per_draw(&facts)
+            };
+            let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
+            if keeps_uniforms {
+                self.uniform_data[index] = uniform;
+            } else {
+                self.uniform_data.push(uniform);
+            }
+            self.order.push(entry);
+        }
+        self.uniforms_serial = Some(assets.upload_serial());
+    }
+}
 
 /// Draw `index`'s entry in the order, seen from the frame's eye, its uniform being `uniform`
 /// (what [`Material::per_draw`] made of the textures as bound).
