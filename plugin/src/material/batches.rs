@@ -526,8 +526,6 @@ impl<M: Material> MaterialBatches<M> {
     }
 }
 
-/// The pipeline layout of material `M`'s deferred resolve: the frame's, the textures' and the
-/// resolve's own bind groups.
 /// `shader`'s module for scene targets of `color_format`, counting its fragment invocations
 /// where `counts`.
 fn shader_module(
@@ -545,6 +543,8 @@ fn shader_module(
     crate::render::shaders::create_module(device, shader.name, source)
 }
 
+/// The pipeline layout of material `M`'s deferred resolve: the frame's, the textures' and the
+/// resolve's own bind groups.
 fn resolve_pipeline_layout<M: Material>(
     device: &wgpu::Device,
     [frame, textures, resolve]: [&wgpu::BindGroupLayout; 3],

@@ -117,12 +117,7 @@ impl<K: Copy + Ord> SortEntry<K> {
     /// Whether `other` belongs to the same batch as this entry and stands in the same place
     /// among the batches (all but depth and draw agree).
     pub(super) fn same_batch(&self, other: &Self) -> bool {
-        self.blends == other.blends
-            && self.far_first == other.far_first
-            && self.key == other.key
-            && self.casts_shadows == other.casts_shadows
-            && self.mesh == other.mesh
-            && self.textures == other.textures
+        self.batch_order(other).is_eq()
     }
 
     /// Sorts `order` (entries in extraction order: entry `i` is draw `i`): opaque batches first

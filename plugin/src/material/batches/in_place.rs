@@ -146,10 +146,7 @@ impl<M: Material> MaterialBatches<M> {
         let mut swaps_left = MOST_SWAPS_PER_CHANGE * self.dirty_slots.len();
         let mut unchecked = self.dirty_slots.clone();
         while let Some(slot) = unchecked.pop() {
-            let index = self
-                .batches
-                .partition_point(|batch| batch.instances.end as usize <= slot);
-            let Some(batch) = self.batches.get(index) else {
+            let Some(batch) = self.batches.get(self.batch_holding(slot)) else {
                 continue;
             };
             let (start, end) = (batch.instances.start as usize, batch.instances.end as usize);
@@ -169,6 +166,13 @@ impl<M: Material> MaterialBatches<M> {
             unchecked.extend([pair.0, pair.1]);
         }
         true
+    }
+
+    /// The index of the batch whose instances hold sorted slot `slot` (the batches' count
+    /// where none does).
+    fn batch_holding(&self, slot: usize) -> usize {
+        self.batches
+            .partition_point(|batch| batch.instances.end as usize <= slot)
     }
 
     /// Swaps the draws of two slots of one batch, with their per-slot data; each slot keeps
@@ -230,11 +234,10 @@ impl<M: Material> MaterialBatches<M> {
     /// moving. The batch is looked over whole only where a slot that may have been its nearest
     /// receded, or where it moved last frame and none of its dirty slots moves now.
     fn refresh_dirty_batches(&mut self) {
+        self.receded_slots.sort_unstable_by_key(|&(slot, _)| slot);
         let mut start = 0;
         while let Some(&first) = self.dirty_slots.get(start) {
-            let index = self
-                .batches
-                .partition_point(|batch| batch.instances.end as usize <= first);
+            let index = self.batch_holding(first);
             let Some(batch) = self.batches.get_mut(index) else {
                 break;
             };
@@ -242,10 +245,13 @@ impl<M: Material> MaterialBatches<M> {
             let count = self.dirty_slots[start..].partition_point(|&slot| slot < range.end);
             let slots = &self.dirty_slots[start..start + count];
             start += count;
-            let receded = self
+            let receded_from = self
                 .receded_slots
+                .partition_point(|&(slot, _)| slot < range.start);
+            let receded = self.receded_slots[receded_from..]
                 .iter()
-                .any(|&(slot, old)| range.contains(&slot) && old <= batch.nearest_depth);
+                .take_while(|&&(slot, _)| slot < range.end)
+                .any(|&(_, old)| old <= batch.nearest_depth);
             let (order, transforms) = (&self.order, &self.transform_data);
             batch.nearest_depth = if receded {
                 order[range.clone()]
