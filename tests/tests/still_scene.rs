@@ -178,3 +178,49 @@ fn a_still_scenes_shadow_maps_are_drawn_once_and_again_where_a_caster_or_a_view_
         );
     }
 }
+
+/// Turns the scene's sun by `radians` about +Y.
+fn turn_sun(app: &mut App, radians: f32) {
+    for (_, transform) in app.world.query_mut::<(&DirectionalLight, &mut Transform)>() {
+        transform.rotation = Quat::from_rotation_y(radians) * transform.rotation;
+    }
+}
+
+#[test]
+fn a_turning_sun_redraws_one_cascade_a_frame_and_a_jump_all_of_them() {
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let (mut app, _, _) = street(path);
+        run_frames(&mut app, 2).unwrap();
+        let step = 0.1_f32.to_radians();
+        for frame in 0..6 {
+            let before = shadow_maps(&app);
+            turn_sun(&mut app, step);
+            run_frames(&mut app, 1).unwrap();
+            assert_eq!(
+                shadow_maps(&app),
+                (before.0 + 1, before.1 + 3),
+                "{path:?}, frame {frame}: one cascade follows the sun, the spot's map stays"
+            );
+        }
+        // Still again: within the cascades' turns every map is the sun's, as a fresh app's.
+        run_frames(&mut app, 2).unwrap();
+        let followed = render_and_capture(&mut app).unwrap();
+        let (mut fresh, _, _) = street(path);
+        for _ in 0..6 {
+            turn_sun(&mut fresh, step);
+        }
+        assert!(
+            render_and_capture(&mut fresh).unwrap() == followed,
+            "{path:?}: the cascades caught up with the sun"
+        );
+
+        let before = shadow_maps(&app);
+        turn_sun(&mut app, 5.0_f32.to_radians());
+        run_frames(&mut app, 1).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (before.0 + 3, before.1 + 1),
+            "{path:?}: the sun jumped"
+        );
+    }
+}

@@ -9,6 +9,7 @@
 
 mod kept;
 mod plan;
+mod turning;
 mod views;
 
 use kept::KeptShadowViews;

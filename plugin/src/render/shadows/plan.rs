@@ -4,6 +4,7 @@
 
 use hecs::{Entity, World};
 
+use super::turning::TurningSuns;
 use super::views::{CascadeCamera, directional_views, point_views, spot_view};
 use crate::gpu::GpuContext;
 use crate::render::{ExtractedFrame, MAX_SHADOW_VIEWS, RenderTarget, ShadowViewPlan};
@@ -28,8 +29,7 @@ pub(super) fn plan_shadow_maps(
 ) -> Result<(), AppError> {
     let aspect = resources.require::<RenderTarget>()?.aspect();
     let map_cap = shadow_map_cap(world, device_texture_limit(resources));
-    let extracted = resources.require_mut::<ExtractedFrame>()?;
-    let Some((camera, transform)) = extracted.camera else {
+    let Some((camera, transform)) = resources.require::<ExtractedFrame>()?.camera else {
         return Ok(());
     };
     let matrix = transform.to_mat4();
@@ -42,6 +42,9 @@ pub(super) fn plan_shadow_maps(
         aspect,
     };
     let mut list = ShadowViewList::default();
+    let mut suns = std::mem::take(resources.get_or_default::<TurningSuns>());
+    suns.begin_frame();
+    let extracted = resources.require_mut::<ExtractedFrame>()?;
     let shadows =
         |entity: Entity| enabled_shadows(world.get::<&LightShadows>(entity).ok(), map_cap);
     let place = |entity: Entity| world.get::<&GlobalTransform>(entity).ok().map(|t| *t);
@@ -49,7 +52,8 @@ pub(super) fn plan_shadow_maps(
         let (Some(settings), Some(transform)) = (shadows(entity), place(entity)) else {
             continue;
         };
-        let views = directional_views(&cascade_camera, transform.forward(), &settings);
+        let fresh = directional_views(&cascade_camera, transform.forward(), &settings);
+        let views = suns.follow(entity, (&cascade_camera, &settings), fresh);
         let light = &mut extracted.frame.directional_lights[slot];
         (light.first_shadow_view, light.shadow_view_count) = list.claim(&views);
     }
@@ -76,6 +80,8 @@ pub(super) fn plan_shadow_maps(
         (light.first_shadow_view, light.shadow_view_count) = list.claim(&views);
     }
     extracted.shadow_views = list.views;
+    suns.end_frame();
+    *resources.get_or_default::<TurningSuns>() = suns;
     let overflow = resources.get_or_default::<ShadowMapOverflow>();
     if list.overflowed && !overflow.0 {
         log::warn!(

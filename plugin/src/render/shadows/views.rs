@@ -15,7 +15,7 @@ use crate::{DIRECTIONAL_CASCADES, LightShadows, Projection};
 const PERSPECTIVE_NEAR: f32 = 0.05;
 
 /// The camera whose view the cascades cover.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CascadeCamera {
     /// Its position.
     pub position: Vec3,
