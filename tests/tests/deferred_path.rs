@@ -4,14 +4,18 @@
 //! tests/tests/scene_scripts.rs).
 
 use glam::Vec3;
+use pom::gpu::PassTimestamps;
 use pom::preview::{PreviewProjection, PreviewView};
-use pom::render::Renderer;
-use pom::{
-    Assets, DebugView, LitMaterial, Mesh, ParallaxOcclusionMaterial, RenderPath, TargetFormat,
-    Transform, patterns,
+use pom::render::{
+    FrameNode, FrameNodes, FrameView, NodePlace, RenderError, RenderPhase, Renderer, SettledDepth,
 };
+use pom::{
+    AntiAliasing, Assets, DebugView, LitMaterial, Mesh, ParallaxOcclusionMaterial, RenderPath,
+    TargetFormat, Transform, patterns,
+};
+use pom_tests::anti_aliasing::settled;
 use pom_tests::pom_scene::{HeightMaterial, preview_app, wrapped};
-use pom_tests::{render_both_paths, render_on_path, render_on_path_f32};
+use pom_tests::{render_both_paths, render_on_path, render_on_path_f32, set_path};
 
 /// Side of the test height map in texels.
 const TEXELS: u32 = 256;
@@ -149,6 +153,72 @@ fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
     .unwrap();
     app.insert_resource(pom::EnvironmentLight::sky());
     render_both_paths(&mut app, "depth_offset_silhouette_sky").unwrap();
+}
+
+/// A frame node that tests against the scene's depth as its attachment (and draws nothing).
+struct DepthTester;
+
+impl FrameNode for DepthTester {
+    fn runs(&self, _: FrameView<'_>) -> bool {
+        true
+    }
+
+    fn tests_scene_depth(&self) -> bool {
+        true
+    }
+
+    fn record(
+        &mut self,
+        _: FrameView<'_>,
+        _: &mut pom::wgpu::CommandEncoder,
+        _: Option<&PassTimestamps>,
+    ) -> Result<(), RenderError> {
+        Ok(())
+    }
+}
+
+#[test]
+fn under_taa_the_settled_depth_is_an_image_that_reads_as_the_depth_pass_would() {
+    // TAA and the sky read the scene's depth in compute alone: the resolve's settled depth is
+    // written into an image by a compute pass. A pass that tests against the depth gets it
+    // drawn into the depth attachment by the candidates' polygons. Both give the same depth:
+    // TAA reprojects through it and the sky shows where it is the far plane (the silhouette
+    // clips the relief at the plane's far edge), so the settled images match to the bit.
+    let view = PreviewView {
+        view_angle: 70.0,
+        projection: PreviewProjection::Perspective,
+        distance: 1.4,
+        ..PreviewView::default()
+    };
+    let settle = |tested: bool| {
+        let mut app = preview_app(96, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
+            ParallaxOcclusionMaterial {
+                depth_offset: true,
+                silhouette: pom::Silhouette::UvBounds,
+                height_scale: 0.15,
+                ..m
+            }
+        })
+        .unwrap();
+        app.insert_resource(pom::EnvironmentLight::sky());
+        if tested {
+            app.resources
+                .get_or_default::<FrameNodes>()
+                .add(NodePlace::new("depth tester", RenderPhase::Resolve), || {
+                    DepthTester
+                });
+        }
+        set_path(&mut app, RenderPath::Deferred);
+        let image = settled(&mut app, AntiAliasing::Taa);
+        let renderer = app.resources.get::<Renderer>().unwrap();
+        assert!(renderer.runs_deferred());
+        (image, renderer.settled_depth())
+    };
+    let (in_image, how) = settle(false);
+    assert_eq!(how, SettledDepth::Image);
+    let (in_depth_pass, how) = settle(true);
+    assert_eq!(how, SettledDepth::DepthPass);
+    assert!(in_image == in_depth_pass, "the settled depths differ");
 }
 
 #[test]

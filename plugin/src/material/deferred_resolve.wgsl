@@ -107,15 +107,15 @@ fn visible_depth(pixel: vec2<u32>, width: u32) -> f32 {
 
 // A settling resolve's verdict on its candidate at `pixel`: its surface at clip depth `depth`
 // shows where it is nearer than what the visibility pass kept (and `covers`: the view ray did
-// not leave the surface); else the pixel is the visibility pass's again. Whether it shows.
+// not leave the surface); else the pixel is the visibility pass's again. Either way the key
+// keeps the pixel's settled depth (settled_depth.wgsl), a lost candidate without its id.
+// Whether it shows.
 fn settle_candidate(pixel: vec2<u32>, depth: f32, covers: bool) -> bool {
     let index = candidate_index(pixel, frame.target_size.xy);
-    let shows = covers && depth < visible_depth(pixel, frame.target_size.x);
-    if shows {
-        visibility[index].y = ~bitcast<u32>(depth);
-    } else {
-        visibility[index] = vec2<u32>(0u);
-    }
+    let behind = visible_depth(pixel, frame.target_size.x);
+    let shows = covers && depth < behind;
+    let id = select(0u, visibility[index].x, shows);
+    visibility[index] = vec2<u32>(id, ~bitcast<u32>(select(behind, depth, shows)));
     return shows;
 }
 

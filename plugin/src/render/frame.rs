@@ -8,7 +8,7 @@ use super::frame_passes::{FramePasses, clear_value};
 use super::post_chain::{self, ChainLink};
 use super::{
     DrawPhase, ExtractedFrame, FrameNodes, FrameUniform, RenderError, RenderPhase, RenderPhases,
-    RenderTarget, Renderer, render_path,
+    RenderTarget, Renderer, SettledDepth, render_path,
 };
 use crate::gpu::{DERIVED_TEXTURES_PASS, GpuContext, PassTimestamps, UploadStats, time_pass};
 use crate::{AppError, Assets, Image, Mesh, Resources};
@@ -91,13 +91,30 @@ fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(),
     nodes.order()?;
     nodes.follow_device(&resources.require::<GpuContext>()?.device);
     let runs = running_nodes(resources, nodes)?;
+    let nodes_use = |uses: fn(&NodeWork) -> bool| {
+        nodes
+            .iter()
+            .zip(&runs)
+            .any(|(node, runs)| *runs && uses(&node.work))
+    };
+    let depth_use = (
+        nodes_use(NodeWork::reads_scene_depth),
+        nodes_use(NodeWork::tests_scene_depth),
+    );
+    let plan = FramePlan::new(resources, depth_use)?;
+    resources.require_scope(|resources, renderer: &mut Renderer| {
+        renderer.ran_opaque_pass = plan.opaque_pass;
+        renderer.settled_depth = plan.settled_depth;
+        if let (SettledDepth::Image, Some(visibility)) =
+            (plan.settled_depth, &mut renderer.visibility)
+        {
+            let target = resources.require::<RenderTarget>()?;
+            visibility.prepare_settled_depth(resources.require::<GpuContext>()?, target);
+        }
+        Ok::<_, AppError>(())
+    })?;
+    // After the plan: a node binds the scene's depth where this frame settles it.
     prepare_nodes(resources, nodes, &runs)?;
-    let reads_depth = nodes
-        .iter()
-        .zip(&runs)
-        .any(|(node, runs)| *runs && node.work.reads_scene_depth());
-    let plan = FramePlan::new(resources, reads_depth)?;
-    resources.require_mut::<Renderer>()?.ran_opaque_pass = plan.opaque_pass;
     let times = PhaseTimes::reserve(&plan, nodes, &runs, resources);
     // Taken out while the frame borrows the renderer; recorded first, or submitted alone where
     // the frame cannot start (what the Prepare stage uploaded must still land).
@@ -265,15 +282,15 @@ pub(super) struct FramePlan {
     /// The opaque render pass runs: a deferred frame whose opaque phase draws nothing writes
     /// the background from compute instead of clearing the scene in an empty render pass.
     pub opaque_pass: bool,
-    /// A pass after the opaque phase reads the depth: the opaque pass keeps what it writes,
-    /// and the resolve writes its candidates' settled depth.
+    /// A pass after the opaque phase reads the depth: the opaque pass keeps what it writes.
     pub keep_depth: bool,
+    /// How the passes after the resolve get its candidates' settled depth.
+    pub settled_depth: SettledDepth,
     /// The deferred compute resolve runs.
     pub resolve: bool,
     /// The resolve also writes the background.
     pub background_in_compute: bool,
-    /// The resolve has candidates to settle: the candidate pass runs before it, and the
-    /// settled depth after it where `keep_depth`.
+    /// The resolve has candidates to settle: the candidate pass runs before it.
     pub candidates: bool,
     /// The transparent phase runs.
     pub transparent: bool,
@@ -282,9 +299,12 @@ pub(super) struct FramePlan {
 }
 
 impl FramePlan {
-    /// The plan of this frame; `nodes_read_depth`: a feature node that runs reads the scene's
-    /// depth.
-    fn new(resources: &Resources, nodes_read_depth: bool) -> Result<Self, AppError> {
+    /// The plan of this frame; `(nodes_read_depth, nodes_test_depth)`: a feature node that
+    /// runs reads the scene's depth in a shader, tests against it as an attachment.
+    fn new(
+        resources: &Resources,
+        (nodes_read_depth, nodes_test_depth): (bool, bool),
+    ) -> Result<Self, AppError> {
         let extracted = resources.require::<ExtractedFrame>()?;
         let renderer = resources.require::<Renderer>()?;
         let has_camera = extracted.has_camera;
@@ -302,15 +322,22 @@ impl FramePlan {
         let background_in_compute = resolve && !has(DrawPhase::Opaque);
         let transparent =
             has(DrawPhase::Transparent) || (has_camera && !renderer.transparent.is_empty());
+        let candidates = resolve && !renderer.candidate_order.is_empty();
+        let settled_depth = match (candidates, transparent || nodes_test_depth) {
+            (true, true) => SettledDepth::DepthPass,
+            (true, false) if nodes_read_depth => SettledDepth::Image,
+            _ => SettledDepth::Unsettled,
+        };
         Ok(Self {
             has_camera,
             deferred: renderer.deferred,
             prepass,
             opaque_pass: !background_in_compute,
-            keep_depth: transparent || nodes_read_depth,
+            keep_depth: transparent || nodes_read_depth || nodes_test_depth,
+            settled_depth,
             resolve,
             background_in_compute,
-            candidates: resolve && !renderer.candidate_order.is_empty(),
+            candidates,
             transparent,
             derived_textures: !renderer.assets.pending_derived_builds().is_empty(),
         })

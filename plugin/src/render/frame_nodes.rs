@@ -21,19 +21,27 @@ pub struct FrameView<'a> {
     pub target: &'a RenderTarget,
     /// Whether a camera sees the frame (without one, nothing is drawn).
     pub has_camera: bool,
+    /// The scene's depth as shaders after the resolve read it (bind it as an unfilterable
+    /// float texture): the target's depth, or the image a deferred resolve settled its
+    /// depth-offset candidates into ([`crate::render::SettledDepth::Image`]).
+    pub scene_depth: &'a wgpu::TextureView,
 }
 
 impl<'a> FrameView<'a> {
     /// The frame as `resources` hold it: what an effect's `prepare` makes its GPU objects and
     /// uploads with (an error names a missing resource).
     pub fn of(resources: &'a Resources) -> Result<Self, RenderError> {
+        let target = resources.require::<RenderTarget>()?;
         Ok(Self {
             resources,
             gpu: resources.require::<GpuContext>()?,
-            target: resources.require::<RenderTarget>()?,
+            target,
             has_camera: resources
                 .require::<crate::render::ExtractedFrame>()?
                 .has_camera,
+            scene_depth: resources
+                .require::<crate::render::Renderer>()?
+                .scene_depth(target),
         })
     }
 }
@@ -50,9 +58,16 @@ pub trait FrameNode: 'static {
     /// Whether the node has work this frame; when false it records nothing and is not timed.
     fn runs(&self, frame: FrameView<'_>) -> bool;
 
-    /// Whether the node reads the scene's depth after the opaque phase (the core then keeps
-    /// it when no later phase of its own would).
+    /// Whether the node reads the scene's depth after the opaque phase in a shader, bound as
+    /// [`FrameView::scene_depth`] (the core then keeps it when no later phase of its own would).
     fn reads_scene_depth(&self) -> bool {
+        false
+    }
+
+    /// Whether the node tests against the scene's depth after the opaque phase as its depth
+    /// attachment ([`RenderTarget::depth_view`]; the core then keeps it and draws the depth
+    /// settled by a deferred resolve into it).
+    fn tests_scene_depth(&self) -> bool {
         false
     }
 
@@ -143,11 +158,19 @@ impl NodeWork {
         }
     }
 
-    /// Whether the node reads the scene's depth after the opaque phase.
+    /// Whether the node reads the scene's depth after the opaque phase in a shader.
     pub(crate) fn reads_scene_depth(&self) -> bool {
         match self {
             NodeWork::Frame(node) => node.reads_scene_depth(),
             NodeWork::Post(effect) => effect.reads_scene_depth(),
+        }
+    }
+
+    /// Whether the node tests against the scene's depth after the opaque phase.
+    pub(crate) fn tests_scene_depth(&self) -> bool {
+        match self {
+            NodeWork::Frame(node) => node.tests_scene_depth(),
+            NodeWork::Post(_) => false,
         }
     }
 

@@ -3,7 +3,9 @@
 
 use super::frame::FramePlan;
 use super::frame_nodes::FrameView;
-use super::{DrawPhase, ExtractedFrame, RenderPhase, RenderPhases, RenderTarget, Renderer};
+use super::{
+    DrawPhase, ExtractedFrame, RenderPhase, RenderPhases, RenderTarget, Renderer, SettledDepth,
+};
 use crate::gpu::{GpuContext, PassTimestamps, clearing_attachment};
 use crate::{AppError, Resources};
 
@@ -38,6 +40,7 @@ impl<'a> FramePasses<'a> {
             gpu: self.gpu,
             target: self.target,
             has_camera: self.plan.has_camera,
+            scene_depth: self.renderer.scene_depth(self.target),
         }
     }
 
@@ -138,14 +141,14 @@ impl<'a> FramePasses<'a> {
     }
 
     /// The deferred path's compute resolve (and the background, where no opaque pass ran);
-    /// with candidates, after the candidate pass and, where a later pass reads the depth,
-    /// before the settled depth, timed as one span.
+    /// with candidates, after the candidate pass and before the settled depth where a later
+    /// pass reads it (`FramePlan::settled_depth`), timed as one span.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
         let Some(phases) = self.phases else {
             return;
         };
         let candidates = self.plan.candidates;
-        let settled_depth = candidates && self.plan.keep_depth;
+        let settled_depth = self.plan.settled_depth == SettledDepth::DepthPass;
         if candidates {
             let time = time.map(|time| time.render_part(true, false));
             self.depth_pass(encoder, DrawPhase::Candidates, wgpu::LoadOp::Load, time);
@@ -164,6 +167,11 @@ impl<'a> FramePasses<'a> {
         }
         for dispatch in phases.resolves() {
             dispatch(self.resources, &mut pass);
+        }
+        if let (SettledDepth::Image, Some(visibility)) =
+            (self.plan.settled_depth, &self.renderer.visibility)
+        {
+            visibility.record_settled_depth(&mut pass);
         }
         drop(pass);
         if settled_depth {

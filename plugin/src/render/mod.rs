@@ -86,5 +86,5 @@ pub use tonemapping::{
     CameraTonemapping, PostSettings, Tonemapping, TonemappingPlugin, set_camera_display_mapping,
 };
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
-pub use visibility::VISIBILITY_CLEAR_SHADER;
+pub use visibility::{SETTLED_DEPTH_SHADER, SettledDepth, VISIBILITY_CLEAR_SHADER};
 pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};

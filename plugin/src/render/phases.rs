@@ -8,7 +8,8 @@
 //! opaque       materials test the prepass depth without writing it: a pixel shades once
 //! resolve      deferred path: the candidate pass (depth-offset polygons, by their polygons'
 //!              depth), then materials shade their pixels of the visibility buffer in compute
-//!              (the resolves that settle candidates first), then the settled depth
+//!              (the resolves that settle candidates first), then the settled depth (an image
+//!              in the same compute pass, or the candidates' polygons for passes that test it)
 //! transparent  blended draws of every material in one list, farthest first; depth read-only;
 //!              then TAA's object motion pass (moving draws write which motion each pixel
 //!              follows)
@@ -84,8 +85,8 @@ pub enum DrawPhase {
     /// behind them (parallax depth offset) merge into the candidate keys, depth tested against
     /// the visibility pass and written; the resolve settles them.
     Candidates,
-    /// Deferred frames, after the resolve: the candidates' polygons write each pixel's settled
-    /// depth.
+    /// Deferred frames, after the resolve, where a later pass tests against the depth: the
+    /// candidates' polygons write each pixel's settled depth.
     SettledDepth,
     /// Colour blended over the opaque result; depth tested, never written.
     Transparent,

@@ -4,8 +4,9 @@
 use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
     DrawPhase, EnvironmentMaps, FrameNodes, FrameUniformBuffer, FullScreenStage, LightBuffers,
-    RenderPath, RenderPhases, RenderTarget, Renderer, ShadowMaps, SortedDraws, TargetFormat,
-    VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame, render_frame, target,
+    RenderPath, RenderPhases, RenderTarget, Renderer, SettledDepth, ShadowMaps, SortedDraws,
+    TargetFormat, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame,
+    render_frame, target,
 };
 use crate::gpu::{
     GpuAssets, GpuContext, TimingMode, UploadStats, resolve_gpu_timings, set_gpu_timing,
@@ -172,6 +173,7 @@ impl Plugin for RenderPlugin {
             path: self.path,
             deferred: false,
             ran_opaque_pass: false,
+            settled_depth: SettledDepth::default(),
             deferred_unavailable: None,
             visibility: None,
             background: None,

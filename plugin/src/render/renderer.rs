@@ -5,8 +5,8 @@
 use super::post_chain::PostImages;
 use super::{
     DeferredBackground, DeferredUnavailable, EnvironmentMaps, FrameUniformBuffer, FullScreenStage,
-    LightBuffers, RenderPath, RenderTarget, ShadowMaps, SortedDraws, VisibilityBuffer,
-    VisibilityIds, render_path,
+    LightBuffers, RenderPath, RenderTarget, SettledDepth, ShadowMaps, SortedDraws,
+    VisibilityBuffer, VisibilityIds, render_path,
 };
 use crate::gpu::{GpuAssets, GpuContext, UploadStats};
 use crate::{Image, Mesh};
@@ -38,6 +38,8 @@ pub struct Renderer {
     /// Whether the last rendered frame ran the opaque render pass (a deferred frame whose
     /// opaque draws all resolve in compute does not).
     pub(crate) ran_opaque_pass: bool,
+    /// How the last frame gave the depth its resolve settled to the passes after it.
+    pub(crate) settled_depth: SettledDepth,
     /// Why the last frame that asked for deferred ran forward, as logged.
     pub(super) deferred_unavailable: Option<DeferredUnavailable>,
     /// The deferred path's visibility buffer, once a frame has needed it.
@@ -99,6 +101,22 @@ impl Renderer {
     /// "opaque" phase).
     pub fn ran_opaque_pass(&self) -> bool {
         self.ran_opaque_pass
+    }
+
+    /// How the last frame gave the depth its deferred resolve settled (depth offset) to the
+    /// passes after it.
+    pub fn settled_depth(&self) -> SettledDepth {
+        self.settled_depth
+    }
+
+    /// The scene's depth as shaders read it this frame ([`super::FrameView::scene_depth`]).
+    pub(crate) fn scene_depth<'a>(&'a self, target: &'a RenderTarget) -> &'a wgpu::TextureView {
+        let settled = self
+            .visibility
+            .as_ref()
+            .filter(|_| self.settled_depth == SettledDepth::Image)
+            .and_then(VisibilityBuffer::settled_depth_view);
+        settled.unwrap_or(&target.depth_view)
     }
 
     /// Why the last frame runs forward although its path asked for deferred, if it does.

@@ -23,9 +23,9 @@ pub const SRGB: WgslFile = crate::wgsl_file!("render/srgb.wgsl");
 /// `fullscreen_vertex`: the vertex stage of full-screen passes.
 pub const FULLSCREEN_TRIANGLE: WgslFile = crate::wgsl_file!("render/fullscreen_triangle.wgsl");
 /// The visibility pass of the deferred path: `visibility_id()` and the default `fs_visibility`.
-pub const VISIBILITY: WgslFile = crate::wgsl_file!("render/visibility.wgsl");
+pub const VISIBILITY: WgslFile = crate::wgsl_file!("render/visibility/visibility.wgsl");
 /// Reading the visibility keys from compute (`visible_id`).
-pub const VISIBILITY_READ: WgslFile = crate::wgsl_file!("render/visibility_read.wgsl");
+pub const VISIBILITY_READ: WgslFile = crate::wgsl_file!("render/visibility/visibility_read.wgsl");
 /// The Sobel compute pass of dynamic height fields.
 pub const SOBEL_ENTRY: WgslFile = crate::wgsl_file!("dynamic_height/sobel.wgsl");
 

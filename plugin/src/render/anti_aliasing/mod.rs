@@ -124,7 +124,7 @@ impl FrameNode for MotionNode {
         motion_runs(frame)
     }
 
-    fn reads_scene_depth(&self) -> bool {
+    fn tests_scene_depth(&self) -> bool {
         true
     }
 
@@ -221,7 +221,11 @@ impl PostEffect for Taa {
             .record(
                 frame.gpu,
                 frame.target,
-                TaaInputs { uniform, motions },
+                TaaInputs {
+                    uniform,
+                    motions,
+                    scene_depth: frame.scene_depth,
+                },
                 encoder,
                 time,
             ))

@@ -125,22 +125,26 @@ impl TaaUniform {
     }
 }
 
-/// What one TAA frame reads besides the scene: its uniform and the frame's object motions.
+/// What one TAA frame reads besides the scene: its uniform, the frame's object motions and the
+/// scene's depth ([`crate::render::FrameView::scene_depth`]).
 pub(crate) struct TaaInputs<'a> {
     pub(crate) uniform: TaaUniform,
     pub(crate) motions: &'a ObjectMotions,
+    pub(crate) scene_depth: &'a wgpu::TextureView,
 }
 
-/// The two histories of one target (colour and depth each; the bind groups keep the depth
-/// textures), and the bind group that writes each.
+/// The two histories of one target (colour and depth each), and the bind group that writes
+/// each.
 #[derive(Debug)]
 struct HistoryTextures {
     target: u64,
     /// Each history's id as an image of the post chain.
     ids: [u64; 2],
     views: [wgpu::TextureView; 2],
-    /// `bind_groups[i]` reads history `1 - i` and writes history `i`.
-    bind_groups: [wgpu::BindGroup; 2],
+    depth_views: [wgpu::TextureView; 2],
+    /// The scene depth they bind, and `bind_groups[i]`, which reads history `1 - i` and writes
+    /// history `i`.
+    bind_groups: Option<(wgpu::TextureView, [wgpu::BindGroup; 2])>,
     /// The history the last frame wrote.
     written: usize,
 }
@@ -162,21 +166,11 @@ pub(crate) struct TaaPass {
 impl TaaPass {
     pub(crate) fn new(gpu: &GpuContext) -> Self {
         let device = &gpu.device;
-        let depth = wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Depth,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("taa layout"),
             entries: &[
                 layout::unfilterable_texture_2d(0),
-                depth,
+                layout::unfilterable_texture_2d(1),
                 layout::texture_2d(2),
                 layout::filtering_sampler(3),
                 layout::compute_storage_texture(4, HISTORY_FORMAT),
@@ -295,43 +289,56 @@ impl TaaPass {
         let views = ["taa history 0", "taa history 1"].map(|label| view(label, HISTORY_FORMAT));
         let depth_views = ["taa history depth 0", "taa history depth 1"]
             .map(|label| view(label, HISTORY_DEPTH_FORMAT));
+        self.history = Some(HistoryTextures {
+            target: target.id(),
+            ids: [PostImage::new_id(), PostImage::new_id()],
+            views,
+            depth_views,
+            bind_groups: None,
+            written: 1,
+        });
+        true
+    }
+
+    /// The bind group that writes history `written` of `target`, reading `scene_depth`; made
+    /// again where the scene depth changed.
+    fn bind_group(
+        &mut self,
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        scene_depth: &wgpu::TextureView,
+        written: usize,
+    ) -> Option<wgpu::BindGroup> {
+        let history = self.history.as_mut()?;
+        if let Some((bound, groups)) = &history.bind_groups
+            && bound == scene_depth
+        {
+            return Some(groups[written].clone());
+        }
+        let (views, depth_views) = (&history.views, &history.depth_views);
         let bind_group = |written: usize| {
+            let texture = |binding, view| wgpu::BindGroupEntry {
+                binding,
+                resource: wgpu::BindingResource::TextureView(view),
+            };
             gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("taa bind group"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&target.scene_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&target.depth_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(&views[1 - written]),
-                    },
+                    texture(0, &target.scene_view),
+                    texture(1, scene_depth),
+                    texture(2, &views[1 - written]),
                     wgpu::BindGroupEntry {
                         binding: 3,
                         resource: wgpu::BindingResource::Sampler(&self.sampler),
                     },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: wgpu::BindingResource::TextureView(&views[written]),
-                    },
+                    texture(4, &views[written]),
                     wgpu::BindGroupEntry {
                         binding: 5,
                         resource: self.uniform.as_entire_binding(),
                     },
-                    wgpu::BindGroupEntry {
-                        binding: 6,
-                        resource: wgpu::BindingResource::TextureView(&depth_views[1 - written]),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 7,
-                        resource: wgpu::BindingResource::TextureView(&depth_views[written]),
-                    },
+                    texture(6, &depth_views[1 - written]),
+                    texture(7, &depth_views[written]),
                     wgpu::BindGroupEntry {
                         binding: 8,
                         resource: self.uniform.as_entire_binding(),
@@ -339,15 +346,10 @@ impl TaaPass {
                 ],
             })
         };
-        let bind_groups = [bind_group(0), bind_group(1)];
-        self.history = Some(HistoryTextures {
-            target: target.id(),
-            ids: [PostImage::new_id(), PostImage::new_id()],
-            views,
-            bind_groups,
-            written: 1,
-        });
-        true
+        let groups = [bind_group(0), bind_group(1)];
+        let group = groups[written].clone();
+        history.bind_groups = Some((scene_depth.clone(), groups));
+        Some(group)
     }
 
     /// Records the pass for `target`; returns the history it writes, what the post chain reads
@@ -359,6 +361,7 @@ impl TaaPass {
         TaaInputs {
             mut uniform,
             motions,
+            scene_depth,
         }: TaaInputs<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&PassTimestamps>,
@@ -368,8 +371,10 @@ impl TaaPass {
         }
         gpu.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         let motion_group = self.motion_group(gpu, motions).clone();
+        let written = 1 - self.history.as_ref()?.written;
+        let bind_group = self.bind_group(gpu, target, scene_depth, written)?;
         let history = self.history.as_mut()?;
-        history.written = 1 - history.written;
+        history.written = written;
         let (width, height) = target.size();
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -377,11 +382,10 @@ impl TaaPass {
                 timestamp_writes: timestamps.map(PassTimestamps::compute),
             });
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &history.bind_groups[history.written], &[]);
+            pass.set_bind_group(0, &bind_group, &[]);
             pass.set_bind_group(1, &motion_group, &[]);
             pass.dispatch_workgroups(width.div_ceil(GROUP), height.div_ceil(GROUP), 1);
         }
-        let written = history.written;
         Some(PostImage {
             id: history.ids[written],
             view: history.views[written].clone(),

@@ -34,7 +34,7 @@ struct ObjectMotion {
 }
 
 @group(0) @binding(0) var scene: texture_2d<f32>;
-@group(0) @binding(1) var scene_depth: texture_depth_2d;
+@group(0) @binding(1) var scene_depth: texture_2d<f32>;
 @group(0) @binding(2) var history: texture_2d<f32>;
 @group(0) @binding(3) var history_sampler: sampler;
 // rgb: the anti-aliased scene; a: the frames it holds at that pixel.
@@ -170,7 +170,7 @@ fn taa_main(
     let origin = vec2<i32>(group.xy) * GROUP - 1;
     for (var index = i32(local_index); index < TILE * TILE; index += GROUP * GROUP) {
         let at = clamp(origin + vec2<i32>(index % TILE, index / TILE), vec2<i32>(0), last);
-        tile[index] = vec4<f32>(to_ycocg(compress(display_colour(textureLoad(scene, at, 0)))), textureLoad(scene_depth, at, 0));
+        tile[index] = vec4<f32>(to_ycocg(compress(display_colour(textureLoad(scene, at, 0)))), textureLoad(scene_depth, at, 0).r);
     }
     workgroupBarrier();
     if id.x >= size.x || id.y >= size.y {

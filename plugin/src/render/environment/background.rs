@@ -51,7 +51,8 @@ pub(crate) struct BackgroundView {
 pub(crate) struct Background {
     pipeline: wgpu::ComputePipeline,
     params: wgpu::Buffer,
-    groups: Option<(u64, wgpu::BindGroup, wgpu::BindGroup)>,
+    /// The target and the scene depth they bind, and the two groups.
+    groups: Option<(u64, wgpu::TextureView, wgpu::BindGroup, wgpu::BindGroup)>,
     workgroups: (u32, u32),
     /// What `params` holds (written only when the frame's differ).
     uploaded: Option<BackgroundParams>,
@@ -88,12 +89,13 @@ impl Background {
         }
     }
 
-    /// Writes this frame's parameters and binds `target` and the source (`new_source`: the
-    /// source's image changed since the groups were made); returns the bytes written.
+    /// Writes this frame's parameters and binds `target`, its depth as `scene_depth` and the
+    /// source (`new_source`: the source's image changed since the groups were made); returns
+    /// the bytes written.
     pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
-        target: &RenderTarget,
+        (target, scene_depth): (&RenderTarget, &wgpu::TextureView),
         environment: &EnvironmentGpu,
         (view, new_source): (BackgroundView, bool),
     ) -> u64 {
@@ -106,7 +108,11 @@ impl Background {
         };
         let written = gpu.write_changed(&self.params, &mut self.uploaded, params);
         self.workgroups = (width.div_ceil(8), height.div_ceil(8));
-        if new_source || self.groups.as_ref().map(|(id, ..)| *id) != Some(target.id()) {
+        let bound = self
+            .groups
+            .as_ref()
+            .is_some_and(|(id, depth, ..)| *id == target.id() && depth == scene_depth);
+        if new_source || !bound {
             let layout = self.pipeline.get_bind_group_layout(0);
             let frame = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("environment background"),
@@ -118,7 +124,7 @@ impl Background {
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&target.depth_view),
+                        resource: wgpu::BindingResource::TextureView(scene_depth),
                     },
                     wgpu::BindGroupEntry {
                         binding: 2,
@@ -127,14 +133,14 @@ impl Background {
                 ],
             });
             let source = environment.source_group(&self.pipeline.get_bind_group_layout(1));
-            self.groups = Some((target.id(), frame, source));
+            self.groups = Some((target.id(), scene_depth.clone(), frame, source));
         }
         written
     }
 
     /// Records the pass, timed by `time`.
     pub(crate) fn record(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
-        let Some((_, frame, source)) = &self.groups else {
+        let Some((_, _, frame, source)) = &self.groups else {
             return;
         };
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

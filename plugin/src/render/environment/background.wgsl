@@ -17,7 +17,7 @@ struct BackgroundParams {
 // lavapipe keeps a new copy of a shader specialized on a small uniform buffer's values each time
 // they change (memory grows frame after frame).
 @group(0) @binding(0) var<storage, read> params: BackgroundParams;
-@group(0) @binding(1) var scene_depth: texture_depth_2d;
+@group(0) @binding(1) var scene_depth: texture_2d<f32>;
 @group(0) @binding(2) var scene_output: SceneOutput;
 
 @compute @workgroup_size(8, 8)
@@ -25,7 +25,7 @@ fn cs_background(@builtin(global_invocation_id) pixel: vec3<u32>) {
     if pixel.x >= params.size.x || pixel.y >= params.size.y {
         return;
     }
-    if textureLoad(scene_depth, pixel.xy, 0) < 1.0 {
+    if textureLoad(scene_depth, pixel.xy, 0).r < 1.0 {
         return;
     }
     let ndc = vec2<f32>((f32(pixel.x) + 0.5) / f32(params.size.x) * 2.0 - 1.0,

@@ -277,7 +277,8 @@ impl FrameNode for BackgroundNode {
             rotation,
             scale,
         };
-        Ok(background.prepare(gpu, target, state, (view, new_source)))
+        let scene_depth = resources.require::<Renderer>()?.scene_depth(target);
+        Ok(background.prepare(gpu, (target, scene_depth), state, (view, new_source)))
     }
 
     fn record(

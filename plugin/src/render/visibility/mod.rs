@@ -1,6 +1,10 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
 //! hands out, and the buffer of one target.
 
+mod settled_depth;
+
+pub use settled_depth::{SETTLED_DEPTH_SHADER, SettledDepth};
+
 use super::RenderTarget;
 use super::shaders::{ComposedShader, WgslFile};
 use crate::gpu::{GpuContext, PassTimestamps};
@@ -13,7 +17,8 @@ pub const VISIBILITY_CLEAR_SHADER: ComposedShader = ComposedShader {
 };
 
 /// The clear's WGSL file.
-const VISIBILITY_CLEAR_ENTRY: WgslFile = crate::wgsl_file!("render/visibility_clear.wgsl");
+const VISIBILITY_CLEAR_ENTRY: WgslFile =
+    crate::wgsl_file!(nested "render/visibility/visibility_clear.wgsl");
 
 /// Keys one workgroup of the clear writes (`CLEAR_GROUP_SIZE` in WGSL).
 const CLEAR_GROUP_SIZE: u64 = 256;
@@ -76,6 +81,8 @@ pub(crate) struct VisibilityBuffer {
     pub(crate) target: u64,
     /// The clear's pipeline and its bind group over `keys`.
     clear: (wgpu::ComputePipeline, wgpu::BindGroup),
+    /// The settled depth as an image, made on the first frame that reads it.
+    settled_depth: Option<settled_depth::SettledDepthImage>,
 }
 
 impl VisibilityBuffer {
@@ -120,6 +127,7 @@ impl VisibilityBuffer {
             candidates_written: std::cell::Cell::new(true),
             target: target.id(),
             clear: (pipeline, bind_group),
+            settled_depth: None,
         }
     }
 
@@ -144,6 +152,27 @@ impl VisibilityBuffer {
         pass.set_bind_group(0, &self.clear.1, &[]);
         // Both fit in u32: `keys` is bound as one storage buffer.
         pass.dispatch_workgroups(across as u32, groups.div_ceil(across) as u32, 1);
+    }
+
+    /// Makes the settled depth's image for `target` (this frame writes it), unless made.
+    pub(crate) fn prepare_settled_depth(&mut self, gpu: &GpuContext, target: &RenderTarget) {
+        let image = match &mut self.settled_depth {
+            Some(image) if image.fits(target) => image,
+            image => image.insert(settled_depth::SettledDepthImage::new(gpu, target)),
+        };
+        image.bind(gpu, &self.keys, target);
+    }
+
+    /// The settled depth's image, once a frame has needed it.
+    pub(crate) fn settled_depth_view(&self) -> Option<&wgpu::TextureView> {
+        self.settled_depth.as_ref().map(|image| image.view())
+    }
+
+    /// Records the settled depth's pass into `pass`, after the resolve's dispatches.
+    pub(crate) fn record_settled_depth(&self, pass: &mut wgpu::ComputePass<'_>) {
+        if let Some(image) = &self.settled_depth {
+            image.record(pass);
+        }
     }
 
     /// Serves `target` too: a target of the same size (the split view swaps two each frame)

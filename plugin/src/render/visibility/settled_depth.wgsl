@@ -1,0 +1,23 @@
+// The settled depth as an image, for compute passes that read the scene's depth after a
+// deferred resolve settled depth-offset candidates (material/candidates.wgsl): a pixel whose
+// candidate key the resolve settled holds its depth there (the candidate's marched depth where
+// it won, else the visibility pass's behind it); elsewhere the depth attachment is already
+// right. One compute pass instead of drawing the candidates' polygons again with `frag_depth`.
+
+@group(0) @binding(0) var<storage, read> visibility: array<vec2<u32>>;
+@group(0) @binding(1) var depth_attachment: texture_depth_2d;
+@group(0) @binding(2) var settled_depth: texture_storage_2d<r32float, write>;
+
+@compute @workgroup_size(8, 8)
+fn cs_settle_depth(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(settled_depth);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let candidate = visibility[candidate_index(id.xy, size)];
+    var depth = textureLoad(depth_attachment, id.xy, 0);
+    if (candidate.x | candidate.y) != 0u {
+        depth = bitcast<f32>(~candidate.y);
+    }
+    textureStore(settled_depth, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));
+}
