@@ -29,6 +29,8 @@ bench overdraw "old new" --path deferred --path forward --only overdraw
 bench depth-offset-45 "old new" $COB $K4 --depth-offset --only phases --path deferred --path forward
 bench phases-45 "old new" $COB $K4 --only phases --only seed-port --path deferred
 bench scene-shadows "old new" $K4 --only scene-shadows --path deferred
+bench depth-offset-taa "old new" $COB $K4 --depth-offset --only antialiasing --path deferred
+bench taa "old new" $COB $K4 --only antialiasing --path deferred
 bench cpu-side "old new" $COB --view-angle 45 --only cpu-side --path deferred --path forward
 bench cpu-side-2 "old new" $COB --view-angle 45 --only cpu-side --path deferred --path forward
 bench phases-0 "old new" $COB --size 3840x2160 --view-angle 0 --only phases --only seed-port --path deferred
