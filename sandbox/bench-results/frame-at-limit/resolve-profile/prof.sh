@@ -2,7 +2,9 @@
 # Where the resolve's time goes: a release build of sandbox with profile-stops-env.diff applied
 # reads POM_PROFILE_STOP (1: after finding the pixel, 2: after rebuilding it, 3: after the view
 # ray, 4: the maps only, 5: no lights, 6: no light clusters), POM_PROFILE_NO_BACKGROUND and
-# POM_PROFILE_NO_CANDIDATES. From the repository root: OUT=prof-out bash prof.sh BIN [SIZE].
+# POM_PROFILE_NO_CANDIDATES; and for the visibility pass POM_PROFILE_VISIBILITY_NO_ATOMIC (its
+# fragments merge no key: raster and depth alone) and POM_PROFILE_VISIBILITY_DEPTH=no-write|off.
+# From the repository root: OUT=prof-out bash prof.sh BIN [SIZE].
 set -u
 BIN=$1; SIZE=${2:-3840x2160}; OUT=${OUT:-prof-out}; mkdir -p "$OUT"
 COB="--height assets/bench_cobblestone/cobblestone_height.png
@@ -12,7 +14,13 @@ COB="--height assets/bench_cobblestone/cobblestone_height.png
   --shadow-softening 0.58 --shadows soft --projection ortho --light-angle 45"
 run() { local name=$1; shift; local s=$(date +%s)
   env "$@" timeout 120 $BIN bench $COB --size $SIZE --view-angle 45 --only phases --path deferred $EXTRA --out "$OUT/$name" > "$OUT/$name.log" 2>&1
-  echo "$name rc $? $(( $(date +%s) - s ))s $(grep -E 'deferred resolve' "$OUT/$name.log" | awk "{print \$8}" | tr '\n' ' ')" | tee -a "$OUT/summary.txt"; }
+  echo "$name rc $? $(( $(date +%s) - s ))s $(grep -E 'deferred (resolve|prepass)' "$OUT/$name.log" | awk "{print \$NF, \$8}" | tr '\n' ' ')" | tee -a "$OUT/summary.txt"; }
+EXTRA=""
+run visibility-again POM_PROFILE_STOP=0
+run visibility-no-atomic POM_PROFILE_VISIBILITY_NO_ATOMIC=1
+run visibility-no-depth-write POM_PROFILE_VISIBILITY_DEPTH=no-write
+run visibility-no-depth POM_PROFILE_VISIBILITY_DEPTH=off
+run visibility-no-atomic-no-depth POM_PROFILE_VISIBILITY_NO_ATOMIC=1 POM_PROFILE_VISIBILITY_DEPTH=off
 for method in normal pom; do
   EXTRA=""; [ $method = normal ] && EXTRA="--method normal"
   for stop in 0 1 2 3 4 5 6; do
