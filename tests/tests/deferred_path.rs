@@ -130,19 +130,16 @@ fn a_cube_in_depth_offset_relief_meets_it_the_same_way_on_both_paths() {
     render_both_paths(&mut app, "depth_offset_contact").unwrap();
 }
 
-#[test]
-fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
-    // The deferred path settles depth offset in the resolve and writes the settled depth only
-    // for the passes after it: the sky is drawn where the depth is still the far plane, so
-    // where the silhouette clips the relief (the plane's far edge) the sky shows only if the
-    // candidate's polygon depth was taken back there.
+/// Depth-offset relief clipped at its silhouette under the sky, seen at a grazing 70°, in a
+/// `side`-pixel square image: the sky shows where the silhouette clips the plane's far edge.
+fn silhouetted_relief_under_the_sky(side: u32) -> pom::App {
     let view = PreviewView {
         view_angle: 70.0,
         projection: PreviewProjection::Perspective,
         distance: 1.4,
         ..PreviewView::default()
     };
-    let mut app = preview_app(128, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
+    let mut app = preview_app(side, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
         ParallaxOcclusionMaterial {
             depth_offset: true,
             silhouette: pom::Silhouette::UvBounds,
@@ -152,6 +149,16 @@ fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
     })
     .unwrap();
     app.insert_resource(pom::EnvironmentLight::sky());
+    app
+}
+
+#[test]
+fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
+    // The deferred path settles depth offset in the resolve and writes the settled depth only
+    // for the passes after it: the sky is drawn where the depth is still the far plane, so
+    // where the silhouette clips the relief (the plane's far edge) the sky shows only if the
+    // candidate's polygon depth was taken back there.
+    let mut app = silhouetted_relief_under_the_sky(128);
     render_both_paths(&mut app, "depth_offset_silhouette_sky").unwrap();
 }
 
@@ -184,23 +191,8 @@ fn under_taa_the_settled_depth_is_an_image_that_reads_as_the_depth_pass_would() 
     // drawn into the depth attachment by the candidates' polygons. Both give the same depth:
     // TAA reprojects through it and the sky shows where it is the far plane (the silhouette
     // clips the relief at the plane's far edge), so the settled images match to the bit.
-    let view = PreviewView {
-        view_angle: 70.0,
-        projection: PreviewProjection::Perspective,
-        distance: 1.4,
-        ..PreviewView::default()
-    };
     let settle = |tested: bool| {
-        let mut app = preview_app(96, TargetFormat::Srgb8, &cobblestones(), &view, |m| {
-            ParallaxOcclusionMaterial {
-                depth_offset: true,
-                silhouette: pom::Silhouette::UvBounds,
-                height_scale: 0.15,
-                ..m
-            }
-        })
-        .unwrap();
-        app.insert_resource(pom::EnvironmentLight::sky());
+        let mut app = silhouetted_relief_under_the_sky(96);
         if tested {
             app.resources
                 .get_or_default::<FrameNodes>()

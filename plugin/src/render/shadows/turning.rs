@@ -88,23 +88,8 @@ fn lag_radians(kept: Vec3, now: Vec3) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::super::views::directional_views;
+    use super::super::views::tests::camera;
     use super::*;
-    use crate::Projection;
-
-    fn camera() -> CascadeCamera {
-        CascadeCamera {
-            position: Vec3::new(0.0, 2.0, 5.0),
-            forward: Vec3::NEG_Z,
-            right: Vec3::X,
-            up: Vec3::Y,
-            projection: Projection::Perspective {
-                fov_y: 1.0,
-                near: 0.1,
-                far: 200.0,
-            },
-            aspect: 1.5,
-        }
-    }
 
     /// The sun `turn` radians about +Z from straight down and a little sideways.
     fn sun(turn: f32) -> Vec3 {

@@ -214,10 +214,11 @@ pub fn directional_views(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn camera() -> CascadeCamera {
+    /// A camera above and in front of the origin, looking along −Z.
+    pub(in crate::render::shadows) fn camera() -> CascadeCamera {
         CascadeCamera {
             position: Vec3::new(0.0, 2.0, 5.0),
             forward: Vec3::NEG_Z,
