@@ -152,19 +152,30 @@ pub(crate) struct ShadowCasterChanges {
     /// Counts the frames on which a caster's per-draw data, or an asset, was uploaded: kept
     /// from frame to frame, so a change on a frame that draws no map is still seen after.
     data_generation: u64,
+    /// Whether a caster reads the frame's per-frame noise (`Material::casts_with_frame_noise`).
+    read_frame_noise: bool,
 }
 
 impl ShadowCasterChanges {
     /// Starts a frame's signature.
     pub(crate) fn begin_frame(&mut self) {
         self.signature = 0;
+        self.read_frame_noise = false;
     }
 
-    /// Adds one material's casters: its `signature`, and whether its data changed.
-    pub(crate) fn add(&mut self, signature: u64, data_changed: bool) {
+    /// Adds one material's casters: its `signature`, whether its data changed, and whether
+    /// one of them reads the frame's noise.
+    pub(crate) fn add(&mut self, signature: u64, data_changed: bool, read_frame_noise: bool) {
         self.signature = self.signature.rotate_left(5) ^ signature;
         if data_changed {
             self.data_generation += 1;
         }
+        self.read_frame_noise |= read_frame_noise;
+    }
+
+    /// Whether a caster reads the frame's per-frame noise: a map it shows changes whenever the
+    /// noise moves (every TAA frame).
+    pub(crate) fn read_frame_noise(&self) -> bool {
+        self.read_frame_noise
     }
 }

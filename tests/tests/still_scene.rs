@@ -224,3 +224,31 @@ fn a_turning_sun_redraws_one_cascade_a_frame_and_a_jump_all_of_them() {
         );
     }
 }
+
+#[test]
+fn under_taa_shadow_maps_are_kept_unless_a_caster_marches_jittered() {
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let (mut app, plane, _) = street(path);
+        pom_tests::anti_aliasing::set_anti_aliasing(&mut app, pom::AntiAliasing::Taa);
+        run_frames(&mut app, 2).unwrap();
+        let before = shadow_maps(&app);
+        run_frames(&mut app, 10).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (before.0, before.1 + 40),
+            "{path:?}: TAA's noise moves, no caster reads it"
+        );
+        app.world
+            .get::<&mut ParallaxOcclusionMaterial>(plane)
+            .unwrap()
+            .jitter_march = true;
+        run_frames(&mut app, 1).unwrap();
+        let before = shadow_maps(&app);
+        run_frames(&mut app, 3).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (before.0 + 12, before.1),
+            "{path:?}: a caster's march follows the noise"
+        );
+    }
+}

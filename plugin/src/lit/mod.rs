@@ -216,6 +216,10 @@ impl Material for LitMaterial {
     fn problems(&self) -> Vec<String> {
         self.parameter_problems()
     }
+
+    fn casts_with_frame_noise(&self) -> bool {
+        false
+    }
 }
 
 /// Draws [`LitMaterial`]s, and every mesh that has no material at all.

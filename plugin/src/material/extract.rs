@@ -25,6 +25,9 @@ pub(crate) struct ExtractedMaterials<M> {
     /// Whether every draw is the same entity's as last frame, and no draw came or went: the
     /// Prepare stage may then update only the `changed` ones.
     pub(crate) same_entities: bool,
+    /// Whether a shadow caster's material reads the frame's noise
+    /// ([`Material::casts_with_frame_noise`]).
+    pub(crate) casters_read_frame_noise: bool,
 }
 
 /// The problems last logged for each entity whose material of type `M` is being clamped, so a
@@ -82,6 +85,7 @@ pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut 
             changed: Vec::new(),
             changed_materials: Vec::new(),
             same_entities: false,
+            casters_read_frame_noise: false,
         });
     }
     if !resources.contains::<MaterialWarnings<M>>() {
@@ -106,6 +110,7 @@ fn extract_into<M: Material>(
     extracted.changed.clear();
     extracted.changed_materials.clear();
     extracted.same_entities = true;
+    extracted.casters_read_frame_noise = false;
     let mut writer = DrawWriter {
         extracted,
         warnings,
@@ -195,6 +200,8 @@ impl<M: Material> DrawWriter<'_, M> {
         material: &M,
         shadows: ShadowRoles,
     ) {
+        self.extracted.casters_read_frame_noise |=
+            shadows.casts && material.casts_with_frame_noise();
         let model = transform.to_mat4();
         let slot = self.written;
         // Last frame's draw in this slot, where it is this one unchanged: nothing to write (its

@@ -194,6 +194,13 @@ pub trait Material: hecs::Component + Clone + PartialEq + Default {
     fn problems(&self) -> Vec<String> {
         Vec::new()
     }
+    /// Whether this material's shadow casters read the frame's per-frame noise (a march
+    /// jittered under TAA): where a caster does, every shadow map is drawn again on each frame
+    /// the noise moves, else a map is kept while nothing it shows changed. `true` by default (a
+    /// caster shader of one's own may read it).
+    fn casts_with_frame_noise(&self) -> bool {
+        true
+    }
     /// The key one draw uses, knowing its per-draw data (as [`Material::per_draw`] packed it) and its
     /// place in the view: a material may pick a cheaper variant for a far-away object. `key` by
     /// default.

@@ -372,6 +372,7 @@ fn prepare_frame<M: Material>(
     renderer.shadow_maps.casters.add(
         batches.shadow_casters_signature(),
         batches.casters_data_changed() || assets_uploaded,
+        extracted.casters_read_frame_noise,
     );
     renderer.last_upload.meshes += stats.meshes;
     renderer.last_upload.images += stats.images;

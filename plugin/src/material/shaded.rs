@@ -181,4 +181,8 @@ impl<T: ShadedMaterial> Material for T {
     fn problems(&self) -> Vec<String> {
         self.parameter_problems()
     }
+
+    fn casts_with_frame_noise(&self) -> bool {
+        false
+    }
 }

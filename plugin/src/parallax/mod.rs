@@ -255,6 +255,11 @@ impl Material for ParallaxOcclusionMaterial {
             .collect()
     }
 
+    fn casts_with_frame_noise(&self) -> bool {
+        // The jittered march's start (pom.wgsl's `march_noise`) is the casters' only noise.
+        self.jitter_march
+    }
+
     /// Per-object LOD: a draw on which every pixel is past the LOD threshold uses the
     /// normal-mapping pipeline. Per pixel the shader would skip the march there anyway
     /// (T §5.4.3) and the image is the same, but a pipeline that holds the march is slower even

@@ -40,7 +40,8 @@ impl ShadowMapStats {
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct DrawnView {
     plan: ShadowViewPlan,
-    /// The frame's per-frame noise seed and anti-aliasing flag (a jittered march reads them).
+    /// The frame's per-frame noise seed and anti-aliasing flag where a caster reads them (a
+    /// jittered march), else 0.
     noise: [u32; 2],
     layer_size: u32,
 }

@@ -74,7 +74,12 @@ impl FrameNode for ShadowMapsNode {
         let layer_size = shadow_maps.layer_size();
         let count = extracted.shadow_views.len();
         let target_size = extracted.frame.target_size;
-        let noise = [target_size[2], target_size[3]];
+        // The noise changes a map only where a caster reads it.
+        let noise = if shadow_maps.casters.read_frame_noise() {
+            [target_size[2], target_size[3]]
+        } else {
+            [0; 2]
+        };
         self.kept
             .begin_frame(shadow_maps.casters, shadow_maps.generation());
         for (index, plan) in extracted.shadow_views.iter().enumerate() {
