@@ -162,7 +162,7 @@ fn the_sky_meets_depth_offset_relief_at_its_settled_depth_on_both_paths() {
     render_both_paths(&mut app, "depth_offset_silhouette_sky").unwrap();
 }
 
-/// A frame node that tests against the scene's depth as its attachment (and draws nothing).
+/// A frame node that reads the target's depth (and draws nothing).
 struct DepthTester;
 
 impl FrameNode for DepthTester {
@@ -170,7 +170,7 @@ impl FrameNode for DepthTester {
         true
     }
 
-    fn tests_scene_depth(&self) -> bool {
+    fn reads_scene_depth(&self) -> bool {
         true
     }
 

@@ -2,8 +2,8 @@
 // a material whose resolve settles its depth (`Material::settles_depth_in_resolve`: parallax
 // depth offset). After the visibility keys the buffer holds as many candidate keys, keyed
 // alike: per pixel the nearest such polygon by its own depth. The resolve settles each against
-// the visibility key (its march finds the real depth) and leaves the winner or 0. Composed
-// after visibility.wgsl.
+// the visibility key (its march finds the real depth) and leaves the winner's id or 0, with
+// the pixel's settled depth either way. Composed after visibility.wgsl.
 
 // The index of the candidate key of framebuffer position `position`.
 fn candidate_key_index(position: vec4<f32>) -> u32 {

@@ -36,8 +36,8 @@ struct StoredVertex {
 
 @group(2) @binding(0) var<uniform> resolve_batch: ResolveBatch;
 // The visibility keys then the candidate keys (visibility_read.wgsl): a settling resolve
-// leaves each of its candidates the winner or 0; a pixel whose candidate key is not 0 shows the
-// candidate, whatever its visibility key says.
+// leaves each of its candidates' id where it won, 0 where it lost (`settle_candidate`); a pixel
+// whose candidate id is not 0 shows the candidate, whatever its visibility key says.
 @group(2) @binding(1) var<storage, read_write> visibility: array<vec2<u32>>;
 @group(2) @binding(2) var<storage, read> mesh_vertices: array<StoredVertex>;
 @group(2) @binding(3) var<storage, read> mesh_indices: array<u32>;

@@ -183,6 +183,7 @@ impl<T: ShadedMaterial> Material for T {
     }
 
     fn casts_with_frame_noise(&self) -> bool {
-        false
+        // Only a cut-out's `covers` runs in the shadow pass, and it may dither by the noise.
+        T::CUTS_OUT
     }
 }

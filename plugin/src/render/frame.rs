@@ -99,7 +99,7 @@ fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(),
     };
     let depth_use = (
         nodes_use(NodeWork::reads_scene_depth),
-        nodes_use(NodeWork::tests_scene_depth),
+        nodes_use(NodeWork::samples_scene_depth),
     );
     let plan = FramePlan::new(resources, depth_use)?;
     resources.require_scope(|resources, renderer: &mut Renderer| {
@@ -299,11 +299,12 @@ pub(super) struct FramePlan {
 }
 
 impl FramePlan {
-    /// The plan of this frame; `(nodes_read_depth, nodes_test_depth)`: a feature node that
-    /// runs reads the scene's depth in a shader, tests against it as an attachment.
+    /// The plan of this frame; `(nodes_read_depth, nodes_sample_depth)`: a feature node that
+    /// runs reads the target's depth, samples the scene's depth only through
+    /// [`FrameView::scene_depth`].
     fn new(
         resources: &Resources,
-        (nodes_read_depth, nodes_test_depth): (bool, bool),
+        (nodes_read_depth, nodes_sample_depth): (bool, bool),
     ) -> Result<Self, AppError> {
         let extracted = resources.require::<ExtractedFrame>()?;
         let renderer = resources.require::<Renderer>()?;
@@ -323,9 +324,9 @@ impl FramePlan {
         let transparent =
             has(DrawPhase::Transparent) || (has_camera && !renderer.transparent.is_empty());
         let candidates = resolve && !renderer.candidate_order.is_empty();
-        let settled_depth = match (candidates, transparent || nodes_test_depth) {
+        let settled_depth = match (candidates, transparent || nodes_read_depth) {
             (true, true) => SettledDepth::DepthPass,
-            (true, false) if nodes_read_depth => SettledDepth::Image,
+            (true, false) if nodes_sample_depth => SettledDepth::Image,
             _ => SettledDepth::Unsettled,
         };
         Ok(Self {
@@ -333,7 +334,7 @@ impl FramePlan {
             deferred: renderer.deferred,
             prepass,
             opaque_pass: !background_in_compute,
-            keep_depth: transparent || nodes_read_depth || nodes_test_depth,
+            keep_depth: transparent || nodes_read_depth || nodes_sample_depth,
             settled_depth,
             resolve,
             background_in_compute,

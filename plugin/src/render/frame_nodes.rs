@@ -21,9 +21,10 @@ pub struct FrameView<'a> {
     pub target: &'a RenderTarget,
     /// Whether a camera sees the frame (without one, nothing is drawn).
     pub has_camera: bool,
-    /// The scene's depth as shaders after the resolve read it (bind it as an unfilterable
-    /// float texture): the target's depth, or the image a deferred resolve settled its
-    /// depth-offset candidates into ([`crate::render::SettledDepth::Image`]).
+    /// The scene's depth as shaders after the resolve phase sample it (bound as an unfilterable
+    /// float texture; [`FrameNode::samples_scene_depth`]): the target's depth, or the image a
+    /// deferred resolve settled its depth-offset candidates into
+    /// ([`crate::render::SettledDepth::Image`]).
     pub scene_depth: &'a wgpu::TextureView,
 }
 
@@ -49,8 +50,9 @@ impl<'a> FrameView<'a> {
 /// A feature's work in a phase of the frame, recorded into the frame's encoder after the
 /// phase's own pass.
 pub trait FrameNode: 'static {
-    /// Makes what this frame's recording needs (after every material has prepared its draws);
-    /// returns the bytes it uploaded. Runs only in frames where [`FrameNode::runs`] is true.
+    /// Makes what this frame's recording needs (after every material has prepared its draws
+    /// and the core has planned the frame's passes); returns the bytes it uploaded. Runs only in
+    /// frames where [`FrameNode::runs`] is true.
     fn prepare(&mut self, _resources: &mut Resources) -> Result<u64, RenderError> {
         Ok(0)
     }
@@ -58,16 +60,18 @@ pub trait FrameNode: 'static {
     /// Whether the node has work this frame; when false it records nothing and is not timed.
     fn runs(&self, frame: FrameView<'_>) -> bool;
 
-    /// Whether the node reads the scene's depth after the opaque phase in a shader, bound as
-    /// [`FrameView::scene_depth`] (the core then keeps it when no later phase of its own would).
+    /// Whether the node reads the target's depth ([`RenderTarget::depth_view`], as its depth
+    /// attachment or in a shader) after the opaque phase: the core then keeps it, with the depth
+    /// a deferred resolve settled drawn into it.
     fn reads_scene_depth(&self) -> bool {
         false
     }
 
-    /// Whether the node tests against the scene's depth after the opaque phase as its depth
-    /// attachment ([`RenderTarget::depth_view`]; the core then keeps it and draws the depth
-    /// settled by a deferred resolve into it).
-    fn tests_scene_depth(&self) -> bool {
+    /// Whether the node reads the scene's depth after the resolve phase only by sampling
+    /// [`FrameView::scene_depth`] in a shader: where a deferred resolve settled depth-offset
+    /// candidates, the core may then hand it an image written in compute instead of drawing the
+    /// settled depth into the target's depth, which costs a raster pass.
+    fn samples_scene_depth(&self) -> bool {
         false
     }
 
@@ -158,7 +162,7 @@ impl NodeWork {
         }
     }
 
-    /// Whether the node reads the scene's depth after the opaque phase in a shader.
+    /// Whether the node reads the target's depth after the opaque phase.
     pub(crate) fn reads_scene_depth(&self) -> bool {
         match self {
             NodeWork::Frame(node) => node.reads_scene_depth(),
@@ -166,11 +170,11 @@ impl NodeWork {
         }
     }
 
-    /// Whether the node tests against the scene's depth after the opaque phase.
-    pub(crate) fn tests_scene_depth(&self) -> bool {
+    /// Whether the node samples the scene's depth only through [`FrameView::scene_depth`].
+    pub(crate) fn samples_scene_depth(&self) -> bool {
         match self {
-            NodeWork::Frame(node) => node.tests_scene_depth(),
-            NodeWork::Post(_) => false,
+            NodeWork::Frame(node) => node.samples_scene_depth(),
+            NodeWork::Post(effect) => effect.samples_scene_depth(),
         }
     }
 

@@ -126,8 +126,15 @@ pub trait PostEffect: 'static {
         false
     }
 
-    /// Whether it reads the scene's depth (the opaque phase then keeps it).
+    /// Whether it reads the target's depth ([`RenderTarget::depth_view`]): the core then keeps
+    /// it, with the depth a deferred resolve settled drawn into it.
     fn reads_scene_depth(&self) -> bool {
+        false
+    }
+
+    /// Whether it reads the scene's depth only by sampling [`FrameView::scene_depth`] in a
+    /// shader (see [`super::FrameNode::samples_scene_depth`]).
+    fn samples_scene_depth(&self) -> bool {
         false
     }
 

@@ -124,7 +124,7 @@ impl FrameNode for MotionNode {
         motion_runs(frame)
     }
 
-    fn tests_scene_depth(&self) -> bool {
+    fn reads_scene_depth(&self) -> bool {
         true
     }
 
@@ -187,7 +187,7 @@ impl PostEffect for Taa {
         true
     }
 
-    fn reads_scene_depth(&self) -> bool {
+    fn samples_scene_depth(&self) -> bool {
         // It reprojects through the depth.
         true
     }

@@ -244,7 +244,7 @@ impl FrameNode for BackgroundNode {
                 .is_some_and(|environment| environment.background.is_some())
     }
 
-    fn reads_scene_depth(&self) -> bool {
+    fn samples_scene_depth(&self) -> bool {
         true
     }
 

@@ -14,7 +14,8 @@ use crate::render::ShadowViewPlan;
 use crate::{DIRECTIONAL_CASCADES, LightShadows};
 
 /// How far a kept cascade's light direction may lag the sun's: a tenth of a degree a frame
-/// (a day in four minutes at 60 frames a second) stays within it over the cascades' turns.
+/// (6° a second at 60 frames a second, a day in a minute) stays within it over the cascades'
+/// turns.
 pub(super) const LAG_LIMIT_RADIANS: f32 = 0.5 * std::f32::consts::PI / 180.0;
 
 /// One sun's cascades as last planned, and what they were fitted to.
@@ -65,7 +66,10 @@ impl TurningSuns {
             return fresh;
         }
         for (index, (kept, fresh)) in sun.views.iter_mut().zip(fresh).enumerate() {
-            if index == sun.next || lag_radians(kept.forward, fresh.forward) > LAG_LIMIT_RADIANS {
+            // A NaN lag (a non-finite transform kept or now) follows at once.
+            let lag = lag_radians(kept.forward, fresh.forward);
+            let lags = lag.is_nan() || lag > LAG_LIMIT_RADIANS;
+            if index == sun.next || lags {
                 *kept = fresh;
             }
         }

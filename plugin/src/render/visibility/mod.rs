@@ -83,6 +83,8 @@ pub(crate) struct VisibilityBuffer {
     clear: (wgpu::ComputePipeline, wgpu::BindGroup),
     /// The settled depth as an image, made on the first frame that reads it.
     settled_depth: Option<settled_depth::SettledDepthImage>,
+    /// Its pipeline where a resize dropped the image (compiled once per device).
+    settled_depth_pipeline: Option<wgpu::ComputePipeline>,
 }
 
 impl VisibilityBuffer {
@@ -128,6 +130,7 @@ impl VisibilityBuffer {
             target: target.id(),
             clear: (pipeline, bind_group),
             settled_depth: None,
+            settled_depth_pipeline: None,
         }
     }
 
@@ -158,7 +161,14 @@ impl VisibilityBuffer {
     pub(crate) fn prepare_settled_depth(&mut self, gpu: &GpuContext, target: &RenderTarget) {
         let image = match &mut self.settled_depth {
             Some(image) if image.fits(target) => image,
-            image => image.insert(settled_depth::SettledDepthImage::new(gpu, target)),
+            image => {
+                let pipeline = image
+                    .as_ref()
+                    .map(|image| image.pipeline().clone())
+                    .or_else(|| self.settled_depth_pipeline.take())
+                    .unwrap_or_else(|| settled_depth::settled_depth_pipeline(gpu));
+                image.insert(settled_depth::SettledDepthImage::new(gpu, target, pipeline))
+            }
         };
         image.bind(gpu, &self.keys, target);
     }
@@ -184,7 +194,12 @@ impl VisibilityBuffer {
         if self.keys.size() == 2 * visibility_bytes(target) {
             self.target = target.id();
         } else {
+            // The settled depth's pipeline stays for the image of the new size.
+            let settled_depth_pipeline = (self.settled_depth.as_ref())
+                .map(|image| image.pipeline().clone())
+                .or_else(|| self.settled_depth_pipeline.take());
             *self = Self::with_clear(gpu, target, self.clear.0.clone());
+            self.settled_depth_pipeline = settled_depth_pipeline;
         }
     }
 }

@@ -28,7 +28,7 @@ const GROUP_SIDE: u32 = 8;
 /// were settled ([`crate::Material::settles_depth_in_resolve`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SettledDepth {
-    /// The frame settled no candidate: its depth attachment is already right.
+    /// The frame settled no candidate, or no pass after the resolve reads its depth.
     #[default]
     Unsettled,
     /// The candidates' polygons drew the settled depth into the depth attachment, for passes
@@ -38,30 +38,40 @@ pub enum SettledDepth {
     Image,
 }
 
-/// The image, its pipeline, and the bind group of the target it was last written for.
+/// Bind groups kept, by target: the split view writes two targets of one size in turn.
+const KEPT_GROUPS: usize = 2;
+
+/// The image, its pipeline, and the bind groups of the targets it was last written for.
 #[derive(Debug)]
 pub(crate) struct SettledDepthImage {
     pipeline: wgpu::ComputePipeline,
     view: wgpu::TextureView,
     size: (u32, u32),
-    /// The bind group over the keys and a target's depth, and that target's id.
-    group: Option<(u64, wgpu::BindGroup)>,
+    /// Bind groups over the keys and a target's depth, with that target's id, newest last.
+    groups: Vec<(u64, wgpu::BindGroup)>,
+}
+
+/// The pass's pipeline (compiled once per device: a resize makes a new image and keeps it).
+pub(crate) fn settled_depth_pipeline(gpu: &GpuContext) -> wgpu::ComputePipeline {
+    let module = SETTLED_DEPTH_SHADER.create_module(&gpu.device);
+    gpu.device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("settled depth"),
+            layout: None,
+            module: &module,
+            entry_point: Some("cs_settle_depth"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
 }
 
 impl SettledDepthImage {
-    /// An image of `target`'s size.
-    pub(crate) fn new(gpu: &GpuContext, target: &RenderTarget) -> Self {
-        let module = SETTLED_DEPTH_SHADER.create_module(&gpu.device);
-        let pipeline = gpu
-            .device
-            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("settled depth"),
-                layout: None,
-                module: &module,
-                entry_point: Some("cs_settle_depth"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
+    /// An image of `target`'s size, written by `pipeline`.
+    pub(crate) fn new(
+        gpu: &GpuContext,
+        target: &RenderTarget,
+        pipeline: wgpu::ComputePipeline,
+    ) -> Self {
         let view = crate::render::plain_texture(
             gpu,
             "settled depth",
@@ -74,8 +84,13 @@ impl SettledDepthImage {
             pipeline,
             view,
             size: target.size(),
-            group: None,
+            groups: Vec::new(),
         }
+    }
+
+    /// Its pipeline, for the image of another size.
+    pub(crate) fn pipeline(&self) -> &wgpu::ComputePipeline {
+        &self.pipeline
     }
 
     /// Whether it serves `target` (same size).
@@ -88,13 +103,12 @@ impl SettledDepthImage {
         &self.view
     }
 
-    /// Makes the bind group over `keys` and `target`'s depth unless the last one is for it.
+    /// Makes the bind group over `keys` and `target`'s depth the one recorded, made unless
+    /// kept.
     pub(crate) fn bind(&mut self, gpu: &GpuContext, keys: &wgpu::Buffer, target: &RenderTarget) {
-        if self
-            .group
-            .as_ref()
-            .is_some_and(|(id, _)| *id == target.id())
-        {
+        if let Some(kept) = self.groups.iter().position(|(id, _)| *id == target.id()) {
+            let group = self.groups.remove(kept);
+            self.groups.push(group);
             return;
         }
         let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -115,12 +129,15 @@ impl SettledDepthImage {
                 },
             ],
         });
-        self.group = Some((target.id(), group));
+        if self.groups.len() == KEPT_GROUPS {
+            self.groups.remove(0);
+        }
+        self.groups.push((target.id(), group));
     }
 
     /// Records the pass into `pass` (after every resolve dispatch: the keys are settled).
     pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        let Some((_, group)) = &self.group else {
+        let Some((_, group)) = self.groups.last() else {
             return;
         };
         pass.set_pipeline(&self.pipeline);
