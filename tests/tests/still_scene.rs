@@ -156,26 +156,49 @@ fn a_still_scenes_shadow_maps_are_drawn_once_and_again_where_a_caster_or_a_view_
             "{path:?}: a caster moved"
         );
 
-        // The camera moves: the cascades follow it, the spot's map stays.
+        // The camera moves a little: every cascade still covers its slice of the view, and
+        // shades as one fitted afresh would.
         let before = shadow_maps(&app);
-        let camera = app
+        move_camera(&mut app, 0.5);
+        run_frames(&mut app, 1).unwrap();
+        assert_eq!(
+            shadow_maps(&app),
+            (before.0, before.1 + views),
+            "{path:?}: the camera moved a little"
+        );
+        let kept_image = render_and_capture(&mut app).unwrap();
+        let (mut fresh, _, fresh_cube) = street(path);
+        fresh
             .world
-            .query_mut::<(pom::hecs::Entity, &Camera)>()
-            .into_iter()
-            .map(|(entity, _)| entity)
-            .next()
-            .unwrap();
-        app.world
-            .get::<&mut Transform>(camera)
+            .get::<&mut Transform>(fresh_cube)
             .unwrap()
             .translation
-            .x += 0.5;
+            .x += 0.2;
+        move_camera(&mut fresh, 0.5);
+        let fresh_image = render_and_capture(&mut fresh).unwrap();
+        let comparison = pom::flip_compare(&fresh_image, &kept_image, 0.99).unwrap();
+        assert!(
+            comparison.mean < 0.001,
+            "{path:?}: kept cascades against fresh ones, FLIP mean {}",
+            comparison.mean
+        );
+
+        // The camera walks off: the cascades follow it, the spot's map stays.
+        let before = shadow_maps(&app);
+        move_camera(&mut app, 30.0);
         run_frames(&mut app, 1).unwrap();
         assert_eq!(
             shadow_maps(&app),
             (before.0 + 3, before.1 + 1),
             "{path:?}: the camera moved"
         );
+    }
+}
+
+/// Moves the scene's camera `x` along +X.
+fn move_camera(app: &mut App, x: f32) {
+    for (_, transform) in app.world.query_mut::<(&Camera, &mut Transform)>() {
+        transform.translation.x += x;
     }
 }
 

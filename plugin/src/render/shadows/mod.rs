@@ -7,9 +7,9 @@
 //! (`render/shadow_maps.rs`, `render/shadows.wgsl`), so that every material can sample them
 //! whether or not this feature is in the app.
 
+mod cascades;
 mod kept;
 mod plan;
-mod turning;
 mod views;
 
 use kept::KeptShadowViews;

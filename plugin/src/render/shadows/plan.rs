@@ -4,7 +4,7 @@
 
 use hecs::{Entity, World};
 
-use super::turning::TurningSuns;
+use super::cascades::KeptCascades;
 use super::views::{CascadeCamera, directional_views, point_views, spot_view};
 use crate::gpu::GpuContext;
 use crate::render::{ExtractedFrame, MAX_SHADOW_VIEWS, RenderTarget, ShadowViewPlan};
@@ -42,7 +42,7 @@ pub(super) fn plan_shadow_maps(
         aspect,
     };
     let mut list = ShadowViewList::default();
-    let mut suns = std::mem::take(resources.get_or_default::<TurningSuns>());
+    let mut suns = std::mem::take(resources.get_or_default::<KeptCascades>());
     suns.begin_frame();
     let extracted = resources.require_mut::<ExtractedFrame>()?;
     let shadows =
@@ -81,7 +81,7 @@ pub(super) fn plan_shadow_maps(
     }
     extracted.shadow_views = list.views;
     suns.end_frame();
-    *resources.get_or_default::<TurningSuns>() = suns;
+    *resources.get_or_default::<KeptCascades>() = suns;
     let overflow = resources.get_or_default::<ShadowMapOverflow>();
     if list.overflowed && !overflow.0 {
         log::warn!(

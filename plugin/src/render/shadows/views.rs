@@ -2,11 +2,9 @@
 //! camera's view, a spot light's perspective map, a point light's six cube faces. Pure math,
 //! done in the Extract stage.
 
-#[cfg(test)]
-use glam::Mat4;
-use glam::Vec3;
 use glam::camera::rh::proj::directx::{orthographic, perspective, perspective_infinite};
 use glam::camera::rh::view::look_to_mat4;
+use glam::{Mat4, Vec3};
 
 use crate::render::{ShadowViewGpu, ShadowViewPlan};
 use crate::{DIRECTIONAL_CASCADES, LightShadows, Projection};
@@ -161,18 +159,13 @@ pub fn directional_views(
     light_forward: Vec3,
     settings: &LightShadows,
 ) -> [ShadowViewPlan; DIRECTIONAL_CASCADES] {
-    let (near, far) = match camera.projection {
-        Projection::Perspective { near, far, .. } | Projection::Orthographic { near, far, .. } => {
-            (near, far)
-        }
-    };
-    let ends = cascade_ends(near.max(0.0), settings.distance.min(far.max(near + 1e-3)));
+    let slices = cascade_slices(camera, settings);
     let up = up_for(light_forward);
     let rotation = look_to_mat4(Vec3::ZERO, light_forward, up);
     let map_size = settings.map_size as f32;
     std::array::from_fn(|i| {
-        let start = if i == 0 { near.max(0.0) } else { ends[i - 1] };
-        let corners = slice_corners(camera, start, ends[i]);
+        let (start, end) = slices[i];
+        let corners = slice_corners(camera, start, end);
         let centre = corners.iter().copied().sum::<Vec3>() / 8.0;
         let radius = corners
             .iter()
@@ -198,7 +191,7 @@ pub fn directional_views(
             gpu: ShadowViewGpu {
                 view_projection: (projection * view).to_cols_array_2d(),
                 uv_scale: 1.0,
-                far_view_depth: ends[i],
+                far_view_depth: end,
                 texel_world_size: texel,
                 perspective: 0,
                 softness: settings.softness,
@@ -212,6 +205,51 @@ pub fn directional_views(
         }
     })
 }
+
+/// The view distances each cascade covers, nearest first: from the camera's near plane to
+/// `settings.distance` (or its far plane).
+fn cascade_slices(
+    camera: &CascadeCamera,
+    settings: &LightShadows,
+) -> [(f32, f32); DIRECTIONAL_CASCADES] {
+    let (near, far) = match camera.projection {
+        Projection::Perspective { near, far, .. } | Projection::Orthographic { near, far, .. } => {
+            (near, far)
+        }
+    };
+    let ends = cascade_ends(near.max(0.0), settings.distance.min(far.max(near + 1e-3)));
+    std::array::from_fn(|i| (if i == 0 { near.max(0.0) } else { ends[i - 1] }, ends[i]))
+}
+
+/// Whether cascade `index`, kept as `kept`, still serves its slice of `camera`'s view: every
+/// corner of the slice inside the map, clear of the filter's and the receivers' margin (less
+/// the texels a freshly fitted cascade's snapped centre may take of it), and the casters
+/// `settings.distance` towards the light still inside its depth range. A freshly fitted
+/// cascade does.
+pub fn cascade_covers(
+    camera: &CascadeCamera,
+    settings: &LightShadows,
+    index: usize,
+    kept: &ShadowViewPlan,
+) -> bool {
+    let Some(&(start, end)) = cascade_slices(camera, settings).get(index) else {
+        return false;
+    };
+    let map_size = kept.map_size as f32;
+    let matrix = Mat4::from_cols_array_2d(&kept.gpu.view_projection);
+    let edge = 1.0 - 2.0 * (margin_texels(settings) - SNAP_TEXELS) / map_size;
+    // The orthographic depth range: the cascade's diameter and the casters' reach before it.
+    let radius = kept.gpu.texel_world_size * map_size / 2.0;
+    let nearest = settings.distance / (2.0 * radius + settings.distance);
+    slice_corners(camera, start, end).iter().all(|corner| {
+        let ndc = matrix.project_point3(*corner);
+        ndc.x.abs() <= edge && ndc.y.abs() <= edge && (nearest..=1.0).contains(&ndc.z)
+    })
+}
+
+/// Texels by which snapping a cascade's centre to whole texels may move its slice towards
+/// the map's edge (one along each axis), with room for rounding.
+const SNAP_TEXELS: f32 = 2.0;
 
 #[cfg(test)]
 pub(super) mod tests {
@@ -257,6 +295,38 @@ pub(super) mod tests {
                     "cascade {i}: {ndc}"
                 );
                 assert!((0.0..=1.0).contains(&ndc.z), "cascade {i}: {ndc}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_freshly_fitted_cascade_covers_its_slice_and_a_far_moved_camera_leaves_it() {
+        let settings = LightShadows::default();
+        for step in 0..64 {
+            let turn = glam::Quat::from_rotation_y(step as f32 * 0.37);
+            let camera = CascadeCamera {
+                position: Vec3::new(step as f32 * 1.3, 2.0 + step as f32 * 0.05, -(step as f32)),
+                forward: turn * Vec3::NEG_Z,
+                right: turn * Vec3::X,
+                ..camera()
+            };
+            let light = Vec3::new(0.3, -1.0, 0.2 + step as f32 * 0.01).normalize();
+            for (index, view) in directional_views(&camera, light, &settings)
+                .iter()
+                .enumerate()
+            {
+                assert!(
+                    cascade_covers(&camera, &settings, index, view),
+                    "{step}, {index}"
+                );
+                let away = CascadeCamera {
+                    position: camera.position + camera.right * settings.distance,
+                    ..camera
+                };
+                assert!(
+                    !cascade_covers(&away, &settings, index, view),
+                    "{step}, {index}"
+                );
             }
         }
     }
