@@ -104,14 +104,20 @@ impl<K: Copy + Ord> SortEntry<K> {
     /// world's order.
     fn order(&self, other: &Self) -> Ordering {
         self.batch_order(other)
-            .then(self.view_depth.cmp(&other.view_depth))
+            .then_with(|| self.order_in_batch(other))
+    }
+
+    /// How this entry stands against `other` of the same batch: by depth and draw alone (what
+    /// a batch's entries differ in).
+    fn order_in_batch(&self, other: &Self) -> Ordering {
+        self.view_depth
+            .cmp(&other.view_depth)
             .then(self.draw.cmp(&other.draw))
     }
 
-    /// Whether this entry comes before `other` of the same batch: by depth and draw alone
-    /// (what a batch's entries differ in).
+    /// Whether this entry comes before `other` of the same batch.
     pub(super) fn precedes_in_batch(&self, other: &Self) -> bool {
-        (self.view_depth, self.draw) < (other.view_depth, other.draw)
+        self.order_in_batch(other).is_lt()
     }
 
     /// Whether `other` belongs to the same batch as this entry and stands in the same place

@@ -83,7 +83,7 @@ pub(crate) struct VisibilityBuffer {
     clear: (wgpu::ComputePipeline, wgpu::BindGroup),
     /// The settled depth as an image, made on the first frame that reads it.
     settled_depth: Option<settled_depth::SettledDepthImage>,
-    /// Its pipeline where a resize dropped the image (compiled once per device).
+    /// Its pipeline, compiled with the first image and kept through resizes.
     settled_depth_pipeline: Option<wgpu::ComputePipeline>,
 }
 
@@ -162,12 +162,14 @@ impl VisibilityBuffer {
         let image = match &mut self.settled_depth {
             Some(image) if image.fits(target) => image,
             image => {
-                let pipeline = image
-                    .as_ref()
-                    .map(|image| image.pipeline().clone())
-                    .or_else(|| self.settled_depth_pipeline.take())
-                    .unwrap_or_else(|| settled_depth::settled_depth_pipeline(gpu));
-                image.insert(settled_depth::SettledDepthImage::new(gpu, target, pipeline))
+                let pipeline = self
+                    .settled_depth_pipeline
+                    .get_or_insert_with(|| settled_depth::settled_depth_pipeline(gpu));
+                image.insert(settled_depth::SettledDepthImage::new(
+                    gpu,
+                    target,
+                    pipeline.clone(),
+                ))
             }
         };
         image.bind(gpu, &self.keys, target);
@@ -195,9 +197,7 @@ impl VisibilityBuffer {
             self.target = target.id();
         } else {
             // The settled depth's pipeline stays for the image of the new size.
-            let settled_depth_pipeline = (self.settled_depth.as_ref())
-                .map(|image| image.pipeline().clone())
-                .or_else(|| self.settled_depth_pipeline.take());
+            let settled_depth_pipeline = self.settled_depth_pipeline.take();
             *self = Self::with_clear(gpu, target, self.clear.0.clone());
             self.settled_depth_pipeline = settled_depth_pipeline;
         }

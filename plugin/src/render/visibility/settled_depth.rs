@@ -88,11 +88,6 @@ impl SettledDepthImage {
         }
     }
 
-    /// Its pipeline, for the image of another size.
-    pub(crate) fn pipeline(&self) -> &wgpu::ComputePipeline {
-        &self.pipeline
-    }
-
     /// Whether it serves `target` (same size).
     pub(crate) fn fits(&self, target: &RenderTarget) -> bool {
         self.size == target.size()
