@@ -187,6 +187,7 @@ pub const SHADERS: &[render::shaders::ComposedShader] = &[
     render::environment::BACKGROUND,
     render::VISIBILITY_CLEAR_SHADER,
     render::SETTLED_DEPTH_SHADER,
+    render::POLYGON_PASS_SHADER,
     gpu::SCATTER_SHADER,
     material::DEFERRED_CLASSIFY_SHADER,
     render::POST_SHADERS[0],

@@ -214,6 +214,54 @@ fn under_taa_the_settled_depth_is_an_image_that_reads_as_the_depth_pass_would() 
 }
 
 #[test]
+fn the_polygon_pass_finds_what_the_visibility_pass_would_rasterize() {
+    // A plane of two large triangles: its visibility keys come from compute (the polygon pass)
+    // unless a pass tests against the depth attachment, which that pass does not write; then
+    // the visibility pass rasterizes it. Under TAA and the sky, both read the scene's depth:
+    // the same outline against the sky, the same relief, the same reprojection.
+    let view = PreviewView {
+        view_angle: 70.0,
+        projection: PreviewProjection::Perspective,
+        distance: 1.4,
+        ..PreviewView::default()
+    };
+    let render = |tested: bool| {
+        let mut app = preview_app(96, TargetFormat::Srgb8, &cobblestones(), &view, |m| m).unwrap();
+        app.insert_resource(pom::EnvironmentLight::sky());
+        if tested {
+            app.resources
+                .get_or_default::<FrameNodes>()
+                .add(NodePlace::new("depth tester", RenderPhase::Resolve), || {
+                    DepthTester
+                });
+        }
+        set_path(&mut app, RenderPath::Deferred);
+        let image = settled(&mut app, AntiAliasing::Taa);
+        let renderer = app.resources.get::<Renderer>().unwrap();
+        assert!(renderer.runs_deferred());
+        (image, renderer.ran_polygon_pass(), renderer.settled_depth())
+    };
+    let (found, ran, how) = render(false);
+    assert!(ran, "the polygon pass did not run");
+    assert_eq!(how, SettledDepth::Image);
+    let (rasterized, ran, _) = render(true);
+    assert!(
+        !ran,
+        "the polygon pass ran under a pass that tests the depth"
+    );
+    pom_tests::anti_aliasing::save_for_looking("polygon_pass", &found);
+    pom_tests::anti_aliasing::save_for_looking("polygon_pass_rasterized", &rasterized);
+    // The pass snaps the corners and breaks ties on edges as the rasterizer does: the same
+    // pixels, to the bit.
+    let differing = found
+        .pixels()
+        .zip(rasterized.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(differing, 0, "pixels differ");
+}
+
+#[test]
 fn a_frame_after_depth_offset_is_turned_off_keeps_no_candidate_of_the_last() {
     // Every resolve reads the candidate keys: a frame without candidates must not find the
     // last frame's there (a pixel would show the last frame's candidate).

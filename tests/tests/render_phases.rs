@@ -167,8 +167,12 @@ fn hidden_planes_merge_nothing_into_the_visibility_buffer() {
     // candidate pass (counted first thing: no fragment is dropped uncounted). The planes are
     // separate batches made deepest first; both passes draw them nearest first across batches
     // with an early depth test and write, so the hidden ones fail it before their fragments
-    // run: four stacked planes launch no more than one plane and its polygon edges.
-    let deferred = RenderPlugin::new(SIZE, SIZE).with_path(RenderPath::Deferred);
+    // run: four stacked planes launch no more than one plane and its polygon edges. (The
+    // polygon pass would find these planes in compute: it is off to count the visibility
+    // pass's own work, which draws what that pass cannot take.)
+    let deferred = RenderPlugin::new(SIZE, SIZE)
+        .with_path(RenderPath::Deferred)
+        .with_polygon_pass(false);
     for depth_offset in [false, true] {
         let one = parallax_invocations(1, depth_offset, deferred, Stack::BackToFront);
         let four = parallax_invocations(4, depth_offset, deferred, Stack::BackToFront);
@@ -181,6 +185,18 @@ fn hidden_planes_merge_nothing_into_the_visibility_buffer() {
             four as f32 <= 1.05 * one as f32,
             "depth offset {depth_offset}: {four} visibility merges for four planes, {one} for one"
         );
+    }
+}
+
+#[test]
+fn the_polygon_pass_finds_large_planes_without_a_fragment() {
+    // Four full-screen planes of two triangles each: the polygon pass finds their visibility
+    // keys (with depth offset, their candidate keys) in compute, and neither the visibility
+    // pass nor the candidate pass launches a fragment for them.
+    let deferred = RenderPlugin::new(SIZE, SIZE).with_path(RenderPath::Deferred);
+    for depth_offset in [false, true] {
+        let four = parallax_invocations(4, depth_offset, deferred, Stack::BackToFront);
+        assert_eq!(four, 0, "depth offset {depth_offset}");
     }
 }
 

@@ -122,8 +122,10 @@ pub(crate) struct MaterialBatches<M: Material> {
     sort_memory: SortMemory<M::Key>,
     // The model matrix (and whether it receives shadows) and transform of each sorted slot,
     // kept from frame to frame.
-    models: Vec<(Mat4, bool)>,
-    transform_data: Vec<MeshTransform>,
+    pub(super) models: Vec<(Mat4, bool)>,
+    pub(super) transform_data: Vec<MeshTransform>,
+    /// The batches (increasing indices) whose visibility the polygon pass may find this frame.
+    pub(super) polygon_batches: Vec<u32>,
     // On TAA frames, each followed entity's model last frame.
     followed: FollowedModels,
     // Uniforms in draw order, then in sorted order: both reused from frame to frame.
@@ -228,6 +230,7 @@ impl<M: Material> MaterialBatches<M> {
             sort_memory: SortMemory::default(),
             models: Vec::new(),
             transform_data: Vec::new(),
+            polygon_batches: Vec::new(),
             followed: FollowedModels::default(),
             uniform_data: Vec::new(),
             sorted_uniforms: Vec::new(),

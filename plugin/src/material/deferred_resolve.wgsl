@@ -119,45 +119,13 @@ fn settle_candidate(pixel: vec2<u32>, depth: f32, covers: bool) -> bool {
     return shows;
 }
 
-// The world point on the view ray through framebuffer position `pixel` at clip depth `depth`.
-fn unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
-    let ndc = vec2<f32>(pixel.x / resolve_batch.target_width * 2.0 - 1.0, 1.0 - pixel.y / resolve_batch.target_height * 2.0);
-    let world = resolve_batch.inverse_view_projection * vec4<f32>(ndc, depth, 1.0);
-    return world.xyz / world.w;
-}
-
-struct Ray {
-    origin: vec3<f32>,
-    direction: vec3<f32>,
-}
-
-// The view ray through framebuffer position `pixel`: from the eye (perspective), or from the
-// near plane along the view (orthographic).
+// The view ray through framebuffer position `pixel` (visibility.wgsl's `ray_through_pixel`).
 fn pixel_ray(pixel: vec2<f32>) -> Ray {
-    if frame.view_direction.w > 0.5 {
-        return Ray(unproject(pixel, 0.0), frame.view_direction.xyz);
-    }
-    // Depth ½ stays finite under an infinite far plane.
-    return Ray(frame.camera_position.xyz, unproject(pixel, 0.5) - frame.camera_position.xyz);
+    return ray_through_pixel(resolve_batch.inverse_view_projection, resolve_target_size(), pixel, frame.camera_position.xyz, frame.view_direction);
 }
 
-// The barycentric weights of the point where `ray` meets the plane of triangle p0 p1 p2
-// (Möller–Trumbore without the inside test: off the triangle they extrapolate, as the
-// rasterizer does for the helper pixels derivatives come from).
-fn ray_barycentrics(ray: Ray, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>) -> vec3<f32> {
-    let edge1 = p1 - p0;
-    let edge2 = p2 - p0;
-    let p = cross(ray.direction, edge2);
-    let determinant = dot(edge1, p);
-    // Edge-on (no pixel of it is rasterized anyway): the first vertex.
-    if abs(determinant) < 1e-30 {
-        return vec3<f32>(1.0, 0.0, 0.0);
-    }
-    let t = ray.origin - p0;
-    let q = cross(t, edge1);
-    let u = dot(t, p) / determinant;
-    let v = dot(ray.direction, q) / determinant;
-    return vec3<f32>(1.0 - u - v, u, v);
+fn resolve_target_size() -> vec2<f32> {
+    return vec2<f32>(resolve_batch.target_width, resolve_batch.target_height);
 }
 
 fn stored_vertex_in(index: u32) -> VertexIn {

@@ -100,15 +100,20 @@ impl<M: Material> MaterialBatches<M> {
 
     /// The batches of the last prepared frame that draw in `phase` (the prepass, the
     /// candidates), for the frame's nearest-first list of it: (view depth of the batch's
-    /// nearest point, batch index).
-    pub(crate) fn nearest_first(&self, phase: DrawPhase) -> impl Iterator<Item = (f32, u32)> + '_ {
+    /// nearest point, batch index, whether the polygon pass may find it instead).
+    pub(crate) fn nearest_first(
+        &self,
+        phase: DrawPhase,
+    ) -> impl Iterator<Item = (f32, u32, bool)> + '_ {
         self.batches
             .iter()
             .enumerate()
             .filter_map(move |(index, batch)| {
+                let index = index as u32;
+                let polygon = self.polygon_batches.binary_search(&index).is_ok();
                 self.pipelines
                     .pass_in(phase, batch.key)
-                    .map(|_| (batch.nearest_depth, index as u32))
+                    .map(|_| (batch.nearest_depth, index, polygon))
             })
     }
 

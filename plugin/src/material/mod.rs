@@ -18,6 +18,7 @@ mod lowest_mip;
 mod mesh_pipeline;
 mod pipelines;
 mod plugin;
+mod polygons;
 mod registry;
 mod resolve_tiles;
 mod shaded;

@@ -19,8 +19,8 @@ use crate::gpu::{FragmentInvocationCounter, PipelineCompilation, UploadStats};
 use crate::render::PhaseBindings;
 use crate::render::anti_aliasing::{AntiAliasingFrame, ObjectMotions};
 use crate::render::{
-    DrawPhase, ExtractedFrame, RenderPhases, RenderTarget, Renderer, VisibilityBuffer,
-    phase_bindings,
+    DrawPhase, ExtractedFrame, RenderPhases, RenderTarget, Renderer, SortedDraws, VisibilityBuffer,
+    VisiblePolygons, phase_bindings,
 };
 use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
 
@@ -360,13 +360,14 @@ fn prepare_frame<M: Material>(
             }),
         },
     );
-    renderer
-        .prepass_order
-        .replace::<M>(batches.nearest_first(DrawPhase::Prepass));
-    renderer
-        .candidate_order
-        .replace::<M>(batches.nearest_first(DrawPhase::Candidates));
-    renderer.transparent.replace::<M>(batches.blended());
+    let polygon_pass = renderer.polygon_pass;
+    let lists = (
+        [&mut renderer.polygons, &mut renderer.candidate_polygons],
+        &mut renderer.prepass_order,
+        &mut renderer.candidate_order,
+        &mut renderer.transparent,
+    );
+    hand_over_draws(batches, lists, &inputs, polygon_pass);
     lod_cache.retain_existing(inputs.meshes);
     let assets_uploaded = stats.meshes + stats.images + stats.derived > 0;
     renderer.shadow_maps.casters.add(
@@ -379,6 +380,31 @@ fn prepare_frame<M: Material>(
     renderer.last_upload.derived += stats.derived;
     renderer.last_upload.uniform_bytes += stats.uniform_bytes;
     Ok(())
+}
+
+/// Hands the frame's lists their draws of `M`: the polygon pass its triangles (where it may
+/// run), the prepass and
+/// the candidates their batches nearest first, the transparent phase its blended ones.
+fn hand_over_draws<M: Material>(
+    batches: &mut MaterialBatches<M>,
+    ([polygons, candidate_polygons], prepass, candidates, transparent): (
+        [&mut VisiblePolygons; 2],
+        &mut SortedDraws,
+        &mut SortedDraws,
+        &mut SortedDraws,
+    ),
+    inputs: &PrepareInputs<'_>,
+    polygon_pass: bool,
+) {
+    let listed = match &inputs.deferred {
+        Some(targets) if polygon_pass => batches.list_polygons(inputs.meshes, targets),
+        _ => batches.list_no_polygons(),
+    };
+    polygons.replace::<M>(listed.visible);
+    candidate_polygons.replace::<M>(listed.candidates);
+    prepass.replace_marked::<M>(batches.nearest_first(DrawPhase::Prepass));
+    candidates.replace_marked::<M>(batches.nearest_first(DrawPhase::Candidates));
+    transparent.replace::<M>(batches.blended());
 }
 
 /// What the deferred resolve reads and writes on a frame that runs the deferred path.

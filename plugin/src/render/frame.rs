@@ -102,17 +102,8 @@ fn render_nodes(resources: &mut Resources, nodes: &mut FrameNodes) -> Result<(),
         nodes_use(NodeWork::samples_scene_depth),
     );
     let plan = FramePlan::new(resources, depth_use)?;
-    resources.require_scope(|resources, renderer: &mut Renderer| {
-        renderer.ran_opaque_pass = plan.opaque_pass;
-        renderer.settled_depth = plan.settled_depth;
-        if let (SettledDepth::Image, Some(visibility)) =
-            (plan.settled_depth, &mut renderer.visibility)
-        {
-            let target = resources.require::<RenderTarget>()?;
-            visibility.prepare_settled_depth(resources.require::<GpuContext>()?, target);
-        }
-        Ok::<_, AppError>(())
-    })?;
+    resources
+        .require_scope(|resources, renderer: &mut Renderer| plan.prepare(resources, renderer))?;
     // After the plan: a node binds the scene's depth where this frame settles it.
     prepare_nodes(resources, nodes, &runs)?;
     let times = PhaseTimes::reserve(&plan, nodes, &runs, resources);
@@ -292,6 +283,10 @@ pub(super) struct FramePlan {
     pub background_in_compute: bool,
     /// The resolve has candidates to settle: the candidate pass runs before it.
     pub candidates: bool,
+    /// The polygon pass finds the visibility of the draws listed for it, which the visibility
+    /// pass then leaves out: only where no pass after it tests against the depth attachment
+    /// (the polygon pass does not write it) or draws in the opaque phase.
+    pub polygons: bool,
     /// The transparent phase runs.
     pub transparent: bool,
     /// Textures derived from images are built this frame.
@@ -324,9 +319,13 @@ impl FramePlan {
         let transparent =
             has(DrawPhase::Transparent) || (has_camera && !renderer.transparent.is_empty());
         let candidates = resolve && !renderer.candidate_order.is_empty();
+        let polygons = renderer.polygon_pass
+            && background_in_compute
+            && !(transparent || nodes_read_depth)
+            && !(renderer.polygons.is_empty() && renderer.candidate_polygons.is_empty());
         let settled_depth = match (candidates, transparent || nodes_read_depth) {
             (true, true) => SettledDepth::DepthPass,
-            (true, false) if nodes_sample_depth => SettledDepth::Image,
+            (_, false) if (candidates || polygons) && nodes_sample_depth => SettledDepth::Image,
             _ => SettledDepth::Unsettled,
         };
         Ok(Self {
@@ -339,9 +338,31 @@ impl FramePlan {
             resolve,
             background_in_compute,
             candidates,
+            polygons,
             transparent,
             derived_textures: !renderer.assets.pending_derived_builds().is_empty(),
         })
+    }
+
+    /// Tells `renderer` what the frame runs and prepares the core's passes that depend on it:
+    /// the settled depth image, the polygon pass.
+    fn prepare(&self, resources: &Resources, renderer: &mut Renderer) -> Result<(), AppError> {
+        renderer.ran_opaque_pass = self.opaque_pass;
+        renderer.settled_depth = self.settled_depth;
+        renderer.ran_polygon_pass = self.polygons;
+        let gpu = resources.require::<GpuContext>()?;
+        if let (SettledDepth::Image, Some(visibility)) =
+            (self.settled_depth, &mut renderer.visibility)
+        {
+            visibility.prepare_settled_depth(gpu, resources.require::<RenderTarget>()?);
+        }
+        if let (true, Some(visibility)) = (self.polygons, &renderer.visibility) {
+            let frame = &resources.require::<ExtractedFrame>()?.frame;
+            for polygons in [&mut renderer.polygons, &mut renderer.candidate_polygons] {
+                polygons.prepare(gpu, frame, &visibility.keys);
+            }
+        }
+        Ok(())
     }
 }
 

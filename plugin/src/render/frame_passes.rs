@@ -99,7 +99,8 @@ impl<'a> FramePasses<'a> {
             .as_ref()
             .filter(|_| self.plan.deferred);
         if let Some(visibility) = clear {
-            visibility.record_clear(encoder, time, self.plan.candidates);
+            let polygons = self.plan.polygons.then_some(&self.renderer.polygons);
+            visibility.record_clear(encoder, time, self.plan.candidates, polygons);
         }
         let time = time.map(|time| time.render_part(clear.is_none(), true));
         self.depth_pass(encoder, DrawPhase::Prepass, wgpu::LoadOp::Clear(1.0), time);
@@ -147,7 +148,9 @@ impl<'a> FramePasses<'a> {
         let Some(phases) = self.phases else {
             return;
         };
-        let candidates = self.plan.candidates;
+        // Where the polygon pass finds every candidate, no candidate is rasterized.
+        let candidates = self.plan.candidates
+            && !(self.plan.polygons && self.renderer.candidate_order.all_polygons());
         let settled_depth = self.plan.settled_depth == SettledDepth::DepthPass;
         if candidates {
             let time = time.map(|time| time.render_part(true, false));
@@ -160,6 +163,9 @@ impl<'a> FramePasses<'a> {
                 .filter(|_| first || last)
                 .map(|time| time.compute_part(first, last)),
         });
+        if self.plan.polygons {
+            self.renderer.candidate_polygons.record(&mut pass);
+        }
         if self.plan.background_in_compute
             && let Some(background) = &self.renderer.background
         {
@@ -208,7 +214,8 @@ impl<'a> FramePasses<'a> {
             multiview_mask: None,
         });
         if let (true, Some(phases), Some(sorted)) = (self.plan.has_camera, self.phases, sorted) {
-            sorted.record(phases, self.resources, &mut pass);
+            let without_polygons = self.plan.polygons;
+            sorted.record(phases, self.resources, &mut pass, without_polygons);
         }
         self.draw_phase(phase, &mut pass);
     }
@@ -235,7 +242,7 @@ impl<'a> FramePasses<'a> {
         if let Some(phases) = self.phases {
             self.renderer
                 .transparent
-                .record(phases, self.resources, &mut pass);
+                .record(phases, self.resources, &mut pass, false);
         }
         self.draw_phase(DrawPhase::Transparent, &mut pass);
     }

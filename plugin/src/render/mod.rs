@@ -86,5 +86,10 @@ pub use tonemapping::{
     CameraTonemapping, PostSettings, Tonemapping, TonemappingPlugin, set_camera_display_mapping,
 };
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
-pub use visibility::{SETTLED_DEPTH_SHADER, SettledDepth, VISIBILITY_CLEAR_SHADER};
-pub(crate) use visibility::{VisibilityBuffer, VisibilityIds};
+pub(crate) use visibility::{
+    MAX_LISTED_TRIANGLES, MAX_POLYGON_TRIANGLES, MIN_POLYGON_PIXELS, VisibilityBuffer,
+    VisibilityIds, VisiblePolygon, VisiblePolygons,
+};
+pub use visibility::{
+    POLYGON_PASS_SHADER, SETTLED_DEPTH_SHADER, SettledDepth, VISIBILITY_CLEAR_SHADER,
+};

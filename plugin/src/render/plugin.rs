@@ -5,8 +5,8 @@ use super::standard_features::{RenderFeature, RenderFeatures};
 use super::{
     DrawPhase, EnvironmentMaps, FrameNodes, FrameUniformBuffer, FullScreenStage, LightBuffers,
     RenderPath, RenderPhases, RenderTarget, Renderer, SettledDepth, ShadowMaps, SortedDraws,
-    TargetFormat, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, extract_frame, prepare_frame,
-    render_frame, target,
+    TargetFormat, VISIBILITY_BYTES_PER_PIXEL, VisibilityIds, VisiblePolygons, extract_frame,
+    prepare_frame, render_frame, target,
 };
 use crate::gpu::{
     GpuAssets, GpuContext, TimingMode, UploadStats, resolve_gpu_timings, set_gpu_timing,
@@ -35,6 +35,9 @@ pub struct RenderPlugin {
     /// Whether opaque geometry is drawn into a depth prepass first, so the opaque phase
     /// shades each pixel once (on by default; off draws and shades in one pass).
     pub depth_prepass: bool,
+    /// Whether deferred frames find the visibility of large few-triangle draws in compute
+    /// (the polygon pass, on by default; off rasterizes every draw in the visibility pass).
+    pub polygon_pass: bool,
     /// Where post-processing runs.
     pub post_process: PostProcessPath,
     /// Where opaque surfaces are shaded: forward, deferred, or the faster on the adapter.
@@ -65,6 +68,7 @@ impl RenderPlugin {
             format: TargetFormat::Srgb8,
             gpu_timing: Some(TimingMode::NonBlocking),
             depth_prepass: true,
+            polygon_pass: true,
             post_process: PostProcessPath::Fastest,
             path: RenderPath::Auto,
             features: RenderFeatures::default(),
@@ -88,6 +92,14 @@ impl RenderPlugin {
     pub fn with_depth_prepass(self, depth_prepass: bool) -> Self {
         Self {
             depth_prepass,
+            ..self
+        }
+    }
+
+    /// The same plugin with the polygon pass on or off.
+    pub fn with_polygon_pass(self, polygon_pass: bool) -> Self {
+        Self {
+            polygon_pass,
             ..self
         }
     }
@@ -179,6 +191,10 @@ impl Plugin for RenderPlugin {
             background: None,
             visibility_ids: VisibilityIds::default(),
             prepass_order: SortedDraws::new(DrawPhase::Prepass),
+            polygons: VisiblePolygons::new(false),
+            candidate_polygons: VisiblePolygons::new(true),
+            polygon_pass: self.polygon_pass,
+            ran_polygon_pass: false,
             candidate_order: SortedDraws::new(DrawPhase::Candidates),
             transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,

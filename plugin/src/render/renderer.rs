@@ -6,7 +6,7 @@ use super::post_chain::PostImages;
 use super::{
     DeferredBackground, DeferredUnavailable, EnvironmentMaps, FrameUniformBuffer, FullScreenStage,
     LightBuffers, RenderPath, RenderTarget, SettledDepth, ShadowMaps, SortedDraws,
-    VisibilityBuffer, VisibilityIds, render_path,
+    VisibilityBuffer, VisibilityIds, VisiblePolygons, render_path,
 };
 use crate::gpu::{GpuAssets, GpuContext, UploadStats};
 use crate::{Image, Mesh};
@@ -50,6 +50,16 @@ pub struct Renderer {
     pub(crate) visibility_ids: VisibilityIds,
     /// This frame's prepass draws of every material, drawn nearest first.
     pub(crate) prepass_order: SortedDraws,
+    /// This frame's draws whose visibility the polygon pass may find instead of the
+    /// visibility pass.
+    pub(crate) polygons: VisiblePolygons,
+    /// This frame's depth-offset draws whose candidate keys the polygon pass may find instead
+    /// of the candidate pass.
+    pub(crate) candidate_polygons: VisiblePolygons,
+    /// Whether deferred frames may run the polygon pass.
+    pub(crate) polygon_pass: bool,
+    /// Whether the last rendered frame ran the polygon pass.
+    pub(crate) ran_polygon_pass: bool,
     /// This frame's candidate draws of every material, drawn nearest first.
     pub(crate) candidate_order: SortedDraws,
     /// This frame's blended draws of every material, drawn farthest first.
@@ -107,6 +117,23 @@ impl Renderer {
     /// passes after it.
     pub fn settled_depth(&self) -> SettledDepth {
         self.settled_depth
+    }
+
+    /// Whether deferred frames may find the visibility of large few-triangle draws in compute
+    /// ([`super::RenderPlugin::polygon_pass`]).
+    pub fn polygon_pass(&self) -> bool {
+        self.polygon_pass
+    }
+
+    /// Turns the polygon pass on or off from the next frame on.
+    pub fn set_polygon_pass(&mut self, on: bool) {
+        self.polygon_pass = on;
+    }
+
+    /// Whether the last rendered frame found the visibility of its large few-triangle draws
+    /// in compute (the polygon pass) rather than rasterizing them.
+    pub fn ran_polygon_pass(&self) -> bool {
+        self.ran_polygon_pass
     }
 
     /// The scene's depth as shaders read it this frame ([`super::FrameView::scene_depth`]).

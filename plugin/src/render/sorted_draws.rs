@@ -22,6 +22,31 @@ struct SortedItem {
     owner: TypeId,
     /// What the owner calls the draw (a material: the index of its batch).
     draw: u32,
+    /// The polygon pass finds the draw's visibility on frames that run it (prepass only).
+    polygon: bool,
+}
+
+/// Draw numbers in drawing order, cut into runs of one owner.
+#[derive(Debug, Default)]
+struct Runs {
+    draws: Vec<u32>,
+    runs: Vec<(TypeId, Range<usize>)>,
+}
+
+impl Runs {
+    fn push(&mut self, owner: TypeId, draw: u32) {
+        let index = self.draws.len();
+        self.draws.push(draw);
+        match self.runs.last_mut() {
+            Some((last, run)) if *last == owner => run.end = index + 1,
+            _ => self.runs.push((owner, index..index + 1)),
+        }
+    }
+
+    fn clear(&mut self) {
+        self.draws.clear();
+        self.runs.clear();
+    }
 }
 
 /// This frame's draws of one phase, of every material, sorted before the phase records them.
@@ -30,9 +55,10 @@ struct SortedItem {
 pub(crate) struct SortedDraws {
     phase: DrawPhase,
     items: Vec<SortedItem>,
-    /// The owners' draw numbers in sorted order, each owner's runs cut out of it.
-    sorted_draws: Vec<u32>,
-    runs: Vec<(TypeId, Range<usize>)>,
+    /// Every draw in sorted order.
+    all: Runs,
+    /// The same without the polygon pass's draws.
+    rasterized: Runs,
 }
 
 impl SortedDraws {
@@ -42,20 +68,30 @@ impl SortedDraws {
         Self {
             phase,
             items: Vec::new(),
-            sorted_draws: Vec::new(),
-            runs: Vec::new(),
+            all: Runs::default(),
+            rasterized: Runs::default(),
         }
     }
 
     /// Replaces `Owner`'s draws of this frame with `draws`: (view depth, draw number).
     pub(crate) fn replace<Owner: 'static>(&mut self, draws: impl Iterator<Item = (f32, u32)>) {
+        self.replace_marked::<Owner>(draws.map(|(view_depth, draw)| (view_depth, draw, false)));
+    }
+
+    /// [`SortedDraws::replace`] with each draw marked where the polygon pass finds its
+    /// visibility on frames that run it: (view depth, draw number, polygon).
+    pub(crate) fn replace_marked<Owner: 'static>(
+        &mut self,
+        draws: impl Iterator<Item = (f32, u32, bool)>,
+    ) {
         let owner = TypeId::of::<Owner>();
         self.items.retain(|item| item.owner != owner);
         self.items
-            .extend(draws.map(|(view_depth, draw)| SortedItem {
+            .extend(draws.map(|(view_depth, draw, polygon)| SortedItem {
                 view_depth,
                 owner,
                 draw,
+                polygon,
             }));
     }
 
@@ -80,27 +116,31 @@ impl SortedDraws {
         {
             self.items.sort_by(|a, b| depth(a).total_cmp(&depth(b)));
         }
-        self.sorted_draws.clear();
-        self.runs.clear();
+        self.all.clear();
+        self.rasterized.clear();
         for item in &self.items {
-            let index = self.sorted_draws.len();
-            self.sorted_draws.push(item.draw);
-            match self.runs.last_mut() {
-                Some((owner, run)) if *owner == item.owner => run.end = index + 1,
-                _ => self.runs.push((item.owner, index..index + 1)),
+            self.all.push(item.owner, item.draw);
+            if !item.polygon {
+                self.rasterized.push(item.owner, item.draw);
             }
         }
     }
 
-    /// Records the sorted draws into the phase's `pass`, each run of one owner by the owner's
-    /// drawer in `phases`.
+    /// Whether the polygon pass finds every draw (none is left to rasterize).
+    pub(crate) fn all_polygons(&self) -> bool {
+        self.rasterized.draws.is_empty()
+    }
+
+    /// Records the sorted draws into the phase's `pass` (`without_polygons`: but those the
+    /// polygon pass found), each run of one owner by the owner's drawer in `phases`.
     pub(crate) fn record(
         &self,
         phases: &RenderPhases,
         resources: &Resources,
         pass: &mut wgpu::RenderPass<'_>,
+        without_polygons: bool,
     ) {
-        for (owner, draws) in self.runs() {
+        for (owner, draws) in self.runs(without_polygons) {
             if let Some(draw) = phases.sorted_draw(self.phase, owner) {
                 draw(resources, pass, draws);
             }
@@ -109,10 +149,19 @@ impl SortedDraws {
 
     /// The sorted draws as runs of one owner each, in drawing order: the owner and its draw
     /// numbers.
-    pub(crate) fn runs(&self) -> impl Iterator<Item = (TypeId, &[u32])> + '_ {
-        self.runs
+    /// (`without_polygons`: but those the polygon pass finds.)
+    pub(crate) fn runs(
+        &self,
+        without_polygons: bool,
+    ) -> impl Iterator<Item = (TypeId, &[u32])> + '_ {
+        let runs = if without_polygons {
+            &self.rasterized
+        } else {
+            &self.all
+        };
+        runs.runs
             .iter()
-            .map(|(owner, run)| (*owner, &self.sorted_draws[run.clone()]))
+            .map(|(owner, run)| (*owner, &runs.draws[run.clone()]))
     }
 }
 
@@ -126,7 +175,7 @@ mod tests {
     fn sorted(phase: &mut SortedDraws) -> Vec<(TypeId, Vec<u32>)> {
         phase.sort();
         phase
-            .runs()
+            .runs(false)
             .map(|(owner, draws)| (owner, draws.to_vec()))
             .collect()
     }
@@ -180,5 +229,25 @@ mod tests {
                 (smoke, vec![1])
             ]
         );
+    }
+
+    #[test]
+    fn the_visibility_pass_leaves_out_what_the_polygon_pass_finds() {
+        let mut phase = SortedDraws::new(DrawPhase::Prepass);
+        phase.replace_marked::<Glass>([(1.0, 0, true), (3.0, 1, false)].into_iter());
+        phase.replace::<Smoke>([(2.0, 0)].into_iter());
+        phase.sort();
+        let (glass, smoke) = (TypeId::of::<Glass>(), TypeId::of::<Smoke>());
+        let runs = |without| -> Vec<(TypeId, Vec<u32>)> {
+            phase
+                .runs(without)
+                .map(|(owner, draws)| (owner, draws.to_vec()))
+                .collect()
+        };
+        assert_eq!(
+            runs(false),
+            [(glass, vec![0]), (smoke, vec![0]), (glass, vec![1])]
+        );
+        assert_eq!(runs(true), [(smoke, vec![0]), (glass, vec![1])]);
     }
 }

@@ -1,8 +1,14 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
 //! hands out, and the buffer of one target.
 
+mod polygons;
 mod settled_depth;
 
+pub use polygons::POLYGON_PASS_SHADER;
+pub(crate) use polygons::{
+    MAX_LISTED_TRIANGLES, MAX_POLYGON_TRIANGLES, MIN_POLYGON_PIXELS, VisiblePolygon,
+    VisiblePolygons,
+};
 pub use settled_depth::{SETTLED_DEPTH_SHADER, SettledDepth};
 
 use super::RenderTarget;
@@ -135,12 +141,14 @@ impl VisibilityBuffer {
     }
 
     /// Records the clear of every key to 0 ("no draw"), the candidate keys too where this frame
-    /// (`candidates`) or the last had some, as a compute pass that begins `time`'s span.
+    /// (`candidates`) or the last had some, then the `polygons` pass where the frame runs it,
+    /// as a compute pass that begins `time`'s span.
     pub(crate) fn record_clear(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         time: Option<&PassTimestamps>,
         candidates: bool,
+        polygons: Option<&VisiblePolygons>,
     ) {
         let written = self.candidates_written.replace(candidates);
         let halves = 1 + u64::from(candidates || written);
@@ -155,6 +163,9 @@ impl VisibilityBuffer {
         pass.set_bind_group(0, &self.clear.1, &[]);
         // Both fit in u32: `keys` is bound as one storage buffer.
         pass.dispatch_workgroups(across as u32, groups.div_ceil(across) as u32, 1);
+        if let Some(polygons) = polygons {
+            polygons.record(&mut pass);
+        }
     }
 
     /// Makes the settled depth's image for `target` (this frame writes it), unless made.

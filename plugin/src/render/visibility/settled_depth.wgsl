@@ -1,8 +1,10 @@
 // The settled depth as an image, for compute passes that read the scene's depth after a
-// deferred resolve settled depth-offset candidates (material/candidates.wgsl): a pixel whose
+// deferred resolve settled depth-offset candidates (material/candidates.wgsl) or where the
+// polygon pass found surfaces the depth attachment lacks (polygons.wgsl): a pixel whose
 // candidate key the resolve settled holds its depth there (the candidate's marched depth where
-// it won, else the visibility pass's behind it); elsewhere the depth attachment is already
-// right. One compute pass instead of drawing the candidates' polygons again with `frag_depth`.
+// it won, else the visibility pass's behind it); else a pixel with a visibility id holds it in
+// its visibility key (which the rasterized draws also wrote into the depth attachment); else
+// the attachment's is right. One compute pass instead of drawing polygons with `frag_depth`.
 
 @group(0) @binding(0) var<storage, read> visibility: array<vec2<u32>>;
 @group(0) @binding(1) var depth_attachment: texture_depth_2d;
@@ -15,9 +17,12 @@ fn cs_settle_depth(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let candidate = visibility[candidate_index(id.xy, size)];
+    let visible = visibility[id.y * size.x + id.x];
     var depth = textureLoad(depth_attachment, id.xy, 0);
     if (candidate.x | candidate.y) != 0u {
         depth = bitcast<f32>(~candidate.y);
+    } else if visible.x != 0u {
+        depth = bitcast<f32>(~visible.y);
     }
     textureStore(settled_depth, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));
 }

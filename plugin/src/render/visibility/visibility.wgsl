@@ -2,7 +2,8 @@
 // id that names the draw and the triangle it shows. Each draw owns a run of ids, one per
 // triangle, starting at its `first_visibility_id` (mesh_vertex.wgsl); 0 marks a pixel no
 // opaque draw covers. Composed after a material's files (with `enable primitive_index;`) where
-// the adapter can run the deferred path.
+// the adapter can run the deferred path. Also the view ray through a pixel and where it meets a
+// triangle, for finding a pixel's surface in compute (the resolve, the polygon pass).
 
 // One 64-bit key per pixel, row by row: the depth's bits inverted above the id, so that
 // atomicMax keeps the nearest fragment whatever the order fragments arrive in (ties: the larger
@@ -44,4 +45,47 @@ fn visibility_key(depth: f32, id: u32) -> u64 {
 @fragment @early_depth_test(force)
 fn fs_visibility(in: VertexOut, @builtin(primitive_index) triangle: u32) {
     keep_visible(in.clip_position, in.clip_position.z, visibility_id(in.object_index, triangle));
+}
+
+// The world point on the view ray through framebuffer position `pixel` of a target `size`
+// pixels large at clip depth `depth`, by the `inverse` view-projection.
+fn unproject_pixel(inverse: mat4x4<f32>, size: vec2<f32>, pixel: vec2<f32>, depth: f32) -> vec3<f32> {
+    let ndc = vec2<f32>(pixel.x / size.x * 2.0 - 1.0, 1.0 - pixel.y / size.y * 2.0);
+    let world = inverse * vec4<f32>(ndc, depth, 1.0);
+    return world.xyz / world.w;
+}
+
+struct Ray {
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+}
+
+// The view ray through framebuffer position `pixel` of a camera at `eye` looking along
+// `view_direction` (w: 1 for orthographic): from the eye (perspective), or from the near plane
+// along the view (orthographic).
+fn ray_through_pixel(inverse: mat4x4<f32>, size: vec2<f32>, pixel: vec2<f32>, eye: vec3<f32>, view_direction: vec4<f32>) -> Ray {
+    if view_direction.w > 0.5 {
+        return Ray(unproject_pixel(inverse, size, pixel, 0.0), view_direction.xyz);
+    }
+    // Depth ½ stays finite under an infinite far plane.
+    return Ray(eye, unproject_pixel(inverse, size, pixel, 0.5) - eye);
+}
+
+// The barycentric weights of the point where `ray` meets the plane of triangle p0 p1 p2
+// (Möller–Trumbore without the inside test: off the triangle they extrapolate, as the
+// rasterizer does for the helper pixels derivatives come from).
+fn ray_barycentrics(ray: Ray, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>) -> vec3<f32> {
+    let edge1 = p1 - p0;
+    let edge2 = p2 - p0;
+    let p = cross(ray.direction, edge2);
+    let determinant = dot(edge1, p);
+    // Edge-on (no pixel of it is rasterized anyway): the first vertex.
+    if abs(determinant) < 1e-30 {
+        return vec3<f32>(1.0, 0.0, 0.0);
+    }
+    let t = ray.origin - p0;
+    let q = cross(t, edge1);
+    let u = dot(t, p) / determinant;
+    let v = dot(ray.direction, q) / determinant;
+    return vec3<f32>(1.0 - u - v, u, v);
 }

@@ -1,0 +1,518 @@
+//! The polygon pass (polygons.wgsl): on a deferred frame, the visibility keys of draws of a few
+//! large triangles found in compute instead of rasterized. Where a GPU's raster and fragment
+//! stages are few (the compute GPUs we measure), rasterizing a floor that fills the target
+//! costs more than the resolve that shades it; casting each pixel's ray at a handful of
+//! triangles costs next to nothing. Materials list such draws each frame
+//! ([`VisiblePolygons::replace`]); the frame runs the pass only where no later pass tests
+//! against the depth attachment, which the pass does not write (`FramePlan::polygons`).
+
+use std::any::TypeId;
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3, Vec4Swizzles};
+
+use super::super::shaders::{self, ComposedShader, WgslFile};
+use crate::gpu::GpuContext;
+use crate::render::FrameUniform;
+
+/// The pass's shader.
+pub const POLYGON_PASS_SHADER: ComposedShader = ComposedShader {
+    name: "polygons.wgsl",
+    constants: &[shaders::deferred_header],
+    files: &[
+        shaders::FRAME,
+        crate::render::lights::LIGHTS_WGSL,
+        shaders::MESH_VERTEX,
+        shaders::VISIBILITY,
+        POLYGONS_ENTRY,
+    ],
+};
+
+const POLYGONS_ENTRY: WgslFile = crate::wgsl_file!(nested "render/visibility/polygons.wgsl");
+
+/// Pixels along each side of the pass's workgroups (`@workgroup_size` in WGSL).
+const GROUP_SIDE: u32 = 8;
+
+/// Triangles a draw may have (over all its instances) to be found by the pass.
+pub(crate) const MAX_POLYGON_TRIANGLES: usize = 16;
+
+/// Triangles one material lists a frame at most: every pixel of the pass loops over them all.
+pub(crate) const MAX_LISTED_TRIANGLES: usize = 64;
+
+/// Pixels a draw's triangles must span on screen (their rectangles together) for the pass to
+/// pay: smaller draws rasterize as cheaply.
+pub(crate) const MIN_POLYGON_PIXELS: u64 = 64 * 64;
+
+/// The face a draw's pipeline culls (`culled_face` in WGSL).
+const CULL_NONE: u32 = 0;
+const CULL_FRONT: u32 = 1;
+const CULL_BACK: u32 = 2;
+
+/// Bits of sub-pixel precision the rasterizers we run on snap vertices to (Vulkan's
+/// `subPixelPrecisionBits` on NVIDIA and lavapipe): the polygon pass snaps alike, so that its
+/// coverage is the rasterizer's.
+const SUB_PIXEL_BITS: u32 = 8;
+
+/// How far off the target (in pixels) a snapped corner may lie: past it the edge functions
+/// could overflow, and the triangle is tested by its view rays instead.
+const SNAP_RANGE: f32 = (1 << 20) as f32;
+
+/// One listed triangle. Mirrors `VisiblePolygon` in polygons.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct VisiblePolygon {
+    a: [f32; 4],
+    b: [f32; 4],
+    c: [f32; 4],
+    snapped_x: [i32; 4],
+    snapped_y: [i32; 4],
+    rect: [u32; 4],
+    id: u32,
+    culled_face: u32,
+    _padding: [u32; 2],
+}
+
+crate::wgsl_layout!(VisiblePolygon {
+    a,
+    b,
+    c,
+    snapped_x,
+    snapped_y,
+    rect,
+    id,
+    culled_face,
+    _padding,
+});
+
+/// The pass's parameters: the camera and target as the frame's uniform holds them (read from
+/// storage, see polygons.wgsl), and the listed triangles. Mirrors `PolygonPass` in polygons.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+struct PolygonPass {
+    view_projection: [[f32; 4]; 4],
+    inverse_view_projection: [[f32; 4]; 4],
+    camera_position: [f32; 4],
+    view_direction: [f32; 4],
+    target_size: [u32; 2],
+    origin: [u32; 2],
+    count: u32,
+    candidates: u32,
+    _padding: [u32; 2],
+}
+
+crate::wgsl_layout!(PolygonPass {
+    view_projection,
+    inverse_view_projection,
+    camera_position,
+    view_direction,
+    target_size,
+    origin,
+    count,
+    candidates,
+    _padding,
+});
+
+impl VisiblePolygon {
+    /// World-space triangle `corners` with visibility `id`, drawn with `cull`, as the camera
+    /// `view_projection` sees it on a target of `size` pixels; `None` where it cannot show
+    /// (off the target, culled, or of no area once snapped).
+    pub(crate) fn new(
+        corners: [Vec3; 3],
+        id: u32,
+        cull: Option<wgpu::Face>,
+        view_projection: Mat4,
+        size: (u32, u32),
+    ) -> Option<Self> {
+        let rect = screen_rect(corners, view_projection, size)?;
+        let mut culled_face = match cull {
+            None => CULL_NONE,
+            Some(wgpu::Face::Front) => CULL_FRONT,
+            Some(wgpu::Face::Back) => CULL_BACK,
+        };
+        let (mut snapped_x, mut snapped_y) = ([0; 4], [0; 4]);
+        let mut corners = corners;
+        if let Some(snapped) = snapped_corners(corners, view_projection, size) {
+            // The rasterizer's facing: counter-clockwise in clip space (y up) is the front,
+            // clockwise in the framebuffer's rows (y down).
+            let area = snapped_area(snapped);
+            let front = area < 0;
+            let culled = match culled_face {
+                CULL_FRONT => front,
+                CULL_BACK => !front,
+                _ => false,
+            };
+            if area == 0 || culled {
+                return None;
+            }
+            // Ordered so that the inside is where every edge function is positive.
+            let order = if front { [0, 2, 1] } else { [0, 1, 2] };
+            corners = order.map(|index| corners[index]);
+            for (slot, index) in order.into_iter().enumerate() {
+                (snapped_x[slot], snapped_y[slot]) = (snapped[index][0], snapped[index][1]);
+            }
+            snapped_x[3] = 1;
+            culled_face = CULL_NONE;
+        }
+        let point = |p: Vec3| p.extend(1.0).to_array();
+        Some(Self {
+            a: point(corners[0]),
+            b: point(corners[1]),
+            c: point(corners[2]),
+            snapped_x,
+            snapped_y,
+            rect,
+            id,
+            culled_face,
+            _padding: [0; 2],
+        })
+    }
+
+    /// The pixels of its screen rectangle.
+    pub(crate) fn pixels(&self) -> u64 {
+        let [x0, y0, x1, y1] = self.rect.map(u64::from);
+        (x1 - x0) * (y1 - y0)
+    }
+}
+
+/// The pixels (x, y from, x, y to) that `corners` may cover, a pixel of margin around their
+/// projection; the whole target where a corner lies behind the eye (the rasterizer clips
+/// there); `None` where nothing of it is on the target or a corner is not a number.
+fn screen_rect(
+    corners: [Vec3; 3],
+    view_projection: Mat4,
+    (width, height): (u32, u32),
+) -> Option<[u32; 4]> {
+    let clips = corners.map(|corner| view_projection * corner.extend(1.0));
+    if !clips.iter().all(|clip| clip.is_finite()) {
+        return None;
+    }
+    if clips.iter().any(|clip| clip.w <= f32::EPSILON) {
+        return Some([0, 0, width, height]);
+    }
+    let pixels = clips.map(|clip| {
+        let ndc = clip.xy() / clip.w;
+        glam::vec2(
+            (ndc.x * 0.5 + 0.5) * width as f32,
+            (0.5 - ndc.y * 0.5) * height as f32,
+        )
+    });
+    let low = pixels[0].min(pixels[1]).min(pixels[2]).floor() - 1.0;
+    let high = pixels[0].max(pixels[1]).max(pixels[2]).ceil() + 1.0;
+    let size = glam::vec2(width as f32, height as f32);
+    let (low, high) = (
+        low.clamp(glam::Vec2::ZERO, size),
+        high.clamp(glam::Vec2::ZERO, size),
+    );
+    (low.x < high.x && low.y < high.y)
+        .then(|| [low.x as u32, low.y as u32, high.x as u32, high.y as u32])
+}
+
+/// `corners` in the framebuffer as the rasterizer snaps them (in 1/2^SUB_PIXEL_BITS pixels),
+/// where every corner lies in front of the eye and near enough the target; else `None` (the
+/// rasterizer clips such a triangle first, and the pass tests it by its view rays).
+fn snapped_corners(
+    corners: [Vec3; 3],
+    view_projection: Mat4,
+    (width, height): (u32, u32),
+) -> Option<[[i32; 2]; 3]> {
+    let scale = (1 << SUB_PIXEL_BITS) as f32;
+    let mut snapped = [[0; 2]; 3];
+    for (slot, corner) in snapped.iter_mut().zip(corners) {
+        let clip = view_projection * corner.extend(1.0);
+        if !(clip.w > 0.0) {
+            return None;
+        }
+        let (x, y) = (clip.x / clip.w, clip.y / clip.w);
+        let pixel = [
+            (x * 0.5 + 0.5) * width as f32,
+            (0.5 - y * 0.5) * height as f32,
+        ];
+        if !pixel.iter().all(|p| p.abs() < SNAP_RANGE) {
+            return None;
+        }
+        *slot = pixel.map(|p| (p * scale).round() as i32);
+    }
+    Some(snapped)
+}
+
+/// Twice the signed area of a snapped triangle, in the framebuffer's rows (y down).
+fn snapped_area([a, b, c]: [[i32; 2]; 3]) -> i64 {
+    let d = |p: [i32; 2], q: [i32; 2]| (i64::from(q[0] - p[0]), i64::from(q[1] - p[1]));
+    let ((abx, aby), (acx, acy)) = (d(a, b), d(a, c));
+    abx * acy - aby * acx
+}
+
+/// The pass's GPU side, made on the first frame that runs it.
+#[derive(Debug)]
+struct PolygonPipeline {
+    pipeline: wgpu::ComputePipeline,
+    uniform: wgpu::Buffer,
+    polygons: wgpu::Buffer,
+    /// Group 0 over the keys it was made with.
+    keys_group: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+    polygons_group: wgpu::BindGroup,
+}
+
+/// Every material's listed triangles of this frame, and the pass that finds them.
+#[derive(Debug)]
+pub(crate) struct VisiblePolygons {
+    /// The triangles are depth-offset polygons, found for the candidate keys.
+    candidates: bool,
+    lists: Vec<(TypeId, Vec<VisiblePolygon>)>,
+    /// This frame's triangles of every list, and what the pass's buffers hold.
+    listed: Vec<VisiblePolygon>,
+    uploaded: (Vec<VisiblePolygon>, PolygonPass),
+    gpu: Option<PolygonPipeline>,
+    /// The pixels this frame's dispatch covers: origin, then workgroups across and down.
+    dispatch: ([u32; 2], [u32; 2]),
+}
+
+impl VisiblePolygons {
+    /// No triangles yet, found for the visibility keys or (`candidates`) the candidate keys.
+    pub(crate) fn new(candidates: bool) -> Self {
+        Self {
+            candidates,
+            lists: Vec::new(),
+            listed: Vec::new(),
+            uploaded: Default::default(),
+            gpu: None,
+            dispatch: Default::default(),
+        }
+    }
+
+    /// Replaces `Owner`'s triangles of this frame.
+    pub(crate) fn replace<Owner: 'static>(&mut self, polygons: Vec<VisiblePolygon>) {
+        let owner = TypeId::of::<Owner>();
+        self.lists.retain(|(listed, _)| *listed != owner);
+        if !polygons.is_empty() {
+            self.lists.push((owner, polygons));
+        }
+    }
+
+    /// Whether no material listed a triangle this frame.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.lists.is_empty()
+    }
+
+    /// Uploads what changed of this frame's triangles and of the camera and target `frame`
+    /// (made where missing) and binds `keys`, the visibility buffer the pass merges into.
+    pub(crate) fn prepare(&mut self, gpu: &GpuContext, frame: &FrameUniform, keys: &wgpu::Buffer) {
+        self.listed.clear();
+        for (_, list) in &self.lists {
+            self.listed.extend_from_slice(list);
+        }
+        let (low, high) = self
+            .listed
+            .iter()
+            .fold(([u32::MAX; 2], [0; 2]), |(low, high), p| {
+                (
+                    [low[0].min(p.rect[0]), low[1].min(p.rect[1])],
+                    [high[0].max(p.rect[2]), high[1].max(p.rect[3])],
+                )
+            });
+        let origin = if self.listed.is_empty() { [0; 2] } else { low };
+        let extent = [
+            high[0].saturating_sub(origin[0]),
+            high[1].saturating_sub(origin[1]),
+        ];
+        self.dispatch = (origin, extent.map(|pixels| pixels.div_ceil(GROUP_SIDE)));
+        let view_projection = Mat4::from_cols_array_2d(&frame.view_projection);
+        let pass = PolygonPass {
+            view_projection: frame.view_projection,
+            inverse_view_projection: view_projection.inverse().to_cols_array_2d(),
+            camera_position: frame.camera_position,
+            view_direction: frame.view_direction,
+            target_size: [frame.target_size[0], frame.target_size[1]],
+            origin,
+            count: self.listed.len() as u32,
+            candidates: u32::from(self.candidates),
+            _padding: [0; 2],
+        };
+        let gpu_side = self.gpu.get_or_insert_with(|| PolygonPipeline::new(gpu));
+        if gpu_side.polygons.size()
+            < (self.listed.len() * std::mem::size_of::<VisiblePolygon>()) as u64
+        {
+            *gpu_side =
+                PolygonPipeline::with_room(gpu, gpu_side.pipeline.clone(), self.listed.len());
+            self.uploaded = Default::default();
+        }
+        if self.uploaded.0 != self.listed {
+            gpu.write_buffer(&gpu_side.polygons, 0, bytemuck::cast_slice(&self.listed));
+            self.uploaded.0.clone_from(&self.listed);
+        }
+        if self.uploaded.1 != pass {
+            gpu.write_buffer(&gpu_side.uniform, 0, bytemuck::bytes_of(&pass));
+            self.uploaded.1 = pass;
+        }
+        gpu_side.bind_keys(gpu, keys);
+    }
+
+    /// Records the pass into `pass` (after the keys are cleared).
+    pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        let (Some(gpu_side), (_, [across, down])) = (&self.gpu, self.dispatch) else {
+            return;
+        };
+        let Some((_, keys_group)) = &gpu_side.keys_group else {
+            return;
+        };
+        if across == 0 || down == 0 {
+            return;
+        }
+        pass.set_pipeline(&gpu_side.pipeline);
+        pass.set_bind_group(0, keys_group, &[]);
+        pass.set_bind_group(1, &gpu_side.polygons_group, &[]);
+        pass.dispatch_workgroups(across, down, 1);
+    }
+}
+
+impl PolygonPipeline {
+    fn new(gpu: &GpuContext) -> Self {
+        let module = POLYGON_PASS_SHADER.create_module(&gpu.device);
+        let pipeline = gpu
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("polygon pass"),
+                layout: None,
+                module: &module,
+                entry_point: Some("cs_visible_polygons"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        Self::with_room(gpu, pipeline, 1)
+    }
+
+    /// Buffers for `count` triangles (a power of two of them) for `pipeline`.
+    fn with_room(gpu: &GpuContext, pipeline: wgpu::ComputePipeline, count: usize) -> Self {
+        let buffer = |label, size, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let uniform = buffer(
+            "polygon pass",
+            std::mem::size_of::<PolygonPass>() as u64,
+            wgpu::BufferUsages::STORAGE,
+        );
+        let polygons = buffer(
+            "polygon pass triangles",
+            (count.next_power_of_two() * std::mem::size_of::<VisiblePolygon>()) as u64,
+            wgpu::BufferUsages::STORAGE,
+        );
+        let polygons_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("polygon pass triangles"),
+            layout: &pipeline.get_bind_group_layout(1),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: polygons.as_entire_binding(),
+                },
+            ],
+        });
+        Self {
+            pipeline,
+            uniform,
+            polygons,
+            keys_group: None,
+            polygons_group,
+        }
+    }
+
+    /// Makes group 0 over `keys` unless it holds them already.
+    fn bind_keys(&mut self, gpu: &GpuContext, keys: &wgpu::Buffer) {
+        if self
+            .keys_group
+            .as_ref()
+            .is_some_and(|(bound, _)| bound == keys)
+        {
+            return;
+        }
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("polygon pass keys"),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: keys.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 9,
+                    resource: keys.as_entire_binding(),
+                },
+            ],
+        });
+        self.keys_group = Some((keys.clone(), group));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shader::check_wgsl_layout;
+
+    #[test]
+    fn the_pass_inputs_match_their_wgsl() {
+        let source = POLYGON_PASS_SHADER.source();
+        assert_eq!(
+            check_wgsl_layout::<VisiblePolygon>(&source, "VisiblePolygon"),
+            Ok(())
+        );
+        assert_eq!(
+            check_wgsl_layout::<PolygonPass>(&source, "PolygonPass"),
+            Ok(())
+        );
+        let declaration = format!("@workgroup_size({GROUP_SIDE}, {GROUP_SIDE})");
+        assert!(source.contains(&declaration));
+        assert!(source.contains(&format!("const SUB_PIXEL_BITS: u32 = {SUB_PIXEL_BITS}u;")));
+        for (name, value) in [
+            ("CULL_NONE", CULL_NONE),
+            ("CULL_FRONT", CULL_FRONT),
+            ("CULL_BACK", CULL_BACK),
+        ] {
+            assert!(
+                source.contains(&format!("const {name}: u32 = {value}u;")),
+                "{name}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_triangle_behind_the_eye_spans_the_target_and_one_off_it_is_not_listed() {
+        use glam::camera::rh::{proj::directx::perspective, view::look_to_mat4};
+        let view_projection =
+            perspective(1.0, 1.0, 0.1, 100.0) * look_to_mat4(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y);
+        let size = (64, 32);
+        let crossing = [
+            Vec3::new(-1.0, -1.0, 1.0),
+            Vec3::new(1.0, -1.0, -5.0),
+            Vec3::new(0.0, 1.0, -5.0),
+        ];
+        assert_eq!(
+            screen_rect(crossing, view_projection, size),
+            Some([0, 0, 64, 32])
+        );
+        let ahead = [
+            Vec3::new(-0.1, -0.1, -5.0),
+            Vec3::new(0.1, -0.1, -5.0),
+            Vec3::new(0.0, 0.1, -5.0),
+        ];
+        let rect = screen_rect(ahead, view_projection, size).unwrap();
+        assert!(
+            rect[0] > 0 && rect[2] < 64 && rect[1] > 0 && rect[3] < 32,
+            "{rect:?}"
+        );
+        let aside = ahead.map(|p| p + Vec3::new(50.0, 0.0, 0.0));
+        assert_eq!(screen_rect(aside, view_projection, size), None);
+        let nan = [Vec3::NAN, ahead[1], ahead[2]];
+        assert_eq!(
+            VisiblePolygon::new(nan, 1, None, view_projection, size),
+            None
+        );
+    }
+}

@@ -1,0 +1,131 @@
+// The polygon pass: the visibility keys of a deferred frame's large few-triangle draws, found in
+// compute rather than rasterized. Each pixel tests every listed triangle whose screen rectangle
+// holds it and merges the nearest into its key with the id the visibility pass would have
+// merged. Coverage is the rasterizer's: edge functions over the corners snapped as it snaps
+// them, with its top-left rule for a pixel centre on an edge. The depth is where the pixel's
+// view ray meets the triangle's plane (as the resolve rebuilds a pixel). A triangle the
+// rasterizer would clip first (a corner behind the eye) is tested by the view ray alone.
+// Composed after frame.wgsl, mesh_vertex.wgsl and visibility.wgsl. Mirrors `VisiblePolygon`
+// and `PolygonPass` in polygons.rs (the layout test checks them against each other).
+
+// One triangle of a listed draw, in world space.
+struct VisiblePolygon {
+    a: vec4<f32>,
+    b: vec4<f32>,
+    c: vec4<f32>,
+    // Where snapped_x.w is 1: the corners in the framebuffer in 1/2^SUB_PIXEL_BITS pixels,
+    // ordered so that the inside is where every edge function is positive (the culling is done).
+    snapped_x: vec4<i32>,
+    snapped_y: vec4<i32>,
+    // The pixels it may cover: x, y from (inclusive) and to (exclusive).
+    rect: vec4<u32>,
+    id: u32,
+    // The face the draw's pipeline culls: CULL_NONE, CULL_FRONT or CULL_BACK.
+    culled_face: u32,
+    _padding: vec2<u32>,
+}
+
+// The pass: the camera (as the frame's uniform holds it) and target, the listed triangles'
+// screen rectangle from `origin` on; `candidates` 1 where they are depth-offset polygons,
+// merged into the candidate keys (material/candidates.wgsl) where they lie in front of what
+// the visibility pass kept.
+struct PolygonPass {
+    view_projection: mat4x4<f32>,
+    inverse_view_projection: mat4x4<f32>,
+    camera_position: vec4<f32>,
+    view_direction: vec4<f32>,
+    target_size: vec2<u32>,
+    origin: vec2<u32>,
+    count: u32,
+    candidates: u32,
+    _padding: vec2<u32>,
+}
+
+const SUB_PIXEL_BITS: u32 = 8u;
+const CULL_NONE: u32 = 0u;
+const CULL_FRONT: u32 = 1u;
+const CULL_BACK: u32 = 2u;
+
+// Storage, not uniform, and the frame's uniform unread: lavapipe compiles a shader again for
+// each value of a uniform it branches on, and keeps every one (the camera moves each frame).
+@group(1) @binding(0) var<storage, read> polygon_pass: PolygonPass;
+@group(1) @binding(1) var<storage, read> polygons: array<VisiblePolygon>;
+
+// Whether the edge from `start` to `end` (snapped) holds the pixel centre `centre` on its
+// inside: in front of it, or on it where it is a top or left edge (the rasterizer's rule, so a
+// centre on an edge two triangles share is covered once).
+fn edge_holds(start: vec2<i64>, end: vec2<i64>, centre: vec2<i64>) -> bool {
+    let along = end - start;
+    let side = along.x * (centre.y - start.y) - along.y * (centre.x - start.x);
+    let top_left = along.y < i64(0) || (along.y == i64(0) && along.x > i64(0));
+    return side > i64(0) || (side == i64(0) && top_left);
+}
+
+// Whether `polygon` covers `pixel`'s centre as the rasterizer would: by its snapped corners, or
+// where it has none, by view ray `ray` (culling its draw's culled face there).
+fn covers(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray) -> bool {
+    if polygon.snapped_x.w == 1 {
+        let one = i64(1) << SUB_PIXEL_BITS;
+        let centre = vec2<i64>(pixel) * one + one / i64(2);
+        let a = vec2<i64>(i64(polygon.snapped_x.x), i64(polygon.snapped_y.x));
+        let b = vec2<i64>(i64(polygon.snapped_x.y), i64(polygon.snapped_y.y));
+        let c = vec2<i64>(i64(polygon.snapped_x.z), i64(polygon.snapped_y.z));
+        return edge_holds(a, b, centre) && edge_holds(b, c, centre) && edge_holds(c, a, centre);
+    }
+    let a = polygon.a.xyz;
+    let b = polygon.b.xyz;
+    let c = polygon.c.xyz;
+    // Counter-clockwise seen from the eye is the front (wgpu's default winding); edge-on shows
+    // nothing, as the rasterizer draws no pixel of it.
+    let facing = dot(cross(b - a, c - a), ray.direction);
+    let culled = facing == 0.0 || (polygon.culled_face == CULL_FRONT && facing < 0.0)
+        || (polygon.culled_face == CULL_BACK && facing > 0.0);
+    return !culled && all(ray_barycentrics(ray, a, b, c) >= vec3<f32>(0.0));
+}
+
+// The key `polygon` leaves at `pixel` on view ray `ray` (0 where it does not cover the pixel
+// centre or lies outside the clip volume there, or behind clip depth `behind`).
+fn polygon_key(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray, behind: f32) -> u64 {
+    if any(pixel < polygon.rect.xy) || any(pixel >= polygon.rect.zw) || !covers(polygon, pixel, ray) {
+        return u64(0u);
+    }
+    let a = polygon.a.xyz;
+    let b = polygon.b.xyz;
+    let c = polygon.c.xyz;
+    // Off the triangle by a rounding (a covered centre on its edge) the plane still holds.
+    let w = ray_barycentrics(ray, a, b, c);
+    let clip = polygon_pass.view_projection * vec4<f32>(a * w.x + b * w.y + c * w.z, 1.0);
+    let depth = clip.z / clip.w;
+    if !(clip.w > 0.0 && depth >= 0.0 && depth <= behind) {
+        return u64(0u);
+    }
+    return visibility_key(depth, polygon.id);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_visible_polygons(@builtin(global_invocation_id) id: vec3<u32>) {
+    let pixel = polygon_pass.origin + id.xy;
+    let size = polygon_pass.target_size;
+    if any(pixel >= size) {
+        return;
+    }
+    let ray = ray_through_pixel(polygon_pass.inverse_view_projection, vec2<f32>(size), vec2<f32>(pixel) + 0.5,
+        polygon_pass.camera_position.xyz, polygon_pass.view_direction);
+    let visible = pixel.y * size.x + pixel.x;
+    var key_index = visible;
+    var behind = 1.0;
+    if polygon_pass.candidates != 0u {
+        key_index += size.x * size.y;
+        // The visibility pass is done: a polygon behind what it kept hides its relief too.
+        if atomicLoad(&visibility_words[visible * 2u]) != 0u {
+            behind = bitcast<f32>(~atomicLoad(&visibility_words[visible * 2u + 1u]));
+        }
+    }
+    var nearest = u64(0u);
+    for (var index = 0u; index < polygon_pass.count; index++) {
+        nearest = max(nearest, polygon_key(polygons[index], pixel, ray, behind));
+    }
+    if nearest != u64(0u) {
+        atomicMax(&visibility_keys[key_index], nearest);
+    }
+}
