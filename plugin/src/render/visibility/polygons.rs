@@ -54,7 +54,8 @@ const CULL_BACK: u32 = 2;
 const SUB_PIXEL_BITS: u32 = 8;
 
 /// How far off the target (in pixels) a snapped corner may lie: past it the edge functions
-/// could overflow, and the triangle is tested by its view rays instead.
+/// could overflow (their differences are i32 in polygons.wgsl), and the triangle is tested by
+/// its view rays instead.
 const SNAP_RANGE: f32 = (1 << 20) as f32;
 
 /// One listed triangle. Mirrors `VisiblePolygon` in polygons.wgsl.

@@ -53,11 +53,13 @@ const CULL_BACK: u32 = 2u;
 
 // Whether the edge from `start` to `end` (snapped) holds the pixel centre `centre` on its
 // inside: in front of it, or on it where it is a top or left edge (the rasterizer's rule, so a
-// centre on an edge two triangles share is covered once).
-fn edge_holds(start: vec2<i64>, end: vec2<i64>, centre: vec2<i64>) -> bool {
+// centre on an edge two triangles share is covered once). The differences are exact in i32
+// (corners lie within `SNAP_RANGE` of polygons.rs); their products need 64 bits.
+fn edge_holds(start: vec2<i32>, end: vec2<i32>, centre: vec2<i32>) -> bool {
     let along = end - start;
-    let side = along.x * (centre.y - start.y) - along.y * (centre.x - start.x);
-    let top_left = along.y < i64(0) || (along.y == i64(0) && along.x > i64(0));
+    let to_centre = centre - start;
+    let side = i64(along.x) * i64(to_centre.y) - i64(along.y) * i64(to_centre.x);
+    let top_left = along.y < 0 || (along.y == 0 && along.x > 0);
     return side > i64(0) || (side == i64(0) && top_left);
 }
 
@@ -65,11 +67,11 @@ fn edge_holds(start: vec2<i64>, end: vec2<i64>, centre: vec2<i64>) -> bool {
 // where it has none, by view ray `ray` (culling its draw's culled face there).
 fn covers(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray) -> bool {
     if polygon.snapped_x.w == 1 {
-        let one = i64(1) << SUB_PIXEL_BITS;
-        let centre = vec2<i64>(pixel) * one + one / i64(2);
-        let a = vec2<i64>(i64(polygon.snapped_x.x), i64(polygon.snapped_y.x));
-        let b = vec2<i64>(i64(polygon.snapped_x.y), i64(polygon.snapped_y.y));
-        let c = vec2<i64>(i64(polygon.snapped_x.z), i64(polygon.snapped_y.z));
+        let one = 1 << SUB_PIXEL_BITS;
+        let centre = vec2<i32>(pixel) * one + one / 2;
+        let a = vec2<i32>(polygon.snapped_x.x, polygon.snapped_y.x);
+        let b = vec2<i32>(polygon.snapped_x.y, polygon.snapped_y.y);
+        let c = vec2<i32>(polygon.snapped_x.z, polygon.snapped_y.z);
         return edge_holds(a, b, centre) && edge_holds(b, c, centre) && edge_holds(c, a, centre);
     }
     let a = polygon.a.xyz;
@@ -125,7 +127,14 @@ fn cs_visible_polygons(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var index = 0u; index < polygon_pass.count; index++) {
         nearest = max(nearest, polygon_key(polygons[index], pixel, ray, behind));
     }
-    if nearest != u64(0u) {
+    if nearest == u64(0u) {
+        return;
+    }
+    if polygon_pass.candidates != 0u {
+        // The candidate pass may have rasterized other candidates here already.
         atomicMax(&visibility_keys[key_index], nearest);
+    } else {
+        // The keys were just cleared and each pixel is one invocation's: a plain store.
+        atomicStore(&visibility_keys[key_index], nearest);
     }
 }
