@@ -204,8 +204,12 @@ fn screen_rect(
         low.clamp(glam::Vec2::ZERO, size),
         high.clamp(glam::Vec2::ZERO, size),
     );
-    (low.x < high.x && low.y < high.y)
-        .then(|| [low.x as u32, low.y as u32, high.x as u32, high.y as u32])
+    (low.x < high.x && low.y < high.y).then_some([
+        low.x as u32,
+        low.y as u32,
+        high.x as u32,
+        high.y as u32,
+    ])
 }
 
 /// `corners` in the framebuffer as the rasterizer snaps them (in 1/2^SUB_PIXEL_BITS pixels),
@@ -220,7 +224,8 @@ fn snapped_corners(
     let mut snapped = [[0; 2]; 3];
     for (slot, corner) in snapped.iter_mut().zip(corners) {
         let clip = view_projection * corner.extend(1.0);
-        if !(clip.w > 0.0) {
+        // Not a number fails too.
+        if clip.w.is_nan() || clip.w <= 0.0 {
             return None;
         }
         let (x, y) = (clip.x / clip.w, clip.y / clip.w);
