@@ -193,18 +193,11 @@ fn under_taa_the_settled_depth_is_an_image_that_reads_as_the_depth_pass_would() 
     // clips the relief at the plane's far edge), so the settled images match to the bit.
     let settle = |tested: bool| {
         let mut app = silhouetted_relief_under_the_sky(96);
-        if tested {
-            app.resources
-                .get_or_default::<FrameNodes>()
-                .add(NodePlace::new("depth tester", RenderPhase::Resolve), || {
-                    DepthTester
-                });
-        }
-        set_path(&mut app, RenderPath::Deferred);
-        let image = settled(&mut app, AntiAliasing::Taa);
-        let renderer = app.resources.get::<Renderer>().unwrap();
-        assert!(renderer.runs_deferred());
-        (image, renderer.settled_depth())
+        let image = settled_deferred_under_taa(&mut app, tested);
+        (
+            image,
+            app.resources.get::<Renderer>().unwrap().settled_depth(),
+        )
     };
     let (in_image, how) = settle(false);
     assert_eq!(how, SettledDepth::Image);
@@ -228,17 +221,8 @@ fn the_polygon_pass_finds_what_the_visibility_pass_would_rasterize() {
     let render = |tested: bool| {
         let mut app = preview_app(96, TargetFormat::Srgb8, &cobblestones(), &view, |m| m).unwrap();
         app.insert_resource(pom::EnvironmentLight::sky());
-        if tested {
-            app.resources
-                .get_or_default::<FrameNodes>()
-                .add(NodePlace::new("depth tester", RenderPhase::Resolve), || {
-                    DepthTester
-                });
-        }
-        set_path(&mut app, RenderPath::Deferred);
-        let image = settled(&mut app, AntiAliasing::Taa);
+        let image = settled_deferred_under_taa(&mut app, tested);
         let renderer = app.resources.get::<Renderer>().unwrap();
-        assert!(renderer.runs_deferred());
         (image, renderer.ran_polygon_pass(), renderer.settled_depth())
     };
     let (found, ran, how) = render(false);
@@ -451,4 +435,20 @@ fn a_prepass_draw_of_no_material_keeps_frames_forward_and_a_fragment_counter_doe
             Some(DeferredUnavailable::PrepassDrawWithoutVisibility)
         )
     );
+}
+
+/// `app` settled on the deferred path under TAA, with a node that tests against the depth
+/// attachment where `tested` (so the depth must be drawn there).
+fn settled_deferred_under_taa(app: &mut pom::App, tested: bool) -> image::RgbaImage {
+    if tested {
+        app.resources
+            .get_or_default::<FrameNodes>()
+            .add(NodePlace::new("depth tester", RenderPhase::Resolve), || {
+                DepthTester
+            });
+    }
+    set_path(app, RenderPath::Deferred);
+    let image = settled(app, AntiAliasing::Taa);
+    assert!(app.resources.get::<Renderer>().unwrap().runs_deferred());
+    image
 }
