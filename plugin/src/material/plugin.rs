@@ -383,8 +383,8 @@ fn prepare_frame<M: Material>(
 }
 
 /// Hands the frame's lists their draws of `M`: the polygon pass its triangles (where it may
-/// run), the prepass and
-/// the candidates their batches nearest first, the transparent phase its blended ones.
+/// run), the prepass and the candidates their batches nearest first, the transparent phase its
+/// blended ones. The lists come one by one: `inputs` borrows other fields of the renderer.
 fn hand_over_draws<M: Material>(
     batches: &mut MaterialBatches<M>,
     ([polygons, candidate_polygons], prepass, candidates, transparent): (

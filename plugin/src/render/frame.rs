@@ -358,9 +358,12 @@ impl FramePlan {
         }
         if let (true, Some(visibility)) = (self.polygons, &renderer.visibility) {
             let frame = &resources.require::<ExtractedFrame>()?.frame;
-            for polygons in [&mut renderer.polygons, &mut renderer.candidate_polygons] {
-                polygons.prepare(gpu, frame, &visibility.keys);
-            }
+            let keys = &visibility.keys;
+            renderer.polygons.prepare(gpu, frame, keys, None);
+            let compiled = renderer.polygons.pipeline();
+            renderer
+                .candidate_polygons
+                .prepare(gpu, frame, keys, compiled);
         }
         Ok(())
     }

@@ -57,8 +57,10 @@ pub(crate) struct SortedDraws {
     items: Vec<SortedItem>,
     /// Every draw in sorted order.
     all: Runs,
-    /// The same without the polygon pass's draws.
+    /// The same without the polygon pass's draws, made where any draw is one (else `all`).
     rasterized: Runs,
+    /// Whether any draw of this frame is the polygon pass's.
+    any_polygon: bool,
 }
 
 impl SortedDraws {
@@ -70,6 +72,7 @@ impl SortedDraws {
             items: Vec::new(),
             all: Runs::default(),
             rasterized: Runs::default(),
+            any_polygon: false,
         }
     }
 
@@ -118,9 +121,10 @@ impl SortedDraws {
         }
         self.all.clear();
         self.rasterized.clear();
+        self.any_polygon = self.items.iter().any(|item| item.polygon);
         for item in &self.items {
             self.all.push(item.owner, item.draw);
-            if !item.polygon {
+            if self.any_polygon && !item.polygon {
                 self.rasterized.push(item.owner, item.draw);
             }
         }
@@ -128,7 +132,7 @@ impl SortedDraws {
 
     /// Whether the polygon pass finds every draw (none is left to rasterize).
     pub(crate) fn all_polygons(&self) -> bool {
-        self.rasterized.draws.is_empty()
+        self.items.iter().all(|item| item.polygon)
     }
 
     /// Records the sorted draws into the phase's `pass` (`without_polygons`: but those the
@@ -154,7 +158,7 @@ impl SortedDraws {
         &self,
         without_polygons: bool,
     ) -> impl Iterator<Item = (TypeId, &[u32])> + '_ {
-        let runs = if without_polygons {
+        let runs = if without_polygons && self.any_polygon {
             &self.rasterized
         } else {
             &self.all

@@ -300,9 +300,21 @@ impl VisiblePolygons {
         self.lists.is_empty()
     }
 
+    /// The pass's pipeline, once a frame has prepared it.
+    pub(crate) fn pipeline(&self) -> Option<&wgpu::ComputePipeline> {
+        self.gpu.as_ref().map(|gpu_side| &gpu_side.pipeline)
+    }
+
     /// Uploads what changed of this frame's triangles and of the camera and target `frame`
-    /// (made where missing) and binds `keys`, the visibility buffer the pass merges into.
-    pub(crate) fn prepare(&mut self, gpu: &GpuContext, frame: &FrameUniform, keys: &wgpu::Buffer) {
+    /// (made where missing, with the `compiled` pipeline where another list has one) and binds
+    /// `keys`, the visibility buffer the pass merges into.
+    pub(crate) fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &FrameUniform,
+        keys: &wgpu::Buffer,
+        compiled: Option<&wgpu::ComputePipeline>,
+    ) {
         self.listed.clear();
         for (_, list) in &self.lists {
             self.listed.extend_from_slice(list);
@@ -334,7 +346,10 @@ impl VisiblePolygons {
             candidates: u32::from(self.candidates),
             _padding: [0; 2],
         };
-        let gpu_side = self.gpu.get_or_insert_with(|| PolygonPipeline::new(gpu));
+        let gpu_side = self.gpu.get_or_insert_with(|| {
+            let pipeline = compiled.cloned().unwrap_or_else(|| polygon_pipeline(gpu));
+            PolygonPipeline::with_room(gpu, pipeline, 1)
+        });
         if gpu_side.polygons.size()
             < (self.listed.len() * std::mem::size_of::<VisiblePolygon>()) as u64
         {
@@ -371,22 +386,21 @@ impl VisiblePolygons {
     }
 }
 
-impl PolygonPipeline {
-    fn new(gpu: &GpuContext) -> Self {
-        let module = POLYGON_PASS_SHADER.create_module(&gpu.device);
-        let pipeline = gpu
-            .device
-            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("polygon pass"),
-                layout: None,
-                module: &module,
-                entry_point: Some("cs_visible_polygons"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
-        Self::with_room(gpu, pipeline, 1)
-    }
+/// Compiles the pass's pipeline (both lists share it).
+fn polygon_pipeline(gpu: &GpuContext) -> wgpu::ComputePipeline {
+    let module = POLYGON_PASS_SHADER.create_module(&gpu.device);
+    gpu.device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("polygon pass"),
+            layout: None,
+            module: &module,
+            entry_point: Some("cs_visible_polygons"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+}
 
+impl PolygonPipeline {
     /// Buffers for `count` triangles (a power of two of them) for `pipeline`.
     fn with_room(gpu: &GpuContext, pipeline: wgpu::ComputePipeline, count: usize) -> Self {
         let buffer = |label, size, usage| {

@@ -16,13 +16,18 @@ fn cs_settle_depth(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= size.x || id.y >= size.y {
         return;
     }
+    // Each source read only where the one before it is empty.
     let candidate = visibility[candidate_index(id.xy, size)];
-    let visible = visibility[id.y * size.x + id.x];
-    var depth = textureLoad(depth_attachment, id.xy, 0);
+    var depth: f32;
     if (candidate.x | candidate.y) != 0u {
         depth = bitcast<f32>(~candidate.y);
-    } else if visible.x != 0u {
-        depth = bitcast<f32>(~visible.y);
+    } else {
+        let visible = visibility[id.y * size.x + id.x];
+        if visible.x != 0u {
+            depth = bitcast<f32>(~visible.y);
+        } else {
+            depth = textureLoad(depth_attachment, id.xy, 0);
+        }
     }
     textureStore(settled_depth, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));
 }
