@@ -223,15 +223,19 @@ fn the_polygon_pass_finds_what_the_visibility_pass_would_rasterize() {
         app.insert_resource(pom::EnvironmentLight::sky());
         let image = settled_deferred_under_taa(&mut app, tested);
         let renderer = app.resources.get::<Renderer>().unwrap();
-        (image, renderer.ran_polygon_pass(), renderer.settled_depth())
+        let ran = (renderer.ran_polygon_pass(), renderer.ran_depth_prepass());
+        (image, ran, renderer.settled_depth())
     };
+    // Found, the plane leaves the visibility pass nothing to rasterize: no depth pass runs,
+    // and the settled depth holds the far plane wherever no key is.
     let (found, ran, how) = render(false);
-    assert!(ran, "the polygon pass did not run");
+    assert_eq!(ran, (true, false), "(polygon pass, depth prepass)");
     assert_eq!(how, SettledDepth::Image);
     let (rasterized, ran, _) = render(true);
-    assert!(
-        !ran,
-        "the polygon pass ran under a pass that tests the depth"
+    assert_eq!(
+        ran,
+        (false, true),
+        "(polygon pass, depth prepass) under a pass that tests the depth"
     );
     pom_tests::anti_aliasing::save_for_looking("polygon_pass", &found);
     pom_tests::anti_aliasing::save_for_looking("polygon_pass_rasterized", &rasterized);

@@ -287,6 +287,10 @@ pub(super) struct FramePlan {
     /// pass then leaves out: only where no pass after it tests against the depth attachment
     /// (the polygon pass does not write it) or draws in the opaque phase.
     pub polygons: bool,
+    /// The prepass (where it runs) rasterizes: on the deferred path, it has draws the polygon
+    /// pass does not find. Without it the target's depth is not cleared until a candidate
+    /// pass clears it (nothing else reads it on such a frame: see `polygons`).
+    pub visibility_raster: bool,
     /// The transparent phase runs.
     pub transparent: bool,
     /// Textures derived from images are built this frame.
@@ -323,6 +327,9 @@ impl FramePlan {
             && background_in_compute
             && !(transparent || nodes_read_depth)
             && !(renderer.polygons.is_empty() && renderer.candidate_polygons.is_empty());
+        let visibility_raster = !polygons
+            || has(DrawPhase::Prepass)
+            || !renderer.prepass_order.all_polygons();
         let settled_depth = match (candidates, transparent || nodes_read_depth) {
             (true, true) => SettledDepth::DepthPass,
             (_, false) if (candidates || polygons) && nodes_sample_depth => SettledDepth::Image,
@@ -339,6 +346,7 @@ impl FramePlan {
             background_in_compute,
             candidates,
             polygons,
+            visibility_raster,
             transparent,
             derived_textures: !renderer.assets.pending_derived_builds().is_empty(),
         })
@@ -350,6 +358,7 @@ impl FramePlan {
         renderer.ran_opaque_pass = self.opaque_pass;
         renderer.settled_depth = self.settled_depth;
         renderer.ran_polygon_pass = self.polygons;
+        renderer.ran_depth_prepass = self.prepass && self.visibility_raster;
         let gpu = resources.require::<GpuContext>()?;
         if let (SettledDepth::Image, Some(visibility)) =
             (self.settled_depth, &mut renderer.visibility)

@@ -91,19 +91,24 @@ impl<'a> FramePasses<'a> {
 
     /// The depth prepass. On the deferred path it is the visibility pass: its fragments also
     /// merge each pixel's draw and triangle into the visibility keys (0: none), which a compute
-    /// pass clears first, inside the phase's timestamps.
+    /// pass clears first (and the polygon pass fills), inside the phase's timestamps; where
+    /// the polygon pass found every draw no render pass runs.
     pub fn prepass(&self, encoder: &mut wgpu::CommandEncoder, time: Option<&PassTimestamps>) {
         let clear = self
             .renderer
             .visibility
             .as_ref()
             .filter(|_| self.plan.deferred);
+        let raster = clear.is_none() || self.plan.visibility_raster;
         if let Some(visibility) = clear {
             let polygons = self.plan.polygons.then_some(&self.renderer.polygons);
-            visibility.record_clear(encoder, time, self.plan.candidates, polygons);
+            visibility.record_clear(encoder, time, self.plan.candidates, polygons, !raster);
         }
-        let time = time.map(|time| time.render_part(clear.is_none(), true));
-        self.depth_pass(encoder, DrawPhase::Prepass, wgpu::LoadOp::Clear(1.0), time);
+        // An empty depth pass still clears the whole attachment, which nothing reads here.
+        if raster {
+            let time = time.map(|time| time.render_part(clear.is_none(), true));
+            self.depth_pass(encoder, DrawPhase::Prepass, wgpu::LoadOp::Clear(1.0), time);
+        }
     }
 
     /// The encoder work plugins added to `phase`, after its pass (with a camera).
@@ -154,7 +159,13 @@ impl<'a> FramePasses<'a> {
         let settled_depth = self.plan.settled_depth == SettledDepth::DepthPass;
         if candidates {
             let time = time.map(|time| time.render_part(true, false));
-            self.depth_pass(encoder, DrawPhase::Candidates, wgpu::LoadOp::Load, time);
+            // Where the visibility pass did not rasterize, the depth was not cleared.
+            let load = if self.plan.visibility_raster {
+                wgpu::LoadOp::Load
+            } else {
+                wgpu::LoadOp::Clear(1.0)
+            };
+            self.depth_pass(encoder, DrawPhase::Candidates, load, time);
         }
         let (first, last) = (!candidates, !settled_depth);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

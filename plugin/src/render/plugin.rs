@@ -195,6 +195,7 @@ impl Plugin for RenderPlugin {
             candidate_polygons: VisiblePolygons::new(true),
             polygon_pass: self.polygon_pass,
             ran_polygon_pass: false,
+            ran_depth_prepass: false,
             candidate_order: SortedDraws::new(DrawPhase::Candidates),
             transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,

@@ -60,6 +60,8 @@ pub struct Renderer {
     pub(crate) polygon_pass: bool,
     /// Whether the last rendered frame ran the polygon pass.
     pub(crate) ran_polygon_pass: bool,
+    /// Whether the last rendered frame's depth prepass (the visibility pass) rasterized.
+    pub(crate) ran_depth_prepass: bool,
     /// This frame's candidate draws of every material, drawn nearest first.
     pub(crate) candidate_order: SortedDraws,
     /// This frame's blended draws of every material, drawn farthest first.
@@ -134,6 +136,13 @@ impl Renderer {
     /// in compute (the polygon pass) rather than rasterizing them.
     pub fn ran_polygon_pass(&self) -> bool {
         self.ran_polygon_pass
+    }
+
+    /// Whether the last rendered frame ran a depth prepass render pass (on the deferred path
+    /// the visibility pass): none where the polygon pass found every draw (nor any cleared
+    /// depth: nothing after reads it on such a frame).
+    pub fn ran_depth_prepass(&self) -> bool {
+        self.ran_depth_prepass
     }
 
     /// The scene's depth as shaders read it this frame ([`super::FrameView::scene_depth`]).

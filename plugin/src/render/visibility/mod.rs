@@ -142,13 +142,14 @@ impl VisibilityBuffer {
 
     /// Records the clear of every key to 0 ("no draw"), the candidate keys too where this frame
     /// (`candidates`) or the last had some, then the `polygons` pass where the frame runs it,
-    /// as a compute pass that begins `time`'s span.
+    /// as a compute pass that begins `time`'s span (and `ends_span`: ends it too).
     pub(crate) fn record_clear(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         time: Option<&PassTimestamps>,
         candidates: bool,
         polygons: Option<&VisiblePolygons>,
+        ends_span: bool,
     ) {
         let written = self.candidates_written.replace(candidates);
         let halves = 1 + u64::from(candidates || written);
@@ -157,7 +158,7 @@ impl VisibilityBuffer {
         let across = groups.clamp(1, MAX_GROUPS_ACROSS);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("visibility clear"),
-            timestamp_writes: time.map(|time| time.compute_part(true, false)),
+            timestamp_writes: time.map(|time| time.compute_part(true, ends_span)),
         });
         pass.set_pipeline(&self.clear.0);
         pass.set_bind_group(0, &self.clear.1, &[]);
@@ -170,20 +171,22 @@ impl VisibilityBuffer {
 
     /// Makes the settled depth's image for `target` (this frame writes it), unless made.
     pub(crate) fn prepare_settled_depth(&mut self, gpu: &GpuContext, target: &RenderTarget) {
-        let image = match &mut self.settled_depth {
-            Some(image) if image.fits(target) => image,
-            image => {
-                let pipeline = self
-                    .settled_depth_pipeline
-                    .get_or_insert_with(|| settled_depth::settled_depth_pipeline(gpu));
-                image.insert(settled_depth::SettledDepthImage::new(
-                    gpu,
-                    target,
-                    pipeline.clone(),
-                ))
-            }
-        };
-        image.bind(gpu, &self.keys, target);
+        if self
+            .settled_depth
+            .as_ref()
+            .is_some_and(|image| image.fits(target))
+        {
+            return;
+        }
+        let pipeline = self
+            .settled_depth_pipeline
+            .get_or_insert_with(|| settled_depth::settled_depth_pipeline(gpu));
+        self.settled_depth = Some(settled_depth::SettledDepthImage::new(
+            gpu,
+            target,
+            pipeline.clone(),
+            &self.keys,
+        ));
     }
 
     /// The settled depth's image, once a frame has needed it.

@@ -38,17 +38,14 @@ pub enum SettledDepth {
     Image,
 }
 
-/// Bind groups kept, by target: the split view writes two targets of one size in turn.
-const KEPT_GROUPS: usize = 2;
-
-/// The image, its pipeline, and the bind groups of the targets it was last written for.
+/// The image, its pipeline, and its bind group over the keys.
 #[derive(Debug)]
 pub(crate) struct SettledDepthImage {
     pipeline: wgpu::ComputePipeline,
     view: wgpu::TextureView,
     size: (u32, u32),
-    /// Bind groups over the keys and a target's depth, with that target's id, newest last.
-    groups: Vec<(u64, wgpu::BindGroup)>,
+    /// Over the keys and the image (every target of this size shares both: the split view).
+    group: wgpu::BindGroup,
 }
 
 /// The pass's pipeline (compiled once per device: a resize makes a new image and keeps it).
@@ -66,11 +63,12 @@ pub(crate) fn settled_depth_pipeline(gpu: &GpuContext) -> wgpu::ComputePipeline 
 }
 
 impl SettledDepthImage {
-    /// An image of `target`'s size, written by `pipeline`.
+    /// An image of `target`'s size, written by `pipeline` from `keys`.
     pub(crate) fn new(
         gpu: &GpuContext,
         target: &RenderTarget,
         pipeline: wgpu::ComputePipeline,
+        keys: &wgpu::Buffer,
     ) -> Self {
         let view = crate::render::plain_texture(
             gpu,
@@ -80,11 +78,25 @@ impl SettledDepthImage {
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
         )
         .create_view(&wgpu::TextureViewDescriptor::default());
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("settled depth"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: keys.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+            ],
+        });
         Self {
             pipeline,
             view,
             size: target.size(),
-            groups: Vec::new(),
+            group,
         }
     }
 
@@ -98,45 +110,10 @@ impl SettledDepthImage {
         &self.view
     }
 
-    /// Makes the bind group over `keys` and `target`'s depth the one recorded, made unless
-    /// kept.
-    pub(crate) fn bind(&mut self, gpu: &GpuContext, keys: &wgpu::Buffer, target: &RenderTarget) {
-        if let Some(kept) = self.groups.iter().position(|(id, _)| *id == target.id()) {
-            let group = self.groups.remove(kept);
-            self.groups.push(group);
-            return;
-        }
-        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("settled depth"),
-            layout: &self.pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: keys.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&target.depth_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&self.view),
-                },
-            ],
-        });
-        if self.groups.len() == KEPT_GROUPS {
-            self.groups.remove(0);
-        }
-        self.groups.push((target.id(), group));
-    }
-
     /// Records the pass into `pass` (after every resolve dispatch: the keys are settled).
     pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        let Some((_, group)) = self.groups.last() else {
-            return;
-        };
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, group, &[]);
+        pass.set_bind_group(0, &self.group, &[]);
         let (width, height) = self.size;
         pass.dispatch_workgroups(width.div_ceil(GROUP_SIDE), height.div_ceil(GROUP_SIDE), 1);
     }

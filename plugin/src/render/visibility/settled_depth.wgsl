@@ -4,11 +4,12 @@
 // candidate key the resolve settled holds its depth there (the candidate's marched depth where
 // it won, else the visibility pass's behind it); else a pixel with a visibility id holds it in
 // its visibility key (which the rasterized draws also wrote into the depth attachment); else
-// the attachment's is right. One compute pass instead of drawing polygons with `frag_depth`.
+// no draw is there: the far plane (every visibility fragment that writes depth keeps a key, and
+// the attachment is not even cleared where the visibility pass had nothing to rasterize). One
+// compute pass instead of drawing polygons with `frag_depth`.
 
 @group(0) @binding(0) var<storage, read> visibility: array<vec2<u32>>;
-@group(0) @binding(1) var depth_attachment: texture_depth_2d;
-@group(0) @binding(2) var settled_depth: texture_storage_2d<r32float, write>;
+@group(0) @binding(1) var settled_depth: texture_storage_2d<r32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn cs_settle_depth(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -18,15 +19,13 @@ fn cs_settle_depth(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     // Each source read only where the one before it is empty.
     let candidate = visibility[candidate_index(id.xy, size)];
-    var depth: f32;
+    var depth = 1.0;
     if (candidate.x | candidate.y) != 0u {
         depth = bitcast<f32>(~candidate.y);
     } else {
         let visible = visibility[id.y * size.x + id.x];
         if visible.x != 0u {
             depth = bitcast<f32>(~visible.y);
-        } else {
-            depth = textureLoad(depth_attachment, id.xy, 0);
         }
     }
     textureStore(settled_depth, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));
