@@ -41,7 +41,8 @@ pub struct ExtractedFrame {
 /// culled for (lights.wgsl's `light_cluster` reads them; clusters.rs writes them).
 pub const LIGHT_CLUSTER_HEADER: usize = 32;
 
-/// The clusters of a frame without point lights: one cluster, whose list is empty.
+/// The clusters of a frame without point lights: one cluster, whose list is empty (and the
+/// header's count of list entries 0).
 pub const NO_LIGHT_CLUSTERS: [u32; LIGHT_CLUSTER_HEADER + 2] = {
     let mut words = [0; LIGHT_CLUSTER_HEADER + 2];
     (words[0], words[1], words[2]) = (1, 1, 1);

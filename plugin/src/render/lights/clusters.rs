@@ -102,7 +102,8 @@ pub(super) fn cull(
         let entries: usize = boxes.iter().flatten().map(ClusterBox::clusters).sum();
         let coarsest = tiles == [1, 1] && slices == 1;
         if entries <= MAX_ENTRIES || coarsest {
-            let grid = [tiles[0], tiles[1], slices, 0];
+            // The fourth word says how many entries the lists hold: none, no cluster to find.
+            let grid = [tiles[0], tiles[1], slices, entries as u32];
             words.clear();
             header(words, &view, transform, grid, slicing);
             fill(words, &boxes, grid, entries);
@@ -342,6 +343,9 @@ mod tests {
         let mut words = vec![7; 3];
         cull(&view, 16.0 / 9.0, (1280, 720), &lights, &mut words);
         let clusters = (words[0] * words[1] * words[2]) as usize;
+        let entries = words.len() - LIGHT_CLUSTER_HEADER - 2 * clusters;
+        assert_eq!(words[3] as usize, entries, "the header's count of entries");
+        assert!(entries > 0);
         for cluster in 0..clusters {
             let (first, count) = (
                 words[LIGHT_CLUSTER_HEADER + 2 * cluster],

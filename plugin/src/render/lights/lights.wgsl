@@ -3,10 +3,10 @@
 
 // The most lights `brightest_lights_floor` ranks.
 const MAX_RANKED_LIGHTS: u32 = 8u;
-// Words before the clusters (LIGHT_CLUSTER_HEADER in extract.rs): the grid (0..3), the depth
-// slicing (4..7: scale, bias, 1 for a logarithmic slicing, the nearest depth), the camera's
-// view-projection (8..23, by columns), position (24..26) and forward direction (28..30), as
-// bits. Read from storage, not the frame uniform: a condition on uniform values alone makes
+// Words before the clusters (LIGHT_CLUSTER_HEADER in extract.rs): the grid (0..2) and how many
+// entries the lists hold (3), the depth slicing (4..7: scale, bias, 1 for a logarithmic
+// slicing, the nearest depth), the camera's view-projection (8..23, by columns), position
+// (24..26) and forward direction (28..30), as bits. Read from storage, not the frame uniform: a condition on uniform values alone makes
 // some drivers (Mesa 22's lavapipe) keep a new copy of the shader at every bind.
 const LIGHT_CLUSTER_HEADER: u32 = 32u;
 
@@ -51,6 +51,10 @@ fn light_cluster(world_position: vec3<f32>) -> u32 {
 
 fn lights_near(world_position: vec3<f32>) -> LightList {
     let directional_count = min(frame.light_counts.x, MAX_DIRECTIONAL_LIGHTS);
+    // No point light reaches any cluster: none to find (a frame's lights often are the sun).
+    if light_clusters[3] == 0u {
+        return LightList(0u, directional_count, directional_count);
+    }
     let at = LIGHT_CLUSTER_HEADER + 2u * light_cluster(world_position);
     return LightList(light_clusters[at], directional_count + light_clusters[at + 1u], directional_count);
 }
