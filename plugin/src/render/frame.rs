@@ -327,9 +327,8 @@ impl FramePlan {
             && background_in_compute
             && !(transparent || nodes_read_depth)
             && !(renderer.polygons.is_empty() && renderer.candidate_polygons.is_empty());
-        let visibility_raster = !polygons
-            || has(DrawPhase::Prepass)
-            || !renderer.prepass_order.all_polygons();
+        let visibility_raster =
+            !polygons || has(DrawPhase::Prepass) || !renderer.prepass_order.all_polygons();
         let settled_depth = match (candidates, transparent || nodes_read_depth) {
             (true, true) => SettledDepth::DepthPass,
             (_, false) if (candidates || polygons) && nodes_sample_depth => SettledDepth::Image,

@@ -67,6 +67,7 @@ pub(crate) struct VisiblePolygon {
     c: [f32; 4],
     snapped_x: [i32; 4],
     snapped_y: [i32; 4],
+    depth_plane: [f32; 4],
     rect: [u32; 4],
     id: u32,
     culled_face: u32,
@@ -79,6 +80,7 @@ crate::wgsl_layout!(VisiblePolygon {
     c,
     snapped_x,
     snapped_y,
+    depth_plane,
     rect,
     id,
     culled_face,
@@ -131,6 +133,7 @@ impl VisiblePolygon {
             Some(wgpu::Face::Back) => CULL_BACK,
         };
         let (mut snapped_x, mut snapped_y) = ([0; 4], [0; 4]);
+        let mut depth_plane = [0.0; 4];
         let mut corners = corners;
         if let Some(snapped) = snapped_corners(corners, view_projection, size) {
             // The rasterizer's facing: counter-clockwise in clip space (y up) is the front,
@@ -153,6 +156,8 @@ impl VisiblePolygon {
             }
             snapped_x[3] = 1;
             culled_face = CULL_NONE;
+            let snapped = order.map(|index| snapped[index]);
+            depth_plane = screen_depth_plane(snapped, corners, view_projection);
         }
         let point = |p: Vec3| p.extend(1.0).to_array();
         Some(Self {
@@ -161,6 +166,7 @@ impl VisiblePolygon {
             c: point(corners[2]),
             snapped_x,
             snapped_y,
+            depth_plane,
             rect,
             id,
             culled_face,
@@ -239,6 +245,36 @@ fn snapped_corners(
         *slot = pixel.map(|p| (p * scale).round() as i32);
     }
     Some(snapped)
+}
+
+/// The clip depth over the framebuffer of the triangle at `snapped` corners (in front of the
+/// eye), as the rasterizer interpolates it (affine in the framebuffer): the first corner's depth
+/// and its rise per 1/2^SUB_PIXEL_BITS pixel across and down from that corner, as
+/// (across, down, depth, 0). Solved in f64 from the corners' clip positions (f32, as the
+/// vertex stage gives them).
+fn screen_depth_plane(
+    snapped: [[i32; 2]; 3],
+    corners: [Vec3; 3],
+    view_projection: Mat4,
+) -> [f32; 4] {
+    let depth = |corner: Vec3| {
+        let clip = view_projection * corner.extend(1.0);
+        f64::from(clip.z) / f64::from(clip.w)
+    };
+    let [z0, z1, z2] = corners.map(depth);
+    let from_first = |p: [i32; 2]| {
+        (
+            f64::from(p[0] - snapped[0][0]),
+            f64::from(p[1] - snapped[0][1]),
+        )
+    };
+    let ((x1, y1), (x2, y2)) = (from_first(snapped[1]), from_first(snapped[2]));
+    let (dz1, dz2) = (z1 - z0, z2 - z0);
+    // Not 0: a triangle of no snapped area is not listed.
+    let determinant = x1 * y2 - y1 * x2;
+    let across = (dz1 * y2 - dz2 * y1) / determinant;
+    let down = (x1 * dz2 - x2 * dz1) / determinant;
+    [across as f32, down as f32, z0 as f32, 0.0]
 }
 
 /// Twice the signed area of a snapped triangle, in the framebuffer's rows (y down).
@@ -534,5 +570,41 @@ mod tests {
             VisiblePolygon::new(nan, 1, None, view_projection, size),
             None
         );
+    }
+
+    #[test]
+    fn a_listed_triangles_depth_in_the_framebuffer_is_its_projected_depth_inside_it() {
+        // A triangle tilted away in perspective: points inside it, projected, lie on the plane
+        // the pass evaluates (clip depth is affine in the framebuffer).
+        use glam::camera::rh::{proj::directx::perspective, view::look_to_mat4};
+        let view_projection = perspective(1.0, 16.0 / 9.0, 0.1, 100.0)
+            * look_to_mat4(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y);
+        let size = (1920, 1080);
+        let corners = [
+            Vec3::new(-2.0, -1.0, -2.0),
+            Vec3::new(2.0, -1.0, -9.0),
+            Vec3::new(0.5, 1.5, -4.0),
+        ];
+        let polygon = VisiblePolygon::new(corners, 1, None, view_projection, size).unwrap();
+        assert_eq!(polygon.snapped_x[3], 1, "snapped");
+        let [across, down, first, _] = polygon.depth_plane;
+        let scale = (1 << SUB_PIXEL_BITS) as f32;
+        for weights in [[0.2, 0.3, 0.5], [0.6, 0.2, 0.2], [0.1, 0.8, 0.1]] {
+            let world = corners[0] * weights[0] + corners[1] * weights[1] + corners[2] * weights[2];
+            let clip = view_projection * world.extend(1.0);
+            let pixel = glam::vec2(
+                (clip.x / clip.w * 0.5 + 0.5) * size.0 as f32,
+                (0.5 - clip.y / clip.w * 0.5) * size.1 as f32,
+            ) * scale;
+            let from_first =
+                pixel - glam::vec2(polygon.snapped_x[0] as f32, polygon.snapped_y[0] as f32);
+            let depth = first + across * from_first.x + down * from_first.y;
+            // Snapping moves a corner by up to half a sub-pixel step.
+            assert!(
+                (depth - clip.z / clip.w).abs() < 1e-5,
+                "{weights:?}: {depth} against {}",
+                clip.z / clip.w
+            );
+        }
     }
 }

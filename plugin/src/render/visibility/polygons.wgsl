@@ -2,9 +2,9 @@
 // compute rather than rasterized. Each pixel tests every listed triangle whose screen rectangle
 // holds it and merges the nearest into its key with the id the visibility pass would have
 // merged. Coverage is the rasterizer's: edge functions over the corners snapped as it snaps
-// them, with its top-left rule for a pixel centre on an edge. The depth is where the pixel's
-// view ray meets the triangle's plane (as the resolve rebuilds a pixel). A triangle the
-// rasterizer would clip first (a corner behind the eye) is tested by the view ray alone.
+// them, with its top-left rule for a pixel centre on an edge; so is the depth, affine in the
+// framebuffer. A triangle the rasterizer would clip first (a corner behind the eye) is tested
+// by the view ray alone, its depth where the ray meets its plane.
 // Composed after frame.wgsl, mesh_vertex.wgsl and visibility.wgsl. Mirrors `VisiblePolygon`
 // and `PolygonPass` in polygons.rs (the layout test checks them against each other).
 
@@ -17,6 +17,9 @@ struct VisiblePolygon {
     // ordered so that the inside is where every edge function is positive (the culling is done).
     snapped_x: vec4<i32>,
     snapped_y: vec4<i32>,
+    // Where snapped: its clip depth as the rasterizer interpolates it, the first corner's (z)
+    // and its rise per 1/2^SUB_PIXEL_BITS pixel across (x) and down (y) from that corner.
+    depth_plane: vec4<f32>,
     // The pixels it may cover: x, y from (inclusive) and to (exclusive).
     rect: vec4<u32>,
     id: u32,
@@ -63,17 +66,9 @@ fn edge_holds(start: vec2<i32>, end: vec2<i32>, centre: vec2<i32>) -> bool {
     return side > i64(0) || (side == i64(0) && top_left);
 }
 
-// Whether `polygon` covers `pixel`'s centre as the rasterizer would: by its snapped corners, or
-// where it has none, by view ray `ray` (culling its draw's culled face there).
-fn covers(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray) -> bool {
-    if polygon.snapped_x.w == 1 {
-        let one = 1 << SUB_PIXEL_BITS;
-        let centre = vec2<i32>(pixel) * one + one / 2;
-        let a = vec2<i32>(polygon.snapped_x.x, polygon.snapped_y.x);
-        let b = vec2<i32>(polygon.snapped_x.y, polygon.snapped_y.y);
-        let c = vec2<i32>(polygon.snapped_x.z, polygon.snapped_y.z);
-        return edge_holds(a, b, centre) && edge_holds(b, c, centre) && edge_holds(c, a, centre);
-    }
+// Whether `polygon`, which has no snapped corners, covers the pixel centre on view ray `ray`
+// (culling its draw's culled face there).
+fn ray_covers(polygon: VisiblePolygon, ray: Ray) -> bool {
     let a = polygon.a.xyz;
     let b = polygon.b.xyz;
     let c = polygon.c.xyz;
@@ -85,11 +80,23 @@ fn covers(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray) -> bool {
     return !culled && all(ray_barycentrics(ray, a, b, c) >= vec3<f32>(0.0));
 }
 
-// The key `polygon` leaves at `pixel` on view ray `ray` (0 where it does not cover the pixel
-// centre or lies outside the clip volume there, or behind clip depth `behind`).
-fn polygon_key(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray, behind: f32) -> u64 {
-    if any(pixel < polygon.rect.xy) || any(pixel >= polygon.rect.zw) || !covers(polygon, pixel, ray) {
-        return u64(0u);
+// The clip depth of `polygon` at `pixel`'s centre where it covers it as the rasterizer would,
+// else a depth outside 0..1. Snapped, by its edge functions and its depth in the framebuffer;
+// else by the view ray `ray` (the depth where the ray meets its plane).
+fn polygon_depth(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray) -> f32 {
+    if polygon.snapped_x.w == 1 {
+        let one = 1 << SUB_PIXEL_BITS;
+        let centre = vec2<i32>(pixel) * one + one / 2;
+        let a = vec2<i32>(polygon.snapped_x.x, polygon.snapped_y.x);
+        let b = vec2<i32>(polygon.snapped_x.y, polygon.snapped_y.y);
+        let c = vec2<i32>(polygon.snapped_x.z, polygon.snapped_y.z);
+        if !(edge_holds(a, b, centre) && edge_holds(b, c, centre) && edge_holds(c, a, centre)) {
+            return -1.0;
+        }
+        return polygon.depth_plane.z + dot(polygon.depth_plane.xy, vec2<f32>(centre - a));
+    }
+    if !ray_covers(polygon, ray) {
+        return -1.0;
     }
     let a = polygon.a.xyz;
     let b = polygon.b.xyz;
@@ -97,8 +104,17 @@ fn polygon_key(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray, behind: f32)
     // Off the triangle by a rounding (a covered centre on its edge) the plane still holds.
     let w = ray_barycentrics(ray, a, b, c);
     let clip = polygon_pass.view_projection * vec4<f32>(a * w.x + b * w.y + c * w.z, 1.0);
-    let depth = clip.z / clip.w;
-    if !(clip.w > 0.0 && depth >= 0.0 && depth <= behind) {
+    return select(-1.0, clip.z / clip.w, clip.w > 0.0);
+}
+
+// The key `polygon` leaves at `pixel` on view ray `ray` (0 where it does not cover the pixel
+// centre or lies outside the clip volume there, or behind clip depth `behind`).
+fn polygon_key(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray, behind: f32) -> u64 {
+    if any(pixel < polygon.rect.xy) || any(pixel >= polygon.rect.zw) {
+        return u64(0u);
+    }
+    let depth = polygon_depth(polygon, pixel, ray);
+    if !(depth >= 0.0 && depth <= behind) {
         return u64(0u);
     }
     return visibility_key(depth, polygon.id);
