@@ -69,19 +69,12 @@ fn forward(prepass: bool) -> RenderPlugin {
         .with_depth_prepass(prepass)
 }
 
-/// Fragment-shader invocations of the parallax material's opaque pipeline (on the deferred
-/// path: merges into the visibility buffer) for `planes` full screen planes stacked along the
-/// view, rendered with `plugin`.
-fn parallax_invocations(
-    planes: usize,
-    depth_offset: bool,
-    plugin: RenderPlugin,
-    stack: Stack,
-) -> u32 {
-    let mut app = counting_app(plugin);
+/// `planes` parallax planes half a unit apart under a camera looking down at them and a sun,
+/// spawned farthest first (`Stack::Shared`: copies of one mesh).
+fn spawn_stack(app: &mut App, planes: usize, depth_offset: bool, stack: Stack) {
     let material = ParallaxOcclusionMaterial {
         depth_offset,
-        ..cobbles().material(&mut app)
+        ..cobbles().material(app)
     };
     let meshes = app.resources.get_mut::<Assets<Mesh>>().unwrap();
     let shared = meshes.add(Mesh::plane(40.0));
@@ -113,6 +106,19 @@ fn parallax_invocations(
         DirectionalLight::default(),
         Transform::from_xyz(1.0, 2.0, 1.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
+}
+
+/// Fragment-shader invocations of the parallax material's opaque pipeline (on the deferred
+/// path: merges into the visibility buffer) for `planes` full screen planes stacked along the
+/// view, rendered with `plugin`.
+fn parallax_invocations(
+    planes: usize,
+    depth_offset: bool,
+    plugin: RenderPlugin,
+    stack: Stack,
+) -> u32 {
+    let mut app = counting_app(plugin);
+    spawn_stack(&mut app, planes, depth_offset, stack);
     in_error_scopes(&mut app, "counted frame", |app| {
         let (gpu, counter) = (
             app.resources.require::<GpuContext>()?,
@@ -198,6 +204,49 @@ fn the_polygon_pass_finds_large_planes_without_a_fragment() {
         let four = parallax_invocations(4, depth_offset, deferred, Stack::BackToFront);
         assert_eq!(four, 0, "depth offset {depth_offset}");
     }
+}
+
+#[test]
+fn overlapping_planes_found_nearest_first_show_what_the_rasterizer_shows() {
+    // Four small planes, each a step lower and further along, spawned nearest first: the
+    // polygon pass takes their triangles nearest first and stops where none can come nearer,
+    // and every pixel shows the plane the rasterized visibility pass shows there.
+    let render = |polygon_pass: bool| {
+        let mut app = started(
+            RenderPlugin::new(SIZE, SIZE)
+                .with_format(TargetFormat::Srgb8)
+                .with_path(RenderPath::Deferred)
+                .with_polygon_pass(polygon_pass),
+        );
+        let material = cobbles().material(&mut app);
+        for index in 0..4 {
+            let step = index as f32;
+            let mesh = plane(&mut app, 1.2);
+            let transform = Transform::from_xyz(0.35 * step - 0.5, -0.3 * step, -0.35 * step);
+            app.world.spawn((mesh, material.clone(), transform));
+        }
+        app.world.spawn((
+            Camera::perspective(50.0),
+            Transform::from_xyz(0.0, 2.0, 1.5).looking_at(Vec3::new(0.0, -0.5, -0.5), Vec3::Y),
+        ));
+        app.world.spawn((
+            DirectionalLight::default(),
+            Transform::from_xyz(1.0, 2.0, 1.0).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
+        let image = render_and_capture(&mut app).unwrap();
+        let renderer = app.resources.get::<pom::render::Renderer>().unwrap();
+        assert_eq!(renderer.ran_polygon_pass(), polygon_pass);
+        image
+    };
+    let found = render(true);
+    let rasterized = render(false);
+    pom_tests::anti_aliasing::save_for_looking("overlapping_planes_found", &found);
+    let differing = found
+        .pixels()
+        .zip(rasterized.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(differing, 0, "pixels differ");
 }
 
 #[test]

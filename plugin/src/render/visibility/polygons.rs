@@ -174,6 +174,11 @@ impl VisiblePolygon {
         })
     }
 
+    /// No pixel of it lies nearer than this clip depth.
+    fn nearest_depth(&self) -> f32 {
+        self.depth_plane[3]
+    }
+
     /// The pixels of its screen rectangle.
     pub(crate) fn pixels(&self) -> u64 {
         let [x0, y0, x1, y1] = self.rect.map(u64::from);
@@ -247,10 +252,14 @@ fn snapped_corners(
     Some(snapped)
 }
 
+/// How far below its corners' nearest clip depth a triangle's listed nearest depth lies: the
+/// pass evaluates its depth in f32 (a few units in the last place of depths up to 1).
+const NEAREST_DEPTH_MARGIN: f64 = 1e-6;
+
 /// The clip depth over the framebuffer of the triangle at `snapped` corners (in front of the
 /// eye), as the rasterizer interpolates it (affine in the framebuffer): the first corner's depth
-/// and its rise per 1/2^SUB_PIXEL_BITS pixel across and down from that corner, as
-/// (across, down, depth, 0). Solved in f64 from the corners' clip positions (f32, as the
+/// and its rise per 1/2^SUB_PIXEL_BITS pixel across and down from that corner, and the nearest
+/// depth it reaches, as (across, down, depth, nearest). Solved in f64 from the corners' clip positions (f32, as the
 /// vertex stage gives them).
 fn screen_depth_plane(
     snapped: [[i32; 2]; 3],
@@ -274,7 +283,9 @@ fn screen_depth_plane(
     let determinant = x1 * y2 - y1 * x2;
     let across = (dz1 * y2 - dz2 * y1) / determinant;
     let down = (x1 * dz2 - x2 * dz1) / determinant;
-    [across as f32, down as f32, z0 as f32, 0.0]
+    // Affine, the depth inside lies between the corners'; a margin for the pass's roundings.
+    let nearest = z0.min(z1).min(z2) - NEAREST_DEPTH_MARGIN;
+    [across as f32, down as f32, z0 as f32, nearest as f32]
 }
 
 /// Twice the signed area of a snapped triangle, in the framebuffer's rows (y down).
@@ -355,6 +366,10 @@ impl VisiblePolygons {
         for (_, list) in &self.lists {
             self.listed.extend_from_slice(list);
         }
+        // Nearest first: a pixel stops at the first triangle that cannot come nearer than what
+        // it found (stable, so that a frame's order is the same as the last's where nothing moved).
+        self.listed
+            .sort_by(|a, b| a.nearest_depth().total_cmp(&b.nearest_depth()));
         let (low, high) = self
             .listed
             .iter()
@@ -587,7 +602,7 @@ mod tests {
         ];
         let polygon = VisiblePolygon::new(corners, 1, None, view_projection, size).unwrap();
         assert_eq!(polygon.snapped_x[3], 1, "snapped");
-        let [across, down, first, _] = polygon.depth_plane;
+        let [across, down, first, nearest] = polygon.depth_plane;
         let scale = (1 << SUB_PIXEL_BITS) as f32;
         for weights in [[0.2, 0.3, 0.5], [0.6, 0.2, 0.2], [0.1, 0.8, 0.1]] {
             let world = corners[0] * weights[0] + corners[1] * weights[1] + corners[2] * weights[2];
@@ -604,6 +619,10 @@ mod tests {
                 (depth - clip.z / clip.w).abs() < 1e-5,
                 "{weights:?}: {depth} against {}",
                 clip.z / clip.w
+            );
+            assert!(
+                nearest < depth,
+                "the nearest depth {nearest} behind {depth}"
             );
         }
     }

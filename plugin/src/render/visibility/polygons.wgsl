@@ -18,7 +18,8 @@ struct VisiblePolygon {
     snapped_x: vec4<i32>,
     snapped_y: vec4<i32>,
     // Where snapped: its clip depth as the rasterizer interpolates it, the first corner's (z)
-    // and its rise per 1/2^SUB_PIXEL_BITS pixel across (x) and down (y) from that corner.
+    // and its rise per 1/2^SUB_PIXEL_BITS pixel across (x) and down (y) from that corner; and
+    // the nearest clip depth it reaches (w: 0 where not snapped). The list is sorted by w.
     depth_plane: vec4<f32>,
     // The pixels it may cover: x, y from (inclusive) and to (exclusive).
     rect: vec4<u32>,
@@ -107,19 +108,6 @@ fn polygon_depth(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray) -> f32 {
     return select(-1.0, clip.z / clip.w, clip.w > 0.0);
 }
 
-// The key `polygon` leaves at `pixel` on view ray `ray` (0 where it does not cover the pixel
-// centre or lies outside the clip volume there, or behind clip depth `behind`).
-fn polygon_key(polygon: VisiblePolygon, pixel: vec2<u32>, ray: Ray, behind: f32) -> u64 {
-    if any(pixel < polygon.rect.xy) || any(pixel >= polygon.rect.zw) {
-        return u64(0u);
-    }
-    let depth = polygon_depth(polygon, pixel, ray);
-    if !(depth >= 0.0 && depth <= behind) {
-        return u64(0u);
-    }
-    return visibility_key(depth, polygon.id);
-}
-
 @compute @workgroup_size(8, 8)
 fn cs_visible_polygons(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = polygon_pass.origin + id.xy;
@@ -139,9 +127,27 @@ fn cs_visible_polygons(@builtin(global_invocation_id) id: vec3<u32>) {
             behind = bitcast<f32>(~atomicLoad(&visibility_words[visible * 2u + 1u]));
         }
     }
+    // The nearest key (ties to the larger id, as the visibility pass's atomic max) in front of
+    // `behind` and the clip volume's far plane.
     var nearest = u64(0u);
+    var nearest_depth = behind;
     for (var index = 0u; index < polygon_pass.count; index++) {
-        nearest = max(nearest, polygon_key(polygons[index], pixel, ray, behind));
+        let polygon = polygons[index];
+        // Nearest first: no triangle from here on comes nearer than what the pixel found.
+        if polygon.depth_plane.w > nearest_depth {
+            break;
+        }
+        if any(pixel < polygon.rect.xy) || any(pixel >= polygon.rect.zw) {
+            continue;
+        }
+        let depth = polygon_depth(polygon, pixel, ray);
+        if depth >= 0.0 && depth <= nearest_depth {
+            let key = visibility_key(depth, polygon.id);
+            if key > nearest {
+                nearest = key;
+                nearest_depth = depth;
+            }
+        }
     }
     if nearest == u64(0u) {
         return;
