@@ -1,13 +1,14 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
 //! hands out, and the buffer of one target.
 
+mod listed_triangle;
 mod polygons;
 mod settled_depth;
 
+pub(crate) use listed_triangle::VisiblePolygon;
 pub use polygons::POLYGON_PASS_SHADER;
 pub(crate) use polygons::{
-    MAX_LISTED_TRIANGLES, MAX_POLYGON_TRIANGLES, MIN_POLYGON_PIXELS, VisiblePolygon,
-    VisiblePolygons,
+    MAX_LISTED_TRIANGLES, MAX_POLYGON_TRIANGLES, MIN_POLYGON_PIXELS, VisiblePolygons,
 };
 pub use settled_depth::{SETTLED_DEPTH_SHADER, SettledDepth};
 

@@ -6,7 +6,7 @@
 // framebuffer. A triangle the rasterizer would clip first (a corner behind the eye) is tested
 // by the view ray alone, its depth where the ray meets its plane.
 // Composed after frame.wgsl, mesh_vertex.wgsl and visibility.wgsl. Mirrors `VisiblePolygon`
-// and `PolygonPass` in polygons.rs (the layout test checks them against each other).
+// (listed_triangle.rs) and `PolygonPass` in polygons.rs (the layout test checks them).
 
 // One triangle of a listed draw, in world space.
 struct VisiblePolygon {
@@ -58,7 +58,7 @@ const CULL_BACK: u32 = 2u;
 // Whether the edge from `start` to `end` (snapped) holds the pixel centre `centre` on its
 // inside: in front of it, or on it where it is a top or left edge (the rasterizer's rule, so a
 // centre on an edge two triangles share is covered once). The differences are exact in i32
-// (corners lie within `SNAP_RANGE` of polygons.rs); their products need 64 bits.
+// (corners lie within `SNAP_RANGE` of listed_triangle.rs); their products need 64 bits.
 fn edge_holds(start: vec2<i32>, end: vec2<i32>, centre: vec2<i32>) -> bool {
     let along = end - start;
     let to_centre = centre - start;
