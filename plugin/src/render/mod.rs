@@ -7,7 +7,6 @@
 //! each (frame_passes.rs); `crate::capture` reads images back, `present.rs` shows them in a window.
 
 pub mod anti_aliasing;
-mod deferred_background;
 mod display_referred;
 pub mod environment;
 mod environment_maps;
@@ -42,8 +41,6 @@ pub use anti_aliasing::{
     TAA_PASS, TAA_SHADER, TaaUniform, TemporalAntiAliasing, TemporalFrame, TemporalHistory,
     TemporalView, jitter_offset, set_camera_anti_aliasing, set_camera_fxaa,
 };
-pub use deferred_background::DEFERRED_BACKGROUND;
-use deferred_background::DeferredBackground;
 pub(crate) use display_referred::display_referred_alpha;
 pub use display_referred::display_referred_wgsl;
 pub use environment::{
@@ -86,10 +83,11 @@ pub use tonemapping::{
     CameraTonemapping, PostSettings, Tonemapping, TonemappingPlugin, set_camera_display_mapping,
 };
 pub use visibility::VISIBILITY_BYTES_PER_PIXEL;
-pub(crate) use visibility::{
-    MAX_LISTED_TRIANGLES, MAX_POLYGON_TRIANGLES, MIN_POLYGON_PIXELS, VisibilityBuffer,
-    VisibilityIds, VisiblePolygon, VisiblePolygons,
-};
 pub use visibility::{
-    POLYGON_PASS_SHADER, SETTLED_DEPTH_SHADER, SettledDepth, VISIBILITY_CLEAR_SHADER,
+    DEFERRED_BACKGROUND, POLYGON_PASS_SHADER, SETTLED_DEPTH_SHADER, SettledDepth,
+    VISIBILITY_CLEAR_SHADER,
+};
+pub(crate) use visibility::{
+    DeferredBackground, MAX_LISTED_TRIANGLES, MAX_POLYGON_TRIANGLES, MIN_POLYGON_PIXELS,
+    VisibilityBuffer, VisibilityIds, VisiblePolygon, VisiblePolygons,
 };

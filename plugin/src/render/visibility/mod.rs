@@ -1,10 +1,14 @@
 //! The deferred path's visibility buffer (visibility.wgsl writes it): its size, the ids a frame
-//! hands out, and the buffer of one target.
+//! hands out, and the buffer of one target; and the core's compute passes over it: its clear,
+//! the polygon pass, the settled depth and the background.
 
+mod deferred_background;
 mod listed_triangle;
 mod polygons;
 mod settled_depth;
 
+pub use deferred_background::DEFERRED_BACKGROUND;
+pub(crate) use deferred_background::DeferredBackground;
 pub(crate) use listed_triangle::VisiblePolygon;
 pub use polygons::POLYGON_PASS_SHADER;
 pub(crate) use polygons::{

@@ -2,13 +2,14 @@
 //! visibility buffer holds no draw, from compute, on deferred frames whose opaque phase has
 //! nothing to draw (it then skips that phase's render pass).
 
-use super::shaders::{self, ComposedShader, WgslFile};
-use super::{RenderTarget, VisibilityBuffer};
+use super::VisibilityBuffer;
 use crate::gpu::GpuContext;
+use crate::render::RenderTarget;
+use crate::render::shaders::{self, ComposedShader, WgslFile};
 
 /// The background pass's WGSL file.
 pub const DEFERRED_BACKGROUND_ENTRY: WgslFile =
-    crate::wgsl_file!("render/deferred_background.wgsl");
+    crate::wgsl_file!(nested "render/visibility/deferred_background.wgsl");
 
 /// The background pass's shader.
 pub const DEFERRED_BACKGROUND: ComposedShader = ComposedShader {
