@@ -4,6 +4,8 @@
 # clear (POM_PROFILE_PREPASS_NO_CLEAR), the polygon pass (POM_PROFILE_NO_POLYGONS) and the depth
 # pass after them (POM_PROFILE_PREPASS_NO_DEPTH_PASS: the clear's compute pass ends the phase).
 # All three left out times an empty compute pass: what the phase's timestamps cost alone.
+# The diff applies to 5a00966 (its results: ../run-5/prepass-profile/); since, a frame whose
+# every draw the polygon pass finds runs no depth pass (../run-5/depth-clear/ forces it back).
 # From the repository root: OUT=prof-out bash prof.sh BIN [SIZE].
 source "$(dirname "$0")/../profile-run.sh"
 for EXTRA in "" "--depth-offset"; do
