@@ -6,6 +6,11 @@ use image::RgbaImage;
 
 pub use pom::FlipTolerance;
 
+/// How many pixels of `a` and `b` (of one size) differ at all.
+pub fn differing_pixels(a: &RgbaImage, b: &RgbaImage) -> usize {
+    a.pixels().zip(b.pixels()).filter(|(a, b)| a != b).count()
+}
+
 /// Why a capture did not match its reference.
 #[derive(Debug, thiserror::Error)]
 pub enum GoldenError {

@@ -19,7 +19,8 @@ pub mod xvfb;
 
 pub use finite::{NonFinitePixels, non_finite_pixels, render_and_capture_finite};
 pub use golden::{
-    FlipTolerance, GoldenError, ImagesDiffer, check_golden, compare_images, golden_dir,
+    FlipTolerance, GoldenError, ImagesDiffer, check_golden, compare_images, differing_pixels,
+    golden_dir,
 };
 
 use pom::render::Renderer;

@@ -241,11 +241,7 @@ fn the_polygon_pass_finds_what_the_visibility_pass_would_rasterize() {
     pom_tests::anti_aliasing::save_for_looking("polygon_pass_rasterized", &rasterized);
     // The pass snaps the corners and breaks ties on edges as the rasterizer does: the same
     // pixels, to the bit.
-    let differing = found
-        .pixels()
-        .zip(rasterized.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let differing = pom_tests::differing_pixels(&found, &rasterized);
     assert_eq!(differing, 0, "pixels differ");
 }
 

@@ -241,11 +241,7 @@ fn overlapping_planes_found_nearest_first_show_what_the_rasterizer_shows() {
     let found = render(true);
     let rasterized = render(false);
     pom_tests::anti_aliasing::save_for_looking("overlapping_planes_found", &found);
-    let differing = found
-        .pixels()
-        .zip(rasterized.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let differing = pom_tests::differing_pixels(&found, &rasterized);
     assert_eq!(differing, 0, "pixels differ");
 }
 
@@ -299,11 +295,7 @@ fn the_prepass_changes_no_pixel_of_a_depth_offset_scene() {
     let flip = pom::flip_compare(&without, &with, 0.99).unwrap();
     // Speckle is a pixel where the two passes disagree about which surface is in front: it
     // shows as a pixel that differs. Count every pixel that differs at all.
-    let differing = without
-        .pixels()
-        .zip(with.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let differing = pom_tests::differing_pixels(&without, &with);
     let red = with
         .pixels()
         .filter(|p| p.0[0] > 100 && p.0[1] < 40 && p.0[2] < 40)

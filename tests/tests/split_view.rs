@@ -73,11 +73,7 @@ fn an_override_changes_only_the_second_image_and_not_the_world() {
     );
     app.insert_resource(split);
     let (main, second) = render_both(&mut app);
-    let changed = main
-        .pixels()
-        .zip(second.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let changed = pom_tests::differing_pixels(&main, &second);
     assert!(changed > 100, "only {changed} pixels differ");
     assert_eq!(
         *app.world.get::<&ParallaxOcclusionMaterial>(entity).unwrap(),

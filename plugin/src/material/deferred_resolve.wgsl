@@ -96,15 +96,6 @@ fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     return item;
 }
 
-// The clip depth the visibility pass kept at `pixel` (the far plane where no draw is).
-fn visible_depth(pixel: vec2<u32>, width: u32) -> f32 {
-    let key = visibility[pixel.y * width + pixel.x];
-    if key.x == 0u {
-        return 1.0;
-    }
-    return bitcast<f32>(~key.y);
-}
-
 // A settling resolve's verdict on its candidate at `pixel`: its surface at clip depth `depth`
 // shows where it is nearer than what the visibility pass kept (and `covers`: the view ray did
 // not leave the surface); else the pixel is the visibility pass's again. Either way the key

@@ -3,7 +3,7 @@
 //! its depth over the framebuffer solved, its screen rectangle bounded.
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, Vec3, Vec4Swizzles};
+use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 
 /// The face a draw's pipeline culls (`culled_face` in WGSL).
 pub(super) const CULL_NONE: u32 = 0;
@@ -61,7 +61,9 @@ impl VisiblePolygon {
         view_projection: Mat4,
         size: (u32, u32),
     ) -> Option<Self> {
-        let rect = screen_rect(corners, view_projection, size)?;
+        // Each corner as the vertex stage gives it, read by every step below.
+        let clips = corners.map(|corner| view_projection * corner.extend(1.0));
+        let rect = screen_rect(clips, size)?;
         let mut culled_face = match cull {
             None => CULL_NONE,
             Some(wgpu::Face::Front) => CULL_FRONT,
@@ -70,7 +72,7 @@ impl VisiblePolygon {
         let (mut snapped_x, mut snapped_y) = ([0; 4], [0; 4]);
         let mut depth_plane = [0.0; 4];
         let mut corners = corners;
-        if let Some(snapped) = snapped_corners(corners, view_projection, size) {
+        if let Some(snapped) = snapped_corners(clips, size) {
             // The rasterizer's facing: counter-clockwise in clip space (y up) is the front,
             // clockwise in the framebuffer's rows (y down).
             let area = snapped_area(snapped);
@@ -86,13 +88,13 @@ impl VisiblePolygon {
             // Ordered so that the inside is where every edge function is positive.
             let order = if front { [0, 2, 1] } else { [0, 1, 2] };
             corners = order.map(|index| corners[index]);
-            for (slot, index) in order.into_iter().enumerate() {
-                (snapped_x[slot], snapped_y[slot]) = (snapped[index][0], snapped[index][1]);
+            let snapped = order.map(|index| snapped[index]);
+            for (slot, [x, y]) in snapped.into_iter().enumerate() {
+                (snapped_x[slot], snapped_y[slot]) = (x, y);
             }
             snapped_x[3] = 1;
             culled_face = CULL_NONE;
-            let snapped = order.map(|index| snapped[index]);
-            depth_plane = screen_depth_plane(snapped, corners, view_projection);
+            depth_plane = screen_depth_plane(snapped, order.map(|index| clips[index]));
         }
         let point = |p: Vec3| p.extend(1.0).to_array();
         Some(Self {
@@ -121,28 +123,28 @@ impl VisiblePolygon {
     }
 }
 
-/// The pixels (x, y from, x, y to) that `corners` may cover, a pixel of margin around their
-/// projection; the whole target where a corner lies behind the eye (the rasterizer clips
-/// there); `None` where nothing of it is on the target or a corner is not a number.
-fn screen_rect(
-    corners: [Vec3; 3],
-    view_projection: Mat4,
-    (width, height): (u32, u32),
-) -> Option<[u32; 4]> {
-    let clips = corners.map(|corner| view_projection * corner.extend(1.0));
+/// Where clip position `clip` (in front of the eye) lands on a target of `size` pixels, in
+/// pixels from its top left corner.
+fn framebuffer_position(clip: Vec4, (width, height): (u32, u32)) -> Vec2 {
+    let ndc = clip.xy() / clip.w;
+    glam::vec2(
+        (ndc.x * 0.5 + 0.5) * width as f32,
+        (0.5 - ndc.y * 0.5) * height as f32,
+    )
+}
+
+/// The pixels (x, y from, x, y to) that the corners at clip positions `clips` may cover, a pixel
+/// of margin around their projection; the whole target where a corner lies behind the eye (the
+/// rasterizer clips there); `None` where nothing of it is on the target or a corner is not a
+/// number.
+fn screen_rect(clips: [Vec4; 3], (width, height): (u32, u32)) -> Option<[u32; 4]> {
     if !clips.iter().all(|clip| clip.is_finite()) {
         return None;
     }
     if clips.iter().any(|clip| clip.w <= f32::EPSILON) {
         return Some([0, 0, width, height]);
     }
-    let pixels = clips.map(|clip| {
-        let ndc = clip.xy() / clip.w;
-        glam::vec2(
-            (ndc.x * 0.5 + 0.5) * width as f32,
-            (0.5 - ndc.y * 0.5) * height as f32,
-        )
-    });
+    let pixels = clips.map(|clip| framebuffer_position(clip, (width, height)));
     let low = pixels[0].min(pixels[1]).min(pixels[2]).floor() - 1.0;
     let high = pixels[0].max(pixels[1]).max(pixels[2]).ceil() + 1.0;
     let size = glam::vec2(width as f32, height as f32);
@@ -158,27 +160,19 @@ fn screen_rect(
     ])
 }
 
-/// `corners` in the framebuffer as the rasterizer snaps them (in 1/2^SUB_PIXEL_BITS pixels),
-/// where every corner lies in front of the eye and near enough the target; else `None` (the
-/// rasterizer clips such a triangle first, and the pass tests it by its view rays).
-fn snapped_corners(
-    corners: [Vec3; 3],
-    view_projection: Mat4,
-    (width, height): (u32, u32),
-) -> Option<[[i32; 2]; 3]> {
+/// The corners at clip positions `clips` in the framebuffer as the rasterizer snaps them (in
+/// 1/2^SUB_PIXEL_BITS pixels), where every corner lies in front of the eye and near enough the
+/// target; else `None` (the rasterizer clips such a triangle first, and the pass tests it by
+/// its view rays).
+fn snapped_corners(clips: [Vec4; 3], size: (u32, u32)) -> Option<[[i32; 2]; 3]> {
     let scale = (1 << SUB_PIXEL_BITS) as f32;
     let mut snapped = [[0; 2]; 3];
-    for (slot, corner) in snapped.iter_mut().zip(corners) {
-        let clip = view_projection * corner.extend(1.0);
+    for (slot, clip) in snapped.iter_mut().zip(clips) {
         // Not a number fails too.
         if clip.w.is_nan() || clip.w <= 0.0 {
             return None;
         }
-        let (x, y) = (clip.x / clip.w, clip.y / clip.w);
-        let pixel = [
-            (x * 0.5 + 0.5) * width as f32,
-            (0.5 - y * 0.5) * height as f32,
-        ];
+        let pixel = framebuffer_position(clip, size).to_array();
         if !pixel.iter().all(|p| p.abs() < SNAP_RANGE) {
             return None;
         }
@@ -195,17 +189,9 @@ const NEAREST_DEPTH_MARGIN: f64 = 1e-6;
 /// eye), as the rasterizer interpolates it (affine in the framebuffer): the first corner's depth
 /// and its rise per 1/2^SUB_PIXEL_BITS pixel across and down from that corner, and the nearest
 /// depth it reaches, as (across, down, depth, nearest). Solved in f64 from the corners' clip
-/// positions (f32, as the vertex stage gives them).
-fn screen_depth_plane(
-    snapped: [[i32; 2]; 3],
-    corners: [Vec3; 3],
-    view_projection: Mat4,
-) -> [f32; 4] {
-    let depth = |corner: Vec3| {
-        let clip = view_projection * corner.extend(1.0);
-        f64::from(clip.z) / f64::from(clip.w)
-    };
-    let [z0, z1, z2] = corners.map(depth);
+/// positions `clips` (f32, as the vertex stage gives them).
+fn screen_depth_plane(snapped: [[i32; 2]; 3], clips: [Vec4; 3]) -> [f32; 4] {
+    let [z0, z1, z2] = clips.map(|clip| f64::from(clip.z) / f64::from(clip.w));
     let from_first = |p: [i32; 2]| {
         (
             f64::from(p[0] - snapped[0][0]),
@@ -234,6 +220,10 @@ fn snapped_area([a, b, c]: [[i32; 2]; 3]) -> i64 {
 mod tests {
     use super::*;
 
+    fn clips_of(corners: [Vec3; 3], view_projection: Mat4) -> [Vec4; 3] {
+        corners.map(|corner| view_projection * corner.extend(1.0))
+    }
+
     #[test]
     fn a_triangle_behind_the_eye_spans_the_target_and_one_off_it_is_not_listed() {
         use glam::camera::rh::{proj::directx::perspective, view::look_to_mat4};
@@ -246,7 +236,7 @@ mod tests {
             Vec3::new(0.0, 1.0, -5.0),
         ];
         assert_eq!(
-            screen_rect(crossing, view_projection, size),
+            screen_rect(clips_of(crossing, view_projection), size),
             Some([0, 0, 64, 32])
         );
         let ahead = [
@@ -254,13 +244,13 @@ mod tests {
             Vec3::new(0.1, -0.1, -5.0),
             Vec3::new(0.0, 0.1, -5.0),
         ];
-        let rect = screen_rect(ahead, view_projection, size).unwrap();
+        let rect = screen_rect(clips_of(ahead, view_projection), size).unwrap();
         assert!(
             rect[0] > 0 && rect[2] < 64 && rect[1] > 0 && rect[3] < 32,
             "{rect:?}"
         );
         let aside = ahead.map(|p| p + Vec3::new(50.0, 0.0, 0.0));
-        assert_eq!(screen_rect(aside, view_projection, size), None);
+        assert_eq!(screen_rect(clips_of(aside, view_projection), size), None);
         let nan = [Vec3::NAN, ahead[1], ahead[2]];
         assert_eq!(
             VisiblePolygon::new(nan, 1, None, view_projection, size),

@@ -17,16 +17,13 @@ fn cs_settle_depth(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    // Each source read only where the one before it is empty.
+    // The visibility key read only where the candidate key is empty.
     let candidate = visibility[candidate_index(id.xy, size)];
-    var depth = 1.0;
+    var depth: f32;
     if (candidate.x | candidate.y) != 0u {
         depth = bitcast<f32>(~candidate.y);
     } else {
-        let visible = visibility[id.y * size.x + id.x];
-        if visible.x != 0u {
-            depth = bitcast<f32>(~visible.y);
-        }
+        depth = visible_depth(id.xy, size.x);
     }
     textureStore(settled_depth, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));
 }
