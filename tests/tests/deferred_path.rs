@@ -10,8 +10,8 @@ use pom::render::{
     FrameNode, FrameNodes, FrameView, NodePlace, RenderError, RenderPhase, Renderer, SettledDepth,
 };
 use pom::{
-    AntiAliasing, Assets, DebugView, LitMaterial, Mesh, ParallaxOcclusionMaterial, RenderPath,
-    TargetFormat, Transform, patterns,
+    AntiAliasing, Assets, Camera, Color, DebugView, LitMaterial, Mesh, ParallaxOcclusionMaterial,
+    RenderPath, TargetFormat, Transform, patterns,
 };
 use pom_tests::anti_aliasing::settled;
 use pom_tests::pom_scene::{HeightMaterial, preview_app, wrapped};
@@ -451,4 +451,147 @@ fn settled_deferred_under_taa(app: &mut pom::App, tested: bool) -> image::RgbaIm
     let image = settled(app, AntiAliasing::Taa);
     assert!(app.resources.get::<Renderer>().unwrap().runs_deferred());
     image
+}
+
+#[test]
+fn the_resolve_writes_the_background_where_no_draw_shows() {
+    // The background pass reads every key to write the clear colour where none holds a draw.
+    // A resolve dispatched over the whole target (one batch) reads them anyway, and so does the
+    // tile classification (two batches of one material): they write it where neither key
+    // holds a draw, and the pass does not run. A depth-offset candidate clipped at its
+    // silhouette loses over empty pixels: its resolve writes the background there. The clear
+    // colour changes between the deferred frames, so a background left from the frame before
+    // shows.
+    let cases = [
+        ("one batch", 1, None),
+        ("two batches", 2, None),
+        ("depth offset", 1, Some(pom::Silhouette::Off)),
+        ("depth offset, two batches", 2, Some(pom::Silhouette::Off)),
+        ("depth offset clipped", 1, Some(pom::Silhouette::UvBounds)),
+        (
+            "depth offset clipped, two batches",
+            2,
+            Some(pom::Silhouette::UvBounds),
+        ),
+    ];
+    for (name, planes, depth_offset) in cases {
+        let mut app = preview_app(
+            96,
+            TargetFormat::Srgb8,
+            &cobblestones(),
+            &perspective(60.0),
+            |m| ParallaxOcclusionMaterial {
+                depth_offset: depth_offset.is_some(),
+                silhouette: depth_offset.unwrap_or(m.silhouette),
+                ..m
+            },
+        )
+        .unwrap();
+        if planes == 2 {
+            let material = app
+                .world
+                .query_mut::<&ParallaxOcclusionMaterial>()
+                .into_iter()
+                .next()
+                .unwrap()
+                .clone();
+            let mesh = app
+                .resources
+                .get_mut::<Assets<Mesh>>()
+                .unwrap()
+                .add(Mesh::plane(0.4));
+            let beside = Transform::from_xyz(0.3, 0.1, 0.2);
+            app.world.spawn((mesh, material, beside));
+        }
+        let mut clear_to = |app: &mut pom::App, color: Color| {
+            for camera in app.world.query_mut::<&mut Camera>() {
+                camera.clear_color = color;
+            }
+        };
+        let (first, second) = (
+            Color::linear_rgb(0.9, 0.2, 0.1),
+            Color::linear_rgb(0.1, 0.3, 0.8),
+        );
+        // Each colour's forward frame, then each one's deferred frame: a background left from
+        // the frame before would be the other colour.
+        let forward: Vec<_> = [first, second]
+            .map(|color| {
+                clear_to(&mut app, color);
+                render_on_path(&mut app, RenderPath::Forward).unwrap()
+            })
+            .into();
+        for (color, forward) in [first, second].into_iter().zip(&forward) {
+            clear_to(&mut app, color);
+            let deferred = render_on_path(&mut app, RenderPath::Deferred).unwrap();
+            let renderer = app.resources.get::<Renderer>().unwrap();
+            assert!(renderer.runs_deferred(), "{name}: ran forward");
+            assert!(
+                !renderer.ran_background_pass(),
+                "{name}: the background pass ran"
+            );
+            // The forward frame's corner is the clear colour as the opaque pass clears it.
+            let background = *forward.get_pixel(0, 0);
+            let (mut empty, mut differing) = (0, 0);
+            for (f, d) in forward.pixels().zip(deferred.pixels()) {
+                if *f == background {
+                    empty += 1;
+                    differing += usize::from(d != f);
+                }
+            }
+            assert!(
+                empty > 96 * 96 / 10,
+                "{name}: only {empty} background pixels"
+            );
+            assert_eq!(differing, 0, "{name}: background pixels differ of {empty}");
+        }
+    }
+}
+
+#[test]
+fn the_resolve_rebuilds_the_texture_footprint_the_fragment_stage_differences() {
+    // The fragment stage takes a pixel's texture footprint from the differences across its
+    // 2 × 2 quad; the resolve from the rays through the same neighbours (each its pixel's ray
+    // stepped by a pixel). The mip level each gives agrees to a five-hundredth of a level at
+    // every angle, perspective or orthographic: a footprint a tenth short along one axis moves
+    // it by a tenth of a level.
+    let textures = cobblestones();
+    let levels = (TEXELS.ilog2()) as f32;
+    let mut report = Vec::new();
+    let orthographic = |view_angle| PreviewView {
+        view_angle,
+        projection: PreviewProjection::Orthographic,
+        ..PreviewView::default()
+    };
+    let views = [0.0_f32, 30.0, 60.0, 80.0]
+        .map(|angle| (angle, perspective(angle)))
+        .into_iter()
+        .chain([30.0, 70.0].map(|angle| (angle, orthographic(angle))));
+    for (angle, view) in views {
+        let mut app = preview_app(96, TargetFormat::Float32, &textures, &view, |m| {
+            ParallaxOcclusionMaterial {
+                debug_view: DebugView::Mip,
+                ..m
+            }
+        })
+        .unwrap();
+        let forward = render_on_path_f32(&mut app, RenderPath::Forward).unwrap();
+        let deferred = render_on_path_f32(&mut app, RenderPath::Deferred).unwrap();
+        assert!(app.resources.get::<Renderer>().unwrap().runs_deferred());
+        let background = *forward.get_pixel(0, 0);
+        let (mut largest, mut count) = (0.0_f32, 0_u32);
+        for (f, d) in forward.pixels().zip(deferred.pixels()) {
+            if *f == background {
+                continue;
+            }
+            largest = largest.max((f.0[0] - d.0[0]).abs() * levels);
+            count += 1;
+        }
+        report.push(format!(
+            "{angle:>4}° {:?}: largest mip difference {largest:.5} level over {count} pixels",
+            view.projection
+        ));
+        assert!(count > 1000, "{angle}°: only {count} pixels of the plane");
+        assert!(largest <= 0.002, "{angle}°: mip levels differ by {largest}");
+    }
+    eprintln!("{}", report.join("\n"));
 }

@@ -87,20 +87,23 @@ pub(crate) struct ResolveBatch {
     batch: u32,
     tiles_across: u32,
     tile_count: u32,
-    _padding_a: u32,
-    _padding_b: [u32; 2],
+    writes_background: u32,
+    _padding: [u32; 2],
+    background: [f32; 4],
 }
 
 impl ResolveBatch {
     /// The fields every batch of a frame shares: the camera's `inverse` view-projection, the
-    /// target's size and the tile grid; the batch's own are zero.
-    fn for_frame(inverse: Mat4, (width, height): (u32, u32), tiles: &ResolveTiles) -> Self {
+    /// target's size and background and the tile grid; the batch's own are zero.
+    fn for_frame(inverse: Mat4, targets: &ResolveTargets<'_>, tiles: &ResolveTiles) -> Self {
+        let (width, height) = targets.size;
         Self {
             inverse_view_projection: inverse.to_cols_array_2d(),
             target_width: width as f32,
             target_height: height as f32,
             tiles_across: tiles.tiles_across(),
             tile_count: tiles.tile_count(),
+            background: targets.background,
             ..Self::zeroed()
         }
     }
@@ -117,8 +120,9 @@ crate::wgsl_layout!(ResolveBatch {
     batch,
     tiles_across,
     tile_count,
-    _padding_a,
-    _padding_b,
+    writes_background,
+    _padding,
+    background,
 });
 
 /// The frame's targets and camera as the resolve sees them.
@@ -131,6 +135,8 @@ pub(crate) struct ResolveTargets<'a> {
     pub(crate) target: u64,
     pub(crate) size: (u32, u32),
     pub(crate) view_projection: Mat4,
+    /// The clear colour as the opaque pass would have cleared to, where no draw shows.
+    pub(crate) background: [f32; 4],
 }
 
 /// A mesh's resolve bind group and the buffers it was made with (a mesh uploaded anew gets
@@ -223,7 +229,7 @@ impl DeferredResolve {
             uploaded_slots: Vec::new(),
             meshes: HashMap::new(),
             bound: (0, 0),
-            tiles: ResolveTiles::new(gpu),
+            tiles: ResolveTiles::new(gpu, scene_format),
             dispatches: Vec::new(),
         }
     }
@@ -268,7 +274,7 @@ impl DeferredResolve {
             .collect();
         let classified =
             self.prepare_tiles(gpu, targets, resolved.iter().map(|(_, batch, _)| *batch));
-        let frame_slot = ResolveBatch::for_frame(inverse, targets.size, &self.tiles);
+        let frame_slot = ResolveBatch::for_frame(inverse, targets, &self.tiles);
         let mut used = HashSet::new();
         for (place, (index, batch, mesh)) in resolved.into_iter().enumerate() {
             let slot = ResolveBatch {
@@ -281,6 +287,7 @@ impl DeferredResolve {
                 } else {
                     UNCLASSIFIED
                 },
+                writes_background: u32::from(!classified),
                 ..frame_slot
             };
             self.push_dispatch(index, place as u32, &slot);
@@ -322,13 +329,7 @@ impl DeferredResolve {
         } else {
             Vec::new()
         };
-        self.tiles.prepare(
-            gpu,
-            targets.visibility,
-            targets.target,
-            targets.size,
-            &ranges,
-        );
+        self.tiles.prepare(gpu, targets, &ranges);
         let bound = (targets.target, self.tiles.generation());
         if self.bound != bound {
             self.meshes.clear();
@@ -423,6 +424,22 @@ impl DeferredResolve {
     /// Whether this frame has pixels to resolve.
     pub(crate) fn has_work(&self) -> bool {
         !self.dispatches.is_empty()
+    }
+
+    /// Whether this frame's recorded resolve writes the background where no draw shows: the
+    /// classification does, else each whole-target dispatch of a batch that is `ready` (its
+    /// pipeline and groups exist) does.
+    pub(crate) fn writes_background<K>(
+        &self,
+        batches: &[Batch<K>],
+        ready: impl Fn(&Batch<K>) -> bool,
+    ) -> bool {
+        self.has_work()
+            && (self.tiles.has_batches()
+                || self.dispatches.iter().any(|dispatch| {
+                    let batch = &batches[dispatch.batch];
+                    self.meshes.contains_key(&batch.mesh) && ready(batch)
+                }))
     }
 
     /// Records the tile classification into `pass` (first: it binds a group 0 of its own).

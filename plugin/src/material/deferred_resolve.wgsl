@@ -20,9 +20,14 @@ struct ResolveBatch {
     batch: u32,
     tiles_across: u32,
     tile_count: u32,
+    // 1 where this dispatch writes `background` where neither key holds a draw: a dispatch
+    // over the whole target, which reads every key anyway (else the classification does).
+    writes_background: u32,
     // (Uniform arrays need a 16-byte stride: no array here.)
-    _padding_a: u32,
-    _padding_b: vec2<u32>,
+    _padding: vec2<u32>,
+    // The clear colour as the opaque pass would have cleared to (alpha marks it
+    // display-referred).
+    background: vec4<f32>,
 }
 
 // One vertex of a mesh's vertex buffer, read as storage (arrays, not vectors: no padding).
@@ -88,6 +93,9 @@ fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
     }
     let candidate = visibility[candidate_index(pixel, frame.target_size.xy)].x;
     let visible = select(visible_id(pixel, frame.target_size.x), candidate, candidate != 0u);
+    if visible == 0u && resolve_batch.writes_background != 0u {
+        textureStore(scene_output, pixel, resolve_batch.background);
+    }
     item.resolves = visible >= resolve_batch.first_id && visible < resolve_batch.end_id;
     let within = visible - resolve_batch.first_id;
     let triangles = max(resolve_batch.triangles, 1u);
@@ -98,13 +106,17 @@ fn resolve_item(group: vec2<u32>, local: vec2<u32>) -> ResolveItem {
 
 // A settling resolve's verdict on its candidate at `pixel`: its surface at clip depth `depth`
 // shows where it is nearer than what the visibility pass kept (and `covers`: the view ray did
-// not leave the surface); else the pixel is the visibility pass's again. Either way the key
-// keeps the pixel's settled depth (settled_depth.wgsl), a lost candidate without its id.
-// Whether it shows.
+// not leave the surface); else the pixel is the visibility pass's again, or the background
+// where that kept no draw (written here: the classification and the resolves write it only
+// where neither key holds a draw). Either way the key keeps the pixel's settled depth
+// (settled_depth.wgsl), a lost candidate without its id. Whether it shows.
 fn settle_candidate(pixel: vec2<u32>, depth: f32, covers: bool) -> bool {
     let index = candidate_index(pixel, frame.target_size.xy);
     let behind = visible_depth(pixel, frame.target_size.x);
     let shows = covers && depth < behind;
+    if !shows && visible_id(pixel, frame.target_size.x) == 0u {
+        textureStore(scene_output, pixel, resolve_batch.background);
+    }
     let id = select(0u, visibility[index].x, shows);
     visibility[index] = vec2<u32>(id, ~bitcast<u32>(select(behind, depth, shows)));
     return shows;
@@ -113,6 +125,27 @@ fn settle_candidate(pixel: vec2<u32>, depth: f32, covers: bool) -> bool {
 // The view ray through framebuffer position `pixel` (visibility.wgsl's `ray_through_pixel`).
 fn pixel_ray(pixel: vec2<f32>) -> Ray {
     return ray_through_pixel(resolve_batch.inverse_view_projection, resolve_target_size(), pixel, frame.camera_position.xyz, frame.view_direction);
+}
+
+// How the view ray changes from one pixel to the next across (`axis` 0) or down (1): the
+// unprojection is affine in the framebuffer at a fixed depth for perspective and orthographic
+// cameras alike (the inverse's w does not depend on the pixel), so a ray through a quad
+// neighbour is the pixel's own ray plus this step, with no matrix product of its own.
+fn pixel_ray_step(axis: u32) -> Ray {
+    let inverse = resolve_batch.inverse_view_projection;
+    let ndc_step = select(vec2<f32>(0.0, -2.0 / resolve_batch.target_height),
+        vec2<f32>(2.0 / resolve_batch.target_width, 0.0), axis == 0u);
+    let along = inverse[0].xyz * ndc_step.x + inverse[1].xyz * ndc_step.y;
+    // As `ray_through_pixel`: from the near plane along the view (orthographic), or from the
+    // eye through depth ½ (perspective).
+    let orthographic = frame.view_direction.w > 0.5;
+    return Ray(select(vec3<f32>(0.0), along / inverse[3].w, orthographic),
+        select(along / (0.5 * inverse[2].w + inverse[3].w), vec3<f32>(0.0), orthographic));
+}
+
+// `ray` moved `steps` pixels along `step` (`pixel_ray_step`).
+fn stepped_ray(ray: Ray, step: Ray, steps: f32) -> Ray {
+    return Ray(ray.origin + steps * step.origin, ray.direction + steps * step.direction);
 }
 
 fn resolve_target_size() -> vec2<f32> {
@@ -177,8 +210,8 @@ fn resolve_pixel(item: ResolveItem) -> ResolvedPixel {
     // The fragment stage differences a 2 × 2 quad's pixels: the neighbour across is to the
     // right in the quad's left column and to the left in its right one (likewise down).
     let step = 1.0 - 2.0 * vec2<f32>(item.pixel % vec2<u32>(2u));
-    let across = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(step.x, 0.0)), p0, p1, p2));
-    let down = interpolate_vertex(t, ray_barycentrics(pixel_ray(centre + vec2<f32>(0.0, step.y)), p0, p1, p2));
+    let across = interpolate_vertex(t, ray_barycentrics(stepped_ray(ray, pixel_ray_step(0u), step.x), p0, p1, p2));
+    let down = interpolate_vertex(t, ray_barycentrics(stepped_ray(ray, pixel_ray_step(1u), step.y), p0, p1, p2));
     resolved.footprint = PixelFootprint((across.uv - resolved.vertex.uv) * step.x, (down.uv - resolved.vertex.uv) * step.y,
         (across.world_position - resolved.vertex.world_position) * step.x,
         (down.world_position - resolved.vertex.world_position) * step.y,

@@ -58,10 +58,7 @@ impl<M: Material> MaterialBatches<M> {
             if ResolveRound::of(M::settles_depth_in_resolve(batch.key)) != round {
                 return false;
             }
-            let (Some(pipeline), Some(textures)) = (
-                self.pipelines.resolve(&batch.key),
-                self.textures.get(&batch.textures),
-            ) else {
+            let Some((pipeline, textures)) = self.resolve_inputs(batch) else {
                 return false;
             };
             if bound_key != Some(batch.key) {
@@ -74,6 +71,24 @@ impl<M: Material> MaterialBatches<M> {
             }
             true
         });
+    }
+
+    /// The resolve pipeline and texture group of `batch`, where both exist.
+    fn resolve_inputs(
+        &self,
+        batch: &Batch<M::Key>,
+    ) -> Option<(&wgpu::ComputePipeline, &wgpu::BindGroup)> {
+        Some((
+            self.pipelines.resolve(&batch.key)?,
+            self.textures.get(&batch.textures)?,
+        ))
+    }
+
+    /// Whether this frame's resolve of `M` writes the background where no draw shows.
+    pub(crate) fn resolve_writes_background(&self) -> bool {
+        self.resolve.as_ref().is_some_and(|resolve| {
+            resolve.writes_background(&self.batches, |batch| self.resolve_inputs(batch).is_some())
+        })
     }
 
     /// Whether any batch of the last prepared frame draws in `phase`.

@@ -360,6 +360,7 @@ fn prepare_frame<M: Material>(
             }),
         },
     );
+    renderer.resolves_write_background |= batches.resolve_writes_background();
     let polygon_pass = renderer.polygon_pass;
     let lists = (
         [&mut renderer.polygons, &mut renderer.candidate_polygons],
@@ -419,6 +420,7 @@ fn resolve_targets<'a>(
         target: target.id(),
         size: target.size(),
         view_projection: glam::Mat4::from_cols_array_2d(&frame.frame.view_projection),
+        background: crate::render::clear_value(frame.clear_color),
     }
 }
 

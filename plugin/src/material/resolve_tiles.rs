@@ -1,11 +1,13 @@
 //! The deferred resolve's tile classification (deferred_classify.wgsl) for one material: which
 //! 8 × 8 tiles of the visibility buffer each of its resolve batches shows in, as a tile list and
-//! an indirect dispatch per batch, so a batch's resolve runs only where the batch is seen.
+//! an indirect dispatch per batch, so a batch's resolve runs only where the batch is seen. It
+//! also writes the background where no draw shows.
 
 use bytemuck::{Pod, Zeroable};
 
+use super::deferred::ResolveTargets;
 use crate::gpu::GpuContext;
-use crate::gpu::layout::{compute_storage_buffer, compute_uniform_buffer};
+use crate::gpu::layout::{compute_storage_buffer, compute_storage_texture, compute_uniform_buffer};
 use crate::render::shaders::{self, ComposedShader, WgslFile};
 
 /// The classification's shader.
@@ -27,8 +29,9 @@ pub(crate) struct ClassifyParams {
     tiles_across: u32,
     tile_count: u32,
     batch_count: u32,
-    _padding_a: u32,
-    _padding_b: [u32; 2],
+    tiles_down: u32,
+    _padding: [u32; 2],
+    background: [f32; 4],
 }
 
 crate::wgsl_layout!(ClassifyParams {
@@ -37,22 +40,27 @@ crate::wgsl_layout!(ClassifyParams {
     tiles_across,
     tile_count,
     batch_count,
-    _padding_a,
-    _padding_b
+    tiles_down,
+    _padding,
+    background
 });
 
-/// The buffers of one frame's classification, sized for `batches` batches of `tiles` tiles.
+/// The buffers of one frame's classification, sized for `batches` batches of `tiles` tiles in
+/// `rows` rows.
 struct TileBuffers {
     batches: u64,
     tiles: u64,
+    rows: u64,
     batch_ids: wgpu::Buffer,
     tile_counts: wgpu::Buffer,
     batch_tiles: wgpu::Buffer,
     dispatch_args: wgpu::Buffer,
+    row_counts: wgpu::Buffer,
+    row_tiles: wgpu::Buffer,
 }
 
 impl TileBuffers {
-    fn new(gpu: &GpuContext, batches: u64, tiles: u64) -> Self {
+    fn new(gpu: &GpuContext, batches: u64, (tiles, rows): (u64, u64)) -> Self {
         let buffer = |label: &str, size: u64, usage| {
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -64,6 +72,7 @@ impl TileBuffers {
         Self {
             batches,
             tiles,
+            rows,
             batch_ids: buffer(
                 "resolve batch ids",
                 batches * 8,
@@ -84,6 +93,16 @@ impl TileBuffers {
                 batches * 12,
                 wgpu::BufferUsages::INDIRECT,
             ),
+            row_counts: buffer(
+                "resolve row counts",
+                batches * rows * 4,
+                wgpu::BufferUsages::empty(),
+            ),
+            row_tiles: buffer(
+                "resolve row tiles",
+                batches * tiles * 4,
+                wgpu::BufferUsages::empty(),
+            ),
         }
     }
 }
@@ -93,9 +112,10 @@ impl TileBuffers {
 pub(crate) struct ResolveTiles {
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    /// `cs_clear_counts`, `cs_classify` and `cs_dispatch_args`, compiled on the first frame
-    /// that classifies (most materials never do: one resolve batch, or none).
-    pipelines: Option<[wgpu::ComputePipeline; 3]>,
+    /// `cs_clear_counts`, `cs_classify`, `cs_join_rows` and `cs_copy_rows`, compiled on the
+    /// first frame that classifies (most materials never do: one resolve batch, or none).
+    pipelines: Option<[wgpu::ComputePipeline; 4]>,
+    scene_format: wgpu::TextureFormat,
     params: wgpu::Buffer,
     /// What `params` and the batches' ids hold (written only when they change).
     uploaded: Option<(ClassifyParams, Vec<[u32; 2]>)>,
@@ -108,7 +128,8 @@ pub(crate) struct ResolveTiles {
 }
 
 impl ResolveTiles {
-    pub(crate) fn new(gpu: &GpuContext) -> Self {
+    /// The layouts for a scene target of `scene_format`; no pipelines or tiles yet.
+    pub(crate) fn new(gpu: &GpuContext, scene_format: wgpu::TextureFormat) -> Self {
         let device = &gpu.device;
         let storage = compute_storage_buffer;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -120,6 +141,9 @@ impl ResolveTiles {
                 storage(3, false),
                 storage(4, false),
                 storage(5, false),
+                storage(6, false),
+                storage(7, false),
+                compute_storage_texture(8, scene_format),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -131,6 +155,7 @@ impl ResolveTiles {
             layout,
             pipeline_layout,
             pipelines: None,
+            scene_format,
             uploaded: None,
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("resolve classification params"),
@@ -138,7 +163,7 @@ impl ResolveTiles {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
-            buffers: TileBuffers::new(gpu, 1, 1),
+            buffers: TileBuffers::new(gpu, 1, (1, 1)),
             generation: 0,
             bind_group: None,
             tiles: (0, 0),
@@ -146,16 +171,15 @@ impl ResolveTiles {
         }
     }
 
-    /// Plans this frame: the batches' id ranges (`first..end`, increasing), a target of `size`
-    /// whose visibility buffer is `visibility` (`target` its id), uploading what changed.
+    /// Plans this frame: the batches' id ranges (`first..end`, increasing) over `targets`,
+    /// uploading what changed.
     pub(crate) fn prepare(
         &mut self,
         gpu: &GpuContext,
-        visibility: &wgpu::Buffer,
-        target: u64,
-        size: (u32, u32),
+        targets: &ResolveTargets<'_>,
         ranges: &[[u32; 2]],
     ) {
+        let size = targets.size;
         self.tiles = shaders::deferred_tiles(size);
         let tile_count = u64::from(self.tiles.0) * u64::from(self.tiles.1);
         self.batch_count = ranges.len() as u32;
@@ -163,7 +187,12 @@ impl ResolveTiles {
             return;
         }
         if self.pipelines.is_none() {
-            let module = DEFERRED_CLASSIFY_SHADER.create_module(&gpu.device);
+            let target = shaders::ShaderTarget::of_device(&gpu.device, self.scene_format);
+            let module = shaders::create_module(
+                &gpu.device,
+                DEFERRED_CLASSIFY_SHADER.name,
+                DEFERRED_CLASSIFY_SHADER.source_for(&target),
+            );
             let pipeline = |entry: &str| {
                 gpu.device
                     .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -178,12 +207,17 @@ impl ResolveTiles {
             self.pipelines = Some([
                 pipeline("cs_clear_counts"),
                 pipeline("cs_classify"),
-                pipeline("cs_dispatch_args"),
+                pipeline("cs_join_rows"),
+                pipeline("cs_copy_rows"),
             ]);
         }
         let batches = ranges.len() as u64;
-        if batches > self.buffers.batches || tile_count != self.buffers.tiles {
-            self.buffers = TileBuffers::new(gpu, batches.next_power_of_two(), tile_count);
+        let rows = u64::from(self.tiles.1);
+        if batches > self.buffers.batches
+            || tile_count != self.buffers.tiles
+            || rows != self.buffers.rows
+        {
+            self.buffers = TileBuffers::new(gpu, batches.next_power_of_two(), (tile_count, rows));
             self.generation += 1;
             self.uploaded = None;
         }
@@ -193,8 +227,9 @@ impl ResolveTiles {
             tiles_across: self.tiles.0,
             tile_count: tile_count as u32,
             batch_count: self.batch_count,
-            _padding_a: 0,
-            _padding_b: [0; 2],
+            tiles_down: self.tiles.1,
+            _padding: [0; 2],
+            background: targets.background,
         };
         if self
             .uploaded
@@ -205,7 +240,7 @@ impl ResolveTiles {
             gpu.write_buffer(&self.buffers.batch_ids, 0, bytemuck::cast_slice(ranges));
             self.uploaded = Some((params, ranges.to_vec()));
         }
-        let bound = (target, self.generation);
+        let bound = (targets.target, self.generation);
         if self.bind_group.as_ref().map(|(key, _)| *key) != Some(bound) {
             let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
             let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -213,21 +248,25 @@ impl ResolveTiles {
                 layout: &self.layout,
                 entries: &[
                     entry(0, self.params.as_entire_binding()),
-                    entry(1, visibility.as_entire_binding()),
+                    entry(1, targets.visibility.as_entire_binding()),
                     entry(2, self.buffers.batch_ids.as_entire_binding()),
                     entry(3, self.buffers.tile_counts.as_entire_binding()),
                     entry(4, self.buffers.batch_tiles.as_entire_binding()),
                     entry(5, self.buffers.dispatch_args.as_entire_binding()),
+                    entry(6, self.buffers.row_counts.as_entire_binding()),
+                    entry(7, self.buffers.row_tiles.as_entire_binding()),
+                    entry(8, wgpu::BindingResource::TextureView(targets.scene)),
                 ],
             });
             self.bind_group = Some((bound, bind_group));
         }
     }
 
-    /// Records the classification and the indirect arguments into `pass` (before the batches'
-    /// dispatches; each dispatch of a compute pass sees the writes of the ones before).
+    /// Records the classification, the joined lists and the indirect arguments into `pass`
+    /// (before the batches' dispatches; each dispatch of a compute pass sees the writes of the
+    /// ones before).
     pub(crate) fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
-        let (Some((_, bind_group)), Some([clear_counts, classify, dispatch_args])) =
+        let (Some((_, bind_group)), Some([clear_counts, classify, join_rows, copy_rows])) =
             (&self.bind_group, &self.pipelines)
         else {
             return;
@@ -235,21 +274,28 @@ impl ResolveTiles {
         if self.batch_count == 0 {
             return;
         }
+        let (across, down) = self.tiles;
         pass.set_bind_group(0, bind_group, &[]);
         pass.set_pipeline(clear_counts);
-        pass.dispatch_workgroups(self.batch_count.div_ceil(64), 1, 1);
+        pass.dispatch_workgroups((self.batch_count * down).div_ceil(64), 1, 1);
         pass.set_pipeline(classify);
-        pass.dispatch_workgroups(self.tiles.0, self.tiles.1, 1);
-        pass.set_pipeline(dispatch_args);
-        pass.dispatch_workgroups(self.batch_count.div_ceil(64), 1, 1);
+        pass.dispatch_workgroups(across, down, 1);
+        pass.set_pipeline(join_rows);
+        pass.dispatch_workgroups(self.batch_count, 1, 1);
+        pass.set_pipeline(copy_rows);
+        pass.dispatch_workgroups(down, self.batch_count, 1);
     }
 
     /// Whether the tile lists of `batches` batches over a target of `size` fit the device's
-    /// buffer limits (one list of every tile per batch: 518 KB each at 4K).
+    /// buffer limits (two lists of every tile per batch, by row and joined: 518 KB each at 4K)
+    /// and its dispatch limits.
     pub(crate) fn fits(gpu: &GpuContext, batches: usize, size: (u32, u32)) -> bool {
         let (across, down) = shaders::deferred_tiles(size);
         let tiles = u64::from(across) * u64::from(down);
+        let most = u64::from(gpu.device.limits().max_compute_workgroups_per_dimension);
         gpu.storage_buffer_fits((batches as u64).next_power_of_two() * tiles * 4)
+            && (batches as u64) * u64::from(down) <= most * 64
+            && batches as u64 <= most
     }
 
     /// Tiles along the target's width.

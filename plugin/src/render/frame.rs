@@ -25,6 +25,7 @@ pub fn prepare_frame(_: &mut hecs::World, resources: &mut Resources) -> Result<(
         let target = resources.require::<RenderTarget>()?;
         renderer.choose_path(gpu, target, render_path::deferred_blocker(resources));
         renderer.visibility_ids.reset();
+        renderer.resolves_write_background = false;
         if let (true, Some(background), Some(visibility)) = (
             renderer.deferred,
             &mut renderer.background,
@@ -279,8 +280,9 @@ pub(super) struct FramePlan {
     pub settled_depth: SettledDepth,
     /// The deferred compute resolve runs.
     pub resolve: bool,
-    /// The resolve also writes the background.
-    pub background_in_compute: bool,
+    /// The deferred background pass writes the background (where the opaque pass does not
+    /// run): none where a material's resolve writes it (`Renderer::resolves_write_background`).
+    pub background_pass: bool,
     /// The resolve has candidates to settle: the candidate pass runs before it.
     pub candidates: bool,
     /// The polygon pass finds the visibility of the draws listed for it, which the visibility
@@ -329,6 +331,7 @@ impl FramePlan {
             && !(renderer.polygons.is_empty() && renderer.candidate_polygons.is_empty());
         let visibility_raster =
             !polygons || has(DrawPhase::Prepass) || !renderer.prepass_order.all_polygons();
+        let background_pass = background_in_compute && !renderer.resolves_write_background;
         let settled_depth = match (candidates, transparent || nodes_read_depth) {
             (true, true) => SettledDepth::DepthPass,
             (_, false) if (candidates || polygons) && nodes_sample_depth => SettledDepth::Image,
@@ -342,7 +345,7 @@ impl FramePlan {
             keep_depth: transparent || nodes_read_depth || nodes_sample_depth,
             settled_depth,
             resolve,
-            background_in_compute,
+            background_pass,
             candidates,
             polygons,
             visibility_raster,
@@ -358,6 +361,7 @@ impl FramePlan {
         renderer.settled_depth = self.settled_depth;
         renderer.ran_polygon_pass = self.polygons;
         renderer.ran_depth_prepass = self.prepass && self.visibility_raster;
+        renderer.ran_background_pass = self.background_pass;
         let gpu = resources.require::<GpuContext>()?;
         if let (SettledDepth::Image, Some(visibility)) =
             (self.settled_depth, &mut renderer.visibility)

@@ -177,7 +177,7 @@ impl<'a> FramePasses<'a> {
         if self.plan.polygons {
             self.renderer.candidate_polygons.record(&mut pass);
         }
-        if self.plan.background_in_compute
+        if self.plan.background_pass
             && let Some(background) = &self.renderer.background
         {
             background.record(&mut pass);
@@ -261,7 +261,7 @@ impl<'a> FramePasses<'a> {
 
 /// What the scene is cleared to: the clear colour as set, marked display-referred
 /// (display_referred.rs), so neither exposure nor tonemapping changes the background.
-pub(super) fn clear_value(clear: crate::Color) -> [f32; 4] {
+pub(crate) fn clear_value(clear: crate::Color) -> [f32; 4] {
     [
         clear.r,
         clear.g,

@@ -53,6 +53,7 @@ pub use error::RenderError;
 pub(crate) use extract::{ExtractedFrame, extract_frame};
 pub use frame::{prepare_frame, render_frame};
 pub use frame_nodes::{FrameNode, FrameNodes, FrameView, NodeOrderError, NodePlace};
+pub(crate) use frame_passes::clear_value;
 pub(crate) use frame_uniform::FrameUniformBuffer;
 pub use full_screen_pass::{EFFECT_FILES, FullScreenPass};
 pub use gpu_types::MeshTransform;

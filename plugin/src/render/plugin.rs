@@ -196,6 +196,8 @@ impl Plugin for RenderPlugin {
             polygon_pass: self.polygon_pass,
             ran_polygon_pass: false,
             ran_depth_prepass: false,
+            resolves_write_background: false,
+            ran_background_pass: false,
             candidate_order: SortedDraws::new(DrawPhase::Candidates),
             transparent: SortedDraws::new(DrawPhase::Transparent),
             first_frame: true,

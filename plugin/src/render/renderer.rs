@@ -62,6 +62,12 @@ pub struct Renderer {
     pub(crate) ran_polygon_pass: bool,
     /// Whether the last rendered frame's depth prepass (the visibility pass) rasterized.
     pub(crate) ran_depth_prepass: bool,
+    /// Whether a material's resolve writes this frame's background (its tile classification,
+    /// or a dispatch over the whole target, where neither key holds a draw; a settling resolve
+    /// where its candidate loses over no draw), as the materials prepare.
+    pub(crate) resolves_write_background: bool,
+    /// Whether the last rendered frame ran the deferred background pass.
+    pub(crate) ran_background_pass: bool,
     /// This frame's candidate draws of every material, drawn nearest first.
     pub(crate) candidate_order: SortedDraws,
     /// This frame's blended draws of every material, drawn farthest first.
@@ -143,6 +149,12 @@ impl Renderer {
     /// depth: nothing after reads it on such a frame).
     pub fn ran_depth_prepass(&self) -> bool {
         self.ran_depth_prepass
+    }
+
+    /// Whether the last rendered frame wrote the deferred background (the clear colour where no
+    /// draw shows) in a compute pass of its own: none where a material's resolve wrote it.
+    pub fn ran_background_pass(&self) -> bool {
+        self.ran_background_pass
     }
 
     /// The scene's depth as shaders read it this frame ([`super::FrameView::scene_depth`]).
