@@ -187,29 +187,7 @@ impl ResolveTiles {
             return;
         }
         if self.pipelines.is_none() {
-            let target = shaders::ShaderTarget::of_device(&gpu.device, self.scene_format);
-            let module = shaders::create_module(
-                &gpu.device,
-                DEFERRED_CLASSIFY_SHADER.name,
-                DEFERRED_CLASSIFY_SHADER.source_for(&target),
-            );
-            let pipeline = |entry: &str| {
-                gpu.device
-                    .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                        label: Some(entry),
-                        layout: Some(&self.pipeline_layout),
-                        module: &module,
-                        entry_point: Some(entry),
-                        compilation_options: Default::default(),
-                        cache: None,
-                    })
-            };
-            self.pipelines = Some([
-                pipeline("cs_clear_counts"),
-                pipeline("cs_classify"),
-                pipeline("cs_join_rows"),
-                pipeline("cs_copy_rows"),
-            ]);
+            self.pipelines = Some(self.compile(gpu));
         }
         let batches = ranges.len() as u64;
         let rows = u64::from(self.tiles.1);
@@ -260,6 +238,33 @@ impl ResolveTiles {
             });
             self.bind_group = Some((bound, bind_group));
         }
+    }
+
+    /// The classification's pipelines, for a scene target of the format it was made for.
+    fn compile(&self, gpu: &GpuContext) -> [wgpu::ComputePipeline; 4] {
+        let target = shaders::ShaderTarget::of_device(&gpu.device, self.scene_format);
+        let module = shaders::create_module(
+            &gpu.device,
+            DEFERRED_CLASSIFY_SHADER.name,
+            DEFERRED_CLASSIFY_SHADER.source_for(&target),
+        );
+        let pipeline = |entry: &str| {
+            gpu.device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: Some(&self.pipeline_layout),
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    cache: None,
+                })
+        };
+        [
+            pipeline("cs_clear_counts"),
+            pipeline("cs_classify"),
+            pipeline("cs_join_rows"),
+            pipeline("cs_copy_rows"),
+        ]
     }
 
     /// Records the classification, the joined lists and the indirect arguments into `pass`

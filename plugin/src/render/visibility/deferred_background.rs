@@ -1,6 +1,8 @@
 //! The deferred path's background pass (deferred_background.wgsl): the clear colour where the
 //! visibility buffer holds no draw, from compute, on deferred frames whose opaque phase has
-//! nothing to draw (it then skips that phase's render pass).
+//! nothing to draw (it then skips that phase's render pass) and whose materials' resolves do
+//! not write it themselves (their tile classification or whole-target dispatch reads every key
+//! anyway).
 
 use super::VisibilityBuffer;
 use crate::gpu::GpuContext;

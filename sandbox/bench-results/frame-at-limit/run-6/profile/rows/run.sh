@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Device call: c6ebfb5 (mid) against the classification by rows and the background from the resolve (new), changed rows.
+for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig >/dev/null 2>&1
+export WGPU_BACKEND=vulkan VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+mkdir -p /tmp/b /tmp/r/y && for b in mid new; do gunzip -c .devbin/sandbox-$b.gz > /tmp/b/$b; chmod +x /tmp/b/$b; done
+nvidia-smi --query-gpu=name,driver_version --format=csv > /tmp/r/gpu.txt
+COB="--height assets/bench_cobblestone/cobblestone_height.png --normal assets/bench_cobblestone/cobblestone_normal.png --albedo assets/bench_cobblestone/cobblestone_albedo.png --height-scale 0.05 --tiling 4 --min-samples 8 --max-samples 50 --lod-threshold 4 --shadow-softening 0.58 --shadows soft --projection ortho --light-angle 45"
+K4="--size 3840x2160 --view-angle 45"
+run() { local name=$1 b=$2; shift 2; timeout 60 /tmp/b/$b bench "$@" --out /tmp/scratch/$b-$name > /tmp/r/y/$b-$name.log 2>&1; echo "$b $name rc $?" >> /tmp/r/y/summary.txt; }
+for b in mid new mid new; do
+  run overdraw $b --path deferred --only overdraw
+  run normal-45 $b $COB $K4 --method normal --only phases --path deferred
+  run phases-45 $b $COB $K4 --only phases --only seed-port --path deferred
+  run depth-offset-45 $b $COB $K4 --depth-offset --only phases --path deferred
+  run scene-shadows $b $K4 --only scene-shadows --path deferred
+  cp -r /tmp/r/y /tmp/r/round-$b-$(ls /tmp/r | wc -l); rm -rf /tmp/r/y; mkdir -p /tmp/r/y
+done
+tar czf $OUT/r9.tgz -C /tmp r; for d in /tmp/r/round-*; do echo "== $d"; grep -h "3840x2160" $d/*overdraw*.log | grep deferred | awk '{print $9, $16, $17, $18, $19, $20, $21, $22}' | head -6; grep -h "deferred " $d/*45*.log | grep -v overdraw | awk '{print $2, $9, $16, $17, $18}' | head -12; done
