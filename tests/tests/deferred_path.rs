@@ -503,7 +503,7 @@ fn the_resolve_writes_the_background_where_no_draw_shows() {
             let beside = Transform::from_xyz(0.3, 0.1, 0.2);
             app.world.spawn((mesh, material, beside));
         }
-        let mut clear_to = |app: &mut pom::App, color: Color| {
+        let clear_to = |app: &mut pom::App, color: Color| {
             for camera in app.world.query_mut::<&mut Camera>() {
                 camera.clear_color = color;
             }
