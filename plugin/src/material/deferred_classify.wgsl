@@ -119,7 +119,7 @@ const JOIN_LANES: u32 = 64u;
 // Per lane, the tiles of its run of rows, then (after the scan) of the runs before it.
 var<workgroup> run_tiles: array<u32, JOIN_LANES>;
 
-// The rows of batch `batch` that lane `lane` of cs_join_rows sums: first..end.
+// The rows lane `lane` of cs_join_rows sums: first..end.
 fn lane_rows(lane: u32) -> vec2<u32> {
     let run = (params.tiles_down + JOIN_LANES - 1u) / JOIN_LANES;
     return vec2<u32>(min(lane * run, params.tiles_down), min((lane + 1u) * run, params.tiles_down));
