@@ -127,25 +127,20 @@ fn pixel_ray(pixel: vec2<f32>) -> Ray {
     return ray_through_pixel(resolve_batch.inverse_view_projection, resolve_target_size(), pixel, frame.camera_position.xyz, frame.view_direction);
 }
 
-// How the view ray changes from one pixel to the next across (`axis` 0) or down (1): the
-// unprojection is affine in the framebuffer at a fixed depth for perspective and orthographic
-// cameras alike (the inverse's w does not depend on the pixel), so a ray through a quad
-// neighbour is the pixel's own ray plus this step, with no matrix product of its own.
-fn pixel_ray_step(axis: u32) -> Ray {
+// The view ray through the framebuffer position `offset` pixels from `ray`'s: the unprojection
+// is affine in the framebuffer at a fixed depth for perspective and orthographic cameras alike
+// (the inverse's w does not depend on the pixel), so a quad neighbour's ray is the pixel's own
+// moved by a step, with no matrix product of its own.
+fn offset_ray(ray: Ray, offset: vec2<f32>) -> Ray {
     let inverse = resolve_batch.inverse_view_projection;
-    let ndc_step = select(vec2<f32>(0.0, -2.0 / resolve_batch.target_height),
-        vec2<f32>(2.0 / resolve_batch.target_width, 0.0), axis == 0u);
-    let along = inverse[0].xyz * ndc_step.x + inverse[1].xyz * ndc_step.y;
+    let ndc = offset * vec2<f32>(2.0 / resolve_batch.target_width, -2.0 / resolve_batch.target_height);
+    let along = inverse[0].xyz * ndc.x + inverse[1].xyz * ndc.y;
     // As `ray_through_pixel`: from the near plane along the view (orthographic), or from the
     // eye through depth ½ (perspective).
-    let orthographic = frame.view_direction.w > 0.5;
-    return Ray(select(vec3<f32>(0.0), along / inverse[3].w, orthographic),
-        select(along / (0.5 * inverse[2].w + inverse[3].w), vec3<f32>(0.0), orthographic));
-}
-
-// `ray` moved `steps` pixels along `step` (`pixel_ray_step`).
-fn stepped_ray(ray: Ray, step: Ray, steps: f32) -> Ray {
-    return Ray(ray.origin + steps * step.origin, ray.direction + steps * step.direction);
+    if frame.view_direction.w > 0.5 {
+        return Ray(ray.origin + along / inverse[3].w, ray.direction);
+    }
+    return Ray(ray.origin, ray.direction + along / (0.5 * inverse[2].w + inverse[3].w));
 }
 
 fn resolve_target_size() -> vec2<f32> {
@@ -210,8 +205,8 @@ fn resolve_pixel(item: ResolveItem) -> ResolvedPixel {
     // The fragment stage differences a 2 × 2 quad's pixels: the neighbour across is to the
     // right in the quad's left column and to the left in its right one (likewise down).
     let step = 1.0 - 2.0 * vec2<f32>(item.pixel % vec2<u32>(2u));
-    let across = interpolate_vertex(t, ray_barycentrics(stepped_ray(ray, pixel_ray_step(0u), step.x), p0, p1, p2));
-    let down = interpolate_vertex(t, ray_barycentrics(stepped_ray(ray, pixel_ray_step(1u), step.y), p0, p1, p2));
+    let across = interpolate_vertex(t, ray_barycentrics(offset_ray(ray, vec2<f32>(step.x, 0.0)), p0, p1, p2));
+    let down = interpolate_vertex(t, ray_barycentrics(offset_ray(ray, vec2<f32>(0.0, step.y)), p0, p1, p2));
     resolved.footprint = PixelFootprint((across.uv - resolved.vertex.uv) * step.x, (down.uv - resolved.vertex.uv) * step.y,
         (across.world_position - resolved.vertex.world_position) * step.x,
         (down.world_position - resolved.vertex.world_position) * step.y,

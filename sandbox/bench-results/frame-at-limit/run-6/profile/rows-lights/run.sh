@@ -1,13 +1,6 @@
 #!/usr/bin/env bash
 # Device call: c6ebfb5 (mid) against new (rows and background as in 59d5ac4, its neighbour rays unprojected, classification workgroups of 2x2 tiles, block-classify.diff: not kept); light-list variants on prof (as in footprint/run.sh).
-# The Vulkan loader as in sandbox/BENCHMARKS.md, "How to run"; B: a folder holding the release
-# builds this call names (B/old, B/new, ...), built from the commits the header names.
-B=${B:?a folder holding the release builds}
-mkdir -p /tmp/r/y
-export WGPU_BACKEND=vulkan VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-nvidia-smi --query-gpu=name,driver_version --format=csv > /tmp/r/gpu.txt
-COB="--height assets/bench_cobblestone/cobblestone_height.png --normal assets/bench_cobblestone/cobblestone_normal.png --albedo assets/bench_cobblestone/cobblestone_albedo.png --height-scale 0.05 --tiling 4 --min-samples 8 --max-samples 50 --lod-threshold 4 --shadow-softening 0.58 --shadows soft --projection ortho --light-angle 45"
-K4="--size 3840x2160 --view-angle 45"
+. "$(dirname "$0")/../setup.sh"
 run() { local name=$1 b=$2; shift 2; timeout 60 env POM_PROFILE_WGSL="$EDIT" $B/$b bench "$@" --out /tmp/scratch/$b-$name > /tmp/r/y/$b-$name.log 2>&1; echo "$b $name rc $?" >> /tmp/r/y/summary.txt; }
 EDIT=""
 for b in mid new mid new; do
