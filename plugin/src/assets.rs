@@ -238,6 +238,12 @@ impl<T> Assets<T> {
         self.entry(asset.asset_id()).map(|entry| entry.version)
     }
 
+    /// The asset and its [`version`](Assets::version), if it still exists, in one lookup.
+    pub fn get_with_version(&self, asset: impl AssetRef<T>) -> Option<(&T, u64)> {
+        self.entry(asset.asset_id())
+            .map(|entry| (&entry.value, entry.version))
+    }
+
     /// Whether the asset still exists.
     pub fn contains(&self, asset: impl AssetRef<T>) -> bool {
         self.entry(asset.asset_id()).is_some()

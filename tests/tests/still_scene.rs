@@ -1,14 +1,15 @@
 //! A scene where nothing moves costs nothing again, on both paths: it uploads nothing, frame
 //! after frame (every buffer and texture write of the library goes through
 //! `GpuContext::write_buffer` and `write_texture`, which count their bytes; one moving entity
-//! uploads its own transform only), and its shadow maps are drawn once and kept.
+//! uploads its own transform only), and its shadow maps are drawn once and kept. Entities that
+//! share one material by handle draw and upload as entities with copies of it.
 
 use pom::glam::{Quat, Vec3};
 use pom::render::shadows::ShadowMapStats;
 use pom::render::{MeshTransform, RenderPath};
 use pom::{
-    App, Assets, Camera, DirectionalLight, EnvironmentLight, GpuContext, HeightField, Image,
-    LightShadows, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
+    App, Assets, Camera, DirectionalLight, EnvironmentLight, GpuContext, Handle, HeightField,
+    Image, LightShadows, LitMaterial, Mesh, ParallaxOcclusionMaterial, PointLight, PomPlugin,
     RenderPlugin, SpotLight, Transform,
 };
 use pom_tests::{render_and_capture, run_frames, set_path};
@@ -96,6 +97,64 @@ fn a_still_scene_uploads_nothing_and_a_moving_entity_its_own_transform() {
             "{path:?}: the turned plane's transform, and nothing else"
         );
         assert_eq!(uploaded_over(&mut app, 3), 0, "{path:?}: still again");
+    }
+}
+
+/// Gives the street's planes one shared material in place of their copies of it.
+fn share_plane_materials(app: &mut App) -> Handle<ParallaxOcclusionMaterial> {
+    let planes: Vec<_> = app
+        .world
+        .query::<(pom::hecs::Entity, &ParallaxOcclusionMaterial)>()
+        .iter()
+        .map(|(entity, material)| (entity, material.clone()))
+        .collect();
+    let handle = app
+        .resources
+        .get_mut::<Assets<ParallaxOcclusionMaterial>>()
+        .unwrap()
+        .add(planes[0].1.clone());
+    for (entity, _) in planes {
+        app.world
+            .remove_one::<ParallaxOcclusionMaterial>(entity)
+            .unwrap();
+        app.world.insert_one(entity, handle.clone()).unwrap();
+    }
+    handle
+}
+
+#[test]
+fn planes_sharing_one_material_draw_and_upload_as_planes_with_copies_of_it() {
+    for path in [RenderPath::Forward, RenderPath::Deferred] {
+        let (mut copies, ..) = street(path);
+        let (mut sharing, ..) = street(path);
+        let shared = share_plane_materials(&mut sharing);
+        let first = render_and_capture(&mut copies).unwrap();
+        assert!(
+            first == render_and_capture(&mut sharing).unwrap(),
+            "{path:?}: the image"
+        );
+        assert_eq!(uploaded_over(&mut sharing, 3), 0, "{path:?}: nothing moved");
+
+        for material in copies.world.query_mut::<&mut ParallaxOcclusionMaterial>() {
+            material.height_scale = 0.12;
+        }
+        sharing
+            .resources
+            .get_mut::<Assets<ParallaxOcclusionMaterial>>()
+            .unwrap()
+            .get_mut(&shared)
+            .unwrap()
+            .height_scale = 0.12;
+        let changed = uploaded_over(&mut copies, 1);
+        assert!(changed > 0, "{path:?}: the planes' uniforms");
+        assert_eq!(uploaded_over(&mut sharing, 1), changed, "{path:?}");
+        let second = render_and_capture(&mut copies).unwrap();
+        assert!(second != first, "{path:?}: the change shows");
+        assert!(
+            second == render_and_capture(&mut sharing).unwrap(),
+            "{path:?}: the image after the change"
+        );
+        assert_eq!(uploaded_over(&mut sharing, 3), 0, "{path:?}: still again");
     }
 }
 

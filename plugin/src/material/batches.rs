@@ -29,18 +29,25 @@ use crate::render::shaders::ComposedShader;
 use crate::render::{FrameUniformBuffer, MeshTransform, VisibilityIds};
 use crate::{AssetId, Assets, Image, Mesh};
 
-/// One entity's draw as the Extract stage copied it.
+/// One entity's draw as the Extract stage copied it, but for its material (kept apart, in
+/// [`ExtractedMaterials::materials`]: an unchanged draw is told by these fields, and a frame of
+/// draws that hold a shared material then reads no copy of it).
 #[derive(Clone, Debug)]
 pub(crate) struct ExtractedDraw<M> {
+    pub(crate) model: Mat4,
     /// The entity drawn: TAA follows its motion from frame to frame.
     pub(crate) entity: hecs::Entity,
     pub(crate) mesh: AssetId<Mesh>,
-    pub(crate) model: Mat4,
-    pub(crate) material: M,
+    /// The shared material the entity holds a handle to, and the version of it copied; `None`
+    /// for a material of the entity's own.
+    pub(crate) shared: Option<(AssetId<M>, u64)>,
     /// Drawn into shadow maps (no [`crate::NotShadowCaster`]).
     pub(crate) casts_shadows: bool,
     /// Scene shadows fall on it (no [`crate::NotShadowReceiver`]).
     pub(crate) receives_shadows: bool,
+    /// A shadow caster whose material reads the frame's noise
+    /// ([`Material::casts_with_frame_noise`]).
+    pub(crate) casts_with_frame_noise: bool,
 }
 
 /// Draws sharing pipeline, textures and mesh, adjacent in the per-draw buffers.

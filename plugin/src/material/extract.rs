@@ -1,6 +1,7 @@
 //! The Extract stage of a material: each drawable entity's mesh, transform and material copied
 //! into [`ExtractedMaterials`], and a material's problems logged once per change
-//! ([`MaterialWarnings`]).
+//! ([`MaterialWarnings`]). An entity's material is its own component `M`, or a `Handle<M>` to
+//! one shared in [`Assets<M>`], whose version tells whether it changed without reading it.
 
 use std::collections::HashMap;
 use std::marker::PhantomData;
@@ -10,12 +11,16 @@ use hecs::{Entity, World};
 use super::Material;
 use super::batches::ExtractedDraw;
 use super::registry::MaterialRegistry;
-use crate::{GlobalTransform, Handle, Mesh, NotShadowCaster, NotShadowReceiver, Resources};
+use crate::{
+    AssetId, Assets, GlobalTransform, Handle, Mesh, NotShadowCaster, NotShadowReceiver, Resources,
+};
 
 /// This frame's draws of `M`, as extracted, and which of them changed since the last frame.
 /// A resource.
 pub(crate) struct ExtractedMaterials<M> {
     pub(crate) draws: Vec<ExtractedDraw<M>>,
+    /// Each draw's material, in the draws' order.
+    pub(crate) materials: Vec<M>,
     /// The draws whose mesh, transform, shadow roles or material changed this frame, in order;
     /// meaningful where `same_entities`.
     pub(crate) changed: Vec<usize>,
@@ -30,19 +35,20 @@ pub(crate) struct ExtractedMaterials<M> {
     pub(crate) casters_read_frame_noise: bool,
 }
 
-/// The problems last logged for each entity whose material of type `M` is being clamped, so a
-/// bad value is logged once per change, not every frame. Problems are compared as text: a NaN
+/// The problems last logged for each entity whose material of type `M` is being clamped (or
+/// whose handle finds no shared material), so a bad value is logged once per change, not every
+/// frame. Problems are compared as text: a NaN
 /// never equals itself, a material holding one would be "changed" every frame. A resource.
 #[derive(Debug)]
 pub struct MaterialWarnings<M>(HashMap<Entity, Vec<String>>, PhantomData<fn() -> M>);
 
 impl<M> MaterialWarnings<M> {
-    /// Number of entities whose material is being clamped.
+    /// Number of entities whose material is being clamped, or not found.
     pub fn len(&self) -> usize {
         self.0.len()
     }
 
-    /// Whether no material needed clamping.
+    /// Whether no material needed clamping, and every shared one was found.
     pub fn is_empty(&self) -> bool {
         self.0.is_empty()
     }
@@ -52,6 +58,14 @@ impl<M: Material> MaterialWarnings<M> {
     /// Logs the problems of `entity`'s `material` where they differ from those last logged.
     fn log_changed(&mut self, entity: Entity, material: &M) {
         let problems = material.problems();
+        self.log_problems(
+            entity,
+            problems.into_iter().map(|p| p + "; clamped").collect(),
+        );
+    }
+
+    /// Logs `entity`'s `problems` where they differ from those last logged.
+    fn log_problems(&mut self, entity: Entity, problems: Vec<String>) {
         if problems.is_empty() {
             // Valid again: forget it, so a later bad value is logged anew.
             if !self.0.is_empty() {
@@ -59,12 +73,31 @@ impl<M: Material> MaterialWarnings<M> {
             }
         } else if self.0.get(&entity) != Some(&problems) {
             for problem in &problems {
-                log::warn!("{} material of {entity:?}: {problem}; clamped", M::NAME);
+                log::warn!("{} material of {entity:?}: {problem}", M::NAME);
             }
             self.0.insert(entity, problems);
         }
     }
 }
+
+/// Where an entity's material is: its own component, or a shared one in [`Assets<M>`] at
+/// `version`.
+enum Source<'a, M> {
+    Own(&'a M),
+    Shared {
+        id: AssetId<M>,
+        version: u64,
+        material: &'a M,
+    },
+}
+
+// By hand: derived, they would ask `M: Copy`.
+impl<M> Clone for Source<'_, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for Source<'_, M> {}
 
 /// Whether a draw casts and receives scene shadows (its marker components).
 #[derive(Clone, Copy)]
@@ -82,6 +115,7 @@ pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut 
     if !resources.contains::<ExtractedMaterials<M>>() {
         resources.insert(ExtractedMaterials::<M> {
             draws: Vec::new(),
+            materials: Vec::new(),
             changed: Vec::new(),
             changed_materials: Vec::new(),
             same_entities: false,
@@ -116,7 +150,7 @@ fn extract_into<M: Material>(
         warnings,
         written: 0,
     };
-    writer.push_entities(world);
+    writer.push_entities(world, resources.get::<Assets<M>>());
     if fallback && let Some(registry) = resources.get::<MaterialRegistry>() {
         writer.push_meshes_without_material(world, registry);
     }
@@ -136,8 +170,9 @@ struct DrawWriter<'a, M> {
 }
 
 impl<M: Material> DrawWriter<'_, M> {
-    /// Writes every entity that has material `M`, a mesh and a transform.
-    fn push_entities(&mut self, world: &World) {
+    /// Writes every entity that has material `M` of its own, a mesh and a transform, then every
+    /// one that holds a handle to a shared `M` instead (one with both draws with its own).
+    fn push_entities(&mut self, world: &World, shared: Option<&Assets<M>>) {
         for (entity, mesh, transform, material, not_caster, not_receiver) in world
             .query::<(
                 Entity,
@@ -153,7 +188,51 @@ impl<M: Material> DrawWriter<'_, M> {
                 casts: not_caster.is_none(),
                 receives: not_receiver.is_none(),
             };
-            self.push(entity, true, mesh, transform, material, shadows);
+            self.push(
+                entity,
+                true,
+                mesh,
+                transform,
+                Source::Own(material),
+                shadows,
+            );
+        }
+        let Some(assets) = shared else {
+            return;
+        };
+        for (entity, mesh, transform, handle, not_caster, not_receiver) in world
+            .query::<(
+                Entity,
+                &Handle<Mesh>,
+                &GlobalTransform,
+                &Handle<M>,
+                Option<&NotShadowCaster>,
+                Option<&NotShadowReceiver>,
+            )>()
+            .without::<&M>()
+            .iter()
+        {
+            let Some((material, version)) = assets.get_with_version(handle) else {
+                self.warnings.log_problems(
+                    entity,
+                    vec![format!(
+                        "its handle {:?} is to no material in the app's Assets<{}>: not drawn",
+                        handle.id(),
+                        M::NAME
+                    )],
+                );
+                continue;
+            };
+            let shadows = ShadowRoles {
+                casts: not_caster.is_none(),
+                receives: not_receiver.is_none(),
+            };
+            let source = Source::Shared {
+                id: handle.id(),
+                version,
+                material,
+            };
+            self.push(entity, true, mesh, transform, source, shadows);
         }
     }
 
@@ -183,7 +262,14 @@ impl<M: Material> DrawWriter<'_, M> {
                     // SAFETY: `id` is one of `archetype`'s, borrowed from `world` for this loop,
                     // so it names a live entity of `world` (what hecs documents `ids` for).
                     let entity = unsafe { world.find_entity_from_id(*id) };
-                    self.push(entity, false, mesh, transform, &default, shadows);
+                    self.push(
+                        entity,
+                        false,
+                        mesh,
+                        transform,
+                        Source::Own(&default),
+                        shadows,
+                    );
                 }
             }
         }
@@ -197,22 +283,26 @@ impl<M: Material> DrawWriter<'_, M> {
         log_problems: bool,
         mesh: &Handle<Mesh>,
         transform: &GlobalTransform,
-        material: &M,
+        source: Source<'_, M>,
         shadows: ShadowRoles,
     ) {
-        self.extracted.casters_read_frame_noise |=
-            shadows.casts && material.casts_with_frame_noise();
         let model = transform.to_mat4();
         let slot = self.written;
         // Last frame's draw in this slot, where it is this one unchanged: nothing to write (its
-        // transform was finite then).
+        // transform was finite then). A shared material is told unchanged by its version.
         if let Some(draw) = self.extracted.draws.get(slot)
             && draw.entity == entity
             && draw.model == model
             && draw.mesh == mesh.id()
             && (draw.casts_shadows, draw.receives_shadows) == (shadows.casts, shadows.receives)
-            && draw.material == *material
+            && match source {
+                Source::Own(material) => {
+                    draw.shared.is_none() && self.extracted.materials[slot] == *material
+                }
+                Source::Shared { id, version, .. } => draw.shared == Some((id, version)),
+            }
         {
+            self.extracted.casters_read_frame_noise |= draw.casts_with_frame_noise;
             self.written += 1;
             return;
         }
@@ -224,6 +314,16 @@ impl<M: Material> DrawWriter<'_, M> {
             );
             return;
         }
+        let (material, shared) = match source {
+            Source::Own(material) => (material, None),
+            Source::Shared {
+                id,
+                version,
+                material,
+            } => (material, Some((id, version))),
+        };
+        let casts_with_frame_noise = shadows.casts && material.casts_with_frame_noise();
+        self.extracted.casters_read_frame_noise |= casts_with_frame_noise;
         self.written += 1;
         let Some(draw) = self.extracted.draws.get_mut(slot) else {
             if log_problems {
@@ -231,17 +331,20 @@ impl<M: Material> DrawWriter<'_, M> {
             }
             self.extracted.same_entities = false;
             self.extracted.draws.push(ExtractedDraw {
+                model,
                 entity,
                 mesh: mesh.id(),
-                model,
-                material: material.clone(),
+                shared,
                 casts_shadows: shadows.casts,
                 receives_shadows: shadows.receives,
+                casts_with_frame_noise,
             });
+            self.extracted.materials.push(material.clone());
             return;
         };
         let same_entity = draw.entity == entity;
-        let material_changed = draw.material != *material;
+        // A shared material accessed mutably but left as it was is not a new material.
+        let material_changed = self.extracted.materials[slot] != *material;
         // An entity's unchanged material had its problems looked at when it last changed.
         if log_problems && (material_changed || !same_entity) {
             self.warnings.log_changed(entity, material);
@@ -251,10 +354,12 @@ impl<M: Material> DrawWriter<'_, M> {
         draw.entity = entity;
         draw.mesh = mesh.id();
         draw.model = model;
+        draw.shared = shared;
         draw.casts_shadows = shadows.casts;
         draw.receives_shadows = shadows.receives;
+        draw.casts_with_frame_noise = casts_with_frame_noise;
         if material_changed {
-            draw.material = material.clone();
+            self.extracted.materials[slot] = material.clone();
             self.extracted.changed_materials.push(slot);
         }
     }
@@ -263,6 +368,149 @@ impl<M: Material> DrawWriter<'_, M> {
     fn finish(self, world: &World) {
         self.extracted.same_entities &= self.written == self.extracted.draws.len();
         self.extracted.draws.truncate(self.written);
+        self.extracted.materials.truncate(self.written);
         self.warnings.0.retain(|entity, _| world.contains(*entity));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Affine3A;
+
+    use super::*;
+    use crate::ParallaxOcclusionMaterial;
+
+    type Pom = ParallaxOcclusionMaterial;
+
+    /// A world of `own` entities with a material of their own and `shared` holding a handle to
+    /// one material in the resources' store; returns the store's handle.
+    fn scene(own: usize, shared: usize) -> (World, Resources, Handle<Pom>) {
+        let mut world = World::new();
+        let mut resources = Resources::default();
+        let mesh = resources
+            .get_or_default::<Assets<Mesh>>()
+            .add(Mesh::plane(1.0));
+        let handle = resources
+            .get_or_default::<Assets<Pom>>()
+            .add(Pom::default());
+        for index in 0..own + shared {
+            let place = GlobalTransform(Affine3A::from_translation(glam::Vec3::X * index as f32));
+            if index < own {
+                world.spawn((mesh.clone(), place, Pom::default()));
+            } else {
+                world.spawn((mesh.clone(), place, handle.clone()));
+            }
+        }
+        (world, resources, handle)
+    }
+
+    fn extract(world: &mut World, resources: &mut Resources) -> (Vec<usize>, Vec<usize>, bool) {
+        extract_materials::<Pom>(world, resources);
+        let extracted = resources.get::<ExtractedMaterials<Pom>>().unwrap();
+        (
+            extracted.changed.clone(),
+            extracted.changed_materials.clone(),
+            extracted.same_entities,
+        )
+    }
+
+    #[test]
+    fn a_shared_material_is_told_unchanged_by_its_version_and_changed_for_every_holder() {
+        let (mut world, mut resources, handle) = scene(2, 3);
+        let (_, _, same) = extract(&mut world, &mut resources);
+        assert!(!same, "the first frame's draws are new");
+        assert_eq!(extract(&mut world, &mut resources), (vec![], vec![], true));
+
+        resources
+            .get_mut::<Assets<Pom>>()
+            .unwrap()
+            .get_mut(&handle)
+            .unwrap()
+            .height_scale = 0.1;
+        let (changed, changed_materials, same) = extract(&mut world, &mut resources);
+        assert_eq!(
+            (changed, changed_materials, same),
+            (vec![2, 3, 4], vec![2, 3, 4], true)
+        );
+        let extracted = resources.get::<ExtractedMaterials<Pom>>().unwrap();
+        let scales: Vec<f32> = extracted.materials.iter().map(|m| m.height_scale).collect();
+        assert_eq!(scales, [0.05, 0.05, 0.1, 0.1, 0.1]);
+        assert_eq!(extract(&mut world, &mut resources), (vec![], vec![], true));
+
+        // Accessed mutably and left as it was: the new version is noted, the material is not new.
+        resources.get_mut::<Assets<Pom>>().unwrap().get_mut(&handle);
+        assert_eq!(
+            extract(&mut world, &mut resources),
+            (vec![2, 3, 4], vec![], true)
+        );
+        assert_eq!(extract(&mut world, &mut resources), (vec![], vec![], true));
+    }
+
+    #[test]
+    fn a_handle_swapped_for_another_changes_its_draw_alone() {
+        let (mut world, mut resources, _) = scene(0, 3);
+        extract(&mut world, &mut resources);
+        let other = resources.get_mut::<Assets<Pom>>().unwrap().add(Pom {
+            jitter_march: true,
+            ..Pom::default()
+        });
+        let entity = world.iter().nth(1).unwrap().entity();
+        world.insert_one(entity, other).unwrap();
+        let (changed, changed_materials, _) = extract(&mut world, &mut resources);
+        // The entity moved to another archetype: it is drawn last now, in another slot.
+        assert!(!changed.is_empty() && changed == changed_materials);
+        let extracted = resources.get::<ExtractedMaterials<Pom>>().unwrap();
+        let slot = extracted
+            .draws
+            .iter()
+            .position(|draw| draw.entity == entity)
+            .unwrap();
+        assert!(extracted.materials[slot].jitter_march);
+        assert!(extracted.draws[slot].casts_with_frame_noise);
+        assert!(extracted.casters_read_frame_noise);
+        assert_eq!(extract(&mut world, &mut resources), (vec![], vec![], true));
+        // Left alone, its draw still says its material reads the frame's noise.
+        assert!(
+            resources
+                .get::<ExtractedMaterials<Pom>>()
+                .unwrap()
+                .casters_read_frame_noise
+        );
+    }
+
+    #[test]
+    fn an_entity_with_its_own_material_and_a_handle_draws_once_with_its_own() {
+        let (mut world, mut resources, handle) = scene(1, 0);
+        let entity = world.iter().next().unwrap().entity();
+        world.insert_one(entity, handle).unwrap();
+        extract(&mut world, &mut resources);
+        let extracted = resources.get::<ExtractedMaterials<Pom>>().unwrap();
+        assert_eq!(extracted.draws.len(), 1);
+        assert_eq!(extracted.draws[0].shared, None);
+    }
+
+    #[test]
+    fn a_handle_to_no_material_in_the_store_is_not_drawn_and_warned_about_once() {
+        let (mut world, mut resources, _) = scene(1, 1);
+        // A handle of another store: no material of the app's has its id's generation.
+        let mut elsewhere = Assets::<Pom>::default();
+        elsewhere.add(Pom::default());
+        let stranger = elsewhere.add(Pom::default());
+        let mesh = resources
+            .get_mut::<Assets<Mesh>>()
+            .unwrap()
+            .add(Mesh::plane(1.0));
+        let lost = world.spawn((mesh, GlobalTransform(Affine3A::IDENTITY), stranger));
+        for _ in 0..3 {
+            extract(&mut world, &mut resources);
+            let extracted = resources.get::<ExtractedMaterials<Pom>>().unwrap();
+            assert_eq!(extracted.draws.len(), 2);
+            assert!(extracted.draws.iter().all(|draw| draw.entity != lost));
+            let warnings = resources.get::<MaterialWarnings<Pom>>().unwrap();
+            assert_eq!((warnings.len(), warnings.0.contains_key(&lost)), (1, true));
+        }
+        world.despawn(lost).unwrap();
+        extract(&mut world, &mut resources);
+        assert!(resources.get::<MaterialWarnings<Pom>>().unwrap().is_empty());
     }
 }

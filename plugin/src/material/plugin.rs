@@ -22,7 +22,10 @@ use crate::render::{
     DrawPhase, ExtractedFrame, RenderPhases, RenderTarget, Renderer, SortedDraws, VisibilityBuffer,
     VisiblePolygons, phase_bindings,
 };
-use crate::{App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage};
+use crate::{
+    App, AppError, Assets, BoxedError, GpuContext, Image, Mesh, Plugin, Resources, Stage,
+    free_unused_assets,
+};
 
 /// Extracts, prepares and draws every entity that has a material `M`, a `Handle<Mesh>` and a
 /// transform. Add it after [`crate::RenderPlugin`]; adding it twice is harmless.
@@ -111,7 +114,10 @@ impl<M: Material> Plugin for MaterialPlugin<M> {
         registry
             .entries
             .push(MaterialEntry::new::<M>(self.draws_meshes_without_material));
-        app.add_system(Stage::Extract, extract_materials::<M>)
+        // The store of materials shared by handle, freed like meshes and images.
+        app.resources.get_or_default::<Assets<M>>();
+        app.add_system(Stage::PostUpdate, free_unused_assets::<M>)
+            .add_system(Stage::Extract, extract_materials::<M>)
             .add_system(Stage::Prepare, prepare_materials::<M>);
         app.resources.get_or_default::<MeshLodCache>();
         let phases = app.resources.get_or_default::<RenderPhases>();

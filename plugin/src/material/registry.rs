@@ -24,7 +24,7 @@ pub(crate) struct MaterialEntry {
     /// visibility pass).
     #[cfg(feature = "dev-tools")]
     pub(crate) shader: ComposedShader,
-    /// Whether entities of an archetype have it.
+    /// Whether entities of an archetype have it, of their own or shared (a handle to one).
     has: fn(&hecs::Archetype) -> bool,
     /// Whether it also draws, with its default, meshes that have no registered material.
     pub(super) draws_meshes_without_material: bool,
@@ -42,7 +42,7 @@ impl MaterialEntry {
     pub(super) fn new<M: Material>(draws_meshes_without_material: bool) -> Self {
         Self {
             type_id: TypeId::of::<M>(),
-            has: |archetype| archetype.has::<M>(),
+            has: |archetype| archetype.has::<M>() || archetype.has::<crate::Handle<M>>(),
             draws_meshes_without_material,
             #[cfg(feature = "dev-tools")]
             shader: M::shader(),

@@ -115,6 +115,12 @@ pub type TriplanarMeshWarnings = MeshWarnings<TriplanarMapping>;
 #[derive(Debug, Default)]
 struct MeshesLookedAt(Option<u64>);
 
+/// A parallax draw as extracted, with its material.
+type DrawAndMaterial<'a> = (
+    &'a ExtractedDraw<ParallaxOcclusionMaterial>,
+    &'a ParallaxOcclusionMaterial,
+);
+
 /// The Extract stage's system that warns, once per entity and mesh, where a curved silhouette
 /// meets a mesh that gives it no curvature ([`curvature_problem`]), or triplanar mapping one
 /// without normals ([`triplanar_problem`]). It looks at the parallax draws the Extract stage
@@ -129,15 +135,15 @@ pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources
             return;
         };
         let looked_at = resources.get::<MeshesLookedAt>().and_then(|seen| seen.0);
-        let draws: Vec<&ExtractedDraw<ParallaxOcclusionMaterial>> =
+        let draws: Vec<DrawAndMaterial<'_>> =
             if extracted.same_entities && looked_at == Some(meshes.changes()) {
                 extracted
                     .changed
                     .iter()
-                    .map(|&index| &extracted.draws[index])
+                    .map(|&index| (&extracted.draws[index], &extracted.materials[index]))
                     .collect()
             } else {
-                extracted.draws.iter().collect()
+                extracted.draws.iter().zip(&extracted.materials).collect()
             };
         let curved = unsuitable_meshes::<CurvedSilhouette>(
             (world, resources, meshes),
@@ -175,16 +181,16 @@ pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources
 /// `problem` finds one in the mesh; `what` says what happens, `{named}` standing for the entity.
 fn unsuitable_meshes<Mode: Send + Sync + 'static>(
     (world, resources, meshes): (&World, &Resources, &Assets<Mesh>),
-    draws: &[&ExtractedDraw<ParallaxOcclusionMaterial>],
+    draws: &[DrawAndMaterial<'_>],
     applies: impl Fn(&ParallaxOcclusionMaterial) -> bool,
     problem: impl Fn(&Mesh) -> Option<String>,
     what: &str,
 ) -> Vec<(Entity, AssetId<Mesh>)> {
     let warned = resources.get::<MeshWarnings<Mode>>();
     let mut newly = Vec::new();
-    for draw in draws {
+    for (draw, material) in draws {
         let key = (draw.entity, draw.mesh);
-        if !applies(&draw.material) || warned.is_some_and(|warned| warned.warned.contains(&key)) {
+        if !applies(material) || warned.is_some_and(|warned| warned.warned.contains(&key)) {
             continue;
         }
         if let Some(problem) = meshes.get(draw.mesh).and_then(&problem) {

@@ -306,8 +306,9 @@ impl ParallaxOcclusionMaterial {
     }
 }
 
-/// The product's materials: draws every entity that has a [`ParallaxOcclusionMaterial`], a
-/// `Handle<Mesh>` and a transform, keeps dynamic height fields' normals up to date, and adds
+/// The product's materials: draws every entity that has a [`ParallaxOcclusionMaterial`] (its
+/// own, or a `Handle` to one shared in `Assets<ParallaxOcclusionMaterial>`), a `Handle<Mesh>` and
+/// a transform, keeps dynamic height fields' normals up to date, and adds
 /// [`crate::LitPlugin`] (which draws every other mesh) unless it is there. Add it after
 /// [`crate::RenderPlugin`] (or use [`crate::DefaultPlugins`]).
 #[derive(Clone, Copy, Debug, Default)]

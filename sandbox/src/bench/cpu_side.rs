@@ -4,7 +4,9 @@
 //! Render. A share of the entities turns every frame, so that
 //! Prepare has their transforms to upload (with none moving it uploads nothing after frame 1:
 //! the best case). Under TAA the same frames also follow each moving entity's model (its
-//! motion for the object motion pass), which the cases with `taa` measure.
+//! motion for the object motion pass), which the cases with `taa` measure. The entities hold
+//! copies of one material, or (the `shared` cases) handles to one material in the app's store,
+//! which the Extract stage tells unchanged by its version without reading it.
 
 use std::time::Instant;
 
@@ -30,6 +32,8 @@ pub struct CpuSide {
     pub moving_percent: u32,
     /// How they move.
     pub motion: Motion,
+    /// Whether each holds a copy of the material or a handle to one shared.
+    pub materials: Materials,
     /// The camera's anti-aliasing, `off` or `taa` (which follows each moving entity).
     pub anti_aliasing: &'static str,
     /// The path the frames ran, `forward` or `deferred`.
@@ -74,19 +78,71 @@ impl Motion {
     }
 }
 
+/// How the entities hold their material.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Materials {
+    /// Each a copy of its own (a component), compared with last frame's every frame.
+    Copies,
+    /// Each a handle to one material in `Assets<ParallaxOcclusionMaterial>`.
+    Shared,
+}
+
+impl Materials {
+    /// How the report says it.
+    pub fn words(self) -> &'static str {
+        match self {
+            Self::Copies => "a material each",
+            Self::Shared => "one shared material",
+        }
+    }
+}
+
+/// One measured case: the percentage of moving entities, the anti-aliasing, how they move and
+/// how they hold their material.
+#[derive(Clone, Copy, Debug)]
+pub struct Case {
+    /// The percentage of entities that move every frame.
+    pub moving_percent: u32,
+    /// The camera's anti-aliasing.
+    pub anti_aliasing: AntiAliasing,
+    /// How the moving ones move.
+    pub motion: Motion,
+    /// How each holds its material.
+    pub materials: Materials,
+}
+
+const fn case(
+    moving_percent: u32,
+    anti_aliasing: AntiAliasing,
+    motion: Motion,
+    materials: Materials,
+) -> Case {
+    Case {
+        moving_percent,
+        anti_aliasing,
+        motion,
+        materials,
+    }
+}
+
 /// Marks an entity that moves every frame, with where it was spawned.
 struct Moving(Vec3);
 
-/// The cases measured, as (percentage of moving entities, anti-aliasing, motion): none moving
-/// (the best case), a tenth (a game's usual share) and all, without anti-aliasing; then a tenth
-/// and all under TAA, which follows every moving entity's model; then a tenth walking.
-pub const CASES: [(u32, AntiAliasing, Motion); 6] = [
-    (0, AntiAliasing::Off, Motion::Turning),
-    (10, AntiAliasing::Off, Motion::Turning),
-    (100, AntiAliasing::Off, Motion::Turning),
-    (10, AntiAliasing::Taa, Motion::Turning),
-    (100, AntiAliasing::Taa, Motion::Turning),
-    (10, AntiAliasing::Off, Motion::Walking),
+/// The cases measured: none moving (the best case), a tenth (a game's usual share) and all,
+/// without anti-aliasing; then a tenth and all under TAA, which follows every moving entity's
+/// model; then a tenth walking; then none, a tenth, and a tenth under TAA with one shared
+/// material.
+pub const CASES: [Case; 9] = [
+    case(0, AntiAliasing::Off, Motion::Turning, Materials::Copies),
+    case(10, AntiAliasing::Off, Motion::Turning, Materials::Copies),
+    case(100, AntiAliasing::Off, Motion::Turning, Materials::Copies),
+    case(10, AntiAliasing::Taa, Motion::Turning, Materials::Copies),
+    case(100, AntiAliasing::Taa, Motion::Turning, Materials::Copies),
+    case(10, AntiAliasing::Off, Motion::Walking, Materials::Copies),
+    case(0, AntiAliasing::Off, Motion::Turning, Materials::Shared),
+    case(10, AntiAliasing::Off, Motion::Turning, Materials::Shared),
+    case(10, AntiAliasing::Taa, Motion::Turning, Materials::Shared),
 ];
 
 /// Turns every moving entity to a new angle about its vertical axis, or walks it along the
@@ -125,12 +181,17 @@ fn grid_place(index: usize, side: usize, jitter: bool) -> Vec3 {
     Vec3::new(x - side as f32 / 2.0, 0.0, z + offset - side as f32 / 2.0)
 }
 
-/// Spawns `entities` small planes in a grid under one camera with `anti_aliasing`,
-/// `moving_percent` of them turning every frame, and times `frames` frames after `warmup`
-/// ones, rendered on `path`.
+/// Spawns `entities` small planes in a grid under one camera with the case's anti-aliasing,
+/// its share of them moving every frame, and times `frames` frames after `warmup` ones,
+/// rendered on `path`.
 pub fn measure(
     entities: usize,
-    (moving_percent, anti_aliasing, motion): (u32, AntiAliasing, Motion),
+    Case {
+        moving_percent,
+        anti_aliasing,
+        motion,
+        materials,
+    }: Case,
     textures: &PreviewTextures,
     path: pom::RenderPath,
     warmup: usize,
@@ -164,13 +225,20 @@ pub fn measure(
     let material = textures
         .clone()
         .attach(images, ParallaxOcclusionMaterial::default());
+    let shared = app
+        .resources
+        .get_mut::<Assets<ParallaxOcclusionMaterial>>()
+        .context("the parallax plugin provides no material store")?
+        .add(material.clone());
     for index in 0..entities {
         let place = grid_place(index, side, motion == Motion::Walking);
-        let entity = app.world.spawn((
-            plane.clone(),
-            material.clone(),
-            Transform::from_translation(place),
-        ));
+        let entity = app
+            .world
+            .spawn((plane.clone(), Transform::from_translation(place)));
+        match materials {
+            Materials::Copies => app.world.insert_one(entity, material.clone())?,
+            Materials::Shared => app.world.insert_one(entity, shared.clone())?,
+        }
         // Spread over the grid: entity i moves when the share reaches past it in its hundred.
         if (index % 100) < moving_percent as usize {
             app.world.insert_one(entity, Moving(place))?;
@@ -213,6 +281,7 @@ pub fn measure(
         entities,
         moving_percent,
         motion,
+        materials,
         anti_aliasing: anti_aliasing.name(),
         path: path_name(deferred),
         transforms: spread(&stages[4])?,

@@ -202,11 +202,12 @@ impl Runner<'_> {
         if wanted(Measurement::CpuSide) {
             for case in cpu_side::CASES {
                 eprintln!(
-                    "timing the CPU side with {} entities, {} % {}, AA {}{on_path} ...",
+                    "timing the CPU side with {} entities, {} % {}, AA {}, {}{on_path} ...",
                     args.entities,
-                    case.0,
-                    case.2.word(),
-                    case.1.name()
+                    case.moving_percent,
+                    case.motion.word(),
+                    case.anti_aliasing.name(),
+                    case.materials.words()
                 );
                 self.cpu_side.push(cpu_side::measure(
                     args.entities,

@@ -283,12 +283,13 @@ impl BenchReport {
         for cpu in &self.cpu_side {
             let _ = writeln!(
                 out,
-                "\nCPU, {} parallax entities ({} % {}), AA {}, {}, median ms per frame: \
+                "\nCPU, {} parallax entities ({} % {}, {}), AA {}, {}, median ms per frame: \
                  transforms {:.3}, extract {:.3}, prepare {:.3}, render (record + submit) {:.3}, \
                  total {:.3}",
                 cpu.entities,
                 cpu.moving_percent,
                 cpu.motion.word(),
+                cpu.materials.words(),
                 cpu.anti_aliasing,
                 cpu.path,
                 cpu.transforms.median_ms,

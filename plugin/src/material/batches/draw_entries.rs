@@ -36,14 +36,14 @@ impl<M: Material> MaterialBatches<M> {
         let mut bounds = None;
         let mut last_textures = None;
         let mut facts = [None; MAX_MATERIAL_TEXTURES];
-        for (index, draw) in draws.iter().enumerate() {
+        for (index, (draw, material)) in draws.iter().zip(&extracted.materials).enumerate() {
             if last_mesh != Some(draw.mesh) {
                 stats.meshes +=
                     u32::from(assets.prepare_mesh(inputs.gpu, inputs.meshes, draw.mesh));
                 bounds = lod_cache.bounds(inputs.meshes, draw.mesh);
                 last_mesh = Some(draw.mesh);
             }
-            let textures = bound_textures(&draw.material);
+            let textures = bound_textures(material);
             if last_textures != Some(textures) {
                 facts = prepare_textures(inputs, textures, assets, stats);
                 last_textures = Some(textures);
@@ -53,9 +53,9 @@ impl<M: Material> MaterialBatches<M> {
             let uniform = if keeps_uniforms && !new_material && facts_kept {
                 self.uniform_data[index]
             } else {
-                draw.material.per_draw(&facts)
+                material.per_draw(&facts)
             };
-            let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
+            let entry = draw_entry(inputs, (draw, material, index), bounds, &uniform, textures);
             if keeps_uniforms {
                 self.uniform_data[index] = uniform;
             } else {
@@ -68,10 +68,10 @@ impl<M: Material> MaterialBatches<M> {
 }
 
 /// Draw `index`'s entry in the order, seen from the frame's eye, its uniform being `uniform`
-/// (what [`Material::per_draw`] made of the textures as bound).
+/// (what [`Material::per_draw`] made of `material` with the textures as bound).
 pub(super) fn draw_entry<M: Material>(
     inputs: &PrepareInputs<'_>,
-    (draw, index): (&ExtractedDraw<M>, usize),
+    (draw, material, index): (&ExtractedDraw<M>, &M, usize),
     bounds: Option<MeshLodBounds>,
     uniform: &M::PerDraw,
     textures: BoundTextures,
@@ -81,9 +81,7 @@ pub(super) fn draw_entry<M: Material>(
         bounds,
         footprint: inputs.footprint,
     };
-    let key = draw
-        .material
-        .draw_key(draw.material.key(), uniform, &mut view);
+    let key = material.draw_key(material.key(), uniform, &mut view);
     // Blended draws are ordered by their centre, as a mesh placed away from its origin (a glTF
     // primitive with its vertices where it stands) has it elsewhere; the prepass by the nearest
     // point of the bounding sphere (a floor reaching the eye is near, wherever its centre is).

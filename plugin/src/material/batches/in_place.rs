@@ -88,11 +88,11 @@ impl<M: Material> MaterialBatches<M> {
         let mut new_materials = extracted.changed_materials.iter().peekable();
         for &index in &extracted.changed {
             let new_material = new_materials.next_if_eq(&&index).is_some();
-            let draw = &extracted.draws[index];
+            let (draw, material) = (&extracted.draws[index], &extracted.materials[index]);
             let slot = self.slot_of_draw[index] as usize;
             // A draw's textures come from its material alone: an unchanged one keeps its own.
             let textures = if new_material {
-                bound_textures(&draw.material)
+                bound_textures(material)
             } else {
                 self.order[slot].textures
             };
@@ -110,14 +110,14 @@ impl<M: Material> MaterialBatches<M> {
             // The uniform depends on the material and its textures only: a draw that moved
             // keeps its own.
             let uniform = if new_material {
-                let uniform = draw.material.per_draw(&facts);
+                let uniform = material.per_draw(&facts);
                 // The full preparation keeps the uniforms of unchanged materials from here.
                 self.uniform_data[index] = uniform;
                 uniform
             } else {
                 self.sorted_uniforms[slot]
             };
-            let entry = draw_entry(inputs, (draw, index), bounds, &uniform, textures);
+            let entry = draw_entry(inputs, (draw, material, index), bounds, &uniform, textures);
             if !self.order[slot].same_batch(&entry) {
                 return false;
             }
