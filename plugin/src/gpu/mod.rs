@@ -10,7 +10,7 @@ mod derived_textures;
 mod fragment_counter;
 mod full_screen_pipeline;
 pub(crate) mod layout;
-mod object_buffer;
+pub(crate) mod object_buffer;
 mod pipeline_compilation;
 mod readback;
 mod scatter_upload;

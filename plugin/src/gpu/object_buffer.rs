@@ -169,12 +169,12 @@ fn changed_runs<T: PartialEq>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::{ObjectBuffer, ScatterQueue, changed_runs};
     use crate::GpuContext;
 
     /// The bytes of `buffer`, read back.
-    fn read_back(gpu: &GpuContext, buffer: &wgpu::Buffer) -> Vec<u8> {
+    pub(crate) fn read_back(gpu: &GpuContext, buffer: &wgpu::Buffer) -> Vec<u8> {
         let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read back"),
             size: buffer.size(),

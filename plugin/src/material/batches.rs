@@ -145,6 +145,9 @@ pub(crate) struct MaterialBatches<M: Material> {
     prepared_view: Option<PreparedView>,
     /// On a frame prepared in place, the slots (increasing) whose data may have changed.
     dirty_slots: Vec<usize>,
+    /// On a frame prepared in place, the slots whose uniform may have changed (a new material,
+    /// or swapped): a draw that only moved keeps its uniform, which is then not compared.
+    uniform_slots: Vec<usize>,
     /// On a frame prepared in place, the rewritten slots whose nearest depth grew (or is not
     /// a number), with the depth they had: their batch's nearest depth may have to rise.
     receded_slots: Vec<(usize, f32)>,
@@ -244,6 +247,7 @@ impl<M: Material> MaterialBatches<M> {
             slot_of_draw: Vec::new(),
             prepared_view: None,
             dirty_slots: Vec::new(),
+            uniform_slots: Vec::new(),
             receded_slots: Vec::new(),
             uniforms_serial: None,
             prepared_in_place: false,
@@ -450,17 +454,19 @@ impl<M: Material> MaterialBatches<M> {
     ) {
         let gpu = inputs.gpu;
         let candidates = in_place.then(|| {
-            self.dirty_slots.sort_unstable();
-            self.dirty_slots.dedup();
-            &self.dirty_slots
+            for slots in [&mut self.dirty_slots, &mut self.uniform_slots] {
+                slots.sort_unstable();
+                slots.dedup();
+            }
+            (&self.dirty_slots, &self.uniform_slots)
         });
-        let in_place_bytes = candidates.and_then(|slots| {
+        let in_place_bytes = candidates.and_then(|(slots, uniform_slots)| {
             Some(
                 self.transforms
                     .upload_candidates(gpu, (&self.transform_data, slots), scatters)?
                     + self.uniforms.upload_candidates(
                         gpu,
-                        (&self.sorted_uniforms, slots),
+                        (&self.sorted_uniforms, uniform_slots),
                         scatters,
                     )?,
             )

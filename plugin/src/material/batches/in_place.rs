@@ -1,7 +1,8 @@
 //! Preparing a frame in place: where the view, the frame's kind and the draws' entities are
 //! last frame's, only the draws the Extract stage saw change are prepared again. The order, the
 //! batches and the per-draw data stay; each changed draw's entry, uniform and transform are
-//! rewritten in its slot, and only those slots are compared for upload. A change that moves a
+//! rewritten in its slot, and only those slots are compared for upload (their uniforms only
+//! where the material changed or the slot was swapped). A change that moves a
 //! draw to another batch or another place in the order, or a mesh or texture of the batches
 //! uploaded again, leaves the frame to the full preparation.
 
@@ -31,6 +32,7 @@ impl<M: Material> MaterialBatches<M> {
         motions: &mut Option<&mut ObjectMotions>,
     ) -> bool {
         self.dirty_slots.clear();
+        self.uniform_slots.clear();
         self.receded_slots.clear();
         if motions.is_some() && !self.followed.follows(extracted.draws.len()) {
             return false;
@@ -41,7 +43,6 @@ impl<M: Material> MaterialBatches<M> {
         {
             return false;
         }
-        self.rewrite_changed_transforms(extracted);
         if !self.reorder_within_batches() {
             return false;
         }
@@ -70,8 +71,9 @@ impl<M: Material> MaterialBatches<M> {
         *stats == before
     }
 
-    /// Rewrites the entry and uniform of each changed draw in its slot; false where one leaves
-    /// its batch.
+    /// Rewrites the entry, uniform and transform of each changed draw in its slot (each array
+    /// read once per draw: the slots are scattered through them); false where one leaves its
+    /// batch.
     fn rewrite_changed_entries(
         &mut self,
         inputs: &PrepareInputs<'_>,
@@ -108,14 +110,16 @@ impl<M: Material> MaterialBatches<M> {
                 last_mesh = Some(draw.mesh);
             }
             // The uniform depends on the material and its textures only: a draw that moved
-            // keeps its own.
+            // keeps its own, read in draw order (the changed draws' order).
             let uniform = if new_material {
                 let uniform = material.per_draw(&facts);
                 // The full preparation keeps the uniforms of unchanged materials from here.
                 self.uniform_data[index] = uniform;
+                self.sorted_uniforms[slot] = uniform;
+                self.uniform_slots.push(slot);
                 uniform
             } else {
-                self.sorted_uniforms[slot]
+                self.uniform_data[index]
             };
             let entry = draw_entry(inputs, (draw, material, index), bounds, &uniform, textures);
             if !self.order[slot].same_batch(&entry) {
@@ -130,10 +134,25 @@ impl<M: Material> MaterialBatches<M> {
                 self.receded_slots.push((slot, old_depth));
             }
             self.order[slot] = entry;
-            self.sorted_uniforms[slot] = uniform;
+            self.rewrite_transform(slot, (draw.model, draw.receives_shadows));
             self.dirty_slots.push(slot);
         }
         true
+    }
+
+    /// Rewrites the transform of `slot` where its model or shadow role changed, keeping its
+    /// visibility id and motion number.
+    fn rewrite_transform(&mut self, slot: usize, model: (glam::Mat4, bool)) {
+        if self.models[slot] == model {
+            return;
+        }
+        let kept = self.transform_data[slot];
+        self.models[slot] = model;
+        self.transform_data[slot] = MeshTransform {
+            first_visibility_id: kept.first_visibility_id,
+            motion: kept.motion,
+            ..MeshTransform::new(model.0, model.1)
+        };
     }
 
     /// Puts the rewritten entries back in order within their batches (a draw that moved
@@ -192,25 +211,7 @@ impl<M: Material> MaterialBatches<M> {
         self.slot_of_draw[self.order[b].draw] = b as u32;
         self.sort_memory.swap(a, b);
         self.dirty_slots.extend([a, b]);
-    }
-
-    /// Rewrites the transform of each rewritten slot whose model or shadow role changed,
-    /// keeping its visibility id and motion number.
-    fn rewrite_changed_transforms(&mut self, extracted: &ExtractedMaterials<M>) {
-        for &slot in &self.dirty_slots {
-            let draw = &extracted.draws[self.order[slot].draw];
-            let model = (draw.model, draw.receives_shadows);
-            if self.models[slot] == model {
-                continue;
-            }
-            let kept = self.transform_data[slot];
-            self.models[slot] = model;
-            self.transform_data[slot] = MeshTransform {
-                first_visibility_id: kept.first_visibility_id,
-                motion: kept.motion,
-                ..MeshTransform::new(model.0, model.1)
-            };
-        }
+        self.uniform_slots.extend([a, b]);
     }
 
     /// Numbers the motions of a TAA frame followed in place: the changed draws', and 0 for those
@@ -278,6 +279,7 @@ mod tests {
     use hecs::Entity;
 
     use super::super::MaterialBatches;
+    use crate::gpu::object_buffer::tests::read_back;
     use crate::parallax::HeightSource;
     use crate::{
         AntiAliasing, App, Assets, Camera, DirectionalLight, Image, Mesh,
@@ -336,7 +338,8 @@ mod tests {
     }
 
     /// Frame `frame`'s edit: turns in place, a material edit, a nudge that keeps the order, a
-    /// move past a few neighbours (reordered in place), a third of the draws nudged with one
+    /// move past a few neighbours (reordered in place), the edited draw moved past the next row
+    /// (its uniform swapped along), a third of the draws nudged with one
     /// material edit (prepared in full, the other uniforms kept), the height texture replaced
     /// by a larger one, the nearest row moved away alike (its batch's nearest depth rises, the
     /// order stays), and a move from nearest to farthest (past every other draw: in full).
@@ -371,6 +374,9 @@ mod tests {
                 transform(7).rotation = Quat::from_rotation_y(frame as f32 * 0.2);
             }
             5 => transform(10).translation.y += 0.001,
+            // Past the next row, its own uniform (its material edited on frame 4) swapped with
+            // theirs.
+            8 => transform(5).translation.z += 1.3,
             11 => {
                 for index in 15..20 {
                     transform(index).translation.z -= 0.01;
@@ -388,20 +394,33 @@ mod tests {
         }
     }
 
-    /// What the batches hold after a frame, as comparable values.
+    /// What the batches hold after a frame, as comparable values, with what the GPU holds.
     #[derive(Debug, PartialEq)]
     struct Prepared {
         transforms: Vec<crate::render::MeshTransform>,
         uniforms: Vec<u8>,
+        gpu_transforms: Vec<u8>,
+        gpu_uniforms: Vec<u8>,
         draws_in_order: Vec<usize>,
         batches: Vec<(std::ops::Range<u32>, std::ops::Range<u32>, bool, u32)>,
     }
 
     fn prepared(app: &App) -> Prepared {
         let batches = app.resources.get::<Batches>().unwrap();
+        let gpu = app.resources.get::<crate::GpuContext>().unwrap();
+        // The buffers past the draws' entries hold whatever their capacity left.
+        let entries_on_gpu = |buffer: &wgpu::Buffer, entries: &[u8]| {
+            let mut bytes = read_back(gpu, buffer);
+            bytes.truncate(entries.len());
+            bytes
+        };
+        let transforms = bytemuck::cast_slice(&batches.transform_data);
+        let uniforms = bytemuck::cast_slice(&batches.sorted_uniforms);
         Prepared {
+            gpu_transforms: entries_on_gpu(batches.transforms.buffer(), transforms),
+            gpu_uniforms: entries_on_gpu(batches.uniforms.buffer(), uniforms),
             transforms: batches.transform_data.clone(),
-            uniforms: bytemuck::cast_slice(&batches.sorted_uniforms).to_vec(),
+            uniforms: uniforms.to_vec(),
             draws_in_order: batches.order.iter().map(|entry| entry.draw).collect(),
             batches: batches
                 .batches
