@@ -127,9 +127,7 @@ pub(crate) struct MaterialBatches<M: Material> {
     pub(super) blended: Vec<(f32, u32)>,
     order: Vec<SortEntry<M::Key>>,
     sort_memory: SortMemory<M::Key>,
-    // The model matrix (and whether it receives shadows) and transform of each sorted slot,
-    // kept from frame to frame.
-    pub(super) models: Vec<(Mat4, bool)>,
+    // The transform of each sorted slot, kept from frame to frame.
     pub(super) transform_data: Vec<MeshTransform>,
     /// The batches (increasing indices) whose visibility the polygon pass may find this frame.
     pub(super) polygon_batches: Vec<u32>,
@@ -238,7 +236,6 @@ impl<M: Material> MaterialBatches<M> {
             blended: Vec::new(),
             order: Vec::new(),
             sort_memory: SortMemory::default(),
-            models: Vec::new(),
             transform_data: Vec::new(),
             polygon_batches: Vec::new(),
             followed: FollowedModels::default(),
@@ -318,20 +315,17 @@ impl<M: Material> MaterialBatches<M> {
     /// Writes the transform of each sorted slot, recomputing a transform (and its inverse) only
     /// where the slot's model changed.
     fn update_transforms(&mut self, draws: &[ExtractedDraw<M>]) {
-        self.models.truncate(self.order.len());
         self.transform_data.truncate(self.order.len());
         for (slot, entry) in self.order.iter().enumerate() {
             let draw = &draws[entry.draw];
-            let model = (draw.model, draw.receives_shadows);
-            if self.models.get(slot) == Some(&model) {
+            let kept = self.transform_data.get(slot);
+            if kept.is_some_and(|kept| kept.places(draw.model, draw.receives_shadows)) {
                 continue;
             }
-            let transform = MeshTransform::new(model.0, model.1);
-            if slot < self.models.len() {
-                self.models[slot] = model;
+            let transform = MeshTransform::new(draw.model, draw.receives_shadows);
+            if slot < self.transform_data.len() {
                 self.transform_data[slot] = transform;
             } else {
-                self.models.push(model);
                 self.transform_data.push(transform);
             }
         }

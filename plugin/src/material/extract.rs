@@ -80,6 +80,16 @@ impl<M: Material> MaterialWarnings<M> {
     }
 }
 
+/// Whether two draws are of one entity, mesh, transform, shared material version (or none) and
+/// shadow roles.
+fn same_draw<M>(a: &ExtractedDraw<M>, b: &ExtractedDraw<M>) -> bool {
+    a.entity == b.entity
+        && a.model == b.model
+        && a.mesh == b.mesh
+        && a.shared == b.shared
+        && (a.casts_shadows, a.receives_shadows) == (b.casts_shadows, b.receives_shadows)
+}
+
 /// Where an entity's material is: its own component, or a shared one in [`Assets<M>`] at
 /// `version`.
 enum Source<'a, M> {
@@ -286,34 +296,6 @@ impl<M: Material> DrawWriter<'_, M> {
         source: Source<'_, M>,
         shadows: ShadowRoles,
     ) {
-        let model = transform.to_mat4();
-        let slot = self.written;
-        // Last frame's draw in this slot, where it is this one unchanged: nothing to write (its
-        // transform was finite then). A shared material is told unchanged by its version.
-        if let Some(draw) = self.extracted.draws.get(slot)
-            && draw.entity == entity
-            && draw.model == model
-            && draw.mesh == mesh.id()
-            && (draw.casts_shadows, draw.receives_shadows) == (shadows.casts, shadows.receives)
-            && match source {
-                Source::Own(material) => {
-                    draw.shared.is_none() && self.extracted.materials[slot] == *material
-                }
-                Source::Shared { id, version, .. } => draw.shared == Some((id, version)),
-            }
-        {
-            self.extracted.casters_read_frame_noise |= draw.casts_with_frame_noise;
-            self.written += 1;
-            return;
-        }
-        if !model.is_finite() {
-            log::warn!(
-                "{} mesh {:?} has a non-finite transform: not drawn",
-                M::NAME,
-                mesh.id()
-            );
-            return;
-        }
         let (material, shared) = match source {
             Source::Own(material) => (material, None),
             Source::Shared {
@@ -322,27 +304,55 @@ impl<M: Material> DrawWriter<'_, M> {
                 material,
             } => (material, Some((id, version))),
         };
-        let casts_with_frame_noise = shadows.casts && material.casts_with_frame_noise();
-        self.extracted.casters_read_frame_noise |= casts_with_frame_noise;
+        let mut draw = ExtractedDraw {
+            model: transform.to_mat4(),
+            entity,
+            mesh: mesh.id(),
+            shared,
+            casts_shadows: shadows.casts,
+            receives_shadows: shadows.receives,
+            casts_with_frame_noise: false,
+        };
+        let slot = self.written;
+        // Last frame's draw in this slot, where it is this one unchanged: nothing to write (its
+        // transform was finite then). A shared material is told unchanged by its version, an
+        // own one by comparing it.
+        if let Some(last) = self.extracted.draws.get(slot)
+            && same_draw(last, &draw)
+            && (shared.is_some() || self.extracted.materials[slot] == *material)
+        {
+            self.extracted.casters_read_frame_noise |= last.casts_with_frame_noise;
+            self.written += 1;
+            return;
+        }
+        if !draw.model.is_finite() {
+            log::warn!(
+                "{} mesh {:?} has a non-finite transform: not drawn",
+                M::NAME,
+                mesh.id()
+            );
+            return;
+        }
+        draw.casts_with_frame_noise = shadows.casts && material.casts_with_frame_noise();
+        self.extracted.casters_read_frame_noise |= draw.casts_with_frame_noise;
         self.written += 1;
-        let Some(draw) = self.extracted.draws.get_mut(slot) else {
+        self.write(slot, draw, material, log_problems);
+    }
+
+    /// Writes `draw` and its `material` into `slot` (past the last: a new slot), listing it as
+    /// changed.
+    fn write(&mut self, slot: usize, draw: ExtractedDraw<M>, material: &M, log_problems: bool) {
+        let entity = draw.entity;
+        let Some(last) = self.extracted.draws.get_mut(slot) else {
             if log_problems {
                 self.warnings.log_changed(entity, material);
             }
             self.extracted.same_entities = false;
-            self.extracted.draws.push(ExtractedDraw {
-                model,
-                entity,
-                mesh: mesh.id(),
-                shared,
-                casts_shadows: shadows.casts,
-                receives_shadows: shadows.receives,
-                casts_with_frame_noise,
-            });
+            self.extracted.draws.push(draw);
             self.extracted.materials.push(material.clone());
             return;
         };
-        let same_entity = draw.entity == entity;
+        let same_entity = last.entity == entity;
         // A shared material accessed mutably but left as it was is not a new material.
         let material_changed = self.extracted.materials[slot] != *material;
         // An entity's unchanged material had its problems looked at when it last changed.
@@ -351,13 +361,7 @@ impl<M: Material> DrawWriter<'_, M> {
         }
         self.extracted.same_entities &= same_entity;
         self.extracted.changed.push(slot);
-        draw.entity = entity;
-        draw.mesh = mesh.id();
-        draw.model = model;
-        draw.shared = shared;
-        draw.casts_shadows = shadows.casts;
-        draw.receives_shadows = shadows.receives;
-        draw.casts_with_frame_noise = casts_with_frame_noise;
+        *last = draw;
         if material_changed {
             self.extracted.materials[slot] = material.clone();
             self.extracted.changed_materials.push(slot);

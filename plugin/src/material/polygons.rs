@@ -111,12 +111,10 @@ impl<M: Material> MaterialBatches<M> {
         let cull = M::cull_mode(batch.key);
         let mut polygons = Vec::new();
         for slot in batch.instances.clone() {
-            let (Some((model, _)), Some(transform)) = (
-                self.models.get(slot as usize),
-                self.transform_data.get(slot as usize),
-            ) else {
+            let Some(transform) = self.transform_data.get(slot as usize) else {
                 continue;
             };
+            let model = &glam::Mat4::from_cols_array_2d(&transform.model);
             if transform.first_visibility_id == 0 {
                 continue;
             }

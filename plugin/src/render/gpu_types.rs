@@ -178,6 +178,13 @@ impl MeshTransform {
             motion: 0,
         }
     }
+
+    /// Whether this is the transform of an object placed by `model`, receiving scene shadows
+    /// or not (what [`MeshTransform::new`] would make of them, but for the id and motion).
+    pub(crate) fn places(&self, model: glam::Mat4, receives_shadows: bool) -> bool {
+        self.model == model.to_cols_array_2d()
+            && self.receives_shadows == u32::from(receives_shadows)
+    }
 }
 
 crate::wgsl_layout!(FrameUniform {

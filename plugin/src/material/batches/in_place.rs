@@ -142,16 +142,15 @@ impl<M: Material> MaterialBatches<M> {
 
     /// Rewrites the transform of `slot` where its model or shadow role changed, keeping its
     /// visibility id and motion number.
-    fn rewrite_transform(&mut self, slot: usize, model: (glam::Mat4, bool)) {
-        if self.models[slot] == model {
+    fn rewrite_transform(&mut self, slot: usize, (model, receives_shadows): (glam::Mat4, bool)) {
+        let kept = self.transform_data[slot];
+        if kept.places(model, receives_shadows) {
             return;
         }
-        let kept = self.transform_data[slot];
-        self.models[slot] = model;
         self.transform_data[slot] = MeshTransform {
             first_visibility_id: kept.first_visibility_id,
             motion: kept.motion,
-            ..MeshTransform::new(model.0, model.1)
+            ..MeshTransform::new(model, receives_shadows)
         };
     }
 
@@ -199,7 +198,6 @@ impl<M: Material> MaterialBatches<M> {
     fn swap_slots(&mut self, (a, b): (usize, usize)) {
         self.order.swap(a, b);
         self.sorted_uniforms.swap(a, b);
-        self.models.swap(a, b);
         let ids = (
             self.transform_data[a].first_visibility_id,
             self.transform_data[b].first_visibility_id,
