@@ -80,16 +80,6 @@ impl<M: Material> MaterialWarnings<M> {
     }
 }
 
-/// Whether two draws are of one entity, mesh, transform, shared material version (or none) and
-/// shadow roles.
-fn same_draw<M>(a: &ExtractedDraw<M>, b: &ExtractedDraw<M>) -> bool {
-    a.entity == b.entity
-        && a.model == b.model
-        && a.mesh == b.mesh
-        && a.shared == b.shared
-        && (a.casts_shadows, a.receives_shadows) == (b.casts_shadows, b.receives_shadows)
-}
-
 /// Where an entity's material is: its own component, or a shared one in [`Assets<M>`] at
 /// `version`.
 enum Source<'a, M> {
@@ -304,28 +294,24 @@ impl<M: Material> DrawWriter<'_, M> {
                 material,
             } => (material, Some((id, version))),
         };
-        let mut draw = ExtractedDraw {
-            model: transform.to_mat4(),
-            entity,
-            mesh: mesh.id(),
-            shared,
-            casts_shadows: shadows.casts,
-            receives_shadows: shadows.receives,
-            casts_with_frame_noise: false,
-        };
+        let model = transform.to_mat4();
         let slot = self.written;
         // Last frame's draw in this slot, where it is this one unchanged: nothing to write (its
         // transform was finite then). A shared material is told unchanged by its version, an
         // own one by comparing it.
         if let Some(last) = self.extracted.draws.get(slot)
-            && same_draw(last, &draw)
+            && last.entity == entity
+            && last.model == model
+            && last.mesh == mesh.id()
+            && last.shared == shared
+            && (last.casts_shadows, last.receives_shadows) == (shadows.casts, shadows.receives)
             && (shared.is_some() || self.extracted.materials[slot] == *material)
         {
             self.extracted.casters_read_frame_noise |= last.casts_with_frame_noise;
             self.written += 1;
             return;
         }
-        if !draw.model.is_finite() {
+        if !model.is_finite() {
             log::warn!(
                 "{} mesh {:?} has a non-finite transform: not drawn",
                 M::NAME,
@@ -333,14 +319,23 @@ impl<M: Material> DrawWriter<'_, M> {
             );
             return;
         }
-        draw.casts_with_frame_noise = shadows.casts && material.casts_with_frame_noise();
+        let draw = ExtractedDraw {
+            model,
+            entity,
+            mesh: mesh.id(),
+            shared,
+            casts_shadows: shadows.casts,
+            receives_shadows: shadows.receives,
+            casts_with_frame_noise: shadows.casts && material.casts_with_frame_noise(),
+        };
         self.extracted.casters_read_frame_noise |= draw.casts_with_frame_noise;
         self.written += 1;
         self.write(slot, draw, material, log_problems);
     }
 
     /// Writes `draw` and its `material` into `slot` (past the last: a new slot), listing it as
-    /// changed.
+    /// changed. Not inlined: the loop over the unchanged draws stays small.
+    #[inline(never)]
     fn write(&mut self, slot: usize, draw: ExtractedDraw<M>, material: &M, log_problems: bool) {
         let entity = draw.entity;
         let Some(last) = self.extracted.draws.get_mut(slot) else {
