@@ -23,7 +23,8 @@ pub enum Measurement {
     TexelRate,
     /// POM against displaced grids at equal FLIP error.
     VersusMesh,
-    /// Extract, prepare and render times of many entities on the CPU.
+    /// Extract, prepare and render times of many entities on the CPU, with a material each or
+    /// one shared.
     CpuSide,
     /// The base material's frame phase by phase: prepass, opaque, post-processing.
     Phases,
