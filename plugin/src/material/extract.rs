@@ -1,15 +1,13 @@
 //! The Extract stage of a material: each drawable entity's mesh, transform and material copied
 //! into [`ExtractedMaterials`], and a material's problems logged once per change
-//! ([`MaterialWarnings`]). An entity's material is its own component `M`, or a `Handle<M>` to
+//! ([`MaterialWarnings`], material_warnings.rs). An entity's material is its own component `M`, or a `Handle<M>` to
 //! one shared in [`Assets<M>`], whose version tells whether it changed without reading it.
-
-use std::collections::HashMap;
-use std::marker::PhantomData;
 
 use hecs::{Entity, World};
 
 use super::Material;
 use super::batches::ExtractedDraw;
+use super::material_warnings::{MaterialWarnings, log_problems_of};
 use super::registry::MaterialRegistry;
 use crate::{
     AssetId, Assets, GlobalTransform, Handle, Mesh, NotShadowCaster, NotShadowReceiver, Resources,
@@ -33,51 +31,6 @@ pub(crate) struct ExtractedMaterials<M> {
     /// Whether a shadow caster's material reads the frame's noise
     /// ([`Material::casts_with_frame_noise`]).
     pub(crate) casters_read_frame_noise: bool,
-}
-
-/// The problems last logged for each entity whose material of type `M` is being clamped (or
-/// whose handle finds no shared material), so a bad value is logged once per change, not every
-/// frame. Problems are compared as text: a NaN
-/// never equals itself, a material holding one would be "changed" every frame. A resource.
-#[derive(Debug)]
-pub struct MaterialWarnings<M>(HashMap<Entity, Vec<String>>, PhantomData<fn() -> M>);
-
-impl<M> MaterialWarnings<M> {
-    /// Number of entities whose material is being clamped, or not found.
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    /// Whether no material needed clamping, and every shared one was found.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-}
-
-impl<M: Material> MaterialWarnings<M> {
-    /// Logs the problems of `entity`'s `material` where they differ from those last logged.
-    fn log_changed(&mut self, entity: Entity, material: &M) {
-        let problems = material.problems();
-        self.log_problems(
-            entity,
-            problems.into_iter().map(|p| p + "; clamped").collect(),
-        );
-    }
-
-    /// Logs `entity`'s `problems` where they differ from those last logged.
-    fn log_problems(&mut self, entity: Entity, problems: Vec<String>) {
-        if problems.is_empty() {
-            // Valid again: forget it, so a later bad value is logged anew.
-            if !self.0.is_empty() {
-                self.0.remove(&entity);
-            }
-        } else if self.0.get(&entity) != Some(&problems) {
-            for problem in &problems {
-                log::warn!("{} material of {entity:?}: {problem}", M::NAME);
-            }
-            self.0.insert(entity, problems);
-        }
-    }
 }
 
 /// Where an entity's material is: its own component, or a shared one in [`Assets<M>`] at
@@ -123,7 +76,7 @@ pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut 
         });
     }
     if !resources.contains::<MaterialWarnings<M>>() {
-        resources.insert(MaterialWarnings::<M>(HashMap::new(), PhantomData));
+        resources.insert(MaterialWarnings::<M>::default());
     }
     resources.scope(|resources, extracted: &mut ExtractedMaterials<M>| {
         resources.scope(|resources, warnings: &mut MaterialWarnings<M>| {
@@ -340,7 +293,7 @@ impl<M: Material> DrawWriter<'_, M> {
         let entity = draw.entity;
         let Some(last) = self.extracted.draws.get_mut(slot) else {
             if log_problems {
-                self.warnings.log_changed(entity, material);
+                log_problems_of(self.warnings, &draw, material);
             }
             self.extracted.same_entities = false;
             self.extracted.draws.push(draw);
@@ -352,7 +305,7 @@ impl<M: Material> DrawWriter<'_, M> {
         let material_changed = self.extracted.materials[slot] != *material;
         // An entity's unchanged material had its problems looked at when it last changed.
         if log_problems && (material_changed || !same_entity) {
-            self.warnings.log_changed(entity, material);
+            log_problems_of(self.warnings, &draw, material);
         }
         self.extracted.same_entities &= same_entity;
         self.extracted.changed.push(slot);
@@ -368,7 +321,19 @@ impl<M: Material> DrawWriter<'_, M> {
         self.extracted.same_entities &= self.written == self.extracted.draws.len();
         self.extracted.draws.truncate(self.written);
         self.extracted.materials.truncate(self.written);
-        self.warnings.0.retain(|entity, _| world.contains(*entity));
+        self.warnings
+            .entities
+            .retain(|entity, _| world.contains(*entity));
+        // A shared material no draw holds any more is forgotten.
+        if !self.warnings.shared.is_empty() {
+            let held: std::collections::HashSet<AssetId<M>> = self
+                .extracted
+                .draws
+                .iter()
+                .filter_map(|draw| draw.shared.map(|(id, _)| id))
+                .collect();
+            self.warnings.shared.retain(|id, _| held.contains(id));
+        }
     }
 }
 
@@ -489,6 +454,32 @@ mod tests {
     }
 
     #[test]
+    fn a_bad_shared_material_is_warned_about_once_for_all_that_hold_it() {
+        let (mut world, mut resources, handle) = scene(1, 50);
+        let own = world.iter().next().unwrap().entity();
+        world.get::<&mut Pom>(own).unwrap().max_samples = 0;
+        extract(&mut world, &mut resources);
+        let store = resources.get_mut::<Assets<Pom>>().unwrap();
+        store.get_mut(&handle).unwrap().height_scale = f32::NAN;
+        extract(&mut world, &mut resources);
+        let warnings = resources.get::<MaterialWarnings<Pom>>().unwrap();
+        assert_eq!((warnings.entities.len(), warnings.shared.len()), (1, 1));
+        assert!(warnings.shared.contains_key(&handle.id()));
+
+        // The entity with a bad material of its own takes the shared one: its warning goes.
+        world.remove_one::<Pom>(own).unwrap();
+        world.insert_one(own, handle.clone()).unwrap();
+        extract(&mut world, &mut resources);
+        let warnings = resources.get::<MaterialWarnings<Pom>>().unwrap();
+        assert_eq!((warnings.entities.len(), warnings.shared.len()), (0, 1));
+
+        let store = resources.get_mut::<Assets<Pom>>().unwrap();
+        store.get_mut(&handle).unwrap().height_scale = 0.05;
+        extract(&mut world, &mut resources);
+        assert!(resources.get::<MaterialWarnings<Pom>>().unwrap().is_empty());
+    }
+
+    #[test]
     fn a_handle_to_no_material_in_the_store_is_not_drawn_and_warned_about_once() {
         let (mut world, mut resources, _) = scene(1, 1);
         // A handle of another store: no material of the app's has its id's generation.
@@ -506,7 +497,10 @@ mod tests {
             assert_eq!(extracted.draws.len(), 2);
             assert!(extracted.draws.iter().all(|draw| draw.entity != lost));
             let warnings = resources.get::<MaterialWarnings<Pom>>().unwrap();
-            assert_eq!((warnings.len(), warnings.0.contains_key(&lost)), (1, true));
+            assert_eq!(
+                (warnings.len(), warnings.entities.contains_key(&lost)),
+                (1, true)
+            );
         }
         world.despawn(lost).unwrap();
         extract(&mut world, &mut resources);

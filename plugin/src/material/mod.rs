@@ -15,6 +15,7 @@ mod followed_models;
 mod frame_bindings;
 mod layout_check;
 mod lowest_mip;
+mod material_warnings;
 mod mesh_pipeline;
 mod pipelines;
 mod plugin;
@@ -38,9 +39,9 @@ pub use declare::{DeclaredMaterial, PresetExtras};
 pub use deferred::{CANDIDATES, DEFERRED_RESOLVE, deferred_twin};
 pub use draw_view::DrawView;
 pub(crate) use extract::ExtractedMaterials;
-pub use extract::MaterialWarnings;
 pub use layout_check::check_material_layout;
 pub(crate) use lowest_mip::{MeshLodBounds, MeshLodCache, PixelFootprint};
+pub use material_warnings::MaterialWarnings;
 pub use plugin::{
     MaterialPlugin, MissingRenderPlugin, TooManyDerivedTextureSlots, TooManyTextureSlots,
     draw_meshes_without_material, drawn_in_opaque_and_resolve, drawn_keys, pipelines_ready,
