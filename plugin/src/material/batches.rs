@@ -144,7 +144,8 @@ pub(crate) struct MaterialBatches<M: Material> {
     /// On a frame prepared in place, the slots (increasing) whose data may have changed.
     dirty_slots: Vec<usize>,
     /// On a frame prepared in place, the slots whose uniform may have changed (a new material,
-    /// or swapped): a draw that only moved keeps its uniform, which is then not compared.
+    /// or swapped with an unequal one): a draw that only moved keeps its uniform, which is then
+    /// not compared.
     uniform_slots: Vec<usize>,
     /// On a frame prepared in place, the rewritten slots whose nearest depth grew (or is not
     /// a number), with the depth they had: their batch's nearest depth may have to rise.

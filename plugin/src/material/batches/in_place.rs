@@ -197,7 +197,11 @@ impl<M: Material> MaterialBatches<M> {
     /// its visibility id.
     fn swap_slots(&mut self, (a, b): (usize, usize)) {
         self.order.swap(a, b);
-        self.sorted_uniforms.swap(a, b);
+        // Neighbours mostly share a material: equal uniforms stay, and are not compared again.
+        if self.sorted_uniforms[a] != self.sorted_uniforms[b] {
+            self.sorted_uniforms.swap(a, b);
+            self.uniform_slots.extend([a, b]);
+        }
         let ids = (
             self.transform_data[a].first_visibility_id,
             self.transform_data[b].first_visibility_id,
@@ -209,7 +213,6 @@ impl<M: Material> MaterialBatches<M> {
         self.slot_of_draw[self.order[b].draw] = b as u32;
         self.sort_memory.swap(a, b);
         self.dirty_slots.extend([a, b]);
-        self.uniform_slots.extend([a, b]);
     }
 
     /// Numbers the motions of a TAA frame followed in place: the changed draws', and 0 for those

@@ -2,7 +2,7 @@
 // between them (no GPU work pollutes the caches), each entity with a copy of the material or a
 // handle to one shared (where the build has `Assets<ParallaxOcclusionMaterial>`): copy into
 // plugin/examples/ and run `cargo run --release -p parallax-occlusion --example stages` on each
-// build.
+// build; a second argument times only the cases whose name holds it (`stages new walking`).
 use pom::glam::{Quat, Vec3};
 use pom::*;
 fn case(percent: usize, walking: bool, shared: bool) -> Option<(f64, f64)> {
@@ -54,8 +54,10 @@ fn case(percent: usize, walking: bool, shared: bool) -> Option<(f64, f64)> {
 }
 fn main() {
     let label = std::env::args().nth(1).unwrap_or_default();
+    let only = std::env::args().nth(2).unwrap_or_default();
     for (percent, walking, shared) in [(0, false, false), (10, false, false), (10, true, false), (100, false, false), (0, false, true), (10, false, true), (10, true, true)] {
         let what = format!("{percent}% {}{}", if walking { "walking" } else { "turning" }, if shared { ", shared" } else { "" });
+        if !what.contains(&only) { continue; }
         match case(percent, walking, shared) {
             Some((ex, pr)) => println!("{label} {what}: extract {ex:.3} prepare {pr:.3}"),
             None => println!("{label} {what}: no shared materials in this build"),
