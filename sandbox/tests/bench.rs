@@ -206,7 +206,7 @@ fn quick_bench_writes_json_csv_and_a_chart() {
         assert!(image.width() > 0 && image.height() > 0);
     }
     // None, a tenth and all of the entities turning; then a tenth and all under TAA; then a
-    // tenth walking.
+    // tenth walking; then none, a tenth and a tenth under TAA holding one shared material.
     let cpu_side = json["cpu_side"].as_array().unwrap();
     let cpu_cases: Vec<_> = cpu_side
         .iter()
@@ -215,17 +215,21 @@ fn quick_bench_writes_json_csv_and_a_chart() {
                 &cpu["moving_percent"],
                 &cpu["anti_aliasing"],
                 &cpu["motion"],
+                &cpu["materials"],
             );
             serde_json::json!(case)
         })
         .collect();
     let expected: Vec<_> = [
-        (0, "off", "turning"),
-        (10, "off", "turning"),
-        (100, "off", "turning"),
-        (10, "taa", "turning"),
-        (100, "taa", "turning"),
-        (10, "off", "walking"),
+        (0, "off", "turning", "copies"),
+        (10, "off", "turning", "copies"),
+        (100, "off", "turning", "copies"),
+        (10, "taa", "turning", "copies"),
+        (100, "taa", "turning", "copies"),
+        (10, "off", "walking", "copies"),
+        (0, "off", "turning", "shared"),
+        (10, "off", "turning", "shared"),
+        (10, "taa", "turning", "shared"),
     ]
     .map(|case| serde_json::json!(case))
     .into();
