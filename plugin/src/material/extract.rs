@@ -59,6 +59,16 @@ struct ShadowRoles {
     receives: bool,
 }
 
+impl ShadowRoles {
+    /// The roles of an entity with or without each marker.
+    fn of(not_caster: Option<&NotShadowCaster>, not_receiver: Option<&NotShadowReceiver>) -> Self {
+        Self {
+            casts: not_caster.is_none(),
+            receives: not_receiver.is_none(),
+        }
+    }
+}
+
 /// The Extract stage's system of material `M`: copies each drawable entity's mesh, transform
 /// and material, and logs a material's problems once per change.
 pub(super) fn extract_materials<M: Material>(world: &mut World, resources: &mut Resources) {
@@ -137,10 +147,7 @@ impl<M: Material> DrawWriter<'_, M> {
             )>()
             .iter()
         {
-            let shadows = ShadowRoles {
-                casts: not_caster.is_none(),
-                receives: not_receiver.is_none(),
-            };
+            let shadows = ShadowRoles::of(not_caster, not_receiver);
             self.push(
                 entity,
                 true,
@@ -176,10 +183,7 @@ impl<M: Material> DrawWriter<'_, M> {
                 );
                 continue;
             };
-            let shadows = ShadowRoles {
-                casts: not_caster.is_none(),
-                receives: not_receiver.is_none(),
-            };
+            let shadows = ShadowRoles::of(not_caster, not_receiver);
             let source = Source::Shared {
                 id: handle.id(),
                 version,

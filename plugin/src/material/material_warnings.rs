@@ -46,10 +46,7 @@ impl<M> MaterialWarnings<M> {
 impl<M: Material> MaterialWarnings<M> {
     /// Logs the problems of `entity`'s own `material` where they differ from those last logged.
     pub(super) fn log_changed(&mut self, entity: Entity, material: &M) {
-        let problems = clamped(material);
-        log_once(&mut self.entities, entity, problems, |problem| {
-            log::warn!("{} material of {entity:?}: {problem}", M::NAME);
-        });
+        self.log_problems(entity, clamped(material));
     }
 
     /// Logs `entity`'s `problems` with its material where they differ from those last logged.
