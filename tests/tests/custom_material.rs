@@ -7,13 +7,13 @@
 
 #[rustfmt::skip]
 #[path = "custom_material/matte.rs"]
-mod matte;
+pub(crate) mod matte;
 #[rustfmt::skip]
 #[path = "custom_material/screen.rs"]
 mod screen;
 #[rustfmt::skip]
 #[path = "custom_material/lattice.rs"]
-mod lattice;
+pub(crate) mod lattice;
 
 use lattice::Lattice;
 use matte::Matte;

@@ -3,12 +3,7 @@
 //! around a shaded material's `shade` (the README's `Matte`, and `Lattice`, which cuts holes),
 //! and those a `FullScreenPass` composes around a post effect (one with parameters here).
 
-#[rustfmt::skip]
-#[path = "custom_material/matte.rs"]
-mod matte;
-#[rustfmt::skip]
-#[path = "custom_material/lattice.rs"]
-mod lattice;
+use crate::custom_material::{lattice, matte};
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
