@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Device call, planned for the next session with a device: the CPU side, old (8da098a) against
-# new (this session's head), three alternating rounds, both paths; the new build also times the
+# Device call (run 2026-12-06 on an H100 host; logs in cpu/): the CPU side, old (8da098a) against
+# new (90d789a), three alternating rounds, both paths; the new build also times the
 # shared-material cases. Tarred into $OUT/cpu.tgz.
 # The Vulkan loader as in sandbox/BENCHMARKS.md, "How to run"; B: a folder holding the release
 # builds B/old and B/new, built from the commits above.
