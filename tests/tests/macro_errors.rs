@@ -31,11 +31,12 @@ fn a_parameter_without_a_doc_line_is_named_in_one_readable_error() {
     let scratch = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let dir = scratch.join("macro-errors");
     let dependency = format!(
-        "[dependencies]\npom = {{ package = \"parallax-occlusion\", path = {:?} }}\n",
+        "[dependencies]\npom = {{ package = \"parallax-occlusion\", path = {:?}, features = [\"window\"] }}\n",
         scratch_crate::plugin_dir()
     );
     scratch_crate::write(&dir, "macro-errors", &dependency, UNDOCUMENTED_PARAMETER);
-    // The scratch game's target folder: its dependencies are built already (or will be).
+    // The scratch game's target folder and the README's features: its dependencies are built
+    // already (or will be), with none built a second time for other features.
     let built = scratch_crate::build(&dir, &scratch.join("scratch-game/target"));
     let stderr = String::from_utf8_lossy(&built.stderr);
     assert!(!built.status.success(), "it built:\n{stderr}");
