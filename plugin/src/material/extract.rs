@@ -1,13 +1,14 @@
 //! The Extract stage of a material: each drawable entity's mesh, transform and material copied
 //! into [`ExtractedMaterials`], and a material's problems logged once per change
-//! ([`MaterialWarnings`], material_warnings.rs). An entity's material is its own component `M`, or a `Handle<M>` to
-//! one shared in [`Assets<M>`], whose version tells whether it changed without reading it.
+//! ([`MaterialWarnings`], material_warnings.rs). An entity's material is its own component `M`,
+//! or a `Handle<M>` to one shared in [`Assets<M>`], whose version tells whether it changed
+//! without reading it.
 
 use hecs::{Entity, World};
 
 use super::Material;
 use super::batches::ExtractedDraw;
-use super::material_warnings::{MaterialWarnings, log_problems_of};
+use super::material_warnings::MaterialWarnings;
 use super::registry::MaterialRegistry;
 use crate::{
     AssetId, Assets, GlobalTransform, Handle, Mesh, NotShadowCaster, NotShadowReceiver, Resources,
@@ -297,7 +298,7 @@ impl<M: Material> DrawWriter<'_, M> {
         let entity = draw.entity;
         let Some(last) = self.extracted.draws.get_mut(slot) else {
             if log_problems {
-                log_problems_of(self.warnings, &draw, material);
+                self.warnings.log_draw(&draw, material);
             }
             self.extracted.same_entities = false;
             self.extracted.draws.push(draw);
@@ -309,7 +310,7 @@ impl<M: Material> DrawWriter<'_, M> {
         let material_changed = self.extracted.materials[slot] != *material;
         // An entity's unchanged material had its problems looked at when it last changed.
         if log_problems && (material_changed || !same_entity) {
-            log_problems_of(self.warnings, &draw, material);
+            self.warnings.log_draw(&draw, material);
         }
         self.extracted.same_entities &= same_entity;
         self.extracted.changed.push(slot);

@@ -44,9 +44,13 @@ impl<M> MaterialWarnings<M> {
 }
 
 impl<M: Material> MaterialWarnings<M> {
-    /// Logs the problems of `entity`'s own `material` where they differ from those last logged.
-    pub(super) fn log_changed(&mut self, entity: Entity, material: &M) {
-        self.log_problems(entity, clamped(material));
+    /// Logs the problems of `draw`'s `material` where they differ from those last logged: its
+    /// entity's own, or the shared one's.
+    pub(super) fn log_draw(&mut self, draw: &ExtractedDraw<M>, material: &M) {
+        match draw.shared {
+            Some((id, _)) => self.log_shared(draw.entity, id, material),
+            None => self.log_problems(draw.entity, clamped(material)),
+        }
     }
 
     /// Logs `entity`'s `problems` with its material where they differ from those last logged.
@@ -58,7 +62,7 @@ impl<M: Material> MaterialWarnings<M> {
 
     /// Logs the problems of the shared material `id`, held by `entity` (whose own warnings
     /// are forgotten), where they differ from those last logged for it.
-    pub(super) fn log_shared(&mut self, entity: Entity, id: AssetId<M>, material: &M) {
+    fn log_shared(&mut self, entity: Entity, id: AssetId<M>, material: &M) {
         if !self.entities.is_empty() {
             self.entities.remove(&entity);
         }
@@ -92,17 +96,5 @@ fn log_once<K: std::hash::Hash + Eq>(
             log(problem);
         }
         logged.insert(key, problems);
-    }
-}
-
-/// Logs the problems of `draw`'s `material`: its entity's own, or the shared one's.
-pub(super) fn log_problems_of<M: Material>(
-    warnings: &mut MaterialWarnings<M>,
-    draw: &ExtractedDraw<M>,
-    material: &M,
-) {
-    match draw.shared {
-        Some((id, _)) => warnings.log_shared(draw.entity, id, material),
-        None => warnings.log_changed(draw.entity, material),
     }
 }
