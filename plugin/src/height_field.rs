@@ -55,8 +55,10 @@ impl HeightField {
         })
     }
 
-    /// A `width`×`height` field of `f(u, v)` at texel centres, u and v in 0..1.
+    /// A `width`×`height` field of `f(u, v)` at texel centres, u and v in 0..1 (a side of 0 is
+    /// taken as 1: a field always has a texel).
     pub fn from_fn(width: u32, height: u32, f: impl Fn(f32, f32) -> f32) -> Self {
+        let (width, height) = (width.max(1), height.max(1));
         let values = (0..height)
             .flat_map(|y| (0..width).map(move |x| (x, y)))
             .map(|(x, y)| {
@@ -72,8 +74,8 @@ impl HeightField {
             })
             .collect();
         Self {
-            width: width.max(1),
-            height: height.max(1),
+            width,
+            height,
             values,
         }
     }

@@ -23,7 +23,9 @@
 // The crate's macros name `pom::…` paths; this makes them resolve inside the crate too.
 extern crate self as pom;
 
-// The Rust blocks of the README and of plugin/docs/ compile as doctests, so they stay true.
+// The Rust blocks of the README and of plugin/docs/ compile as doctests, so they stay true
+// (those marked `ignore` are kept true by tests: tests/tests/custom_material.rs and
+// window_examples.rs compare them with the files they show).
 #[cfg(doctest)]
 mod doc_tests {
     #[doc = include_str!("../../README.md")]

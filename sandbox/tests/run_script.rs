@@ -57,3 +57,27 @@ fn a_script_that_fails_midway_still_prints_the_steps_it_ran() {
         "{stderr}"
     );
 }
+
+/// A script named by its bare file name from its own folder (`Path::parent` of "twice.ron" is
+/// the empty path) finds its reference there, blessing it and then passing.
+#[test]
+fn a_script_named_without_a_folder_runs_from_its_own() {
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/scene_fixtures");
+    let dir = std::env::temp_dir().join(format!("sandbox-bare-script-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(fixtures.join("determinism.ron"), dir.join("twice.ron")).unwrap();
+    for args in [&["--bless", "twice.ron"][..], &["twice.ron"]] {
+        let output = Command::new(env!("CARGO_BIN_EXE_sandbox"))
+            .arg("run-script")
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("run the sandbox");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{args:?}: {stdout}\n{stderr}");
+    }
+    assert!(dir.join("twice.png").is_file(), "the blessed reference");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,8 +1,9 @@
 //! The benchmark figures can be reproduced from the repository alone: nothing under
 //! `sandbox/bench-results/` and nothing in `sandbox/BENCHMARKS.md` names a file outside it (the
 //! project's shared folder beside the checkout, one machine's absolute paths, unpacked binaries),
-//! every `assets/...` path they name exists, and so does every relative link of the page. A
-//! figure whose inputs only one machine had cannot be checked by anyone else.
+//! every `assets/...` path they name exists, and so does every relative link of the page and
+//! every test binary its commands run. A figure whose inputs only one machine had cannot be
+//! checked by anyone else.
 
 use std::path::{Path, PathBuf};
 
@@ -101,6 +102,27 @@ fn problems_of(root: &Path, shown: &str, text: &str) -> Vec<String> {
     problems
 }
 
+/// The `--test NAME` arguments of `text` that name no test binary of tests/Cargo.toml (its
+/// integration tests share one binary: a module is run as `--test integration MODULE::`).
+fn unknown_test_targets(root: &Path, text: &str) -> Vec<String> {
+    let manifest =
+        std::fs::read_to_string(root.join("tests/Cargo.toml")).expect("reading tests/Cargo.toml");
+    let targets: Vec<&str> = manifest
+        .split("[[test]]")
+        .skip(1)
+        .filter_map(|entry| entry.split('"').nth(1))
+        .collect();
+    text.split("--test ")
+        .skip(1)
+        .filter_map(|rest| {
+            rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .next()
+        })
+        .filter(|name| !targets.contains(name))
+        .map(|name| format!("`--test {name}` names no test binary of tests/Cargo.toml"))
+        .collect()
+}
+
 #[test]
 fn bench_results_and_benchmarks_md_name_only_files_of_the_repository() {
     let root = repository();
@@ -124,6 +146,7 @@ fn bench_results_and_benchmarks_md_name_only_files_of_the_repository() {
     let page_path = root.join("sandbox/BENCHMARKS.md");
     let page = std::fs::read_to_string(&page_path).expect("reading sandbox/BENCHMARKS.md");
     problems.extend(problems_of(&root, "sandbox/BENCHMARKS.md", &page));
+    problems.extend(unknown_test_targets(&root, &page));
     for link in relative_links(&page) {
         if !root.join("sandbox").join(link).exists() {
             problems.push(format!(
@@ -166,6 +189,11 @@ fn the_scan_finds_what_it_should_and_nothing_else() {
         let problems = problems_of(&root, "t", line);
         assert!(problems.is_empty(), "{line}: {problems:?}");
     }
+    assert_eq!(
+        unknown_test_targets(&root, "`cargo test -p pom-tests --test anti_aliasing`"),
+        ["`--test anti_aliasing` names no test binary of tests/Cargo.toml"]
+    );
+    assert!(unknown_test_targets(&root, "--test integration anti_aliasing::").is_empty());
     assert_eq!(
         relative_links(
             "[a](bench-results/memory/) [b](https://x.org/a) [c](#how-to-run) [d](../x.md#s)"

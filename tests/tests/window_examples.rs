@@ -449,3 +449,33 @@ fn the_rocks_example_shows_boulders_with_relief_on_the_cobbles() {
         "the rock is flat: luminance spread {spread} of 255"
     );
 }
+
+/// A windowed example built without the `window` feature fails to compile, so each declares
+/// the feature it needs: `cargo build --examples` then skips it instead of failing.
+#[test]
+fn every_windowed_example_requires_the_window_feature() {
+    let plugin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../plugin");
+    let manifest = std::fs::read_to_string(plugin.join("Cargo.toml")).unwrap();
+    let declared: Vec<&str> = manifest
+        .split("[[example]]")
+        .skip(1)
+        .filter(|entry| entry.contains("required-features = [\"window\"]"))
+        .filter_map(|entry| entry.split('"').nth(1))
+        .collect();
+    let mut windowed = Vec::new();
+    for file in std::fs::read_dir(plugin.join("examples")).unwrap() {
+        let path = file.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        if text.contains("windowed(") || text.contains("WindowPlugin") {
+            windowed.push(path.file_stem().unwrap().to_string_lossy().into_owned());
+        }
+    }
+    windowed.sort();
+    assert!(windowed.len() >= 5, "{windowed:?}");
+    for name in &windowed {
+        assert!(
+            declared.contains(&name.as_str()),
+            "plugin/Cargo.toml has no [[example]] {name} with required-features = [\"window\"]"
+        );
+    }
+}

@@ -179,6 +179,13 @@ pub fn resolve_inside(
     name: &Path,
     access: FileAccess,
 ) -> Result<PathBuf, FileError> {
+    // A bare file name's folder is the empty path (`Path::parent` of "scene.gltf"), which
+    // names the working folder but does not canonicalize.
+    let folder = if folder.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        folder
+    };
     let joined = folder.join(name);
     if access == FileAccess::AnyPath {
         return Ok(joined);
@@ -337,5 +344,22 @@ mod tests {
         let allowed = resolve_inside(&scene, Path::new("../secret.png"), FileAccess::AnyPath);
         assert_eq!(read_bounded(&allowed.unwrap(), 100).unwrap(), b"secret");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// `Path::parent` of a bare file name ("scene.gltf") is the empty path: its files are the
+    /// working folder's (cargo runs tests in the package's folder).
+    #[test]
+    fn the_folder_of_a_bare_file_name_is_the_working_folder() {
+        let here = std::env::current_dir().unwrap().canonicalize().unwrap();
+        let access = FileAccess::InsideFolder;
+        let manifest = resolve_inside(Path::new(""), Path::new("Cargo.toml"), access).unwrap();
+        assert_eq!(manifest, here.join("Cargo.toml"));
+        let new = resolve_inside(Path::new(""), Path::new("not-yet/written.png"), access);
+        assert_eq!(new.unwrap(), here.join("not-yet/written.png"));
+        let error = resolve_inside(Path::new(""), Path::new("../x.png"), access).unwrap_err();
+        assert!(
+            error.to_string().contains("`..` leads out of it"),
+            "{error}"
+        );
     }
 }

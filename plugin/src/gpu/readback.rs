@@ -98,7 +98,9 @@ pub fn read_texture_level(
         .map_err(|_| CaptureError::Map("the map callback never ran".into()))?
         .map_err(|error| CaptureError::Map(error.to_string()))?;
 
-    let mut texels = Vec::with_capacity((row_bytes * height) as usize);
+    // In 64 bits: a large float target's rows overflow u32.
+    let mut texels =
+        Vec::with_capacity(usize::try_from(u64::from(row_bytes) * u64::from(height)).unwrap_or(0));
     {
         let mapped = staging
             .get_mapped_range(..)

@@ -18,6 +18,24 @@ pub const MAX_IMAGE_SIDE: u32 = 32_768;
 /// built in floats, so this bounds the memory one file can claim.
 pub const MAX_IMAGE_PIXELS: u64 = 1 << 27;
 
+/// Refuses a size over [`MAX_IMAGE_SIDE`] or [`MAX_IMAGE_PIXELS`] before anything is allocated
+/// for it; the error names the image `name`.
+pub(crate) fn check_size(name: &str, width: u32, height: u32) -> Result<(), ImageError> {
+    if width > MAX_IMAGE_SIDE
+        || height > MAX_IMAGE_SIDE
+        || u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS
+    {
+        return Err(ImageError::TooLarge {
+            name: name.to_owned(),
+            width,
+            height,
+            max_side: MAX_IMAGE_SIDE,
+            max_pixels: MAX_IMAGE_PIXELS,
+        });
+    }
+    Ok(())
+}
+
 pub(super) fn load_error(name: &str, error: impl std::fmt::Display) -> ImageError {
     ImageError::Load {
         path: name.into(),
@@ -100,18 +118,7 @@ pub(crate) fn decode_bytes(
         (decoder.dimensions(), decoder.color_type().bytes_per_pixel())
     };
     let ((width, height), bytes_per_texel) = header;
-    if width > MAX_IMAGE_SIDE
-        || height > MAX_IMAGE_SIDE
-        || u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS
-    {
-        return Err(ImageError::TooLarge {
-            name: name.to_owned(),
-            width,
-            height,
-            max_side: MAX_IMAGE_SIDE,
-            max_pixels: MAX_IMAGE_PIXELS,
-        });
-    }
+    check_size(name, width, height)?;
     let decoded_bytes = budget.reserve_decode(
         name,
         bytes.len() as u64,

@@ -105,7 +105,9 @@ impl Image {
         bytes: Vec<u8>,
         kind: TextureKind,
     ) -> Result<Self, ImageError> {
-        let expected = width as usize * height as usize * 4;
+        // In 64 bits: a declared size near u32::MAX must not overflow before it is refused.
+        let texels = u64::from(width) * u64::from(height);
+        let expected = usize::try_from(texels.saturating_mul(4)).unwrap_or(usize::MAX);
         let found = bytes.len();
         let pixels = RgbaImage::from_raw(width, height, bytes).ok_or(ImageError::WrongLength {
             width,
@@ -235,6 +237,7 @@ impl Image {
         kind: TextureKind,
         fill: [u8; 4],
     ) -> Result<Self, ImageError> {
+        decode::check_size("a GPU-written image", width, height)?;
         let pixels = RgbaImage::from_pixel(width, height, image::Rgba(fill));
         Ok(Self {
             gpu_written: true,

@@ -199,13 +199,6 @@ fn draw(
     Ok(())
 }
 
-/// Checks that `path` exists after drawing (plotters writes on `present`).
-pub fn check_written(path: &Path) -> Result<()> {
-    image::open(path)
-        .map(|_| ())
-        .with_context(|| format!("reading back {}", path.display()))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

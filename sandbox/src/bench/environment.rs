@@ -42,8 +42,9 @@ pub fn time_street_corner(
 }
 
 /// A 2048 × 1024 equirectangular `.hdr` of a bright sky over a dim ground with a small sun,
-/// written to the system's temporary folder; returns its path.
-fn write_test_hdr() -> Result<std::path::PathBuf> {
+/// written into a folder of its own made in the system's temporary folder (made new, so that
+/// nothing planted at a predictable name is written through); returns the folder and the file.
+fn write_test_hdr() -> Result<(std::path::PathBuf, std::path::PathBuf)> {
     let (width, height) = (2048, 1024);
     let image = image::Rgb32FImage::from_fn(width, height, |x, y| {
         let elevation = 0.5 - y as f32 / height as f32;
@@ -57,11 +58,17 @@ fn write_test_hdr() -> Result<std::path::PathBuf> {
         };
         image::Rgb(radiance)
     });
-    let path = std::env::temp_dir().join(format!("pom-bench-sky-{}.hdr", std::process::id()));
-    image::DynamicImage::ImageRgb32F(image)
-        .save(&path)
-        .with_context(|| format!("writing {}", path.display()))?;
-    Ok(path)
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |since| since.subsec_nanos());
+    let folder = std::env::temp_dir().join(format!("pom-bench-sky-{}-{nanos}", std::process::id()));
+    std::fs::create_dir(&folder).with_context(|| format!("creating {}", folder.display()))?;
+    let path = folder.join("sky.hdr");
+    if let Err(error) = pom::files::write_image(&path, &image::DynamicImage::ImageRgb32F(image)) {
+        std::fs::remove_dir_all(&folder).ok();
+        return Err(error.into());
+    }
+    Ok((folder, path))
 }
 
 /// The prefiltering of a 2048 × 1024 `.hdr` into the default 256-texel cube: its GPU
@@ -72,11 +79,11 @@ pub fn time_prefilter(
     path: RenderPath,
     (warmup, frames): (Warmup, usize),
 ) -> Result<(&'static str, PhaseTimes, f64)> {
-    let file = write_test_hdr()?;
+    let (folder, file) = write_test_hdr()?;
     let started = Instant::now();
     let decoded = EquirectImage::read(&file);
     let read_ms = started.elapsed().as_secs_f64() * 1000.0;
-    std::fs::remove_file(&file).ok();
+    std::fs::remove_dir_all(&folder).ok();
     let image = decoded?;
     let copies = [Arc::new(image.clone()), Arc::new(image)];
     let case = ShadowCase {

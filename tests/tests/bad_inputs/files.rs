@@ -368,3 +368,56 @@ fn file_access_any_path_lets_a_trusted_script_use_shared_maps() {
     run_script_with(&path, &options).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_reference_that_names_no_png_file_is_refused_before_rendering() {
+    let dir = scratch("reference-no-file");
+    copy_maps(&dir.join("scripts"), "maps");
+    // Failure images are named after the reference: a folder would leave them named after
+    // the capture, anywhere the capture's name leads.
+    for reference in [".", "sub/..", "", "refs/shot.txt"] {
+        let path = script_file(&dir, &plane_with_maps("maps"), reference);
+        match run_script_with(&path, &RunOptions::default()) {
+            Err(ScriptError::Parse { reason, .. }) => assert!(
+                reason.contains(&format!("reference {reference:?} names no PNG file")),
+                "{reason}"
+            ),
+            other => panic!("{reference:?}: expected ScriptError::Parse, got {other:?}"),
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn failure_images_through_a_symlink_out_of_the_folder_or_onto_a_fifo_are_refused() {
+    let dir = scratch("failure-images");
+    copy_maps(&dir.join("scripts"), "maps");
+    std::fs::write(dir.join("outside.txt"), b"keep").unwrap();
+    std::fs::create_dir_all(dir.join("scripts/refs")).unwrap();
+    let actual = dir.join("scripts/refs/shot-actual.png");
+    std::os::unix::fs::symlink(dir.join("outside.txt"), &actual).unwrap();
+    // The reference is missing: the run writes the capture beside it for a look.
+    let path = script_file(&dir, &plane_with_maps("maps"), "refs/shot.png");
+    let run = |path: &Path| {
+        let path = path.to_owned();
+        within_time(move || run_script_with(&path, &RunOptions::default()))
+    };
+    match run(&path) {
+        Err(ScriptError::Step { reason, .. }) => assert!(
+            reason.contains("refs/shot-actual.png is outside")
+                && reason.contains("a symbolic link leads out of it"),
+            "{reason}"
+        ),
+        other => panic!("expected ScriptError::Step, got {other:?}"),
+    }
+    assert_eq!(std::fs::read(dir.join("outside.txt")).unwrap(), b"keep");
+    std::fs::remove_file(&actual).unwrap();
+    mkfifo(&actual);
+    match run(&path) {
+        Err(ScriptError::Step { reason, .. }) => {
+            assert!(reason.contains("is not a regular file"), "{reason}");
+        }
+        other => panic!("expected ScriptError::Step, got {other:?}"),
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -235,3 +235,28 @@ fn height_map_beyond_the_devices_texture_limit() {
         "{warned:?}"
     );
 }
+
+#[test]
+fn images_made_in_code_with_enormous_sizes_are_errors_not_panics() {
+    match Image::gpu_written(u32::MAX, u32::MAX, TextureKind::Color, [0; 4]) {
+        Err(ImageError::TooLarge { width, .. }) => assert_eq!(width, u32::MAX),
+        other => panic!("expected ImageError::TooLarge, got {other:?}"),
+    }
+    match Image::gpu_written(100_000, 100_000, TextureKind::Color, [0; 4]) {
+        Err(error) => assert!(error.to_string().contains("100000"), "{error}"),
+        Ok(_) => panic!("a 100,000² image was made"),
+    }
+    match Image::from_rgba8(u32::MAX, u32::MAX, vec![0; 16], TextureKind::Color) {
+        Err(ImageError::WrongLength { found, .. }) => assert_eq!(found, 16),
+        other => panic!("expected ImageError::WrongLength, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_height_field_asked_with_a_side_of_zero_has_one_texel() {
+    let field = pom::HeightField::from_fn(0, 0, |_, _| 0.5);
+    assert_eq!(field.size(), (1, 1));
+    assert_eq!(field.sample(0.3, 0.7), 0.5);
+    assert_eq!(field.normal_map(0.05).size(), (1, 1));
+    assert_eq!(pom::patterns::bricks(0, 4.0, 8.0).to_image().size(), (1, 1));
+}

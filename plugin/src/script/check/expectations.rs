@@ -38,6 +38,22 @@ pub(super) fn check_expectations(
     Ok(())
 }
 
+/// A reference names a PNG file (its failure images are named after it): not a folder such
+/// as `.` or `sub/..`.
+fn need_png_file(reference: &str) -> Result<(), Problem> {
+    let path = std::path::Path::new(reference);
+    let png = path
+        .extension()
+        .is_some_and(|extension| extension.eq_ignore_ascii_case("png"));
+    if path.file_name().is_some() && png {
+        return Ok(());
+    }
+    Err((
+        "reference",
+        format!("reference {reference:?} names no PNG file (a reference is a .png image)"),
+    ))
+}
+
 /// One step's problem, `views` holding the debug view of every capture taken before it.
 fn check_expectation(
     step: &Step,
@@ -45,10 +61,17 @@ fn check_expectation(
     views: &HashMap<&str, Option<DebugView>>,
 ) -> Result<(), Problem> {
     match step {
-        Step::ExpectMatch { tolerance, .. } => match tolerance.problem() {
-            Some((field, reason)) => Err((field, format!("tolerance {reason}"))),
-            None => Ok(()),
-        },
+        Step::ExpectMatch {
+            reference,
+            tolerance,
+            ..
+        } => {
+            need_png_file(reference)?;
+            match tolerance.problem() {
+                Some((field, reason)) => Err((field, format!("tolerance {reason}"))),
+                None => Ok(()),
+            }
+        }
         Step::ExpectStat {
             capture,
             stat,

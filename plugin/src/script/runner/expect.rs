@@ -11,8 +11,17 @@ use crate::script::format::{Rect, Statistic};
 use crate::script::stats::{Measured, measure, stat_name};
 use crate::{FlipComparison, FlipTolerance, Image, TextureKind, flip_compare};
 
-/// Writes `image` as a PNG at `path`, making its folder first.
+/// Writes `image` as a PNG at `path`, making its folder first. Something there that is not a
+/// regular file (a FIFO would block the run, a device would swallow the image) is refused.
 fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {
+    if let Ok(existing) = std::fs::metadata(path)
+        && !existing.is_file()
+    {
+        return Err(format!(
+            "{} is not a regular file: the image is not written there",
+            path.display()
+        ));
+    }
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
     }
@@ -124,8 +133,9 @@ impl Runner<'_> {
         }
     }
 
-    /// The files of comparing `capture` with `reference`: failure images are named after the
-    /// reference and go to the options' folder, or next to the reference.
+    /// The files of comparing `capture` with `reference` (a PNG file, as checked): failure
+    /// images are named after the reference and go to the options' folder, or next to the
+    /// reference, where they stay inside the folder the script may write in as it does.
     fn reference_match(
         &self,
         capture: &str,
@@ -135,17 +145,19 @@ impl Runner<'_> {
         let reference_path = self.resolve(reference)?;
         let stem = Path::new(reference)
             .file_stem()
-            .map(|stem| stem.to_string_lossy().into_owned())
-            .unwrap_or_else(|| capture.to_owned());
-        let out_dir: PathBuf = self
-            .options
-            .out_dir
-            .clone()
-            .unwrap_or_else(|| reference_path.parent().unwrap_or(self.dir).to_owned());
+            .ok_or_else(|| format!("reference {reference:?} names no file"))?
+            .to_string_lossy();
+        let failure_image = |suffix: &str| -> Result<PathBuf, String> {
+            let name = format!("{stem}-{suffix}.png");
+            match &self.options.out_dir {
+                Some(out_dir) => Ok(out_dir.join(name)),
+                None => self.resolve(&Path::new(reference).with_file_name(name).to_string_lossy()),
+            }
+        };
         Ok(ReferenceMatch {
             actual: &self.captures[capture].image,
-            actual_path: out_dir.join(format!("{stem}-actual.png")),
-            difference_path: out_dir.join(format!("{stem}-difference.png")),
+            actual_path: failure_image("actual")?,
+            difference_path: failure_image("difference")?,
             reference: reference_path,
             bless: self.options.bless,
         })
