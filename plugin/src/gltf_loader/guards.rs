@@ -31,6 +31,7 @@ pub(super) fn check_glb_length(bytes: &[u8]) -> Result<Option<String>, String> {
 pub(super) fn check_json(json: &gltf::json::Root) -> Result<(), String> {
     check_position_accessors(json)?;
     check_attribute_types(json)?;
+    check_cameras(json)?;
     check_accessors(json)?;
     check_buffer_views(json)?;
     check_images(json)
@@ -65,12 +66,17 @@ fn check_attribute_types(json: &gltf::json::Root) -> Result<(), String> {
                 .attributes
                 .iter()
                 .filter_map(|(semantic, accessor)| {
-                    let (name, allowed): (&str, (Type, &[ComponentType])) = match semantic {
-                        Checked::Valid(Semantic::Positions) => ("POSITION", (Type::Vec3, &[F32])),
-                        Checked::Valid(Semantic::Normals) => ("NORMAL", (Type::Vec3, &[F32])),
-                        Checked::Valid(Semantic::Tangents) => ("TANGENT", (Type::Vec4, &[F32])),
+                    let (name, allowed): (&str, (&[Type], &[ComponentType])) = match semantic {
+                        Checked::Valid(Semantic::Positions) => {
+                            ("POSITION", (&[Type::Vec3], &[F32]))
+                        }
+                        Checked::Valid(Semantic::Normals) => ("NORMAL", (&[Type::Vec3], &[F32])),
+                        Checked::Valid(Semantic::Tangents) => ("TANGENT", (&[Type::Vec4], &[F32])),
                         Checked::Valid(Semantic::TexCoords(0)) => {
-                            ("TEXCOORD_0", (Type::Vec2, &[F32, U8, U16]))
+                            ("TEXCOORD_0", (&[Type::Vec2], &[F32, U8, U16]))
+                        }
+                        Checked::Valid(Semantic::Colors(0)) => {
+                            ("COLOR_0", (&[Type::Vec3, Type::Vec4], &[F32, U8, U16]))
                         }
                         _ => return None,
                     };
@@ -80,21 +86,48 @@ fn check_attribute_types(json: &gltf::json::Root) -> Result<(), String> {
                 (
                     "indices",
                     accessor.value(),
-                    (Type::Scalar, &[U8, U16, U32][..]),
+                    (&[Type::Scalar][..], &[U8, U16, U32][..]),
                 )
             });
-            for (what, index, (kind, components)) in expected.chain(indices) {
+            for (what, index, (kinds, components)) in expected.chain(indices) {
                 let Some(accessor) = json.accessors.get(index) else {
                     continue;
                 };
-                let fits = matches!(accessor.type_, Checked::Valid(found) if found == kind)
+                let fits = matches!(accessor.type_, Checked::Valid(found) if kinds.contains(&found))
                     && matches!(&accessor.component_type, Checked::Valid(found) if components.contains(&found.0));
                 if !fits {
+                    let kinds = kinds
+                        .iter()
+                        .map(|kind| format!("{kind:?}"))
+                        .collect::<Vec<_>>();
                     return Err(format!(
-                        "mesh {mesh}, primitive {primitive_index}: {what} (accessor {index}) must be {kind:?} of {components:?}"
+                        "mesh {mesh}, primitive {primitive_index}: {what} (accessor {index}) must be {} of {components:?}",
+                        kinds.join(" or ")
                     ));
                 }
             }
+        }
+    }
+    Ok(())
+}
+
+/// A camera must hold the projection its `type` names: gltf unwraps it.
+fn check_cameras(json: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::camera::Type as Projection;
+    for (index, camera) in json.cameras.iter().enumerate() {
+        let (held, name) = match camera.type_ {
+            Checked::Valid(Projection::Perspective) => {
+                (camera.perspective.is_some(), "perspective")
+            }
+            Checked::Valid(Projection::Orthographic) => {
+                (camera.orthographic.is_some(), "orthographic")
+            }
+            Checked::Invalid => continue,
+        };
+        if !held {
+            return Err(format!(
+                "camera {index}: its type is {name} but it has no `{name}` object"
+            ));
         }
     }
     Ok(())

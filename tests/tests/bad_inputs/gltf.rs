@@ -311,3 +311,19 @@ fn gltf_truncated_glb() {
 fn gltf_missing_file() {
     assert_open_error("gltf/no_such_scene.gltf", "No such file");
 }
+
+#[test]
+fn gltf_color_of_two_components() {
+    assert_open_error(
+        "gltf/color_vec2.gltf",
+        "mesh 0, primitive 0: COLOR_0 (accessor 4) must be Vec3 or Vec4 of [F32, U8, U16]",
+    );
+}
+
+#[test]
+fn gltf_camera_without_the_projection_its_type_names() {
+    assert_open_error(
+        "gltf/camera_type_mismatch.gltf",
+        "camera 0: its type is perspective but it has no `perspective` object",
+    );
+}
