@@ -353,6 +353,15 @@ fn upload_mesh(
         mesh.validate()?;
         mesh
     };
+    // Checked before anything is allocated: wgpu panics making a buffer past the device's limit.
+    let limit = gpu.storage_buffer_limit();
+    check_buffer_size(
+        "vertex buffer",
+        mesh.positions.len(),
+        size_of::<Vertex>(),
+        limit,
+    )?;
+    check_buffer_size("index buffer", mesh.indices.len(), size_of::<u32>(), limit)?;
     let vertices: Vec<Vertex> = (0..mesh.positions.len())
         .map(|i| Vertex {
             position: mesh.positions[i],
@@ -381,6 +390,24 @@ fn upload_mesh(
             }),
         index_count: mesh.indices.len() as u32,
     })
+}
+
+/// Refuses a buffer of `count` elements of `element` bytes over `limit` bytes.
+fn check_buffer_size(
+    buffer: &'static str,
+    count: usize,
+    element: usize,
+    limit: u64,
+) -> Result<(), crate::MeshError> {
+    let bytes = (count as u64).saturating_mul(element as u64);
+    if bytes > limit {
+        return Err(crate::MeshError::TooLarge {
+            buffer,
+            bytes,
+            limit,
+        });
+    }
+    Ok(())
 }
 
 /// How a level of an image becomes texels of its GPU format.
@@ -533,7 +560,22 @@ fn upload_image(
 
 #[cfg(test)]
 mod tests {
-    use super::f16_bits;
+    use super::{check_buffer_size, f16_bits};
+
+    /// A mesh too large for the device (millions of vertices from a small glTF's flat normals,
+    /// or a terrain of many cells) is an error naming the buffer and the limit; wgpu would
+    /// panic making the buffer.
+    #[test]
+    fn a_mesh_buffer_over_the_device_limit_is_an_error() {
+        assert!(check_buffer_size("vertex buffer", 1 << 20, 64, 1 << 26).is_ok());
+        let error = check_buffer_size("vertex buffer", (1 << 20) + 1, 64, 1 << 26).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "mesh vertex buffer would take 67108928 bytes, over the device's limit of 67108864"
+        );
+        let error = check_buffer_size("index buffer", usize::MAX, 4, u64::MAX - 1).unwrap_err();
+        assert!(error.to_string().contains("index buffer"), "{error}");
+    }
 
     #[test]
     fn half_floats_round_to_nearest() {

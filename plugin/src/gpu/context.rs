@@ -165,8 +165,15 @@ impl GpuContext {
 
     /// Whether the device can make a buffer of `bytes` and bind it whole as storage.
     pub(crate) fn storage_buffer_fits(&self, bytes: u64) -> bool {
+        bytes <= self.storage_buffer_limit()
+    }
+
+    /// The largest buffer the device can make and bind whole as storage, in bytes.
+    pub(crate) fn storage_buffer_limit(&self) -> u64 {
         let limits = self.device.limits();
-        bytes <= limits.max_buffer_size && bytes <= limits.max_storage_buffer_binding_size
+        limits
+            .max_buffer_size
+            .min(u64::from(limits.max_storage_buffer_binding_size))
     }
 
     /// Writes `bytes` into `buffer` at `offset` through the queue (before the next submission's

@@ -59,6 +59,16 @@ pub enum MeshError {
         /// [`MAX_GRID_CELLS`].
         limit: u32,
     },
+    /// The mesh's vertex or index buffer is larger than the device can make and bind.
+    #[error("mesh {buffer} would take {bytes} bytes, over the device's limit of {limit}")]
+    TooLarge {
+        /// Which buffer (`vertex buffer` or `index buffer`).
+        buffer: &'static str,
+        /// Its size in bytes.
+        bytes: u64,
+        /// The device's largest buffer bound whole as storage.
+        limit: u64,
+    },
     /// A terrain's size (x, y, z) is not finite, or not positive across (x, z) or negative in
     /// height (y).
     #[error("terrain size {0:?} must be finite, positive in x and z and not negative in y")]
