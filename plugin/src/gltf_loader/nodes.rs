@@ -1,5 +1,7 @@
 //! The node hierarchy of a glTF scene to entities: transforms, meshes, cameras and lights.
 
+use std::collections::HashMap;
+
 use glam::{Affine3A, Vec3};
 use hecs::Entity;
 
@@ -63,7 +65,7 @@ pub(super) fn spawn_scene(
     Ok(())
 }
 
-/// The walk's state: where it spawns, and the materials and mesh boxes it has gathered.
+/// The walk's state: where it spawns, and the materials, meshes and mesh boxes it has gathered.
 struct Spawner<'a> {
     app: &'a mut App,
     source: &'a Source,
@@ -71,6 +73,10 @@ struct Spawner<'a> {
     meshes: &'a mut Assets<Mesh>,
     images: &'a mut Assets<Image>,
     materials: MaterialCache,
+    /// Each primitive's mesh, by (mesh, primitive) index, read once however many nodes use it:
+    /// nodes sharing a mesh then share its GPU buffers and draw as instances, and a small file
+    /// of many nodes on one large mesh cannot ask for a copy per node.
+    primitive_meshes: HashMap<(usize, usize), Handle<Mesh>>,
     mesh_boxes: Vec<(Vec3, Vec3)>,
 }
 
@@ -89,6 +95,7 @@ fn spawn_nodes(
         meshes,
         images,
         materials: MaterialCache::default(),
+        primitive_meshes: HashMap::new(),
         mesh_boxes: Vec::new(),
     };
     let mut stack: Vec<(gltf::Node<'_>, Option<Entity>, Affine3A)> = root
@@ -264,11 +271,25 @@ impl Spawner<'_> {
                     primitive.index()
                 ));
             }
-            let data = read_primitive(self.source, mesh, &primitive, material.uv_transform)?;
-            if let Some(bounds) = mesh_bounds(world, &data) {
+            let key = (mesh.index(), primitive.index());
+            let handle = match self.primitive_meshes.get(&key) {
+                Some(handle) => handle.clone(),
+                None => {
+                    let data =
+                        read_primitive(self.source, mesh, &primitive, material.uv_transform)?;
+                    let handle = self.meshes.add(data);
+                    self.primitive_meshes.insert(key, handle.clone());
+                    handle
+                }
+            };
+            if let Some(bounds) = self
+                .meshes
+                .get(&handle)
+                .and_then(|data| mesh_bounds(world, data))
+            {
                 self.mesh_boxes.push(bounds);
             }
-            drawable.push((self.meshes.add(data), material.kind));
+            drawable.push((handle, material.kind));
         }
         Ok(drawable)
     }

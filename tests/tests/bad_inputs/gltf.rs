@@ -327,3 +327,36 @@ fn gltf_camera_without_the_projection_its_type_names() {
         "camera 0: its type is perspective but it has no `perspective` object",
     );
 }
+
+/// Nodes that use one mesh share one copy of it (and so its GPU buffers, drawn as instances):
+/// a small file of many nodes on one mesh cannot ask for a copy per node.
+#[test]
+fn gltf_nodes_sharing_a_mesh_share_one_copy_of_it() {
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(corpus("gltf/no_uvs.gltf")).unwrap())
+            .unwrap();
+    let nodes: Vec<serde_json::Value> = (0..1000)
+        .map(|index| serde_json::json!({"mesh": 0, "translation": [index as f32, 0.0, 0.0]}))
+        .collect();
+    json["scenes"][0]["nodes"] = (0..1000).collect::<Vec<u32>>().into();
+    json["nodes"] = nodes.into();
+    let dir = std::env::temp_dir().join(format!("pom-gltf-shared-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("many_nodes.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    let scene = load_gltf(&mut app, &path).unwrap();
+    assert_eq!(scene.entities.len(), 1000);
+    assert_eq!(app.resources.get::<Assets<pom::Mesh>>().unwrap().len(), 1);
+    let ids: std::collections::HashSet<_> = app
+        .world
+        .query::<&pom::Handle<pom::Mesh>>()
+        .iter()
+        .map(|handle| handle.id())
+        .collect();
+    assert_eq!(ids.len(), 1);
+    // The framing box still spans every node's copy.
+    let (min, max) = scene.framing_bounds.unwrap();
+    assert!(max.x - min.x > 999.0, "{min} {max}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
