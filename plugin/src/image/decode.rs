@@ -112,10 +112,11 @@ pub(crate) fn decode_bytes(
         use image::ImageDecoder;
         // No size limits yet: the header's size is checked below, with its own message.
         limits.max_alloc = Some(DECODER_SLACK_BYTES);
-        let decoder = reader(limits.clone())?
-            .into_decoder()
-            .map_err(|error| load_error(name, error))?;
-        (decoder.dimensions(), decoder.color_type().bytes_per_pixel())
+        let reader = reader(limits.clone())?;
+        without_panics(name, || {
+            let decoder = reader.into_decoder()?;
+            Ok((decoder.dimensions(), decoder.color_type().bytes_per_pixel()))
+        })?
     };
     let ((width, height), bytes_per_texel) = header;
     check_size(name, width, height)?;
@@ -129,9 +130,18 @@ pub(crate) fn decode_bytes(
     limits.max_image_height = Some(MAX_IMAGE_SIDE);
     limits.max_alloc = Some(decoded_bytes + DECODER_SLACK_BYTES);
     let reader = reader(limits)?;
-    // zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
-    // builds): a broken file is an error, not a crash.
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| reader.decode()))
+    without_panics(name, || reader.decode())
+}
+
+/// Runs `step` of the image crate's decoders with a panic turned into an error naming `name`:
+/// zune-jpeg 0.5 overflows on some malformed JPEGs (found by fuzzing; a panic in debug
+/// builds), and the header readers of formats not fuzzed here may too. A broken file is an
+/// error, not a crash.
+fn without_panics<T>(
+    name: &str,
+    step: impl FnOnce() -> image::ImageResult<T>,
+) -> Result<T, ImageError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(step))
         .unwrap_or_else(|_| {
             Err(image::ImageError::Decoding(
                 image::error::DecodingError::from_format_hint(
