@@ -173,7 +173,7 @@ impl GpuContext {
         let limits = self.device.limits();
         limits
             .max_buffer_size
-            .min(u64::from(limits.max_storage_buffer_binding_size))
+            .min(limits.max_storage_buffer_binding_size)
     }
 
     /// Writes `bytes` into `buffer` at `offset` through the queue (before the next submission's
