@@ -584,3 +584,44 @@ fn a_curved_silhouette_on_a_mesh_without_normals_or_uvs_warns_once_and_draws_as_
         assert_eq!(covered(&curved), covered(&off), "{what}");
     }
 }
+
+/// Entities spawned and despawned every frame (particles, projectiles) on a mesh the curved
+/// silhouette cannot use are each warned about once, and their warnings go with them.
+#[test]
+fn warnings_about_despawned_entities_are_forgotten() {
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    let material = ParallaxOcclusionMaterial {
+        silhouette: Silhouette::Curved,
+        ..HeightMaterial {
+            field: pom::HeightField::from_fn(4, 4, |_, _| 0.5),
+            height_scale: 0.05,
+        }
+        .material(&mut app)
+    };
+    let bare = Mesh {
+        normals: Vec::new(),
+        ..Mesh::uv_sphere(0.5, 8, 4)
+    };
+    let mesh = app.resources.get_mut::<Assets<Mesh>>().unwrap().add(bare);
+    app.world.spawn((
+        Camera::orthographic(1.2),
+        Transform::from_xyz(0.0, 3.0, 0.0).looking_at(Vec3::ZERO, Vec3::NEG_Z),
+    ));
+    for _ in 0..30 {
+        let entity = app
+            .world
+            .spawn((mesh.clone(), material.clone(), Transform::IDENTITY));
+        app.update().unwrap();
+        let warnings = app
+            .resources
+            .get::<pom::CurvedSilhouetteWarnings>()
+            .unwrap();
+        assert!(warnings.contains(entity, mesh.id()));
+        assert!(
+            warnings.len() <= 2,
+            "{} entities warned about",
+            warnings.len()
+        );
+        app.world.despawn(entity).unwrap();
+    }
+}

@@ -127,7 +127,7 @@ type DrawAndMaterial<'a> = (
 /// copied this frame: all of them where entities came, went or a mesh changed, else the changed
 /// ones only.
 pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources) {
-    let (curved, triplanar) = {
+    let (curved, triplanar, looked_at_all) = {
         let (Some(extracted), Some(meshes)) = (
             resources.get::<ExtractedMaterials<ParallaxOcclusionMaterial>>(),
             resources.get::<Assets<Mesh>>(),
@@ -135,16 +135,16 @@ pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources
             return;
         };
         let looked_at = resources.get::<MeshesLookedAt>().and_then(|seen| seen.0);
-        let draws: Vec<DrawAndMaterial<'_>> =
-            if extracted.same_entities && looked_at == Some(meshes.changes()) {
-                extracted
-                    .changed
-                    .iter()
-                    .map(|&index| (&extracted.draws[index], &extracted.materials[index]))
-                    .collect()
-            } else {
-                extracted.draws.iter().zip(&extracted.materials).collect()
-            };
+        let looked_at_all = !(extracted.same_entities && looked_at == Some(meshes.changes()));
+        let draws: Vec<DrawAndMaterial<'_>> = if !looked_at_all {
+            extracted
+                .changed
+                .iter()
+                .map(|&index| (&extracted.draws[index], &extracted.materials[index]))
+                .collect()
+        } else {
+            extracted.draws.iter().zip(&extracted.materials).collect()
+        };
         let curved = unsuitable_meshes::<CurvedSilhouette>(
             (world, resources, meshes),
             &draws,
@@ -159,10 +159,16 @@ pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources
             triplanar_problem,
             "the triplanar mapping of {named} breaks at the edges of its mesh",
         );
-        (curved, triplanar)
+        (curved, triplanar, looked_at_all)
     };
     let changes = resources.get::<Assets<Mesh>>().map(Assets::changes);
     resources.insert(MeshesLookedAt(changes));
+    // Where entities came or went or a mesh changed, the warnings of despawned entities and
+    // freed meshes go: entities spawned and despawned every frame must not grow the sets.
+    if looked_at_all {
+        forget_gone::<CurvedSilhouette>(world, resources);
+        forget_gone::<TriplanarMapping>(world, resources);
+    }
     if !curved.is_empty() {
         resources
             .get_or_default::<CurvedSilhouetteWarnings>()
@@ -175,6 +181,19 @@ pub fn warn_about_unsuitable_meshes(world: &mut World, resources: &mut Resources
             .warned
             .extend(triplanar);
     }
+}
+
+/// Drops the warnings of `Mode` about entities that no longer exist or meshes no longer stored.
+fn forget_gone<Mode: Send + Sync + 'static>(world: &World, resources: &mut Resources) {
+    let Some(mut warnings) = resources.remove::<MeshWarnings<Mode>>() else {
+        return;
+    };
+    if let Some(meshes) = resources.get::<Assets<Mesh>>() {
+        warnings
+            .warned
+            .retain(|(entity, mesh)| world.contains(*entity) && meshes.contains(*mesh));
+    }
+    resources.insert(warnings);
 }
 
 /// Logs, and returns, each of `draws` not yet warned about where `applies` to the material and
