@@ -21,6 +21,7 @@ mod gltf_loading;
 mod gltf_scene_values;
 mod gltf_triplanar;
 mod golden_scenes;
+mod gpu_errors;
 mod gpu_timing;
 mod layered_parallax;
 mod layering;

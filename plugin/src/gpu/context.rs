@@ -62,7 +62,7 @@ pub struct GpuContext {
     pub device: wgpu::Device,
     /// The submission queue.
     pub queue: wgpu::Queue,
-    uncaptured: Arc<Mutex<Vec<String>>>,
+    uncaptured: Arc<Mutex<UncapturedErrors>>,
     /// Bytes written through [`GpuContext::write_buffer`] and [`GpuContext::write_texture`].
     uploaded: Arc<AtomicU64>,
 }
@@ -132,12 +132,12 @@ impl GpuContext {
                 adapter: info.name.clone(),
                 source,
             })?;
-        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let uncaptured = Arc::new(Mutex::new(UncapturedErrors::default()));
         let sink = Arc::clone(&uncaptured);
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
             log::error!("wgpu error: {error}");
             if let Ok(mut errors) = sink.lock() {
-                errors.push(error.to_string());
+                errors.keep(error.to_string());
             }
         }));
         log::info!(
@@ -221,12 +221,45 @@ impl GpuContext {
         self.uploaded.load(Ordering::Relaxed)
     }
 
-    /// Returns and clears the errors no error scope caught since the last call.
+    /// Returns and clears the errors no error scope caught since the last call: the first
+    /// [`MAX_KEPT_ERRORS`], then one line counting those past them.
     pub fn take_uncaptured_errors(&self) -> Vec<String> {
         self.uncaptured
             .lock()
-            .map(|mut errors| std::mem::take(&mut *errors))
+            .map(|mut errors| std::mem::take(&mut *errors).into_lines())
             .unwrap_or_default()
+    }
+}
+
+/// The most uncaptured errors kept between two calls of
+/// [`GpuContext::take_uncaptured_errors`]: an app that never asks for them (a game, the editor)
+/// and repeats an error every frame only counts the rest.
+pub const MAX_KEPT_ERRORS: usize = 64;
+
+/// The uncaptured errors kept, and how many came past [`MAX_KEPT_ERRORS`].
+#[derive(Debug, Default)]
+struct UncapturedErrors {
+    kept: Vec<String>,
+    past_the_limit: usize,
+}
+
+impl UncapturedErrors {
+    fn keep(&mut self, error: String) {
+        if self.kept.len() < MAX_KEPT_ERRORS {
+            self.kept.push(error);
+        } else {
+            self.past_the_limit += 1;
+        }
+    }
+
+    fn into_lines(mut self) -> Vec<String> {
+        if self.past_the_limit > 0 {
+            self.kept.push(format!(
+                "{} more errors past the first {MAX_KEPT_ERRORS} (logged, not kept)",
+                self.past_the_limit
+            ));
+        }
+        self.kept
     }
 }
 

@@ -20,7 +20,7 @@ mod vertex;
 
 pub(crate) use assets::GpuAssets;
 pub use assets::{DefaultTexture, DefaultTextures, GpuMesh, TextureFacts, UploadStats};
-pub use context::{DEFERRED_FEATURES, GpuContext, GpuError};
+pub use context::{DEFERRED_FEATURES, GpuContext, GpuError, MAX_KEPT_ERRORS};
 pub use derived_textures::{
     ComputeDispatch, ComputeDispatches, DERIVED_TEXTURES_PASS, DerivedStorage, DerivedTexture,
     DerivedTextureBuilder, DerivedTextures, MAX_DERIVED_TEXTURES, TextureDerivation,
