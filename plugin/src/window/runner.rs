@@ -110,6 +110,25 @@ struct Runner {
     scene_rect: Option<ScreenRect>,
 }
 
+/// The most distinct failures the runner reports on stderr.
+const MOST_FAILURES_REPORTED: usize = 32;
+
+/// The lines to report for `failure`, noting it in `reported`: none where it was reported
+/// before or [`MOST_FAILURES_REPORTED`] were; the last one allowed also says so.
+fn report_once(reported: &mut Vec<String>, failure: String) -> Vec<String> {
+    if reported.len() >= MOST_FAILURES_REPORTED || reported.contains(&failure) {
+        return Vec::new();
+    }
+    reported.push(failure.clone());
+    let mut lines = vec![failure];
+    if reported.len() == MOST_FAILURES_REPORTED {
+        lines.push(format!(
+            "{MOST_FAILURES_REPORTED} different failures reported; later ones are not"
+        ));
+    }
+    lines
+}
+
 /// Everything that exists once the window is open.
 struct OpenWindow {
     window: Arc<Window>,
@@ -327,11 +346,12 @@ impl Runner {
         Ok(())
     }
 
-    /// Reports a failed frame once; ends the run where the game asked for that.
+    /// Reports a failed frame once (up to [`MOST_FAILURES_REPORTED`] distinct ones: a failure
+    /// whose text changes every frame must not grow the list); ends the run where the game asked
+    /// for that.
     fn frame_failed(&mut self, event_loop: &ActiveEventLoop, failure: String) {
-        if !self.reported.contains(&failure) {
-            eprintln!("error: {failure}");
-            self.reported.push(failure);
+        for line in report_once(&mut self.reported, failure) {
+            eprintln!("error: {line}");
         }
         if self.settings.exit_on_error {
             self.end(event_loop, Ok(AppExit::error()));
@@ -572,5 +592,24 @@ impl Runner {
             }
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failure_is_reported_once_and_a_bounded_number_of_them() {
+        let mut reported = Vec::new();
+        assert_eq!(report_once(&mut reported, "lost".into()), ["lost"]);
+        assert!(report_once(&mut reported, "lost".into()).is_empty());
+        // A failure whose text changes every frame.
+        let lines: Vec<String> = (0..1000)
+            .flat_map(|frame| report_once(&mut reported, format!("frame {frame} failed")))
+            .collect();
+        assert_eq!(reported.len(), MOST_FAILURES_REPORTED);
+        assert_eq!(lines.len(), MOST_FAILURES_REPORTED);
+        assert!(lines.last().unwrap().contains("later ones are not"));
     }
 }

@@ -83,6 +83,28 @@ struct PendingPaint {
     pixels_per_point: f32,
 }
 
+/// The most messages the panel lists.
+const MOST_MESSAGES: usize = 32;
+
+/// Adds `message` to `messages` unless it is there already, up to [`MOST_MESSAGES`]: the last
+/// place says more came, and later ones go to the log.
+fn say_once(messages: &mut Vec<String>, message: String) {
+    if messages.contains(&message) {
+        return;
+    }
+    if messages.len() + 1 < MOST_MESSAGES {
+        messages.push(message);
+    } else {
+        if messages.len() + 1 == MOST_MESSAGES {
+            messages.push(MORE_MESSAGES.into());
+        }
+        log::warn!("{message}");
+    }
+}
+
+/// The panel's last message where more came than it lists.
+const MORE_MESSAGES: &str = "more messages than the panel shows: see the log";
+
 /// The sandbox's UI over the scene: panels, the orbit camera on the viewport, the split
 /// view's wipe, autosave of the tuned values.
 struct SandboxOverlay {
@@ -173,11 +195,11 @@ impl SandboxOverlay {
             .map_err(|error| anyhow!("writing {}: {error:#}", self.autosave.path().display()))
     }
 
-    /// Adds `message` to the panel's unless it is there already.
+    /// Adds `message` to the panel's unless it is there already, up to [`MOST_MESSAGES`] (a
+    /// failure whose text changes every frame must not grow the panel); later ones go to the
+    /// log.
     fn say_once(&mut self, message: String) {
-        if !self.panel.messages.contains(&message) {
-            self.panel.messages.push(message);
-        }
+        say_once(&mut self.panel.messages, message);
     }
 }
 
@@ -425,6 +447,20 @@ mod tests {
     use pom::{Assets, Camera, Mesh, TransformPlugin};
 
     use super::*;
+
+    #[test]
+    fn a_message_is_said_once_and_the_panel_lists_a_bounded_number() {
+        let mut messages = Vec::new();
+        say_once(&mut messages, "the same".into());
+        say_once(&mut messages, "the same".into());
+        assert_eq!(messages, ["the same"]);
+        // A failure whose text changes every frame.
+        for frame in 0..1000 {
+            say_once(&mut messages, format!("frame {frame} failed"));
+        }
+        assert_eq!(messages.len(), MOST_MESSAGES);
+        assert_eq!(messages[MOST_MESSAGES - 1], MORE_MESSAGES);
+    }
 
     #[test]
     fn a_click_selects_the_material_under_it_and_a_miss_keeps_the_selection() {
