@@ -264,9 +264,10 @@ impl DerivedTextureCache {
                 self.textures.entry(derived).insert_entry(fresh).into_mut()
             }
         };
-        self.pending
-            .0
-            .push(builder.build(gpu, &source.texture, &cached.storage));
+        self.pending.queue(
+            derived,
+            builder.build(gpu, &source.texture, &cached.storage),
+        );
         cached.source_serial = source.upload_serial;
         cached.last_used = self.sweeps;
         true
@@ -305,11 +306,21 @@ impl DerivedTextureCache {
 }
 
 /// Builds of derived textures made ready in the Prepare stage, recorded by the frame before
-/// any phase reads them.
+/// any phase reads them; at most one per derived texture.
 #[derive(Default)]
-pub(crate) struct DerivedTextureBuilds(Vec<ComputeDispatches>);
+pub(crate) struct DerivedTextureBuilds(Vec<(DerivedTexture, ComputeDispatches)>);
 
 impl DerivedTextureBuilds {
+    /// Queues `build` of `derived` in place of one queued before and not yet submitted (a
+    /// build writes the whole texture): frames that fail before submitting, while a source
+    /// changes every frame, do not pile builds up.
+    fn queue(&mut self, derived: DerivedTexture, build: ComputeDispatches) {
+        match self.0.iter_mut().find(|(queued, _)| *queued == derived) {
+            Some((_, queued)) => *queued = build,
+            None => self.0.push((derived, build)),
+        }
+    }
+
     /// Whether there is nothing to build.
     pub(crate) fn is_empty(&self) -> bool {
         self.0.is_empty()
@@ -328,7 +339,7 @@ impl DerivedTextureBuilds {
             label: Some(DERIVED_TEXTURES_PASS),
             timestamp_writes: timestamps.map(PassTimestamps::compute),
         });
-        for build in &self.0 {
+        for (_, build) in &self.0 {
             build.record(&mut pass);
         }
     }
@@ -343,5 +354,33 @@ impl DerivedTextureBuilds {
             });
         self.record(&mut encoder, None);
         gpu.queue.submit([encoder.finish()]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parallax::MaxHeightPyramid;
+    use crate::{Assets, Channel, HeightConvention, TextureKind};
+
+    #[test]
+    fn a_texture_has_one_build_queued_however_often_its_source_changes() {
+        let mut images = Assets::default();
+        let mut derived = |convention| DerivedTexture {
+            source: images
+                .add(Image::from_rgba8(1, 1, vec![0; 4], TextureKind::Height).unwrap())
+                .id(),
+            derivation: MaxHeightPyramid::derivation(Channel::Red, convention),
+        };
+        let (first, second) = (
+            derived(HeightConvention::Height),
+            derived(HeightConvention::Depth),
+        );
+        let mut builds = DerivedTextureBuilds::default();
+        for _ in 0..100 {
+            builds.queue(first, ComputeDispatches(Vec::new()));
+            builds.queue(second, ComputeDispatches(Vec::new()));
+        }
+        assert_eq!(builds.0.len(), 2);
     }
 }
