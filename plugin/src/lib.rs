@@ -125,8 +125,8 @@ pub use dynamic_height::{
 };
 pub use exposure::Exposure;
 pub use gltf_loader::{
-    GltfError, GltfOptions, GltfScene, LayerExtras, PomExtras, load_gltf, load_gltf_bytes,
-    load_gltf_with,
+    GltfError, GltfOptions, GltfScene, LayerExtras, MAX_GLTF_VERTICES, PomExtras, load_gltf,
+    load_gltf_bytes, load_gltf_with,
 };
 pub use gpu::{GpuContext, GpuTimings, TimingMode};
 pub use height_field::{HeightConvention, HeightField, patterns};

@@ -19,6 +19,7 @@ mod values;
 
 pub use extras::PomExtras;
 pub use layer_extras::LayerExtras;
+pub use primitives::MAX_GLTF_VERTICES;
 
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@ use glam::{Affine3A, Vec3};
 use hecs::Entity;
 
 use super::materials::{MaterialCache, MaterialComponent};
-use super::primitives::read_primitive;
+use super::primitives::{MAX_GLTF_VERTICES, decoded_vertices, read_primitive};
 use super::values::{
     camera_exposure, camera_of, light_output, light_range, node_transform, scene_ambient,
     world_problem,
@@ -77,6 +77,8 @@ struct Spawner<'a> {
     /// nodes sharing a mesh then share its GPU buffers and draw as instances, and a small file
     /// of many nodes on one large mesh cannot ask for a copy per node.
     primitive_meshes: HashMap<(usize, usize), Handle<Mesh>>,
+    /// The vertices decoded so far, against [`MAX_GLTF_VERTICES`].
+    decoded_vertices: u64,
     mesh_boxes: Vec<(Vec3, Vec3)>,
 }
 
@@ -96,6 +98,7 @@ fn spawn_nodes(
         images,
         materials: MaterialCache::default(),
         primitive_meshes: HashMap::new(),
+        decoded_vertices: 0,
         mesh_boxes: Vec::new(),
     };
     let mut stack: Vec<(gltf::Node<'_>, Option<Entity>, Affine3A)> = root
@@ -275,6 +278,19 @@ impl Spawner<'_> {
             let handle = match self.primitive_meshes.get(&key) {
                 Some(handle) => handle.clone(),
                 None => {
+                    self.decoded_vertices += decoded_vertices(&primitive);
+                    if self.decoded_vertices > MAX_GLTF_VERTICES {
+                        return Err(GltfError::Mesh {
+                            path: self.source.path.clone(),
+                            mesh: describe(mesh.name(), mesh.index()),
+                            primitive: primitive.index(),
+                            reason: format!(
+                                "the file's meshes decode to {} vertices by here, over the \
+                                 limit of {MAX_GLTF_VERTICES}",
+                                self.decoded_vertices
+                            ),
+                        });
+                    }
                     let data =
                         read_primitive(self.source, mesh, &primitive, material.uv_transform)?;
                     let handle = self.meshes.add(data);

@@ -5,6 +5,29 @@ use glam::{Affine2, Vec2};
 use super::{GltfError, Source, describe};
 use crate::{Mesh, MeshError};
 
+/// The most vertices one glTF file's meshes may decode to, counted as drawn (a primitive
+/// without normals gets three of its own per triangle): a small file whose primitives share a
+/// large accessor, or whose few vertices many small indices reuse, could otherwise ask for
+/// gigabytes.
+pub const MAX_GLTF_VERTICES: u64 = 1 << 25;
+
+/// The vertices `primitive` decodes to, from its accessors' counts before anything is read:
+/// one per index where it has no normals (flat normals split them), else one per position.
+pub(super) fn decoded_vertices(primitive: &gltf::Primitive<'_>) -> u64 {
+    let positions = primitive
+        .get(&gltf::Semantic::Positions)
+        .map_or(0, |accessor| accessor.count());
+    let indices = primitive
+        .indices()
+        .map_or(positions, |accessor| accessor.count());
+    let drawn = if primitive.get(&gltf::Semantic::Normals).is_none() {
+        indices
+    } else {
+        positions
+    };
+    drawn as u64
+}
+
 /// The vertex data of one triangle primitive, with the material's texture transform baked into
 /// its coordinates, missing normals (flat) and tangents (MikkTSpace) generated.
 pub(super) fn read_primitive(

@@ -360,3 +360,49 @@ fn gltf_nodes_sharing_a_mesh_share_one_copy_of_it() {
     assert!(max.x - min.x > 999.0, "{min} {max}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A primitive without normals gets three vertices of its own per triangle: 33.5 MB of byte
+/// indices would decode to 33.5 million vertices (over 2 GB). Refused from the accessors'
+/// counts before anything is decoded.
+#[test]
+fn gltf_decoding_to_more_vertices_than_the_limit_is_refused_before_decoding() {
+    let indices = pom::MAX_GLTF_VERTICES + 1;
+    let buffer_bytes = 12 + indices;
+    let gltf = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"name": "heap", "mesh": 0}],
+        "meshes": [{"name": "heap", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3",
+             "min": [0.0, 0.0, 0.0], "max": [0.0, 0.0, 0.0]},
+            {"bufferView": 1, "componentType": 5121, "count": indices, "type": "SCALAR"}
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 12},
+            {"buffer": 0, "byteOffset": 12, "byteLength": indices}
+        ],
+        "buffers": [{"uri": "heap.bin", "byteLength": buffer_bytes}]
+    });
+    let dir = std::env::temp_dir().join(format!("pom-gltf-vertex-limit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = std::fs::File::create(dir.join("heap.bin")).unwrap();
+    file.set_len(buffer_bytes).unwrap();
+    std::fs::write(dir.join("heap.gltf"), gltf.to_string()).unwrap();
+    let mut app = pom_app(8, TargetFormat::Float32).unwrap();
+    match load_gltf(&mut app, dir.join("heap.gltf")) {
+        Err(GltfError::Mesh { mesh, reason, .. }) => {
+            assert_eq!(mesh, "\"heap\" (#0)");
+            assert!(
+                reason.contains(&format!(
+                    "decode to {indices} vertices by here, over the limit of {}",
+                    pom::MAX_GLTF_VERTICES
+                )),
+                "{reason}"
+            );
+        }
+        other => panic!("expected GltfError::Mesh, got {other:?}"),
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
