@@ -23,6 +23,7 @@ mod orbit_camera;
 mod overlay;
 mod panic_report;
 mod present;
+mod reported_failures;
 mod runner;
 mod screenshot;
 mod surface;

@@ -22,6 +22,7 @@ use super::frame_times::FrameTimes;
 use super::input::{InputEvent, PendingInput};
 use super::panic_report::{OncePanicHook, panic_message};
 use super::present::{PresentError, Presenter, ScreenRect};
+use super::reported_failures::ReportedFailures;
 use super::screenshot::ScreenshotTexture;
 use super::{
     AppExit, Automation, DeviceWatch, ScreenshotRequest, ScreenshotSaved, WindowError,
@@ -79,7 +80,7 @@ impl App {
             frames: 0,
             visible: true,
             outcome: None,
-            reported: Vec::new(),
+            reported: ReportedFailures::default(),
             overlay,
             scene_rect: None,
         };
@@ -103,30 +104,11 @@ struct Runner {
     /// How the run ended, once it has.
     outcome: Option<Result<AppExit, WindowError>>,
     /// Failures already reported (each is reported once).
-    reported: Vec<String>,
+    reported: ReportedFailures,
     frame_times: FrameTimes,
     overlay: Option<Box<dyn WindowOverlay>>,
     /// Where the last frame put the scene (`None`: the whole window).
     scene_rect: Option<ScreenRect>,
-}
-
-/// The most distinct failures the runner reports on stderr.
-const MOST_FAILURES_REPORTED: usize = 32;
-
-/// The lines to report for `failure`, noting it in `reported`: none where it was reported
-/// before or [`MOST_FAILURES_REPORTED`] were; the last one allowed also says so.
-fn report_once(reported: &mut Vec<String>, failure: String) -> Vec<String> {
-    if reported.len() >= MOST_FAILURES_REPORTED || reported.contains(&failure) {
-        return Vec::new();
-    }
-    reported.push(failure.clone());
-    let mut lines = vec![failure];
-    if reported.len() == MOST_FAILURES_REPORTED {
-        lines.push(format!(
-            "{MOST_FAILURES_REPORTED} different failures reported; later ones are not"
-        ));
-    }
-    lines
 }
 
 /// Everything that exists once the window is open.
@@ -346,11 +328,10 @@ impl Runner {
         Ok(())
     }
 
-    /// Reports a failed frame once (up to [`MOST_FAILURES_REPORTED`] distinct ones: a failure
-    /// whose text changes every frame must not grow the list); ends the run where the game asked
+    /// Reports a failed frame once ([`ReportedFailures`]); ends the run where the game asked
     /// for that.
     fn frame_failed(&mut self, event_loop: &ActiveEventLoop, failure: String) {
-        for line in report_once(&mut self.reported, failure) {
+        for line in self.reported.report(failure) {
             eprintln!("error: {line}");
         }
         if self.settings.exit_on_error {
@@ -592,24 +573,5 @@ impl Runner {
             }
             _ => {}
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_failure_is_reported_once_and_a_bounded_number_of_them() {
-        let mut reported = Vec::new();
-        assert_eq!(report_once(&mut reported, "lost".into()), ["lost"]);
-        assert!(report_once(&mut reported, "lost".into()).is_empty());
-        // A failure whose text changes every frame.
-        let lines: Vec<String> = (0..1000)
-            .flat_map(|frame| report_once(&mut reported, format!("frame {frame} failed")))
-            .collect();
-        assert_eq!(reported.len(), MOST_FAILURES_REPORTED);
-        assert_eq!(lines.len(), MOST_FAILURES_REPORTED);
-        assert!(lines.last().unwrap().contains("later ones are not"));
     }
 }
