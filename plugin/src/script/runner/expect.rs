@@ -6,15 +6,19 @@ use std::path::{Path, PathBuf};
 use image::RgbaImage;
 
 use super::Runner;
+use crate::files::FileAccess;
 use crate::script::Outcome;
 use crate::script::format::{Rect, Statistic};
 use crate::script::stats::{Measured, measure, stat_name};
 use crate::{FlipComparison, FlipTolerance, Image, TextureKind, flip_compare};
 
-/// Writes `image` as a PNG at `path`, making its folder first. Something there that is not a
-/// regular file (a FIFO would block the run, a device would swallow the image) is refused.
-fn save(image: &RgbaImage, path: &Path) -> Result<(), String> {
-    if let Ok(existing) = std::fs::metadata(path)
+/// Writes `image` as a PNG at `path`, making its folder first. Where the script named the
+/// path (`scene_named`), something there that is not a regular file is refused: a FIFO would
+/// block the run, a device swallow the image. A path the user chose (`--out`, or a trusted
+/// script's) may be a device.
+fn save(image: &RgbaImage, path: &Path, scene_named: bool) -> Result<(), String> {
+    if scene_named
+        && let Ok(existing) = std::fs::metadata(path)
         && !existing.is_file()
     {
         return Err(format!(
@@ -36,13 +40,17 @@ struct ReferenceMatch<'a> {
     actual_path: PathBuf,
     difference_path: PathBuf,
     bless: bool,
+    /// Whether the script named the reference's path (not the user: a trusted script's).
+    reference_scene_named: bool,
+    /// Whether the script named the failure images' paths (not the user's `--out`).
+    failures_scene_named: bool,
 }
 
 impl ReferenceMatch<'_> {
     /// Blessing: writes the capture as the reference, and removes the failure images an earlier
     /// run left, which showed a difference the new reference no longer has.
     fn write_reference(&self, detail: String) -> Result<Outcome, String> {
-        save(self.actual, &self.reference)?;
+        save(self.actual, &self.reference, self.reference_scene_named)?;
         for stale in [&self.actual_path, &self.difference_path] {
             match std::fs::remove_file(stale) {
                 Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
@@ -59,7 +67,7 @@ impl ReferenceMatch<'_> {
         if self.bless {
             return self.write_reference(format!("wrote {}", self.reference.display()));
         }
-        save(self.actual, &self.actual_path)?;
+        save(self.actual, &self.actual_path, self.failures_scene_named)?;
         Ok(Outcome::Failed(format!(
             "reference {} is missing ({error}); look at {} and run with --bless",
             self.reference.display(),
@@ -75,7 +83,7 @@ impl ReferenceMatch<'_> {
                 self.reference.display()
             ));
         }
-        save(self.actual, &self.actual_path)?;
+        save(self.actual, &self.actual_path, self.failures_scene_named)?;
         Ok(Outcome::Failed(format!(
             "size {:?} differs from the reference's {:?}",
             self.actual.dimensions(),
@@ -104,8 +112,12 @@ impl ReferenceMatch<'_> {
         if self.bless {
             return self.write_reference(format!("{detail}; rewrote {}", self.reference.display()));
         }
-        save(self.actual, &self.actual_path)?;
-        save(&comparison.error_map, &self.difference_path)?;
+        save(self.actual, &self.actual_path, self.failures_scene_named)?;
+        save(
+            &comparison.error_map,
+            &self.difference_path,
+            self.failures_scene_named,
+        )?;
         Ok(Outcome::Failed(format!(
             "{detail}; see {} and {}",
             self.actual_path.display(),
@@ -160,6 +172,9 @@ impl Runner<'_> {
             difference_path: failure_image("difference")?,
             reference: reference_path,
             bless: self.options.bless,
+            reference_scene_named: self.options.file_access == FileAccess::InsideFolder,
+            failures_scene_named: self.options.file_access == FileAccess::InsideFolder
+                && self.options.out_dir.is_none(),
         })
     }
 
